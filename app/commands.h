@@ -1,0 +1,23 @@
+// The subcommands of the `waam` executable; each Add* function registers one on the CLI11 app.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace waam::app {
+
+// What a subcommand runs once its options are parsed; returns the process exit code.
+using CommandRunner = std::function<int()>;
+
+// Exit codes: the public contract documented in the README.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInternalError = 1;
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitViolations = 3;  // `waam check` found violations
+inline constexpr int kExitInterrupted = 130;
+
+// Each registers its subcommand and sets `*runner` when it is the one selected.
+// (commands are added here as they land)
+
+}  // namespace waam::app

@@ -1,0 +1,50 @@
+// The `waam` executable: a thin main over the libraries that parses the command line and maps errors to exit codes.
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "app/commands.h"
+#include "models/core/error.h"
+#include "models/core/progress.h"
+
+int main(int argc, char** argv) {
+  using namespace waam::app;
+  CLI::App app{
+      "waam: a simulation and digital-twin testbed for wire-arc additive manufacturing.\n"
+      "Plans weld paths from STL parts, checks them on a MuJoCo robot cell, deposits them in a voxel twin,\n"
+      "fits process models and reports against published measurements.\n\n"
+      "Exit codes: 0 success, 1 internal error, 2 bad input, 3 check found violations, 130 interrupted.",
+      "waam"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "waam 0.1.0");
+
+  CommandRunner runner;
+  (void)&runner;
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+
+  waam::InstallInterruptHandler();
+  try {
+    return runner ? runner() : kExitBadInput;
+  } catch (const waam::InputError& e) {
+    std::cerr << "waam: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const waam::Interrupted&) {
+    std::cerr << "waam: interrupted; partial outputs were removed\n";
+    return kExitInterrupted;
+  } catch (const std::exception& e) {
+    std::cerr << "waam: internal error: " << e.what() << "\n";
+    return kExitInternalError;
+  }
+}

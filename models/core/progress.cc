@@ -1,0 +1,69 @@
+// Progress bar on stderr and the SIGINT flag.
+#include "models/core/progress.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+
+#include "models/core/error.h"
+
+namespace waam {
+namespace {
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void OnSignal(int) { g_interrupted = 1; }
+}  // namespace
+
+void InstallInterruptHandler() {
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+}
+
+bool InterruptRequested() { return g_interrupted != 0; }
+
+void CheckInterrupt() {
+  if (InterruptRequested()) throw Interrupted();
+}
+
+Progress::Progress(std::string label, std::size_t total, std::string unit, bool quiet)
+    : label_(std::move(label)), total_(total), unit_(std::move(unit)), quiet_(quiet) {
+  start_ = std::chrono::steady_clock::now();
+  last_draw_ = start_ - std::chrono::seconds(1);
+}
+
+Progress::~Progress() {
+  if (!finished_ && !quiet_) std::fputc('\n', stderr);
+}
+
+void Progress::Update(std::size_t done) {
+  CheckInterrupt();
+  if (quiet_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_draw_ < std::chrono::milliseconds(100) && done < total_) return;
+  last_draw_ = now;
+  Draw(done);
+}
+
+void Progress::Finish() {
+  if (finished_) return;
+  if (!quiet_) {
+    Draw(total_);
+    std::fputc('\n', stderr);
+  }
+  finished_ = true;
+}
+
+void Progress::Draw(std::size_t done) {
+  constexpr int kWidth = 30;
+  const double fraction = total_ == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total_);
+  const int filled = static_cast<int>(fraction * kWidth);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  char bar[kWidth + 1];
+  for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '.';
+  bar[kWidth] = '\0';
+  std::fprintf(stderr, "\r%-10s [%s] %zu/%zu %s  %.1f s", label_.c_str(), bar, done, total_, unit_.c_str(), seconds);
+  std::fflush(stderr);
+}
+
+}  // namespace waam

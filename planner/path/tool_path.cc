@@ -1,0 +1,39 @@
+// Path statistics: passes (arc starts), path elements, lengths and time.
+#include "planner/path/tool_path.h"
+
+namespace waam::planner {
+
+PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s) {
+  PathStats stats;
+  stats.layers = plan.layers.size();
+  for (const LayerPath& layer : plan.layers) {
+    std::size_t passes = 0;
+    std::size_t elements = 0;
+    bool arc_on = false;
+    for (std::size_t i = 0; i < layer.points.size(); ++i) {
+      const PathPoint& point = layer.points[i];
+      if (i == 0) {
+        arc_on = false;
+        continue;
+      }
+      const double length = (point.p_P - layer.points[i - 1].p_P).norm();
+      if (point.weld) {
+        if (!arc_on) ++passes;
+        ++elements;
+        stats.weld_length_mm += length;
+        if (point.speed_mm_s > 0.0) stats.estimated_time_s += length / point.speed_mm_s;
+      } else {
+        stats.travel_length_mm += length;
+        if (rapid_speed_mm_s > 0.0) stats.estimated_time_s += length / rapid_speed_mm_s;
+      }
+      arc_on = point.weld;
+    }
+    stats.passes += passes;
+    stats.passes_per_layer.push_back(passes);
+    stats.path_elements += elements;
+    stats.path_elements_per_layer.push_back(elements);
+  }
+  return stats;
+}
+
+}  // namespace waam::planner

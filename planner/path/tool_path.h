@@ -1,0 +1,56 @@
+// The planned tool path: points with tool direction, bead size, speed and arc on/off, grouped by layer.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planner/geometry/polygon.h"
+
+namespace waam::planner {
+
+// One point of the torch path in the part frame P.
+// `weld` describes the move that ENDS at this point: true = arc on (a bead is laid from the previous point to this
+// one), false = arc off (a travel move). The first point of a layer has weld = false.
+struct PathPoint {
+  Eigen::Vector3d p_P = Eigen::Vector3d::Zero();               // TCP position, mm
+  Eigen::Vector3d tool_dir_P = Eigen::Vector3d::UnitZ();       // unit vector from the TCP up the torch axis
+  double bead_width_mm = 0.0;                                  // planned bead width, mm
+  double bead_height_mm = 0.0;                                 // planned bead (layer) height, mm
+  double speed_mm_s = 0.0;                                     // travel speed of the move ending here, mm/s
+  bool weld = false;
+};
+
+// The path of one layer.
+struct LayerPath {
+  int index = 0;                                  // 0 = first layer on the substrate
+  double z_mm = 0.0;                              // slicing height (planar) or mean height (curved), mm
+  Eigen::Vector3d build_dir_P = Eigen::Vector3d::UnitZ();  // slice normal: the direction the layer grows
+  std::vector<PolygonWithHoles> slice;            // the region the layer fills, in the slice plane (2D, mm)
+  std::vector<PathPoint> points;
+};
+
+// Summary measures of a path, as Ding et al. Table 2 counts them.
+struct PathStats {
+  std::size_t layers = 0;
+  std::size_t passes = 0;          // arc starts over the whole part
+  std::vector<std::size_t> passes_per_layer;
+  std::size_t path_elements = 0;   // straight weld-on segments
+  std::vector<std::size_t> path_elements_per_layer;
+  double weld_length_mm = 0.0;
+  double travel_length_mm = 0.0;
+  double estimated_time_s = 0.0;   // weld at the planned speeds, travel at the rapid speed
+};
+
+// A whole planned part.
+struct Plan {
+  std::string name;
+  std::vector<LayerPath> layers;
+};
+
+// Counts passes, path elements and lengths; travel moves are timed at `rapid_speed_mm_s`.
+PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s);
+
+}  // namespace waam::planner

@@ -1,0 +1,107 @@
+// Scenario loading: every section validated up front, with the key path in each message.
+#include "planner/scenario/scenario.h"
+
+#include <cmath>
+
+#include "models/core/error.h"
+#include "planner/scenario/yaml_fields.h"
+
+namespace waam::planner {
+namespace fs = std::filesystem;
+using internal::YamlMap;
+
+namespace {
+
+// part: either `mesh: file.stl` (relative to the scenario file) or `generator: {type: name, <param>: value...}`.
+PartSpec ParsePart(YamlMap part, const YAML::Node& node, const fs::path& scenario_dir) {
+  PartSpec spec;
+  spec.where = part.Where("");
+  const bool has_mesh = part.Has("mesh");
+  const bool has_generator = part.Has("generator");
+  WAAM_THROW_UNLESS(has_mesh != has_generator, spec.where << ": give exactly one of 'mesh' or 'generator'");
+  if (has_mesh) {
+    spec.mesh_path = fs::path(part.String("mesh"));
+    if (spec.mesh_path.is_relative()) spec.mesh_path = scenario_dir / spec.mesh_path;
+    spec.mesh_path = spec.mesh_path.lexically_normal();
+    std::error_code ec;
+    WAAM_THROW_UNLESS(fs::exists(spec.mesh_path, ec),
+                      part.Where("mesh") << ": mesh file " << spec.mesh_path.string() << " not found");
+    WAAM_THROW_UNLESS(!fs::is_directory(spec.mesh_path, ec),
+                      part.Where("mesh") << ": " << spec.mesh_path.string() << " is a directory, expected an STL file");
+  } else {
+    YamlMap generator = part.Map("generator");
+    spec.generator = generator.String("type");
+    spec.where = generator.Where("");
+    // Every other key is a numeric parameter (a number or a list); the generator checks names and ranges.
+    const YAML::Node gen_node = node["generator"];
+    for (auto it = gen_node.begin(); it != gen_node.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      if (key == "type") continue;
+      spec.params[key] = it->second.IsSequence() ? generator.Numbers(key, -1, -1e9, 1e9)
+                                                 : std::vector<double>{generator.Number(key, -1e9, 1e9)};
+    }
+    generator.CheckNoUnknownKeys();
+  }
+  part.CheckNoUnknownKeys();
+  return spec;
+}
+
+}  // namespace
+
+Scenario LoadScenario(const fs::path& file) {
+  Scenario scenario;
+  std::error_code ec;
+  scenario.file = fs::absolute(file, ec).lexically_normal();
+  YAML::Node root = internal::LoadYamlFile(file.string());
+  YamlMap top(root, "", file.string());
+
+  scenario.name = top.String("name");
+  WAAM_THROW_UNLESS(!scenario.name.empty(), top.Where("name") << ": must not be empty");
+
+  scenario.part = ParsePart(top.Map("part"), root["part"], scenario.file.parent_path());
+
+  // slicing
+  {
+    YamlMap slicing = top.Map("slicing");
+    scenario.slicing.type = slicing.Choice("type", {"planar"}, "planar");
+    scenario.slicing.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0);
+    slicing.CheckNoUnknownKeys();
+  }
+
+  // path
+  {
+    YamlMap path = top.Map("path");
+    PathSettings& s = scenario.path;
+    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous"}, "");
+    s.bead_width_mm = path.Number("bead_width_mm", 0.5, 50.0);
+    s.overlap_model = path.Choice("overlap_model", {"proposed", "existing"}, "proposed");
+    if (path.Has("zigzag_angle_deg")) {
+      const std::string raw = path.String("zigzag_angle_deg");
+      if (raw == "auto") {
+        s.zigzag_angle_auto = true;
+      } else {
+        s.zigzag_angle_auto = false;
+        s.zigzag_angle_deg = path.Number("zigzag_angle_deg", -360.0, 360.0);
+      }
+    }
+    s.alternate_start = path.Bool("alternate_start", true);
+    s.seed = static_cast<std::uint64_t>(path.Integer("seed", 0, 2147483647, 1));
+    path.CheckNoUnknownKeys();
+  }
+
+  // process
+  {
+    YamlMap process = top.Map("process");
+    ProcessSettings& p = scenario.process;
+    p.travel_speed_mm_min = process.Number("travel_speed_mm_min", 10.0, 10000.0);
+    p.wire_feed_mm_min = process.Number("wire_feed_mm_min", 100.0, 30000.0);
+    p.wire_diameter_mm = process.Number("wire_diameter_mm", 0.6, 2.4, 1.0);
+    p.rapid_speed_mm_min = process.Number("rapid_speed_mm_min", 100.0, 100000.0, 6000.0);
+    process.CheckNoUnknownKeys();
+  }
+
+  top.CheckNoUnknownKeys();
+  return scenario;
+}
+
+}  // namespace waam::planner

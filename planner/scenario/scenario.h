@@ -1,0 +1,55 @@
+// A scenario: the part, how to slice it, which path pattern, which process settings (loaded from YAML).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace waam::planner {
+
+// Where the part comes from: an STL file or a procedural generator with parameters.
+struct PartSpec {
+  std::filesystem::path mesh_path;   // absolute, resolved against the scenario file's folder; empty for a generator
+  std::string generator;             // generator name (see planner/mesh/generators.h); empty for a mesh
+  std::map<std::string, std::vector<double>> params;  // generator parameters, each a number or list of numbers
+  std::string where;                 // "file:line: part" for messages about the part
+};
+
+struct SlicingSettings {
+  std::string type = "planar";       // planar (later: cone, cylinder, skeleton, multi-directional)
+  double layer_height_mm = 1.5;      // > 0
+};
+
+struct PathSettings {
+  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous
+  double bead_width_mm = 6.0;          // > 0
+  std::string overlap_model = "proposed";  // proposed (0.738 w / 0.47 w / 0.5 w) | existing (0.738 w everywhere)
+  bool zigzag_angle_auto = true;       // minimum-width direction (Ding Lemma 1)
+  double zigzag_angle_deg = 0.0;       // used when not auto
+  bool alternate_start = true;         // shift the start point layer to layer so starts do not stack
+  std::uint64_t seed = 1;              // for any random choice in planning
+};
+
+struct ProcessSettings {
+  double travel_speed_mm_min = 400.0;  // welding travel speed
+  double wire_feed_mm_min = 3200.0;    // wire feed speed
+  double wire_diameter_mm = 1.0;
+  double rapid_speed_mm_min = 6000.0;  // arc-off travel moves
+};
+
+struct Scenario {
+  std::filesystem::path file;        // the scenario file (absolute)
+  std::string name;
+  PartSpec part;
+  SlicingSettings slicing;
+  PathSettings path;
+  ProcessSettings process;
+};
+
+// Loads and validates a scenario file. Unknown keys, wrong types and out-of-range values throw InputError naming
+// the file, line and key path (e.g. "s.yaml:7: slicing.layer_height_mm = -1: must be in [0.05, 20]").
+Scenario LoadScenario(const std::filesystem::path& file);
+
+}  // namespace waam::planner

@@ -1,0 +1,173 @@
+// Strict, typed reading of scenario YAML with messages that name file, line and key.
+#include "planner/scenario/yaml_fields.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "models/core/error.h"
+#include "models/core/files.h"
+
+namespace waam::planner::internal {
+
+YamlMap::YamlMap(YAML::Node node, std::string key_path, std::string file)
+    : node_(std::move(node)), key_path_(std::move(key_path)), file_(std::move(file)) {
+  WAAM_THROW_UNLESS(node_.IsMap(), Where("") << ": must be a mapping of keys to values");
+}
+
+std::string YamlMap::Child(const std::string& key) const {
+  return key_path_.empty() ? key : key_path_ + "." + key;
+}
+
+std::string YamlMap::Where(const std::string& key) const {
+  std::ostringstream out;
+  out << file_;
+  YAML::Mark mark = node_.Mark();
+  if (!key.empty() && node_.IsMap() && node_[key]) mark = node_[key].Mark();
+  if (mark.line >= 0) out << ":" << mark.line + 1;
+  const std::string path = key.empty() ? key_path_ : Child(key);
+  out << ": " << (path.empty() ? "(top level)" : path);
+  return out.str();
+}
+
+YAML::Node YamlMap::Get(const std::string& key) {
+  known_.insert(key);
+  return node_[key];
+}
+
+bool YamlMap::Has(const std::string& key) {
+  known_.insert(key);
+  return static_cast<bool>(node_[key]) && !node_[key].IsNull();
+}
+
+double YamlMap::Number(const std::string& key, double min, double max) {
+  YAML::Node value = Get(key);
+  WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required key '" << key << "'");
+  WAAM_THROW_UNLESS(value.IsScalar(), Where(key) << ": must be a number");
+  double number = 0.0;
+  try {
+    number = value.as<double>();
+  } catch (const YAML::Exception&) {
+    WAAM_THROW(Where(key) << " = '" << value.Scalar() << "': must be a number");
+  }
+  WAAM_THROW_UNLESS(std::isfinite(number), Where(key) << " = " << value.Scalar() << ": must be finite");
+  WAAM_THROW_UNLESS(number >= min && number <= max,
+                    Where(key) << " = " << number << ": must be in [" << min << ", " << max << "]");
+  return number;
+}
+
+double YamlMap::Number(const std::string& key, double min, double max, double fallback) {
+  return Has(key) ? Number(key, min, max) : fallback;
+}
+
+int YamlMap::Integer(const std::string& key, int min, int max) {
+  const double number = Number(key, min, max);
+  WAAM_THROW_UNLESS(number == std::floor(number), Where(key) << " = " << number << ": must be a whole number");
+  return static_cast<int>(number);
+}
+
+int YamlMap::Integer(const std::string& key, int min, int max, int fallback) {
+  return Has(key) ? Integer(key, min, max) : fallback;
+}
+
+bool YamlMap::Bool(const std::string& key, bool fallback) {
+  if (!Has(key)) return fallback;
+  YAML::Node value = Get(key);
+  try {
+    return value.as<bool>();
+  } catch (const YAML::Exception&) {
+    WAAM_THROW(Where(key) << " = '" << (value.IsScalar() ? value.Scalar() : "?") << "': must be true or false");
+  }
+}
+
+std::string YamlMap::String(const std::string& key) {
+  YAML::Node value = Get(key);
+  WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required key '" << key << "'");
+  WAAM_THROW_UNLESS(value.IsScalar(), Where(key) << ": must be a string");
+  return value.Scalar();
+}
+
+std::string YamlMap::String(const std::string& key, const std::string& fallback) {
+  return Has(key) ? String(key) : fallback;
+}
+
+std::string YamlMap::Choice(const std::string& key, const std::vector<std::string>& choices,
+                            const std::string& fallback) {
+  const std::string value = fallback.empty() ? String(key) : String(key, fallback);
+  for (const std::string& choice : choices) {
+    if (value == choice) return value;
+  }
+  std::ostringstream list;
+  for (std::size_t i = 0; i < choices.size(); ++i) list << (i ? ", " : "") << choices[i];
+  WAAM_THROW(Where(key) << " = '" << value << "': unknown value, expected one of " << list.str());
+}
+
+std::vector<double> YamlMap::Numbers(const std::string& key, int size, double min, double max) {
+  YAML::Node value = Get(key);
+  WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required key '" << key << "'");
+  WAAM_THROW_UNLESS(value.IsSequence(), Where(key) << ": must be a list of numbers");
+  WAAM_THROW_UNLESS(size < 0 || static_cast<int>(value.size()) == size,
+                    Where(key) << ": must have " << size << " numbers, has " << value.size());
+  std::vector<double> numbers;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    double number = 0.0;
+    try {
+      number = value[i].as<double>();
+    } catch (const YAML::Exception&) {
+      WAAM_THROW(Where(key) << "[" << i << "]: must be a number");
+    }
+    WAAM_THROW_UNLESS(std::isfinite(number) && number >= min && number <= max,
+                      Where(key) << "[" << i << "] = " << number << ": must be in [" << min << ", " << max << "]");
+    numbers.push_back(number);
+  }
+  return numbers;
+}
+
+std::vector<double> YamlMap::Numbers(const std::string& key, int size, double min, double max,
+                                     const std::vector<double>& fallback) {
+  return Has(key) ? Numbers(key, size, min, max) : fallback;
+}
+
+YamlMap YamlMap::Map(const std::string& key) {
+  YAML::Node value = Get(key);
+  WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required section '" << key << "'");
+  return YamlMap(value, Child(key), file_);
+}
+
+std::vector<YamlMap> YamlMap::Maps(const std::string& key) {
+  YAML::Node value = Get(key);
+  WAAM_THROW_UNLESS(value && value.IsSequence(), Where(key) << ": must be a list");
+  std::vector<YamlMap> maps;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    maps.emplace_back(value[i], Child(key) + "[" + std::to_string(i) + "]", file_);
+  }
+  return maps;
+}
+
+void YamlMap::CheckNoUnknownKeys() const {
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    if (!known_.count(key)) {
+      std::ostringstream out;
+      out << file_;
+      if (it->first.Mark().line >= 0) out << ":" << it->first.Mark().line + 1;
+      out << ": " << Child(key) << ": unknown key";
+      if (!known_.empty()) {
+        out << " (known here:";
+        for (const std::string& k : known_) out << " " << k;
+        out << ")";
+      }
+      throw InputError(out.str());
+    }
+  }
+}
+
+YAML::Node LoadYamlFile(const std::string& path) {
+  const std::string text = ReadFile(path);
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    WAAM_THROW(path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1 << ": YAML syntax error: " << e.msg);
+  }
+}
+
+}  // namespace waam::planner::internal

@@ -1,0 +1,60 @@
+// Strict reading of scenario YAML maps: typed fields, ranges, unknown keys refused, errors naming file:line and key.
+// Internal to the planner (and only included from .cc files): it exposes yaml-cpp.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+namespace waam::planner::internal {
+
+// A YAML mapping at a dotted key path (e.g. "path" or "cell.robot"). Every accessor records the key as known;
+// CheckNoUnknownKeys() then refuses any key that was never asked for, naming it.
+class YamlMap {
+ public:
+  // Throws InputError if `node` is not a mapping.
+  YamlMap(YAML::Node node, std::string key_path, std::string file);
+
+  bool Has(const std::string& key);
+  // Numbers: must parse as a finite number within [min, max] (inclusive); `what` completes "must be ...".
+  double Number(const std::string& key, double min, double max);
+  double Number(const std::string& key, double min, double max, double fallback);
+  int Integer(const std::string& key, int min, int max);
+  int Integer(const std::string& key, int min, int max, int fallback);
+  bool Bool(const std::string& key, bool fallback);
+  std::string String(const std::string& key);
+  std::string String(const std::string& key, const std::string& fallback);
+  // A string that must be one of `choices`.
+  std::string Choice(const std::string& key, const std::vector<std::string>& choices, const std::string& fallback);
+  // A list of numbers of length `size` (any length if size < 0), each within [min, max].
+  std::vector<double> Numbers(const std::string& key, int size, double min, double max);
+  std::vector<double> Numbers(const std::string& key, int size, double min, double max,
+                              const std::vector<double>& fallback);
+  // A nested mapping.
+  YamlMap Map(const std::string& key);
+  // A list of mappings.
+  std::vector<YamlMap> Maps(const std::string& key);
+
+  // Throws InputError naming the first key that no accessor asked for.
+  void CheckNoUnknownKeys() const;
+
+  // "file:line: key.path" prefix for messages about `key` (or about the map itself when key is empty).
+  std::string Where(const std::string& key) const;
+  const std::string& file() const { return file_; }
+  const std::string& key_path() const { return key_path_; }
+
+ private:
+  YAML::Node Get(const std::string& key);
+  std::string Child(const std::string& key) const;
+  YAML::Node node_;
+  std::string key_path_;
+  std::string file_;
+  std::set<std::string> known_;
+};
+
+// Parses a YAML document from a file, throwing InputError with file:line for syntax errors.
+YAML::Node LoadYamlFile(const std::string& path);
+
+}  // namespace waam::planner::internal
