@@ -1,0 +1,48 @@
+// Path patterns that fill one planar slice: contour, zigzag, hybrid and Ding's continuous path.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planner/geometry/polygon.h"
+
+namespace waam::planner {
+
+// One move of a 2D layer path. `weld` describes the move that ENDS at `p` (true: arc on, a bead is laid from the
+// previous point; false: arc-off travel). The first move of a layer has weld = false (it is where the torch starts).
+struct Move2D {
+  Eigen::Vector2d p = Eigen::Vector2d::Zero();  // mm, slice plane
+  bool weld = false;
+};
+
+// Bead spacings (centre to centre, mm) from the dissertation's overlap model (003 ch. 3, eq. 3.15, 3.17, Table 9).
+struct OverlapSpacing {
+  double boundary_offset_mm = 0.0;      // outline to the centre line of the outer contour bead (w / 2)
+  double zigzag_mm = 0.0;               // l: between neighbouring zigzag beads (0.738 w)
+  double contour_to_zigzag_mm = 0.0;    // d1: contour bead to the zigzag ends (0.47 w proposed, 0.738 w existing)
+  double contour_to_contour_mm = 0.0;   // d2: between parallel boundary beads (0.5 w proposed, 0.738 w existing)
+};
+
+// Spacing for `model` ("proposed" or "existing") and bead width `bead_width_mm` (> 0). Throws InputError otherwise.
+OverlapSpacing OverlapSpacingFor(const std::string& model, double bead_width_mm);
+
+struct PatternOptions {
+  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous
+  double bead_width_mm = 6.0;
+  std::string overlap_model = "proposed";
+  bool zigzag_auto = true;             // minimum-width direction per region/piece (Ding Lemma 1)
+  double zigzag_angle_rad = 0.0;       // raster direction when not auto, radians from +x
+  int layer_index = 0;                 // used to alternate start points layer to layer
+  bool alternate_start = true;
+  std::uint64_t seed = 1;              // for any random choice
+};
+
+// Plans the path of one slice (all its regions). Returns the moves in order. Throws InputError for options that
+// cannot be planned (unknown pattern, bead wider than anything it could fill is NOT an error: such a region gets
+// the best path it can or none, and the region is reported by the caller through uncovered area).
+std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options);
+
+}  // namespace waam::planner
