@@ -19,5 +19,6 @@ inline constexpr int kExitInterrupted = 130;
 
 // Each registers its subcommand and sets `*runner` when it is the one selected.
 // (commands are added here as they land)
+void AddFitCommand(CLI::App& app, CommandRunner* runner);
 
 }  // namespace waam::app

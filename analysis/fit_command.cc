@@ -1,0 +1,220 @@
+// `waam fit`: CSV columns -> samples -> Ceres fit -> summary on stdout and model JSON on disk.
+#include "analysis/fit_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include "analysis/fit_internal.h"
+#include "models/bead/csw_model.h"
+#include "models/bead/speed_height_model.h"
+#include "models/bead/width_height_model.h"
+#include "models/core/csv.h"
+#include "models/core/error.h"
+#include "models/core/progress.h"
+#include "models/fit/model_file.h"
+#include "models/voids/void_length_baseline.h"
+#include "models/voids/void_length_network.h"
+
+namespace waam::analysis {
+namespace {
+namespace m = waam::models;
+using Columns = std::vector<std::pair<std::string, std::string>>;
+
+const std::map<std::string, Columns>& AllDefaults() {
+  static const std::map<std::string, Columns> defaults = {
+      {"csw", {{"speed", "travel_speed_mm_per_min"}, {"radius", "curvature_radius_mm"}, {"width", "width_mm"}}},
+      {"speed-height", {{"speed", "travel_speed_mm_per_min"}, {"height", "height_mm"}}},
+      {"width-height", {{"height", "height_mm"}, {"width", "width_mm"}, {"speed", "travel_speed_mm_per_min"}}},
+      {"void-length",
+       {{"eta", "eta"},
+        {"theta1", "theta1_deg"},
+        {"theta2", "theta2_deg"},
+        {"theta3", "theta3_deg"},
+        {"theta4", "theta4_deg"},
+        {"void", "void_length_mm"},
+        {"label", "group"}}}};
+  return defaults;
+}
+
+}  // namespace
+
+std::map<std::string, std::string> internal::ResolveColumns(const FitOptions& options) {
+  const Columns defaults = DefaultFitColumns(options.model);
+  std::map<std::string, std::string> resolved(defaults.begin(), defaults.end());
+  for (const std::string& item : options.columns) {
+    const std::size_t eq = item.find('=');
+    WAAM_THROW_UNLESS(eq != std::string::npos && eq > 0 && eq + 1 < item.size(),
+                      "--columns '" << item << "': expected role=column, e.g. speed=v_mm_per_min");
+    const std::string role = item.substr(0, eq);
+    if (!resolved.count(role)) {
+      std::string roles;
+      for (const auto& [r, c] : defaults) roles += (roles.empty() ? "" : ", ") + r;
+      WAAM_THROW("--columns '" << item << "': unknown role '" << role << "' for " << options.model
+                               << " (roles: " << roles << ")");
+    }
+    resolved[role] = item.substr(eq + 1);
+  }
+  return resolved;
+}
+
+m::DataSource internal::MakeSource(const FitOptions& options, const CsvTable& table,
+                         const std::map<std::string, std::string>& columns) {
+  m::DataSource source;
+  source.file = options.data.string();
+  source.provenance = table.provenance();
+  source.columns = columns;
+  source.rows = table.rows();
+  return source;
+}
+
+void internal::PrintStats(std::ostream& out, const m::FitStats& s, const std::string& unit) {
+  out << "  n        = " << s.n << "\n"
+      << "  r2       = " << std::setprecision(6) << s.r2 << "\n"
+      << "  rmse     = " << s.rmse << " " << unit << "\n"
+      << "  rmse_dof = " << s.rmse_dof << " " << unit << "  (sqrt(SSE / (n - " << s.num_params << ")))\n";
+}
+
+void internal::PrintSolver(std::ostream& out, const m::SolverReport& r) {
+  out << "  solver   = Ceres " << r.termination << ", " << r.iterations << " iterations, "
+      << std::setprecision(3) << r.seconds * 1e3 << " ms\n";
+}
+
+FitOutcome internal::Finish(bool ok, const std::string& message, nlohmann::json model, const FitOptions& options,
+                  std::ostream& out) {
+  FitOutcome outcome{ok, message, std::move(model)};
+  if (!ok) {
+    out << "fit failed: " << message << "\n";
+    return outcome;
+  }
+  m::WriteModelJson(options.output, outcome.model);
+  out << "wrote " << options.output.string() << "\n";
+  return outcome;
+}
+
+namespace {
+using namespace internal;
+
+const m::SpeedRange* RangeOption(const FitOptions& options, m::SpeedRange* storage) {
+  if (!options.speed_range) return nullptr;
+  *storage = {options.speed_range->first, options.speed_range->second};
+  storage->Validate("--speed-range");
+  return storage;
+}
+
+// Rows kept by --speed-range (all rows without it); excluded rows are printed and recorded in `source`.
+std::vector<std::size_t> SelectRows(const FitOptions& options, const CsvTable& table, const std::string& speed_column,
+                                    m::DataSource* source, std::ostream& out) {
+  std::vector<std::size_t> keep;
+  if (!options.speed_range) {
+    for (std::size_t i = 0; i < table.rows(); ++i) keep.push_back(i);
+    return keep;
+  }
+  const auto [lo, hi] = *options.speed_range;
+  const std::vector<double> speed = table.Numbers(speed_column);
+  std::ostringstream excluded;
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    if (speed[i] >= lo && speed[i] <= hi) {
+      keep.push_back(i);
+    } else {
+      excluded << (excluded.tellp() > 0 ? ", " : "") << "line " << table.line(i) << " (" << speed[i] << " mm/min)";
+    }
+  }
+  if (excluded.tellp() > 0) {
+    std::ostringstream selection;
+    selection << "rows with " << speed_column << " outside --speed-range [" << lo << ", " << hi
+              << "] mm/min excluded: " << excluded.str();
+    source->selection = selection.str();
+    out << "  " << source->selection << "\n";
+  }
+  source->rows = keep.size();
+  return keep;
+}
+
+std::vector<double> Subset(const std::vector<double>& values, const std::vector<std::size_t>& keep) {
+  std::vector<double> out;
+  for (std::size_t i : keep) out.push_back(values[i]);
+  return out;
+}
+
+FitOutcome RunCsw(const FitOptions& options, const CsvTable& table, std::ostream& out) {
+  const auto cols = ResolveColumns(options);
+  m::DataSource source = MakeSource(options, table, cols);
+  const auto keep = SelectRows(options, table, cols.at("speed"), &source, out);
+  m::CswSamples s{Subset(table.Numbers(cols.at("speed")), keep),
+                  Subset(table.Numbers(cols.at("radius"), /*allow_infinity=*/true), keep),
+                  Subset(table.Numbers(cols.at("width")), keep)};
+  m::SpeedRange storage;
+  const m::CswFit fit = m::FitCsw(s, source, RangeOption(options, &storage));
+  const m::CswParams& p = fit.model.params();
+  out << "CSW model w = m v^(-1/3) + p / r + t  (w, t mm; v mm/min; r mm)\n" << std::setprecision(6)
+      << "  params   : m = " << p.m << ", p = " << p.p << ", t = " << p.t << "\n";
+  PrintStats(out, fit.model.fit().stats, "mm");
+  PrintSolver(out, fit.model.fit().solver);
+  return Finish(fit.ok, fit.message, fit.model.ToJson(), options, out);
+}
+
+FitOutcome RunSpeedHeight(const FitOptions& options, const CsvTable& table, std::ostream& out) {
+  const auto cols = ResolveColumns(options);
+  WAAM_THROW_UNLESS(options.space == "linear" || options.space == "log",
+                    "--space '" << options.space << "': must be linear or log");
+  m::DataSource source = MakeSource(options, table, cols);
+  const auto keep = SelectRows(options, table, cols.at("speed"), &source, out);
+  m::SpeedHeightSamples s{Subset(table.Numbers(cols.at("speed")), keep), Subset(table.Numbers(cols.at("height")), keep)};
+  m::SpeedRange storage;
+  const m::SpeedHeightFit fit =
+      m::FitSpeedHeight(s, source,
+                        options.space == "log" ? m::PowerLawSpace::kLog : m::PowerLawSpace::kLinear,
+                        RangeOption(options, &storage));
+  out << "speed-height power law v = a h^b  (v mm/min, h mm), residuals in " << options.space << " v\n"
+      << std::setprecision(6) << "  params   : a = " << fit.model.params().a << ", b = " << fit.model.params().b
+      << "\n";
+  PrintStats(out, fit.model.fit().stats, "mm/min");
+  out << "  r2 of ln v = " << std::setprecision(6) << fit.model.log_stats().r2 << "  (what a log-log power trendline reports)\n";
+  PrintSolver(out, fit.model.fit().solver);
+  return Finish(fit.ok, fit.message, fit.model.ToJson(), options, out);
+}
+
+FitOutcome RunWidthHeight(const FitOptions& options, const CsvTable& table, std::ostream& out) {
+  const auto cols = ResolveColumns(options);
+  m::DataSource source = MakeSource(options, table, cols);
+  if (!options.speed_range) source.columns.erase("speed");
+  const auto keep = SelectRows(options, table, cols.at("speed"), &source, out);
+  m::WidthHeightSamples s{Subset(table.Numbers(cols.at("height")), keep), Subset(table.Numbers(cols.at("width")), keep)};
+  const m::WidthHeightFit fit = m::FitWidthHeight(s, source, options.degree);
+  out << "width-height polynomial w = sum c_k h^k, degree " << options.degree << "  (w mm, h mm)\n  params   :";
+  out << std::setprecision(6);
+  for (std::size_t k = 0; k < fit.model.coefficients().size(); ++k) {
+    out << (k ? "," : "") << " c" << k << " = " << fit.model.coefficients()[k];
+  }
+  out << "\n";
+  PrintStats(out, fit.model.fit().stats, "mm");
+  PrintSolver(out, fit.model.fit().solver);
+  return Finish(fit.ok, fit.message, fit.model.ToJson(), options, out);
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::string& model) {
+  const auto it = AllDefaults().find(model);
+  WAAM_THROW_UNLESS(it != AllDefaults().end(),
+                    "unknown model '" << model << "': must be csw, speed-height, width-height or void-length");
+  return it->second;
+}
+
+FitOutcome RunFit(const FitOptions& options, std::ostream& out) {
+  DefaultFitColumns(options.model);  // rejects an unknown model before reading anything
+  WAAM_THROW_UNLESS(!options.output.empty(), "-o/--output: the model JSON file to write is required");
+  const CsvTable table = CsvTable::Read(options.data);
+  out << "waam fit " << options.model << ": " << options.data.string() << " (" << table.rows() << " rows)\n";
+  if (options.model == "csw") return RunCsw(options, table, out);
+  if (options.model == "speed-height") return RunSpeedHeight(options, table, out);
+  if (options.model == "width-height") return RunWidthHeight(options, table, out);
+  return internal::RunVoidLength(options, table, out);
+}
+
+}  // namespace waam::analysis

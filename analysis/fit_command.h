@@ -1,0 +1,53 @@
+// `waam fit`: fits one process model to a CSV table, prints a summary and writes the model JSON atomically.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace waam::analysis {
+
+// Everything `waam fit` accepts; the CLI fills it, tests build it directly.
+struct FitOptions {
+  std::string model;                      // csw | speed-height | width-height | void-length
+  std::filesystem::path data;             // CSV input
+  std::filesystem::path output;           // model JSON output
+  std::vector<std::string> columns;       // "role=column" overrides of the default column names
+  std::optional<std::pair<double, double>> speed_range;  // feasible travel speeds [mm/min]; default: the data's
+  int degree = 4;                         // width-height polynomial degree
+  std::string space = "linear";           // speed-height residual space: linear | log
+  // void-length
+  std::string kind = "network";           // network | baseline (the model written; both are cross-validated)
+  std::vector<int> hidden = {7, 7};
+  double l2 = 0.01;
+  bool bayesian = true;
+  int restarts = 5;
+  unsigned long long seed = 1;
+  int folds = 5;
+  bool leave_one_out = false;
+  std::string angle_order = "as_given";   // as_given | sorted
+  std::vector<std::string> holdout = {"F7", "H3", "H15"};  // dissertation Table 11; empty = skip
+  bool quiet = false;                     // no progress bar
+};
+
+// The outcome: ok = the solver's answer is usable and the file was written; otherwise `message` says why.
+struct FitOutcome {
+  bool ok = false;
+  std::string message;
+  nlohmann::json model;  // what was written (or would have been)
+};
+
+// Runs the fit described by `options`, prints a readable summary to `out` and writes options.output atomically
+// (only when the fit is usable). Throws InputError for bad options or a bad CSV (one line naming file, line,
+// column).
+FitOutcome RunFit(const FitOptions& options, std::ostream& out);
+
+// The role=default-column table of `model` (for --help and errors).
+std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::string& model);
+
+}  // namespace waam::analysis

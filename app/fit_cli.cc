@@ -1,0 +1,74 @@
+// `waam fit`: command-line options for fitting a process model to a CSV table.
+#include <iostream>
+#include <memory>
+
+#include "analysis/fit_command.h"
+#include "app/commands.h"
+
+namespace waam::app {
+
+void AddFitCommand(CLI::App& app, CommandRunner* runner) {
+  auto options = std::make_shared<analysis::FitOptions>();
+  auto speed_range = std::make_shared<std::vector<double>>();
+  CLI::App* fit = app.add_subcommand(
+      "fit",
+      "Fit a process model to measured data (Ceres least squares) and write it as a model JSON file.\n"
+      "Prints params, r2, rmse = sqrt(SSE/n), rmse_dof = sqrt(SSE/(n - number of parameters)) and n.\n"
+      "Models (default CSV columns in brackets; '#' lines in the CSV are kept as provenance):\n"
+      "  csw           w = m v^(-1/3) + p/r + t (Dai et al. 2020): bead width w [mm] from travel speed v [mm/min]\n"
+      "                and path curvature radius r [mm] ('inf' = straight)\n"
+      "                [speed=travel_speed_mm_per_min radius=curvature_radius_mm width=width_mm]\n"
+      "  speed-height  v = a h^b (Nguyen 2022 eq. 6.6): travel speed v [mm/min] for layer height h [mm]\n"
+      "                [speed=travel_speed_mm_per_min height=height_mm]\n"
+      "  width-height  w = sum c_k h^k, --degree (4 in Nguyen eq. 6.7): bead width w [mm] from height h [mm]\n"
+      "                [height=height_mm width=width_mm speed=travel_speed_mm_per_min (only with --speed-range)]\n"
+      "  void-length   junction void length L [mm] from eta (turning points) and the four angles theta1..4 [deg]\n"
+      "                (Nguyen ch. 4.4, Appendix A1): a tanh network (--hidden, L2/Bayesian penalty, seeded\n"
+      "                restarts) or the baseline L = a + b (1/sin(theta_min/2) - 1); both are cross-validated\n"
+      "                (--folds or --loo) and the Table 11 junctions (--holdout) predicted from the other rows\n"
+      "                [eta=eta theta1=theta1_deg .. theta4=theta4_deg void=void_length_mm label=group]\n"
+      "Exit code 2 for bad input or a fit the solver could not make usable (the message says why).");
+  fit->add_option("model", options->model, "csw | speed-height | width-height | void-length")
+      ->required()
+      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "void-length"}));
+  fit->add_option("data", options->data, "CSV file with a header row")->required();
+  fit->add_option("-o,--output", options->output, "model JSON to write (atomically)")->required();
+  fit->add_option("--columns", options->columns,
+                  "role=column overrides, e.g. --columns speed=v,width=w_mm (roles listed above)")
+      ->delimiter(',');
+  fit->add_option("--speed-range", *speed_range,
+                  "feasible travel-speed window MIN MAX [mm/min]: rows outside it are left out of the fit (and listed), and "
+                  "the inverse models clamp to it; default: all rows, window = the data's speed range")
+      ->expected(2);
+  fit->add_option("--degree", options->degree, "width-height polynomial degree (1-8)")->capture_default_str();
+  fit->add_option("--space", options->space, "speed-height residuals in v (linear) or ln v (log)")
+      ->capture_default_str();
+  fit->add_option("--kind", options->kind, "void-length model written: network | baseline")->capture_default_str();
+  fit->add_option("--hidden", options->hidden, "void-length hidden layer sizes, e.g. 7,7")->delimiter(',');
+  fit->add_option("--l2", options->l2, "void-length L2 penalty weight on normalised weights (start value)")
+      ->capture_default_str();
+  fit->add_flag("!--no-bayesian", options->bayesian, "keep --l2 fixed instead of the Bayesian evidence update");
+  fit->add_option("--restarts", options->restarts, "void-length seeded random restarts")->capture_default_str();
+  fit->add_option("--seed", options->seed, "seed for restarts and fold assignment")->capture_default_str();
+  fit->add_option("--folds", options->folds, "k of the k-fold cross-validation")->capture_default_str();
+  fit->add_flag("--loo", options->leave_one_out, "leave-one-out cross-validation instead of k-fold");
+  fit->add_option("--angle-order", options->angle_order,
+                  "as_given (order round the junction, as printed) | sorted (descending)")
+      ->capture_default_str();
+  fit->add_option("--holdout", options->holdout, "labels predicted from a model trained on the other rows")
+      ->delimiter(',');
+  fit->add_flag("-q,--quiet", options->quiet, "no progress bar");
+  fit->callback([runner, options, speed_range] {
+    if (speed_range->size() == 2) options->speed_range = std::make_pair((*speed_range)[0], (*speed_range)[1]);
+    *runner = [options] {
+      const analysis::FitOutcome outcome = analysis::RunFit(*options, std::cout);
+      if (!outcome.ok) {
+        std::cerr << "waam: error: fit of " << options->data.string() << " failed: " << outcome.message << "\n";
+        return kExitBadInput;
+      }
+      return kExitOk;
+    };
+  });
+}
+
+}  // namespace waam::app

@@ -1,0 +1,68 @@
+// Goodness-of-fit statistics and the solver and data records every fitted model carries in its JSON.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace waam::models {
+
+// Goodness of fit of a model with `num_params` parameters on n samples.
+struct FitStats {
+  std::size_t n = 0;
+  int num_params = 0;
+  double sse = 0.0;       // residual sum of squares [unit^2 of the fitted quantity]
+  double r2 = 0.0;        // 1 - SSE / SST (coefficient of determination)
+  double rmse = 0.0;      // sqrt(SSE / n) [unit of the fitted quantity]
+  double rmse_dof = 0.0;  // sqrt(SSE / (n - num_params)) [unit]; NaN if n <= num_params
+};
+
+// Statistics of `predicted` against `measured` (same size, at least one value). Throws std::invalid_argument on a
+// size mismatch (a programming error).
+FitStats ComputeFitStats(const std::vector<double>& measured, const std::vector<double>& predicted, int num_params);
+
+nlohmann::json ToJson(const FitStats& stats);
+// Reads what ToJson wrote; `where` names the file for errors. Throws InputError on a missing or non-numeric key.
+FitStats FitStatsFromJson(const nlohmann::json& j, const std::string& where);
+
+// How the solver ended (a copy of the parts of ceres::Solver::Summary a user needs).
+struct SolverReport {
+  bool usable = false;       // ceres::Solver::Summary::IsSolutionUsable()
+  std::string termination;   // "CONVERGENCE", "NO_CONVERGENCE", "FAILURE", ...
+  std::string message;       // Ceres' message, or why the fit was refused
+  int iterations = 0;
+  double initial_cost = 0.0;  // 0.5 * sum of squared residuals
+  double final_cost = 0.0;
+  double seconds = 0.0;       // wall time of the solve
+};
+
+nlohmann::json ToJson(const SolverReport& report);
+SolverReport SolverReportFromJson(const nlohmann::json& j);
+
+// Where a model's data came from: the CSV file, its '#' provenance lines, which columns played which role.
+struct DataSource {
+  std::string file;                              // path as given to `waam fit`
+  std::vector<std::string> provenance;           // the file's comment lines
+  std::map<std::string, std::string> columns;    // role -> column name
+  std::size_t rows = 0;                          // rows used by the fit
+  std::string selection;                         // which rows were left out and why (empty: all rows used)
+};
+
+nlohmann::json ToJson(const DataSource& source);
+DataSource DataSourceFromJson(const nlohmann::json& j);
+
+// The record a fitted model keeps about its fit (empty for a model built from typed-in parameters).
+struct FitInfo {
+  FitStats stats;
+  SolverReport solver;
+  DataSource data;
+  bool fitted = false;
+};
+
+nlohmann::json ToJson(const FitInfo& info);
+FitInfo FitInfoFromJson(const nlohmann::json& model, const std::string& where);
+
+}  // namespace waam::models
