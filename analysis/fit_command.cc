@@ -72,11 +72,13 @@ m::DataSource internal::MakeSource(const FitOptions& options, const CsvTable& ta
   return source;
 }
 
-void internal::PrintStats(std::ostream& out, const m::FitStats& s, const std::string& unit) {
+void internal::PrintStats(std::ostream& out, const m::FitStats& s, const std::string& unit,
+                          const std::string& dof_note) {
   out << "  n        = " << s.n << "\n"
       << "  r2       = " << std::setprecision(6) << s.r2 << "\n"
       << "  rmse     = " << s.rmse << " " << unit << "\n"
-      << "  rmse_dof = " << s.rmse_dof << " " << unit << "  (sqrt(SSE / (n - " << s.num_params << ")))\n";
+      << "  rmse_dof = " << s.rmse_dof << " " << unit << "  ("
+      << (dof_note.empty() ? "sqrt(SSE / (n - " + std::to_string(s.num_params) + "))" : dof_note) << ")\n";
 }
 
 void internal::PrintSolver(std::ostream& out, const m::SolverReport& r) {

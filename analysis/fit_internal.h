@@ -19,7 +19,9 @@ std::map<std::string, std::string> ResolveColumns(const FitOptions& options);
 // The data record of a fit: file, provenance lines, columns, rows.
 models::DataSource MakeSource(const FitOptions& options, const CsvTable& table,
                               const std::map<std::string, std::string>& columns);
-void PrintStats(std::ostream& out, const models::FitStats& stats, const std::string& unit);
+// `dof_note` replaces the "(sqrt(SSE / (n - p)))" explanation when p is not the parameter count (a network).
+void PrintStats(std::ostream& out, const models::FitStats& stats, const std::string& unit,
+                const std::string& dof_note = "");
 void PrintSolver(std::ostream& out, const models::SolverReport& report);
 // Prints the failure, or writes `model` to options.output atomically and says so.
 FitOutcome Finish(bool ok, const std::string& message, nlohmann::json model, const FitOptions& options,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 
 #include "analysis/fit_internal.h"
 #include "models/core/error.h"
@@ -161,7 +162,13 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
       out << "  params   : " << net_params << " weights; l2 after evidence updates " << t["l2_final"].get<double>()
           << ", effective parameters " << std::setprecision(4) << t["effective_params"].get<double>() << "\n";
     }
-    PrintStats(out, model->fit().stats, "mm");
+    const nlohmann::json training = model->ToJson()["training"];
+    std::ostringstream note;
+    if (!training.is_null()) {
+      note << "sqrt(SSE / (n - gamma)), gamma = " << std::setprecision(4)
+           << training["effective_params"].get<double>() << " effective parameters";
+    }
+    PrintStats(out, model->fit().stats, "mm", note.str());
     PrintSolver(out, model->fit().solver);
   }
   out << (options.leave_one_out ? "leave-one-out" : std::to_string(folds) + "-fold") << " cross-validation (seed "

@@ -40,7 +40,13 @@ SpeedChoice ClampSpeed(double wanted, const SpeedRange& range) {
   SpeedChoice c;
   c.unclamped_mm_per_min = wanted;
   c.speed_mm_per_min = wanted;
-  if (!(wanted >= range.min_mm_per_min)) {  // also catches NaN
+  // A speed on a bound up to rounding (an inverse of a forward value at the bound) is not a clamp.
+  const double slack = 1e-9 * range.max_mm_per_min;
+  if (std::abs(wanted - range.min_mm_per_min) <= slack) {
+    c.speed_mm_per_min = range.min_mm_per_min;
+  } else if (std::abs(wanted - range.max_mm_per_min) <= slack) {
+    c.speed_mm_per_min = range.max_mm_per_min;
+  } else if (!(wanted >= range.min_mm_per_min)) {  // also catches NaN
     c.speed_mm_per_min = range.min_mm_per_min;
     c.clamp = SpeedClamp::kAtMinimum;
   } else if (wanted > range.max_mm_per_min) {
