@@ -212,6 +212,11 @@ FitOutcome RunFit(const FitOptions& options, std::ostream& out) {
   DefaultFitColumns(options.model);  // rejects an unknown model before reading anything
   WAAM_THROW_UNLESS(!options.output.empty(), "-o/--output: the model JSON file to write is required");
   const CsvTable table = CsvTable::Read(options.data);
+  // Every required column must exist before any value is read, so a misnamed column is reported as such.
+  for (const auto& [role, column] : internal::ResolveColumns(options)) {
+    const bool optional = role == "label" || (role == "speed" && options.model == "width-height");
+    if (!optional) table.ColumnIndex(column);
+  }
   out << "waam fit " << options.model << ": " << options.data.string() << " (" << table.rows() << " rows)\n";
   if (options.model == "csw") return RunCsw(options, table, out);
   if (options.model == "speed-height") return RunSpeedHeight(options, table, out);

@@ -59,7 +59,7 @@ FitStats FitStatsFromJson(const nlohmann::json& j, const std::string& where) {
 nlohmann::json ToJson(const SolverReport& r) {
   return {{"usable", r.usable},         {"termination", r.termination}, {"message", r.message},
           {"iterations", r.iterations}, {"initial_cost", NumberOrNull(r.initial_cost)},
-          {"final_cost", NumberOrNull(r.final_cost)}, {"seconds", r.seconds}};
+          {"final_cost", NumberOrNull(r.final_cost)}};  // no wall time: identical inputs, identical files
 }
 
 SolverReport SolverReportFromJson(const nlohmann::json& j) {
@@ -70,7 +70,6 @@ SolverReport SolverReportFromJson(const nlohmann::json& j) {
   r.iterations = j.value("iterations", 0);
   r.initial_cost = NumberOrNaN(j, "initial_cost");
   r.final_cost = NumberOrNaN(j, "final_cost");
-  r.seconds = j.value("seconds", 0.0);
   return r;
 }
 

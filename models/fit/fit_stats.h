@@ -36,7 +36,7 @@ struct SolverReport {
   int iterations = 0;
   double initial_cost = 0.0;  // 0.5 * sum of squared residuals
   double final_cost = 0.0;
-  double seconds = 0.0;       // wall time of the solve
+  double seconds = 0.0;       // wall time of the solve (printed, not written to model files)
 };
 
 nlohmann::json ToJson(const SolverReport& report);
