@@ -27,6 +27,7 @@ struct FitOptions {
   double l2 = 0.01;
   bool bayesian = true;
   int restarts = 5;
+  bool ensemble = true;                   // average the restarts (false: keep the best)
   unsigned long long seed = 1;
   int folds = 5;
   bool leave_one_out = false;

@@ -23,6 +23,7 @@ m::VoidNetworkOptions NetworkOptions(const FitOptions& options) {
   n.l2 = options.l2;
   n.bayesian = options.bayesian;
   n.restarts = options.restarts;
+  n.ensemble = options.ensemble;
   n.seed = options.seed;
   n.angle_order = options.angle_order == "sorted" ? m::AngleOrder::kSortedDescending : m::AngleOrder::kAsGiven;
   n.Validate();
@@ -150,7 +151,8 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
       << " hidden layers (";
   for (std::size_t k = 0; k < net_options.hidden.size(); ++k) out << (k ? "-" : "") << net_options.hidden[k];
   out << "), " << net_params << " weights, " << net_options.restarts << " restarts, l2 " << net_options.l2
-      << (net_options.bayesian ? " (Bayesian update)" : "") << ", angles " << options.angle_order << "\n";
+      << (net_options.bayesian ? " (Bayesian update)" : "") << (net_options.ensemble ? ", ensemble of restarts" : "")
+      << ", angles " << options.angle_order << "\n";
   if (model) {
     out << "model written: " << model->kind() << "\n";
     if (options.kind == "baseline") {

@@ -24,7 +24,7 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       "                [height=height_mm width=width_mm speed=travel_speed_mm_per_min (only with --speed-range)]\n"
       "  void-length   junction void length L [mm] from eta (turning points) and the four angles theta1..4 [deg]\n"
       "                (Nguyen ch. 4.4, Appendix A1): a tanh network (--hidden, L2/Bayesian penalty, seeded\n"
-      "                restarts) or the baseline L = a + b (1/sin(theta_min/2) - 1); both are cross-validated\n"
+      "                restarts, averaged) or the baseline L = a + b (1/sin(theta_min/2) - 1); both are cross-validated\n"
       "                (--folds or --loo) and the Table 11 junctions (--holdout) predicted from the other rows\n"
       "                [eta=eta theta1=theta1_deg .. theta4=theta4_deg void=void_length_mm label=group]\n"
       "Exit code 2 for bad input or a fit the solver could not make usable (the message says why).");
@@ -49,6 +49,8 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       ->capture_default_str();
   fit->add_flag("!--no-bayesian", options->bayesian, "keep --l2 fixed instead of the Bayesian evidence update");
   fit->add_option("--restarts", options->restarts, "void-length seeded random restarts")->capture_default_str();
+  fit->add_flag("!--best-only", options->ensemble,
+                "void-length: keep the restart with the lowest training objective instead of averaging all restarts");
   fit->add_option("--seed", options->seed, "seed for restarts and fold assignment")->capture_default_str();
   fit->add_option("--folds", options->folds, "k of the k-fold cross-validation")->capture_default_str();
   fit->add_flag("--loo", options->leave_one_out, "leave-one-out cross-validation instead of k-fold");

@@ -171,11 +171,11 @@ int VoidLengthNetwork::NumWeights(const std::vector<int>& sizes) {
   return count;
 }
 
-VoidLengthNetwork::VoidLengthNetwork(std::vector<int> layer_sizes, std::vector<double> weights,
+VoidLengthNetwork::VoidLengthNetwork(std::vector<int> layer_sizes, std::vector<std::vector<double>> members,
                                      std::vector<double> input_min, std::vector<double> input_max, double output_min,
                                      double output_max, AngleOrder order, FitInfo fit, nlohmann::json training)
     : layer_sizes_(std::move(layer_sizes)),
-      weights_(std::move(weights)),
+      members_(std::move(members)),
       input_min_(std::move(input_min)),
       input_max_(std::move(input_max)),
       output_min_(output_min),
@@ -187,7 +187,9 @@ VoidLengthNetwork::VoidLengthNetwork(std::vector<int> layer_sizes, std::vector<d
 double VoidLengthNetwork::PredictMm(const Junction& junction) const {
   std::vector<double> x = NetworkInputs(junction, order_);
   for (int i = 0; i < kInputs; ++i) x[i] = Normalise(x[i], input_min_[i], input_max_[i]);
-  const double y = Forward(layer_sizes_, weights_.data(), x);
+  double y = 0.0;
+  for (const std::vector<double>& w : members_) y += Forward(layer_sizes_, w.data(), x);
+  y /= static_cast<double>(members_.size());
   return output_min_ + (y + 1.0) * 0.5 * (output_max_ - output_min_);
 }
 
@@ -200,7 +202,7 @@ nlohmann::json VoidLengthNetwork::ToJson() const {
                  "tanh hidden layers, linear output";
   j["source"] = "Nguyen 2022 dissertation, sec. 4.4.2.2, eq. 4.7, Appendix A1";
   j["params"] = {{"layer_sizes", layer_sizes_},
-                 {"weights", weights_},
+                 {"members", members_},
                  {"input_min", input_min_},
                  {"input_max", input_max_},
                  {"output_min", output_min_},
@@ -217,28 +219,32 @@ VoidLengthNetwork VoidLengthNetwork::FromJson(const nlohmann::json& j, const std
   WAAM_THROW_UNLESS(j.contains(params) && j.at(params).is_object(), where << ": /params is missing");
   const nlohmann::json& p = j.at(params);
   std::vector<int> sizes;
-  std::vector<double> weights, in_min, in_max;
+  std::vector<std::vector<double>> members;
+  std::vector<double> in_min, in_max;
   try {
     sizes = p.at("layer_sizes").get<std::vector<int>>();
-    weights = p.at("weights").get<std::vector<double>>();
+    members = p.at("members").get<std::vector<std::vector<double>>>();
     in_min = p.at("input_min").get<std::vector<double>>();
     in_max = p.at("input_max").get<std::vector<double>>();
   } catch (const nlohmann::json::exception& e) {
-    WAAM_THROW(where << ": /params: layer_sizes, weights, input_min and input_max must be number arrays ("
+    WAAM_THROW(where << ": /params: layer_sizes, members, input_min and input_max must be number arrays ("
                      << e.what() << ")");
   }
   WAAM_THROW_UNLESS(sizes.size() >= 3 && sizes.front() == kInputs && sizes.back() == 1,
                     where << ": /params/layer_sizes must be [5, hidden..., 1]");
   for (int s : sizes) WAAM_THROW_UNLESS(s >= 1, where << ": /params/layer_sizes must be positive");
-  WAAM_THROW_UNLESS(static_cast<int>(weights.size()) == NumWeights(sizes),
-                    where << ": /params/weights has " << weights.size() << " values, layer_sizes need "
-                          << NumWeights(sizes));
+  WAAM_THROW_UNLESS(!members.empty(), where << ": /params/members is empty");
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    WAAM_THROW_UNLESS(static_cast<int>(members[k].size()) == NumWeights(sizes),
+                      where << ": /params/members/" << k << " has " << members[k].size()
+                            << " weights, layer_sizes need " << NumWeights(sizes));
+  }
   WAAM_THROW_UNLESS(in_min.size() == kInputs && in_max.size() == kInputs,
                     where << ": /params/input_min and input_max need 5 values");
   const std::string order = p.value("angle_order", "as_given");
   WAAM_THROW_UNLESS(order == "as_given" || order == "sorted_descending",
                     where << ": /params/angle_order '" << order << "': must be as_given or sorted_descending");
-  return VoidLengthNetwork(sizes, weights, in_min, in_max, JsonNumber(j, "/params/output_min", where),
+  return VoidLengthNetwork(sizes, members, in_min, in_max, JsonNumber(j, "/params/output_min", where),
                            JsonNumber(j, "/params/output_max", where),
                            order == "as_given" ? AngleOrder::kAsGiven : AngleOrder::kSortedDescending,
                            FitInfoFromJson(j, where), j.value("training", nlohmann::json()));
@@ -285,6 +291,8 @@ VoidNetworkFit TrainVoidLengthNetwork(const std::vector<JunctionSample>& samples
 
   VoidNetworkFit fit;
   std::vector<double> best_weights;
+  std::vector<std::vector<double>> usable_weights;
+  double gamma_sum = 0.0;
   RunResult best;
   nlohmann::json restart_log = nlohmann::json::array();
   const bool bayesian = options.l2 == 0.0 ? false : options.bayesian;
@@ -310,6 +318,8 @@ VoidNetworkFit TrainVoidLengthNetwork(const std::vector<JunctionSample>& samples
       continue;
     }
     ++fit.usable_restarts;
+    usable_weights.push_back(w);
+    gamma_sum += run.effective_params;
     if (best_weights.empty() || run.objective < best.objective) {
       best = run;
       best_weights = w;
@@ -333,7 +343,13 @@ VoidNetworkFit TrainVoidLengthNetwork(const std::vector<JunctionSample>& samples
                              {"restarts", options.restarts},
                              {"seed", options.seed},
                              {"restart_log", restart_log}};
-  fit.model = std::make_unique<VoidLengthNetwork>(sizes, best_weights, in_min, in_max, out_min, out_max,
+  // An ensemble's effective parameter count is taken as the mean over its members.
+  const double gamma = options.ensemble ? gamma_sum / fit.usable_restarts : best.effective_params;
+  training["ensemble"] = options.ensemble;
+  training["effective_params"] = gamma;
+  const std::vector<std::vector<double>> members =
+      options.ensemble ? usable_weights : std::vector<std::vector<double>>{best_weights};
+  fit.model = std::make_unique<VoidLengthNetwork>(sizes, members, in_min, in_max, out_min, out_max,
                                                   options.angle_order, info, training);
   std::vector<double> measured(n), predicted(n);
   for (int i = 0; i < n; ++i) {
@@ -342,8 +358,8 @@ VoidNetworkFit TrainVoidLengthNetwork(const std::vector<JunctionSample>& samples
   }
   // With a penalty the network has fewer effective parameters than weights (gamma); rmse_dof uses gamma.
   info.stats = ComputeFitStats(measured, predicted, num_weights);
-  if (n > best.effective_params) info.stats.rmse_dof = std::sqrt(info.stats.sse / (n - best.effective_params));
-  fit.model = std::make_unique<VoidLengthNetwork>(sizes, best_weights, in_min, in_max, out_min, out_max,
+  if (n > gamma) info.stats.rmse_dof = std::sqrt(info.stats.sse / (n - gamma));
+  fit.model = std::make_unique<VoidLengthNetwork>(sizes, members, in_min, in_max, out_min, out_max,
                                                   options.angle_order, info, training);
   fit.ok = true;
   fit.message.clear();

@@ -19,7 +19,8 @@ struct VoidNetworkOptions {
   std::vector<int> hidden = {7, 7};  // neurons per hidden layer (tanh); the dissertation: two layers of 7
   double l2 = 0.01;                  // weight of sum(w^2) against the sum of squared normalised residuals
   bool bayesian = true;              // re-estimate l2 from the evidence (MacKay), like MATLAB's trainbr
-  int restarts = 5;                  // seeded random initialisations; the lowest training objective wins
+  int restarts = 5;                  // seeded random initialisations
+  bool ensemble = true;              // average every usable restart (else keep the lowest training objective)
   unsigned long long seed = 1;
   int max_iterations = 200;
   AngleOrder angle_order = AngleOrder::kAsGiven;
@@ -28,12 +29,13 @@ struct VoidNetworkOptions {
 };
 
 // Inputs (eta, theta1..theta4) and output are mapped linearly to [-1, 1] with the training data's min/max
-// (MATLAB mapminmax); hidden layers use tanh, the output layer is linear.
+// (MATLAB mapminmax); hidden layers use tanh, the output layer is linear. With several members (an ensemble of
+// restarts) the prediction is their mean.
 class VoidLengthNetwork : public VoidLengthModel {
  public:
   static constexpr int kInputs = 5;
 
-  VoidLengthNetwork(std::vector<int> layer_sizes, std::vector<double> weights, std::vector<double> input_min,
+  VoidLengthNetwork(std::vector<int> layer_sizes, std::vector<std::vector<double>> members, std::vector<double> input_min,
                     std::vector<double> input_max, double output_min, double output_max, AngleOrder order,
                     FitInfo fit = {}, nlohmann::json training = nullptr);
 
@@ -49,7 +51,7 @@ class VoidLengthNetwork : public VoidLengthModel {
 
  private:
   std::vector<int> layer_sizes_;
-  std::vector<double> weights_;
+  std::vector<std::vector<double>> members_;  // weights of each member network
   std::vector<double> input_min_, input_max_;
   double output_min_, output_max_;
   AngleOrder order_;

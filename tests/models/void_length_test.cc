@@ -73,7 +73,7 @@ TEST(VoidLengthNetworkTest, TrainingIsDeterministicForASeed) {
   const VoidNetworkFit a = TrainVoidLengthNetwork(data, Source("a1"), SmallNetwork());
   const VoidNetworkFit b = TrainVoidLengthNetwork(data, Source("a1"), SmallNetwork());
   ASSERT_TRUE(a.ok && b.ok);
-  EXPECT_EQ(a.model->ToJson()["params"]["weights"], b.model->ToJson()["params"]["weights"]);
+  EXPECT_EQ(a.model->ToJson()["params"]["members"], b.model->ToJson()["params"]["members"]);
 }
 
 TEST(VoidLengthModelTest, BothKindsRoundTripThroughFiles) {
@@ -91,13 +91,33 @@ TEST(VoidLengthModelTest, BothKindsRoundTripThroughFiles) {
     EXPECT_EQ(back->fit().stats.n, 63u);
   }
   nlohmann::json broken = net.model->ToJson();
-  broken["params"]["weights"].erase(0);
+  broken["params"]["members"][0].erase(0);
   const auto path = waam::testing::WriteText(dir, "broken.json", broken.dump());
   try {
     LoadVoidLengthModel(path);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("broken.json: /params/weights has"));
+    EXPECT_THAT(e.what(), HasSubstr("broken.json: /params/members/0 has"));
+  }
+}
+
+TEST(VoidLengthNetworkTest, EnsemblePredictsTheMeanOfItsMembers) {
+  const std::vector<JunctionSample> data = AppendixA1();
+  VoidNetworkOptions o = SmallNetwork();
+  o.ensemble = true;
+  const VoidNetworkFit fit = TrainVoidLengthNetwork(data, Source("a1"), o);
+  ASSERT_TRUE(fit.ok) << fit.message;
+  const nlohmann::json j = fit.model->ToJson();
+  ASSERT_EQ(j["params"]["members"].size(), 2u);
+  std::vector<VoidLengthNetwork> single;
+  for (int k = 0; k < 2; ++k) {
+    nlohmann::json one = j;
+    one["params"]["members"] = nlohmann::json::array({j["params"]["members"][k]});
+    single.push_back(VoidLengthNetwork::FromJson(one, "member"));
+  }
+  for (const JunctionSample& s : data) {
+    const double mean = 0.5 * (single[0].PredictMm(s.junction) + single[1].PredictMm(s.junction));
+    EXPECT_NEAR(fit.model->PredictMm(s.junction), mean, 1e-12) << s.label;
   }
 }
 
