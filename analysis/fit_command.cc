@@ -1,12 +1,9 @@
 // `waam fit`: CSV columns -> samples -> Ceres fit -> summary on stdout and model JSON on disk.
 #include "analysis/fit_command.h"
 
-#include <chrono>
-#include <cmath>
 #include <iomanip>
 #include <map>
 #include <ostream>
-#include <set>
 #include <sstream>
 
 #include "analysis/fit_internal.h"
@@ -15,10 +12,7 @@
 #include "models/bead/width_height_model.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
-#include "models/core/progress.h"
 #include "models/fit/model_file.h"
-#include "models/voids/void_length_baseline.h"
-#include "models/voids/void_length_network.h"
 
 namespace waam::analysis {
 namespace {

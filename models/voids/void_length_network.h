@@ -63,7 +63,7 @@ class VoidLengthNetwork : public VoidLengthModel {
 std::vector<double> NetworkInputs(const Junction& junction, AngleOrder order);
 
 struct VoidNetworkFit {
-  std::unique_ptr<VoidLengthNetwork> model;  // the best restart (null only if every restart failed)
+  std::unique_ptr<VoidLengthNetwork> model;  // all usable restarts, or the best one (null if every restart failed)
   bool ok = false;
   std::string message;          // why it failed, when !ok
   int usable_restarts = 0;
