@@ -18,6 +18,6 @@ inline constexpr int kExitViolations = 3;  // `waam check` found violations
 inline constexpr int kExitInterrupted = 130;
 
 // Each registers its subcommand and sets `*runner` when it is the one selected.
-// (commands are added here as they land)
+void AddPlanCommand(CLI::App& app, CommandRunner* runner);
 
 }  // namespace waam::app
