@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 #include "models/core/error.h"
 #include "planner/geometry/convex_decomposition.h"
@@ -148,30 +149,37 @@ void LinkRasters(std::vector<RasterSegment> segments, const std::vector<PolygonW
   Vec current = Vec::Zero();
   int current_line = 0;
   while (remaining > 0) {
-    // Nearest unvisited segment end: on a neighbouring line first, then anywhere.
+    // Unvisited segment ends on a neighbouring line, nearest first: the first one with a usable link is welded to.
     int best = -1;
     bool best_flip = false;
-    double best_d = std::numeric_limits<double>::infinity();
-    auto consider = [&](bool neighbours_only) {
+    bool linked = false;
+    if (have_current) {
+      std::vector<std::tuple<double, int, bool>> near;
       for (std::size_t i = 0; i < segments.size(); ++i) {
-        if (used[i] || (neighbours_only && std::abs(segments[i].line - current_line) != 1)) continue;
+        if (used[i] || std::abs(segments[i].line - current_line) != 1) continue;
         for (bool flip : {false, true}) {
-          const Vec& end = flip ? segments[i].b : segments[i].a;
-          const double d = have_current ? (end - current).norm() : 0.0;
+          const double d = ((flip ? segments[i].b : segments[i].a) - current).norm();
+          if (d <= max_link_mm) near.emplace_back(d, static_cast<int>(i), flip);
+        }
+      }
+      std::sort(near.begin(), near.end());
+      for (const auto& [d, i, flip] : near) {
+        if (SegmentInside(current, flip ? segments[i].b : segments[i].a, link_area)) {
+          best = i, best_flip = flip, linked = true;
+          break;
+        }
+      }
+    }
+    // Otherwise travel (arc off) to the nearest unvisited segment end anywhere.
+    if (!linked) {
+      double best_d = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < segments.size(); ++i) {
+        if (used[i]) continue;
+        for (bool flip : {false, true}) {
+          const double d = have_current ? ((flip ? segments[i].b : segments[i].a) - current).norm() : 0.0;
           if (d < best_d) best_d = d, best = static_cast<int>(i), best_flip = flip;
         }
       }
-    };
-    bool linked = false;
-    if (have_current) {
-      consider(true);
-      const RasterSegment* s = best >= 0 ? &segments[best] : nullptr;
-      linked = s != nullptr && best_d <= max_link_mm &&
-               SegmentInside(current, best_flip ? s->b : s->a, link_area);
-    }
-    if (!linked) {
-      best = -1, best_d = std::numeric_limits<double>::infinity();
-      consider(false);
     }
     const RasterSegment& s = segments[best];
     const Vec from = best_flip ? s.b : s.a;
