@@ -368,9 +368,9 @@ void MergeConvexNeighbours(std::vector<Ring>* pieces, double tol) {
           for (int k = 1; k <= static_cast<int>(a.size()); ++k) u.push_back(At(a, ka + k));
           for (int k = 2; k < static_cast<int>(b.size()); ++k) u.push_back(At(b, kb + k));
           if (!IsConvex(u, 1e-9)) continue;
-          double wa = 0.0, wb = 0.0;
-          MinimumWidthDirection(a, &wa);
-          MinimumWidthDirection(b, &wb);
+          double wa = 0.0, wb = 0.0;  // a piece too thin to have a width counts as width 0
+          if (ConvexHull(a).size() >= 3) MinimumWidthDirection(a, &wa);
+          if (ConvexHull(b).size() >= 3) MinimumWidthDirection(b, &wb);
           if (std::min(wa, wb) < best_width) best_width = std::min(wa, wb), best_i = i, best_j = j, best_union = u;
         }
       }

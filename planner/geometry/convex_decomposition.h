@@ -23,7 +23,8 @@ struct SharedEdge {
 // eliminating notches (vertices with an interior angle > pi) one at a time, the largest angle first: notch-notch,
 // notch-vertex and notch-line cuts (Ding et al. 2014, 3.1). Holes are merged into the outline by the same cuts.
 // The pieces tile the region: no overlaps, areas sum to Area(region). Throws InputError for a region with fewer
-// than 3 distinct outer vertices.
+// than 3 distinct outer vertices, and std::logic_error if degenerate geometry leaves a notch without a usable cut
+// (an internal limit; PlanLayerPattern then falls back to the hybrid pattern for that region).
 std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region);
 
 // The lines along which pieces of a decomposition of `region` touch, longest first (pieces from DecomposeConvex).

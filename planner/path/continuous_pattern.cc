@@ -256,6 +256,7 @@ void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& option
   const double w = options.bead_width_mm;
   std::vector<TaggedLoop> loops(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (ConvexHull(pieces[i]).size() < 3) continue;  // a degenerate sliver: no path, nothing to join
     const double angle = options.zigzag_auto ? MinimumWidthDirection(pieces[i], nullptr) : options.zigzag_angle_rad;
     loops[i].p = ConvexPieceLoop(pieces[i], angle, spacing);
     loops[i].piece.assign(loops[i].p.size(), static_cast<int>(i));
