@@ -1,4 +1,4 @@
-// Ding et al. 2014 continuous path: convex pieces (3.1), one contour + zigzag loop each (3.2), linked into one pass (3.3).
+// Ding et al. 2014 continuous path: convex pieces (3.1), a contour + zigzag loop each (3.2), one pass (3.3).
 //
 // Linking (3.3) differs from the paper in how the links are found: Ding stores the split lines of the decomposition
 // and re-routes the two sub-paths at each of them. Here the pieces' loops are joined along a spanning tree of the

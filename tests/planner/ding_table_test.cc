@@ -26,7 +26,8 @@ Counts Count(const std::vector<Move2D>& moves) {
 // Prints the table (run with --gtest_filter=DingTable.*) and checks the paper's qualitative claims: the continuous
 // method needs one pass per layer where the hybrid needs several.
 TEST(DingTable, HybridVersusContinuous) {
-  std::printf("| No. | geometry | area mm2 | hybrid passes | hybrid elements | continuous passes | continuous elements |\n");
+  std::printf("| No. | geometry | area mm2 | hybrid passes | hybrid elements | continuous passes | "
+              "continuous elements |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const auto& [name, region] : testing::DingLikeShapes()) {
     PatternOptions options;
