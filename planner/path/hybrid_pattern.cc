@@ -11,10 +11,12 @@ void PlanHybrid(const PolygonWithHoles& region, const PatternOptions& options, c
   const double fraction = StartFraction(options);
   const bool odd = options.alternate_start && options.layer_index % 2 == 1;
   // One contour ring per boundary (outline and every hole), each its own pass, centre line w/2 inside the wall.
+  // The outline's ring starts at the layer's rotating start point, the others where the torch stopped.
   const std::vector<PolygonWithHoles> contour = Offset({region}, -spacing.boundary_offset_mm);
   for (const PolygonWithHoles& ring_region : contour) {
-    AppendLoop(ring_region.outer, PointAlongRing(ring_region.outer, fraction), odd, moves);
-    for (const Ring& hole : ring_region.holes) AppendLoop(hole, PointAlongRing(hole, fraction), odd, moves);
+    const bool first = &ring_region == &contour.front();
+    AppendLoop(ring_region.outer, first ? PointAlongRing(ring_region.outer, fraction) : moves->back().p, odd, moves);
+    for (const Ring& hole : ring_region.holes) AppendLoop(hole, moves->back().p, odd, moves);
   }
   // Zigzag interior: raster ends d1 from the contour centre line (eq. 3.15), lines l apart; links stay inside it.
   const double inset = spacing.boundary_offset_mm + spacing.contour_to_zigzag_mm;
