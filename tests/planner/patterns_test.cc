@@ -162,6 +162,37 @@ TEST(ZigzagPattern, FixedAngleRunsAlongIt) {
   EXPECT_EQ(along_x, 14);
 }
 
+// Hybrid and continuous on a 100 x 60 mm plate with x rasters (the continuous pattern finds that direction itself):
+// the contour centre line is w/2 = 3 mm in, the lowest raster d1 above it (0.47 w proposed, 0.738 w existing) and
+// neighbouring rasters at most l = 0.738 w apart.
+TEST(PatternSpacing, FollowsTheOverlapModel) {
+  for (const auto& [pattern, model] : std::vector<std::pair<std::string, std::string>>{
+           {"hybrid", "proposed"}, {"hybrid", "existing"}, {"continuous", "proposed"}, {"continuous", "existing"}}) {
+    PatternOptions options;
+    options.pattern = pattern;
+    options.overlap_model = model;
+    options.zigzag_auto = pattern == "continuous";
+    const OverlapSpacing s = OverlapSpacingFor(model, options.bead_width_mm);
+    const std::vector<Move2D> moves = PlanLayerPattern({{testing::Rect(0, 0, 100, 60), {}}}, options);
+    std::vector<double> raster_y;
+    for (std::size_t k = 1; k < moves.size(); ++k) {
+      const bool horizontal = std::abs(moves[k].p.y() - moves[k - 1].p.y()) < 1e-9;
+      const bool interior = moves[k].p.y() > 3.5 && moves[k].p.y() < 56.5;
+      if (moves[k].weld && horizontal && interior) raster_y.push_back(moves[k].p.y());
+    }
+    SCOPED_TRACE(pattern);
+    ASSERT_FALSE(raster_y.empty()) << model;
+    std::sort(raster_y.begin(), raster_y.end());
+    raster_y.erase(std::unique(raster_y.begin(), raster_y.end()), raster_y.end());
+    EXPECT_NEAR(raster_y.front() - s.boundary_offset_mm, s.contour_to_zigzag_mm, 0.01) << model;
+    EXPECT_NEAR(60.0 - s.boundary_offset_mm - raster_y.back(), s.contour_to_zigzag_mm, 0.01) << model;
+    for (std::size_t k = 1; k < raster_y.size(); ++k) {
+      EXPECT_LE(raster_y[k] - raster_y[k - 1], s.zigzag_mm + 1e-9) << model;
+      EXPECT_GT(raster_y[k] - raster_y[k - 1], 0.8 * s.zigzag_mm) << model << ": no raster needlessly close";
+    }
+  }
+}
+
 TEST(ZigzagPattern, LinkAcrossAHoleIsTravel) {
   // Rasters on both sides of a hole cannot be joined by a weld across it: the zigzag needs > 1 pass.
   PolygonWithHoles plate{testing::Rect(0, 0, 100, 100), {testing::Rect(30, 30, 70, 70, true)}};
