@@ -19,5 +19,7 @@ inline constexpr int kExitInterrupted = 130;
 
 // Each registers its subcommand and sets `*runner` when it is the one selected.
 // (commands are added here as they land)
+void AddInspectCommand(CLI::App& app, CommandRunner* runner);   // app/inspect_cli.cc
+void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_cli.cc
 
 }  // namespace waam::app

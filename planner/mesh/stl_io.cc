@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
 
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -282,6 +283,34 @@ void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path)
   out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
   WriteOrThrow(out, path);
   output.Commit();
+}
+
+std::string MeshReportJson(const MeshReport& report) {
+  std::string reason;
+  try {
+    CheckSliceable(report);
+  } catch (const InputError& e) {
+    reason = e.what();
+  }
+  const nlohmann::json json = {
+      {"source", report.source},
+      {"binary", report.binary},
+      {"facets_read", report.facets_read},
+      {"facets", report.facets},
+      {"vertices", report.vertices},
+      {"degenerate_facets", report.degenerate_facets},
+      {"boundary_edges", report.boundary_edges},
+      {"non_manifold_edges", report.non_manifold_edges},
+      {"misoriented_edges", report.misoriented_edges},
+      {"watertight", report.watertight},
+      {"volume_mm3", report.volume_mm3},
+      {"bbox_min_mm", {report.bbox_min.x(), report.bbox_min.y(), report.bbox_min.z()}},
+      {"bbox_max_mm", {report.bbox_max.x(), report.bbox_max.y(), report.bbox_max.z()}},
+      {"weld_tolerance_mm", report.weld_tolerance_mm},
+      {"sliceable", reason.empty()},
+      {"not_sliceable_reason", reason},
+  };
+  return json.dump(2);
 }
 
 void WriteStlAscii(const TriangleMesh& mesh, const std::filesystem::path& path, const std::string& name) {

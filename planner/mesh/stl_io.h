@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <string>
 
 #include "planner/mesh/mesh_ops.h"
 #include "planner/mesh/triangle_mesh.h"
@@ -29,6 +30,10 @@ void CheckSliceable(const MeshReport& report);
 // Writes `mesh` as binary STL (float32, facet normals from the vertex order) atomically.
 // Throws InputError if the file cannot be written.
 void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path);
+
+// The report as a JSON object text (keys as the MeshReport fields; bbox as [x, y, z] in mm) plus "sliceable" and
+// "not_sliceable_reason" (the CheckSliceable message, empty when sliceable), indented by 2.
+std::string MeshReportJson(const MeshReport& report);
 
 // Writes `mesh` as ASCII STL ("solid <name>") atomically, with 9 significant digits.
 void WriteStlAscii(const TriangleMesh& mesh, const std::filesystem::path& path, const std::string& name);
