@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -239,15 +240,18 @@ TriangleMesh ReadStl(const std::filesystem::path& path, double weld_tolerance_mm
 
 void CheckSliceable(const MeshReport& report) {
   WAAM_THROW_UNLESS(report.facets > 0, report.source << ": the mesh has no facets; nothing to slice");
-  WAAM_THROW_UNLESS(report.boundary_edges == 0,
-                    report.source << ": the mesh is open: " << report.boundary_edges
-                                  << " boundary edges (used by one facet) remain after welding at "
-                                  << report.weld_tolerance_mm
-                                  << " mm; slicing needs a closed surface (repair the mesh or raise the weld tolerance)");
-  WAAM_THROW_UNLESS(report.non_manifold_edges == 0,
-                    report.source << ": the mesh has " << report.non_manifold_edges
-                                  << " non-manifold edges (used by more than two facets); slicing needs a manifold "
-                                  << "surface (repair the mesh)");
+  if (report.boundary_edges == 0 && report.non_manifold_edges == 0) return;
+  std::ostringstream problems;
+  if (report.boundary_edges > 0) {
+    problems << "the mesh is open: " << report.boundary_edges << " boundary edges (used by one facet)";
+  }
+  if (report.non_manifold_edges > 0) {
+    problems << (report.boundary_edges > 0 ? " and " : "the mesh has ") << report.non_manifold_edges
+             << " non-manifold edges (used by more than two facets)";
+  }
+  WAAM_THROW(report.source << ": " << problems.str() << " after welding at " << report.weld_tolerance_mm
+                           << " mm; slicing needs a closed manifold surface (repair the mesh"
+                           << (report.non_manifold_edges == 0 ? " or raise the weld tolerance)" : ")"));
 }
 
 void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path) {

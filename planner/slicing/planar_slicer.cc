@@ -30,6 +30,8 @@ struct Segment {
 // The cut of the mesh edge u-v (u below, v at or above h); computed from the lower vertex so that both facets
 // sharing the edge get the same point bit for bit.
 Eigen::Vector2d CutPoint(const Eigen::Vector3d& below, const Eigen::Vector3d& above, double h) {
+  // A vertex on the plane is its own cut (interpolating with t = 1 would not give it back bit for bit).
+  if (above.z() == h) return above.head<2>();
   const double t = (h - below.z()) / (above.z() - below.z());
   return below.head<2>() + t * (above.head<2>() - below.head<2>());
 }
@@ -123,7 +125,6 @@ std::vector<PolygonWithHoles> NestRings(std::vector<Ring> rings) {
   std::stable_sort(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) { return a.area > b.area; });
   const std::size_t n = loops.size();
   std::vector<int> depth(n, 0), parent(n, -1), region_of(n, -1);
-  std::vector<PolygonWithHoles> regions;
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       const Loop& outer = loops[j];
@@ -133,6 +134,9 @@ std::vector<PolygonWithHoles> NestRings(std::vector<Ring> rings) {
         parent[i] = static_cast<int>(j);
       }
     }
+  }
+  std::vector<PolygonWithHoles> regions;
+  for (std::size_t i = 0; i < n; ++i) {
     if (depth[i] % 2 == 0) {
       region_of[i] = static_cast<int>(regions.size());
       regions.push_back({std::move(loops[i].ring), {}});
