@@ -56,7 +56,7 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
   head.reserve(corners.size() / 2 + 1);
   const bool exact = weld_tolerance_mm <= 0.0;
   const double tol2 = weld_tolerance_mm * weld_tolerance_mm;
-  const double inv_cell = exact ? 0.0 : 1.0 / weld_tolerance_mm;
+  const double inv_cell = exact ? 0.0 : 0.5 / weld_tolerance_mm;
 
   auto find_or_add = [&](const Eigen::Vector3d& p) -> int {
     int best = std::numeric_limits<int>::max();
@@ -73,24 +73,27 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
       slot->second = id;
       return id;
     }
-    const std::int64_t ci = static_cast<std::int64_t>(std::floor(p.x() * inv_cell));
-    const std::int64_t cj = static_cast<std::int64_t>(std::floor(p.y() * inv_cell));
-    const std::int64_t ck = static_cast<std::int64_t>(std::floor(p.z() * inv_cell));
-    for (int di = -1; di <= 1; ++di) {
-      for (int dj = -1; dj <= 1; ++dj) {
-        for (int dk = -1; dk <= 1; ++dk) {
-          const auto it = head.find(CellKey(ci + di, cj + dj, ck + dk));
-          if (it == head.end()) continue;
-          for (int v = it->second; v >= 0; v = next[v]) {
-            if (v < best && (mesh.vertices[v] - p).squaredNorm() <= tol2) best = v;
-          }
-        }
+    // Cells are 2 tol wide, so along each axis a point is within tol of its own cell and at most one neighbour:
+    // 8 cells to search instead of 27.
+    std::int64_t cell[3];
+    std::int64_t other[3];
+    for (int a = 0; a < 3; ++a) {
+      const double u = p[a] * inv_cell;
+      cell[a] = static_cast<std::int64_t>(std::floor(u));
+      other[a] = u - static_cast<double>(cell[a]) < 0.5 ? cell[a] - 1 : cell[a] + 1;
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+      const auto it = head.find(CellKey(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1],
+                                        corner & 4 ? other[2] : cell[2]));
+      if (it == head.end()) continue;
+      for (int v = it->second; v >= 0; v = next[v]) {
+        if (v < best && (mesh.vertices[v] - p).squaredNorm() <= tol2) best = v;
       }
     }
     if (best != std::numeric_limits<int>::max()) return best;
     const int id = static_cast<int>(mesh.vertices.size());
     mesh.vertices.push_back(p);
-    auto [slot, inserted] = head.try_emplace(CellKey(ci, cj, ck), id);
+    auto [slot, inserted] = head.try_emplace(CellKey(cell[0], cell[1], cell[2]), id);
     next.push_back(inserted ? -1 : slot->second);
     slot->second = id;
     return id;
