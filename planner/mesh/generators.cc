@@ -137,6 +137,9 @@ TriangleMesh BuildPlateWithHoles(const Args& a) {
   return Extrude(std::move(region), sz);
 }
 
+// Defaults follow the rib-web of Nguyen 2022, section 4.6.5: walls about 9.0 mm (two overlapping 5.3 mm beads),
+// parts about 45 mm high, five contours per layer with the standard path (Table 13: outer wall + 4 cells, so 2 x 2
+// cells). The rib pitch is only drawn (Fig. 47), not given in the text; 60 mm is our choice.
 TriangleMesh BuildRibWeb(const Args& a) {
   const int nx = a.Int("cells", 0), ny = a.Int("cells", 1);
   const double px = a("pitch_mm", 0), py = a("pitch_mm", 1), wall = a("wall_mm");
@@ -224,10 +227,10 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                                      a("size_mm", 2));
                     }};
     r["rib_web"] = {"rib-web grid: outer wall and inner ribs around open cells",
-                    {{"cells", {3.0, 2.0}, 2, 1, 100, true, "open cells along x and y"},
+                    {{"cells", {2.0, 2.0}, 2, 1, 100, true, "open cells along x and y"},
                      {"pitch_mm", {60.0, 60.0}, 2, 1.0, kBig, false, "rib spacing along x and y (mm)"},
                      {"wall_mm", {9.0}, 1, 0.1, kBig, false, "wall and rib thickness (mm)"},
-                     {"height_mm", {40.0}, 1, 0.1, kBig, false, "height (mm)"}},
+                     {"height_mm", {45.0}, 1, 0.1, kBig, false, "height (mm)"}},
                     BuildRibWeb};
     // Outlines of the Ding et al. 2014 stand-ins (see the top of this file), in mm before scaling.
     r["ding_a"] = {"Ding 2014 case-1-like non-convex polygon with four notches",

@@ -2,6 +2,7 @@
 #include "planner/mesh/generators.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -85,6 +86,25 @@ TEST(Generators, VolumesMatchAnalyticValues) {
   const double torus = volume("torus", {{"major_radius_mm", {50}}, {"minor_radius_mm", {15}},
                                         {"major_segments", {256}}, {"minor_segments", {128}}});
   EXPECT_NEAR(torus / (2 * kPi * kPi * 50 * 15 * 15), 1.0, 1e-3);
+}
+
+TEST(Generators, CommittedScenarioMeshesAreCurrentAndSliceable) {
+  // scenarios/meshes/<type>.stl are `waam generate <type>` outputs with defaults; they must still match.
+  const std::filesystem::path dir = std::filesystem::path(WAAM_SOURCE_DIR) / "scenarios" / "meshes";
+  int checked = 0;
+  for (const std::string& type : GeneratorTypes()) {
+    const std::filesystem::path file = dir / (type + ".stl");
+    if (!std::filesystem::exists(file)) continue;
+    MeshReport report;
+    ReadStl(file, 1e-4, &report);
+    EXPECT_TRUE(report.binary) << file;
+    CheckSliceable(report);
+    const double expected = EnclosedVolume(GeneratePart(type, {}, "test"));
+    EXPECT_NEAR(report.volume_mm3, expected, 1e-5 * expected) << file << " is stale: regenerate it";
+    EXPECT_LT(std::filesystem::file_size(file), 1'000'000u) << file;
+    ++checked;
+  }
+  EXPECT_GE(checked, 10) << "expected the committed meshes in " << dir;
 }
 
 std::string ErrorOf(const std::string& type, const GeneratorParams& params) {
