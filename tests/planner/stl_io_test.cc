@@ -175,6 +175,14 @@ TEST(StlIoErrors, TruncatedBinaryNamesTheFacet) {
   EXPECT_THAT(message, HasSubstr("ends inside facet 2"));
 }
 
+TEST(StlIoErrors, TruncatedBinaryAtAFacetBoundary) {
+  const std::filesystem::path file = TestDir() / "short_count.stl";
+  std::string bytes = BinaryStl({kFacet, kFacet}, 5, "binary");
+  WriteBytes(file, bytes);
+  EXPECT_THAT(ErrorOf(file), HasSubstr("header says 5 facets (334 bytes) but the file has 184 bytes; it ends after "
+                                       "facet 2"));
+}
+
 TEST(StlIoErrors, HeaderCountDisagreesWithFileSize) {
   const std::filesystem::path file = TestDir() / "long.stl";
   std::string bytes = BinaryStl({kFacet, kFacet}, 1, "binary");  // 2 facets present, header says 1
@@ -264,6 +272,10 @@ TEST(StlIoCli, BadMeshExitsWithCodeTwoAndOneLine) {
   EXPECT_THAT(err, HasSubstr("waam: error: "));
   EXPECT_THAT(err, HasSubstr("empty.stl: the file is empty"));
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "expected one line, got: " << err;
+  EXPECT_EQ(RunWaam("generate --help", dir / "out", dir / "err"), 0);
+  EXPECT_THAT(ReadFile(dir / "out"), HasSubstr("ding_a"));
+  EXPECT_EQ(RunWaam("generate box --param size_mm -o " + (dir / "x.stl").string(), dir / "out", dir / "err"), 2);
+  EXPECT_THAT(ReadFile(dir / "err"), HasSubstr("--param 'size_mm': expected key=v1[,v2,...]"));
   EXPECT_EQ(RunWaam("generate box --param size=1 -o " + (dir / "x.stl").string(), dir / "out", dir / "err"), 2);
   EXPECT_THAT(ReadFile(dir / "err"), HasSubstr("unknown parameter 'size' for generator box"));
   EXPECT_FALSE(std::filesystem::exists(dir / "x.stl"));
