@@ -19,8 +19,8 @@ void AddInspectCommand(CLI::App& app, CommandRunner* runner) {
       "Read an STL part (binary or ASCII, coordinates in mm), weld vertices closer than --weld-tol-mm and print the\n"
       "mesh report as JSON on stdout: facets read and kept, degenerate facets dropped, welded vertices, boundary,\n"
       "non-manifold and misoriented edges, watertightness, enclosed volume (mm^3) and bounding box (mm).\n"
-      "Exit code 2 with a one-line message for a file that cannot be read. A mesh that reads but cannot be\n"
-      "sliced (open or non-manifold) is reported with \"sliceable\": false and its reason.");
+      "Exit code 2 with a one-line message on stderr for a file that cannot be read, and also for a mesh that\n"
+      "reads but cannot be sliced (open or non-manifold): its report is still printed, with \"sliceable\": false.");
   command->add_option("mesh", options->mesh, "STL file to inspect")->required();
   command->add_option("--weld-tol-mm", options->weld_tol_mm,
                       "merge vertices closer than this distance (mm, 0..10; 0 merges identical points only)")
@@ -29,7 +29,8 @@ void AddInspectCommand(CLI::App& app, CommandRunner* runner) {
     *runner = [options] {
       planner::MeshReport report;
       planner::ReadStl(options->mesh, options->weld_tol_mm, &report);
-      std::cout << planner::MeshReportJson(report) << "\n";
+      std::cout << planner::MeshReportJson(report) << std::endl;
+      planner::CheckSliceable(report);  // exit 2 with the reason on stderr
       return kExitOk;
     };
   });

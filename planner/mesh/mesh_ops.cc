@@ -112,6 +112,23 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
     mesh.facets.push_back(ids);
   }
   if (degenerate) *degenerate = dropped;
+  if (dropped > 0) {
+    // Vertices used only by dropped facets are removed (ids keep their first-seen order).
+    std::vector<int> new_id(mesh.vertices.size(), -1);
+    for (const std::array<int, 3>& f : mesh.facets) {
+      for (int v : f) new_id[v] = 0;
+    }
+    int kept = 0;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      if (new_id[v] < 0) continue;
+      new_id[v] = kept;
+      mesh.vertices[kept++] = mesh.vertices[v];
+    }
+    mesh.vertices.resize(kept);
+    for (std::array<int, 3>& f : mesh.facets) {
+      for (int& v : f) v = new_id[v];
+    }
+  }
   return mesh;
 }
 

@@ -15,7 +15,8 @@ namespace waam::planner {
 // Builds an indexed mesh from a triangle soup (`corners` holds 3 points per facet, mm). Points closer than
 // `weld_tolerance_mm` (>= 0; 0 welds only bit-identical points) are merged deterministically: each point joins the
 // lowest-numbered earlier vertex within the tolerance, found through a spatial hash grid.
-// Facets that repeat a vertex after welding or have zero area are dropped and counted in `*degenerate` (may be null).
+// Facets that repeat a vertex after welding or have zero area are dropped and counted in `*degenerate` (may be null),
+// and vertices used only by them are removed.
 TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double weld_tolerance_mm,
                            std::size_t* degenerate);
 

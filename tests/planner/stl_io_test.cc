@@ -104,7 +104,7 @@ TEST(StlIo, WeldsWithinToleranceOnlyAndDropsDegenerateFacets) {
              "endsolid w\n");
   MeshReport welded;
   const TriangleMesh a = ReadStl(file, 1e-4, &welded);
-  EXPECT_EQ(a.vertices.size(), 6u) << "4 square corners + 2 of the degenerate facet";
+  EXPECT_EQ(a.vertices.size(), 4u) << "the square's 4 corners; the degenerate facet's vertices are removed";
   EXPECT_EQ(welded.facets_read, 3u);
   EXPECT_EQ(welded.degenerate_facets, 1u);
   EXPECT_EQ(welded.facets, 2u);
@@ -262,6 +262,17 @@ TEST(StlIoCli, GenerateThenInspectPrintsAWatertightReport) {
   const std::string json = ReadFile(dir / "out2");
   EXPECT_THAT(json, HasSubstr("\"watertight\": true"));
   EXPECT_THAT(json, HasSubstr("\"sliceable\": true"));
+}
+
+TEST(StlIoCli, OpenMeshIsReportedThenRefusedWithCodeTwo) {
+  const std::filesystem::path dir = TestDir();
+  TriangleMesh box = GeneratePart("box", {}, "test");
+  box.facets.pop_back();
+  WriteStlBinary(box, dir / "open.stl");
+  EXPECT_EQ(RunWaam("inspect " + (dir / "open.stl").string(), dir / "out", dir / "err"), 2);
+  EXPECT_THAT(ReadFile(dir / "out"), HasSubstr("\"watertight\": false"));
+  EXPECT_THAT(ReadFile(dir / "out"), HasSubstr("\"boundary_edges\": 3"));
+  EXPECT_THAT(ReadFile(dir / "err"), HasSubstr("open.stl: the mesh is open: 3 boundary edges"));
 }
 
 TEST(StlIoCli, BadMeshExitsWithCodeTwoAndOneLine) {
