@@ -78,7 +78,8 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
     std::int64_t cell[3];
     std::int64_t other[3];
     for (int a = 0; a < 3; ++a) {
-      const double u = p[a] * inv_cell;
+      // Clamped so the cast stays defined for absurd coordinates (points there simply share far cells).
+      const double u = std::clamp(p[a] * inv_cell, -1e15, 1e15);
       cell[a] = static_cast<std::int64_t>(std::floor(u));
       other[a] = u - static_cast<double>(cell[a]) < 0.5 ? cell[a] - 1 : cell[a] + 1;
     }

@@ -43,6 +43,10 @@ std::vector<Eigen::Vector3d> ParseBinary(const std::string& data, std::uint64_t 
         WAAM_THROW_UNLESS(std::isfinite(xyz[a]), Name(path) << ": binary STL facet " << f + 1 << " of " << count
                                                             << ": vertex " << v + 1 << " has a non-finite coordinate ("
                                                             << xyz[a] << "); coordinates must be finite numbers");
+        WAAM_THROW_UNLESS(std::abs(xyz[a]) <= kMaxStlCoordinateMm,
+                          Name(path) << ": binary STL facet " << f + 1 << " of " << count << ": vertex " << v + 1
+                                     << " coordinate " << xyz[a] << " mm is beyond +-" << kMaxStlCoordinateMm
+                                     << " mm (corrupt file or wrong units?)");
       }
       corners.emplace_back(xyz[0], xyz[1], xyz[2]);
     }
@@ -89,6 +93,9 @@ class AsciiTokens {
                       Where() << ": expected a number for " << what << ", found '" << token << "'");
     WAAM_THROW_UNLESS(std::isfinite(value), Where() << ": " << what << " '" << token
                                                     << "' is not finite; coordinates must be finite numbers");
+    WAAM_THROW_UNLESS(std::abs(value) <= kMaxStlCoordinateMm, Where() << ": " << what << " " << value
+                                                                      << " mm is beyond +-" << kMaxStlCoordinateMm
+                                                                      << " mm (corrupt file or wrong units?)");
     return value;
   }
 

@@ -14,12 +14,16 @@ namespace waam::planner {
 // the limit keeps a corrupt header from making the reader allocate gigabytes.
 inline constexpr std::size_t kMaxStlFacets = 20'000'000;
 
+// Largest coordinate magnitude accepted from a file (mm): 1 km, far beyond any WAAM cell; larger values mean a
+// corrupt file or wrong units.
+inline constexpr double kMaxStlCoordinateMm = 1e6;
+
 // Reads a binary or ASCII STL file (coordinates in mm). A file is binary when its size is exactly
 // 84 + 50 n bytes with n the facet count in its header (binary files may begin with "solid" too); otherwise it
 // must be ASCII. Vertices within `weld_tolerance_mm` (0 to 10 mm; 0 welds only identical points) are merged,
 // degenerate facets are dropped, and `*report` (may be null) is filled. Throws InputError naming the file and the
 // place (facet number or line) for an empty file, a truncated or inconsistent binary file, a facet count above
-// kMaxStlFacets, a NaN/inf coordinate, an ASCII syntax error, or a file with no usable facet.
+// kMaxStlFacets, a NaN/inf coordinate or one beyond kMaxStlCoordinateMm, an ASCII syntax error, or a file with no usable facet.
 TriangleMesh ReadStl(const std::filesystem::path& path, double weld_tolerance_mm, MeshReport* report);
 
 // Throws InputError naming `report.source` if the mesh cannot be sliced into closed contours: no facets, open

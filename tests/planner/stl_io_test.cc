@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <algorithm>
 
 #include <sys/wait.h>
@@ -16,6 +17,7 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "planner/mesh/generators.h"
+#include "planner/slicing/planar_slicer.h"
 #include "tests/planner/mesh_test_util.h"
 
 namespace waam::planner {
@@ -209,6 +211,16 @@ TEST(StlIoErrors, NonFiniteBinaryCoordinateNamesTheFacet) {
   EXPECT_THAT(ErrorOf(file), HasSubstr("facet 1 of 1: vertex 1 has a non-finite coordinate"));
 }
 
+TEST(StlIoErrors, AbsurdCoordinatesAreRefused) {
+  const std::filesystem::path file = TestDir() / "far.stl";
+  std::array<float, 9> far = kFacet;
+  far[8] = 3e20f;
+  WriteBytes(file, BinaryStl({far}, 1, "binary"));
+  EXPECT_THAT(ErrorOf(file), HasSubstr("far.stl: binary STL facet 1 of 1: vertex 3 coordinate 3e+20 mm is beyond"));
+  WriteBytes(file, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 -2e7\n");
+  EXPECT_THAT(ErrorOf(file), HasSubstr("far.stl: ASCII STL line 6: vertex z -2e+07 mm is beyond"));
+}
+
 TEST(StlIoErrors, NonFiniteAsciiCoordinateNamesTheLine) {
   const std::filesystem::path file = TestDir() / "nan_ascii.stl";
   WriteBytes(file, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 nan 0\nvertex 0 1 0\nendloop\n"
@@ -243,6 +255,44 @@ TEST(StlIoErrors, WeldToleranceOutOfRange) {
 
 TEST(StlIoErrors, MissingFile) {
   EXPECT_THAT(ErrorOf(TestDir() / "missing.stl"), HasSubstr("missing.stl"));
+}
+
+TEST(StlIoErrors, CorruptedFilesGiveAMeshOrAnInputErrorNeverACrash) {
+  // Seeded random byte damage and truncation of a binary and an ASCII file; every outcome must be a usable mesh
+  // (then sliceable or refused by CheckSliceable) or an InputError naming the file.
+  const std::filesystem::path dir = TestDir();
+  const TriangleMesh mesh = GeneratePart("ding_b", {{"segments", {8}}}, "test");
+  WriteStlBinary(mesh, dir / "b.stl");
+  WriteStlAscii(mesh, dir / "a.stl", "a");
+  std::mt19937_64 rng(42);
+  for (const char* name : {"b.stl", "a.stl"}) {
+    const std::string original = ReadFile(dir / name);
+    for (int trial = 0; trial < 150; ++trial) {
+      std::string bytes = original;
+      std::uniform_int_distribution<std::size_t> at(0, bytes.size() - 1);
+      const int damage = trial % 3;
+      if (damage == 0) bytes.resize(at(rng));
+      for (int k = 0; k < 1 + trial % 5 && damage > 0; ++k) {
+        bytes[at(rng)] = damage == 1 ? static_cast<char>(rng() & 0xff) : "0123456789.-e nan"[rng() % 17];
+      }
+      const std::filesystem::path file = dir / "damaged.stl";
+      WriteBytes(file, bytes);
+      try {
+        MeshReport report;
+        const TriangleMesh back = ReadStl(file, 1e-4, &report);
+        ASSERT_FALSE(back.facets.empty());
+        try {
+          CheckSliceable(report);
+          SliceReport slice_report;
+          SlicePlanar(back, {1.0, 15.0}, &slice_report);
+        } catch (const InputError& e) {
+          EXPECT_THAT(e.what(), HasSubstr("damaged.stl"));
+        }
+      } catch (const InputError& e) {
+        EXPECT_THAT(e.what(), HasSubstr("damaged.stl")) << "trial " << trial << " of " << name;
+      }
+    }
+  }
 }
 
 // The CLI exit codes and output, through the built executable.
