@@ -46,7 +46,10 @@ void AddGenerateCommand(CLI::App& app, CommandRunner* runner) {
   CLI::App* command = app.add_subcommand(
       "generate",
       "Write a procedural part as a binary STL (mm, closed, outward normals, centred on x = y = 0, resting on z = 0).\n"
-      "Parameters not given take their defaults. Types, parameters and defaults:\n" +
+      "Parameters not given take their defaults. Example:\n"
+      "  waam generate plate_with_holes --param size_mm=200,120,10 --param hole_diameters_mm=40 \\\n"
+      "      --param hole_centers_mm=0,0 -o plate.stl\n"
+      "Types, parameters and defaults:\n" +
           planner::GeneratorHelp());
   command->add_option("type", options->type, "generator type (see the list above)")->required();
   command->add_option("--param", options->params, "a parameter as key=v1[,v2,...] (repeatable), e.g. size_mm=100,60,40")
