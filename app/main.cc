@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
 
   CommandRunner runner;
   AddPlanCommand(app, &runner);
+  AddInspectCommand(app, &runner);
+  AddGenerateCommand(app, &runner);
 
   try {
     app.parse(argc, argv);
