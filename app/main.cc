@@ -19,6 +19,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "waam 0.1.0");
 
   CommandRunner runner;
+  AddPlanCommand(app, &runner);
+  AddInspectCommand(app, &runner);
+  AddGenerateCommand(app, &runner);
   AddFitCommand(app, &runner);
 
   try {
