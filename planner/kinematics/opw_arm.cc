@@ -18,15 +18,15 @@ Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::Unit
 Eigen::Matrix3d Rz(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix(); }
 
 // Wraps `q` by multiples of 2 pi into [lo, hi] as close to `target` as possible; if no copy fits, the copy
-// nearest to the interval.
+// nearest `target` (so that a path running past a limit stays continuous).
 double WrapInto(double q, double lo, double hi, double target) {
   q = std::remainder(q, kTwoPi);
   double best = q;
   double best_cost = std::numeric_limits<double>::infinity();
   for (int k = -2; k <= 2; ++k) {
     const double c = q + k * kTwoPi;
-    const double outside = std::max({0.0, lo - c, c - hi});
-    const double cost = outside * 1e6 + std::abs(c - target);
+    const bool inside = c >= lo && c <= hi;
+    const double cost = (inside ? 0.0 : 1e6) + std::abs(c - target);
     if (cost < best_cost) {
       best_cost = cost;
       best = c;

@@ -10,14 +10,15 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 
-// The 2 pi copy of `r` inside [lo, hi] nearest `target`; if none fits, the copy nearest the range.
+// The 2 pi copy of `r` inside [lo, hi] nearest `target`; if none fits, the copy nearest `target`.
 double NearestCopy(double r, double lo, double hi, double target) {
   r = std::remainder(r, kTwoPi);
   double best = r;
   double best_cost = std::numeric_limits<double>::infinity();
   for (int k = -2; k <= 2; ++k) {
     const double c = r + k * kTwoPi;
-    const double cost = 1e6 * std::max({0.0, lo - c, c - hi}) + std::abs(c - target);
+    const bool inside = c >= lo && c <= hi;
+    const double cost = (inside ? 0.0 : 1e6) + std::abs(c - target);
     if (cost < best_cost) {
       best_cost = cost;
       best = c;

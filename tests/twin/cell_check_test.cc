@@ -1,0 +1,188 @@
+// Tests of the MuJoCo cell: the closed-form IK agrees with MuJoCo's forward kinematics, bad model files give clear
+// errors, and the three planted faults (out of reach, joint past its limit, torch into the plate) are caught.
+#include "twin/cell/cell_check.h"
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+
+#include <unistd.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+#include "tests/twin/test_plans.h"
+#include "twin/cell/mujoco_cell.h"
+
+namespace waam::twin {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+std::string ReadFileForTest(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::set<std::string> Kinds(const CheckReport& r) {
+  std::set<std::string> kinds;
+  for (const CheckViolation& v : r.violations) kinds.insert(v.kind);
+  return kinds;
+}
+
+std::string Describe(const CheckReport& r) {
+  std::string text;
+  for (const CheckViolation& v : r.violations) {
+    text += v.kind + " " + v.joint + v.body1 + "/" + v.body2 + " at point " + std::to_string(v.point) + " value " +
+            std::to_string(v.value) + " " + v.unit + "\n";
+  }
+  return text;
+}
+
+TEST(MujocoCellTest, ClosedFormIkReachesTheTcpInMujoco) {
+  MujocoCell cell({});
+  const planner::CellSettings settings;
+  const planner::CellKinematics kin = PlaceCell(cell, settings);
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int checked = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    // Random TCP poses around the positioner, torch tilted up to ~45 deg from vertical.
+    const Eigen::Vector3d p_W = kin.X_WB.translation() + Eigen::Vector3d(250 * u(rng), 250 * u(rng), 600 + 150 * u(rng));
+    const Eigen::Vector3d dir = Eigen::Vector3d(0.7 * u(rng), 0.7 * u(rng), 1.0).normalized();
+    const Eigen::Isometry3d X_WT = planner::TorchPose(kin, p_W, dir);
+    const Eigen::Isometry3d X_RF = kin.X_WR.inverse() * X_WT * kin.X_FT.inverse();
+    const planner::IkSolutions ik = planner::SolveIk(kin.arm, X_RF, nullptr);
+    for (int i = 0; i < ik.count; ++i) {
+      planner::Joints8 q = planner::Joints8::Zero();
+      q.head<6>() = ik.solutions[i].q;
+      cell.SetJoints(q);
+      const Eigen::Isometry3d X = cell.TcpPose();
+      const double err = (X.translation() - X_WT.translation()).norm() + 1000.0 * (X.linear() - X_WT.linear()).norm();
+      worst = std::max(worst, err);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 2000);
+  EXPECT_LT(worst, 1e-6) << "every IK branch must put MuJoCo's TCP site on the target pose (mm)";
+}
+
+TEST(MujocoCellTest, ModelKinematicsMatchThePublishedArm) {
+  MujocoCell cell({});
+  const planner::CellKinematics kin = cell.Kinematics();
+  const planner::OpwArm ref = planner::OpwArm::ArcMate100iC12();
+  EXPECT_NEAR(kin.arm.a1, ref.a1, 1e-9);
+  EXPECT_NEAR(kin.arm.a2, ref.a2, 1e-9);
+  EXPECT_NEAR(kin.arm.c1, ref.c1, 1e-9);
+  EXPECT_NEAR(kin.arm.c2, ref.c2, 1e-9);
+  EXPECT_NEAR(kin.arm.c3, ref.c3, 1e-9);
+  EXPECT_NEAR(kin.arm.c4, ref.c4, 1e-9);
+  EXPECT_LT((kin.arm.lower - ref.lower).norm(), 1e-9);
+  EXPECT_LT((kin.arm.max_speed - ref.max_speed).norm(), 1e-9);
+  EXPECT_NEAR(kin.positioner.tilt_upper - kin.positioner.tilt_lower, 140.0 * M_PI / 180.0, 1e-9);
+  EXPECT_NEAR(kin.positioner.rotation_upper - kin.positioner.rotation_lower, 480.0 * M_PI / 180.0, 1e-9);
+}
+
+class BadModelTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("waam_cell_model_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string ErrorOf(const std::string& xml) {
+    const fs::path file = dir_ / "cell.xml";
+    std::ofstream(file) << xml;
+    try {
+      MujocoCell cell(file);
+      PlaceCell(cell, planner::CellSettings{});
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "expected an InputError for:\n" << xml;
+    return "";
+  }
+  fs::path dir_;
+};
+
+TEST_F(BadModelTest, BrokenXmlIsAnErrorNotAnExit) {
+  const std::string message = ErrorOf("<mujoco><worldbody><body name='a'></worldbody></mujoco>");
+  EXPECT_THAT(message, HasSubstr("cell.xml"));
+  EXPECT_THAT(message, HasSubstr("cannot load"));
+}
+
+TEST_F(BadModelTest, MissingJointIsNamed) {
+  std::string xml = ReadFileForTest(MujocoCell::BuiltinModelPath());
+  xml.replace(xml.find("name=\"j3\""), 9, "name=\"jx\"");
+  EXPECT_THAT(ErrorOf(xml), HasSubstr("no joint named 'j3'"));
+}
+
+TEST_F(BadModelTest, NonOpwArmIsRefused) {
+  std::string xml = ReadFileForTest(MujocoCell::BuiltinModelPath());
+  xml.replace(xml.find("axis=\"0 -1 0\" range=\"-190 190\""), 13, "axis=\"0 0 1\" ");
+  EXPECT_THAT(ErrorOf(xml), HasSubstr("not an ortho-parallel arm"));
+}
+
+TEST_F(BadModelTest, MissingFileIsNamed) {
+  try {
+    MujocoCell cell(dir_ / "nothere.xml");
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("nothere.xml"));
+  }
+}
+
+class PlantedFaultTest : public ::testing::Test {
+ protected:
+  CheckReport Check(const planner::CellSettings& settings) {
+    MujocoCell cell({});
+    return CheckPlan(cell, testing::RectangleWall(6, 80.0, 40.0, 2.0, 400.0 / 60.0), settings, 100.0, nullptr);
+  }
+};
+
+TEST_F(PlantedFaultTest, WellPlacedCellPasses) {
+  const CheckReport r = Check(planner::CellSettings{});
+  EXPECT_TRUE(r.ok) << Describe(r);
+  EXPECT_EQ(r.points, 30u);
+  EXPECT_GT(r.samples, 6u * 240u) << "segments are checked every step_mm (1 mm)";
+  EXPECT_GT(r.min_joint_margin_deg, 2.0);
+  EXPECT_GT(r.max_joint_speed_ratio, 0.0);
+  EXPECT_LT(r.max_joint_speed_ratio, 1.0);
+}
+
+TEST_F(PlantedFaultTest, OutOfReachIsUnreachableOnly) {
+  planner::CellSettings s;
+  s.robot_base_mm = {-1500.0, 0.0, 0.0};
+  const CheckReport r = Check(s);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(Kinds(r), std::set<std::string>{"unreachable"}) << Describe(r);
+  EXPECT_GT(r.violations.front().value, 0.0) << "reports how far out of reach, mm";
+}
+
+TEST_F(PlantedFaultTest, PositionerBehindTheArmDrivesJ1PastItsLimit) {
+  planner::CellSettings s;
+  s.robot_yaw_deg = 180.0;  // the arm faces away from the positioner: j1 would need +-180 deg, the limit is 170
+  const CheckReport r = Check(s);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(Kinds(r), std::set<std::string>{"joint_limit"}) << Describe(r);
+  EXPECT_EQ(r.violations.front().joint, "j1");
+  EXPECT_LT(r.min_joint_margin_deg, 0.0);
+}
+
+TEST_F(PlantedFaultTest, PartBelowThePlateDrivesTheTorchIntoTheSubstrate) {
+  planner::CellSettings s;
+  s.part_offset_mm = {0.0, 0.0, -30.0};
+  const CheckReport r = Check(s);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(Kinds(r), std::set<std::string>{"collision"}) << Describe(r);
+  for (const CheckViolation& v : r.violations) {
+    EXPECT_TRUE(v.body1 == "substrate" || v.body2 == "substrate") << Describe(r);
+    EXPECT_TRUE(v.body1 == "torch" || v.body2 == "torch") << Describe(r);
+  }
+}
+
+}  // namespace
+}  // namespace waam::twin

@@ -1,0 +1,76 @@
+// The MuJoCo model of the welding cell behind a MuJoCo-free interface: load, place, set the eight axes, run forward
+// kinematics and collision detection, and read the geometry the planner's kinematics needs.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "planner/kinematics/cell_motion.h"
+
+namespace waam::twin {
+
+// One penetrating contact between two bodies of the cell.
+struct CellContact {
+  std::string body1;
+  std::string body2;
+  double penetration_mm = 0.0;                        // > 0
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();      // contact point in the world, mm
+};
+
+// A collision shape in the world, for pictures.
+struct CellShape {
+  enum class Type { kPlane, kSphere, kCapsule, kCylinder, kBox, kOther };
+  Type type = Type::kOther;
+  std::string body;
+  Eigen::Vector3d size_mm = Eigen::Vector3d::Zero();     // MuJoCo geom_size in mm (radius, half-length, ...)
+  Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();  // geom frame in the world, mm
+  Eigen::Vector4f rgba = Eigen::Vector4f::Ones();
+};
+
+// Owns the mjModel (const after placement) and one mjData.
+class MujocoCell {
+ public:
+  // The built-in model, twin/data/cell_arcmate100ic.xml.
+  static std::filesystem::path BuiltinModelPath();
+
+  // Loads an MJCF file (the built-in one when `mjcf` is empty). Throws InputError naming the file and MuJoCo's
+  // message for a file that does not parse or compile, or that lacks a required joint, body, site or field.
+  explicit MujocoCell(const std::filesystem::path& mjcf);
+  ~MujocoCell();
+  MujocoCell(const MujocoCell&) = delete;
+  MujocoCell& operator=(const MujocoCell&) = delete;
+
+  // Moves the arm base and the positioner base to the given world poses (mm).
+  void Place(const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
+
+  // The cell's kinematics read from the model: the arm's OPW parameters, limits and speeds, the tool (tcp site in
+  // the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. Throws InputError if the
+  // arm is not of the OPW kind with the FANUC joint convention (its forward kinematics differ from the closed form).
+  planner::CellKinematics Kinematics() const;
+
+  // Sets the eight axes (rad) and runs forward kinematics.
+  void SetJoints(const planner::Joints8& q);
+  // TCP pose in the world after SetJoints, mm.
+  Eigen::Isometry3d TcpPose() const;
+  // Runs collision detection for the joints set last; appends contacts deeper than `tolerance_mm` to `out` and
+  // returns their number.
+  int Collide(double tolerance_mm, std::vector<CellContact>* out);
+
+  // The gas nozzle capsule in the TCP frame: end points (mm) and radius (mm).
+  void NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const;
+  // All collision shapes at the joints set last.
+  std::vector<CellShape> Shapes() const;
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::filesystem::path file_;
+};
+
+}  // namespace waam::twin
