@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "planner/scenario/scenario.h"
 #include "tests/twin/test_plans.h"
 #include "twin/cell/mujoco_cell.h"
 
@@ -135,53 +136,98 @@ TEST_F(BadModelTest, MissingFileIsNamed) {
   }
 }
 
+// The planted-fault scenarios of scenarios/cell/, checked on a hand-built wall of their part's footprint.
 class PlantedFaultTest : public ::testing::Test {
  protected:
+  static planner::CellSettings Settings(const std::string& name) {
+    return planner::LoadScenario(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (name + ".yaml")).cell;
+  }
   CheckReport Check(const planner::CellSettings& settings) {
-    MujocoCell cell({});
-    return CheckPlan(cell, testing::RectangleWall(6, 80.0, 40.0, 2.0, 400.0 / 60.0), settings, 100.0, nullptr);
+    MujocoCell cell(settings.mjcf);
+    return CheckPlan(cell, testing::RectangleWall(10, 100.0, 60.0, 1.5, 400.0 / 60.0), settings, 100.0, nullptr);
   }
 };
 
 TEST_F(PlantedFaultTest, WellPlacedCellPasses) {
-  const CheckReport r = Check(planner::CellSettings{});
+  const CheckReport r = Check(Settings("cell_ok"));
   EXPECT_TRUE(r.ok) << Describe(r);
-  EXPECT_EQ(r.points, 30u);
-  EXPECT_GT(r.samples, 6u * 240u) << "segments are checked every step_mm (1 mm)";
+  EXPECT_EQ(r.points, 50u);
+  EXPECT_GT(r.samples, 10u * 320u) << "segments are checked every step_mm (1 mm)";
   EXPECT_GT(r.min_joint_margin_deg, 2.0);
   EXPECT_GT(r.max_joint_speed_ratio, 0.0);
   EXPECT_LT(r.max_joint_speed_ratio, 1.0);
+  EXPECT_GT(r.min_j5_deg, 5.0);
 }
 
 TEST_F(PlantedFaultTest, OutOfReachIsUnreachableOnly) {
-  planner::CellSettings s;
-  s.robot_base_mm = {-1500.0, 0.0, 0.0};
-  const CheckReport r = Check(s);
+  const CheckReport r = Check(Settings("cell_out_of_reach"));
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(Kinds(r), std::set<std::string>{"unreachable"}) << Describe(r);
   EXPECT_GT(r.violations.front().value, 0.0) << "reports how far out of reach, mm";
 }
 
 TEST_F(PlantedFaultTest, PositionerBehindTheArmDrivesJ1PastItsLimit) {
-  planner::CellSettings s;
-  s.robot_yaw_deg = 180.0;  // the arm faces away from the positioner: j1 would need +-180 deg, the limit is 170
-  const CheckReport r = Check(s);
+  const CheckReport r = Check(Settings("cell_joint_limit"));
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(Kinds(r), std::set<std::string>{"joint_limit"}) << Describe(r);
-  EXPECT_EQ(r.violations.front().joint, "j1");
+  for (const CheckViolation& v : r.violations) EXPECT_EQ(v.joint, "j1") << Describe(r);
   EXPECT_LT(r.min_joint_margin_deg, 0.0);
 }
 
 TEST_F(PlantedFaultTest, PartBelowThePlateDrivesTheTorchIntoTheSubstrate) {
-  planner::CellSettings s;
-  s.part_offset_mm = {0.0, 0.0, -30.0};
-  const CheckReport r = Check(s);
+  const CheckReport r = Check(Settings("cell_torch_into_plate"));
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(Kinds(r), std::set<std::string>{"collision"}) << Describe(r);
   for (const CheckViolation& v : r.violations) {
-    EXPECT_TRUE(v.body1 == "substrate" || v.body2 == "substrate") << Describe(r);
-    EXPECT_TRUE(v.body1 == "torch" || v.body2 == "torch") << Describe(r);
+    EXPECT_EQ(v.body1, "substrate") << Describe(r);
+    EXPECT_EQ(v.body2, "torch") << Describe(r);
   }
+}
+
+TEST_F(PlantedFaultTest, JointMarginIsAViolationBeforeTheLimit) {
+  // Arm turned so that j1 works at 167 +- 3 deg: inside its +-170 deg range but closer than the 2 deg margin.
+  planner::CellSettings s = Settings("cell_ok");
+  s.robot_yaw_deg = -167.0;
+  const CheckReport r = Check(s);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(Kinds(r), std::set<std::string>{"joint_limit"}) << Describe(r);
+  EXPECT_GT(r.min_joint_margin_deg, 0.0) << "no joint passes its limit";
+  EXPECT_LT(r.min_joint_margin_deg, 2.0);
+  EXPECT_EQ(r.min_margin_joint, "j1");
+}
+
+TEST_F(PlantedFaultTest, TorchAgainstTheDepositedWallIsACollisionWithThePart) {
+  // Layers whose tool direction leans 75 deg sideways while the build direction stays vertical: the nozzle dips
+  // into the layers laid before.
+  planner::Plan plan = testing::RectangleWall(10, 100.0, 60.0, 1.5, 400.0 / 60.0);
+  for (planner::LayerPath& layer : plan.layers) {
+    for (planner::PathPoint& p : layer.points) p.tool_dir_P = Eigen::Vector3d(std::sin(1.3), 0.0, std::cos(1.3));
+  }
+  MujocoCell cell({});
+  const CheckReport r = CheckPlan(cell, plan, Settings("cell_ok"), 100.0, nullptr);
+  bool part_hit = false;
+  for (const CheckViolation& v : r.violations) part_hit |= (v.kind == "collision" && v.body1 == "part");
+  EXPECT_TRUE(part_hit) << "a torch leaning 75 deg must hit the wall it just built\n" << Describe(r);
+}
+
+TEST_F(PlantedFaultTest, TiltedBuildDirectionIsTurnedUpByThePositioner) {
+  // A wall whose layers grow along a direction 30 deg from the plate normal: the positioner tilts by 30 deg and the
+  // torch stays vertical (neutral welding position).
+  planner::Plan plan = testing::RectangleWall(5, 60.0, 40.0, 1.5, 400.0 / 60.0);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  for (planner::LayerPath& layer : plan.layers) {
+    layer.build_dir_P = R * Eigen::Vector3d::UnitZ();
+    for (planner::PathPoint& p : layer.points) {
+      p.p_P = R * p.p_P + Eigen::Vector3d(0.0, 0.0, 20.0);
+      p.tool_dir_P = layer.build_dir_P;
+    }
+  }
+  MujocoCell cell({});
+  const CheckReport r = CheckPlan(cell, plan, Settings("cell_ok"), 100.0, nullptr);
+  EXPECT_TRUE(r.ok) << Describe(r);
+  EXPECT_NEAR(std::abs(r.motion.back().q[6]) * 180.0 / M_PI, 30.0, 1e-6) << "positioner tilt";
+  EXPECT_LT(r.max_torch_tilt_deg, 1e-6) << "the torch stays vertical";
+  EXPECT_EQ(r.positioner_limit_layers, 0);
 }
 
 }  // namespace
