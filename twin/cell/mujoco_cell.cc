@@ -49,7 +49,7 @@ struct MujocoCell::Impl {
   mjData* d = nullptr;
   int qadr[8] = {};
   int jnt[8] = {};
-  int robot_base = -1, positioner_base = -1, flange = -1, table = -1;
+  int robot_base = -1, positioner_base = -1, flange = -1;
   int tcp = -1, part_origin = -1, nozzle = -1, speeds = -1;
   ~Impl() {
     if (d) mj_deleteData(d);
@@ -87,7 +87,6 @@ MujocoCell::MujocoCell(const fs::path& mjcf) : impl_(std::make_unique<Impl>()) {
   impl_->robot_base = require(mjOBJ_BODY, "robot_base", "body");
   impl_->positioner_base = require(mjOBJ_BODY, "positioner_base", "body");
   impl_->flange = require(mjOBJ_BODY, "link6", "body");
-  impl_->table = require(mjOBJ_BODY, "table", "body");
   impl_->tcp = require(mjOBJ_SITE, "tcp", "site");
   impl_->part_origin = require(mjOBJ_SITE, "part_origin", "site");
   impl_->nozzle = require(mjOBJ_GEOM, "nozzle", "geom");
