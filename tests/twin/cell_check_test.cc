@@ -9,6 +9,8 @@
 
 #include <unistd.h>
 
+#include <mujoco/mujoco.h>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -125,6 +127,16 @@ TEST_F(BadModelTest, NonOpwArmIsRefused) {
   std::string xml = ReadFileForTest(MujocoCell::BuiltinModelPath());
   xml.replace(xml.find("axis=\"0 -1 0\" range=\"-190 190\""), 13, "axis=\"0 0 1\" ");
   EXPECT_THAT(ErrorOf(xml), HasSubstr("not an ortho-parallel arm"));
+}
+
+TEST_F(BadModelTest, MujocoRuntimeErrorThrowsInsteadOfExiting) {
+  MujocoCell cell({});  // installs the handlers
+  try {
+    mju_error("simulated engine failure");
+    ADD_FAILURE() << "mju_error must throw, not return or exit";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("simulated engine failure"));
+  }
 }
 
 TEST_F(BadModelTest, MissingFileIsNamed) {
