@@ -43,6 +43,7 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
   return {
       {"scenario", scenario.name},
       {"ok", report.ok},
+      {"ik", report.ik},
       {"points", report.points},
       {"samples", report.samples},
       {"step_mm", c.step_mm},

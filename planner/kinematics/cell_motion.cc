@@ -104,17 +104,32 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
         s.X_WT = TorchPose(cell, p_W, tool_dir_W);
         const Eigen::Isometry3d X_RF = X_RW * s.X_WT * X_TF;
 
-        const IkSolutions ik = SolveIk(cell.arm, X_RF, &seed);
-        const int pick = PickNearest(cell.arm, ik, &seed);
-        if (pick < 0) {
-          s.reachable = false;
-          s.reach_excess_mm = ik.reach_excess_mm;
-          s.arm_within_limits = false;
+        if (cell.numeric_ik) {
+          // A user's arm without a closed form: local solution from the previous joints; failures are reported.
+          Joints6 q = seed;
+          double residual = 0.0;
+          if (cell.numeric_ik(X_RF, seed, &q, &residual)) {
+            seed = q;
+            int joint = 0;
+            s.arm_within_limits = LimitMargin(cell.arm, q, &joint) >= 0.0;
+          } else {
+            s.reachable = false;
+            s.reach_excess_mm = residual;
+            s.arm_within_limits = false;
+          }
         } else {
-          const IkSolution& sol = ik.solutions[pick];
-          seed = sol.q;
-          s.branch = sol.branch;
-          s.arm_within_limits = sol.within_limits;
+          const IkSolutions ik = SolveIk(cell.arm, X_RF, &seed);
+          const int pick = PickNearest(cell.arm, ik, &seed);
+          if (pick < 0) {
+            s.reachable = false;
+            s.reach_excess_mm = ik.reach_excess_mm;
+            s.arm_within_limits = false;
+          } else {
+            const IkSolution& sol = ik.solutions[pick];
+            seed = sol.q;
+            s.branch = sol.branch;
+            s.arm_within_limits = sol.within_limits;
+          }
         }
         s.q.head<6>() = seed;
         s.q[6] = angles.tilt;

@@ -17,9 +17,15 @@ namespace waam::planner {
 
 using Joints8 = Eigen::Matrix<double, 8, 1>;  // j1..j6 of the arm, positioner tilt, positioner rotation; rad
 
+// Numerical inverse kinematics for arms the closed form does not cover: flange pose X_RF (mm) and a seed (rad) in,
+// joints out; returns false (with the remaining pose error in mm) when it did not converge.
+using NumericIk = std::function<bool(const Eigen::Isometry3d& X_RF, const Joints6& seed, Joints6* q,
+                                     double* residual_mm)>;
+
 // The cell's kinematics in the world frame W (floor, z up): arm base R, tool, positioner base B, part P.
 struct CellKinematics {
-  OpwArm arm;
+  OpwArm arm;          // limits and speeds always; the OPW geometry only when numeric_ik is empty
+  NumericIk numeric_ik;  // set for a user's arm that is not of the OPW kind: used instead of the closed form
   Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();  // arm base in W, mm
   Eigen::Isometry3d X_FT = Eigen::Isometry3d::Identity();  // TCP in the flange frame, mm; z_T points into the work
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();  // positioner base in W, mm
@@ -44,6 +50,7 @@ struct CellSample {
   Joints8 q = Joints8::Zero();
   bool reachable = true;
   double reach_excess_mm = 0.0;  // when unreachable: how far the wrist centre lies outside the arm's shell, mm
+                                 // (numerical IK: the pose error it could not remove, mm)
   bool arm_within_limits = true; // a closed-form branch within all joint limits exists
   int branch = 0;                // IkSolution::branch of the chosen solution
   bool positioner_at_limit = false;

@@ -123,10 +123,60 @@ TEST_F(BadModelTest, MissingJointIsNamed) {
   EXPECT_THAT(ErrorOf(xml), HasSubstr("no joint named 'j3'"));
 }
 
-TEST_F(BadModelTest, NonOpwArmIsRefused) {
-  std::string xml = ReadFileForTest(MujocoCell::BuiltinModelPath());
-  xml.replace(xml.find("axis=\"0 -1 0\" range=\"-190 190\""), 13, "axis=\"0 0 1\" ");
-  EXPECT_THAT(ErrorOf(xml), HasSubstr("not an ortho-parallel arm"));
+// A user's arm that is not of the OPW kind: a 20 mm lateral offset in the wrist.
+class NumericIkTest : public BadModelTest {
+ protected:
+  fs::path WristOffsetModel() {
+    std::string xml = ReadFileForTest(MujocoCell::BuiltinModelPath());
+    xml.replace(xml.find("<body name=\"link6\" pos=\"0.1 0 0\">"), 33, "<body name=\"link6\" pos=\"0.1 0.02 0\">");
+    const fs::path file = dir_ / "offset_wrist.xml";
+    std::ofstream(file) << xml;
+    return file;
+  }
+};
+
+TEST_F(NumericIkTest, NonOpwArmFallsBackToNumericalIk) {
+  MujocoCell cell(WristOffsetModel());
+  const planner::CellKinematics kin = PlaceCell(cell, planner::CellSettings{});
+  EXPECT_FALSE(cell.closed_form());
+  ASSERT_TRUE(static_cast<bool>(kin.numeric_ik));
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int converged = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    planner::Joints8 q = planner::Joints8::Zero();
+    q << 0.5 * u(rng), 0.3 + 0.3 * u(rng), 0.2 * u(rng), 0.5 * u(rng), -1.3 + 0.4 * u(rng), 0.5 * u(rng), 0, 0;
+    cell.SetJoints(q);
+    const Eigen::Isometry3d X_WT = cell.TcpPose();
+    const Eigen::Isometry3d X_RF = kin.X_WR.inverse() * X_WT * kin.X_FT.inverse();
+    const planner::Joints6 seed = q.head<6>() + planner::Joints6::Constant(0.1);
+    planner::Joints6 sol;
+    double residual = 0.0;
+    if (!kin.numeric_ik(X_RF, seed, &sol, &residual)) continue;
+    ++converged;
+    planner::Joints8 q2 = q;
+    q2.head<6>() = sol;
+    cell.SetJoints(q2);
+    EXPECT_LT((cell.TcpPose().translation() - X_WT.translation()).norm(), 1e-5) << "trial " << trial;
+  }
+  EXPECT_EQ(converged, 50) << "from a seed 0.1 rad away the numerical IK must converge";
+}
+
+TEST_F(NumericIkTest, WellPlacedWallPassesWithNumericalIk) {
+  MujocoCell cell(WristOffsetModel());
+  const CheckReport r =
+      CheckPlan(cell, testing::RectangleWall(4, 80.0, 40.0, 2.0, 400.0 / 60.0), planner::CellSettings{}, 100.0, nullptr);
+  EXPECT_EQ(r.ik, "numerical");
+  EXPECT_TRUE(r.ok) << Describe(r);
+}
+
+TEST_F(NumericIkTest, NumericalIkFailureIsReportedAsUnreachable) {
+  MujocoCell cell(WristOffsetModel());
+  planner::CellSettings far;
+  far.robot_base_mm = {-1500.0, 0.0, 0.0};
+  const CheckReport r = CheckPlan(cell, testing::RectangleWall(1, 80.0, 40.0, 2.0, 400.0 / 60.0), far, 100.0, nullptr);
+  EXPECT_EQ(Kinds(r), std::set<std::string>{"unreachable"}) << Describe(r);
+  EXPECT_EQ(r.violations.front().unit, "ik_residual_mm");
 }
 
 TEST_F(BadModelTest, MujocoRuntimeErrorThrowsInsteadOfExiting) {

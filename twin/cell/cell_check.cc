@@ -117,6 +117,7 @@ CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner
   options.rotation_rad = settings.positioner_rotation_deg / kDeg;
 
   CheckReport report;
+  report.ik = kin.numeric_ik ? "numerical" : "closed_form";
   for (const planner::LayerPath& layer : plan.layers) report.points += layer.points.size();
   const std::size_t total = planner::CountCellSamples(plan, settings.step_mm);
   if (progress) progress->SetTotal(2 * total);
@@ -163,7 +164,8 @@ CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner
     if (s.weld) report.max_torch_tilt_deg = std::max(report.max_torch_tilt_deg, s.torch_tilt_rad * kDeg);
     const bool deposit_here = s.weld && i > 0;
     if (!s.reachable) {
-      log.Add("unreachable", "", "", s, si, s.reach_excess_mm, "reach_excess_mm", true);
+      log.Add("unreachable", "", "", s, si, s.reach_excess_mm,
+              kin.numeric_ik ? "ik_residual_mm" : "reach_excess_mm", true);
       have_velocity = false;
       if (deposit_here) deposit.Deposit(motion[i - 1].p_P, s.p_P, s.bead_width_mm);
       continue;

@@ -38,6 +38,7 @@ struct CheckViolation {
 // What `waam check` reports.
 struct CheckReport {
   bool ok = true;
+  std::string ik = "closed_form";  // closed_form (OPW arm) | numerical (a user's arm; failures are unreachable)
   std::size_t points = 0;    // path points
   std::size_t samples = 0;   // checked samples (path points and the points inserted every step_mm)
   std::vector<CheckViolation> violations;

@@ -1,6 +1,7 @@
 // MuJoCo adapter of the cell: the only file that sees mjModel/mjData. MuJoCo errors become InputError, never exit().
 #include "twin/cell/mujoco_cell.h"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <random>
@@ -47,11 +48,13 @@ Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
 struct MujocoCell::Impl {
   mjModel* m = nullptr;
   mjData* d = nullptr;
+  mjData* ik = nullptr;  // scratch data of the numerical IK
   int qadr[8] = {};
   int jnt[8] = {};
   int robot_base = -1, positioner_base = -1, flange = -1;
   int tcp = -1, part_origin = -1, nozzle = -1, speeds = -1;
   ~Impl() {
+    if (ik) mj_deleteData(ik);
     if (d) mj_deleteData(d);
     if (m) mj_deleteModel(m);
   }
@@ -68,6 +71,7 @@ MujocoCell::MujocoCell(const fs::path& mjcf) : impl_(std::make_unique<Impl>()) {
   impl_->m = mj_loadXML(file_.string().c_str(), nullptr, error, sizeof(error));
   WAAM_THROW_UNLESS(impl_->m != nullptr, file_.string() << ": MuJoCo cannot load the cell model: " << error);
   impl_->d = mj_makeData(impl_->m);
+  impl_->ik = mj_makeData(impl_->m);
   const mjModel* m = impl_->m;
 
   auto require = [&](int type, const char* name, const char* what) {
@@ -268,10 +272,70 @@ planner::CellKinematics MujocoCell::Kinematics() const {
   }
   for (int i = 0; i < m->nq; ++i) d->qpos[i] = saved[i];
   mj_kinematics(m, d);
-  WAAM_THROW_UNLESS(worst < 1e-6, file_.string() << ": the arm is not an ortho-parallel arm with a spherical wrist "
-                                                    "in the FANUC joint convention (closed-form and MuJoCo forward "
-                                                    "kinematics differ by " << worst << " mm); see README");
+  closed_form_ = worst < 1e-6;
+  if (!closed_form_) {
+    // Not an OPW arm in the FANUC convention: the numerical IK on this model takes over.
+    cell.arm.name += " (numerical IK)";
+    cell.numeric_ik = [this](const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
+                             double* residual) { return SolveNumericIk(X_RF, seed, q, residual); };
+  }
   return cell;
+}
+
+bool MujocoCell::SolveNumericIk(const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q_out,
+                                double* residual_mm) const {
+  const mjModel* m = impl_->m;
+  mjData* d = impl_->ik;
+  mju_copy(d->qpos, impl_->d->qpos, m->nq);  // positioner and placement as in the main data
+  const int rb = impl_->robot_base;
+  const int fl = impl_->flange;
+  planner::Joints6 q;
+  for (int j = 0; j < 6; ++j) {
+    const int id = impl_->jnt[j];
+    q[j] = std::clamp(seed[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
+  }
+  constexpr double kLever = 1000.0;  // rotation errors count at 1 m, like the IK tests
+  std::vector<mjtNum> jacp(3 * m->nv), jacr(3 * m->nv);
+  double residual = 0.0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    for (int j = 0; j < 6; ++j) d->qpos[impl_->qadr[j]] = q[j];
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    const Eigen::Isometry3d X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
+    const Eigen::Isometry3d X_WF = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+    const Eigen::Isometry3d X_WF_goal = X_WR * X_RF;
+    Eigen::Matrix<double, 6, 1> e;
+    e.head<3>() = X_WF_goal.translation() - X_WF.translation();
+    const Eigen::AngleAxisd rot(X_WF_goal.linear() * X_WF.linear().transpose());
+    e.tail<3>() = rot.angle() * rot.axis() * kLever;
+    residual = e.head<3>().norm() + e.tail<3>().norm();
+    if (residual < 1e-6) {
+      *q_out = q;
+      *residual_mm = residual;
+      return true;
+    }
+    mj_jacBody(m, d, jacp.data(), jacr.data(), fl);
+    Eigen::Matrix<double, 6, 6> J;
+    for (int j = 0; j < 6; ++j) {
+      const int dof = m->jnt_dofadr[impl_->jnt[j]];
+      for (int r = 0; r < 3; ++r) {
+        J(r, j) = jacp[r * m->nv + dof] * kMm;
+        J(3 + r, j) = jacr[r * m->nv + dof] * kLever;
+      }
+    }
+    // Damped least squares (Levenberg-Marquardt step), at most 0.2 rad per joint and iteration.
+    const Eigen::Matrix<double, 6, 6> A = J * J.transpose() + 1e-4 * Eigen::Matrix<double, 6, 6>::Identity();
+    planner::Joints6 dq = J.transpose() * A.ldlt().solve(e);
+    const double largest = dq.cwiseAbs().maxCoeff();
+    if (largest > 0.2) dq *= 0.2 / largest;
+    for (int j = 0; j < 6; ++j) {
+      const int id = impl_->jnt[j];
+      q[j] = std::clamp(q[j] + dq[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
+    }
+  }
+  *q_out = q;
+  *residual_mm = residual;
+  return false;
 }
 
 }  // namespace waam::twin

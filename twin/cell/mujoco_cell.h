@@ -49,9 +49,20 @@ class MujocoCell {
   void Place(const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
 
   // The cell's kinematics read from the model: the arm's OPW parameters, limits and speeds, the tool (tcp site in
-  // the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. Throws InputError if the
-  // arm is not of the OPW kind with the FANUC joint convention (its forward kinematics differ from the closed form).
+  // the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. If the arm is not of the
+  // OPW kind in the FANUC joint convention (its MuJoCo forward kinematics differ from the closed form), the result
+  // carries a numerical IK on this model instead (valid while this object lives). Throws InputError for a
+  // positioner chain that is not tilt-about-x then rotate-about-z.
   planner::CellKinematics Kinematics() const;
+
+  // True when the arm has the closed-form (OPW) kinematics; known after Kinematics().
+  bool closed_form() const { return closed_form_; }
+
+  // Damped least-squares IK of the flange pose X_RF (arm base frame, mm) on the model, from `seed` (rad), joints
+  // kept inside their limits. Returns false with the remaining error (mm, rotation counted at 1 m) if it does not
+  // converge to 1e-6 mm within 200 iterations.
+  bool SolveNumericIk(const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
+                      double* residual_mm) const;
 
   // Sets the eight axes (rad) and runs forward kinematics.
   void SetJoints(const planner::Joints8& q);
@@ -71,6 +82,7 @@ class MujocoCell {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::filesystem::path file_;
+  mutable bool closed_form_ = true;
 };
 
 }  // namespace waam::twin
