@@ -272,6 +272,40 @@ TEST_F(PlantedFaultTest, TorchAgainstTheDepositedWallIsACollisionWithThePart) {
   EXPECT_TRUE(part_hit) << "a torch leaning 75 deg must hit the wall it just built\n" << Describe(r);
 }
 
+TEST_F(PlantedFaultTest, SkippedCollisionChecksMissNothing) {
+  // A pass that ramps from 40 mm above the plate to 25 mm below it: the check (which skips MuJoCo detections while
+  // the clearance allows) must flag exactly the samples a detection at every sample flags.
+  planner::Plan plan;
+  planner::LayerPath layer;
+  for (int i = 0; i <= 40; ++i) {
+    planner::PathPoint p;
+    p.p_P = Eigen::Vector3d(-100.0 + 5.0 * i, 0.0, 40.0 - 65.0 * i / 40.0);
+    p.bead_width_mm = 6.0;
+    p.bead_height_mm = 1.5;
+    p.speed_mm_s = 5.0;
+    p.weld = i > 0;
+    layer.points.push_back(p);
+  }
+  plan.layers.push_back(layer);
+  planner::CellSettings settings = Settings("cell_ok");
+  settings.part_collision = false;
+  MujocoCell cell({});
+  const CheckReport r = CheckPlan(cell, plan, settings, 100.0, nullptr);
+  int flagged = 0;
+  for (const CheckViolation& v : r.violations) {
+    if (v.kind == "collision") flagged += v.samples;
+  }
+  int brute = 0;
+  std::vector<CellContact> contacts;
+  for (const planner::CellSample& s : r.motion) {
+    cell.SetJoints(s.q);
+    contacts.clear();
+    if (cell.Collide(settings.collision_tolerance_mm, &contacts, nullptr) > 0) ++brute;
+  }
+  EXPECT_GT(brute, 20) << "the ramp must end inside the plate";
+  EXPECT_EQ(flagged, brute) << Describe(r);
+}
+
 TEST_F(PlantedFaultTest, TiltedBuildDirectionIsTurnedUpByThePositioner) {
   // A wall whose layers grow along a direction 30 deg from the plate normal: the positioner tilts by 30 deg and the
   // torch stays vertical (neutral welding position).

@@ -49,6 +49,8 @@ struct MujocoCell::Impl {
   mjModel* m = nullptr;
   mjData* d = nullptr;
   mjData* ik = nullptr;  // scratch data of the numerical IK
+  std::vector<mjtNum> collide_xpos;  // geom poses at the last Collide()
+  std::vector<mjtNum> collide_xmat;
   int qadr[8] = {};
   int jnt[8] = {};
   int robot_base = -1, positioner_base = -1, flange = -1;
@@ -102,6 +104,8 @@ MujocoCell::MujocoCell(const fs::path& mjcf) : impl_(std::make_unique<Impl>()) {
                     file_.string() << ": geom 'nozzle' must be a capsule");
   WAAM_THROW_UNLESS(m->body_parentid[impl_->robot_base] == 0 && m->body_parentid[impl_->positioner_base] == 0,
                     file_.string() << ": bodies 'robot_base' and 'positioner_base' must be children of the world");
+  // Contacts are reported up to kClearanceMarginMm apart, which gives the clearance used to skip checks.
+  for (int g = 0; g < impl_->m->ngeom; ++g) impl_->m->geom_margin[g] = kClearanceMarginMm / kMm;
   mj_kinematics(m, impl_->d);
 }
 
@@ -133,13 +137,17 @@ Eigen::Isometry3d MujocoCell::TcpPose() const {
   return Pose(impl_->d->site_xpos + 3 * s, impl_->d->site_xmat + 9 * s);
 }
 
-int MujocoCell::Collide(double tolerance_mm, std::vector<CellContact>* out) {
+int MujocoCell::Collide(double tolerance_mm, std::vector<CellContact>* out, double* clearance_mm) {
   const mjModel* m = impl_->m;
   mjData* d = impl_->d;
   mj_collision(m, d);
+  impl_->collide_xpos.assign(d->geom_xpos, d->geom_xpos + 3 * m->ngeom);
+  impl_->collide_xmat.assign(d->geom_xmat, d->geom_xmat + 9 * m->ngeom);
   int n = 0;
+  double clearance = kClearanceMarginMm;
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& c = d->contact[i];
+    clearance = std::min(clearance, c.dist * kMm);
     const double penetration = -c.dist * kMm;
     if (penetration <= tolerance_mm) continue;
     CellContact contact;
@@ -150,7 +158,30 @@ int MujocoCell::Collide(double tolerance_mm, std::vector<CellContact>* out) {
     out->push_back(std::move(contact));
     ++n;
   }
+  if (clearance_mm) *clearance_mm = clearance;
   return n;
+}
+
+double MujocoCell::MotionSinceCollide() const {
+  const mjModel* m = impl_->m;
+  const mjData* d = impl_->d;
+  if (impl_->collide_xpos.size() != static_cast<std::size_t>(3 * m->ngeom)) return 1e300;
+  double largest = 0.0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    const mjtNum* p0 = impl_->collide_xpos.data() + 3 * g;
+    const mjtNum* p1 = d->geom_xpos + 3 * g;
+    const double move = std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                                   (p1[2] - p0[2]) * (p1[2] - p0[2]));
+    // Rotation angle between the two orientations: trace(R0^T R1) = 1 + 2 cos(angle).
+    const mjtNum* r0 = impl_->collide_xmat.data() + 9 * g;
+    const mjtNum* r1 = d->geom_xmat + 9 * g;
+    double trace = 0.0;
+    for (int k = 0; k < 9; ++k) trace += r0[k] * r1[k];
+    const double angle = std::acos(std::clamp(0.5 * (trace - 1.0), -1.0, 1.0));
+    const double bound = m->geom_type[g] == mjGEOM_PLANE ? move : move + angle * m->geom_rbound[g];
+    largest = std::max(largest, bound * kMm);
+  }
+  return largest;
 }
 
 void MujocoCell::NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const {

@@ -69,8 +69,16 @@ class MujocoCell {
   // TCP pose in the world after SetJoints, mm.
   Eigen::Isometry3d TcpPose() const;
   // Runs collision detection for the joints set last; appends contacts deeper than `tolerance_mm` to `out` and
-  // returns their number.
-  int Collide(double tolerance_mm, std::vector<CellContact>* out);
+  // returns their number. Every geom carries a margin of kClearanceMarginMm, so `*clearance_mm` (may be null) is the
+  // smallest distance between any two bodies that may collide, capped at that margin (negative when penetrating).
+  int Collide(double tolerance_mm, std::vector<CellContact>* out, double* clearance_mm);
+
+  // Upper bound (mm) on how far any point of any geom has moved since the last Collide(): per geom, the move of
+  // its centre plus its rotation angle times its bounding radius. While twice this stays below the clearance of
+  // the last Collide(), no new contact can have appeared.
+  double MotionSinceCollide() const;
+
+  static constexpr double kClearanceMarginMm = 10.0;
 
   // The gas nozzle capsule in the TCP frame: end points (mm) and radius (mm).
   void NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const;
