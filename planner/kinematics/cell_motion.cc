@@ -89,12 +89,19 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
         s.bead_height_mm = cur.bead_height_mm;
         s.speed_mm_s = (s.weld && cur.speed_mm_s > 0.0) ? cur.speed_mm_s : options.rapid_speed_mm_s;
 
-        angles = layer_angles;
-        if (reorient) {
-          angles.tilt = previous_layer_angles.tilt + f * (layer_angles.tilt - previous_layer_angles.tilt);
-          angles.rotation = previous_layer_angles.rotation + f * (layer_angles.rotation - previous_layer_angles.rotation);
+        if (options.positioner_per_point) {
+          // The local normal (the point's tool direction) turned up, nearest to the previous sample's angles.
+          angles = SolvePositionerAngles(cell.positioner, tool_dir_P, angles);
+          s.positioner_at_limit = angles.at_limit;
+        } else {
+          angles = layer_angles;
+          if (reorient) {
+            angles.tilt = previous_layer_angles.tilt + f * (layer_angles.tilt - previous_layer_angles.tilt);
+            angles.rotation =
+                previous_layer_angles.rotation + f * (layer_angles.rotation - previous_layer_angles.rotation);
+          }
+          s.positioner_at_limit = layer_angles.at_limit;
         }
-        s.positioner_at_limit = layer_angles.at_limit;
 
         // eq. 5.14-5.18: TCP point and torch axis from the (turned) part frame into the world, then into R.
         const Eigen::Isometry3d X_WP = cell.X_WB * PartPose(cell.positioner, angles.tilt, angles.rotation);

@@ -62,10 +62,13 @@ struct MotionOptions {
   double step_mm = 1.0;            // > 0: longest distance between samples along a move, mm
   double rapid_speed_mm_s = 100.0; // > 0: TCP speed of arc-off moves, mm/s
   double rotation_rad = 0.0;       // table rotation while the build direction is vertical, rad
+  // false: positioner angles per layer from the layer's build direction; true: per sample from the point's tool
+  // direction (curved layers: the positioner keeps turning the local normal up while welding).
+  bool positioner_per_point = false;
 };
 
-// Samples the plan's moves, solves positioner angles (per layer, from the layer's build direction; interpolated
-// over the travel move into the layer) and arm joints (nearest branch to the previous sample) and time-stamps the
+// Samples the plan's moves, solves positioner angles (per layer, from the layer's build direction, interpolated
+// over the travel move into the layer; or per sample, see MotionOptions) and arm joints (nearest branch to the previous sample) and time-stamps the
 // samples: weld moves at the planned speed, arc-off moves at the rapid speed but never faster than any axis allows.
 // `progress` (may be empty) is called with the number of samples done.
 std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& plan, const MotionOptions& options,

@@ -62,8 +62,9 @@ PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen
       const double rot = NearestCopy((s ? -M_PI_2 : M_PI_2) - phi, positioner.rotation_lower,
                                      positioner.rotation_upper, previous.rotation);
       const double tilt_clamped = std::clamp(tilt, positioner.tilt_lower, positioner.tilt_upper);
-      const double cost = 1e3 * std::abs(tilt - tilt_clamped) + std::abs(tilt_clamped - previous.tilt) +
-                          0.5 * std::abs(rot - previous.rotation);
+      const bool rot_inside = rot >= positioner.rotation_lower && rot <= positioner.rotation_upper;
+      const double cost = 1e3 * std::abs(tilt - tilt_clamped) + (rot_inside ? 0.0 : 1e6) +
+                          std::abs(tilt_clamped - previous.tilt) + 0.5 * std::abs(rot - previous.rotation);
       if (cost < best_cost) {
         best_cost = cost;
         out.tilt = tilt;

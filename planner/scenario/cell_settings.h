@@ -17,6 +17,8 @@ struct CellSettings {
   std::array<double, 3> positioner_base_mm = {1050.0, 0.0, 0.0};  // positioner base frame B in the world, mm
   double positioner_yaw_deg = 90.0;                                // turn of B about world z, deg
   double positioner_rotation_deg = 0.0;  // table rotation used while the build direction is vertical, deg
+  std::string positioner_follow = "layer";  // layer: angles per layer from its build direction; point: per point
+                                            // from the tool direction (curved layers)
   std::array<double, 3> part_offset_mm = {0.0, 0.0, 0.0};  // part frame P relative to the plate's top centre, mm
   double part_yaw_deg = 0.0;                               // turn of the part on the plate, deg
   double joint_margin_deg = 2.0;         // a joint closer than this to its limit is a violation, deg

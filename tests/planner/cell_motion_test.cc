@@ -94,5 +94,43 @@ TEST(CellMotionTest, PositionerReorientsDuringTheTravelMoveIntoALayer) {
   EXPECT_NEAR(second_layer_tilt, M_PI / 4, 1e-9);
 }
 
+TEST(CellMotionTest, PerPointPositionerKeepsTheTorchVerticalOnACurvedLayer) {
+  // One ring whose local normals lean 25 deg outwards (a conical layer): the positioner follows every point.
+  const CellKinematics cell = DefaultCell();
+  Plan plan;
+  LayerPath layer;
+  const double lean = 25.0 * M_PI / 180.0;
+  for (int i = 0; i <= 72; ++i) {
+    const double a = 2.0 * M_PI * i / 72;
+    PathPoint p;
+    p.p_P = Eigen::Vector3d(40.0 * std::cos(a), 40.0 * std::sin(a), 10.0);
+    p.tool_dir_P = Eigen::Vector3d(std::sin(lean) * std::cos(a), std::sin(lean) * std::sin(a), std::cos(lean));
+    p.speed_mm_s = 7.5;
+    p.weld = i > 0;
+    layer.points.push_back(p);
+  }
+  plan.layers.push_back(layer);
+  MotionOptions options;
+  options.positioner_per_point = true;
+  const std::vector<CellSample> motion = PlanCellMotion(cell, plan, options, {});
+  double rotation_min = 1e9, rotation_max = -1e9;
+  for (const CellSample& s : motion) {
+    EXPECT_NEAR(s.torch_tilt_rad, 0.0, 1e-7) << "the positioner turns every local normal up";
+    // Between path points the interpolated normal leans a little less than at them.
+    EXPECT_LE(std::abs(s.q[6]), lean + 1e-9);
+    EXPECT_GE(std::abs(s.q[6]), lean - 1e-3);
+    rotation_min = std::min(rotation_min, s.q[7]);
+    rotation_max = std::max(rotation_max, s.q[7]);
+  }
+  // A full turn of the normal needs 360 deg of table rotation; starting at +-90 deg, the +-240 deg range forces one
+  // switch to the other solution (tilt sign flipped, rotation shifted by 180 deg) but never leaves the range.
+  EXPECT_GE(rotation_min, cell.positioner.rotation_lower);
+  EXPECT_LE(rotation_max, cell.positioner.rotation_upper);
+  EXPECT_GT(rotation_max - rotation_min, M_PI) << "the table follows the normal around";
+  options.positioner_per_point = false;
+  const std::vector<CellSample> per_layer = PlanCellMotion(cell, plan, options, {});
+  EXPECT_NEAR(per_layer.back().torch_tilt_rad, lean, 1e-9) << "per layer, the torch follows the leaning normal";
+}
+
 }  // namespace
 }  // namespace waam::planner

@@ -55,7 +55,7 @@ TEST_F(CellSectionTest, AbsentSectionGivesDefaults) {
 TEST_F(CellSectionTest, ValuesAreRead) {
   const Scenario s = LoadScenario(Write(
       "cell:\n  mjcf: my_cell.xml\n  robot: {base_mm: [10, 20, 30], yaw_deg: 15}\n"
-      "  positioner: {base_mm: [900, 5, 0], yaw_deg: 0, rotation_deg: 45}\n"
+      "  positioner: {base_mm: [900, 5, 0], yaw_deg: 0, rotation_deg: 45, follow: point}\n"
       "  part: {offset_mm: [1, 2, 3], yaw_deg: 30}\n"
       "  checks: {joint_margin_deg: 3, singularity_deg: 8, step_mm: 2, collision_tolerance_mm: 0.5, "
       "part_collision: false}\n"));
@@ -64,6 +64,7 @@ TEST_F(CellSectionTest, ValuesAreRead) {
   EXPECT_DOUBLE_EQ(s.cell.robot_yaw_deg, 15.0);
   EXPECT_DOUBLE_EQ(s.cell.positioner_base_mm[0], 900.0);
   EXPECT_DOUBLE_EQ(s.cell.positioner_rotation_deg, 45.0);
+  EXPECT_EQ(s.cell.positioner_follow, "point");
   EXPECT_DOUBLE_EQ(s.cell.part_offset_mm[1], 2.0);
   EXPECT_DOUBLE_EQ(s.cell.part_yaw_deg, 30.0);
   EXPECT_DOUBLE_EQ(s.cell.joint_margin_deg, 3.0);
@@ -79,6 +80,7 @@ TEST_F(CellSectionTest, BadInputNamesTheKey) {
   EXPECT_THAT(ErrorOf("cell:\n  robot: {base_mm: [1, 2]}\n"), HasSubstr("cell.robot.base_mm"));
   EXPECT_THAT(ErrorOf("cell:\n  checks: {step_mm: 0}\n"), HasSubstr("cell.checks.step_mm"));
   EXPECT_THAT(ErrorOf("cell:\n  robots: {}\n"), HasSubstr("robots"));
+  EXPECT_THAT(ErrorOf("cell:\n  positioner: {follow: always}\n"), HasSubstr("cell.positioner.follow"));
   EXPECT_THAT(ErrorOf("cell:\n  positioner: {tilt_deg: 3}\n"), HasSubstr("tilt_deg"));
 }
 

@@ -115,6 +115,7 @@ CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner
   options.step_mm = settings.step_mm;
   options.rapid_speed_mm_s = rapid_speed_mm_s;
   options.rotation_rad = settings.positioner_rotation_deg / kDeg;
+  options.positioner_per_point = settings.positioner_follow == "point";
 
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";
