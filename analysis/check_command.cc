@@ -65,6 +65,7 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
         {"robot_yaw_deg", c.robot_yaw_deg},
         {"positioner_base_mm", c.positioner_base_mm},
         {"positioner_yaw_deg", c.positioner_yaw_deg},
+        {"positioner_follow", c.positioner_follow},
         {"part_offset_mm", c.part_offset_mm},
         {"part_yaw_deg", c.part_yaw_deg},
         {"joint_margin_deg", c.joint_margin_deg},
