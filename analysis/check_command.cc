@@ -36,6 +36,18 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
     }
     violations.push_back(j);
   }
+  // Positioner angles and torch tilt where each layer's welding starts.
+  nlohmann::json layers = nlohmann::json::array();
+  int last_layer = -1;
+  for (const planner::CellSample& s : report.motion) {
+    if (!s.weld || s.layer == last_layer) continue;
+    last_layer = s.layer;
+    layers.push_back({{"layer", s.layer},
+                      {"tilt_deg", s.q[6] * 180.0 / M_PI},
+                      {"rotation_deg", s.q[7] * 180.0 / M_PI},
+                      {"positioner_at_limit", s.positioner_at_limit},
+                      {"torch_tilt_deg", s.torch_tilt_rad * 180.0 / M_PI}});
+  }
   nlohmann::json accel = nlohmann::json::object();
   for (int a = 0; a < 8; ++a) accel[twin::AxisName(a)] = Finite(report.max_accel_deg_s2[a]);
   const planner::CellSettings& c = scenario.cell;
@@ -59,6 +71,7 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
       {"positioner_limit_layers", report.positioner_limit_layers},
       {"max_torch_tilt_deg", Finite(report.max_torch_tilt_deg)},
       {"worst_point", worst_point},
+      {"layers", layers},
       {"cell",
        {{"mjcf", mjcf.string()},
         {"robot_base_mm", c.robot_base_mm},
