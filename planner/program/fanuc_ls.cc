@@ -8,6 +8,9 @@
 namespace waam::planner {
 namespace {
 
+// Rounds away the sign of values that print as zero ("-0.000").
+double Clean(double v) { return std::abs(v) < 5e-4 ? 0.0 : v; }
+
 int Turn(double q_rad) {
   const double deg = q_rad * 180.0 / M_PI;
   return deg > 180.0 ? 1 : (deg < -180.0 ? -1 : 0);
@@ -46,12 +49,14 @@ std::string ProgramToFanucLs(const RobotProgram& program, const FanucLsOptions& 
       emit(buf);
       arc_on = false;
     }
-    const int speed = std::max(1, static_cast<int>(std::lround(p.speed_mm_s)));
     if (i == 0) {
       std::snprintf(buf, sizeof(buf), "J P[%zu] 20%% FINE", i + 1);
     } else if (p.weld) {
-      std::snprintf(buf, sizeof(buf), "L P[%zu] %dmm/sec CNT100%s", i + 1, speed, options.coordinated ? " COORD" : "");
+      // Weld speeds in cm/min, the welding unit of the controller (400 mm/min = 40cm/min, no rounding to mm/s).
+      const int speed = std::max(1, static_cast<int>(std::lround(p.speed_mm_s * 6.0)));
+      std::snprintf(buf, sizeof(buf), "L P[%zu] %dcm/min CNT100%s", i + 1, speed, options.coordinated ? " COORD" : "");
     } else {
+      const int speed = std::max(1, static_cast<int>(std::lround(p.speed_mm_s)));
       std::snprintf(buf, sizeof(buf), "L P[%zu] %dmm/sec FINE", i + 1, speed);
     }
     emit(buf);
@@ -68,11 +73,11 @@ std::string ProgramToFanucLs(const RobotProgram& program, const FanucLsOptions& 
                   "P[%zu]{\n   GP1:\n\tUF : %d, UT : %d,\t\tCONFIG : '%s',\n"
                   "\tX = %10.3f  mm,\tY = %10.3f  mm,\tZ = %10.3f  mm,\n"
                   "\tW = %10.3f deg,\tP = %10.3f deg,\tR = %10.3f deg\n",
-                  i + 1, options.user_frame, options.tool_frame, FanucConfig(p).c_str(), p.tcp_mm.x(), p.tcp_mm.y(),
-                  p.tcp_mm.z(), p.c_deg, p.b_deg, p.a_deg);
+                  i + 1, options.user_frame, options.tool_frame, FanucConfig(p).c_str(), Clean(p.tcp_mm.x()),
+                  Clean(p.tcp_mm.y()), Clean(p.tcp_mm.z()), Clean(p.c_deg), Clean(p.b_deg), Clean(p.a_deg));
     pos += buf;
     std::snprintf(buf, sizeof(buf), "   GP2:\n\tUF : %d, UT : %d,\n\tJ1 = %10.3f deg,\tJ2 = %10.3f deg\n};\n",
-                  options.user_frame, options.tool_frame, p.tilt_deg, p.rotation_deg);
+                  options.user_frame, options.tool_frame, Clean(p.tilt_deg), Clean(p.rotation_deg));
     pos += buf;
   }
 

@@ -14,8 +14,8 @@ struct FanucLsOptions {
   bool coordinated = true; // weld moves with the COORD option (coordinated motion, positioner leading)
 };
 
-// The LS text: header, one motion line per program point (L moves; weld moves at their speed, arc-off moves FINE at
-// theirs), Arc Start before the first weld move of a pass and Arc End after its last, and the /POS section with GP1
+// The LS text: header, one motion line per program point (L moves; weld moves CNT100 in cm/min, arc-off moves FINE
+// in mm/sec), Arc Start before the first weld move of a pass and Arc End after its last, and the /POS section with GP1
 // as Cartesian X Y Z W P R (W = C, P = B, R = A of the table) with the configuration string, GP2 as joint angles.
 // Deterministic: no date from the clock.
 std::string ProgramToFanucLs(const RobotProgram& program, const FanucLsOptions& options);

@@ -8,6 +8,8 @@
 namespace waam::planner {
 namespace {
 constexpr double kDeg = 180.0 / M_PI;
+// Rounds away the sign of values that print as zero ("-0.000").
+double Clean(double v) { return std::abs(v) < 5e-4 ? 0.0 : v; }
 }  // namespace
 
 Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R) {
@@ -63,7 +65,8 @@ std::string ProgramToCsv(const RobotProgram& program) {
   char line[320];
   for (const ProgramPoint& p : program.points) {
     std::snprintf(line, sizeof(line), "%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%.3f,%d\n", p.point, p.layer,
-                  p.tcp_mm.x(), p.tcp_mm.y(), p.tcp_mm.z(), p.a_deg, p.b_deg, p.c_deg, p.tilt_deg, p.rotation_deg,
+                  Clean(p.tcp_mm.x()), Clean(p.tcp_mm.y()), Clean(p.tcp_mm.z()), Clean(p.a_deg), Clean(p.b_deg),
+                  Clean(p.c_deg), Clean(p.tilt_deg), Clean(p.rotation_deg),
                   p.speed_mm_s * 60.0, p.bead_height_mm, p.weld ? 1 : 0);
     out += line;
   }

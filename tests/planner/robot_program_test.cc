@@ -66,7 +66,8 @@ TEST(RobotProgramTest, FanucLsHasArcStartsEndsAndTheSecondGroup) {
   for (std::size_t at = ls.find("Arc End[1]"); at != std::string::npos; at = ls.find("Arc End[1]", at + 1)) ++ends;
   EXPECT_EQ(starts, 2u) << "one arc start per pass";
   EXPECT_EQ(ends, 2u) << "one arc end per pass";
-  EXPECT_THAT(ls, HasSubstr("L P[2] 7mm/sec CNT100 COORD"));
+  EXPECT_THAT(ls, HasSubstr("L P[2] 40cm/min CNT100 COORD")) << "6.667 mm/s = 40 cm/min";
+  EXPECT_THAT(ls, HasSubstr("L P[4] 100mm/sec FINE")) << "travel moves";
   EXPECT_THAT(ls, HasSubstr("CONFIG : 'N U T, 0, 0, 0'"));
   EXPECT_THAT(ls, HasSubstr("GP2:"));
   EXPECT_THAT(ls, HasSubstr("J1 =     10.000 deg,\tJ2 =    -30.000 deg"));
