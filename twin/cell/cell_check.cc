@@ -23,7 +23,7 @@ Eigen::Isometry3d PlacementPose(const std::array<double, 3>& p_mm, double yaw_de
   return X;
 }
 
-// Collects violations, merging consecutive samples with the same kind and subject into one run.
+// Collects violations, merging the samples of one layer with the same kind and subject into one entry.
 class ViolationLog {
  public:
   // `worse_if_larger`: whether a larger value is a worse violation.
@@ -31,8 +31,8 @@ class ViolationLog {
            const planner::CellSample& s, int sample, double value, const std::string& unit, bool worse_if_larger) {
     const auto key = std::make_tuple(kind, subject1, subject2);
     auto it = open_.find(key);
-    if (it != open_.end() && it->second.last_sample == sample - 1) {
-      CheckViolation& v = violations_[it->second.index];
+    if (it != open_.end() && violations_[it->second].layer == s.layer) {
+      CheckViolation& v = violations_[it->second];
       v.last_point = s.point;
       ++v.samples;
       if (worse_if_larger ? value > v.value : value < v.value) {
@@ -41,7 +41,6 @@ class ViolationLog {
         v.layer = s.layer;
         v.sample = sample;
       }
-      it->second.last_sample = sample;
       return;
     }
     CheckViolation v;
@@ -58,17 +57,14 @@ class ViolationLog {
     v.value = value;
     v.unit = unit;
     v.sample = sample;
-    open_[key] = Run{violations_.size(), sample};
+    open_[key] = violations_.size();
     violations_.push_back(v);
   }
   std::vector<CheckViolation> Take() { return std::move(violations_); }
 
  private:
-  struct Run {
-    std::size_t index;
-    int last_sample;
-  };
-  std::map<std::tuple<std::string, std::string, std::string>, Run> open_;
+  // The entry of the current layer for each kind and subject.
+  std::map<std::tuple<std::string, std::string, std::string>, std::size_t> open_;
   std::vector<CheckViolation> violations_;
 };
 

@@ -19,14 +19,14 @@ namespace waam::twin {
 
 class MujocoCell;
 
-// One violation, merged over consecutive samples with the same kind and joint (or body pair).
+// One violation: all samples of one layer with the same kind and joint (or body pair), merged.
 struct CheckViolation {
   std::string kind;        // unreachable | joint_limit | joint_speed | singularity | collision
   int point = 0;           // path point (over the whole plan) where it is worst
   int layer = 0;           // layer of that point
-  int first_point = 0;     // first and last path point of the run
+  int first_point = 0;     // first and last path point in this layer with this violation
   int last_point = 0;
-  int samples = 0;         // checked samples in the run
+  int samples = 0;         // checked samples with this violation in this layer
   std::string joint;       // joint_limit, joint_speed: j1..j6, pos_tilt, pos_rot; singularity: j5
   std::string body1;       // collision: the two bodies ("part" is the deposited metal)
   std::string body2;
