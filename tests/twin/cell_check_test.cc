@@ -258,6 +258,25 @@ TEST_F(PlantedFaultTest, JointMarginIsAViolationBeforeTheLimit) {
   EXPECT_EQ(r.min_margin_joint, "j1");
 }
 
+TEST_F(PlantedFaultTest, WristNearItsSingularityIsReported) {
+  // The welding posture keeps |j5| near 80 deg; demanding 85 deg of distance flags it, and nothing else.
+  planner::CellSettings s = Settings("cell_ok");
+  s.singularity_deg = 85.0;
+  const CheckReport r = Check(s);
+  EXPECT_EQ(Kinds(r), std::set<std::string>{"singularity"}) << Describe(r);
+  EXPECT_LT(r.min_j5_deg, 85.0);
+  for (const CheckViolation& v : r.violations) EXPECT_EQ(v.joint, "j5");
+}
+
+TEST_F(PlantedFaultTest, TravelSpeedBeyondTheAxesIsAJointSpeedViolation) {
+  // Welding a small square at 3 m/s: the arm cannot follow; travel moves are slowed, weld moves are not.
+  MujocoCell cell({});
+  const CheckReport r =
+      CheckPlan(cell, testing::RectangleWall(2, 20.0, 20.0, 1.5, 3000.0), Settings("cell_ok"), 100.0, nullptr);
+  EXPECT_EQ(Kinds(r), std::set<std::string>{"joint_speed"}) << Describe(r);
+  EXPECT_GT(r.max_joint_speed_ratio, 1.0);
+}
+
 TEST_F(PlantedFaultTest, TorchAgainstTheDepositedWallIsACollisionWithThePart) {
   // Layers whose tool direction leans 75 deg sideways while the build direction stays vertical: the nozzle dips
   // into the layers laid before.
