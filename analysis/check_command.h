@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +16,7 @@ namespace waam::analysis {
 struct CheckOptions {
   std::filesystem::path scenario;  // scenario YAML
   std::filesystem::path out_dir;   // output directory (created if missing)
+  std::vector<std::string> overrides;  // "key.path=value" scenario overrides (--set)
   bool quiet = false;              // no progress bar
   bool images = true;              // cell_worst.png, joints.png
   bool program = true;             // program.csv, program.ls

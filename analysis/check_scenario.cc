@@ -7,7 +7,7 @@
 namespace waam::analysis {
 
 twin::CheckReport RunCheck(const CheckOptions& options) {
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario);
+  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);

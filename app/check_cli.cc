@@ -31,6 +31,8 @@ void AddCheckCommand(CLI::App& app, CommandRunner* runner) {
       "check.json is written last. Exit code 0 when the path passes, 3 when there are violations.");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
+  command->add_option("--set", options->overrides,
+                      "Override a scenario setting, key.path=value (repeatable), e.g. --set cell.robot.yaw_deg=30");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw cell_worst.png and joints.png");
   command->add_flag("!--no-program", options->program, "Do not write program.csv and program.ls");

@@ -78,6 +78,19 @@ TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
   }
 }
 
+TEST(CheckCliTest, SetOverridesTheCellPlacement) {
+  // The well placed cell turned away from the positioner with --set: the j1 fault of cell_joint_limit.yaml.
+  const fs::path out = TempDir("set");
+  const std::string command = std::string(WAAM_BINARY) + " check " + WAAM_SOURCE_DIR +
+                              "/scenarios/cell/cell_ok.yaml --set cell.robot.yaw_deg=180 -q --no-images -o " +
+                              out.string() + " >/dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3);
+  const nlohmann::json check = nlohmann::json::parse(Slurp(out / "check.json"));
+  EXPECT_EQ(Kinds(check), std::set<std::string>{"joint_limit"});
+}
+
 TEST(CheckCliTest, BrokenCellModelIsABadInputError) {
   const fs::path dir = TempDir("bad_model");
   std::ofstream(dir / "broken.xml") << "<mujoco><worldbody><body></mujoco>\n";
