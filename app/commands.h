@@ -22,5 +22,6 @@ void AddPlanCommand(CLI::App& app, CommandRunner* runner);      // app/plan_cli.
 void AddInspectCommand(CLI::App& app, CommandRunner* runner);   // app/inspect_cli.cc
 void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_cli.cc
 void AddFitCommand(CLI::App& app, CommandRunner* runner);       // app/fit_cli.cc
+void AddCheckCommand(CLI::App& app, CommandRunner* runner);     // app/check_cli.cc
 
 }  // namespace waam::app

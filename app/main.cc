@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   AddInspectCommand(app, &runner);
   AddGenerateCommand(app, &runner);
   AddFitCommand(app, &runner);
+  AddCheckCommand(app, &runner);
 
   try {
     app.parse(argc, argv);

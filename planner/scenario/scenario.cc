@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "models/core/error.h"
+#include "planner/scenario/cell_section.h"
 #include "planner/scenario/yaml_fields.h"
 
 namespace waam::planner {
@@ -132,6 +133,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     process.CheckNoUnknownKeys();
   }
 
+  scenario.cell = internal::ParseCellSection(top, scenario.file.parent_path());
   top.CheckNoUnknownKeys();
   return scenario;
 }

@@ -1,0 +1,55 @@
+// Benchmark of `waam check`: samples checked per second (IK + limits + speeds + MuJoCo collisions + torch against
+// the deposit) on a build hour of path: 73 layers of a 200 x 150 mm wall = 51,100 mm at 1 mm spacing, about one
+// hour of welding at 850 mm/min.
+#include <benchmark/benchmark.h>
+
+#include "planner/kinematics/cell_motion.h"
+#include "tests/twin/test_plans.h"
+#include "twin/cell/cell_check.h"
+#include "twin/cell/mujoco_cell.h"
+
+namespace {
+
+using namespace waam;
+
+planner::Plan BuildHour() { return twin::testing::RectangleWall(73, 200.0, 150.0, 2.0, 850.0 / 60.0); }
+
+// Full check: motion (positioner angles, IK, time stamps) and every check.
+void BM_CheckBuildHour(benchmark::State& state) {
+  const planner::Plan plan = BuildHour();
+  twin::MujocoCell cell({});
+  const planner::CellSettings settings;
+  std::size_t samples = 0;
+  bool ok = true;
+  for (auto _ : state) {
+    const twin::CheckReport report = twin::CheckPlan(cell, plan, settings, 100.0, nullptr);
+    samples = report.samples;
+    ok = report.ok;
+    benchmark::DoNotOptimize(report.violations.data());
+  }
+  state.counters["samples"] = static_cast<double>(samples);
+  state.counters["ok"] = ok ? 1.0 : 0.0;
+  state.counters["samples_per_s"] =
+      benchmark::Counter(static_cast<double>(samples) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_CheckBuildHour)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+// The kinematics alone: positioner angles and closed-form IK with branch continuity for every sample.
+void BM_MotionBuildHour(benchmark::State& state) {
+  const planner::Plan plan = BuildHour();
+  twin::MujocoCell cell({});
+  const planner::CellKinematics kin = twin::PlaceCell(cell, planner::CellSettings{});
+  planner::MotionOptions options;
+  std::size_t samples = 0;
+  for (auto _ : state) {
+    const std::vector<planner::CellSample> motion = planner::PlanCellMotion(kin, plan, options, {});
+    samples = motion.size();
+    benchmark::DoNotOptimize(motion.data());
+  }
+  state.counters["samples"] = static_cast<double>(samples);
+  state.counters["samples_per_s"] =
+      benchmark::Counter(static_cast<double>(samples) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_MotionBuildHour)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+}  // namespace

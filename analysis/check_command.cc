@@ -1,0 +1,114 @@
+// `waam check`: the cell check of a planned path and its outputs.
+#include "analysis/check_command.h"
+
+#include <cmath>
+
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/core/progress.h"
+#include "planner/program/fanuc_ls.h"
+#include "planner/program/robot_program.h"
+#include "twin/cell/mujoco_cell.h"
+
+namespace waam::analysis {
+namespace fs = std::filesystem;
+
+namespace {
+
+// JSON numbers must be finite.
+double Finite(double v) { return std::isfinite(v) ? v : 0.0; }
+
+constexpr std::size_t kMaxViolationsListed = 1000;
+
+}  // namespace
+
+nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mjcf, const twin::CheckReport& report) {
+  nlohmann::json violations = nlohmann::json::array();
+  for (std::size_t i = 0; i < report.violations.size() && i < kMaxViolationsListed; ++i) {
+    const twin::CheckViolation& v = report.violations[i];
+    nlohmann::json j = {{"kind", v.kind},          {"point", v.point},           {"layer", v.layer},
+                        {"first_point", v.first_point}, {"last_point", v.last_point}, {"samples", v.samples},
+                        {v.unit, Finite(v.value)}};
+    if (v.kind == "collision") {
+      j["bodies"] = {v.body1, v.body2};
+    } else if (!v.joint.empty()) {
+      j["joint"] = v.joint;
+    }
+    violations.push_back(j);
+  }
+  // Positioner angles and torch tilt where each layer's welding starts.
+  nlohmann::json layers = nlohmann::json::array();
+  int last_layer = -1;
+  for (const planner::CellSample& s : report.motion) {
+    if (!s.weld || s.layer == last_layer) continue;
+    last_layer = s.layer;
+    layers.push_back({{"layer", s.layer},
+                      {"tilt_deg", s.q[6] * 180.0 / M_PI},
+                      {"rotation_deg", s.q[7] * 180.0 / M_PI},
+                      {"positioner_at_limit", s.positioner_at_limit},
+                      {"torch_tilt_deg", s.torch_tilt_rad * 180.0 / M_PI}});
+  }
+  nlohmann::json accel = nlohmann::json::object();
+  for (int a = 0; a < 8; ++a) accel[twin::AxisName(a)] = Finite(report.max_accel_deg_s2[a]);
+  const planner::CellSettings& c = scenario.cell;
+  const int worst_point = report.motion.empty() ? 0 : report.motion[report.worst_sample].point;
+  return {
+      {"scenario", scenario.name},
+      {"ok", report.ok},
+      {"ik", report.ik},
+      {"points", report.points},
+      {"samples", report.samples},
+      {"step_mm", c.step_mm},
+      {"violations", violations},
+      {"violation_count", report.violations.size()},
+      {"min_joint_margin_deg", Finite(report.min_joint_margin_deg)},
+      {"min_margin_joint", report.min_margin_joint},
+      {"max_joint_speed_ratio", Finite(report.max_joint_speed_ratio)},
+      {"max_speed_joint", report.max_speed_joint},
+      {"min_j5_deg", Finite(report.min_j5_deg)},
+      {"max_joint_accel_deg_s2", accel},
+      {"duration_s", Finite(report.duration_s)},
+      {"positioner_limit_layers", report.positioner_limit_layers},
+      {"max_torch_tilt_deg", Finite(report.max_torch_tilt_deg)},
+      {"worst_point", worst_point},
+      {"layers", layers},
+      {"cell",
+       {{"mjcf", mjcf.string()},
+        {"robot_base_mm", c.robot_base_mm},
+        {"robot_yaw_deg", c.robot_yaw_deg},
+        {"positioner_base_mm", c.positioner_base_mm},
+        {"positioner_yaw_deg", c.positioner_yaw_deg},
+        {"positioner_follow", c.positioner_follow},
+        {"part_offset_mm", c.part_offset_mm},
+        {"part_yaw_deg", c.part_yaw_deg},
+        {"joint_margin_deg", c.joint_margin_deg},
+        {"singularity_deg", c.singularity_deg},
+        {"collision_tolerance_mm", c.collision_tolerance_mm}}},
+  };
+}
+
+twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planner::Plan& plan,
+                                 const CheckOptions& options) {
+  EnsureOutputDirectory(options.out_dir);
+  twin::MujocoCell cell(scenario.cell.mjcf);
+  twin::CheckReport report;
+  {
+    Progress progress("check", 0, "samples", options.quiet);
+    report = twin::CheckPlan(cell, plan, scenario.cell, scenario.process.rapid_speed_mm_min / 60.0, &progress);
+    progress.Finish();
+  }
+  const planner::CellKinematics kin = twin::PlaceCell(cell, scenario.cell);
+  if (options.program) {
+    const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
+    WriteFileAtomic(options.out_dir / "program.csv", planner::ProgramToCsv(program));
+    WriteFileAtomic(options.out_dir / "program.ls", planner::ProgramToFanucLs(program, planner::FanucLsOptions{}));
+  }
+  if (options.images && !report.motion.empty()) {
+    WriteCellPng(cell, kin, plan, report, options.out_dir / "cell_worst.png");
+    WriteJointPlots(kin, report, options.out_dir / "joints.png");
+  }
+  WriteFileAtomic(options.out_dir / "check.json", CheckToJson(scenario, cell.file(), report).dump(2) + "\n");
+  return report;
+}
+
+}  // namespace waam::analysis

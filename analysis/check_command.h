@@ -1,0 +1,46 @@
+// `waam check`: plan a scenario, run its path on the MuJoCo cell and write check.json, pictures and the program.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "planner/path/tool_path.h"
+#include "planner/scenario/scenario.h"
+#include "twin/cell/cell_check.h"
+
+namespace waam::analysis {
+
+struct CheckOptions {
+  std::filesystem::path scenario;  // scenario YAML
+  std::filesystem::path out_dir;   // output directory (created if missing)
+  std::vector<std::string> overrides;  // "key.path=value" scenario overrides (--set)
+  bool quiet = false;              // no progress bar
+  bool images = true;              // cell_worst.png, joints.png
+  bool program = true;             // program.csv, program.ls
+};
+
+// Plans the scenario (planner::PlanScenario), checks the path on the cell and writes the outputs (check.json last).
+// Throws InputError for a bad scenario, mesh or cell model; violations are in the report, not exceptions.
+twin::CheckReport RunCheck(const CheckOptions& options);
+
+// Checks an already planned `plan` of `scenario` and writes the outputs (check.json last).
+twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planner::Plan& plan,
+                                 const CheckOptions& options);
+
+// The check.json document (field names are the public contract documented in the README).
+nlohmann::json CheckToJson(const planner::Scenario& scenario, const std::filesystem::path& mjcf,
+                           const twin::CheckReport& report);
+
+// Draws the cell's collision shapes at the report's worst sample (side and top views) with the path and the
+// violation marked. `cell` is left at that sample's joints.
+void WriteCellPng(twin::MujocoCell& cell, const planner::CellKinematics& kin, const planner::Plan& plan,
+                  const twin::CheckReport& report, const std::filesystem::path& path);
+
+// Plots the eight axis angles (deg) against time (s) with their limits, and the joint speed ratios.
+void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport& report,
+                     const std::filesystem::path& path);
+
+}  // namespace waam::analysis

@@ -1,0 +1,170 @@
+// Coordinated motion along the path: the positioner leads (eq. 5.13 per layer), the TCP follows the path in the
+// moving part frame (eq. 5.14-5.18), the arm joints come from the closed-form IK.
+#include "planner/kinematics/cell_motion.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace waam::planner {
+namespace {
+
+// Samples per move: at least one, at most step_mm apart.
+int Subdivisions(double length_mm, double step_mm) {
+  return std::max(1, static_cast<int>(std::ceil(length_mm / step_mm - 1e-9)));
+}
+
+}  // namespace
+
+Eigen::Isometry3d TorchPose(const CellKinematics& cell, const Eigen::Vector3d& p_W, const Eigen::Vector3d& tool_dir_W) {
+  const Eigen::Vector3d z = -tool_dir_W.normalized();
+  Eigen::Vector3d radial = p_W - cell.X_WR.translation();
+  radial.z() = 0.0;
+  Eigen::Vector3d x = radial - radial.dot(z) * z;
+  if (x.norm() < 1e-6 * std::max(1.0, radial.norm())) {
+    // TCP above the j1 axis (or a horizontal torch pointing at it): fall back to the arm's x axis.
+    const Eigen::Vector3d xr = cell.X_WR.linear().col(0);
+    x = xr - xr.dot(z) * z;
+    if (x.norm() < 1e-9) x = Eigen::Vector3d::UnitZ() - z.z() * z;
+  }
+  x.normalize();
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear().col(0) = x;
+  X.linear().col(1) = z.cross(x);
+  X.linear().col(2) = z;
+  X.translation() = p_W;
+  return X;
+}
+
+std::size_t CountCellSamples(const Plan& plan, double step_mm) {
+  std::size_t n = 0;
+  const PathPoint* prev = nullptr;
+  for (const LayerPath& layer : plan.layers) {
+    for (const PathPoint& p : layer.points) {
+      n += prev ? static_cast<std::size_t>(Subdivisions((p.p_P - prev->p_P).norm(), step_mm)) : 1u;
+      prev = &p;
+    }
+  }
+  return n;
+}
+
+std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& plan, const MotionOptions& options,
+                                       const std::function<void(std::size_t)>& progress) {
+  std::vector<CellSample> samples;
+  samples.reserve(CountCellSamples(plan, options.step_mm));
+  const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
+  const Eigen::Isometry3d X_TF = cell.X_FT.inverse();
+
+  // Home posture of the arm: upper arm up, forearm forward, flange pointing down (j5 = -90 deg).
+  Joints6 seed;
+  seed << 0.0, 0.0, 0.0, 0.0, -M_PI_2, 0.0;
+  PositionerAngles angles;
+  angles.rotation = options.rotation_rad;
+  PositionerAngles previous_layer_angles = angles;
+  bool first_layer = true;
+
+  const PathPoint* prev = nullptr;
+  int global_point = -1;
+  for (const LayerPath& layer : plan.layers) {
+    // eq. 5.13 / Appendix B: the positioner turns this layer's build direction up; nearest to the last layer.
+    const PositionerAngles layer_angles = SolvePositionerAngles(cell.positioner, layer.build_dir_P, angles);
+    if (first_layer) previous_layer_angles = layer_angles;
+    first_layer = false;
+    for (std::size_t i = 0; i < layer.points.size(); ++i) {
+      const PathPoint& cur = layer.points[i];
+      ++global_point;
+      const double length = prev ? (cur.p_P - prev->p_P).norm() : 0.0;
+      const int n = prev ? Subdivisions(length, options.step_mm) : 1;
+      // The move into a layer's first point carries the positioner from the last layer's angles to this layer's.
+      const bool reorient = (i == 0);
+      for (int k = 1; k <= n; ++k) {
+        const double f = prev ? static_cast<double>(k) / n : 1.0;
+        CellSample s;
+        s.layer = layer.index;
+        s.point = global_point;
+        s.weld = cur.weld && prev != nullptr;
+        s.p_P = prev ? Eigen::Vector3d(prev->p_P + f * (cur.p_P - prev->p_P)) : cur.p_P;
+        const Eigen::Vector3d tool_dir_P =
+            (prev ? Eigen::Vector3d((1.0 - f) * prev->tool_dir_P + f * cur.tool_dir_P) : cur.tool_dir_P).normalized();
+        s.bead_width_mm = cur.bead_width_mm;
+        s.bead_height_mm = cur.bead_height_mm;
+        s.speed_mm_s = (s.weld && cur.speed_mm_s > 0.0) ? cur.speed_mm_s : options.rapid_speed_mm_s;
+
+        if (options.positioner_per_point) {
+          // The local normal (the point's tool direction) turned up, nearest to the previous sample's angles.
+          angles = SolvePositionerAngles(cell.positioner, tool_dir_P, angles);
+          s.positioner_at_limit = angles.at_limit;
+        } else {
+          angles = layer_angles;
+          if (reorient) {
+            angles.tilt = previous_layer_angles.tilt + f * (layer_angles.tilt - previous_layer_angles.tilt);
+            angles.rotation =
+                previous_layer_angles.rotation + f * (layer_angles.rotation - previous_layer_angles.rotation);
+          }
+          s.positioner_at_limit = layer_angles.at_limit;
+        }
+
+        // eq. 5.14-5.18: TCP point and torch axis from the (turned) part frame into the world, then into R.
+        const Eigen::Isometry3d X_WP = cell.X_WB * PartPose(cell.positioner, angles.tilt, angles.rotation);
+        const Eigen::Vector3d p_W = X_WP * s.p_P;
+        const Eigen::Vector3d tool_dir_W = X_WP.linear() * tool_dir_P;
+        s.torch_tilt_rad = std::acos(std::clamp(tool_dir_W.z(), -1.0, 1.0));
+        s.X_WT = TorchPose(cell, p_W, tool_dir_W);
+        const Eigen::Isometry3d X_RF = X_RW * s.X_WT * X_TF;
+
+        if (cell.numeric_ik) {
+          // A user's arm without a closed form: local solution from the previous joints; failures are reported.
+          Joints6 q = seed;
+          double residual = 0.0;
+          if (cell.numeric_ik(X_RF, seed, &q, &residual)) {
+            seed = q;
+            int joint = 0;
+            s.arm_within_limits = LimitMargin(cell.arm, q, &joint) >= 0.0;
+          } else {
+            s.reachable = false;
+            s.reach_excess_mm = residual;
+            s.arm_within_limits = false;
+          }
+        } else {
+          const IkSolutions ik = SolveIk(cell.arm, X_RF, &seed);
+          const int pick = PickNearest(cell.arm, ik, &seed);
+          if (pick < 0) {
+            s.reachable = false;
+            s.reach_excess_mm = ik.reach_excess_mm;
+            s.arm_within_limits = false;
+          } else {
+            const IkSolution& sol = ik.solutions[pick];
+            seed = sol.q;
+            s.branch = sol.branch;
+            s.arm_within_limits = sol.within_limits;
+          }
+        }
+        s.q.head<6>() = seed;
+        s.q[6] = angles.tilt;
+        s.q[7] = angles.rotation;
+
+        // Time: weld moves at the planned speed relative to the part; arc-off moves at the rapid speed, slowed
+        // down so that no axis exceeds its speed.
+        if (!samples.empty()) {
+          const CellSample& last = samples.back();
+          const double ds = (s.p_P - last.p_P).norm();
+          double dt = ds / s.speed_mm_s;
+          if (!s.weld) {
+            for (int j = 0; j < 6; ++j) dt = std::max(dt, std::abs(s.q[j] - last.q[j]) / cell.arm.max_speed[j]);
+            dt = std::max(dt, std::abs(s.q[6] - last.q[6]) / cell.positioner.tilt_max_speed);
+            dt = std::max(dt, std::abs(s.q[7] - last.q[7]) / cell.positioner.rotation_max_speed);
+          }
+          s.dt_s = dt;
+          s.t_s = last.t_s + dt;
+        }
+        samples.push_back(s);
+        if (progress && (samples.size() & 1023u) == 0) progress(samples.size());
+      }
+      prev = &cur;
+    }
+    previous_layer_angles = layer_angles;
+  }
+  if (progress) progress(samples.size());
+  return samples;
+}
+
+}  // namespace waam::planner

@@ -1,0 +1,45 @@
+// Two-axis tilt/rotate positioner: the part's pose for given axis angles, and the angles that turn a build
+// direction against gravity (dissertation eq. 5.9-5.13 and Appendix B; Lim & Soh eq. 1-6).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace waam::planner {
+
+// Kinematic chain of the positioner, from its base frame B (on the floor, z up) to the part frame P:
+//   X_BP = X_BA * Rx(tilt) * X_AC * Rz(rotation) * X_CP
+// where A is the tilt axis frame (tilt about its x) and C the rotating table frame (rotation about its z).
+// X_BA and X_AC must be pure translations; X_CP is the part placement on the table (the substrate top, z = 0 of
+// P, plus the part's offset and turn on the plate). Lengths in mm, angles in rad.
+struct Positioner {
+  Eigen::Vector3d p_BA = Eigen::Vector3d(0.0, 0.0, 700.0);   // tilt axis in B, mm
+  Eigen::Vector3d p_AC = Eigen::Vector3d(0.0, 0.0, 60.0);    // table (rotation) frame in A at tilt 0, mm
+  Eigen::Isometry3d X_CP = Eigen::Isometry3d::Identity();   // part frame on the table, mm
+  double tilt_lower = -70.0 * M_PI / 180.0;                 // rad (140 deg range, Table 3)
+  double tilt_upper = 70.0 * M_PI / 180.0;
+  double rotation_lower = -240.0 * M_PI / 180.0;            // rad (480 deg range, Table 3)
+  double rotation_upper = 240.0 * M_PI / 180.0;
+  double tilt_max_speed = 120.0 * M_PI / 180.0;             // rad/s (Table 3)
+  double rotation_max_speed = 190.0 * M_PI / 180.0;         // rad/s (Table 3)
+};
+
+// Part pose in the positioner base frame for the two axis angles (rad), mm.
+Eigen::Isometry3d PartPose(const Positioner& positioner, double tilt, double rotation);
+
+// Axis angles for one build direction.
+struct PositionerAngles {
+  double tilt = 0.0;        // rad
+  double rotation = 0.0;    // rad
+  bool at_limit = false;    // the tilt needed lies outside the tilt range; the tilt is held at its limit
+  double residual_rad = 0.0;  // angle left between the turned build direction and vertical (torch tilt), rad
+};
+
+// Angles (rad) that turn `build_dir_P` (unit, part frame) to +z of B, choosing among the two solutions and the 2 pi
+// copies of the rotation the one nearest `previous` (tilt, rotation). When the build direction is already vertical
+// the rotation keeps previous.rotation. Past the tilt range the tilt stays at its limit (the torch then tilts by
+// residual_rad to keep the neutral welding position, dissertation section 5.3).
+PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen::Vector3d& build_dir_P,
+                                       const PositionerAngles& previous);
+
+}  // namespace waam::planner

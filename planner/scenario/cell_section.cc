@@ -1,0 +1,67 @@
+// The `cell:` scenario section: placement of arm, positioner and part, and the margins of `waam check`.
+#include "planner/scenario/cell_section.h"
+
+#include <system_error>
+
+#include "models/core/error.h"
+
+namespace waam::planner::internal {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::array<double, 3> Xyz(YamlMap& map, const std::string& key, const std::array<double, 3>& fallback) {
+  const std::vector<double> v =
+      map.Numbers(key, 3, -20000.0, 20000.0, std::vector<double>(fallback.begin(), fallback.end()));
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
+  CellSettings cell;
+  if (!top.Has("cell")) return cell;
+  YamlMap map = top.Map("cell");
+  cell.where = map.Where("");
+  if (map.Has("mjcf")) {
+    cell.mjcf = fs::path(map.String("mjcf"));
+    if (cell.mjcf.is_relative()) cell.mjcf = scenario_dir / cell.mjcf;
+    cell.mjcf = cell.mjcf.lexically_normal();
+    std::error_code ec;
+    WAAM_THROW_UNLESS(fs::is_regular_file(cell.mjcf, ec),
+                      map.Where("mjcf") << ": MJCF file " << cell.mjcf.string() << " not found");
+  }
+  if (map.Has("robot")) {
+    YamlMap robot = map.Map("robot");
+    cell.robot_base_mm = Xyz(robot, "base_mm", cell.robot_base_mm);
+    cell.robot_yaw_deg = robot.Number("yaw_deg", -360.0, 360.0, cell.robot_yaw_deg);
+    robot.CheckNoUnknownKeys();
+  }
+  if (map.Has("positioner")) {
+    YamlMap pos = map.Map("positioner");
+    cell.positioner_base_mm = Xyz(pos, "base_mm", cell.positioner_base_mm);
+    cell.positioner_yaw_deg = pos.Number("yaw_deg", -360.0, 360.0, cell.positioner_yaw_deg);
+    cell.positioner_rotation_deg = pos.Number("rotation_deg", -240.0, 240.0, cell.positioner_rotation_deg);
+    cell.positioner_follow = pos.Choice("follow", {"layer", "point"}, cell.positioner_follow);
+    pos.CheckNoUnknownKeys();
+  }
+  if (map.Has("part")) {
+    YamlMap part = map.Map("part");
+    cell.part_offset_mm = Xyz(part, "offset_mm", cell.part_offset_mm);
+    cell.part_yaw_deg = part.Number("yaw_deg", -360.0, 360.0, cell.part_yaw_deg);
+    part.CheckNoUnknownKeys();
+  }
+  if (map.Has("checks")) {
+    YamlMap checks = map.Map("checks");
+    cell.joint_margin_deg = checks.Number("joint_margin_deg", 0.0, 45.0, cell.joint_margin_deg);
+    cell.singularity_deg = checks.Number("singularity_deg", 0.0, 45.0, cell.singularity_deg);
+    cell.step_mm = checks.Number("step_mm", 0.1, 100.0, cell.step_mm);
+    cell.collision_tolerance_mm = checks.Number("collision_tolerance_mm", 0.0, 50.0, cell.collision_tolerance_mm);
+    cell.part_collision = checks.Bool("part_collision", cell.part_collision);
+    checks.CheckNoUnknownKeys();
+  }
+  map.CheckNoUnknownKeys();
+  return cell;
+}
+
+}  // namespace waam::planner::internal

@@ -1,0 +1,32 @@
+// The robot cell of a scenario (`cell:` section): where the arm and positioner stand, the part on the plate, and
+// the margins `waam check` applies. Every field has a default, so the section is optional.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+
+namespace waam::planner {
+
+struct CellSettings {
+  // The MuJoCo cell model; empty = the built-in twin/data/cell_arcmate100ic.xml. A user's file must have the
+  // joints, bodies and sites listed in the README ("Describing your own cell").
+  std::filesystem::path mjcf;
+  std::array<double, 3> robot_base_mm = {0.0, 0.0, 0.0};          // arm base frame R in the world, mm
+  double robot_yaw_deg = 0.0;                                      // turn of R about world z, deg
+  std::array<double, 3> positioner_base_mm = {1050.0, 0.0, 0.0};  // positioner base frame B in the world, mm
+  double positioner_yaw_deg = 90.0;                                // turn of B about world z, deg
+  double positioner_rotation_deg = 0.0;  // table rotation used while the build direction is vertical, deg
+  std::string positioner_follow = "layer";  // layer: angles per layer from its build direction; point: per point
+                                            // from the tool direction (curved layers)
+  std::array<double, 3> part_offset_mm = {0.0, 0.0, 0.0};  // part frame P relative to the plate's top centre, mm
+  double part_yaw_deg = 0.0;                               // turn of the part on the plate, deg
+  double joint_margin_deg = 2.0;         // a joint closer than this to its limit is a violation, deg
+  double singularity_deg = 5.0;          // |j5| below this is a wrist-singularity violation, deg
+  double step_mm = 1.0;                  // path segments are checked at this spacing, mm
+  double collision_tolerance_mm = 0.0;   // contacts penetrating less than this are ignored, mm
+  bool part_collision = true;            // check the torch against the layers deposited so far
+  std::string where;                     // "file:line: cell" for messages about the section
+};
+
+}  // namespace waam::planner

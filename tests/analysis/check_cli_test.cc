@@ -1,0 +1,108 @@
+// End-to-end tests of `waam check` on the scenarios of scenarios/cell/: exit codes, the expected violation kind of
+// each planted fault, and a bad cell model as a one-line error.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace waam::analysis {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+fs::path TempDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("waam_check_cli_test_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string Slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Runs `waam check` on `scenario` into `out`, returning the exit code; stderr goes to *err.
+int RunCheckCli(const fs::path& scenario, const fs::path& out, std::string* err) {
+  const fs::path err_file = out.parent_path() / (out.filename().string() + ".stderr");
+  const std::string command = std::string(WAAM_BINARY) + " check " + scenario.string() + " -o " + out.string() +
+                              " -q --no-images >/dev/null 2>" + err_file.string();
+  const int status = std::system(command.c_str());
+  *err = Slurp(err_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::set<std::string> Kinds(const nlohmann::json& check) {
+  std::set<std::string> kinds;
+  for (const nlohmann::json& v : check.at("violations")) kinds.insert(v.at("kind").get<std::string>());
+  return kinds;
+}
+
+struct Case {
+  const char* scenario;
+  int exit_code;
+  std::set<std::string> kinds;
+};
+
+TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
+  const Case cases[] = {
+      {"cell_ok", 0, {}},
+      {"cell_out_of_reach", 3, {"unreachable"}},
+      {"cell_joint_limit", 3, {"joint_limit"}},
+      {"cell_torch_into_plate", 3, {"collision"}},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = TempDir(c.scenario);
+    std::string err;
+    const int code = RunCheckCli(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (std::string(c.scenario) + ".yaml"),
+                                 out, &err);
+    EXPECT_EQ(code, c.exit_code) << c.scenario << ": " << err;
+    ASSERT_TRUE(fs::exists(out / "check.json")) << c.scenario << ": " << err;
+    const nlohmann::json check = nlohmann::json::parse(Slurp(out / "check.json"));
+    EXPECT_EQ(check.at("ok").get<bool>(), c.exit_code == 0) << c.scenario;
+    EXPECT_EQ(Kinds(check), c.kinds) << c.scenario << ": " << check.at("violations").dump(1);
+    EXPECT_GT(check.at("points").get<int>(), 0) << c.scenario;
+    EXPECT_TRUE(fs::exists(out / "program.csv")) << c.scenario;
+    EXPECT_TRUE(fs::exists(out / "program.ls")) << c.scenario;
+  }
+}
+
+TEST(CheckCliTest, SetOverridesTheCellPlacement) {
+  // The well placed cell turned away from the positioner with --set: the j1 fault of cell_joint_limit.yaml.
+  const fs::path out = TempDir("set");
+  const std::string command = std::string(WAAM_BINARY) + " check " + WAAM_SOURCE_DIR +
+                              "/scenarios/cell/cell_ok.yaml --set cell.robot.yaw_deg=180 -q --no-images -o " +
+                              out.string() + " >/dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3);
+  const nlohmann::json check = nlohmann::json::parse(Slurp(out / "check.json"));
+  EXPECT_EQ(Kinds(check), std::set<std::string>{"joint_limit"});
+}
+
+TEST(CheckCliTest, BrokenCellModelIsABadInputError) {
+  const fs::path dir = TempDir("bad_model");
+  std::ofstream(dir / "broken.xml") << "<mujoco><worldbody><body></mujoco>\n";
+  std::string scenario = Slurp(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "cell_ok.yaml");
+  scenario.replace(scenario.find("cell:\n"), 6, "cell:\n  mjcf: broken.xml\n");
+  std::ofstream(dir / "s.yaml") << scenario;
+  std::string err;
+  EXPECT_EQ(RunCheckCli(dir / "s.yaml", dir / "out", &err), 2);
+  EXPECT_THAT(err, HasSubstr("waam: error: "));
+  EXPECT_THAT(err, HasSubstr("broken.xml"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "check.json"));
+}
+
+}  // namespace
+}  // namespace waam::analysis

@@ -1,0 +1,250 @@
+// The check loop: every sample of the eight-axis motion against reach, limits, speeds, singularity and collisions.
+#include "twin/cell/cell_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include "models/core/progress.h"
+#include "twin/cell/deposit_map.h"
+#include "twin/cell/mujoco_cell.h"
+
+namespace waam::twin {
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+Eigen::Isometry3d PlacementPose(const std::array<double, 3>& p_mm, double yaw_deg) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translate(Eigen::Vector3d(p_mm[0], p_mm[1], p_mm[2]));
+  X.rotate(Eigen::AngleAxisd(yaw_deg / kDeg, Eigen::Vector3d::UnitZ()));
+  return X;
+}
+
+// Collects violations, merging the samples of one layer with the same kind and subject into one entry.
+class ViolationLog {
+ public:
+  // `worse_if_larger`: whether a larger value is a worse violation.
+  void Add(const std::string& kind, const std::string& subject1, const std::string& subject2,
+           const planner::CellSample& s, int sample, double value, const std::string& unit, bool worse_if_larger) {
+    const auto key = std::make_tuple(kind, subject1, subject2);
+    auto it = open_.find(key);
+    if (it != open_.end() && violations_[it->second].layer == s.layer) {
+      CheckViolation& v = violations_[it->second];
+      v.last_point = s.point;
+      ++v.samples;
+      if (worse_if_larger ? value > v.value : value < v.value) {
+        v.value = value;
+        v.point = s.point;
+        v.layer = s.layer;
+        v.sample = sample;
+      }
+      return;
+    }
+    CheckViolation v;
+    v.kind = kind;
+    v.point = v.first_point = v.last_point = s.point;
+    v.layer = s.layer;
+    v.samples = 1;
+    if (kind == "collision") {
+      v.body1 = subject1;
+      v.body2 = subject2;
+    } else {
+      v.joint = subject1;
+    }
+    v.value = value;
+    v.unit = unit;
+    v.sample = sample;
+    open_[key] = violations_.size();
+    violations_.push_back(v);
+  }
+  std::vector<CheckViolation> Take() { return std::move(violations_); }
+
+ private:
+  // The entry of the current layer for each kind and subject.
+  std::map<std::tuple<std::string, std::string, std::string>, std::size_t> open_;
+  std::vector<CheckViolation> violations_;
+};
+
+int KindRank(const std::string& kind) {
+  if (kind == "collision") return 0;
+  if (kind == "unreachable") return 1;
+  if (kind == "joint_limit") return 2;
+  if (kind == "joint_speed") return 3;
+  return 4;
+}
+
+}  // namespace
+
+const char* AxisName(int axis) {
+  static const char* const kNames[8] = {"j1", "j2", "j3", "j4", "j5", "j6", "pos_tilt", "pos_rot"};
+  return (axis >= 0 && axis < 8) ? kNames[axis] : "?";
+}
+
+planner::CellKinematics PlaceCell(MujocoCell& cell, const planner::CellSettings& settings) {
+  cell.Place(PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
+             PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
+  planner::CellKinematics kin = cell.Kinematics();
+  // The part frame P sits on the plate top (part_origin) with the scenario's offset and turn.
+  kin.positioner.X_CP = kin.positioner.X_CP * PlacementPose(settings.part_offset_mm, settings.part_yaw_deg);
+  return kin;
+}
+
+CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner::CellSettings& settings,
+                      double rapid_speed_mm_s, Progress* progress) {
+  const planner::CellKinematics kin = PlaceCell(cell, settings);
+  const double margin_rad = settings.joint_margin_deg / kDeg;
+
+  // The positioner solution keeps the joint margin: where it must hold a limit, it holds it `margin` inside.
+  planner::CellKinematics solve = kin;
+  if (solve.positioner.tilt_upper - solve.positioner.tilt_lower > 2.0 * margin_rad) {
+    solve.positioner.tilt_lower += margin_rad;
+    solve.positioner.tilt_upper -= margin_rad;
+  }
+  if (solve.positioner.rotation_upper - solve.positioner.rotation_lower > 2.0 * margin_rad) {
+    solve.positioner.rotation_lower += margin_rad;
+    solve.positioner.rotation_upper -= margin_rad;
+  }
+  planner::MotionOptions options;
+  options.step_mm = settings.step_mm;
+  options.rapid_speed_mm_s = rapid_speed_mm_s;
+  options.rotation_rad = settings.positioner_rotation_deg / kDeg;
+  options.positioner_per_point = settings.positioner_follow == "point";
+
+  CheckReport report;
+  report.ik = kin.numeric_ik ? "numerical" : "closed_form";
+  for (const planner::LayerPath& layer : plan.layers) report.points += layer.points.size();
+  const std::size_t total = planner::CountCellSamples(plan, settings.step_mm);
+  if (progress) progress->SetTotal(2 * total);
+  report.motion = planner::PlanCellMotion(solve, plan, options, [&](std::size_t done) {
+    if (progress) progress->Update(done);
+  });
+  const std::vector<planner::CellSample>& motion = report.motion;
+  report.samples = motion.size();
+
+  // Nozzle capsule (TCP frame) and the deposit map over the path's footprint.
+  Eigen::Vector3d nozzle_a_T, nozzle_b_T;
+  double nozzle_r = 0.0;
+  cell.NozzleInTcp(&nozzle_a_T, &nozzle_b_T, &nozzle_r);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (const planner::CellSample& s : motion) {
+    lo = lo.cwiseMin(s.p_P.head<2>());
+    hi = hi.cwiseMax(s.p_P.head<2>());
+  }
+  if (motion.empty()) lo = hi = Eigen::Vector2d::Zero();
+  const double pad = 20.0 + 2.0 * nozzle_r;
+  DepositMap deposit(lo.array() - pad, hi.array() + pad, 1.0);
+
+  ViolationLog log;
+  Eigen::Matrix<double, 8, 1> limit_lo, limit_hi, max_speed;
+  limit_lo << kin.arm.lower, kin.positioner.tilt_lower, kin.positioner.rotation_lower;
+  limit_hi << kin.arm.upper, kin.positioner.tilt_upper, kin.positioner.rotation_upper;
+  max_speed << kin.arm.max_speed, kin.positioner.tilt_max_speed, kin.positioner.rotation_max_speed;
+  report.min_joint_margin_deg = std::numeric_limits<double>::infinity();
+  report.min_j5_deg = std::numeric_limits<double>::infinity();
+  int min_margin_sample = 0;
+  std::vector<CellContact> contacts;
+  double clearance = -1.0;  // from the last collision detection, mm; <= 0 forces a detection
+  Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
+  bool have_velocity = false;
+  int last_layer = std::numeric_limits<int>::min();
+
+  for (std::size_t i = 0; i < motion.size(); ++i) {
+    const planner::CellSample& s = motion[i];
+    const int si = static_cast<int>(i);
+    if (s.layer != last_layer) {
+      if (s.positioner_at_limit) ++report.positioner_limit_layers;
+      last_layer = s.layer;
+    }
+    if (s.weld) report.max_torch_tilt_deg = std::max(report.max_torch_tilt_deg, s.torch_tilt_rad * kDeg);
+    const bool deposit_here = s.weld && i > 0;
+    if (!s.reachable) {
+      log.Add("unreachable", "", "", s, si, s.reach_excess_mm,
+              kin.numeric_ik ? "ik_residual_mm" : "reach_excess_mm", true);
+      have_velocity = false;
+      if (deposit_here) deposit.Deposit(motion[i - 1].p_P, s.p_P, s.bead_width_mm);
+      continue;
+    }
+
+    // Joint limits with margin (every axis).
+    for (int j = 0; j < 8; ++j) {
+      const double m_deg = std::min(s.q[j] - limit_lo[j], limit_hi[j] - s.q[j]) * kDeg;
+      if (m_deg < report.min_joint_margin_deg) {
+        report.min_joint_margin_deg = m_deg;
+        report.min_margin_joint = AxisName(j);
+        min_margin_sample = si;
+      }
+      if (m_deg < settings.joint_margin_deg) log.Add("joint_limit", AxisName(j), "", s, si, m_deg, "margin_deg", false);
+    }
+
+    // Wrist singularity: j5 near 0 (or 180) deg aligns j4 and j6.
+    const double j5_deg = std::asin(std::min(1.0, std::abs(std::sin(s.q[4])))) * kDeg;
+    report.min_j5_deg = std::min(report.min_j5_deg, j5_deg);
+    if (j5_deg < settings.singularity_deg) log.Add("singularity", "j5", "", s, si, j5_deg, "j5_deg", false);
+
+    // Joint speeds and accelerations while welding, at the planned travel speed.
+    if (s.weld && i > 0 && s.dt_s > 0.0 && motion[i - 1].reachable) {
+      const Eigen::Matrix<double, 8, 1> v = (s.q - motion[i - 1].q) / s.dt_s;
+      for (int j = 0; j < 8; ++j) {
+        const double ratio = std::abs(v[j]) / max_speed[j];
+        if (ratio > report.max_joint_speed_ratio) {
+          report.max_joint_speed_ratio = ratio;
+          report.max_speed_joint = AxisName(j);
+        }
+        if (ratio > 1.0) log.Add("joint_speed", AxisName(j), "", s, si, ratio, "speed_ratio", true);
+        if (have_velocity) {
+          report.max_accel_deg_s2[j] =
+              std::max(report.max_accel_deg_s2[j], std::abs(v[j] - prev_velocity[j]) / s.dt_s * kDeg);
+        }
+      }
+      prev_velocity = v;
+      have_velocity = true;
+    } else {
+      have_velocity = false;
+    }
+
+    // Cell bodies: MuJoCo collision detection at this configuration, skipped while no geom has moved by half the
+    // clearance found at the last detection (conservative advancement: no contact can have appeared).
+    cell.SetJoints(s.q);
+    contacts.clear();
+    if (!(clearance > 0.0 && 2.0 * cell.MotionSinceCollide() < clearance)) {
+      cell.Collide(settings.collision_tolerance_mm, &contacts, &clearance);
+    }
+    for (const CellContact& c : contacts) {
+      const bool ordered = c.body1 < c.body2;
+      log.Add("collision", ordered ? c.body1 : c.body2, ordered ? c.body2 : c.body1, s, si, c.penetration_mm,
+              "penetration_mm", true);
+    }
+
+    // Torch against the layers deposited before this sample.
+    if (settings.part_collision) {
+      const Eigen::Isometry3d X_WP = kin.X_WB * planner::PartPose(kin.positioner, s.q[6], s.q[7]);
+      const Eigen::Isometry3d X_PT = X_WP.inverse() * s.X_WT;
+      const double pen = deposit.Penetration(X_PT * nozzle_a_T, X_PT * nozzle_b_T, nozzle_r);
+      if (pen > settings.collision_tolerance_mm) log.Add("collision", "part", "torch", s, si, pen, "penetration_mm", true);
+    }
+    if (deposit_here) deposit.Deposit(motion[i - 1].p_P, s.p_P, s.bead_width_mm);
+    if (progress && (i & 1023u) == 0) progress->Update(total + i);
+  }
+
+  report.violations = log.Take();
+  report.ok = report.violations.empty();
+  report.duration_s = motion.empty() ? 0.0 : motion.back().t_s;
+  if (!std::isfinite(report.min_joint_margin_deg)) report.min_joint_margin_deg = 0.0;
+  if (!std::isfinite(report.min_j5_deg)) report.min_j5_deg = 0.0;
+  report.worst_sample = min_margin_sample;
+  int best_rank = 99;
+  for (const CheckViolation& v : report.violations) {
+    if (KindRank(v.kind) < best_rank) {
+      best_rank = KindRank(v.kind);
+      report.worst_sample = v.sample;
+    }
+  }
+  if (progress) progress->Update(2 * total);
+  return report;
+}
+
+}  // namespace waam::twin

@@ -1,0 +1,69 @@
+// Pre-build check of a planned path on the cell: reach, joint limits, joint speeds, wrist singularity and
+// collisions (MuJoCo between cell bodies, a height map between the torch and the layers deposited so far).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planner/kinematics/cell_motion.h"
+#include "planner/path/tool_path.h"
+#include "planner/scenario/cell_settings.h"
+
+namespace waam {
+class Progress;
+}
+
+namespace waam::twin {
+
+class MujocoCell;
+
+// One violation: all samples of one layer with the same kind and joint (or body pair), merged.
+struct CheckViolation {
+  std::string kind;        // unreachable | joint_limit | joint_speed | singularity | collision
+  int point = 0;           // path point (over the whole plan) where it is worst
+  int layer = 0;           // layer of that point
+  int first_point = 0;     // first and last path point in this layer with this violation
+  int last_point = 0;
+  int samples = 0;         // checked samples with this violation in this layer
+  std::string joint;       // joint_limit, joint_speed: j1..j6, pos_tilt, pos_rot; singularity: j5
+  std::string body1;       // collision: the two bodies ("part" is the deposited metal)
+  std::string body2;
+  double value = 0.0;      // worst value: see `unit`
+  std::string unit;        // reach_excess_mm | margin_deg | speed_ratio | j5_deg | penetration_mm
+  int sample = 0;          // index into CheckReport::motion where it is worst
+};
+
+// What `waam check` reports.
+struct CheckReport {
+  bool ok = true;
+  std::string ik = "closed_form";  // closed_form (OPW arm) | numerical (a user's arm; failures are unreachable)
+  std::size_t points = 0;    // path points
+  std::size_t samples = 0;   // checked samples (path points and the points inserted every step_mm)
+  std::vector<CheckViolation> violations;
+  double min_joint_margin_deg = 0.0;  // smallest distance of any axis to its limit over the path, deg
+  std::string min_margin_joint;
+  double max_joint_speed_ratio = 0.0;  // largest |joint speed| / axis limit over weld moves
+  std::string max_speed_joint;
+  double min_j5_deg = 0.0;             // closest approach to the wrist singularity, deg
+  Eigen::Matrix<double, 8, 1> max_accel_deg_s2 = Eigen::Matrix<double, 8, 1>::Zero();  // per axis, weld moves
+  double duration_s = 0.0;             // motion time of the whole path, s
+  int positioner_limit_layers = 0;     // layers whose build direction needs more tilt than the positioner has
+  double max_torch_tilt_deg = 0.0;     // largest torch angle from vertical while welding, deg
+  int worst_sample = 0;                // index into `motion` of the worst sample (for the picture)
+  std::vector<planner::CellSample> motion;  // the eight-axis trajectory
+};
+
+// Names of the eight axes: j1..j6, pos_tilt, pos_rot.
+const char* AxisName(int axis);
+
+// Checks `plan` (part frame P) on `cell`, placed by `settings` (arm, positioner, part on the plate). Arc-off moves
+// run at `rapid_speed_mm_s`. `progress` may be null. Throws InputError for a cell model that cannot be used.
+CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner::CellSettings& settings,
+                      double rapid_speed_mm_s, Progress* progress);
+
+// The cell kinematics of `cell` with the placements of `settings` applied (and pushed into the MuJoCo model).
+planner::CellKinematics PlaceCell(MujocoCell& cell, const planner::CellSettings& settings);
+
+}  // namespace waam::twin

@@ -1,0 +1,372 @@
+// MuJoCo adapter of the cell: the only file that sees mjModel/mjData. MuJoCo errors become InputError, never exit().
+#include "twin/cell/mujoco_cell.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <random>
+#include <string>
+
+#include <mujoco/mujoco.h>
+
+#include "models/core/error.h"
+
+#ifndef WAAM_CELL_DATA_DIR
+#error "WAAM_CELL_DATA_DIR must point at twin/data"
+#endif
+
+namespace waam::twin {
+namespace fs = std::filesystem;
+using planner::Joints8;
+
+namespace {
+
+constexpr double kMm = 1000.0;  // model metres -> mm
+const char* const kArmJoints[6] = {"j1", "j2", "j3", "j4", "j5", "j6"};
+
+// MuJoCo calls this instead of exit(): unwinding through MuJoCo's C frames is fine on gcc/x86-64 (unwind tables).
+void ThrowOnMujocoError(const char* message) { throw InputError(std::string("MuJoCo error: ") + message); }
+void IgnoreMujocoWarning(const char*) {}
+
+void InstallMujocoHandlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mju_user_error = ThrowOnMujocoError;
+    mju_user_warning = IgnoreMujocoWarning;
+  });
+}
+
+Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]) * kMm;
+  X.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(mat);
+  return X;
+}
+
+}  // namespace
+
+struct MujocoCell::Impl {
+  mjModel* m = nullptr;
+  mjData* d = nullptr;
+  mjData* ik = nullptr;  // scratch data of the numerical IK
+  std::vector<mjtNum> collide_xpos;  // geom poses at the last Collide()
+  std::vector<mjtNum> collide_xmat;
+  int qadr[8] = {};
+  int jnt[8] = {};
+  int robot_base = -1, positioner_base = -1, flange = -1;
+  int tcp = -1, part_origin = -1, nozzle = -1, speeds = -1;
+  ~Impl() {
+    if (ik) mj_deleteData(ik);
+    if (d) mj_deleteData(d);
+    if (m) mj_deleteModel(m);
+  }
+};
+
+fs::path MujocoCell::BuiltinModelPath() { return fs::path(WAAM_CELL_DATA_DIR) / "cell_arcmate100ic.xml"; }
+
+MujocoCell::MujocoCell(const fs::path& mjcf) : impl_(std::make_unique<Impl>()) {
+  InstallMujocoHandlers();
+  file_ = mjcf.empty() ? BuiltinModelPath() : mjcf;
+  std::error_code ec;
+  WAAM_THROW_UNLESS(fs::is_regular_file(file_, ec), file_.string() << ": MJCF cell model not found");
+  char error[1024] = "";
+  impl_->m = mj_loadXML(file_.string().c_str(), nullptr, error, sizeof(error));
+  WAAM_THROW_UNLESS(impl_->m != nullptr, file_.string() << ": MuJoCo cannot load the cell model: " << error);
+  impl_->d = mj_makeData(impl_->m);
+  impl_->ik = mj_makeData(impl_->m);
+  const mjModel* m = impl_->m;
+
+  auto require = [&](int type, const char* name, const char* what) {
+    const int id = mj_name2id(m, type, name);
+    WAAM_THROW_UNLESS(id >= 0, file_.string() << ": the cell model has no " << what << " named '" << name
+                                              << "' (see README, 'Describing your own cell')");
+    return id;
+  };
+  const char* const names[8] = {"j1", "j2", "j3", "j4", "j5", "j6", "pos_tilt", "pos_rot"};
+  for (int j = 0; j < 8; ++j) {
+    const int id = require(mjOBJ_JOINT, names[j], "joint");
+    WAAM_THROW_UNLESS(m->jnt_type[id] == mjJNT_HINGE && m->jnt_limited[id],
+                      file_.string() << ": joint '" << names[j] << "' must be a limited hinge");
+    impl_->jnt[j] = id;
+    impl_->qadr[j] = m->jnt_qposadr[id];
+  }
+  impl_->robot_base = require(mjOBJ_BODY, "robot_base", "body");
+  impl_->positioner_base = require(mjOBJ_BODY, "positioner_base", "body");
+  impl_->flange = require(mjOBJ_BODY, "link6", "body");
+  impl_->tcp = require(mjOBJ_SITE, "tcp", "site");
+  impl_->part_origin = require(mjOBJ_SITE, "part_origin", "site");
+  impl_->nozzle = require(mjOBJ_GEOM, "nozzle", "geom");
+  impl_->speeds = require(mjOBJ_NUMERIC, "max_speed_deg_s", "custom numeric");
+  WAAM_THROW_UNLESS(m->numeric_size[impl_->speeds] == 8,
+                    file_.string() << ": custom numeric 'max_speed_deg_s' must have 8 values (j1..j6, pos_tilt, "
+                                      "pos_rot), has " << m->numeric_size[impl_->speeds]);
+  WAAM_THROW_UNLESS(m->geom_type[impl_->nozzle] == mjGEOM_CAPSULE,
+                    file_.string() << ": geom 'nozzle' must be a capsule");
+  WAAM_THROW_UNLESS(m->body_parentid[impl_->robot_base] == 0 && m->body_parentid[impl_->positioner_base] == 0,
+                    file_.string() << ": bodies 'robot_base' and 'positioner_base' must be children of the world");
+  // Contacts are reported up to kClearanceMarginMm apart, which gives the clearance used to skip checks.
+  for (int g = 0; g < impl_->m->ngeom; ++g) impl_->m->geom_margin[g] = kClearanceMarginMm / kMm;
+  mj_kinematics(m, impl_->d);
+}
+
+MujocoCell::~MujocoCell() = default;
+
+void MujocoCell::Place(const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB) {
+  mjModel* m = impl_->m;
+  auto set = [&](int body, const Eigen::Isometry3d& X) {
+    const Eigen::Vector3d p = X.translation() / kMm;
+    const Eigen::Quaterniond q(X.linear());
+    for (int i = 0; i < 3; ++i) m->body_pos[3 * body + i] = p[i];
+    m->body_quat[4 * body + 0] = q.w();
+    m->body_quat[4 * body + 1] = q.x();
+    m->body_quat[4 * body + 2] = q.y();
+    m->body_quat[4 * body + 3] = q.z();
+  };
+  set(impl_->robot_base, X_WR);
+  set(impl_->positioner_base, X_WB);
+  mj_kinematics(m, impl_->d);
+}
+
+void MujocoCell::SetJoints(const Joints8& q) {
+  for (int j = 0; j < 8; ++j) impl_->d->qpos[impl_->qadr[j]] = q[j];
+  mj_kinematics(impl_->m, impl_->d);
+}
+
+Eigen::Isometry3d MujocoCell::TcpPose() const {
+  const int s = impl_->tcp;
+  return Pose(impl_->d->site_xpos + 3 * s, impl_->d->site_xmat + 9 * s);
+}
+
+int MujocoCell::Collide(double tolerance_mm, std::vector<CellContact>* out, double* clearance_mm) {
+  const mjModel* m = impl_->m;
+  mjData* d = impl_->d;
+  mj_collision(m, d);
+  impl_->collide_xpos.assign(d->geom_xpos, d->geom_xpos + 3 * m->ngeom);
+  impl_->collide_xmat.assign(d->geom_xmat, d->geom_xmat + 9 * m->ngeom);
+  int n = 0;
+  double clearance = kClearanceMarginMm;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    clearance = std::min(clearance, c.dist * kMm);
+    const double penetration = -c.dist * kMm;
+    if (penetration <= tolerance_mm) continue;
+    CellContact contact;
+    contact.body1 = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[c.geom1]);
+    contact.body2 = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[c.geom2]);
+    contact.penetration_mm = penetration;
+    contact.p_W = Eigen::Vector3d(c.pos[0], c.pos[1], c.pos[2]) * kMm;
+    out->push_back(std::move(contact));
+    ++n;
+  }
+  if (clearance_mm) *clearance_mm = clearance;
+  return n;
+}
+
+double MujocoCell::MotionSinceCollide() const {
+  const mjModel* m = impl_->m;
+  const mjData* d = impl_->d;
+  if (impl_->collide_xpos.size() != static_cast<std::size_t>(3 * m->ngeom)) return 1e300;
+  double largest = 0.0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    const mjtNum* p0 = impl_->collide_xpos.data() + 3 * g;
+    const mjtNum* p1 = d->geom_xpos + 3 * g;
+    const double move = std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                                   (p1[2] - p0[2]) * (p1[2] - p0[2]));
+    // Rotation angle between the two orientations: trace(R0^T R1) = 1 + 2 cos(angle).
+    const mjtNum* r0 = impl_->collide_xmat.data() + 9 * g;
+    const mjtNum* r1 = d->geom_xmat + 9 * g;
+    double trace = 0.0;
+    for (int k = 0; k < 9; ++k) trace += r0[k] * r1[k];
+    const double angle = std::acos(std::clamp(0.5 * (trace - 1.0), -1.0, 1.0));
+    const double bound = m->geom_type[g] == mjGEOM_PLANE ? move : move + angle * m->geom_rbound[g];
+    largest = std::max(largest, bound * kMm);
+  }
+  return largest;
+}
+
+void MujocoCell::NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const {
+  const mjModel* m = impl_->m;
+  const mjData* d = impl_->d;
+  const int g = impl_->nozzle;
+  const Eigen::Isometry3d X_WG = Pose(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
+  const Eigen::Isometry3d X_TG = TcpPose().inverse() * X_WG;
+  const double half = m->geom_size[3 * g + 1] * kMm;
+  *a_T = X_TG * Eigen::Vector3d(0.0, 0.0, -half);
+  *b_T = X_TG * Eigen::Vector3d(0.0, 0.0, half);
+  *radius_mm = m->geom_size[3 * g] * kMm;
+}
+
+std::vector<CellShape> MujocoCell::Shapes() const {
+  const mjModel* m = impl_->m;
+  const mjData* d = impl_->d;
+  std::vector<CellShape> shapes;
+  for (int g = 0; g < m->ngeom; ++g) {
+    CellShape s;
+    switch (m->geom_type[g]) {
+      case mjGEOM_PLANE: s.type = CellShape::Type::kPlane; break;
+      case mjGEOM_SPHERE: s.type = CellShape::Type::kSphere; break;
+      case mjGEOM_CAPSULE: s.type = CellShape::Type::kCapsule; break;
+      case mjGEOM_CYLINDER: s.type = CellShape::Type::kCylinder; break;
+      case mjGEOM_BOX: s.type = CellShape::Type::kBox; break;
+      default: s.type = CellShape::Type::kOther; break;
+    }
+    s.body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]) ? mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]) : "world";
+    s.size_mm = Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]) * kMm;
+    s.X_WG = Pose(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
+    s.rgba = Eigen::Vector4f(m->geom_rgba[4 * g], m->geom_rgba[4 * g + 1], m->geom_rgba[4 * g + 2],
+                             m->geom_rgba[4 * g + 3]);
+    shapes.push_back(s);
+  }
+  return shapes;
+}
+
+planner::CellKinematics MujocoCell::Kinematics() const {
+  const mjModel* m = impl_->m;
+  mjData* d = impl_->d;
+  std::vector<double> saved(d->qpos, d->qpos + m->nq);
+  for (int j = 0; j < 8; ++j) d->qpos[impl_->qadr[j]] = 0.0;
+  mj_kinematics(m, d);
+
+  planner::CellKinematics cell;
+  const int rb = impl_->robot_base;
+  cell.X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
+  const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
+  auto anchor_R = [&](int j) {
+    const int id = impl_->jnt[j];
+    return Eigen::Vector3d(X_RW * (Eigen::Vector3d(d->xanchor[3 * id], d->xanchor[3 * id + 1],
+                                                   d->xanchor[3 * id + 2]) * kMm));
+  };
+  // OPW parameters from the zero pose: j2 anchor (a1, 0, c1), j3 anchor c2 above it, wrist centre (j5 anchor)
+  // c3 ahead of and -a2 above j3, flange c4 ahead of the wrist centre.
+  const Eigen::Vector3d p2 = anchor_R(1), p3 = anchor_R(2), p5 = anchor_R(4);
+  const int fl = impl_->flange;
+  const Eigen::Isometry3d X_RF0 = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+  planner::OpwArm& arm = cell.arm;
+  arm.name = "arm of " + file_.filename().string();
+  arm.a1 = p2.x();
+  arm.c1 = p2.z();
+  arm.c2 = p3.z() - p2.z();
+  arm.c3 = p5.x() - p3.x();
+  arm.a2 = -(p5.z() - p3.z());
+  arm.c4 = X_RF0.translation().x() - p5.x();
+  const mjtNum* speed = m->numeric_data + m->numeric_adr[impl_->speeds];
+  for (int j = 0; j < 6; ++j) {
+    arm.lower[j] = m->jnt_range[2 * impl_->jnt[j]];
+    arm.upper[j] = m->jnt_range[2 * impl_->jnt[j] + 1];
+    arm.max_speed[j] = speed[j] * M_PI / 180.0;
+  }
+
+  // Tool: the tcp site in the flange frame.
+  const int ts = impl_->tcp;
+  cell.X_FT = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl).inverse() * Pose(d->site_xpos + 3 * ts, d->site_xmat + 9 * ts);
+
+  // Positioner chain: B -> tilt axis frame A -> table frame C -> plate top (part_origin).
+  const int pb = impl_->positioner_base;
+  const int tilt_body = m->jnt_bodyid[impl_->jnt[6]];
+  const int rot_body = m->jnt_bodyid[impl_->jnt[7]];
+  cell.X_WB = Pose(d->xpos + 3 * pb, d->xmat + 9 * pb);
+  const Eigen::Isometry3d X_WA = Pose(d->xpos + 3 * tilt_body, d->xmat + 9 * tilt_body);
+  const Eigen::Isometry3d X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
+  const Eigen::Isometry3d X_BA = cell.X_WB.inverse() * X_WA;
+  const Eigen::Isometry3d X_AC = X_WA.inverse() * X_WC;
+  const Eigen::Vector3d tilt_axis(m->jnt_axis + 3 * impl_->jnt[6]);
+  const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl_->jnt[7]);
+  WAAM_THROW_UNLESS(X_BA.linear().isIdentity(1e-9) && X_AC.linear().isIdentity(1e-9) &&
+                        (tilt_axis - Eigen::Vector3d::UnitX()).norm() < 1e-9 &&
+                        (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 && tilt_body == m->body_parentid[rot_body] &&
+                        m->body_parentid[tilt_body] == pb,
+                    file_.string() << ": the positioner must be positioner_base -> body with pos_tilt (axis 1 0 0) -> "
+                                      "body with pos_rot (axis 0 0 1), without rotated body frames");
+  cell.positioner.p_BA = X_BA.translation();
+  cell.positioner.p_AC = X_AC.translation();
+  const int po = impl_->part_origin;
+  cell.positioner.X_CP = X_WC.inverse() * Pose(d->site_xpos + 3 * po, d->site_xmat + 9 * po);
+  cell.positioner.tilt_lower = m->jnt_range[2 * impl_->jnt[6]];
+  cell.positioner.tilt_upper = m->jnt_range[2 * impl_->jnt[6] + 1];
+  cell.positioner.rotation_lower = m->jnt_range[2 * impl_->jnt[7]];
+  cell.positioner.rotation_upper = m->jnt_range[2 * impl_->jnt[7] + 1];
+  cell.positioner.tilt_max_speed = speed[6] * M_PI / 180.0;
+  cell.positioner.rotation_max_speed = speed[7] * M_PI / 180.0;
+
+  // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
+  std::mt19937_64 rng(2024);
+  double worst = 0.0;
+  for (int trial = 0; trial < 50; ++trial) {
+    planner::Joints6 q;
+    for (int j = 0; j < 6; ++j) q[j] = std::uniform_real_distribution<double>(arm.lower[j], arm.upper[j])(rng);
+    for (int j = 0; j < 6; ++j) d->qpos[impl_->qadr[j]] = q[j];
+    mj_kinematics(m, d);
+    const Eigen::Isometry3d X_RF = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+    const Eigen::Isometry3d X_fk = planner::ForwardKinematics(arm, q);
+    worst = std::max(worst, (X_RF.translation() - X_fk.translation()).norm() +
+                                1000.0 * (X_RF.linear() - X_fk.linear()).norm());
+  }
+  for (int i = 0; i < m->nq; ++i) d->qpos[i] = saved[i];
+  mj_kinematics(m, d);
+  closed_form_ = worst < 1e-6;
+  if (!closed_form_) {
+    // Not an OPW arm in the FANUC convention: the numerical IK on this model takes over.
+    cell.arm.name += " (numerical IK)";
+    cell.numeric_ik = [this](const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
+                             double* residual) { return SolveNumericIk(X_RF, seed, q, residual); };
+  }
+  return cell;
+}
+
+bool MujocoCell::SolveNumericIk(const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q_out,
+                                double* residual_mm) const {
+  const mjModel* m = impl_->m;
+  mjData* d = impl_->ik;
+  mju_copy(d->qpos, impl_->d->qpos, m->nq);  // positioner and placement as in the main data
+  const int rb = impl_->robot_base;
+  const int fl = impl_->flange;
+  planner::Joints6 q;
+  for (int j = 0; j < 6; ++j) {
+    const int id = impl_->jnt[j];
+    q[j] = std::clamp(seed[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
+  }
+  constexpr double kLever = 1000.0;  // rotation errors count at 1 m, like the IK tests
+  std::vector<mjtNum> jacp(3 * m->nv), jacr(3 * m->nv);
+  double residual = 0.0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    for (int j = 0; j < 6; ++j) d->qpos[impl_->qadr[j]] = q[j];
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    const Eigen::Isometry3d X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
+    const Eigen::Isometry3d X_WF = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+    const Eigen::Isometry3d X_WF_goal = X_WR * X_RF;
+    Eigen::Matrix<double, 6, 1> e;
+    e.head<3>() = X_WF_goal.translation() - X_WF.translation();
+    const Eigen::AngleAxisd rot(X_WF_goal.linear() * X_WF.linear().transpose());
+    e.tail<3>() = rot.angle() * rot.axis() * kLever;
+    residual = e.head<3>().norm() + e.tail<3>().norm();
+    if (residual < 1e-6) {
+      *q_out = q;
+      *residual_mm = residual;
+      return true;
+    }
+    mj_jacBody(m, d, jacp.data(), jacr.data(), fl);
+    Eigen::Matrix<double, 6, 6> J;
+    for (int j = 0; j < 6; ++j) {
+      const int dof = m->jnt_dofadr[impl_->jnt[j]];
+      for (int r = 0; r < 3; ++r) {
+        J(r, j) = jacp[r * m->nv + dof] * kMm;
+        J(3 + r, j) = jacr[r * m->nv + dof] * kLever;
+      }
+    }
+    // Damped least squares (Levenberg-Marquardt step), at most 0.2 rad per joint and iteration.
+    const Eigen::Matrix<double, 6, 6> A = J * J.transpose() + 1e-4 * Eigen::Matrix<double, 6, 6>::Identity();
+    planner::Joints6 dq = J.transpose() * A.ldlt().solve(e);
+    const double largest = dq.cwiseAbs().maxCoeff();
+    if (largest > 0.2) dq *= 0.2 / largest;
+    for (int j = 0; j < 6; ++j) {
+      const int id = impl_->jnt[j];
+      q[j] = std::clamp(q[j] + dq[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
+    }
+  }
+  *q_out = q;
+  *residual_mm = residual;
+  return false;
+}
+
+}  // namespace waam::twin
