@@ -1,0 +1,65 @@
+// Small hand-built plans for the twin tests: straight beads, parallel-bead blocks, squares, double-bead crosses.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planner/path/tool_path.h"
+
+namespace waam::twin::testing {
+
+inline planner::PathPoint Pt(double x, double y, double z, bool weld, double w, double h, double speed) {
+  planner::PathPoint p;
+  p.p_P = Eigen::Vector3d(x, y, z);
+  p.bead_width_mm = w;
+  p.bead_height_mm = h;
+  p.speed_mm_s = speed;
+  p.weld = weld;
+  return p;
+}
+
+// Appends a weld pass through `xy` (arc start at the first point) at height z to `layer`.
+inline void AddPass(planner::LayerPath* layer, const std::vector<Eigen::Vector2d>& xy, double z, double w, double h,
+                    double speed) {
+  for (std::size_t i = 0; i < xy.size(); ++i) {
+    layer->points.push_back(Pt(xy[i].x(), xy[i].y(), z, i > 0, w, h, speed));
+  }
+}
+
+// A block of straight beads along y (length `length`), at the x positions `xs`, `layers` layers of height `dz`.
+// Beads alternate direction, each its own pass; the layer region is the rectangle the beads cover.
+inline planner::Plan ParallelBlock(const std::vector<double>& xs, double length, int layers, double dz, double w,
+                                   double h, double speed) {
+  planner::Plan plan;
+  for (int l = 0; l < layers; ++l) {
+    planner::LayerPath layer;
+    layer.index = l;
+    layer.z_mm = (l + 1) * dz;
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      const bool up = (i + static_cast<std::size_t>(l)) % 2 == 0;
+      AddPass(&layer, {{xs[i], up ? 0.0 : length}, {xs[i], up ? length : 0.0}}, layer.z_mm, w, h, speed);
+    }
+    planner::PolygonWithHoles region;
+    region.outer = {{xs.front() - w / 2, 0.0}, {xs.back() + w / 2, 0.0}, {xs.back() + w / 2, length},
+                    {xs.front() - w / 2, length}};
+    layer.slice.push_back(region);
+    plan.layers.push_back(layer);
+  }
+  return plan;
+}
+
+// Bead centre positions across a block: outer contour, second contour at d2, zigzag at d1 from it, then l apart,
+// mirrored, for `zigzag` interior beads (003 Fig. 20-22).
+inline std::vector<double> BlockPositions(double d2, double d1, double l, int zigzag) {
+  std::vector<double> xs = {0.0, d2};
+  double x = d2 + d1;
+  for (int i = 0; i < zigzag; ++i, x += l) xs.push_back(x);
+  x = xs.back() + d1;
+  xs.push_back(x);
+  xs.push_back(x + d2);
+  return xs;
+}
+
+}  // namespace waam::twin::testing
