@@ -27,7 +27,10 @@ struct SimulationSettings {
   double stop_width_factor = 0.9;        // x planned bead width at the very end
 
   // Molten metal hanging past a free edge flows down at most (1 + edge_sag_factor) x bead height below its crown.
-  double edge_sag_factor = 1.0;
+  double edge_sag_factor = 2.0;
+  // Molten metal wets lower ground next to the bead: the parabolic cap continues past w/2 up to
+  // (0.5 + edge_spread_factor) x w from the path, filling only where the ground lies below it (a free side).
+  double edge_spread_factor = 0.15;
   // Deposition step along the path, mm (0 = one voxel).
   double step_mm = 0.0;
 };

@@ -45,6 +45,8 @@ void ValidateSimulationSettings(const planner::SimulationSettings& s) {
   }
   WAAM_THROW_UNLESS(s.edge_sag_factor >= 0.0 && s.edge_sag_factor <= 10.0,
                     "simulation.edge_sag_factor = " << s.edge_sag_factor << ": must be in [0, 10]");
+  WAAM_THROW_UNLESS(s.edge_spread_factor >= 0.0 && s.edge_spread_factor <= 1.0,
+                    "simulation.edge_spread_factor = " << s.edge_spread_factor << ": must be in [0, 1]");
   WAAM_THROW_UNLESS(s.step_mm >= 0.0 && s.step_mm <= 10.0,
                     "simulation.step_mm = " << s.step_mm << ": must be in [0, 10] mm");
 }
@@ -105,13 +107,16 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
     lowest = zeta_tcp_mm - 4.0 * h;
     highest = lowest;
   }
+  // Over air (no ground within reach) the metal runs down the part's side at most edge_sag_factor x h below the
+  // lowest supported column, and never more than (1 + edge_sag_factor) x h below the crown.
   const double sag = (1.0 + settings_.edge_sag_factor) * h;
+  const double air_floor = lowest - settings_.edge_sag_factor * h;
   auto count = [&](double level, bool store) {
     long total = 0;
     for (Column& c : columns) {
       if (c.ground_mm == std::numeric_limits<double>::infinity()) continue;
       const double top = level - 4.0 * h / (w * w) * c.d_mm * c.d_mm;
-      const double bottom = std::max(c.ground_mm, level - sag);
+      const double bottom = std::max(c.ground_mm == kNoGround ? air_floor : c.ground_mm, level - sag);
       const int lo = static_cast<int>(std::ceil(bottom / v - 0.5));
       const int hi = static_cast<int>(std::floor(top / v - 0.5));
       if (store) {
@@ -122,7 +127,7 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
     }
     return total;
   };
-  double lo_level = lowest;
+  double lo_level = air_floor - sag - v;
   double hi_level = highest + h + v * (static_cast<double>(target_voxels) + 2.0);
   for (int iter = 0; iter < 48 && hi_level - lo_level > 1e-4 * v; ++iter) {
     const double mid = 0.5 * (lo_level + hi_level);
@@ -179,7 +184,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
     const bool has_prev = i >= 2 && bisector(i - 2, i - 1, &n_prev);
     const bool has_next = i + 1 < pts.size() && bisector(i, i + 1, &n_next);
 
-    const double r_max = 0.5 * B.bead_width_mm * width_factor;
+    const double r_max = (0.5 + settings_.edge_spread_factor) * B.bead_width_mm * width_factor;
     const int steps = std::max(1, static_cast<int>(std::ceil(len3 / step)));
     std::vector<std::vector<Column>> buckets(static_cast<std::size_t>(steps));
     const Eigen::Vector2d lo = A2.cwiseMin(B2) - Eigen::Vector2d::Constant(r_max + v);
@@ -204,7 +209,9 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       record.expected_volume_mm3 += volume;
       std::vector<Column>& cols = buckets[static_cast<std::size_t>(k)];
       cols.erase(std::remove_if(cols.begin(), cols.end(),
-                                [&](const Column& c) { return c.d_mm > 0.5 * section.width_mm; }),
+                                [&](const Column& c) {
+                                  return c.d_mm > (0.5 + settings_.edge_spread_factor) * section.width_mm;
+                                }),
                  cols.end());
       const double zeta_tcp = sign * ((1.0 - f) * A.p_P[axis] + f * B.p_P[axis]);
       VoxelData data;
