@@ -99,5 +99,29 @@ TEST(SurfaceMetrics, BlockExperimentBoundaryLag) {
   }
 }
 
+// Ding et al. Fig. 12: one continuous pass per layer gives a top surface with Ra more than 50 % lower than the hybrid
+// path with its many starts and stops. Same square, same beads, same spacings; only the number of passes differs.
+TEST(SurfaceMetrics, ContinuousPathIsSmootherThanManyStarts) {
+  const double w = 6.0, h = 2.0, a = 50.0;
+  planner::SimulationSettings s;
+  s.voxel_mm = 0.25;
+  double ra[2] = {0, 0};
+  std::size_t passes[2] = {0, 0};
+  for (int continuous = 0; continuous < 2; ++continuous) {
+    const planner::Plan plan = testing::SquareLayers(a, 3, w, h, 0.738 * w, 0.47 * w, 8.0, continuous == 1);
+    const Depositor d = DepositPlan(plan, s, 100.0, nullptr);
+    EXPECT_NEAR(d.grid().OccupiedVolume(), d.expected_volume_mm3(), 0.02 * d.expected_volume_mm3());
+    const HeightMap map = TopHeightMap(d.grid());
+    ra[continuous] = ArithmeticRoughness(RegionHeights(map, plan.layers.back().slice, w));
+    passes[continuous] = d.beads().size();
+  }
+  std::printf("square %.0f mm, 3 layers: Ra continuous (%zu passes) %.3f mm, many starts (%zu passes) %.3f mm, "
+              "%.0f %% lower (Ding: more than 50 %% lower)\n", a, passes[1], ra[1], passes[0], ra[0],
+              100.0 * (1.0 - ra[1] / ra[0]));
+  // The twin reproduces the direction but not Ding's size: the ripple between overlapped parabolic caps, the same in
+  // both plans, dominates Ra here (see the report). Asserted: clearly lower, by at least 15 %.
+  EXPECT_LT(ra[1], 0.85 * ra[0]) << "one continuous pass must give a clearly lower Ra than many starts";
+}
+
 }  // namespace
 }  // namespace waam::twin

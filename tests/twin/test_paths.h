@@ -62,4 +62,42 @@ inline std::vector<double> BlockPositions(double d2, double d1, double l, int zi
   return xs;
 }
 
+// A square layer region [0, a]^2 filled by an outer contour loop (w/2 in from the edge) and a raster of lines along x
+// spaced `l`, starting `d1` inside the contour. continuous = true: contour and serpentine raster in ONE pass (Ding's
+// continuous path); false: the contour is one pass and every raster line its own pass (hybrid, many starts).
+inline planner::Plan SquareLayers(double a, int layers, double w, double h, double l, double d1, double speed,
+                                  bool continuous) {
+  planner::Plan plan;
+  const double c = w / 2;
+  for (int k = 0; k < layers; ++k) {
+    planner::LayerPath layer;
+    layer.index = k;
+    layer.z_mm = (k + 1) * 0.9 * h;
+    const std::vector<Eigen::Vector2d> loop = {{c, c}, {a - c, c}, {a - c, a - c}, {c, a - c}, {c, c}};
+    std::vector<std::vector<Eigen::Vector2d>> lines;
+    const double x0 = c + d1;
+    const double x1 = a - c - d1;
+    const int n = static_cast<int>(std::floor((a - 2 * (c + d1)) / l)) + 1;
+    const double pitch = n > 1 ? (a - 2 * (c + d1)) / (n - 1) : 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double y = c + d1 + i * pitch;
+      lines.push_back(i % 2 == 0 ? std::vector<Eigen::Vector2d>{{x0, y}, {x1, y}}
+                                 : std::vector<Eigen::Vector2d>{{x1, y}, {x0, y}});
+    }
+    if (continuous) {
+      std::vector<Eigen::Vector2d> all = loop;
+      for (const auto& line : lines) all.insert(all.end(), line.begin(), line.end());
+      AddPass(&layer, all, layer.z_mm, w, h, speed);
+    } else {
+      AddPass(&layer, loop, layer.z_mm, w, h, speed);
+      for (const auto& line : lines) AddPass(&layer, line, layer.z_mm, w, h, speed);
+    }
+    planner::PolygonWithHoles region;
+    region.outer = {{0, 0}, {a, 0}, {a, a}, {0, a}};
+    layer.slice.push_back(region);
+    plan.layers.push_back(layer);
+  }
+  return plan;
+}
+
 }  // namespace waam::twin::testing

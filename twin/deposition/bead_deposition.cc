@@ -23,6 +23,7 @@ struct Depositor::Column {
   int i0 = 0;        // voxel index along the first in-plane axis
   int i1 = 0;        // along the second
   double d_mm = 0.0; // lateral distance from the path, mm
+  double u_mm = 0.0; // distance along the segment (clamped to it), mm
   double ground_mm = 0.0;  // top of the solid under the column, along the build direction, mm (or kNoGround)
   int lo = 0;        // voxel height indices to fill (inclusive), set by the level search
   int hi = -1;
@@ -185,8 +186,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
     const bool has_next = i + 1 < pts.size() && bisector(i, i + 1, &n_next);
 
     const double r_max = (0.5 + settings_.edge_spread_factor) * B.bead_width_mm * width_factor;
-    const int steps = std::max(1, static_cast<int>(std::ceil(len3 / step)));
-    std::vector<std::vector<Column>> buckets(static_cast<std::size_t>(steps));
+    std::vector<Column> cols;
     const Eigen::Vector2d lo = A2.cwiseMin(B2) - Eigen::Vector2d::Constant(r_max + v);
     const Eigen::Vector2d hi = A2.cwiseMax(B2) + Eigen::Vector2d::Constant(r_max + v);
     for (int i0 = static_cast<int>(std::floor(lo.x() / v)); i0 <= static_cast<int>(std::floor(hi.x() / v)); ++i0) {
@@ -197,29 +197,50 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
         const double u = std::clamp((c - A2).dot(unit), 0.0, L2);
         const double d = (c - (A2 + unit * u)).norm();
         if (d > r_max) continue;
-        const int k = L2 > 1e-9 ? std::min(steps - 1, static_cast<int>(u / L2 * steps)) : 0;
-        buckets[static_cast<std::size_t>(k)].push_back(Column{i0, i1, d});
+        Column column;
+        column.i0 = i0;
+        column.i1 = i1;
+        column.d_mm = d;
+        column.u_mm = u;
+        cols.push_back(column);
       }
     }
-    for (int k = 0; k < steps; ++k) {
-      const double f = (k + 0.5) / steps;
+    std::sort(cols.begin(), cols.end(), [](const Column& x, const Column& y) {
+      return x.u_mm != y.u_mm ? x.u_mm < y.u_mm : (x.i0 != y.i0 ? x.i0 < y.i0 : x.i1 < y.i1);
+    });
+    // Steps follow the columns: each takes whole rows of columns (about `step` of path) and exactly the volume of
+    // the path length between the midpoints to its neighbours, so no row gets a double share (no aliasing ridges).
+    const double scale = L2 > 1e-9 ? len3 / L2 : 0.0;
+    std::size_t first = 0;
+    double boundary = 0.0;
+    std::vector<Column> chunk;
+    while (first < cols.size() || (cols.empty() && boundary == 0.0)) {
+      std::size_t last = first;
+      while (last < cols.size() && cols[last].u_mm <= cols[first].u_mm + 0.999 * step) ++last;
+      // Extend to the end of the row of equal u.
+      while (last < cols.size() && last > first && cols[last].u_mm - cols[last - 1].u_mm < 1e-9) ++last;
+      const double next_boundary =
+          last < cols.size() ? 0.5 * (cols[last - 1].u_mm + cols[last].u_mm) : L2;
+      const double span3 = L2 > 1e-9 ? (next_boundary - boundary) * scale : len3;
+      const double f = L2 > 1e-9 ? 0.5 * (boundary + next_boundary) / L2 : 0.5;
       const double s = A.s_mm + f * len3;
       const BeadSection section = SectionAt(pass, i, s, settings_);
-      const double volume = section.area_mm2() * len3 / steps;
+      const double volume = section.area_mm2() * span3;
       record.expected_volume_mm3 += volume;
-      std::vector<Column>& cols = buckets[static_cast<std::size_t>(k)];
-      cols.erase(std::remove_if(cols.begin(), cols.end(),
-                                [&](const Column& c) {
-                                  return c.d_mm > (0.5 + settings_.edge_spread_factor) * section.width_mm;
-                                }),
-                 cols.end());
+      chunk.clear();
+      for (std::size_t c = first; c < last; ++c) {
+        if (cols[c].d_mm <= (0.5 + settings_.edge_spread_factor) * section.width_mm) chunk.push_back(cols[c]);
+      }
       const double zeta_tcp = sign * ((1.0 - f) * A.p_P[axis] + f * B.p_P[axis]);
       VoxelData data;
       data.bead = bead;
       data.time_s = static_cast<float>(pass.start_time_s + s / std::max(B.speed_mm_s, 1e-9));
-      const double placed = FillStep(cols, section, volume + debt, zeta_tcp, axis, sign, data);
+      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, axis, sign, data);
       debt += volume - placed;
       record.deposited_volume_mm3 += placed;
+      boundary = next_boundary;
+      first = last;
+      if (cols.empty()) break;
     }
   }
   expected_volume_mm3_ += record.expected_volume_mm3;
