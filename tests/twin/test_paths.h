@@ -1,6 +1,7 @@
 // Small hand-built plans for the twin tests: straight beads, parallel-bead blocks, squares, double-bead crosses.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -94,6 +95,45 @@ inline planner::Plan SquareLayers(double a, int layers, double w, double h, doub
     }
     planner::PolygonWithHoles region;
     region.outer = {{0, 0}, {a, 0}, {a, a}, {0, a}};
+    layer.slice.push_back(region);
+    plan.layers.push_back(layer);
+  }
+  return plan;
+}
+
+// Outline (CCW) of two straight strips of half-width `a` crossing at the origin at angle `theta` (radians), each arm
+// `arm` long from the centre: the X junction of 003 Appendix A1 groups D/F. Reflex corners lie on the bisectors.
+inline std::vector<Eigen::Vector2d> CrossOutline(double a, double theta, double arm) {
+  const double phi[5] = {0.0, theta, M_PI, M_PI + theta, 2.0 * M_PI};
+  std::vector<Eigen::Vector2d> ring;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d d(std::cos(phi[k]), std::sin(phi[k]));
+    const Eigen::Vector2d n(-d.y(), d.x());
+    ring.push_back(arm * d - a * n);
+    ring.push_back(arm * d + a * n);
+    const double gap = phi[k + 1] - phi[k];
+    const double mid = 0.5 * (phi[k] + phi[k + 1]);
+    ring.push_back(a / std::sin(gap / 2.0) * Eigen::Vector2d(std::cos(mid), std::sin(mid)));
+  }
+  return ring;
+}
+
+// A double-bead X junction planned with a plain contour: one closed loop per layer l/2 off the rib centre lines
+// (two beads per rib, l apart), `layers` layers; the layer region is the rib outline (half-width (l + w)/2).
+inline planner::Plan CrossJunction(double theta, double arm, int layers, double w, double h, double l, double dz,
+                                   double speed) {
+  planner::Plan plan;
+  for (int k = 0; k < layers; ++k) {
+    planner::LayerPath layer;
+    layer.index = k;
+    layer.z_mm = (k + 1) * dz;
+    std::vector<Eigen::Vector2d> loop = CrossOutline(l / 2, theta, arm);
+    // Start at the tip of the first arm, away from the junction.
+    std::rotate(loop.begin(), loop.begin() + 1, loop.end());
+    loop.push_back(loop.front());
+    AddPass(&layer, loop, layer.z_mm, w, h, speed);
+    planner::PolygonWithHoles region;
+    region.outer = CrossOutline((l + w) / 2, theta, arm + w / 2);
     layer.slice.push_back(region);
     plan.layers.push_back(layer);
   }
