@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
 
 namespace waam::twin::testing {
@@ -138,6 +139,20 @@ inline planner::Plan CrossJunction(double theta, double arm, int layers, double 
     plan.layers.push_back(layer);
   }
   return plan;
+}
+
+// Closed box mesh [lo, hi] with outward (counter-clockwise seen from outside) facets.
+inline planner::TriangleMesh BoxMesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  planner::TriangleMesh mesh;
+  for (int k = 0; k < 8; ++k) {
+    mesh.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+  }
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    mesh.facets.push_back({q[0], q[1], q[2]});
+    mesh.facets.push_back({q[0], q[2], q[3]});
+  }
+  return mesh;
 }
 
 }  // namespace waam::twin::testing
