@@ -100,6 +100,7 @@ Scenario LoadScenario(const fs::path& file) {
     process.CheckNoUnknownKeys();
   }
 
+  internal::ParseSimulationSection(top, &scenario.simulation);
   top.CheckNoUnknownKeys();
   return scenario;
 }

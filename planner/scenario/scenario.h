@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "planner/scenario/simulation_settings.h"
+
 namespace waam::planner {
 
 // Where the part comes from: an STL file or a procedural generator with parameters.
@@ -46,6 +48,7 @@ struct Scenario {
   SlicingSettings slicing;
   PathSettings path;
   ProcessSettings process;
+  SimulationSettings simulation;     // optional section `simulation` (voxel twin)
 };
 
 // Loads and validates a scenario file. Unknown keys, wrong types and out-of-range values throw InputError naming

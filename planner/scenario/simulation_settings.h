@@ -35,4 +35,11 @@ struct SimulationSettings {
   double step_mm = 0.0;
 };
 
+namespace internal {
+class YamlMap;
+// Reads the optional `simulation:` mapping of the scenario's top level into `out` (defaults where a key is absent).
+// Throws InputError naming file, line and key for unknown keys and out-of-range values.
+void ParseSimulationSection(YamlMap& top, SimulationSettings* out);
+}  // namespace internal
+
 }  // namespace waam::planner
