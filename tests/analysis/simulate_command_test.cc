@@ -1,0 +1,88 @@
+// `waam simulate` outputs on a hand-made plan: the JSON contract, the STL and HDF5 files, the pictures, and the
+// voxel-limit error.
+#include "analysis/simulate_command.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "tests/twin/test_paths.h"
+
+namespace waam::analysis {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct Fixture {
+  planner::Scenario scenario;
+  planner::PlanResult planned;
+};
+
+Fixture SmallBlock() {
+  Fixture f;
+  const double w = 6.0, h = 2.0, l = 0.738 * w;
+  f.scenario.name = "small block";
+  f.scenario.path.bead_width_mm = w;
+  f.planned.plan = twin::testing::ParallelBlock(twin::testing::BlockPositions(0.5 * w, 0.47 * w, l, 3), 30.0, 3,
+                                                2.0 / 3.0 * w * h / l, w, h, 8.0);
+  const auto& ring = f.planned.plan.layers.back().slice.front().outer;
+  f.planned.mesh = twin::testing::BoxMesh({ring[0].x(), 0, 0}, {ring[1].x(), 30.0, f.planned.plan.layers.back().z_mm});
+  return f;
+}
+
+TEST(SimulateCommand, WritesTheContract) {
+  const Fixture f = SmallBlock();
+  SimulateOptions options;
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_contract";
+  options.quiet = true;
+  const twin::TwinResult result = SimulatePlanned(f.scenario, f.planned, options);
+  for (const char* name : {"simulate.json", "part.stl", "part.h5", "top_height.png", "section_xz.png",
+                           "section_yz.png", "deviation_map.png"}) {
+    EXPECT_TRUE(fs::exists(options.out_dir / name)) << "expected output " << name;
+  }
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+  for (const char* key : {"voxel_mm", "deposited_volume_mm3", "expected_volume_mm3", "deviation", "voids",
+                          "waviness_mm", "ra_mm", "boundary_lag_mm", "layers"}) {
+    EXPECT_TRUE(j.contains(key)) << "simulate.json must contain " << key;
+  }
+  for (const char* key : {"min_mm", "max_mm", "rms_mm"}) EXPECT_TRUE(j["deviation"].contains(key)) << key;
+  for (const char* key : {"count", "volume_mm3", "max_length_mm"}) EXPECT_TRUE(j["voids"].contains(key)) << key;
+  EXPECT_EQ(j["layers"].get<int>(), 3);
+  const double deposited = j["deposited_volume_mm3"].get<double>();
+  const double expected = j["expected_volume_mm3"].get<double>();
+  EXPECT_NEAR(deposited, expected, 0.02 * expected);
+  // Binary STL: 84 bytes of header and count, 50 per facet.
+  const std::string stl = ReadFile(options.out_dir / "part.stl");
+  ASSERT_GE(stl.size(), 84u);
+  std::uint32_t facets = 0;
+  std::memcpy(&facets, stl.data() + 80, 4);
+  EXPECT_GT(facets, 0u);
+  EXPECT_EQ(stl.size(), 84u + 50u * facets);
+  const std::string h5 = ReadFile(options.out_dir / "part.h5");
+  EXPECT_EQ(h5.substr(0, 8), std::string("\x89HDF\r\n\x1a\n", 8)) << "part.h5 must be an HDF5 file";
+  EXPECT_EQ(result.measures.voxels, result.depositor.grid().occupied());
+}
+
+TEST(SimulateCommand, VoxelLimitIsCheckedUpFront) {
+  Fixture f = SmallBlock();
+  f.scenario.simulation.max_voxels = 5000;
+  SimulateOptions options;
+  options.scenario = "block.yaml";
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_limit";
+  options.quiet = true;
+  try {
+    SimulatePlanned(f.scenario, f.planned, options);
+    FAIL() << "expected InputError past the voxel limit";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("simulation.max_voxels = 5000"));
+  }
+  EXPECT_FALSE(fs::exists(options.out_dir / "simulate.json")) << "no partial result";
+}
+
+}  // namespace
+}  // namespace waam::analysis
