@@ -34,5 +34,10 @@ class Interrupted : public std::runtime_error {
     }                                                \
   } while (false)
 
-// Throws waam::InputError with a streamed message.
-#define WAAM_THROW(message) WAAM_THROW_UNLESS(false, message)
+// Throws waam::InputError with a streamed message (a throw expression, so the compiler knows it does not return).
+#define WAAM_THROW(message)    \
+  throw ::waam::InputError([&] { \
+    std::ostringstream waam_throw_stream_; \
+    waam_throw_stream_ << message; \
+    return waam_throw_stream_.str(); \
+  }())

@@ -20,6 +20,8 @@ class Progress {
  public:
   Progress(std::string label, std::size_t total, std::string unit, bool quiet);
   ~Progress();
+  // Sets the total when it becomes known after construction.
+  void SetTotal(std::size_t total) { total_ = total; }
   void Update(std::size_t done);
   void Finish();
 

@@ -1,0 +1,145 @@
+// Tests of scenario loading: valid files load, every malformed one is refused with the key and line named.
+#include "planner/scenario/scenario.h"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+
+namespace waam::planner {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+class ScenarioTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("waam_scenario_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_ / "meshes" / "adir.stl");
+    std::ofstream(dir_ / "meshes" / "part.stl") << "solid x\nendsolid x\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path Write(const std::string& text) {
+    const fs::path file = dir_ / "s.yaml";
+    std::ofstream(file) << text;
+    return file;
+  }
+
+  // Loads `text` and returns the InputError message, or fails if it loads.
+  std::string ErrorOf(const std::string& text) {
+    try {
+      LoadScenario(Write(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "expected an InputError for:\n" << text;
+    return "";
+  }
+
+  static std::string Valid(const std::string& part = "  generator: {type: box, size_mm: [40, 30, 10]}\n",
+                           const std::string& extra = "") {
+    return "name: demo\npart:\n" + part +
+           "slicing:\n  type: planar\n  layer_height_mm: 1.5\n"
+           "path:\n  pattern: continuous\n  bead_width_mm: 6\n  overlap_model: proposed\n  zigzag_angle_deg: auto\n"
+           "process:\n  travel_speed_mm_min: 400\n  wire_feed_mm_min: 3200\n" +
+           extra;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(ScenarioTest, ValidScenarioLoads) {
+  const Scenario s = LoadScenario(Write(Valid()));
+  EXPECT_EQ(s.name, "demo");
+  EXPECT_EQ(s.part.generator, "box");
+  ASSERT_EQ(s.part.params.at("size_mm").size(), 3u);
+  EXPECT_DOUBLE_EQ(s.part.params.at("size_mm")[1], 30.0);
+  EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 1.5);
+  EXPECT_EQ(s.path.pattern, "continuous");
+  EXPECT_TRUE(s.path.zigzag_angle_auto);
+  EXPECT_DOUBLE_EQ(s.process.travel_speed_mm_min, 400.0);
+}
+
+TEST_F(ScenarioTest, MeshPathIsResolvedAgainstTheScenarioFolder) {
+  const Scenario s = LoadScenario(Write(Valid("  mesh: meshes/part.stl\n")));
+  EXPECT_EQ(s.part.mesh_path, (dir_ / "meshes" / "part.stl").lexically_normal());
+}
+
+TEST_F(ScenarioTest, ExplicitZigzagAngle) {
+  std::string text = Valid();
+  text.replace(text.find("zigzag_angle_deg: auto"), 22, "zigzag_angle_deg: 30");
+  const Scenario s = LoadScenario(Write(text));
+  EXPECT_FALSE(s.path.zigzag_angle_auto);
+  EXPECT_DOUBLE_EQ(s.path.zigzag_angle_deg, 30.0);
+}
+
+TEST_F(ScenarioTest, NegativeLayerHeightNamesKeyAndLine) {
+  std::string text = Valid();
+  text.replace(text.find("layer_height_mm: 1.5"), 20, "layer_height_mm: -1");
+  const std::string message = ErrorOf(text);
+  EXPECT_THAT(message, HasSubstr("s.yaml:6: slicing.layer_height_mm = -1: must be in"));
+}
+
+TEST_F(ScenarioTest, ZeroBeadWidthIsRefused) {
+  std::string text = Valid();
+  text.replace(text.find("bead_width_mm: 6"), 16, "bead_width_mm: 0");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("path.bead_width_mm = 0: must be in"));
+}
+
+TEST_F(ScenarioTest, WrongTypeIsRefused) {
+  std::string text = Valid();
+  text.replace(text.find("travel_speed_mm_min: 400"), 24, "travel_speed_mm_min: fast");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("process.travel_speed_mm_min = 'fast': must be a number"));
+}
+
+TEST_F(ScenarioTest, UnknownPatternListsTheChoices) {
+  std::string text = Valid();
+  text.replace(text.find("pattern: continuous"), 19, "pattern: spiral");
+  EXPECT_THAT(ErrorOf(text),
+              HasSubstr("path.pattern = 'spiral': unknown value, expected one of contour, zigzag, hybrid, continuous"));
+}
+
+TEST_F(ScenarioTest, UnknownKeyIsRefusedWithItsPath) {
+  EXPECT_THAT(ErrorOf(Valid("  generator: {type: box}\n", "colour: red\n")), HasSubstr("colour: unknown key"));
+  std::string text = Valid();
+  text.replace(text.find("  type: planar\n"), 15, "  type: planar\n  layer_hieght_mm: 2\n");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("slicing.layer_hieght_mm: unknown key"));
+}
+
+TEST_F(ScenarioTest, MissingMeshFileIsNamed) {
+  EXPECT_THAT(ErrorOf(Valid("  mesh: meshes/missing.stl\n")), HasSubstr("missing.stl not found"));
+}
+
+TEST_F(ScenarioTest, MeshPathThatIsADirectoryIsRefused) {
+  EXPECT_THAT(ErrorOf(Valid("  mesh: meshes/adir.stl\n")), HasSubstr("is a directory, expected an STL file"));
+}
+
+TEST_F(ScenarioTest, MeshAndGeneratorTogetherAreRefused) {
+  EXPECT_THAT(ErrorOf(Valid("  mesh: meshes/part.stl\n  generator: {type: box}\n")),
+              HasSubstr("give exactly one of 'mesh' or 'generator'"));
+}
+
+TEST_F(ScenarioTest, MissingSectionIsNamed) {
+  EXPECT_THAT(ErrorOf("name: x\npart:\n  generator: {type: box}\n"), HasSubstr("missing required section 'slicing'"));
+}
+
+TEST_F(ScenarioTest, YamlSyntaxErrorGivesLine) {
+  EXPECT_THAT(ErrorOf("name: x\npart: [unclosed\n"), HasSubstr("YAML syntax error"));
+}
+
+TEST_F(ScenarioTest, MissingFileIsNamed) {
+  try {
+    LoadScenario(dir_ / "nope.yaml");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("nope.yaml: file not found"));
+  }
+}
+
+}  // namespace
+}  // namespace waam::planner
