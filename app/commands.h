@@ -18,6 +18,8 @@ inline constexpr int kExitViolations = 3;  // `waam check` found violations
 inline constexpr int kExitInterrupted = 130;
 
 // Each registers its subcommand and sets `*runner` when it is the one selected.
-// (commands are added here as they land)
+void AddPlanCommand(CLI::App& app, CommandRunner* runner);      // app/plan_cli.cc
+void AddInspectCommand(CLI::App& app, CommandRunner* runner);   // app/inspect_cli.cc
+void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_cli.cc
 
 }  // namespace waam::app

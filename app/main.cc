@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "waam 0.1.0");
 
   CommandRunner runner;
-  (void)&runner;
+  AddPlanCommand(app, &runner);
+  AddInspectCommand(app, &runner);
+  AddGenerateCommand(app, &runner);
 
   try {
     app.parse(argc, argv);

@@ -25,7 +25,9 @@ struct MeshReport {
   std::size_t degenerate_facets = 0;  // zero-area or repeated-vertex facets dropped
   std::size_t boundary_edges = 0;   // edges used by one facet (holes in the surface)
   std::size_t non_manifold_edges = 0;  // edges used by more than two facets
+  std::size_t misoriented_edges = 0;  // edges whose two facets run them the same way (inconsistent normals)
   bool watertight = false;          // every edge used by exactly two facets
+  double volume_mm3 = 0.0;          // enclosed volume (divergence theorem); meaningful when watertight
   Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero();  // mm
   Eigen::Vector3d bbox_max = Eigen::Vector3d::Zero();  // mm
   double weld_tolerance_mm = 0.0;

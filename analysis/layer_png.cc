@@ -1,0 +1,123 @@
+// Picture of one planned layer: slice filled grey, weld moves coloured by sequence, travel dashed, starts and stops.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "analysis/plan_command.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+
+namespace waam::analysis {
+namespace {
+
+constexpr int kImageSize = 800;  // px, longest side
+constexpr int kMargin = 40;      // px
+
+// Maps part coordinates (mm) to pixels, y up.
+struct View {
+  Eigen::Vector2d min;
+  double scale = 1.0;  // px per mm
+  int height = kImageSize;
+  cv::Point ToPixel(const Eigen::Vector2d& p) const {
+    return {kMargin + static_cast<int>(std::lround((p.x() - min.x()) * scale)),
+            height - kMargin - static_cast<int>(std::lround((p.y() - min.y()) * scale))};
+  }
+};
+
+std::vector<cv::Point> ToPixels(const planner::Ring& ring, const View& view) {
+  std::vector<cv::Point> pixels;
+  pixels.reserve(ring.size());
+  for (const Eigen::Vector2d& p : ring) pixels.push_back(view.ToPixel(p));
+  return pixels;
+}
+
+// Blue -> green -> red along the sequence (OpenCV is BGR).
+cv::Scalar SequenceColour(double t) {
+  cv::Mat in(1, 1, CV_8UC1, cv::Scalar(static_cast<int>(std::clamp(t, 0.0, 1.0) * 255)));
+  cv::Mat out;
+  cv::applyColorMap(in, out, cv::COLORMAP_JET);
+  const cv::Vec3b c = out.at<cv::Vec3b>(0, 0);
+  return cv::Scalar(c[0], c[1], c[2]);
+}
+
+void DashedLine(cv::Mat& image, cv::Point a, cv::Point b, const cv::Scalar& colour) {
+  const double length = std::hypot(b.x - a.x, b.y - a.y);
+  const int dashes = std::max(1, static_cast<int>(length / 8.0));
+  for (int i = 0; i < dashes; i += 2) {
+    const double t0 = static_cast<double>(i) / dashes;
+    const double t1 = std::min(1.0, static_cast<double>(i + 1) / dashes);
+    cv::line(image, a + (b - a) * t0, a + (b - a) * t1, colour, 1, cv::LINE_AA);
+  }
+}
+
+}  // namespace
+
+void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path& path) {
+  Eigen::Vector2d lo(1e300, 1e300);
+  Eigen::Vector2d hi(-1e300, -1e300);
+  auto grow = [&](const Eigen::Vector2d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  };
+  for (const planner::PolygonWithHoles& region : layer.slice) {
+    for (const Eigen::Vector2d& p : region.outer) grow(p);
+  }
+  for (const planner::PathPoint& point : layer.points) grow(point.p_P.head<2>());
+  if (lo.x() > hi.x()) lo = hi = Eigen::Vector2d::Zero();
+
+  const Eigen::Vector2d extent = (hi - lo).cwiseMax(1e-6);
+  View view;
+  view.min = lo;
+  view.scale = (kImageSize - 2 * kMargin) / std::max(extent.x(), extent.y());
+  const int width = 2 * kMargin + static_cast<int>(std::ceil(extent.x() * view.scale));
+  view.height = 2 * kMargin + static_cast<int>(std::ceil(extent.y() * view.scale));
+  cv::Mat image(view.height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+
+  // Slice: outer boundaries grey, holes back to white.
+  for (const planner::PolygonWithHoles& region : layer.slice) {
+    std::vector<std::vector<cv::Point>> outer = {ToPixels(region.outer, view)};
+    cv::fillPoly(image, outer, cv::Scalar(225, 225, 225), cv::LINE_AA);
+    for (const planner::Ring& hole : region.holes) {
+      std::vector<std::vector<cv::Point>> h = {ToPixels(hole, view)};
+      cv::fillPoly(image, h, cv::Scalar(255, 255, 255), cv::LINE_AA);
+    }
+  }
+
+  // Path: weld moves in sequence colours, travel dashed grey; green dot at arc start, red cross at arc stop.
+  const std::size_t n = layer.points.size();
+  for (std::size_t i = 1; i < n; ++i) {
+    const cv::Point a = view.ToPixel(layer.points[i - 1].p_P.head<2>());
+    const cv::Point b = view.ToPixel(layer.points[i].p_P.head<2>());
+    if (layer.points[i].weld) {
+      cv::line(image, a, b, SequenceColour(static_cast<double>(i) / n), 2, cv::LINE_AA);
+    } else {
+      DashedLine(image, a, b, cv::Scalar(150, 150, 150));
+    }
+  }
+  for (std::size_t i = 1; i < n; ++i) {
+    const bool starts = layer.points[i].weld && !layer.points[i - 1].weld;
+    const bool stops = layer.points[i].weld && (i + 1 == n || !layer.points[i + 1].weld);
+    if (starts) cv::circle(image, view.ToPixel(layer.points[i - 1].p_P.head<2>()), 6, cv::Scalar(0, 160, 0), -1);
+    if (stops) {
+      cv::drawMarker(image, view.ToPixel(layer.points[i].p_P.head<2>()), cv::Scalar(0, 0, 220), cv::MARKER_TILTED_CROSS,
+                     14, 2);
+    }
+  }
+
+  char caption[128];
+  std::snprintf(caption, sizeof(caption), "layer %d  z = %.2f mm  (green: arc start, red: arc stop)", layer.index,
+                layer.z_mm);
+  cv::putText(image, caption, cv::Point(10, 24), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+
+  std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 3};
+  // OpenCV picks the encoder from the extension, so encode in memory and write the bytes ourselves.
+  std::vector<uchar> bytes;
+  if (!cv::imencode(".png", image, bytes, params)) throw std::runtime_error("PNG encoding failed for " + path.string());
+  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+}  // namespace waam::analysis

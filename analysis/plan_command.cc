@@ -1,0 +1,88 @@
+// `waam plan`: planning plus its outputs (JSON summary, HDF5 points, per-layer pictures).
+#include "analysis/plan_command.h"
+
+#include <string>
+
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/core/progress.h"
+#include "planner/scenario/scenario.h"
+
+namespace waam::analysis {
+namespace fs = std::filesystem;
+
+nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::PlanResult& result) {
+  const planner::MeshReport& mesh = result.mesh_report;
+  const planner::PathStats& stats = result.stats;
+  nlohmann::json mesh_json = {
+      {"source", mesh.source},
+      {"binary_stl", mesh.binary},
+      {"facets", mesh.facets},
+      {"vertices", mesh.vertices},
+      {"degenerate_facets", mesh.degenerate_facets},
+      {"boundary_edges", mesh.boundary_edges},
+      {"non_manifold_edges", mesh.non_manifold_edges},
+      {"watertight", mesh.watertight},
+      {"bbox_min_mm", {mesh.bbox_min.x(), mesh.bbox_min.y(), mesh.bbox_min.z()}},
+      {"bbox_max_mm", {mesh.bbox_max.x(), mesh.bbox_max.y(), mesh.bbox_max.z()}},
+  };
+  nlohmann::json layers = nlohmann::json::array();
+  for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
+    const planner::LayerPath& layer = result.plan.layers[i];
+    layers.push_back({{"index", layer.index},
+                      {"z_mm", layer.z_mm},
+                      {"regions", layer.slice.size()},
+                      {"area_mm2", planner::Area(layer.slice)},
+                      {"passes", stats.passes_per_layer[i]},
+                      {"path_elements", stats.path_elements_per_layer[i]},
+                      {"points", layer.points.size()}});
+  }
+  return {
+      {"scenario", scenario.name},
+      {"pattern", scenario.path.pattern},
+      {"overlap_model", scenario.path.overlap_model},
+      {"bead_width_mm", scenario.path.bead_width_mm},
+      {"layer_height_mm", result.plan.layers.empty() ? 0.0
+                                                      : result.plan.layers.front().points.empty()
+                                                            ? scenario.slicing.layer_height_mm
+                                                            : result.plan.layers.front().points.front().bead_height_mm},
+      {"mesh", mesh_json},
+      {"layers", stats.layers},
+      {"passes", stats.passes},
+      {"passes_per_layer", stats.passes_per_layer},
+      {"path_elements", stats.path_elements},
+      {"path_elements_per_layer", stats.path_elements_per_layer},
+      {"weld_length_mm", stats.weld_length_mm},
+      {"travel_length_mm", stats.travel_length_mm},
+      {"estimated_time_s", stats.estimated_time_s},
+      {"layer_details", layers},
+  };
+}
+
+planner::PlanResult RunPlan(const PlanOptions& options) {
+  const planner::Scenario scenario = planner::LoadScenario(options.scenario);
+  EnsureOutputDirectory(options.out_dir);
+
+  planner::PlanResult result;
+  {
+    // The layer count is known only once the mesh is loaded; PlanScenario sets the bar's total.
+    Progress progress("plan", 0, "layers", options.quiet);
+    result = planner::PlanScenario(scenario, &progress);
+  }
+
+  WritePlanH5(result.plan, options.out_dir / "plan.h5");
+  if (options.layer_images) {
+    Progress progress("pictures", result.plan.layers.size(), "layers", options.quiet);
+    for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
+      WriteLayerPng(result.plan.layers[i], options.out_dir / "layers" / name);
+      progress.Update(i + 1);
+    }
+    progress.Finish();
+  }
+  WriteFileAtomic(options.out_dir / "plan.json", PlanToJson(scenario, result).dump(2) + "\n");
+  return result;
+}
+
+}  // namespace waam::analysis

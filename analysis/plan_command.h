@@ -1,0 +1,32 @@
+// `waam plan`: plan a scenario and write plan.json, plan.h5 and one PNG per layer.
+#pragma once
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "planner/planar_planner.h"
+
+namespace waam::analysis {
+
+struct PlanOptions {
+  std::filesystem::path scenario;   // scenario YAML
+  std::filesystem::path out_dir;    // output directory (created if missing)
+  bool quiet = false;               // no progress bar
+  bool layer_images = true;         // write <out_dir>/layers/layer_NNNN.png
+};
+
+// Runs the planner and writes every output atomically; plan.json is written last, so its presence marks a complete
+// run. Returns the planning result. Throws InputError for bad scenarios and meshes.
+planner::PlanResult RunPlan(const PlanOptions& options);
+
+// The plan.json document (the public contract: field names are documented in the README).
+nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::PlanResult& result);
+
+// Writes every layer's path points to an HDF5 file (see the README for the layout).
+void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path);
+
+// Draws one layer: the slice, the weld path in sequence colours, travel moves dashed, starts and stops marked.
+void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path& path);
+
+}  // namespace waam::analysis

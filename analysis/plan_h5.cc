@@ -1,0 +1,91 @@
+// HDF5 output of the planned path: one dataset of points per layer (HDF5 C API).
+#include <hdf5.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "analysis/plan_command.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+
+namespace waam::analysis {
+namespace {
+
+// Closes an HDF5 handle when it goes out of scope.
+class H5Handle {
+ public:
+  H5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~H5Handle() {
+    if (id_ >= 0) close_(id_);
+  }
+  H5Handle(const H5Handle&) = delete;
+  H5Handle& operator=(const H5Handle&) = delete;
+  hid_t get() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+constexpr std::array<const char*, 11> kColumns = {
+    "x_mm", "y_mm", "z_mm", "tool_x", "tool_y", "tool_z", "bead_width_mm", "bead_height_mm",
+    "travel_speed_mm_min", "weld", "layer"};
+
+void Check(bool ok, const std::filesystem::path& path, const char* what) {
+  if (!ok) throw std::runtime_error("HDF5 output " + path.string() + ": " + what + " failed");
+}
+
+void WriteStringAttribute(hid_t object, const char* name, const std::string& value,
+                          const std::filesystem::path& path) {
+  H5Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.size() + 1);
+  H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  H5Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  Check(attribute.get() >= 0, path, "attribute create");
+  Check(H5Awrite(attribute.get(), type.get(), value.c_str()) >= 0, path, "attribute write");
+}
+
+}  // namespace
+
+void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path) {
+  AtomicOutput out(path);
+  {
+    H5Handle file(H5Fcreate(out.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    Check(file.get() >= 0, path, "file create");
+    std::string columns;
+    for (const char* column : kColumns) columns += std::string(columns.empty() ? "" : ",") + column;
+    WriteStringAttribute(file.get(), "columns", columns, path);
+    WriteStringAttribute(file.get(), "scenario", plan.name, path);
+    WriteStringAttribute(file.get(), "frame", "part frame P: z = 0 is the substrate top, mm", path);
+    H5Handle group(H5Gcreate2(file.get(), "layers", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    Check(group.get() >= 0, path, "group create");
+
+    std::vector<double> table;
+    for (const planner::LayerPath& layer : plan.layers) {
+      table.clear();
+      for (const planner::PathPoint& point : layer.points) {
+        const double row[kColumns.size()] = {point.p_P.x(), point.p_P.y(), point.p_P.z(),
+                                             point.tool_dir_P.x(), point.tool_dir_P.y(), point.tool_dir_P.z(),
+                                             point.bead_width_mm, point.bead_height_mm, point.speed_mm_s * 60.0,
+                                             point.weld ? 1.0 : 0.0, static_cast<double>(layer.index)};
+        table.insert(table.end(), row, row + kColumns.size());
+      }
+      const hsize_t dims[2] = {layer.points.size(), kColumns.size()};
+      H5Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
+      char name[32];
+      std::snprintf(name, sizeof(name), "layer_%04d", layer.index);
+      H5Handle dataset(H5Dcreate2(group.get(), name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                  H5P_DEFAULT),
+                       H5Dclose);
+      Check(dataset.get() >= 0, path, "dataset create");
+      if (!table.empty()) {
+        Check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, table.data()) >= 0, path,
+              "dataset write");
+      }
+    }
+  }
+  out.Commit();
+}
+
+}  // namespace waam::analysis

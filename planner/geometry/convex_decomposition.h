@@ -1,0 +1,44 @@
+// Convex decomposition of slice regions by notch elimination and minimum-width directions (Ding et al. 2014, 3.1-3.2).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planner/geometry/polygon.h"
+
+namespace waam::planner {
+
+// A line along which two convex pieces of a decomposition touch (mm). `on_outline` is true when the end `a` lies
+// on the region's boundary (outline or hole), where Ding et al. 3.3 place the connections between pieces.
+struct SharedEdge {
+  int piece_a = 0;
+  int piece_b = 0;
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  bool a_on_boundary = false;
+};
+
+// Splits `region` (outer CCW, holes CW; either orientation is accepted) into convex pieces, returned CCW, by
+// eliminating notches (vertices with an interior angle > pi) one at a time, the largest angle first: notch-notch,
+// notch-vertex and notch-line cuts (Ding et al. 2014, 3.1). Holes are merged into the outline by the same cuts.
+// The pieces tile the region: no overlaps, areas sum to Area(region). Throws InputError for a region with fewer
+// than 3 distinct outer vertices, and std::logic_error if degenerate geometry leaves a notch without a usable cut
+// (an internal limit; PlanLayerPattern then falls back to the hybrid pattern for that region).
+std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region);
+
+// The lines along which pieces of a decomposition of `region` touch, longest first (pieces from DecomposeConvex).
+std::vector<SharedEdge> FindSharedEdges(const std::vector<Ring>& pieces, const PolygonWithHoles& region);
+
+// True if `ring` is convex: no turn against its orientation larger than `tolerance_rad` (radians).
+bool IsConvex(const Ring& ring, double tolerance_rad = 1e-9);
+
+// Direction (radians in [0, pi), from +x) of the strip of least width that holds the convex polygon `convex`,
+// found with rotating calipers over the polygon's edges (Ding Lemma 1: the minimum width is attained with one side
+// flush). Writes the width (mm) to `width_mm` when not null. Throws InputError for fewer than 3 distinct points.
+double MinimumWidthDirection(const Ring& convex, double* width_mm);
+
+// Convex hull of a point set (Andrew's monotone chain), CCW, without collinear points.
+Ring ConvexHull(std::vector<Eigen::Vector2d> points);
+
+}  // namespace waam::planner

@@ -1,0 +1,350 @@
+// Procedural parts: a table of generator types with their parameters (defaults, counts, ranges) and the builders.
+//
+// The four `ding_*` shapes stand in for the four test geometries of Ding et al. 2014, Table 2 (section 4). The
+// figures of that table are not in the text we have, only its description: cases 1-3 are non-convex layer
+// geometries on which the convex-decomposition method shines, case 4 is a larger solid for which it produces more
+// path elements than the hybrid method, and the worked example of section 3.1 (Fig. 3, 5, 8) is "a simple polygon
+// with an inside island" with circular holes. Ours follow that description, not the exact drawings:
+//   ding_a: a non-convex polygon with four notches (interior angle > pi), like Fig. 3(a) (about 120 x 100 mm);
+//   ding_b: the same kind of outline with a circular island (hole) and a small second hole, like Fig. 3(b)/5/8;
+//   ding_c: a thin-walled pocketed frame (two rectangular pockets and a round one, walls about 10 mm);
+//   ding_d: a large solid cross-shaped plate with four notches (160 x 160 mm), the "solid structure" of case 4.
+#include "planner/mesh/generators.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "models/core/error.h"
+#include "planner/mesh/extrude.h"
+#include "planner/mesh/mesh_ops.h"
+
+namespace waam::planner {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using Vec2 = Eigen::Vector2d;
+
+struct ParamSpec {
+  std::string name;
+  std::vector<double> default_value;
+  std::size_t count;  // required number of values; 0 = any number (including none)
+  double min;
+  double max;
+  bool integer;
+  std::string help;
+};
+
+// Parameter values after defaults and checks; builders read them by name.
+class Args {
+ public:
+  Args(std::map<std::string, std::vector<double>> values, std::string where)
+      : values_(std::move(values)), where_(std::move(where)) {}
+  double operator()(const std::string& name, std::size_t i = 0) const { return values_.at(name).at(i); }
+  int Int(const std::string& name, std::size_t i = 0) const { return static_cast<int>(std::lround((*this)(name, i))); }
+  const std::vector<double>& List(const std::string& name) const { return values_.at(name); }
+  const std::string& where() const { return where_; }
+
+ private:
+  std::map<std::string, std::vector<double>> values_;
+  std::string where_;
+};
+
+struct GeneratorSpec {
+  std::string summary;
+  std::vector<ParamSpec> params;
+  std::function<TriangleMesh(const Args&)> build;
+};
+
+Ring Polygon(std::initializer_list<std::pair<double, double>> points, double scale) {
+  Ring ring;
+  for (const auto& [x, y] : points) ring.emplace_back(scale * x, scale * y);
+  return ring;
+}
+
+TriangleMesh Extrude(PolygonWithHoles region, double height) { return ExtrudeRegions({std::move(region)}, 0.0, height); }
+
+TriangleMesh BuildSphere(double r, int segments, int rings) {
+  TriangleMesh mesh;
+  mesh.vertices.emplace_back(0.0, 0.0, 0.0);  // south pole
+  for (int k = 1; k < rings; ++k) {
+    const double lat = -kPi / 2 + kPi * k / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double lon = 2 * kPi * j / segments;
+      mesh.vertices.emplace_back(r * std::cos(lat) * std::cos(lon), r * std::cos(lat) * std::sin(lon),
+                                 r + r * std::sin(lat));
+    }
+  }
+  const int north = static_cast<int>(mesh.vertices.size());
+  mesh.vertices.emplace_back(0.0, 0.0, 2 * r);
+  auto at = [&](int k, int j) { return 1 + (k - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) {
+    mesh.facets.push_back({0, at(1, j + 1), at(1, j)});
+    for (int k = 1; k + 1 < rings; ++k) {
+      mesh.facets.push_back({at(k, j), at(k, j + 1), at(k + 1, j + 1)});
+      mesh.facets.push_back({at(k, j), at(k + 1, j + 1), at(k + 1, j)});
+    }
+    mesh.facets.push_back({at(rings - 1, j), at(rings - 1, j + 1), north});
+  }
+  return mesh;
+}
+
+TriangleMesh BuildTorus(double major, double minor, int nu, int nv) {
+  TriangleMesh mesh;
+  for (int i = 0; i < nu; ++i) {
+    const double u = 2 * kPi * i / nu;
+    for (int j = 0; j < nv; ++j) {
+      const double v = 2 * kPi * j / nv;
+      const double rho = major + minor * std::cos(v);
+      mesh.vertices.emplace_back(rho * std::cos(u), rho * std::sin(u), minor + minor * std::sin(v));
+    }
+  }
+  auto at = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      mesh.facets.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      mesh.facets.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  return mesh;
+}
+
+TriangleMesh BuildPlateWithHoles(const Args& a) {
+  const double sx = a("size_mm", 0), sy = a("size_mm", 1), sz = a("size_mm", 2);
+  const std::vector<double>& d = a.List("hole_diameters_mm");
+  const std::vector<double>& c = a.List("hole_centers_mm");
+  WAAM_THROW_UNLESS(c.size() == 2 * d.size(), a.where() << ": plate_with_holes.hole_centers_mm has " << c.size()
+                                                        << " values: needs 2 (x, y) per hole, 2 x " << d.size() << " = "
+                                                        << 2 * d.size());
+  PolygonWithHoles region{RectangleRing(-sx / 2, -sy / 2, sx / 2, sy / 2), {}};
+  constexpr double kMinWallMm = 1.0;  // thinnest ligament between holes or to the edge
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const Vec2 center(c[2 * i], c[2 * i + 1]);
+    const double r = d[i] / 2;
+    WAAM_THROW_UNLESS(std::abs(center.x()) + r + kMinWallMm <= sx / 2 && std::abs(center.y()) + r + kMinWallMm <= sy / 2,
+                      a.where() << ": plate_with_holes hole " << i + 1 << " (diameter " << d[i] << " mm at "
+                                << center.x() << ", " << center.y() << " mm from the plate centre) must lie inside the "
+                                << sx << " x " << sy << " mm plate with at least " << kMinWallMm << " mm of wall");
+    for (std::size_t k = 0; k < i; ++k) {
+      const double gap = (center - Vec2(c[2 * k], c[2 * k + 1])).norm() - r - d[k] / 2;
+      WAAM_THROW_UNLESS(gap >= kMinWallMm, a.where() << ": plate_with_holes holes " << k + 1 << " and " << i + 1
+                                                     << " are " << gap << " mm apart: must be >= " << kMinWallMm
+                                                     << " mm (holes may not overlap)");
+    }
+    region.holes.push_back(CircleRing(center, r, a.Int("segments")));
+  }
+  return Extrude(std::move(region), sz);
+}
+
+// Defaults follow the rib-web of Nguyen 2022, section 4.6.5: walls about 9.0 mm (two overlapping 5.3 mm beads),
+// parts about 45 mm high, five contours per layer with the standard path (Table 13: outer wall + 4 cells, so 2 x 2
+// cells). The rib pitch is only drawn (Fig. 47), not given in the text; 60 mm is our choice.
+TriangleMesh BuildRibWeb(const Args& a) {
+  const int nx = a.Int("cells", 0), ny = a.Int("cells", 1);
+  const double px = a("pitch_mm", 0), py = a("pitch_mm", 1), wall = a("wall_mm");
+  WAAM_THROW_UNLESS(wall < std::min(px, py), a.where() << ": rib_web.wall_mm = " << wall
+                                                       << ": must be smaller than the rib pitch (" << std::min(px, py)
+                                                       << " mm) to leave open cells");
+  // Walls are centred on the pitch lines x = i px, y = j py; the outer wall is as thick as the ribs.
+  PolygonWithHoles region{RectangleRing(-wall / 2, -wall / 2, nx * px + wall / 2, ny * py + wall / 2), {}};
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < ny; ++j) {
+      region.holes.push_back(RectangleRing(i * px + wall / 2, j * py + wall / 2, (i + 1) * px - wall / 2,
+                                           (j + 1) * py - wall / 2));
+    }
+  }
+  return Extrude(std::move(region), a("height_mm"));
+}
+
+const std::map<std::string, GeneratorSpec>& Registry() {
+  static const std::map<std::string, GeneratorSpec> registry = [] {
+    const double kBig = 5000.0;  // mm: larger than any WAAM cell
+    std::map<std::string, GeneratorSpec> r;
+    const ParamSpec height{"height_mm", {30.0}, 1, 0.1, kBig, false, "extrusion height (mm)"};
+    const ParamSpec scale{"scale", {1.0}, 1, 0.01, 100.0, false, "scale factor applied to the plan outline"};
+    r["box"] = {"rectangular block",
+                {{"size_mm", {100.0, 60.0, 40.0}, 3, 0.1, kBig, false, "x, y, z edge lengths (mm)"}},
+                [](const Args& a) {
+                  return Extrude({RectangleRing(0, 0, a("size_mm", 0), a("size_mm", 1)), {}}, a("size_mm", 2));
+                }};
+    r["cylinder"] = {"upright cylinder (regular polygon prism)",
+                     {{"radius_mm", {30.0}, 1, 0.1, kBig, false, "radius (mm)"},
+                      {"height_mm", {60.0}, 1, 0.1, kBig, false, "height (mm)"},
+                      {"segments", {64.0}, 1, 3, 4096, true, "polygon sides"}},
+                     [](const Args& a) {
+                       return Extrude({CircleRing(Vec2::Zero(), a("radius_mm"), a.Int("segments")), {}}, a("height_mm"));
+                     }};
+    r["sphere"] = {"UV sphere resting on its south pole",
+                   {{"radius_mm", {40.0}, 1, 0.1, kBig, false, "radius (mm)"},
+                    {"segments", {64.0}, 1, 3, 8192, true, "meridians"},
+                    {"rings", {32.0}, 1, 2, 8192, true, "latitude bands"}},
+                   [](const Args& a) { return BuildSphere(a("radius_mm"), a.Int("segments"), a.Int("rings")); }};
+    r["torus"] = {"torus with a vertical axis, lying flat",
+                  {{"major_radius_mm", {50.0}, 1, 0.1, kBig, false, "axis to tube centre (mm)"},
+                   {"minor_radius_mm", {15.0}, 1, 0.1, kBig, false, "tube radius (mm), < major_radius_mm"},
+                   {"major_segments", {96.0}, 1, 3, 8192, true, "segments around the axis"},
+                   {"minor_segments", {48.0}, 1, 3, 8192, true, "segments around the tube"}},
+                  [](const Args& a) {
+                    WAAM_THROW_UNLESS(a("minor_radius_mm") < a("major_radius_mm"),
+                                      a.where() << ": torus.minor_radius_mm = " << a("minor_radius_mm")
+                                                << ": must be smaller than major_radius_mm = " << a("major_radius_mm"));
+                    return BuildTorus(a("major_radius_mm"), a("minor_radius_mm"), a.Int("major_segments"),
+                                      a.Int("minor_segments"));
+                  }};
+    r["plate_with_holes"] = {"plate with round through-holes",
+                             {{"size_mm", {160.0, 100.0, 12.0}, 3, 0.1, kBig, false, "x, y, thickness (mm)"},
+                              {"hole_diameters_mm", {30.0, 20.0, 20.0}, 0, 0.1, kBig, false, "one per hole (mm)"},
+                              {"hole_centers_mm", {-35.0, 0.0, 35.0, 25.0, 35.0, -25.0}, 0, -kBig, kBig, false,
+                               "x, y per hole from the plate centre (mm)"},
+                              {"segments", {48.0}, 1, 3, 4096, true, "polygon sides per hole"}},
+                             BuildPlateWithHoles};
+    r["l_shape"] = {"L-section block",
+                    {{"size_mm", {120.0, 80.0, 40.0}, 3, 0.1, kBig, false, "x, y, z overall (mm)"},
+                     {"leg_mm", {25.0, 25.0}, 2, 0.1, kBig, false, "width of the vertical and horizontal legs (mm)"}},
+                    [](const Args& a) {
+                      const double x = a("size_mm", 0), y = a("size_mm", 1), lx = a("leg_mm", 0), ly = a("leg_mm", 1);
+                      WAAM_THROW_UNLESS(lx < x && ly < y, a.where() << ": l_shape.leg_mm = [" << lx << ", " << ly
+                                                                    << "]: must be smaller than size_mm [" << x << ", "
+                                                                    << y << "]");
+                      return Extrude({Polygon({{0, 0}, {x, 0}, {x, ly}, {lx, ly}, {lx, y}, {0, y}}, 1.0), {}},
+                                     a("size_mm", 2));
+                    }};
+    r["t_shape"] = {"T-section block (flange on top of a centred web)",
+                    {{"size_mm", {120.0, 100.0, 40.0}, 3, 0.1, kBig, false, "x, y, z overall (mm)"},
+                     {"flange_mm", {25.0}, 1, 0.1, kBig, false, "flange depth along y (mm)"},
+                     {"web_mm", {30.0}, 1, 0.1, kBig, false, "web width along x (mm)"}},
+                    [](const Args& a) {
+                      const double x = a("size_mm", 0), y = a("size_mm", 1), f = a("flange_mm"), w = a("web_mm");
+                      WAAM_THROW_UNLESS(f < y && w < x, a.where() << ": t_shape flange_mm = " << f << " and web_mm = "
+                                                                  << w << ": must be smaller than size_mm y = " << y
+                                                                  << " and x = " << x);
+                      const double l = (x - w) / 2, rr = (x + w) / 2;
+                      return Extrude({Polygon({{l, 0}, {rr, 0}, {rr, y - f}, {x, y - f}, {x, y}, {0, y}, {0, y - f},
+                                               {l, y - f}},
+                                              1.0),
+                                      {}},
+                                     a("size_mm", 2));
+                    }};
+    r["rib_web"] = {"rib-web grid: outer wall and inner ribs around open cells",
+                    {{"cells", {2.0, 2.0}, 2, 1, 100, true, "open cells along x and y"},
+                     {"pitch_mm", {60.0, 60.0}, 2, 1.0, kBig, false, "rib spacing along x and y (mm)"},
+                     {"wall_mm", {9.0}, 1, 0.1, kBig, false, "wall and rib thickness (mm)"},
+                     {"height_mm", {45.0}, 1, 0.1, kBig, false, "height (mm)"}},
+                    BuildRibWeb};
+    // Outlines of the Ding et al. 2014 stand-ins (see the top of this file), in mm before scaling.
+    r["ding_a"] = {"Ding 2014 case-1-like non-convex polygon with four notches",
+                   {height, scale},
+                   [](const Args& a) {
+                     return Extrude({Polygon({{0, 0}, {60, 15}, {120, 0}, {120, 30}, {80, 45}, {120, 60}, {120, 100},
+                                              {60, 80}, {0, 100}, {20, 50}},
+                                             a("scale")),
+                                     {}},
+                                    a("height_mm"));
+                   }};
+    r["ding_b"] = {"Ding 2014 Fig. 3(b)-like notched polygon with a round island and a small hole",
+                   {height, scale, {"segments", {48.0}, 1, 8, 4096, true, "polygon sides per hole"}},
+                   [](const Args& a) {
+                     const double s = a("scale");
+                     PolygonWithHoles region{Polygon({{0, 0}, {60, 15}, {120, 0}, {120, 30}, {80, 45}, {120, 60},
+                                                      {120, 100}, {60, 80}, {0, 100}, {20, 50}},
+                                                     s),
+                                             {}};
+                     region.holes.push_back(CircleRing(Vec2(55 * s, 50 * s), 15 * s, a.Int("segments")));
+                     region.holes.push_back(CircleRing(Vec2(105 * s, 80 * s), 6 * s, a.Int("segments")));
+                     return Extrude(std::move(region), a("height_mm"));
+                   }};
+    r["ding_c"] = {"Ding 2014 case-3-like thin-walled frame with three pockets",
+                   {height, scale, {"segments", {48.0}, 1, 8, 4096, true, "polygon sides of the round pocket"}},
+                   [](const Args& a) {
+                     const double s = a("scale");
+                     PolygonWithHoles region{Polygon({{0, 0}, {140, 0}, {140, 70}, {110, 100}, {0, 100}}, s), {}};
+                     region.holes.push_back(Polygon({{10, 10}, {60, 10}, {60, 90}, {10, 90}}, s));
+                     region.holes.push_back(Polygon({{70, 10}, {130, 10}, {130, 45}, {70, 45}}, s));
+                     region.holes.push_back(CircleRing(Vec2(95 * s, 72 * s), 14 * s, a.Int("segments")));
+                     return Extrude(std::move(region), a("height_mm"));
+                   }};
+    r["ding_d"] = {"Ding 2014 case-4-like large solid cross with four notches",
+                   {height, scale},
+                   [](const Args& a) {
+                     return Extrude({Polygon({{50, 0}, {110, 0}, {110, 50}, {160, 50}, {160, 110}, {110, 110},
+                                              {110, 160}, {50, 160}, {50, 110}, {0, 110}, {0, 50}, {50, 50}},
+                                             a("scale")),
+                                     {}},
+                                    a("height_mm"));
+                   }};
+    return r;
+  }();
+  return registry;
+}
+
+std::string Join(const std::vector<double>& values) {
+  std::ostringstream out;
+  out << "[";
+  for (std::size_t i = 0; i < values.size(); ++i) out << (i ? ", " : "") << values[i];
+  out << "]";
+  return out.str();
+}
+
+}  // namespace
+
+TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params, const std::string& where) {
+  const auto& registry = Registry();
+  const auto it = registry.find(type);
+  if (it == registry.end()) {
+    std::ostringstream known;
+    for (const auto& [name, spec] : registry) known << (known.tellp() ? ", " : "") << name;
+    WAAM_THROW(where << ": unknown generator type '" << type << "' (known: " << known.str() << ")");
+  }
+  const GeneratorSpec& spec = it->second;
+  for (const auto& [name, values] : params) {
+    const bool known = std::any_of(spec.params.begin(), spec.params.end(), [&](const ParamSpec& p) { return p.name == name; });
+    if (!known) {
+      std::ostringstream names;
+      for (const ParamSpec& p : spec.params) names << (names.tellp() ? ", " : "") << p.name;
+      WAAM_THROW(where << ": unknown parameter '" << name << "' for generator " << type << " (known: " << names.str()
+                       << ")");
+    }
+  }
+  std::map<std::string, std::vector<double>> values;
+  for (const ParamSpec& p : spec.params) {
+    const auto given = params.find(p.name);
+    const std::vector<double>& v = given == params.end() ? p.default_value : given->second;
+    WAAM_THROW_UNLESS(p.count == 0 || v.size() == p.count, where << ": " << type << "." << p.name << " = " << Join(v)
+                                                                 << ": needs " << p.count << " value"
+                                                                 << (p.count > 1 ? "s" : "") << " (" << p.help << ")");
+    for (double x : v) {
+      WAAM_THROW_UNLESS(std::isfinite(x) && x >= p.min && x <= p.max,
+                        where << ": " << type << "." << p.name << " = " << Join(v) << ": each value must be in ["
+                              << p.min << ", " << p.max << "] (" << p.help << ")");
+      WAAM_THROW_UNLESS(!p.integer || x == std::round(x),
+                        where << ": " << type << "." << p.name << " = " << Join(v) << ": must be whole numbers");
+    }
+    values[p.name] = v;
+  }
+  TriangleMesh mesh = spec.build(Args(std::move(values), where));
+  // Centre the bounding box on x = y = 0 and rest the part on z = 0.
+  Eigen::Vector3d lo, hi;
+  BoundingBox(mesh, &lo, &hi);
+  Translate(&mesh, Eigen::Vector3d(-(lo.x() + hi.x()) / 2, -(lo.y() + hi.y()) / 2, -lo.z()));
+  return mesh;
+}
+
+std::vector<std::string> GeneratorTypes() {
+  std::vector<std::string> types;
+  for (const auto& [name, spec] : Registry()) types.push_back(name);
+  return types;
+}
+
+std::string GeneratorHelp() {
+  std::ostringstream out;
+  for (const auto& [name, spec] : Registry()) {
+    out << "  " << name << ": " << spec.summary << "\n";
+    for (const ParamSpec& p : spec.params) {
+      out << "      " << p.name << " = " << Join(p.default_value) << "  " << p.help << "\n";
+    }
+  }
+  return out.str();
+}
+
+}  // namespace waam::planner

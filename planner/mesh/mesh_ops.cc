@@ -1,0 +1,215 @@
+// Welding, edge analysis and simple measures of indexed triangle meshes.
+#include "planner/mesh/mesh_ops.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+namespace waam::planner {
+namespace {
+
+// Mixes three cell coordinates into one hash key; different cells may share a key (their points are still
+// compared by distance), so this only has to spread well.
+std::uint64_t CellKey(std::int64_t i, std::int64_t j, std::int64_t k) {
+  std::uint64_t h = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull;
+  h ^= static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+  h ^= static_cast<std::uint64_t>(k) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+  return h;
+}
+
+std::uint64_t BitsKey(const Eigen::Vector3d& p) {
+  std::uint64_t bits[3];
+  for (int a = 0; a < 3; ++a) {
+    const double v = p[a] == 0.0 ? 0.0 : p[a];  // -0 and +0 weld together
+    std::memcpy(&bits[a], &v, sizeof(double));
+  }
+  return CellKey(static_cast<std::int64_t>(bits[0]), static_cast<std::int64_t>(bits[1]),
+                 static_cast<std::int64_t>(bits[2]));
+}
+
+// Undirected edge key (smaller vertex id in the high half) and the direction a facet runs it.
+std::uint64_t EdgeKey(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+}  // namespace
+
+bool IsDegenerateFacet(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  if (longest2 == 0.0) return true;
+  // |(b-a) x (c-a)| = 2 area; relative to the longest edge squared it is the sine of the flattest angle scale.
+  return (b - a).cross(c - a).norm() <= 1e-12 * longest2;
+}
+
+TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double weld_tolerance_mm,
+                           std::size_t* degenerate) {
+  TriangleMesh mesh;
+  std::unordered_map<std::uint64_t, int> head;  // cell key -> last vertex inserted in that cell
+  std::vector<int> next;                        // vertex -> previous vertex in the same cell list
+  head.reserve(corners.size() / 2 + 1);
+  const bool exact = weld_tolerance_mm <= 0.0;
+  const double tol2 = weld_tolerance_mm * weld_tolerance_mm;
+  const double inv_cell = exact ? 0.0 : 0.5 / weld_tolerance_mm;
+
+  auto find_or_add = [&](const Eigen::Vector3d& p) -> int {
+    int best = std::numeric_limits<int>::max();
+    if (exact) {
+      const auto it = head.find(BitsKey(p));
+      for (int v = it == head.end() ? -1 : it->second; v >= 0; v = next[v]) {
+        if (mesh.vertices[v] == p) best = std::min(best, v);
+      }
+      if (best != std::numeric_limits<int>::max()) return best;
+      const int id = static_cast<int>(mesh.vertices.size());
+      mesh.vertices.push_back(p);
+      auto [slot, inserted] = head.try_emplace(BitsKey(p), id);
+      next.push_back(inserted ? -1 : slot->second);
+      slot->second = id;
+      return id;
+    }
+    // Cells are 2 tol wide, so along each axis a point is within tol of its own cell and at most one neighbour:
+    // 8 cells to search instead of 27.
+    std::int64_t cell[3];
+    std::int64_t other[3];
+    for (int a = 0; a < 3; ++a) {
+      // Clamped so the cast stays defined for absurd coordinates (points there simply share far cells).
+      const double u = std::clamp(p[a] * inv_cell, -1e15, 1e15);
+      cell[a] = static_cast<std::int64_t>(std::floor(u));
+      other[a] = u - static_cast<double>(cell[a]) < 0.5 ? cell[a] - 1 : cell[a] + 1;
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+      const auto it = head.find(CellKey(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1],
+                                        corner & 4 ? other[2] : cell[2]));
+      if (it == head.end()) continue;
+      for (int v = it->second; v >= 0; v = next[v]) {
+        if (v < best && (mesh.vertices[v] - p).squaredNorm() <= tol2) best = v;
+      }
+    }
+    if (best != std::numeric_limits<int>::max()) return best;
+    const int id = static_cast<int>(mesh.vertices.size());
+    mesh.vertices.push_back(p);
+    auto [slot, inserted] = head.try_emplace(CellKey(cell[0], cell[1], cell[2]), id);
+    next.push_back(inserted ? -1 : slot->second);
+    slot->second = id;
+    return id;
+  };
+
+  std::size_t dropped = 0;
+  mesh.facets.reserve(corners.size() / 3);
+  for (std::size_t f = 0; f + 2 < corners.size(); f += 3) {
+    const std::array<int, 3> ids = {find_or_add(corners[f]), find_or_add(corners[f + 1]),
+                                    find_or_add(corners[f + 2])};
+    if (ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0] ||
+        IsDegenerateFacet(mesh.vertices[ids[0]], mesh.vertices[ids[1]], mesh.vertices[ids[2]])) {
+      ++dropped;
+      continue;
+    }
+    mesh.facets.push_back(ids);
+  }
+  if (degenerate) *degenerate = dropped;
+  if (dropped > 0) {
+    // Vertices used only by dropped facets are removed (ids keep their first-seen order).
+    std::vector<int> new_id(mesh.vertices.size(), -1);
+    for (const std::array<int, 3>& f : mesh.facets) {
+      for (int v : f) new_id[v] = 0;
+    }
+    int kept = 0;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      if (new_id[v] < 0) continue;
+      new_id[v] = kept;
+      mesh.vertices[kept++] = mesh.vertices[v];
+    }
+    mesh.vertices.resize(kept);
+    for (std::array<int, 3>& f : mesh.facets) {
+      for (int& v : f) v = new_id[v];
+    }
+  }
+  return mesh;
+}
+
+MeshReport InspectMesh(const TriangleMesh& mesh, double weld_tolerance_mm, const std::string& source) {
+  MeshReport report;
+  report.source = source;
+  report.weld_tolerance_mm = weld_tolerance_mm;
+  report.facets_read = mesh.facets.size();
+  report.vertices = mesh.vertices.size();
+  BoundingBox(mesh, &report.bbox_min, &report.bbox_max);
+
+  // Each facet contributes its three edges with the direction it runs them; sorting groups the uses of an edge.
+  std::vector<std::pair<std::uint64_t, bool>> edges;
+  edges.reserve(mesh.facets.size() * 3);
+  for (const std::array<int, 3>& f : mesh.facets) {
+    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0] ||
+        IsDegenerateFacet(mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]])) {
+      ++report.degenerate_facets;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k];
+      const int b = f[(k + 1) % 3];
+      edges.emplace_back(EdgeKey(a, b), a < b);
+    }
+  }
+  report.facets = mesh.facets.size() - report.degenerate_facets;
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    const std::size_t count = j - i;
+    if (count == 1) ++report.boundary_edges;
+    if (count > 2) ++report.non_manifold_edges;
+    if (count == 2 && edges[i].second == edges[i + 1].second) ++report.misoriented_edges;
+    i = j;
+  }
+  report.watertight = !mesh.facets.empty() && report.boundary_edges == 0 && report.non_manifold_edges == 0;
+  report.volume_mm3 = EnclosedVolume(mesh);
+  return report;
+}
+
+void BoundingBox(const TriangleMesh& mesh, Eigen::Vector3d* min, Eigen::Vector3d* max) {
+  if (mesh.vertices.empty()) {
+    *min = Eigen::Vector3d::Zero();
+    *max = Eigen::Vector3d::Zero();
+    return;
+  }
+  *min = mesh.vertices.front();
+  *max = mesh.vertices.front();
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    *min = min->cwiseMin(v);
+    *max = max->cwiseMax(v);
+  }
+}
+
+double EnclosedVolume(const TriangleMesh& mesh) {
+  // Divergence theorem: V = (1/6) sum over facets of a . (b x c), each term a signed tetrahedron to the origin.
+  // Points are taken relative to the first vertex to keep the sum well conditioned far from the origin.
+  if (mesh.vertices.empty()) return 0.0;
+  const Eigen::Vector3d o = mesh.vertices.front();
+  double six_v = 0.0;
+  for (const std::array<int, 3>& f : mesh.facets) {
+    const Eigen::Vector3d a = mesh.vertices[f[0]] - o;
+    const Eigen::Vector3d b = mesh.vertices[f[1]] - o;
+    const Eigen::Vector3d c = mesh.vertices[f[2]] - o;
+    six_v += a.dot(b.cross(c));
+  }
+  return six_v / 6.0;
+}
+
+double PlaceOnBuildPlate(TriangleMesh* mesh) {
+  if (mesh->vertices.empty()) return 0.0;
+  double z_min = mesh->vertices.front().z();
+  for (const Eigen::Vector3d& v : mesh->vertices) z_min = std::min(z_min, v.z());
+  Translate(mesh, Eigen::Vector3d(0.0, 0.0, -z_min));
+  return -z_min;
+}
+
+void Translate(TriangleMesh* mesh, const Eigen::Vector3d& offset_mm) {
+  for (Eigen::Vector3d& v : mesh->vertices) v += offset_mm;
+}
+
+}  // namespace waam::planner

@@ -1,0 +1,309 @@
+// Ding et al. 2014 continuous path: convex pieces (3.1), a contour + zigzag loop each (3.2), one pass (3.3).
+//
+// Linking (3.3) differs from the paper in how the links are found: Ding stores the split lines of the decomposition
+// and re-routes the two sub-paths at each of them. Here the pieces' loops are joined along a spanning tree of the
+// lines the pieces share (split lines and the merging lines of holes alike, longest first): near the end of the
+// shared line that lies on the outline (Ding puts the connections on the outline), a short piece of each loop is
+// cut out and the two loops are crossed over with two parallel links, like a 2-opt move. Two closed loops become
+// one closed loop, so after the tree is done each region is one weld pass. A link must keep w/2 from the wall (or,
+// failing that anywhere along the line, stay inside the region); a line where neither holds is skipped, and if the
+// tree cannot be completed the remaining loops are separate passes joined by arc-off travel.
+#include "planner/path/continuous_pattern.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
+
+#include "planner/geometry/clipper_adapter.h"
+#include "planner/geometry/convex_decomposition.h"
+#include "planner/path/convex_fill.h"
+#include "planner/path/hybrid_pattern.h"
+#include "planner/path/pattern_common.h"
+
+namespace waam::planner::internal {
+namespace {
+
+using Vec = Eigen::Vector2d;
+
+// A hole with more vertices than this is treated as round (a bore): see SeparateRoundHoles.
+constexpr int kRoundHoleVertices = 8;
+// Sides of the coarse polygon that replaces a round hole in the decomposition.
+constexpr int kRoundHoleSides = 8;
+
+// A closed loop whose edge k (from point k to k+1) was laid in piece `piece[k]` (-1: a link between pieces).
+struct TaggedLoop {
+  std::vector<Vec> p;
+  std::vector<int> piece;
+};
+
+struct Cut {
+  std::size_t edge = 0;
+  Vec first, second;  // the cut-out stretch along the edge direction
+};
+
+// Nearest edge of `loop` laid in `piece` to point m, and the stretch of length <= gap around it to cut out.
+bool FindCut(const TaggedLoop& loop, int piece, const Vec& m, double gap, Cut* cut) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < loop.p.size(); ++k) {
+    if (loop.piece[k] != piece) continue;
+    const Vec& a = loop.p[k];
+    const Vec& b = loop.p[(k + 1) % loop.p.size()];
+    const double len = (b - a).norm();
+    if (len < 1e-6) continue;
+    const Vec u = (b - a) / len;
+    const double g = std::min(gap, 0.5 * len);
+    const double t = std::clamp((m - a).dot(u), 0.5 * g, len - 0.5 * g);
+    const double d = (a + t * u - m).norm();
+    if (d < best) best = d, *cut = Cut{k, a + (t - 0.5 * g) * u, a + (t + 0.5 * g) * u};
+  }
+  return std::isfinite(best);
+}
+
+TaggedLoop Reversed(const TaggedLoop& loop) {
+  TaggedLoop r;
+  const std::size_t n = loop.p.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    r.p.push_back(loop.p[n - 1 - k]);
+    r.piece.push_back(loop.piece[(2 * n - 2 - k) % n]);  // edge (n-1-k) -> (n-2-k) was edge n-2-k forward
+  }
+  return r;
+}
+
+// Walks `loop` from the end of the cut around to its start: second, p[edge+1], ..., p[edge], first.
+void AppendFrom(const TaggedLoop& loop, const Cut& cut, int piece, TaggedLoop* out) {
+  const std::size_t n = loop.p.size();
+  out->p.push_back(cut.second);
+  out->piece.push_back(piece);
+  for (std::size_t k = 1; k <= n; ++k) {
+    const std::size_t i = (cut.edge + k) % n;
+    out->p.push_back(loop.p[i]);
+    out->piece.push_back(loop.piece[i]);
+  }
+  out->p.push_back(cut.first);
+  out->piece.push_back(-1);  // first -> the other loop is a link
+}
+
+// A place to join two loops: near point m, cutting an edge of loop x laid in tag_x and one of loop y in tag_y.
+struct JoinSite {
+  Vec m = Vec::Zero();
+  int tag_x = 0;
+  int tag_y = 0;
+};
+
+// Joins loops x and y at the first site whose two links keep w/2 from the wall (strict) or, failing every site,
+// stay inside the region (loose); false if none does.
+bool JoinLoops(const TaggedLoop& x, const TaggedLoop& y, const std::vector<JoinSite>& sites, double gap,
+               const std::vector<PolygonWithHoles>& strict, const std::vector<PolygonWithHoles>& loose,
+               TaggedLoop* joined) {
+  for (const auto* area : {&strict, &loose}) {
+    for (const JoinSite& site : sites) {
+      Cut cx, cy;
+      if (!FindCut(x, site.tag_x, site.m, gap, &cx) || !FindCut(y, site.tag_y, site.m, gap, &cy)) continue;
+      // The two cut edges must run in opposite directions for the two links to be parallel, not crossed.
+      const bool flip = (cx.second - cx.first).dot(cy.second - cy.first) > 0.0;
+      const TaggedLoop yy = flip ? Reversed(y) : y;
+      if (flip && !FindCut(yy, site.tag_y, site.m, gap, &cy)) continue;
+      if (!SegmentInside(cx.first, cy.second, *area) || !SegmentInside(cy.first, cx.second, *area)) continue;
+      joined->p.clear();
+      joined->piece.clear();
+      AppendFrom(x, cx, site.tag_x, joined);
+      AppendFrom(yy, cy, site.tag_y, joined);
+      return true;
+    }
+  }
+  return false;
+}
+
+// Ding 3.3: join across a shared line near its end on the outline (one link width in), else mid-line, else the
+// other end.
+std::vector<JoinSite> SharedEdgeSites(const SharedEdge& edge, double w) {
+  const double len = (edge.b - edge.a).norm();
+  const Vec u = (edge.b - edge.a) / len;
+  const double near = std::min(w, 0.5 * len);
+  std::vector<JoinSite> sites;
+  for (double s : {near, 0.5 * len, len - near}) sites.push_back(JoinSite{edge.a + s * u, edge.piece_a, edge.piece_b});
+  return sites;
+}
+
+// Fallback for loops that share no line (a hole's ring, or pieces whose shared line had no room for links): the
+// closest pairs of edges of x and y, at most `max_distance` apart, nearest first.
+std::vector<JoinSite> NearestSites(const TaggedLoop& x, const TaggedLoop& y, double max_distance) {
+  std::vector<std::pair<double, JoinSite>> found;
+  for (std::size_t i = 0; i < x.p.size(); ++i) {
+    if (x.piece[i] < 0) continue;
+    const Vec mx = 0.5 * (x.p[i] + x.p[(i + 1) % x.p.size()]);
+    double best = max_distance;
+    JoinSite site;
+    for (std::size_t j = 0; j < y.p.size(); ++j) {
+      if (y.piece[j] < 0) continue;
+      const Vec a = y.p[j], b = y.p[(j + 1) % y.p.size()];
+      const double l2 = (b - a).squaredNorm();
+      const Vec q = a + (l2 > 0.0 ? std::clamp((mx - a).dot(b - a) / l2, 0.0, 1.0) : 0.0) * (b - a);
+      if ((q - mx).norm() < best) best = (q - mx).norm(), site = JoinSite{0.5 * (mx + q), x.piece[i], y.piece[j]};
+    }
+    if (best < max_distance) found.emplace_back(best, site);
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<JoinSite> sites;
+  for (std::size_t k = 0; k < found.size() && k < 12; ++k) sites.push_back(found[k].second);
+  return sites;
+}
+
+int Find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// Drops points where the loop goes straight on, so each weld move is one path element.
+Ring Simplify(const std::vector<Vec>& in) {
+  Ring out;
+  const std::size_t n = in.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec& a = in[(i + n - 1) % n];
+    const Vec& b = in[i];
+    const Vec& c = in[(i + 1) % n];
+    const Vec e1 = b - a, e2 = c - b;
+    const bool straight = std::abs(e1.x() * e2.y() - e1.y() * e2.x()) <= 1e-9 * (e1.norm() * e2.norm()) &&
+                          e1.dot(e2) > 0.0;
+    if (!straight && e1.norm() > 1e-9) out.push_back(b);
+  }
+  return out;
+}
+
+// Convex polygon with `sides` edges at evenly spaced normals, each a support line of `ring`: it contains the ring.
+Ring Circumscribe(const Ring& ring, int sides) {
+  Eigen::Vector2d lo = ring.front(), hi = ring.front();
+  for (const Vec& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double big = 10.0 * (hi - lo).norm() + 1.0;
+  const Vec centre = 0.5 * (lo + hi);
+  std::vector<PolygonWithHoles> cell{{{centre + Vec(-big, -big), centre + Vec(big, -big), centre + Vec(big, big),
+                                       centre + Vec(-big, big)}, {}}};
+  for (int k = 0; k < sides; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / sides;
+    const Vec n(std::cos(a), std::sin(a)), t(-n.y(), n.x());
+    double h = -std::numeric_limits<double>::infinity();
+    for (const Vec& p : ring) h = std::max(h, n.dot(p - centre));
+    const Vec base = centre + h * n;
+    cell = Intersection(cell, {{{base - 3.0 * big * n - 3.0 * big * t, base - 3.0 * big * n + 3.0 * big * t,
+                                 base + 3.0 * big * t, base - 3.0 * big * t}, {}}});
+  }
+  return cell.empty() ? Ring{} : cell.front().outer;
+}
+
+// Round holes (many notches) are taken out of the decomposition: the hole gets its own contour ring (a loop joined
+// to its neighbours like any other) and the pieces are cut from the region minus a coarse polygon around the ring.
+struct Prepared {
+  std::vector<PolygonWithHoles> regions;  // what is decomposed
+  std::vector<Ring> hole_rings;           // bead centre lines around round holes
+};
+
+Prepared SeparateRoundHoles(const PolygonWithHoles& region, const OverlapSpacing& spacing) {
+  Prepared out;
+  std::vector<PolygonWithHoles> cut_away;
+  PolygonWithHoles kept{region.outer, {}};
+  for (const Ring& hole : region.holes) {
+    Ring solid = hole;
+    if (SignedArea(solid) < 0.0) std::reverse(solid.begin(), solid.end());
+    const std::vector<PolygonWithHoles> ring = Offset({{solid, {}}}, spacing.boundary_offset_mm);
+    const std::vector<PolygonWithHoles> band = Offset({{solid, {}}}, spacing.contour_to_contour_mm);
+    const bool round = static_cast<int>(hole.size()) > kRoundHoleVertices;
+    std::vector<PolygonWithHoles> others;
+    for (const Ring& other : region.holes) {
+      if (&other != &hole) others.push_back({other, {}});
+    }
+    // A ring that would cross the outline or another hole cannot be laid: such holes stay in the decomposition.
+    if (!round || ring.size() != 1 || band.size() != 1 ||
+        Area(Difference(ring, {{region.outer, {}}})) > 1e-6 || Area(Intersection(ring, others)) > 1e-6) {
+      kept.holes.push_back(hole);
+      continue;
+    }
+    out.hole_rings.push_back(ring.front().outer);
+    // The coarse polygon holds the hole grown by d2, so piece contours keep >= d2 from the ring's centre line.
+    cut_away.push_back({Circumscribe(band.front().outer, kRoundHoleSides), {}});
+  }
+  out.regions = cut_away.empty() ? std::vector<PolygonWithHoles>{kept} : Difference({kept}, cut_away);
+  return out;
+}
+
+}  // namespace
+
+void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& options, const OverlapSpacing& spacing,
+                    std::vector<Move2D>* moves) {
+  const Prepared prepared = SeparateRoundHoles(region, spacing);
+  std::vector<Ring> pieces;
+  std::vector<SharedEdge> shared;
+  try {
+    for (const PolygonWithHoles& part : prepared.regions) {
+      const std::vector<Ring> part_pieces = DecomposeConvex(part);
+      for (SharedEdge edge : FindSharedEdges(part_pieces, part)) {
+        edge.piece_a += static_cast<int>(pieces.size());
+        edge.piece_b += static_cast<int>(pieces.size());
+        shared.push_back(edge);
+      }
+      pieces.insert(pieces.end(), part_pieces.begin(), part_pieces.end());
+    }
+  } catch (const std::logic_error&) {
+    // A decomposition that fails on degenerate geometry falls back to the hybrid baseline for this region.
+    PlanHybrid(region, options, spacing, moves);
+    return;
+  }
+  std::stable_sort(shared.begin(), shared.end(), [](const SharedEdge& x, const SharedEdge& y) {
+    return (x.b - x.a).norm() > (y.b - y.a).norm();
+  });
+  const double w = options.bead_width_mm;
+  std::vector<TaggedLoop> loops(pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (ConvexHull(pieces[i]).size() < 3) continue;  // a degenerate sliver: no path, nothing to join
+    const double angle = options.zigzag_auto ? MinimumWidthDirection(pieces[i], nullptr) : options.zigzag_angle_rad;
+    loops[i].p = ConvexPieceLoop(pieces[i], angle, spacing);
+    loops[i].piece.assign(loops[i].p.size(), static_cast<int>(i));
+  }
+  for (const Ring& ring : prepared.hole_rings) {
+    loops.push_back(TaggedLoop{ring, std::vector<int>(ring.size(), static_cast<int>(loops.size()))});
+  }
+  // Kruskal over the shared lines, longest first: every accepted line joins two loops into one. loops[root] holds
+  // the joined loop of a tree.
+  const std::vector<PolygonWithHoles> strict = Offset({region}, -(spacing.boundary_offset_mm - 0.01));
+  const std::vector<PolygonWithHoles> loose = Offset({region}, -0.01);
+  std::vector<int> parent(pieces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const SharedEdge& edge : shared) {
+    const int ra = Find(parent, edge.piece_a), rb = Find(parent, edge.piece_b);
+    if (ra == rb || loops[ra].p.size() < 3 || loops[rb].p.size() < 3) continue;
+    TaggedLoop joined;
+    if (!JoinLoops(loops[ra], loops[rb], SharedEdgeSites(edge, w), spacing.zigzag_mm, strict, loose, &joined)) {
+      continue;
+    }
+    loops[ra] = std::move(joined);
+    loops[rb] = TaggedLoop{};
+    parent[rb] = ra;
+  }
+  // Loops still apart (hole rings, pieces across a piece too thin for a path) are joined where they come closest.
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (std::size_t i = 0; i < loops.size() && !progress; ++i) {
+      for (std::size_t j = i + 1; j < loops.size() && !progress; ++j) {
+        if (loops[i].p.size() < 3 || loops[j].p.size() < 3) continue;
+        TaggedLoop joined;
+        if (JoinLoops(loops[i], loops[j], NearestSites(loops[i], loops[j], 2.0 * w), spacing.zigzag_mm, strict,
+                      loose, &joined)) {
+          loops[i] = std::move(joined);
+          loops[j] = TaggedLoop{};
+          progress = true;
+        }
+      }
+    }
+  }
+  // Each remaining loop is one pass; the start rotates along the outline layer by layer and odd layers run the
+  // loop the other way, so arc starts and the direction of travel do not stack up.
+  const Vec start = PointAlongRing(region.outer, StartFraction(options));
+  const bool reverse = options.alternate_start && options.layer_index % 2 == 1;
+  for (const TaggedLoop& loop : loops) {
+    if (loop.p.size() >= 3) AppendLoop(Simplify(loop.p), start, reverse, moves);
+  }
+}
+
+}  // namespace waam::planner::internal

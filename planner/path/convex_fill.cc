@@ -1,0 +1,130 @@
+// Contour + zigzag closed loop for one convex piece (Ding et al. 2014, 3.2 steps 1-5, Fig. 7).
+//
+// Ding offsets the polygon's "left chain" to bound the zigzag and walks: left chain contour, then the zigzag whose
+// turnarounds on the right lie on the contour. This is the mirror image: with n the normal of the raster direction
+// ("up") and B, T the lowest and highest points of the contour ring C (the piece inset by w/2):
+//   B -> right chain of C -> T -> down the left chain to the first raster -> zigzag downwards, where the left ends
+//   of the rasters lie on C (the left turnarounds follow C) and the right ends lie on Z = C inset by d1 (the right
+//   turnarounds follow Z, d1 inside the contour just laid) -> down the left chain to B.
+// The number of rasters is made even so the zigzag ends on the left chain and the loop closes at B; the rasters are
+// spread evenly from the top to the bottom of Z, so their pitch is at most l.
+#include "planner/path/convex_fill.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "planner/geometry/clipper_adapter.h"
+
+namespace waam::planner::internal {
+namespace {
+
+using Vec = Eigen::Vector2d;
+
+// Rasters sit this far (mm) inside the top and bottom of Z so they cut Z's chains, not run along a flush edge.
+constexpr double kLevelInsetMm = 1e-4;
+
+struct Frame {
+  Vec u, n;
+  double h(const Vec& p) const { return n.dot(p); }
+  double x(const Vec& p) const { return u.dot(p); }
+};
+
+// The largest ring of an inward offset of a convex ring (convex up to Clipper's rounding); empty if none.
+Ring InsetConvex(const Ring& ring, double inset_mm) {
+  Ring best;
+  double best_area = 0.0;
+  for (const PolygonWithHoles& r : Offset({PolygonWithHoles{ring, {}}}, -inset_mm)) {
+    if (Area(r) > best_area) best_area = Area(r), best = r.outer;
+  }
+  return best;
+}
+
+// Rotates `ring` (CCW) so it starts at its lowest point (ties: the one farthest along u) and returns the index of
+// the first highest point met walking CCW from there: [0, top] is the right chain, [top, n) + 0 the left chain.
+int RotateToBottom(const Frame& f, Ring* ring) {
+  const double tol = 1e-7;
+  int bottom = 0;
+  for (int i = 1; i < static_cast<int>(ring->size()); ++i) {
+    const Vec& p = (*ring)[i];
+    const Vec& b = (*ring)[bottom];
+    if (f.h(p) < f.h(b) - tol || (std::abs(f.h(p) - f.h(b)) <= tol && f.x(p) > f.x(b))) bottom = i;
+  }
+  std::rotate(ring->begin(), ring->begin() + bottom, ring->end());
+  int top = 0;
+  for (int i = 1; i < static_cast<int>(ring->size()); ++i) {
+    if (f.h((*ring)[i]) > f.h((*ring)[top]) + tol) top = i;
+  }
+  return top;
+}
+
+// The part of a chain (h non-increasing along it) between levels h_hi >= h_lo, with the end points interpolated.
+std::vector<Vec> Between(const Frame& f, const std::vector<Vec>& chain, double h_hi, double h_lo) {
+  std::vector<Vec> out;
+  auto push = [&](const Vec& p) {
+    if (out.empty() || (p - out.back()).norm() > 1e-9) out.push_back(p);
+  };
+  auto at = [&](const Vec& a, const Vec& b, double level) {
+    const double ha = f.h(a), hb = f.h(b);
+    const double t = ha - hb > 1e-15 ? std::clamp((ha - level) / (ha - hb), 0.0, 1.0) : 0.0;
+    return Vec(a + t * (b - a));
+  };
+  for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+    const Vec& a = chain[i];
+    const Vec& b = chain[i + 1];
+    const double top = std::min(f.h(a), h_hi), bottom = std::max(f.h(b), h_lo);
+    if (top < bottom) continue;
+    push(at(a, b, top));
+    push(at(a, b, bottom));
+  }
+  return out;
+}
+
+void Append(const std::vector<Vec>& points, Ring* loop) {
+  for (const Vec& p : points) {
+    if (loop->empty() || (p - loop->back()).norm() > 1e-9) loop->push_back(p);
+  }
+}
+
+}  // namespace
+
+Ring ConvexPieceLoop(const Ring& piece, double angle_rad, const OverlapSpacing& spacing) {
+  Ring contour = InsetConvex(piece, spacing.boundary_offset_mm);
+  if (contour.size() < 3) return {};
+  const Frame f{Vec(std::cos(angle_rad), std::sin(angle_rad)), Vec(-std::sin(angle_rad), std::cos(angle_rad))};
+  const int top = RotateToBottom(f, &contour);
+
+  Ring zig = InsetConvex(contour, spacing.contour_to_zigzag_mm);
+  if (zig.size() < 3) return contour;
+  const int zig_top = RotateToBottom(f, &zig);
+  const double z_hi = f.h(zig[zig_top]) - kLevelInsetMm, z_lo = f.h(zig[0]) + kLevelInsetMm;
+  // A zigzag strip thinner than a quarter step-over adds little but doubled metal: the contour alone fills it.
+  if (z_hi - z_lo < 0.25 * spacing.zigzag_mm) return contour;
+  int lines = std::max(2, static_cast<int>(std::ceil((z_hi - z_lo) / spacing.zigzag_mm - 1e-9)) + 1);
+  if (lines % 2 == 1) ++lines;
+  const double step = (z_hi - z_lo) / (lines - 1);
+  auto level = [&](int k) { return z_hi - k * step; };  // k = 0 .. lines-1, top to bottom
+
+  std::vector<Vec> left(contour.begin() + top, contour.end());  // C's left chain, T down to B
+  left.push_back(contour.front());
+  std::vector<Vec> zig_right(zig.begin(), zig.begin() + zig_top + 1);  // Z's right chain, top down to bottom
+  std::reverse(zig_right.begin(), zig_right.end());
+  const double inf = std::numeric_limits<double>::infinity();
+
+  Ring loop(contour.begin(), contour.begin() + top + 1);  // B up the right chain to T
+  Append(Between(f, left, inf, level(0)), &loop);            // T down to the first raster
+  for (int k = 0; k < lines; ++k) {
+    if (k % 2 == 0) {
+      // Raster to the right end on Z, then (if more follow) down Z's right chain to the next raster.
+      const std::vector<Vec> turn = Between(f, zig_right, level(k), k + 1 < lines ? level(k + 1) : level(k));
+      Append(turn, &loop);
+    } else {
+      // Raster back to the left end on C, then down C's left chain to the next raster (or to B after the last).
+      Append(Between(f, left, level(k), k + 1 < lines ? level(k + 1) : -inf), &loop);
+    }
+  }
+  if (loop.size() > 1 && (loop.back() - loop.front()).norm() <= 1e-9) loop.pop_back();
+  return loop;
+}
+
+}  // namespace waam::planner::internal

@@ -1,0 +1,14 @@
+// Internal: the closed contour + zigzag loop that fills one convex piece (Ding et al. 2014, section 3.2).
+#pragma once
+
+#include "planner/geometry/polygon.h"
+#include "planner/path/layer_pattern.h"
+
+namespace waam::planner::internal {
+
+// Closed loop (last point not repeated, mm) that fills the convex `piece` with zigzag lines at `angle_rad` (radians
+// from +x): contour w/2 inside the piece on one chain, zigzag lines l apart whose ends reach the contour on that
+// chain and stop d1 short of it on the other. Empty when the piece is narrower than one bead.
+Ring ConvexPieceLoop(const Ring& piece, double angle_rad, const OverlapSpacing& spacing);
+
+}  // namespace waam::planner::internal

@@ -1,0 +1,60 @@
+// Overlap spacings of the dissertation's bead model and the dispatch of a slice to its fill pattern.
+#include "planner/path/layer_pattern.h"
+
+#include <cmath>
+
+#include "models/core/error.h"
+#include "planner/geometry/clipper_adapter.h"
+#include "planner/path/continuous_pattern.h"
+#include "planner/path/contour_pattern.h"
+#include "planner/path/hybrid_pattern.h"
+#include "planner/path/pattern_common.h"
+#include "planner/path/zigzag_pattern.h"
+
+namespace waam::planner {
+
+OverlapSpacing OverlapSpacingFor(const std::string& model, double bead_width_mm) {
+  WAAM_THROW_UNLESS(std::isfinite(bead_width_mm) && bead_width_mm > 0.0,
+                    "overlap spacing: bead width = " << bead_width_mm << " mm: must be > 0");
+  const double w = bead_width_mm;
+  OverlapSpacing s;
+  // The outer contour bead is laid with its centre half a bead inside the outline, so its flank meets the wall.
+  s.boundary_offset_mm = 0.5 * w;
+  // l = 0.738 w between zigzag beads (Ding et al.'s step-over, dissertation 003 Fig. 20 and Table 9).
+  s.zigzag_mm = 0.738 * w;
+  if (model == "proposed") {
+    // eq. 3.13-3.15: equal empty and overlapping volume between a contour and the zigzag ends gives d1 = 0.47 w.
+    s.contour_to_zigzag_mm = 0.47 * w;
+    // eq. 3.16-3.17: one-sided overlap of boundary beads is compensated with d2 = 0.5 w.
+    s.contour_to_contour_mm = 0.5 * w;
+  } else if (model == "existing") {
+    // The existing model uses the zigzag step-over everywhere: d1 = d2 = l = 0.738 w (Table 9, right columns).
+    s.contour_to_zigzag_mm = 0.738 * w;
+    s.contour_to_contour_mm = 0.738 * w;
+  } else {
+    WAAM_THROW("overlap model '" << model << "': must be proposed or existing");
+  }
+  return s;
+}
+
+std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options) {
+  internal::ValidatePatternOptions(options);
+  const OverlapSpacing spacing = OverlapSpacingFor(options.overlap_model, options.bead_width_mm);
+  // Clean the slice through Clipper first: consistent orientation, no self-touching rings, no duplicate points.
+  const std::vector<PolygonWithHoles> regions = internal::Union(slice);
+  std::vector<Move2D> moves;
+  for (const PolygonWithHoles& region : regions) {
+    if (options.pattern == "contour") {
+      internal::PlanContour(region, options, spacing, &moves);
+    } else if (options.pattern == "zigzag") {
+      internal::PlanZigzag(region, options, spacing, &moves);
+    } else if (options.pattern == "hybrid") {
+      internal::PlanHybrid(region, options, spacing, &moves);
+    } else {
+      internal::PlanContinuous(region, options, spacing, &moves);
+    }
+  }
+  return moves;
+}
+
+}  // namespace waam::planner

@@ -1,0 +1,90 @@
+// The planar planning pipeline: load or generate the part, slice it, plan each layer, count the result.
+#include "planner/planar_planner.h"
+
+#include <cmath>
+
+#include "models/core/error.h"
+#include "models/core/progress.h"
+#include "planner/mesh/generators.h"
+#include "planner/mesh/stl_io.h"
+#include "planner/path/layer_pattern.h"
+#include "planner/slicing/planar_slicer.h"
+
+namespace waam::planner {
+namespace {
+
+constexpr double kWeldToleranceMm = 1e-4;
+constexpr double kPi = 3.14159265358979323846;
+
+// Puts the part on the substrate: its lowest point at z = 0 (the part frame's origin plane).
+void PlaceOnSubstrate(TriangleMesh* mesh, MeshReport* report) {
+  if (mesh->vertices.empty()) return;
+  double z_min = mesh->vertices.front().z();
+  for (const Eigen::Vector3d& v : mesh->vertices) z_min = std::min(z_min, v.z());
+  if (z_min == 0.0) return;
+  for (Eigen::Vector3d& v : mesh->vertices) v.z() -= z_min;
+  report->bbox_min.z() -= z_min;
+  report->bbox_max.z() -= z_min;
+}
+
+}  // namespace
+
+PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
+  PlanResult result;
+  if (!scenario.part.mesh_path.empty()) {
+    result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);
+  } else {
+    result.mesh = GeneratePart(scenario.part.generator, scenario.part.params, scenario.part.where);
+    result.mesh_report = InspectMesh(result.mesh, kWeldToleranceMm, scenario.part.generator);
+  }
+  CheckSliceable(result.mesh_report);
+  PlaceOnSubstrate(&result.mesh, &result.mesh_report);
+
+  // Layer i fills [i h, (i + 1) h]; it is sliced at its mid-height and the TCP runs on its top, z = (i + 1) h.
+  const double h = scenario.slicing.layer_height_mm;
+  const double part_height = result.mesh_report.bbox_max.z() - result.mesh_report.bbox_min.z();
+  const int layer_count = std::max(1, static_cast<int>(std::lround(part_height / h)));
+  std::vector<double> heights(layer_count);
+  for (int i = 0; i < layer_count; ++i) heights[i] = (i + 0.5) * part_height / layer_count;
+  const double layer_height = part_height / layer_count;
+  if (progress) progress->SetTotal(layer_count);
+
+  const std::vector<std::vector<PolygonWithHoles>> slices = SlicePlanar(result.mesh, heights);
+
+  PatternOptions options;
+  options.pattern = scenario.path.pattern;
+  options.bead_width_mm = scenario.path.bead_width_mm;
+  options.overlap_model = scenario.path.overlap_model;
+  options.zigzag_auto = scenario.path.zigzag_angle_auto;
+  options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
+  options.alternate_start = scenario.path.alternate_start;
+  options.seed = scenario.path.seed;
+  const double speed_mm_s = scenario.process.travel_speed_mm_min / 60.0;
+
+  result.plan.name = scenario.name;
+  result.plan.layers.reserve(layer_count);
+  for (int i = 0; i < layer_count; ++i) {
+    LayerPath layer;
+    layer.index = i;
+    layer.z_mm = (i + 1) * layer_height;
+    layer.slice = slices[i];
+    options.layer_index = i;
+    for (const Move2D& move : PlanLayerPattern(layer.slice, options)) {
+      PathPoint point;
+      point.p_P = Eigen::Vector3d(move.p.x(), move.p.y(), layer.z_mm);
+      point.tool_dir_P = Eigen::Vector3d::UnitZ();
+      point.bead_width_mm = scenario.path.bead_width_mm;
+      point.bead_height_mm = layer_height;
+      point.speed_mm_s = speed_mm_s;
+      point.weld = move.weld;
+      layer.points.push_back(point);
+    }
+    result.plan.layers.push_back(std::move(layer));
+    if (progress) progress->Update(i + 1);
+  }
+  if (progress) progress->Finish();
+  result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
+  return result;
+}
+
+}  // namespace waam::planner

@@ -1,0 +1,149 @@
+// End-to-end tests of `waam plan`: outputs, their contract fields, determinism and exit codes of the executable.
+#include "analysis/plan_command.h"
+
+#include <hdf5.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "models/core/files.h"
+
+namespace waam::analysis {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+fs::path TempDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("waam_plan_test_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path WriteScenario(const fs::path& dir, const std::string& pattern, const std::string& extra_part = "") {
+  const fs::path file = dir / "scenario.yaml";
+  std::ofstream(file) << "name: plate\n"
+                         "part:\n  generator: {type: plate_with_holes" << extra_part << "}\n"
+                         "slicing:\n  type: planar\n  layer_height_mm: 2.0\n"
+                         "path:\n  pattern: " << pattern << "\n  bead_width_mm: 6\n"
+                         "process:\n  travel_speed_mm_min: 400\n  wire_feed_mm_min: 3200\n";
+  return file;
+}
+
+nlohmann::json ReadJson(const fs::path& path) { return nlohmann::json::parse(ReadFile(path)); }
+
+// Runs the built executable with `args`, returning the exit code and capturing stderr.
+int RunWaam(const std::string& args, std::string* err) {
+  const fs::path err_file = TempDir("cli") / "stderr.txt";
+  const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
+  const int status = std::system(command.c_str());
+  *err = ReadFile(err_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
+  const fs::path dir = TempDir("contract");
+  PlanOptions options;
+  options.scenario = WriteScenario(dir, "continuous");
+  options.out_dir = dir / "out";
+  options.quiet = true;
+  const planner::PlanResult result = RunPlan(options);
+
+  const nlohmann::json plan = ReadJson(options.out_dir / "plan.json");
+  for (const char* field : {"layers", "passes", "passes_per_layer", "path_elements", "weld_length_mm",
+                            "travel_length_mm", "estimated_time_s", "mesh"}) {
+    EXPECT_TRUE(plan.contains(field)) << "plan.json must have '" << field << "'";
+  }
+  EXPECT_EQ(plan["layers"].get<std::size_t>(), result.plan.layers.size());
+  EXPECT_EQ(plan["passes_per_layer"].size(), result.plan.layers.size());
+  EXPECT_GT(plan["weld_length_mm"].get<double>(), 0.0);
+  EXPECT_TRUE(plan["mesh"]["watertight"].get<bool>());
+  for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
+    EXPECT_TRUE(fs::exists(options.out_dir / "layers" / name)) << name;
+  }
+
+  // plan.h5 holds every point of every layer.
+  const hid_t file = H5Fopen((options.out_dir / "plan.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0) << "plan.h5 must open";
+  const hid_t dataset = H5Dopen2(file, "/layers/layer_0000", H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  const hid_t space = H5Dget_space(dataset);
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  EXPECT_EQ(dims[0], result.plan.layers[0].points.size());
+  EXPECT_EQ(dims[1], 11u);
+  H5Sclose(space);
+  H5Dclose(dataset);
+  H5Fclose(file);
+
+  // No temporary files are left behind.
+  for (const auto& entry : fs::recursive_directory_iterator(options.out_dir)) {
+    EXPECT_THAT(entry.path().string(), ::testing::Not(HasSubstr(".tmp-")));
+  }
+}
+
+TEST(PlanCommandTest, IdenticalInputsGiveIdenticalPlans) {
+  const fs::path dir = TempDir("determinism");
+  PlanOptions options;
+  options.scenario = WriteScenario(dir, "continuous");
+  options.quiet = true;
+  options.layer_images = false;
+  options.out_dir = dir / "a";
+  RunPlan(options);
+  options.out_dir = dir / "b";
+  RunPlan(options);
+  EXPECT_EQ(ReadFile(dir / "a" / "plan.json"), ReadFile(dir / "b" / "plan.json"));
+}
+
+TEST(PlanCommandTest, ContinuousNeedsFewerPassesThanHybrid) {
+  const fs::path dir = TempDir("hybrid");
+  PlanOptions options;
+  options.quiet = true;
+  options.layer_images = false;
+  options.scenario = WriteScenario(dir, "hybrid");
+  options.out_dir = dir / "hybrid";
+  const auto hybrid = RunPlan(options);
+  options.scenario = WriteScenario(dir, "continuous");
+  options.out_dir = dir / "continuous";
+  const auto continuous = RunPlan(options);
+  EXPECT_EQ(continuous.stats.passes, continuous.stats.layers) << "continuous: one pass per layer";
+  EXPECT_GT(hybrid.stats.passes, continuous.stats.passes);
+}
+
+TEST(PlanCliTest, BadScenarioExitsTwoWithOneLineAndNoOutput) {
+  const fs::path dir = TempDir("cli_bad");
+  std::ofstream(dir / "bad.yaml") << "name: x\npart:\n  generator: {type: box}\nslicing:\n  layer_height_mm: -1\n";
+  std::string err;
+  const int code = RunWaam("plan " + (dir / "bad.yaml").string() + " -o " + (dir / "out").string(), &err);
+  EXPECT_EQ(code, 2);
+  EXPECT_THAT(err, HasSubstr("slicing.layer_height_mm = -1: must be in"));
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "one line on stderr, got: " << err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "plan.json"));
+}
+
+TEST(PlanCliTest, MissingScenarioFileExitsTwo) {
+  std::string err;
+  EXPECT_EQ(RunWaam("plan /nonexistent/scenario.yaml -o /tmp/waam_never", &err), 2);
+  EXPECT_THAT(err, HasSubstr("/nonexistent/scenario.yaml: file not found"));
+}
+
+TEST(PlanCliTest, HelpExplainsTheOutputs) {
+  std::string err;
+  const fs::path out = TempDir("help") / "help.txt";
+  const int status = std::system((std::string(WAAM_BINARY) + " plan --help > " + out.string()).c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_THAT(ReadFile(out), HasSubstr("plan.json"));
+}
+
+}  // namespace
+}  // namespace waam::analysis

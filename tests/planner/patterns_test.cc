@@ -1,0 +1,256 @@
+// Tests of the layer patterns: pass counts, coverage, staying inside, start alternation and bad options.
+#include "planner/path/layer_pattern.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+#include "planner/geometry/clipper_adapter.h"
+#include "test_shapes.h"
+
+namespace waam::planner {
+namespace {
+
+using ::testing::HasSubstr;
+using internal::Polyline;
+
+constexpr double kW = 6.0;  // bead width, mm
+
+std::vector<Move2D> Plan(const PolygonWithHoles& region, const std::string& pattern, int layer = 0) {
+  PatternOptions options;
+  options.pattern = pattern;
+  options.bead_width_mm = kW;
+  options.layer_index = layer;
+  return PlanLayerPattern({region}, options);
+}
+
+// Arc starts: a weld move that follows an arc-off move (the first move is always arc-off).
+int CountPasses(const std::vector<Move2D>& moves) {
+  int passes = 0;
+  for (std::size_t k = 0; k < moves.size(); ++k) {
+    if (moves[k].weld && (k == 0 || !moves[k - 1].weld)) ++passes;
+  }
+  return passes;
+}
+
+int CountWeldMoves(const std::vector<Move2D>& moves) {
+  int n = 0;
+  for (const Move2D& m : moves) n += m.weld ? 1 : 0;
+  return n;
+}
+
+// The welded polylines: each run of weld moves with the point it starts from.
+std::vector<Polyline> WeldLines(const std::vector<Move2D>& moves) {
+  std::vector<Polyline> lines;
+  for (std::size_t k = 1; k < moves.size(); ++k) {
+    if (!moves[k].weld) continue;
+    if (!moves[k - 1].weld || lines.empty()) lines.push_back({moves[k - 1].p});
+    lines.back().push_back(moves[k].p);
+  }
+  return lines;
+}
+
+// Fraction of the region left uncovered by beads of width kW laid along the weld moves.
+double UncoveredFraction(const PolygonWithHoles& region, const std::vector<Move2D>& moves) {
+  const auto beads = internal::BufferPolylines(WeldLines(moves), 0.5 * kW);
+  return Area(internal::Difference({region}, beads)) / Area(region);
+}
+
+// Largest length (mm) of one weld move outside `area` (Clipper's 0.1 um grid makes ~1e-5 mm of noise).
+double WeldLengthOutside(const std::vector<Move2D>& moves, const std::vector<PolygonWithHoles>& area) {
+  double outside = 0.0;
+  for (std::size_t k = 1; k < moves.size(); ++k) {
+    if (!moves[k].weld) continue;
+    const double len = (moves[k].p - moves[k - 1].p).norm();
+    double in = 0.0;
+    for (const Polyline& piece : internal::ClipPolylines({{moves[k - 1].p, moves[k].p}}, area)) {
+      in += internal::Length(piece);
+    }
+    outside = std::max(outside, len - in);
+  }
+  return outside;
+}
+
+std::vector<std::pair<std::string, PolygonWithHoles>> AllShapes() {
+  std::vector<std::pair<std::string, PolygonWithHoles>> shapes = testing::DingLikeShapes();
+  shapes.emplace_back("L", testing::LShape());
+  shapes.emplace_back("T", testing::TShape());
+  shapes.emplace_back("U", testing::UShape());
+  shapes.emplace_back("plate with holes", testing::PlateWithHoles());
+  return shapes;
+}
+
+TEST(ContinuousPattern, OnePassPerLayer) {
+  for (const auto& [name, region] : AllShapes()) {
+    for (int layer = 0; layer < 3; ++layer) {
+      const std::vector<Move2D> moves = Plan(region, "continuous", layer);
+      ASSERT_FALSE(moves.empty()) << name;
+      EXPECT_FALSE(moves.front().weld) << name << ": a layer starts with the torch off";
+      EXPECT_EQ(CountPasses(moves), 1) << name << " layer " << layer << ": Ding's path is one pass per layer";
+    }
+  }
+}
+
+// Bound: beads of w = 6 mm along the path leave < 3 % of each ~100 mm part uncovered (the cusps between raster
+// ends and where piece contours meet at a split line).
+TEST(ContinuousPattern, CoversTheRegion) {
+  for (const auto& [name, region] : AllShapes()) {
+    const double uncovered = UncoveredFraction(region, Plan(region, "continuous"));
+    EXPECT_LT(uncovered, 0.03) << name << ": uncovered fraction " << uncovered;
+  }
+}
+
+// Random star-shaped parts (~160 mm across, seeded), a third with a bore: one pass, and < 4 % uncovered (their
+// acute tips, which no round bead centred w/2 inside the wall reaches, make up most of it).
+TEST(ContinuousPattern, RandomStarsOnePassAndCovered) {
+  std::mt19937_64 rng(99);
+  for (int k = 0; k < 15; ++k) {
+    PolygonWithHoles star = testing::RandomStar(rng, 8 + k % 12, 80.0);
+    if (k % 3 == 0) star.holes.push_back(testing::Circle(0, 0, 10, k % 2 ? 6 : 20, true));
+    const std::vector<Move2D> moves = Plan(star, "continuous", k);
+    EXPECT_EQ(CountPasses(moves), 1) << "star " << k;
+    EXPECT_LT(UncoveredFraction(star, moves), 0.04) << "star " << k;
+  }
+}
+
+TEST(ContinuousPattern, WeldsStayInsideTheRegion) {
+  for (const auto& [name, region] : AllShapes()) {
+    const auto inside = internal::Offset({region}, 0.01);
+    EXPECT_LT(WeldLengthOutside(Plan(region, "continuous"), inside), 1e-3) << name;
+  }
+}
+
+TEST(HybridPattern, NeedsMorePassesThanContinuous) {
+  for (const auto& [name, region] : testing::DingLikeShapes()) {
+    const int hybrid = CountPasses(Plan(region, "hybrid"));
+    EXPECT_GT(hybrid, CountPasses(Plan(region, "continuous"))) << name;
+    EXPECT_GE(hybrid, 1 + static_cast<int>(region.holes.size()) + 1)
+        << name << ": one pass per contour ring plus at least one zigzag pass";
+    EXPECT_LT(UncoveredFraction(region, Plan(region, "hybrid")), 0.03) << name;
+  }
+}
+
+TEST(ContourAndZigzag, StayHalfABeadInside) {
+  for (const auto& [name, region] : AllShapes()) {
+    const auto inset = internal::Offset({region}, -(0.5 * kW - 0.02));
+    for (const std::string pattern : {"contour", "zigzag"}) {
+      const std::vector<Move2D> moves = Plan(region, pattern);
+      EXPECT_GT(CountWeldMoves(moves), 0) << name << " " << pattern;
+      EXPECT_LT(WeldLengthOutside(moves, inset), 1e-3) << name << " " << pattern << ": beads must not cross the wall";
+    }
+  }
+}
+
+TEST(ContourPattern, RingsFillTheRegion) {
+  for (const auto& [name, region] : AllShapes()) {
+    EXPECT_LT(UncoveredFraction(region, Plan(region, "contour")), 0.03) << name;
+  }
+}
+
+TEST(ZigzagPattern, FixedAngleRunsAlongIt) {
+  PatternOptions options;
+  options.pattern = "zigzag";
+  options.zigzag_auto = false;
+  options.zigzag_angle_rad = 0.0;
+  const std::vector<Move2D> moves = PlanLayerPattern({{testing::Rect(0, 0, 100, 60), {}}}, options);
+  // A rectangle filled along x: rasters at y from 3 to 57 mm, at most l = 4.428 mm apart -> 14 lines, one pass.
+  EXPECT_EQ(CountPasses(moves), 1);
+  int along_x = 0;
+  for (std::size_t k = 1; k < moves.size(); ++k) {
+    if (std::abs(moves[k].p.y() - moves[k - 1].p.y()) < 1e-9 && moves[k].weld) ++along_x;
+  }
+  EXPECT_EQ(along_x, 14);
+}
+
+// Hybrid and continuous on a 100 x 60 mm plate with x rasters (the continuous pattern finds that direction itself):
+// the contour centre line is w/2 = 3 mm in, the lowest raster d1 above it (0.47 w proposed, 0.738 w existing) and
+// neighbouring rasters at most l = 0.738 w apart.
+TEST(PatternSpacing, FollowsTheOverlapModel) {
+  for (const auto& [pattern, model] : std::vector<std::pair<std::string, std::string>>{
+           {"hybrid", "proposed"}, {"hybrid", "existing"}, {"continuous", "proposed"}, {"continuous", "existing"}}) {
+    PatternOptions options;
+    options.pattern = pattern;
+    options.overlap_model = model;
+    options.zigzag_auto = pattern == "continuous";
+    const OverlapSpacing s = OverlapSpacingFor(model, options.bead_width_mm);
+    const std::vector<Move2D> moves = PlanLayerPattern({{testing::Rect(0, 0, 100, 60), {}}}, options);
+    std::vector<double> raster_y;
+    for (std::size_t k = 1; k < moves.size(); ++k) {
+      const bool horizontal = std::abs(moves[k].p.y() - moves[k - 1].p.y()) < 1e-9;
+      const bool interior = moves[k].p.y() > 3.5 && moves[k].p.y() < 56.5;
+      if (moves[k].weld && horizontal && interior) raster_y.push_back(moves[k].p.y());
+    }
+    SCOPED_TRACE(pattern);
+    ASSERT_FALSE(raster_y.empty()) << model;
+    std::sort(raster_y.begin(), raster_y.end());
+    raster_y.erase(std::unique(raster_y.begin(), raster_y.end()), raster_y.end());
+    EXPECT_NEAR(raster_y.front() - s.boundary_offset_mm, s.contour_to_zigzag_mm, 0.01) << model;
+    EXPECT_NEAR(60.0 - s.boundary_offset_mm - raster_y.back(), s.contour_to_zigzag_mm, 0.01) << model;
+    for (std::size_t k = 1; k < raster_y.size(); ++k) {
+      EXPECT_LE(raster_y[k] - raster_y[k - 1], s.zigzag_mm + 1e-9) << model;
+      EXPECT_GT(raster_y[k] - raster_y[k - 1], 0.8 * s.zigzag_mm) << model << ": no raster needlessly close";
+    }
+  }
+}
+
+TEST(ZigzagPattern, LinkAcrossAHoleIsTravel) {
+  // Rasters on both sides of a hole cannot be joined by a weld across it: the zigzag needs > 1 pass.
+  PolygonWithHoles plate{testing::Rect(0, 0, 100, 100), {testing::Rect(30, 30, 70, 70, true)}};
+  const std::vector<Move2D> moves = Plan(plate, "zigzag");
+  EXPECT_GT(CountPasses(moves), 1);
+  EXPECT_LT(WeldLengthOutside(moves, internal::Offset({plate}, -(0.5 * kW - 0.02))), 1e-3);
+}
+
+TEST(StartPoints, AlternateLayerToLayer) {
+  for (const std::string pattern : {"contour", "continuous", "hybrid", "zigzag"}) {
+    const auto first = Plan(testing::LShape(), pattern, 0);
+    const auto second = Plan(testing::LShape(), pattern, 1);
+    EXPECT_GT((first.front().p - second.front().p).norm(), kW)
+        << pattern << ": consecutive layers should not start at the same place";
+  }
+}
+
+TEST(StartPoints, SameInputSamePath) {
+  const auto a = Plan(testing::PlateWithHoles(), "continuous", 4);
+  const auto b = Plan(testing::PlateWithHoles(), "continuous", 4);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].p, b[k].p);
+    EXPECT_EQ(a[k].weld, b[k].weld);
+  }
+}
+
+TEST(PlanLayerPattern, SeparateRegionsAreSeparatePasses) {
+  PatternOptions options;
+  const std::vector<Move2D> moves =
+      PlanLayerPattern({{testing::Rect(0, 0, 50, 50), {}}, {testing::Rect(80, 0, 130, 50), {}}}, options);
+  EXPECT_EQ(CountPasses(moves), 2);
+}
+
+TEST(PlanLayerPattern, EmptySliceGivesNoMoves) { EXPECT_TRUE(PlanLayerPattern({}, PatternOptions{}).empty()); }
+
+TEST(PlanLayerPattern, RejectsBadOptions) {
+  auto expect_error = [](PatternOptions options, const std::string& text) {
+    try {
+      PlanLayerPattern({testing::LShape()}, options);
+      FAIL() << "expected InputError mentioning " << text;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(text));
+    }
+  };
+  PatternOptions unknown;
+  unknown.pattern = "spiral";
+  expect_error(unknown, "path pattern 'spiral'");
+  PatternOptions width;
+  width.bead_width_mm = -2.0;
+  expect_error(width, "bead_width_mm = -2");
+  PatternOptions model;
+  model.overlap_model = "old";
+  expect_error(model, "overlap_model 'old'");
+  PatternOptions layer;
+  layer.layer_index = -1;
+  expect_error(layer, "layer_index = -1");
+}
+
+}  // namespace
+}  // namespace waam::planner
