@@ -78,7 +78,9 @@ MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
       const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
       vertex_normal_[t[k]] += angle * face_normal_[f];
       const std::pair<int, int> key(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
-      edge_sum[key] += face_normal_[f];
+      // Eigen vectors are not zero-initialized: start each edge's sum explicitly.
+      auto [it, inserted] = edge_sum.try_emplace(key, Eigen::Vector3d::Zero());
+      it->second += face_normal_[f];
     }
   }
   for (std::size_t f = 0; f < nf; ++f) {
