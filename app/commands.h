@@ -21,5 +21,6 @@ inline constexpr int kExitInterrupted = 130;
 void AddPlanCommand(CLI::App& app, CommandRunner* runner);      // app/plan_cli.cc
 void AddInspectCommand(CLI::App& app, CommandRunner* runner);   // app/inspect_cli.cc
 void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_cli.cc
+void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_cli.cc
 
 }  // namespace waam::app

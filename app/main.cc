@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   AddPlanCommand(app, &runner);
   AddInspectCommand(app, &runner);
   AddGenerateCommand(app, &runner);
+  AddSimulateCommand(app, &runner);
 
   try {
     app.parse(argc, argv);

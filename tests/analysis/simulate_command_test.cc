@@ -2,6 +2,11 @@
 // voxel-limit error.
 #include "analysis/simulate_command.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -82,6 +87,56 @@ TEST(SimulateCommand, VoxelLimitIsCheckedUpFront) {
     EXPECT_THAT(e.what(), HasSubstr("simulation.max_voxels = 5000"));
   }
   EXPECT_FALSE(fs::exists(options.out_dir / "simulate.json")) << "no partial result";
+}
+
+fs::path ScenarioFile(const std::string& name, const std::string& simulation) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("waam_simulate_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "scenario.yaml") << "name: " << name << "\n"
+                                          "part:\n  generator: {type: box, size_mm: [40, 30, 4]}\n"
+                                          "slicing:\n  type: planar\n  layer_height_mm: 2.0\n"
+                                          "path:\n  pattern: continuous\n  bead_width_mm: 6\n"
+                                          "process:\n  travel_speed_mm_min: 400\n  wire_feed_mm_min: 3200\n"
+                                       << simulation;
+  return dir / "scenario.yaml";
+}
+
+int RunWaam(const std::string& args, std::string* err) {
+  const fs::path err_file = fs::path(::testing::TempDir()) / ("waam_simulate_err_" + std::to_string(::getpid()));
+  const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
+  const int status = std::system(command.c_str());
+  *err = ReadFile(err_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The whole pipeline through the real planner: the plan's layers are deposited and the volume balances.
+TEST(SimulateCommand, RunsAScenarioEndToEnd) {
+  SimulateOptions options;
+  options.scenario = ScenarioFile("box", "simulation: {voxel_mm: 0.5, blend: fixed, blend_radius_mm: 1.5}\n");
+  options.out_dir = options.scenario.parent_path() / "out";
+  options.quiet = true;
+  options.images = false;
+  const twin::TwinMeasures m = RunSimulate(options);
+  EXPECT_EQ(m.layers, 2u);
+  EXPECT_GT(m.beads, 0u);
+  EXPECT_NEAR(m.deposited_volume_mm3, m.expected_volume_mm3, 0.02 * m.expected_volume_mm3);
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+  EXPECT_EQ(j["settings"]["blend"], "fixed") << "the scenario's simulation section must reach the twin";
+  EXPECT_GT(j["deviation"]["samples"].get<int>(), 0) << "the box mesh is the target of the deviation";
+  EXPECT_FALSE(fs::exists(options.out_dir / "top_height.png")) << "--no-images";
+}
+
+TEST(SimulateCommand, CliExitCodes) {
+  std::string err;
+  const fs::path good = ScenarioFile("cli_good", "");
+  EXPECT_EQ(RunWaam("simulate " + good.string() + " -o " + (good.parent_path() / "out").string() + " -q", &err), 0)
+      << err;
+  const fs::path bad = ScenarioFile("cli_bad", "simulation: {voxel_mm: 5}\n");
+  EXPECT_EQ(RunWaam("simulate " + bad.string() + " -o " + (bad.parent_path() / "out").string() + " -q", &err), 2);
+  EXPECT_THAT(err, HasSubstr("simulation.voxel_mm"));
+  EXPECT_EQ(RunWaam("simulate /nonexistent/scenario.yaml -o /tmp/never -q", &err), 2);
+  EXPECT_THAT(err, HasSubstr("waam: error"));
 }
 
 }  // namespace
