@@ -97,6 +97,60 @@ TEST(BeadDeposition, WeldMoveWithoutSpeedIsRefused) {
   }
 }
 
+// Multi-axis: a bead laid with the torch horizontal (tool along +x) against the +x side of a block grows along +x,
+// its section swept in the torch frame; the volume still balances.
+TEST(BeadDeposition, HorizontalTorchBuildsSideways) {
+  planner::SimulationSettings s = Settings(0.5);
+  Depositor d(s);
+  // A block 0 <= x < 10, 0 <= y < 40, 0 <= z < 20 deposited as vertical beads first.
+  planner::Plan block;
+  for (int k = 0; k < 10; ++k) {
+    planner::LayerPath layer;
+    layer.index = k;
+    for (double x : {1.5, 5.0, 8.5}) AddPass(&layer, {{x, 0}, {x, 40}}, 2.0 * (k + 1), 4.0, 2.0, 8.0);
+    block.layers.push_back(layer);
+  }
+  for (const ExecutedPass& pass : ExecutePlan(block, s, 100.0)) d.DepositPass(pass);
+  int face = 0;  // the block's largest x at mid height
+  for (int i = 0; i < 60; ++i) face = d.grid().Occupied(VoxelIndex(i, 40, 20)) ? i : face;
+  const double before = d.grid().OccupiedVolume();
+  const double expected_before = d.expected_volume_mm3();
+  // The side bead: along y at mid height, TCP just outside the face, torch pointing along +x.
+  ExecutedPass side;
+  side.layer = 10;
+  for (int n = 0; n < 2; ++n) {
+    ExecutedPoint p;
+    p.p_P = Eigen::Vector3d((face + 1) * 0.5 + 2.0, 5.0 + 30.0 * n, 10.0);
+    p.tool_dir_P = Eigen::Vector3d::UnitX();
+    p.bead_width_mm = 4.0;
+    p.bead_height_mm = 2.0;
+    p.speed_mm_s = 8.0;
+    p.s_mm = 30.0 * n;
+    side.points.push_back(p);
+  }
+  const std::uint32_t bead = d.DepositPass(side);
+  const double added = d.grid().OccupiedVolume() - before;
+  const double expected = d.expected_volume_mm3() - expected_before;
+  EXPECT_NEAR(added, expected, 0.02 * expected) << "the sideways bead must conserve its volume";
+  // At the middle of the bead (y = 20, z = 10) the new metal sits beyond the old face, about h thick along +x.
+  int grown = 0;
+  for (int i = face + 1; i < face + 20; ++i) grown += d.grid().Occupied(VoxelIndex(i, 40, 20)) ? 1 : 0;
+  EXPECT_NEAR(grown * 0.5, 2.0, 0.75) << "crown height measured along the torch axis";
+  // The side bead lies beside the face, within the (spread) bead width around z = 10.
+  double x_min = 1e9, z_lo = 1e9, z_hi = -1e9;
+  d.grid().ForEach([&](const VoxelIndex& v, const VoxelData& data) {
+    if (data.bead != bead) return;
+    const Eigen::Vector3d c = d.grid().Center(v);
+    // Away from the block beads' start/stop craters, whose pits the molten side bead fills.
+    if (c.y() > 10.0 && c.y() < 30.0) x_min = std::min(x_min, c.x());
+    z_lo = std::min(z_lo, c.z());
+    z_hi = std::max(z_hi, c.z());
+  });
+  EXPECT_GT(x_min, (face - 2) * 0.5) << "the bead must not reach back into the block";
+  EXPECT_GT(z_lo, 10.0 - 0.5 * 4.0 * 1.3 - 0.5);
+  EXPECT_LT(z_hi, 10.0 + 0.5 * 4.0 * 1.3 + 0.5);
+}
+
 TEST(ExecutedPath, CornerIsBlendedAndShorter) {
   std::vector<ExecutedPoint> raw(3);
   raw[0].p_P = {0, 0, 0};
