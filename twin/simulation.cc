@@ -79,7 +79,34 @@ TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh*
     const std::vector<planner::PolygonWithHoles>& top_region = plan.layers.back().slice;
     m.waviness_mm = SectionWaviness(result.top, top_region, 0.5 * bead_width_mm);
     m.ra_mm = ArithmeticRoughness(RegionHeights(result.top, top_region, 0.5 * bead_width_mm));
-    m.boundary_lag = MeasureBoundaryLag(result.top, top_region, bead_width_mm);
+    // Like the profilometer of 003 Fig. 24: along the x and y section lines through the middle of the top layer.
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector2d hi = -lo;
+    for (const planner::PolygonWithHoles& r : top_region) {
+      for (const Eigen::Vector2d& p : r.outer) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    }
+    if (std::isfinite(lo.x())) {
+      const Eigen::Vector2d c = 0.5 * (lo + hi);
+      const BoundaryLag along_x = MeasureBoundaryLag(result.top, top_region, bead_width_mm,
+                                                     {Eigen::Vector2d(lo.x(), c.y()), Eigen::Vector2d(hi.x(), c.y())});
+      const BoundaryLag along_y = MeasureBoundaryLag(result.top, top_region, bead_width_mm,
+                                                     {Eigen::Vector2d(c.x(), lo.y()), Eigen::Vector2d(c.x(), hi.y())});
+      BoundaryLag& lag = m.boundary_lag;
+      lag.interior_columns = along_x.interior_columns + along_y.interior_columns;
+      lag.boundary_columns = along_x.boundary_columns + along_y.boundary_columns;
+      if (lag.interior_columns > 0) {
+        lag.interior_mean_mm = (along_x.interior_mean_mm * along_x.interior_columns +
+                                along_y.interior_mean_mm * along_y.interior_columns) / lag.interior_columns;
+      }
+      if (lag.boundary_columns > 0) {
+        lag.boundary_mean_mm = (along_x.boundary_mean_mm * along_x.boundary_columns +
+                                along_y.boundary_mean_mm * along_y.boundary_columns) / lag.boundary_columns;
+      }
+      lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;
+    }
   }
   if (target != nullptr && !target->facets.empty()) {
     result.deviation = MeasureDeviation(grid, *target);
