@@ -59,7 +59,7 @@ Depositor::Depositor(const planner::SimulationSettings& settings)
 // each column takes the free voxels between its ground (or, over air past a free edge, (1 + sag) h under the crown)
 // and the cap. L is the lowest level whose voxels hold the step's volume, so valleys fill first.
 double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3,
-                           double zeta_tcp_mm, int axis, int sign, const VoxelData& data) {
+                           double zeta_tcp_mm, int axis, int sign, const VoxelData& data, bool last_step) {
   const double v = grid_.voxel_mm();
   const double h = section.height_mm;
   const double w = section.width_mm;
@@ -129,7 +129,11 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
     return total;
   };
   double lo_level = air_floor - sag - v;
+  // The molten pool cannot stand higher than 1.5 h above the highest ground under it: what does not fit (a step
+  // that owns few columns, e.g. a short chord at a sharp turn) is carried to the next steps of the pass instead of
+  // piling up in a spike. The last step of a pass takes whatever is left.
   double hi_level = highest + h + v * (static_cast<double>(target_voxels) + 2.0);
+  if (!last_step) hi_level = std::min(hi_level, highest + 1.5 * h);
   for (int iter = 0; iter < 48 && hi_level - lo_level > 1e-4 * v; ++iter) {
     const double mid = 0.5 * (lo_level + hi_level);
     (count(mid, false) >= target_voxels ? hi_level : lo_level) = mid;
@@ -172,18 +176,28 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
     const Eigen::Vector2d B2 = plane(B.p_P);
     const double L2 = (B2 - A2).norm();
     const Eigen::Vector2d unit = L2 > 1e-9 ? Eigen::Vector2d((B2 - A2) / L2) : Eigen::Vector2d(1.0, 0.0);
-    // Bisector half-planes with the neighbouring segments split the footprint without gaps or double cover.
-    auto bisector = [&](std::size_t j0, std::size_t j1, Eigen::Vector2d* normal) {
-      const Eigen::Vector2d d = plane(pts[j1].p_P) - plane(pts[j0].p_P);
-      if (d.norm() < 1e-9 || L2 <= 1e-9) return false;
-      const Eigen::Vector2d n = unit + d.normalized();
-      if (n.norm() < 1e-6) return false;
-      *normal = n.normalized();
-      return true;
+    // Segments of the same bead near this one along the path (within a bead width of arc length): a column belongs
+    // to the nearest of them only, so a bead never covers its own footprint twice (corners, tight arcs), while
+    // parts of the path farther along (the next raster line, a crossing) overlap it as real beads do.
+    const double window = B.bead_width_mm;
+    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> rivals;  // (start, end) in the column plane
+    std::vector<bool> rival_before;                                      // true for segments before this one
+    for (std::size_t j = i; j-- > 1;) {
+      if (A.s_mm - pts[j].s_mm > window) break;
+      rivals.emplace_back(plane(pts[j - 1].p_P), plane(pts[j].p_P));
+      rival_before.push_back(true);
+    }
+    for (std::size_t j = i + 1; j < pts.size(); ++j) {
+      if (pts[j - 1].s_mm - B.s_mm > window) break;
+      rivals.emplace_back(plane(pts[j - 1].p_P), plane(pts[j].p_P));
+      rival_before.push_back(false);
+    }
+    auto distance_to = [](const Eigen::Vector2d& c, const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+      const Eigen::Vector2d pq = q - p;
+      const double len2 = pq.squaredNorm();
+      const double t = len2 > 0.0 ? std::clamp((c - p).dot(pq) / len2, 0.0, 1.0) : 0.0;
+      return (c - (p + t * pq)).norm();
     };
-    Eigen::Vector2d n_prev, n_next;
-    const bool has_prev = i >= 2 && bisector(i - 2, i - 1, &n_prev);
-    const bool has_next = i + 1 < pts.size() && bisector(i, i + 1, &n_next);
 
     const double r_max = (0.5 + settings_.edge_spread_factor) * B.bead_width_mm * width_factor;
     std::vector<Column> cols;
@@ -192,11 +206,16 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
     for (int i0 = static_cast<int>(std::floor(lo.x() / v)); i0 <= static_cast<int>(std::floor(hi.x() / v)); ++i0) {
       for (int i1 = static_cast<int>(std::floor(lo.y() / v)); i1 <= static_cast<int>(std::floor(hi.y() / v)); ++i1) {
         const Eigen::Vector2d c((i0 + 0.5) * v, (i1 + 0.5) * v);
-        if (has_prev && (c - A2).dot(n_prev) < 0.0) continue;
-        if (has_next && (c - B2).dot(n_next) >= 0.0) continue;
         const double u = std::clamp((c - A2).dot(unit), 0.0, L2);
         const double d = (c - (A2 + unit * u)).norm();
         if (d > r_max) continue;
+        bool mine = true;
+        for (std::size_t r = 0; r < rivals.size() && mine; ++r) {
+          const double dr = distance_to(c, rivals[r].first, rivals[r].second);
+          // Ties (the outside of a corner, nearest to the shared vertex) go to the earlier segment.
+          mine = rival_before[r] ? dr > d : dr >= d;
+        }
+        if (!mine) continue;
         Column column;
         column.i0 = i0;
         column.i1 = i1;
@@ -235,7 +254,8 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       VoxelData data;
       data.bead = bead;
       data.time_s = static_cast<float>(pass.start_time_s + s / std::max(B.speed_mm_s, 1e-9));
-      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, axis, sign, data);
+      const bool last_step = i + 1 == pts.size() && last == cols.size();
+      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, axis, sign, data, last_step);
       debt += volume - placed;
       record.deposited_volume_mm3 += placed;
       boundary = next_boundary;

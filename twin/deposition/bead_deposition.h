@@ -48,7 +48,7 @@ class Depositor {
  private:
   struct Column;
   double FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3, double zeta_tcp_mm,
-                  int axis, int sign, const VoxelData& data);
+                  int axis, int sign, const VoxelData& data, bool last_step);
 
   planner::SimulationSettings settings_;
   VoxelGrid grid_;
