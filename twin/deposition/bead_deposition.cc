@@ -244,7 +244,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       const double f = L2 > 1e-9 ? 0.5 * (boundary + next_boundary) / L2 : 0.5;
       const double s = A.s_mm + f * len3;
       const BeadSection section = SectionAt(pass, i, s, settings_);
-      const double volume = section.area_mm2() * span3;
+      const double volume = section.Area() * span3;
       record.expected_volume_mm3 += volume;
       chunk.clear();
       for (std::size_t c = first; c < last; ++c) {

@@ -28,12 +28,13 @@ struct ExecutedPass {
   double length_mm() const { return points.empty() ? 0.0 : points.back().s_mm; }
 };
 
-// The bead section at one place of a pass.
+// The bead section at one place of a pass. Same shape and names as models::ParabolicBead (branch models), which
+// replaces it once that lands.
 struct BeadSection {
   double width_mm = 0.0;
   double height_mm = 0.0;
   // Area of the parabolic section z = -4h/w^2 y^2 + h (003 eq. 3.2-3.3): 2wh/3, mm^2.
-  double area_mm2() const { return 2.0 * width_mm * height_mm / 3.0; }
+  double Area() const { return 2.0 * width_mm * height_mm / 3.0; }
 };
 
 // Splits every layer of `plan` into weld passes and blends their corners as `settings.blend` says (the TCP does not
