@@ -73,6 +73,25 @@ TEST(SimulateCommand, WritesTheContract) {
   EXPECT_EQ(result.measures.voxels, result.depositor.grid().occupied());
 }
 
+// Identical inputs, identical outputs: the STL bytes and every measure except the timings.
+TEST(SimulateCommand, IsDeterministic) {
+  const Fixture f = SmallBlock();
+  std::string stl[2];
+  nlohmann::json json[2];
+  for (int run = 0; run < 2; ++run) {
+    SimulateOptions options;
+    options.out_dir = fs::path(::testing::TempDir()) / ("simulate_determinism_" + std::to_string(run));
+    options.quiet = true;
+    options.images = false;
+    SimulatePlanned(f.scenario, f.planned, options);
+    stl[run] = ReadFile(options.out_dir / "part.stl");
+    json[run] = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+    json[run].erase("performance");
+  }
+  EXPECT_TRUE(stl[0] == stl[1]) << "part.stl must be byte-identical across runs";
+  EXPECT_EQ(json[0], json[1]) << "simulate.json measures must not change between runs";
+}
+
 TEST(SimulateCommand, VoxelLimitIsCheckedUpFront) {
   Fixture f = SmallBlock();
   f.scenario.simulation.max_voxels = 5000;
