@@ -151,6 +151,45 @@ TEST(BeadDeposition, HorizontalTorchBuildsSideways) {
   EXPECT_LT(z_hi, 10.0 + 0.5 * 4.0 * 1.3 + 0.5);
 }
 
+// A bead laid on the edge of a wall, half of it over air: the hanging half runs down the side at most
+// edge_sag_factor x h below the supported ground and never fills the air down to the substrate.
+TEST(BeadDeposition, BeadOverAFreeEdgeDoesNotFillTheAirBelow) {
+  planner::SimulationSettings s = Settings(0.5);
+  Depositor d(s);
+  planner::Plan wall;
+  for (int k = 0; k < 16; ++k) {
+    planner::LayerPath layer;
+    layer.index = k;
+    for (double x : {2.0, 5.0, 8.0}) AddPass(&layer, {{x, 0}, {x, 40}}, 2.0 * (k + 1), 4.0, 2.0, 8.0);
+    wall.layers.push_back(layer);
+  }
+  for (const ExecutedPass& pass : ExecutePlan(wall, s, 100.0)) d.DepositPass(pass);
+  double top = 0.0;  // wall height at its middle
+  for (int k = 0; k < 120; ++k) top = d.grid().Occupied(VoxelIndex(10, 40, k)) ? (k + 1) * 0.5 : top;
+  const double before = d.grid().OccupiedVolume();
+  const double expected_before = d.expected_volume_mm3();
+  planner::Plan edge;
+  planner::LayerPath layer;
+  layer.index = 16;
+  const double x_edge = 10.0;  // the outer toe of the x = 8 beads
+  AddPass(&layer, {{x_edge, 5}, {x_edge, 35}}, top + 2.0, 4.0, 2.0, 8.0);
+  edge.layers.push_back(layer);
+  std::uint32_t bead = 0;
+  for (const ExecutedPass& pass : ExecutePlan(edge, s, 100.0)) bead = d.DepositPass(pass);
+  EXPECT_NEAR(d.grid().OccupiedVolume() - before, d.expected_volume_mm3() - expected_before,
+              0.02 * (d.expected_volume_mm3() - expected_before));
+  double lowest = 1e9;
+  d.grid().ForEach([&](const VoxelIndex& v, const VoxelData& data) {
+    if (data.bead == bead) lowest = std::min(lowest, d.grid().Center(v).z());
+  });
+  std::printf("free edge: wall top %.2f mm, lowest voxel of the edge bead %.2f mm\n", top, lowest);
+  // It may run down the wall's own rounded flank within the ground search (4 h + 2 mm under the crown) and sag
+  // edge_sag_factor x h below that, but no further: half-way down a 25 mm wall it has stopped.
+  EXPECT_GT(lowest, top - 4.0 * 2.0 - 2.0 - s.edge_sag_factor * 2.0 - 1.0)
+      << "the hanging metal must stay near the top of the wall (top " << top << " mm)";
+  EXPECT_GT(lowest, 0.5 * top) << "the hanging metal must not fill the air down the side of the wall";
+}
+
 TEST(ExecutedPath, CornerIsBlendedAndShorter) {
   std::vector<ExecutedPoint> raw(3);
   raw[0].p_P = {0, 0, 0};
