@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/progress.h"
 #include "twin/scanner/mesh_distance.h"
 
 namespace waam::twin {
@@ -13,7 +14,9 @@ DeviationReport MeasureDeviation(const VoxelGrid& grid, const planner::TriangleM
   DeviationReport report;
   const double v = grid.voxel_mm();
   const Eigen::Vector3i dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::size_t visited = 0;
   grid.ForEach([&](const VoxelIndex& idx, const VoxelData&) {
+    if (++visited % 4096 == 0) CheckInterrupt();  // Ctrl-C stays responsive on large parts
     for (const Eigen::Vector3i& d : dirs) {
       if (grid.Solid(idx + d)) continue;
       SurfaceSample s;

@@ -10,6 +10,8 @@
 
 #include <Eigen/Geometry>
 
+#include "models/core/progress.h"
+
 namespace waam::twin {
 namespace {
 
@@ -50,6 +52,7 @@ planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
   };
   std::array<std::uint8_t, (B + 1) * (B + 1) * (B + 1)> occ{};
   for (const Eigen::Vector3i& cb : cell_blocks) {
+    CheckInterrupt();
     const Eigen::Vector3i origin = cb * B;
     for (int z = 0; z <= B; ++z)
       for (int y = 0; y <= B; ++y)

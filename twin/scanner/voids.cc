@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "models/core/error.h"
+#include "models/core/progress.h"
 
 namespace waam::twin {
 namespace {
@@ -130,6 +131,7 @@ VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target) {
   for (int k = 0; k < nz; ++k) {
     const int kz = lo.z() + k;
     if (kz < 0) continue;  // substrate
+    CheckInterrupt();
     FloodCut(grid, lo, nx, ny, kz, &reached);
     for (int j = 1; j + 1 < ny; ++j) {
       for (int i = 1; i + 1 < nx; ++i) {
