@@ -87,13 +87,29 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
     }
   }
 
-  // Path: weld moves in sequence colours, travel dashed grey; green dot at arc start, red cross at arc stop.
+  // Beads at their planned width, translucent, so uncovered parts of the slice stay visible.
   const std::size_t n = layer.points.size();
+  {
+    cv::Mat beads = image.clone();
+    for (std::size_t i = 1; i < n; ++i) {
+      if (!layer.points[i].weld) continue;
+      const int thickness = std::max(1, static_cast<int>(std::lround(layer.points[i].bead_width_mm * view.scale)));
+      cv::line(beads, view.ToPixel(layer.points[i - 1].p_P.head<2>()), view.ToPixel(layer.points[i].p_P.head<2>()),
+               cv::Scalar(150, 200, 245), thickness, cv::LINE_AA);
+    }
+    cv::addWeighted(beads, 0.6, image, 0.4, 0.0, image);
+  }
+
+  // Path centre line: weld moves in sequence colours, travel dashed grey; green dot at arc start, red cross at stop.
+  // Colour by path length travelled, so the sequence reads the same however finely a curve is divided.
+  std::vector<double> along(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) along[i] = along[i - 1] + (layer.points[i].p_P - layer.points[i - 1].p_P).norm();
+  const double total = n > 0 ? std::max(along.back(), 1e-9) : 1.0;
   for (std::size_t i = 1; i < n; ++i) {
     const cv::Point a = view.ToPixel(layer.points[i - 1].p_P.head<2>());
     const cv::Point b = view.ToPixel(layer.points[i].p_P.head<2>());
     if (layer.points[i].weld) {
-      cv::line(image, a, b, SequenceColour(static_cast<double>(i) / n), 2, cv::LINE_AA);
+      cv::line(image, a, b, SequenceColour(along[i] / total), 2, cv::LINE_AA);
     } else {
       DashedLine(image, a, b, cv::Scalar(150, 150, 150));
     }
@@ -109,7 +125,7 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
   }
 
   char caption[128];
-  std::snprintf(caption, sizeof(caption), "layer %d  z = %.2f mm  (green: arc start, red: arc stop)", layer.index,
+  std::snprintf(caption, sizeof(caption), "layer %d  z = %.2f mm  beads at planned width; green: arc start, red: arc stop", layer.index,
                 layer.z_mm);
   cv::putText(image, caption, cv::Point(10, 24), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
 

@@ -60,7 +60,7 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
 }
 
 planner::PlanResult RunPlan(const PlanOptions& options) {
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario);
+  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
   EnsureOutputDirectory(options.out_dir);
 
   planner::PlanResult result;

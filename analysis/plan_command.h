@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +14,7 @@ namespace waam::analysis {
 struct PlanOptions {
   std::filesystem::path scenario;   // scenario YAML
   std::filesystem::path out_dir;    // output directory (created if missing)
+  std::vector<std::string> overrides;  // "key.path=value" scenario overrides (--set)
   bool quiet = false;               // no progress bar
   bool layer_images = true;         // write <out_dir>/layers/layer_NNNN.png
 };

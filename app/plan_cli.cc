@@ -22,6 +22,8 @@ void AddPlanCommand(CLI::App& app, CommandRunner* runner) {
       "plan.json is written last: its presence marks a complete run.");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
+  command->add_option("--set", options->overrides,
+                      "Override a scenario setting, key.path=value (repeatable), e.g. --set path.pattern=hybrid");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->layer_images, "Do not draw the per-layer PNGs");
   command->callback([options, runner] {

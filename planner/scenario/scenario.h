@@ -53,6 +53,8 @@ struct Scenario {
 
 // Loads and validates a scenario file. Unknown keys, wrong types and out-of-range values throw InputError naming
 // the file, line and key path (e.g. "s.yaml:7: slicing.layer_height_mm = -1: must be in [0.05, 20]").
-Scenario LoadScenario(const std::filesystem::path& file);
+// `overrides` are "key.path=value" strings (the CLI's --set) applied to the YAML before validation, so a sweep can
+// vary one setting without editing the file; a malformed override throws InputError naming it.
+Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
 }  // namespace waam::planner

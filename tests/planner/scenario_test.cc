@@ -132,6 +132,35 @@ TEST_F(ScenarioTest, YamlSyntaxErrorGivesLine) {
   EXPECT_THAT(ErrorOf("name: x\npart: [unclosed\n"), HasSubstr("YAML syntax error"));
 }
 
+TEST_F(ScenarioTest, OverridesReplaceAndAddKeys) {
+  const Scenario s =
+      LoadScenario(Write(Valid()), {"path.pattern=hybrid", "slicing.layer_height_mm=2.5", "path.seed=7"});
+  EXPECT_EQ(s.path.pattern, "hybrid");
+  EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 2.5);
+  EXPECT_EQ(s.path.seed, 7u);
+}
+
+TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {
+  try {
+    LoadScenario(Write(Valid()), {"path.pattern=spiral"});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("path.pattern = 'spiral': unknown value"));
+  }
+  try {
+    LoadScenario(Write(Valid()), {"no_equals_sign"});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("--set 'no_equals_sign': expected key.path=value"));
+  }
+  try {
+    LoadScenario(Write(Valid()), {"name.sub=1"});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("is not a section"));
+  }
+}
+
 TEST_F(ScenarioTest, MissingFileIsNamed) {
   try {
     LoadScenario(dir_ / "nope.yaml");
