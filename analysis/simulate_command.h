@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +20,7 @@ struct SimulateOptions {
   std::filesystem::path out_dir;    // output directory (created if missing)
   bool quiet = false;               // no progress bar
   bool images = true;               // write the PNGs
+  std::vector<std::string> overrides;  // "key.path=value" scenario overrides (--set)
 };
 
 // Plans the scenario (as `waam plan` does), then SimulatePlanned. Returns the twin's measures.

@@ -6,7 +6,7 @@
 namespace waam::analysis {
 
 twin::TwinMeasures RunSimulate(const SimulateOptions& options) {
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario);
+  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);

@@ -31,6 +31,8 @@ void AddSimulateCommand(CLI::App& app, CommandRunner* runner) {
       "simulate.json is written last: its presence marks a complete run.");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
+  command->add_option("--set", options->overrides,
+                      "Override a scenario setting, key.path=value (repeatable), e.g. --set simulation.voxel_mm=0.25");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw the PNGs");
   command->callback([options, runner] {

@@ -144,6 +144,10 @@ TEST(SimulateCommand, RunsAScenarioEndToEnd) {
   EXPECT_EQ(j["settings"]["blend"], "fixed") << "the scenario's simulation section must reach the twin";
   EXPECT_GT(j["deviation"]["samples"].get<int>(), 0) << "the box mesh is the target of the deviation";
   EXPECT_FALSE(fs::exists(options.out_dir / "top_height.png")) << "--no-images";
+
+  // --set reaches the simulation section.
+  options.overrides = {"simulation.voxel_mm=1.0"};
+  EXPECT_DOUBLE_EQ(RunSimulate(options).voxel_mm, 1.0);
 }
 
 TEST(SimulateCommand, CliExitCodes) {
