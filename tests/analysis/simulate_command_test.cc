@@ -92,6 +92,21 @@ TEST(SimulateCommand, IsDeterministic) {
   EXPECT_EQ(json[0], json[1]) << "simulate.json measures must not change between runs";
 }
 
+// A plan without weld moves deposits nothing and still writes a complete, zero result.
+TEST(SimulateCommand, EmptyPlanGivesAnEmptyPart) {
+  Fixture f = SmallBlock();
+  for (auto& layer : f.planned.plan.layers) {
+    for (auto& p : layer.points) p.weld = false;
+  }
+  SimulateOptions options;
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_empty";
+  options.quiet = true;
+  const twin::TwinResult r = SimulatePlanned(f.scenario, f.planned, options);
+  EXPECT_EQ(r.measures.voxels, 0u);
+  EXPECT_EQ(r.measures.beads, 0u);
+  EXPECT_TRUE(fs::exists(options.out_dir / "simulate.json"));
+}
+
 TEST(SimulateCommand, VoxelLimitIsCheckedUpFront) {
   Fixture f = SmallBlock();
   f.scenario.simulation.max_voxels = 5000;
