@@ -109,8 +109,17 @@ twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planne
     return r;
   }();
 
-  WriteBinaryStl(twin::ExtractSurface(result.depositor.grid()), options.out_dir / "part.stl",
-                 "waam simulate: " + scenario.name);
+  // The surface mesh has about ten facets per exposed voxel face; past kMaxStlFacets the part is exported from a
+  // coarser copy of the grid (majority of the fine voxels), reported as stl_voxel_mm.
+  constexpr double kMaxStlFacets = 5.0e6;
+  const double faces = static_cast<double>(twin::ExposedFaces(result.depositor.grid()));
+  int factor = 1;
+  while (10.0 * faces / (factor * factor) > kMaxStlFacets && factor < 8) ++factor;
+  const planner::TriangleMesh surface =
+      factor == 1 ? twin::ExtractSurface(result.depositor.grid())
+                  : twin::ExtractSurface(twin::Coarsen(result.depositor.grid(), factor));
+  WriteBinaryStl(surface, options.out_dir / "part.stl", "waam simulate: " + scenario.name);
+  const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
   WriteSimulationH5(result, options.out_dir / "part.h5");
   if (options.images) {
     WriteHeightMapPng(result.top, options.out_dir / "top_height.png");
@@ -118,7 +127,10 @@ twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planne
     WriteSectionPng(result, 1, options.out_dir / "section_yz.png");
     WriteDeviationPng(result, options.out_dir / "deviation_map.png");
   }
-  WriteFileAtomic(options.out_dir / "simulate.json", SimulationToJson(scenario, result).dump(2) + "\n");
+  nlohmann::json json = SimulationToJson(scenario, result);
+  json["stl_voxel_mm"] = stl_voxel_mm;
+  json["stl_facets"] = surface.facets.size();
+  WriteFileAtomic(options.out_dir / "simulate.json", json.dump(2) + "\n");
   return result;
 }
 

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "models/core/error.h"
 #include "tests/twin/test_paths.h"
 #include "twin/deposition/bead_deposition.h"
 
@@ -31,6 +32,19 @@ TEST(SurfaceMesh, DepositedBeadsGiveAClosedSurface) {
   const planner::TriangleMesh mesh = ExtractSurface(d.grid());
   EXPECT_EQ(OpenEdges(mesh), 0u);
   EXPECT_NEAR(EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.1 * d.grid().OccupiedVolume());
+}
+
+TEST(SurfaceMesh, CoarsenKeepsAlignedBlocksAndCountsFaces) {
+  VoxelGrid grid(0.5, 100000);
+  for (int k = 0; k < 4; ++k)
+    for (int j = -4; j < 4; ++j)
+      for (int i = 0; i < 8; ++i) grid.Set(VoxelIndex(i, j, k), VoxelData{});
+  EXPECT_EQ(ExposedFaces(grid), 8u * 8u + 4u * 8u * 4u) << "top and four sides; the bottom is on the substrate";
+  const VoxelGrid coarse = Coarsen(grid, 2);
+  EXPECT_DOUBLE_EQ(coarse.voxel_mm(), 1.0);
+  EXPECT_EQ(coarse.occupied(), 4u * 4u * 2u);
+  EXPECT_DOUBLE_EQ(coarse.OccupiedVolume(), grid.OccupiedVolume());
+  EXPECT_THROW(Coarsen(grid, 0), InputError);
 }
 
 }  // namespace

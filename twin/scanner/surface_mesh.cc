@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "models/core/error.h"
 #include "models/core/progress.h"
 
 namespace waam::twin {
@@ -110,6 +111,44 @@ planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
     }
   }
   return mesh;
+}
+
+std::size_t ExposedFaces(const VoxelGrid& grid) {
+  std::size_t faces = 0;
+  const Eigen::Vector3i dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  grid.ForEach([&](const VoxelIndex& v, const VoxelData&) {
+    for (const Eigen::Vector3i& d : dirs) faces += grid.Solid(v + d) ? 0 : 1;
+  });
+  return faces;
+}
+
+VoxelGrid Coarsen(const VoxelGrid& grid, int factor) {
+  WAAM_THROW_UNLESS(factor >= 1, "coarsen: factor " << factor << " must be >= 1");
+  VoxelGrid coarse(grid.voxel_mm() * factor, grid.max_voxels());
+  if (factor == 1) {
+    grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) { coarse.Set(v, d); });
+    return coarse;
+  }
+  auto floor_div = [factor](int a) { return a >= 0 ? a / factor : -((-a + factor - 1) / factor); };
+  std::unordered_map<std::uint64_t, std::pair<int, VoxelData>> counts;
+  std::vector<std::uint64_t> order;  // first-seen order, for a deterministic result
+  grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) {
+    const Eigen::Vector3i c(floor_div(v.x()), floor_div(v.y()), floor_div(v.z()));
+    auto [it, inserted] = counts.try_emplace(Pack(c), 0, d);
+    if (inserted) order.push_back(it->first);
+    ++it->second.first;
+  });
+  const int half = (factor * factor * factor + 1) / 2;
+  constexpr std::int64_t kOffset = 1 << 20;
+  for (std::uint64_t key : order) {
+    const auto& [n, data] = counts[key];
+    if (n < half) continue;
+    const VoxelIndex c(static_cast<int>(static_cast<std::int64_t>(key >> 42) - kOffset),
+                       static_cast<int>(static_cast<std::int64_t>((key >> 21) & 0x1FFFFF) - kOffset),
+                       static_cast<int>(static_cast<std::int64_t>(key & 0x1FFFFF) - kOffset));
+    coarse.Set(c, data);
+  }
+  return coarse;
 }
 
 double EnclosedVolume(const planner::TriangleMesh& mesh) {

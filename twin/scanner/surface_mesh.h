@@ -11,6 +11,14 @@ namespace waam::twin {
 // are edge midpoints, welded; facets face outward. The substrate is not part of the mesh: the part closes at z = 0.
 planner::TriangleMesh ExtractSurface(const VoxelGrid& grid);
 
+// Number of voxel faces between metal and air (faces on the substrate excluded): the size of the part's surface.
+std::size_t ExposedFaces(const VoxelGrid& grid);
+
+// The grid at `factor` (>= 1) times the voxel size: a coarse voxel is occupied when at least half of its factor^3
+// fine voxels are (it keeps the data of one of them). Used to keep the exported surface of large parts small.
+// Throws InputError for factor < 1.
+VoxelGrid Coarsen(const VoxelGrid& grid, int factor);
+
 // Volume enclosed by a closed, outward-facing mesh (divergence theorem), mm^3.
 double EnclosedVolume(const planner::TriangleMesh& mesh);
 
