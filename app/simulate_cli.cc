@@ -25,7 +25,8 @@ void AddSimulateCommand(CLI::App& app, CommandRunner* runner) {
       "                     valleys {...} (enclosed in their horizontal cut but open to the top), waviness_mm (largest\n"
       "                     peak-to-valley along the x and y section lines of the top layer), ra_mm (Ding eq. 7),\n"
       "                     boundary_lag_mm (interior minus outer-bead mean height), performance, settings\n"
-      "  part.stl           surface of the simulated part (binary STL, mm)\n"
+      "  part.stl           surface of the simulated part (binary STL, mm; from a coarser grid past 5 M facets,\n"
+      "                     see stl_voxel_mm)\n"
       "  part.h5            /voxels/{ijk, bead, layer, time_s}, /top_height_mm, /beads; attribute voxel_mm\n"
       "  top_height.png, section_xz.png, section_yz.png, deviation_map.png\n"
       "simulate.json is written last: its presence marks a complete run.");
