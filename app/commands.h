@@ -23,5 +23,6 @@ void AddInspectCommand(CLI::App& app, CommandRunner* runner);   // app/inspect_c
 void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_cli.cc
 void AddFitCommand(CLI::App& app, CommandRunner* runner);       // app/fit_cli.cc
 void AddCheckCommand(CLI::App& app, CommandRunner* runner);     // app/check_cli.cc
+void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_cli.cc
 
 }  // namespace waam::app

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   AddGenerateCommand(app, &runner);
   AddFitCommand(app, &runner);
   AddCheckCommand(app, &runner);
+  AddSimulateCommand(app, &runner);
 
   try {
     app.parse(argc, argv);

@@ -134,6 +134,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   }
 
   scenario.cell = internal::ParseCellSection(top, scenario.file.parent_path());
+  internal::ParseSimulationSection(top, &scenario.simulation);
   top.CheckNoUnknownKeys();
   return scenario;
 }

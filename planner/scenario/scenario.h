@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "planner/scenario/cell_settings.h"
+#include "planner/scenario/simulation_settings.h"
 
 namespace waam::planner {
 
@@ -49,6 +50,7 @@ struct Scenario {
   PathSettings path;
   ProcessSettings process;
   CellSettings cell;                 // optional `cell:` section (planner/scenario/cell_settings.h)
+  SimulationSettings simulation;     // optional section `simulation` (voxel twin)
 };
 
 // Loads and validates a scenario file. Unknown keys, wrong types and out-of-range values throw InputError naming

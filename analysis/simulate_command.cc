@@ -1,0 +1,137 @@
+// `waam simulate` without the planning step: deposit, scan, and write the outputs.
+#include "analysis/simulate_command.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/core/progress.h"
+#include "twin/scanner/surface_mesh.h"
+
+namespace waam::analysis {
+
+nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::TwinResult& result) {
+  const twin::TwinMeasures& m = result.measures;
+  const twin::VoidReport& voids = result.voids;
+  const planner::SimulationSettings& s = scenario.simulation;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double seconds = std::max(m.deposition_s, 1e-9);
+  return {
+      {"scenario", scenario.name},
+      {"voxel_mm", m.voxel_mm},
+      {"layers", m.layers},
+      {"beads", m.beads},
+      {"voxels", m.voxels},
+      {"weld_length_mm", m.weld_length_mm},
+      {"build_time_s", m.build_time_s},
+      {"deposited_volume_mm3", m.deposited_volume_mm3},
+      {"expected_volume_mm3", m.expected_volume_mm3},
+      {"volume_error_pct",
+       m.expected_volume_mm3 > 0 ? 100.0 * (m.deposited_volume_mm3 - m.expected_volume_mm3) / m.expected_volume_mm3
+                                 : 0.0},
+      {"deviation",
+       {{"min_mm", result.deviation.min_mm},
+        {"max_mm", result.deviation.max_mm},
+        {"mean_mm", result.deviation.mean_mm},
+        {"rms_mm", result.deviation.rms_mm},
+        {"samples", result.deviation.samples}}},
+      {"voids",
+       {{"count", voids.voids.size()},
+        {"volume_mm3", voids.void_volume_mm3},
+        {"max_length_mm", voids.void_max_length_mm}}},
+      {"valleys",
+       {{"count", voids.valleys.size()},
+        {"volume_mm3", voids.valley_volume_mm3},
+        {"max_length_mm", voids.valley_max_length_mm}}},
+      {"waviness_mm", m.waviness_mm},
+      {"ra_mm", m.ra_mm},
+      {"boundary_lag_mm", m.boundary_lag.lag_mm},
+      {"boundary_lag",
+       {{"interior_mean_mm", m.boundary_lag.interior_mean_mm},
+        {"boundary_mean_mm", m.boundary_lag.boundary_mean_mm},
+        {"interior_columns", m.boundary_lag.interior_columns},
+        {"boundary_columns", m.boundary_lag.boundary_columns}}},
+      {"performance",
+       {{"deposition_s", m.deposition_s},
+        {"bead_mm_per_s", m.weld_length_mm / seconds},
+        {"voxels_per_s", static_cast<double>(m.voxels) / seconds},
+        {"grid_memory_mb", static_cast<double>(m.grid_memory_bytes) / 1048576.0},
+        {"peak_rss_mb", usage.ru_maxrss / 1024.0}}},
+      {"settings",
+       {{"blend", s.blend},
+        {"blend_radius_mm", s.blend_radius_mm},
+        {"blend_time_s", s.blend_time_s},
+        {"start_length_mm", s.start_length_mm},
+        {"start_height_factor", s.start_height_factor},
+        {"start_width_factor", s.start_width_factor},
+        {"stop_length_mm", s.stop_length_mm},
+        {"stop_height_factor", s.stop_height_factor},
+        {"stop_width_factor", s.stop_width_factor},
+        {"edge_sag_factor", s.edge_sag_factor},
+        {"edge_spread_factor", s.edge_spread_factor},
+        {"max_voxels", s.max_voxels}}},
+  };
+}
+
+twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planner::PlanResult& planned,
+                                 const SimulateOptions& options) {
+  EnsureOutputDirectory(options.out_dir);
+  const planner::SimulationSettings& settings = scenario.simulation;
+  // Refuse up front what cannot fit: the expected bead volume in voxels against the limit.
+  double weld_mm3 = 0.0;
+  for (const planner::LayerPath& layer : planned.plan.layers) {
+    for (std::size_t i = 1; i < layer.points.size(); ++i) {
+      const planner::PathPoint& p = layer.points[i];
+      if (!p.weld) continue;
+      weld_mm3 += 2.0 / 3.0 * p.bead_width_mm * p.bead_height_mm * (p.p_P - layer.points[i - 1].p_P).norm();
+    }
+  }
+  const double estimate = weld_mm3 / std::pow(settings.voxel_mm, 3);
+  WAAM_THROW_UNLESS(estimate <= static_cast<double>(settings.max_voxels),
+                    options.scenario.string() << ": simulation needs about " << static_cast<long long>(estimate)
+                    << " voxels at simulation.voxel_mm = " << settings.voxel_mm << " mm, more than "
+                    << "simulation.max_voxels = " << settings.max_voxels << "; use a coarser voxel_mm");
+  twin::TwinResult result = [&] {
+    std::optional<Progress> progress;  // created once the number of passes is known
+    twin::TwinResult r = twin::SimulateBuild(
+        planned.plan, planned.mesh.facets.empty() ? nullptr : &planned.mesh, settings,
+        scenario.process.rapid_speed_mm_min / 60.0, scenario.path.bead_width_mm,
+        [&](std::size_t done, std::size_t total) {
+          if (!progress) progress.emplace("deposit", total, "passes", options.quiet);
+          progress->Update(done);
+        });
+    if (progress) progress->Finish();
+    return r;
+  }();
+
+  // The surface mesh has about ten facets per exposed voxel face; past kMaxStlFacets the part is exported from a
+  // coarser copy of the grid (majority of the fine voxels), reported as stl_voxel_mm.
+  constexpr double kMaxStlFacets = 5.0e6;
+  const double faces = static_cast<double>(twin::ExposedFaces(result.depositor.grid()));
+  int factor = 1;
+  while (10.0 * faces / (factor * factor) > kMaxStlFacets && factor < 8) ++factor;
+  const planner::TriangleMesh surface =
+      factor == 1 ? twin::ExtractSurface(result.depositor.grid())
+                  : twin::ExtractSurface(twin::Coarsen(result.depositor.grid(), factor));
+  WriteBinaryStl(surface, options.out_dir / "part.stl", "waam simulate: " + scenario.name);
+  const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
+  WriteSimulationH5(result, options.out_dir / "part.h5");
+  if (options.images) {
+    WriteHeightMapPng(result.top, options.out_dir / "top_height.png");
+    WriteSectionPng(result, 0, options.out_dir / "section_xz.png");
+    WriteSectionPng(result, 1, options.out_dir / "section_yz.png");
+    WriteDeviationPng(result, options.out_dir / "deviation_map.png");
+  }
+  nlohmann::json json = SimulationToJson(scenario, result);
+  json["stl_voxel_mm"] = stl_voxel_mm;
+  json["stl_facets"] = surface.facets.size();
+  WriteFileAtomic(options.out_dir / "simulate.json", json.dump(2) + "\n");
+  return result;
+}
+
+}  // namespace waam::analysis

@@ -1,0 +1,53 @@
+// `waam simulate`: plan a scenario, deposit it in the voxel twin, scan it, and write simulate.json, part.stl,
+// part.h5 and pictures.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "planner/mesh/triangle_mesh.h"
+#include "planner/planar_planner.h"
+#include "planner/scenario/scenario.h"
+#include "twin/simulation.h"
+
+namespace waam::analysis {
+
+struct SimulateOptions {
+  std::filesystem::path scenario;   // scenario YAML
+  std::filesystem::path out_dir;    // output directory (created if missing)
+  bool quiet = false;               // no progress bar
+  bool images = true;               // write the PNGs
+  std::vector<std::string> overrides;  // "key.path=value" scenario overrides (--set)
+};
+
+// Plans the scenario (as `waam plan` does), then SimulatePlanned. Returns the twin's measures.
+// Throws InputError for bad scenarios, meshes and settings (voxel limit included).
+twin::TwinMeasures RunSimulate(const SimulateOptions& options);
+
+// Deposits and measures an already planned scenario and writes every output atomically: part.stl, part.h5,
+// top_height.png, section_xz.png, section_yz.png, deviation_map.png, and simulate.json last (its presence marks a
+// complete run). The target of the deviation and voids is `planned.mesh` when it has facets.
+twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planner::PlanResult& planned,
+                                 const SimulateOptions& options);
+
+// The simulate.json document (the public contract; fields documented in `waam simulate --help`).
+nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::TwinResult& result);
+
+// Writes a binary STL (80-byte header, facet normals from the winding).
+void WriteBinaryStl(const planner::TriangleMesh& mesh, const std::filesystem::path& path, const std::string& header);
+
+// Writes the voxel grid and the top height map to HDF5: /voxels/{ijk (N x 3 int32), bead (N uint32),
+// layer (N int32), time_s (N float32)}, /top_height_mm (ny x nx float32, NaN where empty), /beads table,
+// attributes voxel_mm and origin (mm).
+void WriteSimulationH5(const twin::TwinResult& result, const std::filesystem::path& path);
+
+// Pictures: top height map (colour by height), vertical sections through the part's middle along x and y
+// (colour by layer), and the top view of the signed deviation (blue below, red above the target).
+void WriteHeightMapPng(const twin::HeightMap& map, const std::filesystem::path& path);
+void WriteSectionPng(const twin::TwinResult& result, int axis, const std::filesystem::path& path);
+void WriteDeviationPng(const twin::TwinResult& result, const std::filesystem::path& path);
+
+}  // namespace waam::analysis

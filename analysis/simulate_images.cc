@@ -1,0 +1,140 @@
+// Pictures of the simulated part: top height map, vertical sections by layer, and the deviation map.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "analysis/simulate_command.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+
+namespace waam::analysis {
+namespace {
+
+// Scales a picture up (nearest) so that its longer side is at least 600 px, flips it so +y (or +z) points up, adds
+// a caption line, and writes it atomically as PNG.
+void Save(const cv::Mat& raw, const std::string& caption, const std::filesystem::path& path) {
+  cv::Mat image;
+  cv::flip(raw, image, 0);
+  const int longer = std::max(image.cols, image.rows);
+  const int scale = std::max(1, 600 / std::max(1, longer));
+  if (scale > 1) cv::resize(image, image, cv::Size(), scale, scale, cv::INTER_NEAREST);
+  cv::Mat framed(image.rows + 30, std::max(image.cols, 420), CV_8UC3, cv::Scalar(255, 255, 255));
+  image.copyTo(framed(cv::Rect(0, 30, image.cols, image.rows)));
+  cv::putText(framed, caption, cv::Point(5, 20), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  std::vector<unsigned char> bytes;
+  WAAM_THROW_UNLESS(cv::imencode(".png", framed, bytes), "cannot encode " << path.string() << " as PNG");
+  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+std::string Format(const char* format, double a, double b) {
+  char text[160];
+  std::snprintf(text, sizeof(text), format, a, b);
+  return text;
+}
+
+}  // namespace
+
+void WriteHeightMapPng(const twin::HeightMap& map, const std::filesystem::path& path) {
+  const int nx = std::max(1, map.nx), ny = std::max(1, map.ny);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (float z : map.top_mm) {
+    if (std::isnan(z)) continue;
+    lo = std::min(lo, static_cast<double>(z));
+    hi = std::max(hi, static_cast<double>(z));
+  }
+  if (!std::isfinite(lo)) lo = hi = 0.0;
+  cv::Mat gray(ny, nx, CV_8UC1, cv::Scalar(0));
+  cv::Mat empty(ny, nx, CV_8UC1, cv::Scalar(1));
+  for (int j = 0; j < map.ny; ++j) {
+    for (int i = 0; i < map.nx; ++i) {
+      const float z = map.top_mm[static_cast<std::size_t>(j) * map.nx + i];
+      if (std::isnan(z)) continue;
+      gray.at<unsigned char>(j, i) = static_cast<unsigned char>(hi > lo ? 255.0 * (z - lo) / (hi - lo) : 128.0);
+      empty.at<unsigned char>(j, i) = 0;
+    }
+  }
+  cv::Mat colour;
+  cv::applyColorMap(gray, colour, cv::COLORMAP_VIRIDIS);
+  colour.setTo(cv::Scalar(255, 255, 255), empty);
+  Save(colour, Format("top height, view from +z: %.2f mm (purple) .. %.2f mm (yellow)", lo, hi), path);
+}
+
+void WriteSectionPng(const twin::TwinResult& result, int axis, const std::filesystem::path& path) {
+  WAAM_THROW_UNLESS(axis == 0 || axis == 1, "section picture: axis " << axis << " must be 0 (x) or 1 (y)");
+  const twin::VoxelGrid& grid = result.depositor.grid();
+  twin::VoxelIndex lo, hi;
+  if (!grid.Bounds(&lo, &hi)) {
+    lo = hi = twin::VoxelIndex::Zero();
+  }
+  // The section plane is normal to the other horizontal axis, through the middle of the part.
+  const int across = 1 - axis;
+  const int middle = (lo[across] + hi[across]) / 2;
+  const int width = hi[axis] - lo[axis] + 1;
+  const int height = hi.z() - lo.z() + 1;
+  const int layers = std::max<int>(1, static_cast<int>(result.measures.layers));
+  cv::Mat gray(height, width, CV_8UC1, cv::Scalar(0));
+  cv::Mat empty(height, width, CV_8UC1, cv::Scalar(1));
+  for (int k = lo.z(); k <= hi.z(); ++k) {
+    for (int a = lo[axis]; a <= hi[axis]; ++a) {
+      twin::VoxelIndex v;
+      v[axis] = a;
+      v[across] = middle;
+      v.z() = k;
+      const twin::VoxelData* data = grid.Get(v);
+      if (data == nullptr) continue;
+      const int layer = result.depositor.LayerOf(*data);
+      gray.at<unsigned char>(k - lo.z(), a - lo[axis]) = static_cast<unsigned char>(255.0 * (layer % layers) / layers);
+      empty.at<unsigned char>(k - lo.z(), a - lo[axis]) = 0;
+    }
+  }
+  cv::Mat colour;
+  cv::applyColorMap(gray, colour, cv::COLORMAP_TURBO);
+  colour.setTo(cv::Scalar(255, 255, 255), empty);
+  Save(colour,
+       std::string(axis == 0 ? "section x-z at y = " : "section y-z at x = ") +
+           Format("%.1f mm, colour = layer (1..%.0f)", (middle + 0.5) * grid.voxel_mm(), layers),
+       path);
+}
+
+void WriteDeviationPng(const twin::TwinResult& result, const std::filesystem::path& path) {
+  const twin::HeightMap& map = result.top;
+  const int nx = std::max(1, map.nx), ny = std::max(1, map.ny);
+  // The deviation of the highest upward face of every column: the top surface seen by a scanner from above.
+  std::vector<double> dev(static_cast<std::size_t>(nx) * ny, std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> top(dev.size(), -std::numeric_limits<double>::infinity());
+  const double v = map.voxel_mm;
+  double extent = 1e-9;
+  for (const twin::SurfaceSample& s : result.deviation.points) {
+    if (s.face.z() != 1) continue;
+    const int i = static_cast<int>(std::floor(s.p_P.x() / v)) - map.i0;
+    const int j = static_cast<int>(std::floor(s.p_P.y() / v)) - map.j0;
+    if (i < 0 || j < 0 || i >= nx || j >= ny) continue;
+    const std::size_t n = static_cast<std::size_t>(j) * nx + i;
+    if (s.p_P.z() > top[n]) {
+      top[n] = s.p_P.z();
+      dev[n] = s.deviation_mm;
+    }
+    extent = std::max(extent, std::abs(s.deviation_mm));
+  }
+  cv::Mat colour(ny, nx, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double d = dev[static_cast<std::size_t>(j) * nx + i];
+      if (std::isnan(d)) continue;
+      // Diverging scale: blue (below the target) - white - red (above), BGR.
+      const double t = std::clamp(d / extent, -1.0, 1.0);
+      const auto fade = static_cast<unsigned char>(255.0 * (1.0 - std::abs(t)));
+      colour.at<cv::Vec3b>(j, i) = t < 0 ? cv::Vec3b(255, fade, fade) : cv::Vec3b(fade, fade, 255);
+    }
+  }
+  Save(colour, Format("top-surface deviation from the target: blue -%.2f .. red +%.2f mm", extent, extent), path);
+}
+
+}  // namespace waam::analysis

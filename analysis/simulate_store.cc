@@ -1,0 +1,145 @@
+// Exports of the simulated part: binary STL of its surface and the voxel grid in HDF5.
+#include <hdf5.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "analysis/simulate_command.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+
+namespace waam::analysis {
+namespace {
+
+// Closes an HDF5 handle on scope exit.
+class H5Handle {
+ public:
+  H5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~H5Handle() {
+    if (id_ >= 0) close_(id_);
+  }
+  H5Handle(const H5Handle&) = delete;
+  H5Handle& operator=(const H5Handle&) = delete;
+  hid_t get() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+void Check(bool ok, const std::filesystem::path& path, const char* what) {
+  WAAM_THROW_UNLESS(ok, "cannot write " << path.string() << ": HDF5 " << what << " failed");
+}
+
+template <typename T>
+void WriteDataset(hid_t parent, const char* name, hid_t file_type, hid_t memory_type, const std::vector<T>& data,
+                  int rank, const hsize_t* dims, const std::filesystem::path& path) {
+  H5Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
+  Check(space.get() >= 0, path, "dataspace");
+  H5Handle dataset(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  Check(dataset.get() >= 0, path, name);
+  if (!data.empty()) {
+    Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0, path, name);
+  }
+}
+
+void WriteDoubleAttribute(hid_t object, const char* name, const std::vector<double>& values,
+                          const std::filesystem::path& path) {
+  const hsize_t n = values.size();
+  H5Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  H5Handle attribute(H5Acreate2(object, name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  Check(attribute.get() >= 0, path, name);
+  Check(H5Awrite(attribute.get(), H5T_NATIVE_DOUBLE, values.data()) >= 0, path, name);
+}
+
+}  // namespace
+
+void WriteBinaryStl(const planner::TriangleMesh& mesh, const std::filesystem::path& path, const std::string& header) {
+  // Streamed to the temporary file: a large part's STL does not have to fit in memory twice.
+  AtomicOutput out(path);
+  {
+    std::ofstream file(out.temp_path(), std::ios::binary);
+    WAAM_THROW_UNLESS(file.good(), "cannot write " << path.string());
+    char head[80] = {};
+    std::memcpy(head, header.data(), std::min<std::size_t>(header.size(), 80));
+    file.write(head, 80);
+    const auto count = static_cast<std::uint32_t>(mesh.facets.size());
+    file.write(reinterpret_cast<const char*>(&count), 4);
+    for (const auto& f : mesh.facets) {
+      const Eigen::Vector3d& a = mesh.vertices[f[0]];
+      const Eigen::Vector3d& b = mesh.vertices[f[1]];
+      const Eigen::Vector3d& c = mesh.vertices[f[2]];
+      Eigen::Vector3d n = (b - a).cross(c - a);
+      if (n.norm() > 0) n.normalize();
+      float values[12];
+      for (int k = 0; k < 3; ++k) {
+        values[k] = static_cast<float>(n[k]);
+        values[3 + k] = static_cast<float>(a[k]);
+        values[6 + k] = static_cast<float>(b[k]);
+        values[9 + k] = static_cast<float>(c[k]);
+      }
+      file.write(reinterpret_cast<const char*>(values), sizeof(values));
+      file.write("\0\0", 2);  // attribute byte count
+    }
+    file.flush();
+    WAAM_THROW_UNLESS(file.good(), "cannot write " << path.string() << ": disk full?");
+  }
+  out.Commit();
+}
+
+void WriteSimulationH5(const twin::TwinResult& result, const std::filesystem::path& path) {
+  const twin::VoxelGrid& grid = result.depositor.grid();
+  std::vector<std::int32_t> ijk;
+  std::vector<std::uint32_t> bead;
+  std::vector<std::int32_t> layer;
+  std::vector<float> time;
+  ijk.reserve(grid.occupied() * 3);
+  grid.ForEach([&](const twin::VoxelIndex& v, const twin::VoxelData& d) {
+    ijk.insert(ijk.end(), {v.x(), v.y(), v.z()});
+    bead.push_back(d.bead);
+    layer.push_back(result.depositor.LayerOf(d));
+    time.push_back(d.time_s);
+  });
+  AtomicOutput out(path);
+  {
+    H5Handle file(H5Fcreate(out.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    Check(file.get() >= 0, path, "file create");
+    WriteDoubleAttribute(file.get(), "voxel_mm", {grid.voxel_mm()}, path);
+    WriteDoubleAttribute(file.get(), "origin_mm", {0.0, 0.0, 0.0}, path);
+    H5Handle voxels(H5Gcreate2(file.get(), "voxels", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    Check(voxels.get() >= 0, path, "group voxels");
+    const hsize_t n = bead.size();
+    const hsize_t dims3[2] = {n, 3};
+    WriteDataset(voxels.get(), "ijk", H5T_STD_I32LE, H5T_NATIVE_INT32, ijk, 2, dims3, path);
+    WriteDataset(voxels.get(), "bead", H5T_STD_U32LE, H5T_NATIVE_UINT32, bead, 1, &n, path);
+    WriteDataset(voxels.get(), "layer", H5T_STD_I32LE, H5T_NATIVE_INT32, layer, 1, &n, path);
+    WriteDataset(voxels.get(), "time_s", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, time, 1, &n, path);
+    // Top height map, rows along y.
+    const twin::HeightMap& map = result.top;
+    const hsize_t hdims[2] = {static_cast<hsize_t>(map.ny), static_cast<hsize_t>(map.nx)};
+    WriteDataset(file.get(), "top_height_mm", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, map.top_mm, 2, hdims, path);
+    {
+      H5Handle dataset(H5Dopen2(file.get(), "top_height_mm", H5P_DEFAULT), H5Dclose);
+      WriteDoubleAttribute(dataset.get(), "first_column_ij",
+                           {static_cast<double>(map.i0), static_cast<double>(map.j0)}, path);
+    }
+    // Bead table: layer, length mm, expected and deposited volume mm^3, start time s.
+    std::vector<double> beads;
+    for (const twin::BeadRecord& b : result.depositor.beads()) {
+      beads.insert(beads.end(), {static_cast<double>(b.layer), b.length_mm, b.expected_volume_mm3,
+                                 b.deposited_volume_mm3, b.start_time_s});
+    }
+    const hsize_t bdims[2] = {static_cast<hsize_t>(result.depositor.beads().size()), 5};
+    WriteDataset(file.get(), "beads", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, beads, 2, bdims, path);
+  }
+  out.Commit();
+}
+
+}  // namespace waam::analysis

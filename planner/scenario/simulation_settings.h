@@ -1,0 +1,45 @@
+// Settings of the voxel deposition twin (scenario section `simulation`): voxel size, corner blending, arc start/stop.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace waam::planner {
+
+struct SimulationSettings {
+  double voxel_mm = 0.5;                 // voxel edge, mm, in [0.1, 2]
+  std::size_t max_voxels = 400000000;    // refuse to occupy more voxels than this (about 8.5 bytes each)
+
+  // Corner blending of the executed path, like a robot's continuous-motion mode (FANUC CNT100, 003 sec. 4.4.1):
+  // none = the TCP reaches every vertex (FINE); fixed = blend radius blend_radius_mm;
+  // speed = blend radius travel speed x blend_time_s (a faster torch cuts corners more).
+  std::string blend = "speed";
+  double blend_radius_mm = 2.0;          // mm, for blend = fixed
+  double blend_time_s = 0.3;             // s, for blend = speed
+
+  // Arc start and stop (Ding et al. Fig. 1): over the first start_length_mm of a pass the bead is taller and narrower
+  // (cold start, humping); over the last stop_length_mm it shrinks (crater at the arc end).
+  double start_length_mm = 8.0;          // mm
+  double start_height_factor = 1.25;     // x planned bead height at the very start, blending linearly to 1
+  double start_width_factor = 0.85;      // x planned bead width at the very start
+  double stop_length_mm = 8.0;           // mm
+  double stop_height_factor = 0.6;       // x planned bead height at the very end
+  double stop_width_factor = 0.9;        // x planned bead width at the very end
+
+  // Molten metal hanging past a free edge flows down at most (1 + edge_sag_factor) x bead height below its crown.
+  double edge_sag_factor = 2.0;
+  // Molten metal wets lower ground next to the bead: the parabolic cap continues past w/2 up to
+  // (0.5 + edge_spread_factor) x w from the path, filling only where the ground lies below it (a free side).
+  double edge_spread_factor = 0.15;
+  // Deposition step along the path, mm (0 = one voxel).
+  double step_mm = 0.0;
+};
+
+namespace internal {
+class YamlMap;
+// Reads the optional `simulation:` mapping of the scenario's top level into `out` (defaults where a key is absent).
+// Throws InputError naming file, line and key for unknown keys and out-of-range values.
+void ParseSimulationSection(YamlMap& top, SimulationSettings* out);
+}  // namespace internal
+
+}  // namespace waam::planner

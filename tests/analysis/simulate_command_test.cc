@@ -1,0 +1,181 @@
+// `waam simulate` outputs on a hand-made plan: the JSON contract, the STL and HDF5 files, the pictures, and the
+// voxel-limit error.
+#include "analysis/simulate_command.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "tests/twin/test_paths.h"
+
+namespace waam::analysis {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct Fixture {
+  planner::Scenario scenario;
+  planner::PlanResult planned;
+};
+
+Fixture SmallBlock() {
+  Fixture f;
+  const double w = 6.0, h = 2.0, l = 0.738 * w;
+  f.scenario.name = "small block";
+  f.scenario.path.bead_width_mm = w;
+  f.planned.plan = twin::testing::ParallelBlock(twin::testing::BlockPositions(0.5 * w, 0.47 * w, l, 3), 30.0, 3,
+                                                2.0 / 3.0 * w * h / l, w, h, 8.0);
+  const auto& ring = f.planned.plan.layers.back().slice.front().outer;
+  f.planned.mesh = twin::testing::BoxMesh({ring[0].x(), 0, 0}, {ring[1].x(), 30.0, f.planned.plan.layers.back().z_mm});
+  return f;
+}
+
+TEST(SimulateCommand, WritesTheContract) {
+  const Fixture f = SmallBlock();
+  SimulateOptions options;
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_contract";
+  options.quiet = true;
+  const twin::TwinResult result = SimulatePlanned(f.scenario, f.planned, options);
+  for (const char* name : {"simulate.json", "part.stl", "part.h5", "top_height.png", "section_xz.png",
+                           "section_yz.png", "deviation_map.png"}) {
+    EXPECT_TRUE(fs::exists(options.out_dir / name)) << "expected output " << name;
+  }
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+  for (const char* key : {"voxel_mm", "deposited_volume_mm3", "expected_volume_mm3", "deviation", "voids",
+                          "waviness_mm", "ra_mm", "boundary_lag_mm", "layers"}) {
+    EXPECT_TRUE(j.contains(key)) << "simulate.json must contain " << key;
+  }
+  for (const char* key : {"min_mm", "max_mm", "rms_mm"}) EXPECT_TRUE(j["deviation"].contains(key)) << key;
+  for (const char* key : {"count", "volume_mm3", "max_length_mm"}) EXPECT_TRUE(j["voids"].contains(key)) << key;
+  EXPECT_EQ(j["layers"].get<int>(), 3);
+  const double deposited = j["deposited_volume_mm3"].get<double>();
+  const double expected = j["expected_volume_mm3"].get<double>();
+  EXPECT_NEAR(deposited, expected, 0.02 * expected);
+  // Binary STL: 84 bytes of header and count, 50 per facet.
+  const std::string stl = ReadFile(options.out_dir / "part.stl");
+  ASSERT_GE(stl.size(), 84u);
+  std::uint32_t facets = 0;
+  std::memcpy(&facets, stl.data() + 80, 4);
+  EXPECT_GT(facets, 0u);
+  EXPECT_EQ(stl.size(), 84u + 50u * facets);
+  const std::string h5 = ReadFile(options.out_dir / "part.h5");
+  EXPECT_EQ(h5.substr(0, 8), std::string("\x89HDF\r\n\x1a\n", 8)) << "part.h5 must be an HDF5 file";
+  EXPECT_EQ(result.measures.voxels, result.depositor.grid().occupied());
+}
+
+// Identical inputs, identical outputs: the STL bytes and every measure except the timings.
+TEST(SimulateCommand, IsDeterministic) {
+  const Fixture f = SmallBlock();
+  std::string stl[2];
+  nlohmann::json json[2];
+  for (int run = 0; run < 2; ++run) {
+    SimulateOptions options;
+    options.out_dir = fs::path(::testing::TempDir()) / ("simulate_determinism_" + std::to_string(run));
+    options.quiet = true;
+    options.images = false;
+    SimulatePlanned(f.scenario, f.planned, options);
+    stl[run] = ReadFile(options.out_dir / "part.stl");
+    json[run] = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+    json[run].erase("performance");
+  }
+  EXPECT_TRUE(stl[0] == stl[1]) << "part.stl must be byte-identical across runs";
+  EXPECT_EQ(json[0], json[1]) << "simulate.json measures must not change between runs";
+}
+
+// A plan without weld moves deposits nothing and still writes a complete, zero result.
+TEST(SimulateCommand, EmptyPlanGivesAnEmptyPart) {
+  Fixture f = SmallBlock();
+  for (auto& layer : f.planned.plan.layers) {
+    for (auto& p : layer.points) p.weld = false;
+  }
+  SimulateOptions options;
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_empty";
+  options.quiet = true;
+  const twin::TwinResult r = SimulatePlanned(f.scenario, f.planned, options);
+  EXPECT_EQ(r.measures.voxels, 0u);
+  EXPECT_EQ(r.measures.beads, 0u);
+  EXPECT_TRUE(fs::exists(options.out_dir / "simulate.json"));
+}
+
+TEST(SimulateCommand, VoxelLimitIsCheckedUpFront) {
+  Fixture f = SmallBlock();
+  f.scenario.simulation.max_voxels = 5000;
+  SimulateOptions options;
+  options.scenario = "block.yaml";
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_limit";
+  options.quiet = true;
+  try {
+    SimulatePlanned(f.scenario, f.planned, options);
+    FAIL() << "expected InputError past the voxel limit";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("simulation.max_voxels = 5000"));
+  }
+  EXPECT_FALSE(fs::exists(options.out_dir / "simulate.json")) << "no partial result";
+}
+
+fs::path ScenarioFile(const std::string& name, const std::string& simulation) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("waam_simulate_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "scenario.yaml") << "name: " << name << "\n"
+                                          "part:\n  generator: {type: box, size_mm: [40, 30, 4]}\n"
+                                          "slicing:\n  type: planar\n  layer_height_mm: 2.0\n"
+                                          "path:\n  pattern: continuous\n  bead_width_mm: 6\n"
+                                          "process:\n  travel_speed_mm_min: 400\n  wire_feed_mm_min: 3200\n"
+                                       << simulation;
+  return dir / "scenario.yaml";
+}
+
+int RunWaam(const std::string& args, std::string* err) {
+  const fs::path err_file = fs::path(::testing::TempDir()) / ("waam_simulate_err_" + std::to_string(::getpid()));
+  const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
+  const int status = std::system(command.c_str());
+  *err = ReadFile(err_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The whole pipeline through the real planner: the plan's layers are deposited and the volume balances.
+TEST(SimulateCommand, RunsAScenarioEndToEnd) {
+  SimulateOptions options;
+  options.scenario = ScenarioFile("box", "simulation: {voxel_mm: 0.5, blend: fixed, blend_radius_mm: 1.5}\n");
+  options.out_dir = options.scenario.parent_path() / "out";
+  options.quiet = true;
+  options.images = false;
+  const twin::TwinMeasures m = RunSimulate(options);
+  EXPECT_EQ(m.layers, 2u);
+  EXPECT_GT(m.beads, 0u);
+  EXPECT_NEAR(m.deposited_volume_mm3, m.expected_volume_mm3, 0.02 * m.expected_volume_mm3);
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+  EXPECT_EQ(j["settings"]["blend"], "fixed") << "the scenario's simulation section must reach the twin";
+  EXPECT_GT(j["deviation"]["samples"].get<int>(), 0) << "the box mesh is the target of the deviation";
+  EXPECT_FALSE(fs::exists(options.out_dir / "top_height.png")) << "--no-images";
+
+  // --set reaches the simulation section.
+  options.overrides = {"simulation.voxel_mm=1.0"};
+  EXPECT_DOUBLE_EQ(RunSimulate(options).voxel_mm, 1.0);
+}
+
+TEST(SimulateCommand, CliExitCodes) {
+  std::string err;
+  const fs::path good = ScenarioFile("cli_good", "");
+  EXPECT_EQ(RunWaam("simulate " + good.string() + " -o " + (good.parent_path() / "out").string() + " -q", &err), 0)
+      << err;
+  const fs::path bad = ScenarioFile("cli_bad", "simulation: {voxel_mm: 5}\n");
+  EXPECT_EQ(RunWaam("simulate " + bad.string() + " -o " + (bad.parent_path() / "out").string() + " -q", &err), 2);
+  EXPECT_THAT(err, HasSubstr("simulation.voxel_mm"));
+  EXPECT_EQ(RunWaam("simulate /nonexistent/scenario.yaml -o /tmp/never -q", &err), 2);
+  EXPECT_THAT(err, HasSubstr("waam: error"));
+}
+
+}  // namespace
+}  // namespace waam::analysis

@@ -1,0 +1,69 @@
+// Signed distance to a mesh (cross-checked by brute force) and the scan-to-target deviation of voxel parts.
+#include "twin/scanner/deviation.h"
+
+#include <random>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+#include "tests/twin/test_paths.h"
+#include "twin/scanner/mesh_distance.h"
+#include "twin/scanner/target_volume.h"
+
+namespace waam::twin {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(MeshDistance, BoxDistancesAndSigns) {
+  const planner::TriangleMesh box = testing::BoxMesh({0, 0, 0}, {10, 20, 30});
+  const MeshDistance distance(box);
+  EXPECT_NEAR(distance.SignedDistance({5, 10, 15}), -5.0, 1e-12) << "centre: 5 mm inside the nearest face";
+  EXPECT_NEAR(distance.SignedDistance({12, 10, 15}), 2.0, 1e-12) << "2 mm outside the x = 10 face";
+  EXPECT_NEAR(distance.SignedDistance({13, 24, 15}), 5.0, 1e-12) << "outside an edge: 3-4-5";
+  EXPECT_NEAR(distance.SignedDistance({-1, -2, -2}), 3.0, 1e-12) << "outside a corner: 1-2-2";
+  // Brute force |distance| over random points; sign from the box itself.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-5.0, 35.0);
+  for (int n = 0; n < 500; ++n) {
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d q = p.cwiseMax(Eigen::Vector3d::Zero()).cwiseMin(Eigen::Vector3d(10, 20, 30));
+    const bool inside = (p.array() > 0).all() && p.x() < 10 && p.y() < 20 && p.z() < 30;
+    const double expected = inside ? -std::min({p.x(), 10 - p.x(), p.y(), 20 - p.y(), p.z(), 30 - p.z()})
+                                   : (p - q).norm();
+    ASSERT_NEAR(distance.SignedDistance(p), expected, 1e-9) << "at " << p.transpose();
+  }
+}
+
+TEST(MeshDistance, EmptyMeshIsRefused) {
+  try {
+    MeshDistance distance{planner::TriangleMesh{}};
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no facets"));
+  }
+}
+
+// A voxel block that fills the target exactly deviates by 0; one voxel layer too many on top deviates by +1 voxel.
+TEST(Deviation, ExactAndOverbuiltBlocks) {
+  const planner::TriangleMesh target = testing::BoxMesh({0, 0, 0}, {5, 4, 3});
+  VoxelGrid grid(0.5, 100000);
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 10; ++i) grid.Set(VoxelIndex(i, j, k), VoxelData{});
+  DeviationReport exact = MeasureDeviation(grid, target);
+  EXPECT_EQ(exact.samples, 10u * 8u + 2u * (10u + 8u) * 6u) << "top and side faces; the bottom sits on the substrate";
+  EXPECT_NEAR(exact.rms_mm, 0.0, 1e-9);
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 10; ++i) grid.Set(VoxelIndex(i, j, 6), VoxelData{});
+  DeviationReport over = MeasureDeviation(grid, target);
+  EXPECT_NEAR(over.max_mm, 0.5, 1e-9);
+  EXPECT_NEAR(over.min_mm, 0.0, 1e-9);
+  // The mesh voxelizes back to the same block.
+  const TargetVolume volume = TargetVolume::FromMesh(target, 0.5, 1000000);
+  EXPECT_EQ(volume.CountInside(), 10u * 8u * 6u);
+}
+
+}  // namespace
+}  // namespace waam::twin

@@ -1,0 +1,37 @@
+// SimulateBuild end to end on a small block: volume balance, measures filled in, deviation against the box target.
+#include "twin/simulation.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/twin/test_paths.h"
+
+namespace waam::twin {
+namespace {
+
+TEST(Simulation, BlockAgainstItsBoxTarget) {
+  const double w = 6.0, h = 2.0, l = 0.738 * w;
+  const planner::Plan plan = testing::ParallelBlock(testing::BlockPositions(0.5 * w, 0.47 * w, l, 4), 40.0, 3,
+                                                    2.0 / 3.0 * w * h / l, w, h, 8.0);
+  const auto& region = plan.layers.back().slice.front().outer;
+  const planner::TriangleMesh box = testing::BoxMesh({region[0].x(), 0, 0}, {region[1].x(), 40.0, plan.layers.back().z_mm});
+  std::size_t calls = 0;
+  const TwinResult r = SimulateBuild(plan, &box, planner::SimulationSettings{}, 100.0, w,
+                                     [&](std::size_t done, std::size_t total) {
+                                       ++calls;
+                                       EXPECT_LE(done, total);
+                                     });
+  const TwinMeasures& m = r.measures;
+  EXPECT_EQ(calls, m.beads) << "one progress call per pass";
+  EXPECT_EQ(m.layers, 3u);
+  EXPECT_EQ(m.beads, 3u * 8u);
+  EXPECT_NEAR(m.deposited_volume_mm3, m.expected_volume_mm3, 0.02 * m.expected_volume_mm3);
+  EXPECT_GT(r.deviation.samples, 0u);
+  EXPECT_LT(r.deviation.min_mm, 0.0) << "bead ripple and rounded edges lie inside a box target";
+  EXPECT_GT(r.deviation.max_mm, r.deviation.min_mm);
+  EXPECT_GT(m.ra_mm, 0.0);
+  EXPECT_GE(m.waviness_mm, m.ra_mm) << "the peak-to-valley bounds the mean deviation";
+  EXPECT_GT(m.build_time_s, 0.0);
+}
+
+}  // namespace
+}  // namespace waam::twin

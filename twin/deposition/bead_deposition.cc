@@ -1,0 +1,283 @@
+// Bead deposition: footprint of each path step, ground search along the torch axis, and a water-level fill under the
+// parabolic cap of 003 eq. 3.2 that puts exactly the section area (eq. 3.3) times the step length into the part.
+#include "twin/deposition/bead_deposition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "models/core/error.h"
+#include "models/core/progress.h"
+
+namespace waam::twin {
+namespace {
+
+constexpr double kNoGround = -std::numeric_limits<double>::infinity();
+
+// Voxel index along `axis` of the voxel whose "height" index (counted along the build direction) is m.
+int AxisIndex(int m, int sign) { return sign > 0 ? m : -1 - m; }
+
+}  // namespace
+
+struct Depositor::Column {
+  int i0 = 0;        // voxel index along the first in-plane axis
+  int i1 = 0;        // along the second
+  double d_mm = 0.0; // lateral distance from the path, mm
+  double u_mm = 0.0; // distance along the segment (clamped to it), mm
+  double ground_mm = 0.0;  // top of the solid under the column, along the build direction, mm (or kNoGround)
+  int lo = 0;        // voxel height indices to fill (inclusive), set by the level search
+  int hi = -1;
+};
+
+void ValidateSimulationSettings(const planner::SimulationSettings& s) {
+  WAAM_THROW_UNLESS(s.voxel_mm >= 0.1 && s.voxel_mm <= 2.0,
+                    "simulation.voxel_mm = " << s.voxel_mm << ": must be in [0.1, 2] mm");
+  WAAM_THROW_UNLESS(s.max_voxels >= 1, "simulation.max_voxels = 0: must be >= 1");
+  WAAM_THROW_UNLESS(s.blend == "none" || s.blend == "fixed" || s.blend == "speed",
+                    "simulation.blend = '" << s.blend << "': must be one of none, fixed, speed");
+  WAAM_THROW_UNLESS(s.blend_radius_mm >= 0.0 && s.blend_radius_mm <= 100.0,
+                    "simulation.blend_radius_mm = " << s.blend_radius_mm << ": must be in [0, 100] mm");
+  WAAM_THROW_UNLESS(s.blend_time_s >= 0.0 && s.blend_time_s <= 10.0,
+                    "simulation.blend_time_s = " << s.blend_time_s << ": must be in [0, 10] s");
+  WAAM_THROW_UNLESS(s.start_length_mm >= 0.0 && s.stop_length_mm >= 0.0,
+                    "simulation.start_length_mm / stop_length_mm: must be >= 0 mm");
+  for (double f : {s.start_height_factor, s.start_width_factor, s.stop_height_factor, s.stop_width_factor}) {
+    WAAM_THROW_UNLESS(f >= 0.2 && f <= 3.0, "simulation start/stop factor = " << f << ": must be in [0.2, 3]");
+  }
+  WAAM_THROW_UNLESS(s.edge_sag_factor >= 0.0 && s.edge_sag_factor <= 10.0,
+                    "simulation.edge_sag_factor = " << s.edge_sag_factor << ": must be in [0, 10]");
+  WAAM_THROW_UNLESS(s.edge_spread_factor >= 0.0 && s.edge_spread_factor <= 1.0,
+                    "simulation.edge_spread_factor = " << s.edge_spread_factor << ": must be in [0, 1]");
+  WAAM_THROW_UNLESS(s.step_mm >= 0.0 && s.step_mm <= 10.0,
+                    "simulation.step_mm = " << s.step_mm << ": must be in [0, 10] mm");
+}
+
+Depositor::Depositor(const planner::SimulationSettings& settings)
+    : settings_(settings), grid_((ValidateSimulationSettings(settings), settings.voxel_mm), settings.max_voxels) {}
+
+// Fills one step. The molten metal settles under a cap z = L - 4h/w^2 y^2 (eq. 3.2 shifted to the water level L):
+// each column takes the free voxels between its ground (or, over air past a free edge, (1 + sag) h under the crown)
+// and the cap. L is the lowest level whose voxels hold the step's volume, so valleys fill first.
+double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3,
+                           double zeta_tcp_mm, int axis, int sign, const VoxelData& data, bool last_step) {
+  const double v = grid_.voxel_mm();
+  const double h = section.height_mm;
+  const double w = section.width_mm;
+  const long target_voxels = std::lround(target_mm3 / (v * v * v));
+  if (target_voxels <= 0 || columns.empty()) return 0.0;
+  const int a0 = (axis + 1) % 3;
+  const int a1 = (axis + 2) % 3;
+  auto voxel = [&](const Column& c, int m) {
+    VoxelIndex idx;
+    idx[a0] = c.i0;
+    idx[a1] = c.i1;
+    idx[axis] = AxisIndex(m, sign);
+    return idx;
+  };
+
+  // Ground under each column: scan down along the build direction from above the crown.
+  const int m_start = static_cast<int>(std::floor((zeta_tcp_mm + h) / v));
+  const int m_min = static_cast<int>(std::floor((zeta_tcp_mm - 4.0 * h - 2.0) / v));
+  const int m_up = m_start + static_cast<int>(std::ceil(4.0 * h / v)) + 2;
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -std::numeric_limits<double>::infinity();
+  for (Column& c : columns) {
+    c.ground_mm = kNoGround;
+    if (grid_.Solid(voxel(c, m_start))) {
+      for (int m = m_start + 1; m <= m_up; ++m) {
+        if (!grid_.Solid(voxel(c, m))) {
+          c.ground_mm = m * v;
+          break;
+        }
+      }
+      if (c.ground_mm == kNoGround) c.ground_mm = std::numeric_limits<double>::infinity();  // buried: unusable
+    } else {
+      for (int m = m_start - 1; m >= m_min; --m) {
+        if (grid_.Solid(voxel(c, m))) {
+          c.ground_mm = (m + 1) * v;
+          break;
+        }
+      }
+    }
+    if (std::isfinite(c.ground_mm)) {
+      lowest = std::min(lowest, c.ground_mm);
+      highest = std::max(highest, c.ground_mm);
+    }
+  }
+  if (!std::isfinite(lowest)) {
+    lowest = zeta_tcp_mm - 4.0 * h;
+    highest = lowest;
+  }
+  // Over air (no ground within reach) the metal runs down the part's side at most edge_sag_factor x h below the
+  // lowest supported column, and never more than (1 + edge_sag_factor) x h below the crown.
+  const double sag = (1.0 + settings_.edge_sag_factor) * h;
+  const double air_floor = lowest - settings_.edge_sag_factor * h;
+  auto count = [&](double level, bool store) {
+    long total = 0;
+    for (Column& c : columns) {
+      if (c.ground_mm == std::numeric_limits<double>::infinity()) continue;
+      const double top = level - 4.0 * h / (w * w) * c.d_mm * c.d_mm;
+      const double bottom = std::max(c.ground_mm == kNoGround ? air_floor : c.ground_mm, level - sag);
+      const int lo = static_cast<int>(std::ceil(bottom / v - 0.5));
+      const int hi = static_cast<int>(std::floor(top / v - 0.5));
+      if (store) {
+        c.lo = lo;
+        c.hi = hi;
+      }
+      if (hi >= lo) total += hi - lo + 1;
+    }
+    return total;
+  };
+  double lo_level = air_floor - sag - v;
+  // The molten pool cannot stand higher than 1.5 h above the highest ground under it: what does not fit (a step
+  // that owns few columns, e.g. a short chord at a sharp turn) is carried to the next steps of the pass instead of
+  // piling up in a spike. The last step of a pass takes whatever is left.
+  double hi_level = highest + h + v * (static_cast<double>(target_voxels) + 2.0);
+  if (!last_step) hi_level = std::min(hi_level, highest + 1.5 * h);
+  for (int iter = 0; iter < 48 && hi_level - lo_level > 1e-4 * v; ++iter) {
+    const double mid = 0.5 * (lo_level + hi_level);
+    (count(mid, false) >= target_voxels ? hi_level : lo_level) = mid;
+  }
+  count(hi_level, true);
+  long placed = 0;
+  for (const Column& c : columns) {
+    for (int m = c.lo; m <= c.hi; ++m) {
+      if (grid_.Set(voxel(c, m), data)) ++placed;
+    }
+  }
+  return static_cast<double>(placed) * v * v * v;
+}
+
+std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
+  const auto bead = static_cast<std::uint32_t>(beads_.size());
+  BeadRecord record;
+  record.start_time_s = pass.start_time_s;
+  record.layer = pass.layer;
+  record.length_mm = pass.length_mm();
+  const double v = grid_.voxel_mm();
+  const double step = settings_.step_mm > 0.0 ? settings_.step_mm : v;
+  const double width_factor = std::max({1.0, settings_.start_width_factor, settings_.stop_width_factor});
+  double debt = 0.0;  // volume owed to the part by earlier steps (voxel rounding), mm^3
+  const auto& pts = pass.points;
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    const ExecutedPoint& A = pts[i - 1];
+    const ExecutedPoint& B = pts[i];
+    const double len3 = (B.p_P - A.p_P).norm();
+    if (len3 < 1e-9) continue;
+    // Columns run along the grid axis nearest the torch axis, growing towards the torch.
+    const Eigen::Vector3d tool = (A.tool_dir_P + B.tool_dir_P).normalized();
+    int axis = 0;
+    tool.cwiseAbs().maxCoeff(&axis);
+    const int sign = tool[axis] >= 0.0 ? 1 : -1;
+    const int a0 = (axis + 1) % 3;
+    const int a1 = (axis + 2) % 3;
+    auto plane = [&](const Eigen::Vector3d& p) { return Eigen::Vector2d(p[a0], p[a1]); };
+    const Eigen::Vector2d A2 = plane(A.p_P);
+    const Eigen::Vector2d B2 = plane(B.p_P);
+    const double L2 = (B2 - A2).norm();
+    const Eigen::Vector2d unit = L2 > 1e-9 ? Eigen::Vector2d((B2 - A2) / L2) : Eigen::Vector2d(1.0, 0.0);
+    // Segments of the same bead near this one along the path (within a bead width of arc length): a column belongs
+    // to the nearest of them only, so a bead never covers its own footprint twice (corners, tight arcs), while
+    // parts of the path farther along (the next raster line, a crossing) overlap it as real beads do.
+    const double window = B.bead_width_mm;
+    std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> rivals;  // (start, end) in the column plane
+    std::vector<bool> rival_before;                                      // true for segments before this one
+    for (std::size_t j = i; j-- > 1;) {
+      if (A.s_mm - pts[j].s_mm > window) break;
+      rivals.emplace_back(plane(pts[j - 1].p_P), plane(pts[j].p_P));
+      rival_before.push_back(true);
+    }
+    for (std::size_t j = i + 1; j < pts.size(); ++j) {
+      if (pts[j - 1].s_mm - B.s_mm > window) break;
+      rivals.emplace_back(plane(pts[j - 1].p_P), plane(pts[j].p_P));
+      rival_before.push_back(false);
+    }
+    auto distance_to = [](const Eigen::Vector2d& c, const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+      const Eigen::Vector2d pq = q - p;
+      const double len2 = pq.squaredNorm();
+      const double t = len2 > 0.0 ? std::clamp((c - p).dot(pq) / len2, 0.0, 1.0) : 0.0;
+      return (c - (p + t * pq)).norm();
+    };
+
+    const double r_max = (0.5 + settings_.edge_spread_factor) * B.bead_width_mm * width_factor;
+    std::vector<Column> cols;
+    const Eigen::Vector2d lo = A2.cwiseMin(B2) - Eigen::Vector2d::Constant(r_max + v);
+    const Eigen::Vector2d hi = A2.cwiseMax(B2) + Eigen::Vector2d::Constant(r_max + v);
+    for (int i0 = static_cast<int>(std::floor(lo.x() / v)); i0 <= static_cast<int>(std::floor(hi.x() / v)); ++i0) {
+      for (int i1 = static_cast<int>(std::floor(lo.y() / v)); i1 <= static_cast<int>(std::floor(hi.y() / v)); ++i1) {
+        const Eigen::Vector2d c((i0 + 0.5) * v, (i1 + 0.5) * v);
+        const double u = std::clamp((c - A2).dot(unit), 0.0, L2);
+        const double d = (c - (A2 + unit * u)).norm();
+        if (d > r_max) continue;
+        bool mine = true;
+        for (std::size_t r = 0; r < rivals.size() && mine; ++r) {
+          const double dr = distance_to(c, rivals[r].first, rivals[r].second);
+          // Ties (the outside of a corner, nearest to the shared vertex) go to the earlier segment.
+          mine = rival_before[r] ? dr > d : dr >= d;
+        }
+        if (!mine) continue;
+        Column column;
+        column.i0 = i0;
+        column.i1 = i1;
+        column.d_mm = d;
+        column.u_mm = u;
+        cols.push_back(column);
+      }
+    }
+    std::sort(cols.begin(), cols.end(), [](const Column& x, const Column& y) {
+      return x.u_mm != y.u_mm ? x.u_mm < y.u_mm : (x.i0 != y.i0 ? x.i0 < y.i0 : x.i1 < y.i1);
+    });
+    // Steps follow the columns: each takes whole rows of columns (about `step` of path) and exactly the volume of
+    // the path length between the midpoints to its neighbours, so no row gets a double share (no aliasing ridges).
+    const double scale = L2 > 1e-9 ? len3 / L2 : 0.0;
+    std::size_t first = 0;
+    double boundary = 0.0;
+    std::vector<Column> chunk;
+    while (first < cols.size() || (cols.empty() && boundary == 0.0)) {
+      std::size_t last = first;
+      while (last < cols.size() && cols[last].u_mm <= cols[first].u_mm + 0.999 * step) ++last;
+      // Extend to the end of the row of equal u.
+      while (last < cols.size() && last > first && cols[last].u_mm - cols[last - 1].u_mm < 1e-9) ++last;
+      const double next_boundary =
+          last < cols.size() ? 0.5 * (cols[last - 1].u_mm + cols[last].u_mm) : L2;
+      const double span3 = L2 > 1e-9 ? (next_boundary - boundary) * scale : len3;
+      const double f = L2 > 1e-9 ? 0.5 * (boundary + next_boundary) / L2 : 0.5;
+      const double s = A.s_mm + f * len3;
+      const BeadSection section = SectionAt(pass, i, s, settings_);
+      const double volume = section.Area() * span3;
+      record.expected_volume_mm3 += volume;
+      chunk.clear();
+      for (std::size_t c = first; c < last; ++c) {
+        if (cols[c].d_mm <= (0.5 + settings_.edge_spread_factor) * section.width_mm) chunk.push_back(cols[c]);
+      }
+      const double zeta_tcp = sign * ((1.0 - f) * A.p_P[axis] + f * B.p_P[axis]);
+      VoxelData data;
+      data.bead = bead;
+      data.time_s = static_cast<float>(pass.start_time_s + s / std::max(B.speed_mm_s, 1e-9));
+      const bool last_step = i + 1 == pts.size() && last == cols.size();
+      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, axis, sign, data, last_step);
+      debt += volume - placed;
+      record.deposited_volume_mm3 += placed;
+      boundary = next_boundary;
+      first = last;
+      if (cols.empty()) break;
+    }
+  }
+  expected_volume_mm3_ += record.expected_volume_mm3;
+  weld_length_mm_ += record.length_mm;
+  beads_.push_back(record);
+  return bead;
+}
+
+Depositor DepositPlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+                      double rapid_speed_mm_s, Progress* progress) {
+  Depositor depositor(settings);
+  const std::vector<ExecutedPass> passes = ExecutePlan(plan, settings, rapid_speed_mm_s);
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    depositor.DepositPass(passes[i]);
+    if (progress != nullptr) progress->Update(i + 1);
+  }
+  return depositor;
+}
+
+}  // namespace waam::twin

@@ -1,0 +1,64 @@
+// Bead deposition into the voxel grid: each bead section is swept along the executed pass and its material, area x
+// length, fills the lowest free voxels under the footprint up to the parabolic cap (material is conserved).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "planner/path/tool_path.h"
+#include "planner/scenario/simulation_settings.h"
+#include "twin/deposition/executed_path.h"
+#include "twin/deposition/voxel_grid.h"
+
+namespace waam {
+class Progress;
+}
+
+namespace waam::twin {
+
+// What the twin knows about one deposited bead (one weld pass).
+struct BeadRecord {
+  int layer = 0;
+  double length_mm = 0.0;                // executed path length, mm
+  double expected_volume_mm3 = 0.0;      // integral of the section area along the pass, mm^3
+  double deposited_volume_mm3 = 0.0;     // voxels occupied by this bead x voxel volume, mm^3
+  double start_time_s = 0.0;             // arc start, s from the start of the build
+};
+
+// Checks the settings; throws InputError naming the `simulation.<key>` that is out of range.
+void ValidateSimulationSettings(const planner::SimulationSettings& settings);
+
+// The deposition twin: a const model (settings) and the growing part (grid and bead table).
+class Depositor {
+ public:
+  // Throws InputError for invalid settings (see ValidateSimulationSettings).
+  explicit Depositor(const planner::SimulationSettings& settings);
+
+  // Deposits one executed pass and returns its bead index. Throws InputError when the grid's voxel limit is passed.
+  std::uint32_t DepositPass(const ExecutedPass& pass);
+
+  const VoxelGrid& grid() const { return grid_; }
+  const std::vector<BeadRecord>& beads() const { return beads_; }
+  const planner::SimulationSettings& settings() const { return settings_; }
+  double expected_volume_mm3() const { return expected_volume_mm3_; }
+  double weld_length_mm() const { return weld_length_mm_; }
+  // Layer of an occupied voxel's bead.
+  int LayerOf(const VoxelData& data) const { return beads_[data.bead].layer; }
+
+ private:
+  struct Column;
+  double FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3, double zeta_tcp_mm,
+                  int axis, int sign, const VoxelData& data, bool last_step);
+
+  planner::SimulationSettings settings_;
+  VoxelGrid grid_;
+  std::vector<BeadRecord> beads_;
+  double expected_volume_mm3_ = 0.0;
+  double weld_length_mm_ = 0.0;
+};
+
+// Executes and deposits a whole plan (travel timed at `rapid_speed_mm_s`); `progress` (may be null) counts passes.
+Depositor DepositPlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+                      double rapid_speed_mm_s, Progress* progress);
+
+}  // namespace waam::twin

@@ -1,0 +1,159 @@
+// Executed torch path: weld passes from the planned layers, corner blending (CNT100-like) and start/stop bead shapes.
+#include "twin/deposition/executed_path.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "models/core/error.h"
+
+namespace waam::twin {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+ExecutedPoint FromPathPoint(const planner::PathPoint& p) {
+  ExecutedPoint e;
+  e.p_P = p.p_P;
+  e.tool_dir_P = p.tool_dir_P.normalized();
+  e.bead_width_mm = p.bead_width_mm;
+  e.bead_height_mm = p.bead_height_mm;
+  e.speed_mm_s = p.speed_mm_s;
+  return e;
+}
+
+void AccumulateArcLength(ExecutedPass* pass) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < pass->points.size(); ++i) {
+    if (i > 0) s += (pass->points[i].p_P - pass->points[i - 1].p_P).norm();
+    pass->points[i].s_mm = s;
+  }
+}
+
+}  // namespace
+
+ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::SimulationSettings& settings,
+                       double voxel_mm) {
+  ExecutedPass pass;
+  // Drop repeated points: they carry no direction.
+  std::vector<ExecutedPoint> pts;
+  for (const ExecutedPoint& p : raw) {
+    if (pts.empty() || (p.p_P - pts.back().p_P).norm() > 1e-9) pts.push_back(p);
+  }
+  if (pts.size() < 3 || settings.blend == "none") {
+    pass.points = pts;
+    AccumulateArcLength(&pass);
+    return pass;
+  }
+  pass.points.push_back(pts.front());
+  // The arc at each interior vertex is tangent to both segments; its tangent length is at most half of each segment,
+  // so neighbouring arcs never overlap (the TCP passes near, not through, the programmed vertex).
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+    const Eigen::Vector3d& prev = pts[i - 1].p_P;
+    const Eigen::Vector3d& vertex = pts[i].p_P;
+    const Eigen::Vector3d& next = pts[i + 1].p_P;
+    const double len_in = (vertex - prev).norm();
+    const double len_out = (next - vertex).norm();
+    const Eigen::Vector3d a = (vertex - prev) / len_in;
+    const Eigen::Vector3d b = (next - vertex) / len_out;
+    const double turn = std::acos(std::clamp(a.dot(b), -1.0, 1.0));  // deflection angle, rad
+    double radius = settings.blend == "fixed" ? settings.blend_radius_mm : pts[i].speed_mm_s * settings.blend_time_s;
+    if (turn < 1e-3 || turn > kPi - 1e-3 || radius <= 0.0) {
+      pass.points.push_back(pts[i]);
+      continue;
+    }
+    double tangent = radius * std::tan(turn / 2.0);
+    tangent = std::min(tangent, 0.5 * std::min(len_in, len_out));
+    radius = tangent / std::tan(turn / 2.0);
+    const Eigen::Vector3d axis = a.cross(b).normalized();
+    const Eigen::Vector3d t_in = vertex - a * tangent;
+    const Eigen::Vector3d center = t_in + axis.cross(a) * radius;
+    const Eigen::Vector3d u0 = t_in - center;
+    // Chords no longer than a voxel and no more than 10 degrees of turn each.
+    const int n = std::max(1, static_cast<int>(std::ceil(std::max(turn / (10.0 * kPi / 180.0),
+                                                                  radius * turn / std::max(voxel_mm, 1e-3)))));
+    for (int k = 0; k <= n; ++k) {
+      ExecutedPoint e = pts[k == n ? i + 1 : i];
+      e.bead_width_mm = pts[i].bead_width_mm;
+      e.bead_height_mm = pts[i].bead_height_mm;
+      e.speed_mm_s = pts[i].speed_mm_s;
+      e.tool_dir_P = (pts[i].tool_dir_P + pts[i + 1].tool_dir_P * (static_cast<double>(k) / n)).normalized();
+      e.p_P = center + Eigen::AngleAxisd(turn * k / n, axis) * u0;
+      pass.points.push_back(e);
+    }
+    // The move out of the arc keeps the next point's bead and speed.
+    pass.points.back().bead_width_mm = pts[i + 1].bead_width_mm;
+    pass.points.back().bead_height_mm = pts[i + 1].bead_height_mm;
+  }
+  pass.points.push_back(pts.back());
+  AccumulateArcLength(&pass);
+  return pass;
+}
+
+std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+                                      double rapid_speed_mm_s) {
+  WAAM_THROW_UNLESS(rapid_speed_mm_s > 0.0, "simulate: rapid speed = " << rapid_speed_mm_s << " mm/s: must be > 0");
+  std::vector<ExecutedPass> passes;
+  double time_s = 0.0;
+  for (const planner::LayerPath& layer : plan.layers) {
+    std::vector<ExecutedPoint> run;
+    auto flush = [&]() {
+      if (run.size() >= 2) {
+        double length = 0.0;
+        for (std::size_t i = 1; i < run.size(); ++i) length += (run[i].p_P - run[i - 1].p_P).norm();
+        ExecutedPass pass = BlendPass(run, settings, settings.voxel_mm);
+        pass.layer = layer.index;
+        pass.start_time_s = time_s;
+        // Time of the pass along the executed path at the planned speeds.
+        for (std::size_t i = 1; i < pass.points.size(); ++i) {
+          time_s += (pass.points[i].p_P - pass.points[i - 1].p_P).norm() / pass.points[i].speed_mm_s;
+        }
+        if (pass.points.size() >= 2 && length > 0.0) passes.push_back(std::move(pass));
+      }
+      run.clear();
+    };
+    for (std::size_t i = 0; i < layer.points.size(); ++i) {
+      const planner::PathPoint& p = layer.points[i];
+      if (i > 0 && p.weld) {
+        WAAM_THROW_UNLESS(p.speed_mm_s > 0.0 && p.bead_width_mm > 0.0 && p.bead_height_mm > 0.0,
+                          "simulate: layer " << layer.index << " point " << i << ": weld move needs speed, bead "
+                          "width and height > 0 (got " << p.speed_mm_s << " mm/s, " << p.bead_width_mm << " mm, "
+                          << p.bead_height_mm << " mm)");
+        if (run.empty()) run.push_back(FromPathPoint(layer.points[i - 1]));
+        run.push_back(FromPathPoint(p));
+      } else {
+        flush();
+        if (i > 0) time_s += (p.p_P - layer.points[i - 1].p_P).norm() / rapid_speed_mm_s;
+      }
+    }
+    flush();
+  }
+  return passes;
+}
+
+BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm,
+                      const planner::SimulationSettings& settings) {
+  const ExecutedPoint& p = pass.points[std::min(segment, pass.points.size() - 1)];
+  BeadSection section{p.bead_width_mm, p.bead_height_mm};
+  const double length = pass.length_mm();
+  // Linear blend of the start and stop shapes (Ding Fig. 1); on a pass shorter than both they multiply.
+  double hf = 1.0;
+  double wf = 1.0;
+  if (settings.start_length_mm > 0.0 && s_mm < settings.start_length_mm) {
+    const double t = 1.0 - s_mm / settings.start_length_mm;
+    hf *= 1.0 + (settings.start_height_factor - 1.0) * t;
+    wf *= 1.0 + (settings.start_width_factor - 1.0) * t;
+  }
+  const double to_end = length - s_mm;
+  if (settings.stop_length_mm > 0.0 && to_end < settings.stop_length_mm) {
+    const double t = 1.0 - std::max(0.0, to_end) / settings.stop_length_mm;
+    hf *= 1.0 + (settings.stop_height_factor - 1.0) * t;
+    wf *= 1.0 + (settings.stop_width_factor - 1.0) * t;
+  }
+  section.width_mm *= wf;
+  section.height_mm *= hf;
+  return section;
+}
+
+}  // namespace waam::twin

@@ -1,0 +1,54 @@
+// The torch path as the robot really executes it: weld passes with blended corners and the bead section along them.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planner/path/tool_path.h"
+#include "planner/scenario/simulation_settings.h"
+
+namespace waam::twin {
+
+// One point of an executed weld pass (part frame P).
+struct ExecutedPoint {
+  Eigen::Vector3d p_P = Eigen::Vector3d::Zero();          // TCP, mm
+  Eigen::Vector3d tool_dir_P = Eigen::Vector3d::UnitZ();  // unit, up the torch
+  double bead_width_mm = 0.0;                             // planned width of the bead laid up to here, mm
+  double bead_height_mm = 0.0;                            // planned height, mm
+  double speed_mm_s = 0.0;                                // travel speed, mm/s
+  double s_mm = 0.0;                                      // arc length from the start of the pass, mm
+};
+
+// One continuous weld pass: one arc start, one arc stop.
+struct ExecutedPass {
+  int layer = 0;
+  double start_time_s = 0.0;           // time of the arc start from the start of the build, s
+  std::vector<ExecutedPoint> points;   // >= 2 points
+  double length_mm() const { return points.empty() ? 0.0 : points.back().s_mm; }
+};
+
+// The bead section at one place of a pass. Same shape and names as models::ParabolicBead (branch models), which
+// replaces it once that lands.
+struct BeadSection {
+  double width_mm = 0.0;
+  double height_mm = 0.0;
+  // Area of the parabolic section z = -4h/w^2 y^2 + h (003 eq. 3.2-3.3): 2wh/3, mm^2.
+  double Area() const { return 2.0 * width_mm * height_mm / 3.0; }
+};
+
+// Splits every layer of `plan` into weld passes and blends their corners as `settings.blend` says (the TCP does not
+// reach a sharp vertex; the arc is tangent to both segments and at most half of each). Travel moves are timed at
+// `rapid_speed_mm_s` (> 0). Throws InputError for a weld move with a non-positive speed, width or height.
+std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+                                      double rapid_speed_mm_s);
+
+// Blends the corners of one pass polyline (used by ExecutePlan; exposed for tests).
+ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::SimulationSettings& settings,
+                       double voxel_mm);
+
+// The bead section at arc length `s_mm` of `pass`, with the start and stop shapes of `settings` applied.
+BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm,
+                      const planner::SimulationSettings& settings);
+
+}  // namespace waam::twin

@@ -1,0 +1,172 @@
+// Marching tetrahedra: each cell of 2x2x2 voxel centres is cut into the six Kuhn tetrahedra sharing the diagonal
+// 0-7; a tetrahedron with one or three corners inside gives one triangle, with two a quad, at the edge midpoints.
+#include "twin/scanner/surface_mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <Eigen/Geometry>
+
+#include "models/core/error.h"
+#include "models/core/progress.h"
+
+namespace waam::twin {
+namespace {
+
+// Corner c of a cell is at offset (c & 1, c >> 1 & 1, c >> 2 & 1).
+constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+
+std::uint64_t Pack(const Eigen::Vector3i& p) {
+  constexpr std::int64_t kOffset = 1 << 20;
+  return (static_cast<std::uint64_t>(p.x() + kOffset) << 42) | (static_cast<std::uint64_t>(p.y() + kOffset) << 21) |
+         static_cast<std::uint64_t>(p.z() + kOffset);
+}
+
+}  // namespace
+
+planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
+  planner::TriangleMesh mesh;
+  const double v = grid.voxel_mm();
+  constexpr int B = VoxelGrid::kBlock;
+  // Cell blocks to visit: every block with metal and its neighbours on the low side (cells reaching into it).
+  std::unordered_set<std::uint64_t> seen;
+  std::vector<Eigen::Vector3i> cell_blocks;
+  grid.ForEach([&](const VoxelIndex& idx, const VoxelData&) {
+    const Eigen::Vector3i b(idx.x() >> 3, idx.y() >> 3, idx.z() >> 3);
+    for (int d = 0; d < 8; ++d) {
+      const Eigen::Vector3i c = b - Eigen::Vector3i(d & 1, d >> 1 & 1, d >> 2 & 1);
+      if (seen.insert(Pack(c)).second) cell_blocks.push_back(c);
+    }
+  });
+  std::sort(cell_blocks.begin(), cell_blocks.end(), [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  std::unordered_map<std::uint64_t, int> vertex_of;  // edge midpoint in half-voxel units -> vertex
+  auto vertex = [&](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+    const Eigen::Vector3i key = a + b + Eigen::Vector3i::Ones();  // 2 x midpoint / v
+    auto [it, inserted] = vertex_of.emplace(Pack(key), static_cast<int>(mesh.vertices.size()));
+    if (inserted) mesh.vertices.push_back(key.cast<double>() * (0.5 * v));
+    return it->second;
+  };
+  std::array<std::uint8_t, (B + 1) * (B + 1) * (B + 1)> occ{};
+  for (const Eigen::Vector3i& cb : cell_blocks) {
+    CheckInterrupt();
+    const Eigen::Vector3i origin = cb * B;
+    for (int z = 0; z <= B; ++z)
+      for (int y = 0; y <= B; ++y)
+        for (int x = 0; x <= B; ++x)
+          occ[(z * (B + 1) + y) * (B + 1) + x] = grid.Occupied(origin + Eigen::Vector3i(x, y, z)) ? 1 : 0;
+    for (int z = 0; z < B; ++z) {
+      for (int y = 0; y < B; ++y) {
+        for (int x = 0; x < B; ++x) {
+          std::array<std::uint8_t, 8> in;
+          int count = 0;
+          for (int c = 0; c < 8; ++c) {
+            in[c] = occ[((z + (c >> 2 & 1)) * (B + 1) + y + (c >> 1 & 1)) * (B + 1) + x + (c & 1)];
+            count += in[c];
+          }
+          if (count == 0 || count == 8) continue;
+          const Eigen::Vector3i base = origin + Eigen::Vector3i(x, y, z);
+          auto corner = [&](int c) -> Eigen::Vector3i { return base + Eigen::Vector3i(c & 1, c >> 1 & 1, c >> 2 & 1); };
+          for (const auto& tet : kTets) {
+            std::array<int, 4> inside{}, outside{};
+            int ni = 0, no = 0;
+            for (int t : tet) (in[t] ? inside[ni++] : outside[no++]) = t;
+            if (ni == 0 || no == 0) continue;
+            // Reference direction from the inside corners to the outside corners, for the facet orientation.
+            Eigen::Vector3d ci = Eigen::Vector3d::Zero(), co = Eigen::Vector3d::Zero();
+            for (int q = 0; q < ni; ++q) ci += corner(inside[q]).cast<double>() / ni;
+            for (int q = 0; q < no; ++q) co += corner(outside[q]).cast<double>() / no;
+            const Eigen::Vector3d out_dir = co - ci;
+            auto emit = [&](int a, int b, int c) {
+              const Eigen::Vector3d n =
+                  (mesh.vertices[b] - mesh.vertices[a]).cross(mesh.vertices[c] - mesh.vertices[a]);
+              if (n.dot(out_dir) >= 0.0) {
+                mesh.facets.push_back({a, b, c});
+              } else {
+                mesh.facets.push_back({a, c, b});
+              }
+            };
+            if (ni == 1 || no == 1) {
+              const int apex = ni == 1 ? inside[0] : outside[0];
+              const std::array<int, 3> others = ni == 1 ? std::array<int, 3>{outside[0], outside[1], outside[2]}
+                                                        : std::array<int, 3>{inside[0], inside[1], inside[2]};
+              emit(vertex(corner(apex), corner(others[0])), vertex(corner(apex), corner(others[1])),
+                   vertex(corner(apex), corner(others[2])));
+            } else {
+              // Two in, two out: the quad i0o0, i0o1, i1o1, i1o0.
+              const int a = vertex(corner(inside[0]), corner(outside[0]));
+              const int b = vertex(corner(inside[0]), corner(outside[1]));
+              const int c = vertex(corner(inside[1]), corner(outside[1]));
+              const int d = vertex(corner(inside[1]), corner(outside[0]));
+              emit(a, b, c);
+              emit(a, c, d);
+            }
+          }
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+std::size_t ExposedFaces(const VoxelGrid& grid) {
+  std::size_t faces = 0;
+  const Eigen::Vector3i dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  grid.ForEach([&](const VoxelIndex& v, const VoxelData&) {
+    for (const Eigen::Vector3i& d : dirs) faces += grid.Solid(v + d) ? 0 : 1;
+  });
+  return faces;
+}
+
+VoxelGrid Coarsen(const VoxelGrid& grid, int factor) {
+  WAAM_THROW_UNLESS(factor >= 1, "coarsen: factor " << factor << " must be >= 1");
+  VoxelGrid coarse(grid.voxel_mm() * factor, grid.max_voxels());
+  if (factor == 1) {
+    grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) { coarse.Set(v, d); });
+    return coarse;
+  }
+  auto floor_div = [factor](int a) { return a >= 0 ? a / factor : -((-a + factor - 1) / factor); };
+  std::unordered_map<std::uint64_t, std::pair<int, VoxelData>> counts;
+  std::vector<std::uint64_t> order;  // first-seen order, for a deterministic result
+  grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) {
+    const Eigen::Vector3i c(floor_div(v.x()), floor_div(v.y()), floor_div(v.z()));
+    auto [it, inserted] = counts.try_emplace(Pack(c), 0, d);
+    if (inserted) order.push_back(it->first);
+    ++it->second.first;
+  });
+  const int half = (factor * factor * factor + 1) / 2;
+  constexpr std::int64_t kOffset = 1 << 20;
+  for (std::uint64_t key : order) {
+    const auto& [n, data] = counts[key];
+    if (n < half) continue;
+    const VoxelIndex c(static_cast<int>(static_cast<std::int64_t>(key >> 42) - kOffset),
+                       static_cast<int>(static_cast<std::int64_t>((key >> 21) & 0x1FFFFF) - kOffset),
+                       static_cast<int>(static_cast<std::int64_t>(key & 0x1FFFFF) - kOffset));
+    coarse.Set(c, data);
+  }
+  return coarse;
+}
+
+double EnclosedVolume(const planner::TriangleMesh& mesh) {
+  double six_v = 0.0;
+  for (const auto& f : mesh.facets) {
+    six_v += mesh.vertices[f[0]].dot(mesh.vertices[f[1]].cross(mesh.vertices[f[2]]));
+  }
+  return six_v / 6.0;
+}
+
+std::size_t OpenEdges(const planner::TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& f : mesh.facets) {
+    for (int k = 0; k < 3; ++k) ++uses[{std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])}];
+  }
+  std::size_t open = 0;
+  for (const auto& [edge, n] : uses) open += n != 2 ? 1 : 0;
+  return open;
+}
+
+}  // namespace waam::twin

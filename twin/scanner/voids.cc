@@ -1,0 +1,198 @@
+// Void finding: per horizontal cut, a flood fill of the air from outside the part; what the air cannot reach inside
+// the target is enclosed. Enclosed voxels are grouped in 3D and split into capped voids and open valleys.
+#include "twin/scanner/voids.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include <Eigen/Eigenvalues>
+
+#include "models/core/error.h"
+#include "models/core/progress.h"
+
+namespace waam::twin {
+namespace {
+
+EmptyRegion Describe(const std::vector<VoxelIndex>& cells, double v) {
+  EmptyRegion region;
+  region.voxels = cells.size();
+  region.volume_mm3 = static_cast<double>(cells.size()) * v * v * v;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const VoxelIndex& c : cells) mean += (c.cast<double>() + Eigen::Vector3d::Constant(0.5)) * v;
+  mean /= static_cast<double>(cells.size());
+  region.centroid_mm = mean;
+  // Length as a caliper on a milled section measures it: the extent along the principal axis in the XY plane.
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const VoxelIndex& c : cells) {
+    const Eigen::Vector2d d = (c.head<2>().cast<double>() + Eigen::Vector2d::Constant(0.5)) * v - mean.head<2>();
+    cov += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  const Eigen::Vector2d axis = eig.eigenvectors().col(1);
+  double lo = 1e300, hi = -1e300;
+  for (const VoxelIndex& c : cells) {
+    const double t = ((c.head<2>().cast<double>() + Eigen::Vector2d::Constant(0.5)) * v).dot(axis);
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+  }
+  region.length_mm = hi - lo + v;
+  return region;
+}
+
+// Flood-fills the air of horizontal cut kz from the border of the padded box (origin lo, nx x ny) through empty
+// voxels, 4-connected; reached[j * nx + i] = 1 where the outside air gets.
+void FloodCut(const VoxelGrid& grid, const VoxelIndex& lo, int nx, int ny, int kz, std::vector<std::uint8_t>* reached) {
+  reached->assign(static_cast<std::size_t>(nx) * ny, 0);
+  std::deque<std::pair<int, int>> queue;
+  for (int i = 0; i < nx; ++i) {
+    for (int j : {0, ny - 1}) queue.emplace_back(i, j);
+  }
+  for (int j = 1; j + 1 < ny; ++j) {
+    for (int i : {0, nx - 1}) queue.emplace_back(i, j);
+  }
+  while (!queue.empty()) {
+    const auto [i, j] = queue.front();
+    queue.pop_front();
+    if (i < 0 || j < 0 || i >= nx || j >= ny) continue;
+    std::uint8_t& r = (*reached)[static_cast<std::size_t>(j) * nx + i];
+    if (r || grid.Occupied(VoxelIndex(lo.x() + i, lo.y() + j, kz))) continue;
+    r = 1;
+    queue.emplace_back(i + 1, j);
+    queue.emplace_back(i - 1, j);
+    queue.emplace_back(i, j + 1);
+    queue.emplace_back(i, j - 1);
+  }
+}
+
+}  // namespace
+
+std::vector<EmptyRegion> SectionVoids(const VoxelGrid& grid, const TargetVolume& target, double z_mm) {
+  const double v = grid.voxel_mm();
+  WAAM_THROW_UNLESS(std::abs(target.voxel_mm() - v) < 1e-12,
+                    "voids: target voxel " << target.voxel_mm() << " mm differs from the grid's " << v << " mm");
+  std::vector<EmptyRegion> regions;
+  const Eigen::Vector3i n = target.size();
+  if ((n.array() <= 0).any()) return regions;
+  const VoxelIndex lo = target.lo() - VoxelIndex(1, 1, 0);
+  const int nx = n.x() + 2;
+  const int ny = n.y() + 2;
+  const int kz = static_cast<int>(std::floor(z_mm / v));
+  std::vector<std::uint8_t> reached;
+  FloodCut(grid, lo, nx, ny, kz, &reached);
+  // 4-connected regions of the enclosed cells of this cut.
+  std::vector<VoxelIndex> cells;
+  std::vector<std::pair<int, int>> stack;
+  for (int j = 1; j + 1 < ny; ++j) {
+    for (int i = 1; i + 1 < nx; ++i) {
+      auto enclosed = [&](int a, int b) {
+        const VoxelIndex vox(lo.x() + a, lo.y() + b, kz);
+        return !reached[static_cast<std::size_t>(b) * nx + a] && !grid.Occupied(vox) && target.Inside(vox);
+      };
+      if (!enclosed(i, j)) continue;
+      cells.clear();
+      stack.assign(1, {i, j});
+      reached[static_cast<std::size_t>(j) * nx + i] = 2;
+      while (!stack.empty()) {
+        const auto [a, b] = stack.back();
+        stack.pop_back();
+        cells.emplace_back(lo.x() + a, lo.y() + b, kz);
+        for (const auto& [da, db] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+          const int qa = a + da, qb = b + db;
+          if (qa < 1 || qb < 1 || qa + 1 >= nx || qb + 1 >= ny || !enclosed(qa, qb)) continue;
+          reached[static_cast<std::size_t>(qb) * nx + qa] = 2;
+          stack.emplace_back(qa, qb);
+        }
+      }
+      regions.push_back(Describe(cells, v));
+    }
+  }
+  std::sort(regions.begin(), regions.end(),
+            [](const EmptyRegion& a, const EmptyRegion& b) { return a.length_mm > b.length_mm; });
+  return regions;
+}
+
+VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target) {
+  const double v = grid.voxel_mm();
+  WAAM_THROW_UNLESS(std::abs(target.voxel_mm() - v) < 1e-12,
+                    "voids: target voxel " << target.voxel_mm() << " mm differs from the grid's " << v << " mm");
+  VoidReport report;
+  const Eigen::Vector3i n = target.size();
+  if ((n.array() <= 0).any()) return report;
+  // Padded box: one ring of air around the target in x and y.
+  const VoxelIndex lo = target.lo() - VoxelIndex(1, 1, 0);
+  const int nx = n.x() + 2;
+  const int ny = n.y() + 2;
+  const int nz = n.z();
+  auto at = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * ny + j) * nx + i; };
+  std::vector<std::uint8_t> enclosed(static_cast<std::size_t>(nx) * ny * nz, 0);
+  std::vector<std::uint8_t> reached;
+  std::vector<int> column_top(static_cast<std::size_t>(nx) * ny, -1);  // highest occupied k, padded-box coordinates
+  for (int k = 0; k < nz; ++k) {
+    const int kz = lo.z() + k;
+    if (kz < 0) continue;  // substrate
+    CheckInterrupt();
+    FloodCut(grid, lo, nx, ny, kz, &reached);
+    for (int j = 1; j + 1 < ny; ++j) {
+      for (int i = 1; i + 1 < nx; ++i) {
+        const VoxelIndex vox(lo.x() + i, lo.y() + j, kz);
+        if (grid.Occupied(vox)) {
+          column_top[static_cast<std::size_t>(j) * nx + i] = k;
+          continue;
+        }
+        if (!reached[static_cast<std::size_t>(j) * nx + i] && target.Inside(vox)) enclosed[at(i, j, k)] = 1;
+      }
+    }
+  }
+  // Metal above the top of the target box still caps a void.
+  for (int j = 1; j + 1 < ny; ++j) {
+    for (int i = 1; i + 1 < nx; ++i) {
+      for (int kz = lo.z() + nz; kz < lo.z() + nz + 64; ++kz) {
+        if (grid.Occupied(VoxelIndex(lo.x() + i, lo.y() + j, kz))) column_top[static_cast<std::size_t>(j) * nx + i] = kz - lo.z();
+      }
+    }
+  }
+  // 6-connected regions of enclosed voxels.
+  std::vector<VoxelIndex> cells;
+  std::vector<Eigen::Vector3i> stack;
+  for (int k = 0; k < nz; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        if (enclosed[at(i, j, k)] != 1) continue;
+        cells.clear();
+        bool open = false;
+        stack.assign(1, Eigen::Vector3i(i, j, k));
+        enclosed[at(i, j, k)] = 2;
+        while (!stack.empty()) {
+          const Eigen::Vector3i c = stack.back();
+          stack.pop_back();
+          cells.push_back(lo + c);
+          open = open || column_top[static_cast<std::size_t>(c.y()) * nx + c.x()] < c.z();
+          for (const Eigen::Vector3i& d : {Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(-1, 0, 0), Eigen::Vector3i(0, 1, 0),
+                                          Eigen::Vector3i(0, -1, 0), Eigen::Vector3i(0, 0, 1), Eigen::Vector3i(0, 0, -1)}) {
+            const Eigen::Vector3i q = c + d;
+            if (q.x() < 0 || q.y() < 0 || q.z() < 0 || q.x() >= nx || q.y() >= ny || q.z() >= nz) continue;
+            if (enclosed[at(q.x(), q.y(), q.z())] != 1) continue;
+            enclosed[at(q.x(), q.y(), q.z())] = 2;
+            stack.push_back(q);
+          }
+        }
+        const EmptyRegion region = Describe(cells, v);
+        (open ? report.valleys : report.voids).push_back(region);
+      }
+    }
+  }
+  auto finish = [](std::vector<EmptyRegion>& regions, double* volume, double* max_length) {
+    std::sort(regions.begin(), regions.end(),
+              [](const EmptyRegion& a, const EmptyRegion& b) { return a.volume_mm3 > b.volume_mm3; });
+    for (const EmptyRegion& r : regions) {
+      *volume += r.volume_mm3;
+      *max_length = std::max(*max_length, r.length_mm);
+    }
+  };
+  finish(report.voids, &report.void_volume_mm3, &report.void_max_length_mm);
+  finish(report.valleys, &report.valley_volume_mm3, &report.valley_max_length_mm);
+  return report;
+}
+
+}  // namespace waam::twin

@@ -1,0 +1,120 @@
+// SimulateBuild: deposition, then the virtual scanner (deviation, voids, section profiles, Ra, boundary lag).
+#include "twin/simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "models/core/error.h"
+#include "twin/scanner/target_volume.h"
+
+namespace waam::twin {
+namespace {
+
+// Largest peak-to-valley of the top heights along the x and y lines through the centre of the region's bounding box,
+// sampled only inside the region and at least `margin_mm` from its outline.
+double SectionWaviness(const HeightMap& map, const std::vector<planner::PolygonWithHoles>& region, double margin_mm) {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (const planner::PolygonWithHoles& r : region) {
+    for (const Eigen::Vector2d& p : r.outer) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  if (!std::isfinite(lo.x())) return 0.0;
+  const Eigen::Vector2d c = 0.5 * (lo + hi);
+  double worst = 0.0;
+  for (const auto& [p0, p1] : {std::pair{Eigen::Vector2d(lo.x(), c.y()), Eigen::Vector2d(hi.x(), c.y())},
+                               std::pair{Eigen::Vector2d(c.x(), lo.y()), Eigen::Vector2d(c.x(), hi.y())}}) {
+    std::vector<ProfileSample> kept;
+    const double length = (p1 - p0).norm();
+    for (const ProfileSample& s : SectionProfile(map, p0, p1)) {
+      const Eigen::Vector2d p = p0 + (p1 - p0) * (length > 0 ? s.s_mm / length : 0.0);
+      if (InsideRegion(region, p) && DistanceToOutline(region, p) >= margin_mm) {
+        kept.push_back({s.s_mm, std::isnan(s.z_mm) ? 0.0 : s.z_mm});
+      }
+    }
+    worst = std::max(worst, Waviness(kept));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh* target,
+                         const planner::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
+                         const PassCallback& on_pass) {
+  WAAM_THROW_UNLESS(bead_width_mm > 0.0, "simulate: bead width = " << bead_width_mm << " mm: must be > 0");
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<ExecutedPass> passes = ExecutePlan(plan, settings, rapid_speed_mm_s);
+  TwinResult result{Depositor(settings), {}, {}, {}, {}};
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    result.depositor.DepositPass(passes[i]);
+    if (on_pass) on_pass(i + 1, passes.size());
+  }
+  TwinMeasures& m = result.measures;
+  m.deposition_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const VoxelGrid& grid = result.depositor.grid();
+  m.voxel_mm = grid.voxel_mm();
+  m.layers = plan.layers.size();
+  m.beads = result.depositor.beads().size();
+  m.voxels = grid.occupied();
+  m.weld_length_mm = result.depositor.weld_length_mm();
+  if (!passes.empty()) {
+    const ExecutedPass& last = passes.back();
+    m.build_time_s = last.start_time_s;
+    for (std::size_t i = 1; i < last.points.size(); ++i) {
+      m.build_time_s += (last.points[i].p_P - last.points[i - 1].p_P).norm() / last.points[i].speed_mm_s;
+    }
+  }
+  m.deposited_volume_mm3 = grid.OccupiedVolume();
+  m.expected_volume_mm3 = result.depositor.expected_volume_mm3();
+  m.grid_memory_bytes = grid.MemoryBytes();
+
+  // The virtual scanner.
+  result.top = TopHeightMap(grid);
+  if (!plan.layers.empty()) {
+    const std::vector<planner::PolygonWithHoles>& top_region = plan.layers.back().slice;
+    m.waviness_mm = SectionWaviness(result.top, top_region, 0.5 * bead_width_mm);
+    m.ra_mm = ArithmeticRoughness(RegionHeights(result.top, top_region, 0.5 * bead_width_mm));
+    // Like the profilometer of 003 Fig. 24: along the x and y section lines through the middle of the top layer.
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector2d hi = -lo;
+    for (const planner::PolygonWithHoles& r : top_region) {
+      for (const Eigen::Vector2d& p : r.outer) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    }
+    if (std::isfinite(lo.x())) {
+      const Eigen::Vector2d c = 0.5 * (lo + hi);
+      const BoundaryLag along_x = MeasureBoundaryLag(result.top, top_region, bead_width_mm,
+                                                     {Eigen::Vector2d(lo.x(), c.y()), Eigen::Vector2d(hi.x(), c.y())});
+      const BoundaryLag along_y = MeasureBoundaryLag(result.top, top_region, bead_width_mm,
+                                                     {Eigen::Vector2d(c.x(), lo.y()), Eigen::Vector2d(c.x(), hi.y())});
+      BoundaryLag& lag = m.boundary_lag;
+      lag.interior_columns = along_x.interior_columns + along_y.interior_columns;
+      lag.boundary_columns = along_x.boundary_columns + along_y.boundary_columns;
+      if (lag.interior_columns > 0) {
+        lag.interior_mean_mm = (along_x.interior_mean_mm * along_x.interior_columns +
+                                along_y.interior_mean_mm * along_y.interior_columns) / lag.interior_columns;
+      }
+      if (lag.boundary_columns > 0) {
+        lag.boundary_mean_mm = (along_x.boundary_mean_mm * along_x.boundary_columns +
+                                along_y.boundary_mean_mm * along_y.boundary_columns) / lag.boundary_columns;
+      }
+      lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;
+    }
+  }
+  if (target != nullptr && !target->facets.empty()) {
+    result.deviation = MeasureDeviation(grid, *target);
+    result.voids = FindVoids(grid, TargetVolume::FromMesh(*target, grid.voxel_mm(), settings.max_voxels));
+  } else if (!plan.layers.empty()) {
+    result.voids = FindVoids(grid, TargetVolume::FromLayers(plan, grid.voxel_mm(), settings.max_voxels));
+  }
+  return result;
+}
+
+}  // namespace waam::twin

@@ -1,0 +1,52 @@
+// The deposition twin end to end: execute and deposit a plan, then scan the part like the papers measured theirs.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+#include "planner/mesh/triangle_mesh.h"
+#include "planner/path/tool_path.h"
+#include "planner/scenario/simulation_settings.h"
+#include "twin/deposition/bead_deposition.h"
+#include "twin/scanner/deviation.h"
+#include "twin/scanner/surface_metrics.h"
+#include "twin/scanner/voids.h"
+
+namespace waam::twin {
+
+// The measures `waam simulate` reports (simulate.json).
+struct TwinMeasures {
+  double voxel_mm = 0.0;
+  std::size_t layers = 0;
+  std::size_t beads = 0;                 // weld passes (arc starts)
+  std::size_t voxels = 0;                // occupied voxels
+  double weld_length_mm = 0.0;           // executed (blended) path length
+  double build_time_s = 0.0;             // weld and travel time of the executed path
+  double deposited_volume_mm3 = 0.0;     // occupied voxels x voxel volume
+  double expected_volume_mm3 = 0.0;      // sum of bead section area x length (start/stop shapes included)
+  double waviness_mm = 0.0;              // largest peak-to-valley along the x and y section lines of the top layer
+  double ra_mm = 0.0;                    // Ding eq. 7 over the top layer region (w/2 in from its outline)
+  BoundaryLag boundary_lag;              // 003 Fig. 24 measure along the x and y section lines of the top layer
+  std::size_t grid_memory_bytes = 0;
+  double deposition_s = 0.0;             // wall-clock time of the deposition alone, s
+};
+
+// Everything the twin produces in memory.
+struct TwinResult {
+  Depositor depositor;
+  HeightMap top;
+  DeviationReport deviation;             // empty when no target mesh was given
+  VoidReport voids;
+  TwinMeasures measures;
+};
+
+// Deposits `plan` (travel at `rapid_speed_mm_s`, > 0) and measures it against `target` (may be null: then the
+// target volume is the planned layer regions extruded and no surface deviation is measured). `bead_width_mm` (> 0)
+// sets the margins of the surface measures. `on_pass(done, total)` (may be empty) is called after every deposited
+// pass. Throws InputError for invalid settings or past the voxel limit.
+using PassCallback = std::function<void(std::size_t done, std::size_t total)>;
+TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh* target,
+                         const planner::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
+                         const PassCallback& on_pass);
+
+}  // namespace waam::twin
