@@ -42,10 +42,10 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       {"pattern", scenario.path.pattern},
       {"overlap_model", scenario.path.overlap_model},
       {"bead_width_mm", scenario.path.bead_width_mm},
-      {"layer_height_mm", result.plan.layers.empty() ? 0.0
-                                                      : result.plan.layers.front().points.empty()
-                                                            ? scenario.slicing.layer_height_mm
-                                                            : result.plan.layers.front().points.front().bead_height_mm},
+      {"layer_height_mm", result.layer_height_mm},
+      {"bead_area_mm2", result.bead_area_mm2},
+      {"bead_height_mm", result.bead_height_mm},
+      {"layer_growth_mm", result.layer_growth_mm},
       {"mesh", mesh_json},
       {"layers", stats.layers},
       {"passes", stats.passes},

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "models/core/error.h"
+#include "models/bead/parabolic_bead.h"
 #include "models/core/progress.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
@@ -61,6 +62,17 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   options.seed = scenario.path.seed;
   const double speed_mm_s = scenario.process.travel_speed_mm_min / 60.0;
 
+  // The bead is what the wire brings (003 eq. 3.4): area = efficiency * wire area * wire feed / travel speed, laid
+  // as a parabola of the planned width (eq. 3.3: A = 2wh/3). Overlapping beads at spacing l grow a layer by A / l;
+  // when that differs from the slicing step, the twin shows the part ending high or low, as a real build would.
+  const ProcessSettings& process = scenario.process;
+  result.layer_height_mm = layer_height;
+  result.bead_area_mm2 = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
+                                                      process.travel_speed_mm_min, process.deposition_efficiency);
+  result.bead_height_mm = 1.5 * result.bead_area_mm2 / scenario.path.bead_width_mm;
+  result.layer_growth_mm =
+      result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, scenario.path.bead_width_mm).zigzag_mm;
+
   result.plan.name = scenario.name;
   result.plan.layers.reserve(layer_count);
   for (int i = 0; i < layer_count; ++i) {
@@ -74,7 +86,7 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
       point.p_P = Eigen::Vector3d(move.p.x(), move.p.y(), layer.z_mm);
       point.tool_dir_P = Eigen::Vector3d::UnitZ();
       point.bead_width_mm = scenario.path.bead_width_mm;
-      point.bead_height_mm = layer_height;
+      point.bead_height_mm = result.bead_height_mm;
       point.speed_mm_s = speed_mm_s;
       point.weld = move.weld;
       layer.points.push_back(point);

@@ -17,6 +17,10 @@ struct PlanResult {
   MeshReport mesh_report;
   Plan plan;
   PathStats stats;
+  double layer_height_mm = 0.0;     // slicing step actually used (part height / layer count)
+  double bead_area_mm2 = 0.0;       // bead cross-section from the wire-feed volume balance (003 eq. 3.4)
+  double bead_height_mm = 0.0;      // parabolic cap height of that area at the planned width (eq. 3.3)
+  double layer_growth_mm = 0.0;     // height a layer of beads at the zigzag spacing l grows: area / l
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

@@ -129,6 +129,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     p.travel_speed_mm_min = process.Number("travel_speed_mm_min", 10.0, 10000.0);
     p.wire_feed_mm_min = process.Number("wire_feed_mm_min", 100.0, 30000.0);
     p.wire_diameter_mm = process.Number("wire_diameter_mm", 0.6, 2.4, 1.0);
+    p.deposition_efficiency = process.Number("deposition_efficiency", 0.05, 1.0, 1.0);
     p.rapid_speed_mm_min = process.Number("rapid_speed_mm_min", 100.0, 100000.0, 6000.0);
     process.CheckNoUnknownKeys();
   }

@@ -39,6 +39,7 @@ struct ProcessSettings {
   double travel_speed_mm_min = 400.0;  // welding travel speed
   double wire_feed_mm_min = 3200.0;    // wire feed speed
   double wire_diameter_mm = 1.0;
+  double deposition_efficiency = 1.0;  // share of the wire volume that lands in the bead (eq. 3.4), (0, 1]
   double rapid_speed_mm_min = 6000.0;  // arc-off travel moves
 };
 

@@ -1,0 +1,99 @@
+// Tests of the planning pipeline PlanScenario: layers, heights, bead from the volume balance, mesh errors.
+#include "planner/planar_planner.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+
+namespace waam::planner {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+Scenario BoxScenario() {
+  Scenario s;
+  s.name = "box";
+  s.part.generator = "box";
+  s.part.params["size_mm"] = {60, 40, 12};
+  s.part.where = "test: part.generator";
+  s.slicing.layer_height_mm = 1.5;
+  s.path.pattern = "continuous";
+  s.path.bead_width_mm = 6.0;
+  return s;
+}
+
+TEST(PlanScenarioTest, LayersSitOnTheirTopsAndCountMatchesHeight) {
+  const PlanResult result = PlanScenario(BoxScenario(), nullptr);
+  ASSERT_EQ(result.plan.layers.size(), 8u) << "12 mm at 1.5 mm layers";
+  for (const LayerPath& layer : result.plan.layers) {
+    EXPECT_NEAR(layer.z_mm, 1.5 * (layer.index + 1), 1e-9);
+    ASSERT_FALSE(layer.points.empty());
+    for (const PathPoint& point : layer.points) EXPECT_DOUBLE_EQ(point.p_P.z(), layer.z_mm);
+  }
+  EXPECT_EQ(result.stats.passes, result.stats.layers) << "continuous: one weld pass per layer";
+}
+
+TEST(PlanScenarioTest, BeadComesFromTheWireFeedVolumeBalance) {
+  Scenario s = BoxScenario();
+  s.process.wire_diameter_mm = 1.2;
+  s.process.wire_feed_mm_min = 6000;
+  s.process.travel_speed_mm_min = 500;
+  s.process.deposition_efficiency = 0.9;
+  const PlanResult result = PlanScenario(s, nullptr);
+  // eq. 3.4: A v_t = eta * pi d^2 / 4 * v_w.
+  const double wire_area = std::numbers::pi * 1.2 * 1.2 / 4.0;
+  EXPECT_NEAR(result.bead_area_mm2 * 500.0, 0.9 * wire_area * 6000.0, 1e-9);
+  EXPECT_NEAR(2.0 * 6.0 * result.bead_height_mm / 3.0, result.bead_area_mm2, 1e-9) << "A = 2wh/3";
+  EXPECT_NEAR(result.layer_growth_mm, result.bead_area_mm2 / (0.738 * 6.0), 1e-9);
+  for (const PathPoint& point : result.plan.layers[0].points) {
+    EXPECT_DOUBLE_EQ(point.bead_height_mm, result.bead_height_mm);
+    EXPECT_DOUBLE_EQ(point.speed_mm_s, 500.0 / 60.0);
+  }
+}
+
+TEST(PlanScenarioTest, PartIsPutOnTheSubstrate) {
+  // A mesh floating at z = 50 is planned from z = 0.
+  const fs::path dir = fs::temp_directory_path() / ("waam_planar_planner_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream stl(dir / "raised.stl");
+  stl << "solid raised\n";
+  const double v[8][3] = {{0, 0, 50}, {20, 0, 50}, {20, 20, 50}, {0, 20, 50},
+                          {0, 0, 56}, {20, 0, 56}, {20, 20, 56}, {0, 20, 56}};
+  const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                        {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  for (const auto& facet : f) {
+    stl << "facet normal 0 0 0\nouter loop\n";
+    for (int k : facet) stl << "vertex " << v[k][0] << " " << v[k][1] << " " << v[k][2] << "\n";
+    stl << "endloop\nendfacet\n";
+  }
+  stl << "endsolid raised\n";
+  stl.close();
+  Scenario s = BoxScenario();
+  s.part.generator.clear();
+  s.part.mesh_path = dir / "raised.stl";
+  const PlanResult result = PlanScenario(s, nullptr);
+  EXPECT_EQ(result.plan.layers.size(), 4u);
+  EXPECT_NEAR(result.plan.layers.front().z_mm, 1.5, 1e-9);
+  EXPECT_NEAR(result.mesh_report.bbox_min.z(), 0.0, 1e-9);
+  fs::remove_all(dir);
+}
+
+TEST(PlanScenarioTest, UnknownGeneratorIsNamed) {
+  Scenario s = BoxScenario();
+  s.part.generator = "dodecahedron";
+  try {
+    PlanScenario(s, nullptr);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("dodecahedron"));
+  }
+}
+
+}  // namespace
+}  // namespace waam::planner
