@@ -6,13 +6,13 @@
 
 #include "models/core/error.h"
 #include "planner/geometry/clipper_adapter.h"
+#include "pattern_checks.h"
 #include "test_shapes.h"
 
 namespace waam::planner {
 namespace {
 
 using ::testing::HasSubstr;
-using internal::Polyline;
 
 constexpr double kW = 6.0;  // bead width, mm
 
@@ -24,51 +24,12 @@ std::vector<Move2D> Plan(const PolygonWithHoles& region, const std::string& patt
   return PlanLayerPattern({region}, options);
 }
 
-// Arc starts: a weld move that follows an arc-off move (the first move is always arc-off).
-int CountPasses(const std::vector<Move2D>& moves) {
-  int passes = 0;
-  for (std::size_t k = 0; k < moves.size(); ++k) {
-    if (moves[k].weld && (k == 0 || !moves[k - 1].weld)) ++passes;
-  }
-  return passes;
-}
+using testing::CountPasses;
+using testing::CountWeldMoves;
+using testing::WeldLengthOutside;
 
-int CountWeldMoves(const std::vector<Move2D>& moves) {
-  int n = 0;
-  for (const Move2D& m : moves) n += m.weld ? 1 : 0;
-  return n;
-}
-
-// The welded polylines: each run of weld moves with the point it starts from.
-std::vector<Polyline> WeldLines(const std::vector<Move2D>& moves) {
-  std::vector<Polyline> lines;
-  for (std::size_t k = 1; k < moves.size(); ++k) {
-    if (!moves[k].weld) continue;
-    if (!moves[k - 1].weld || lines.empty()) lines.push_back({moves[k - 1].p});
-    lines.back().push_back(moves[k].p);
-  }
-  return lines;
-}
-
-// Fraction of the region left uncovered by beads of width kW laid along the weld moves.
 double UncoveredFraction(const PolygonWithHoles& region, const std::vector<Move2D>& moves) {
-  const auto beads = internal::BufferPolylines(WeldLines(moves), 0.5 * kW);
-  return Area(internal::Difference({region}, beads)) / Area(region);
-}
-
-// Largest length (mm) of one weld move outside `area` (Clipper's 0.1 um grid makes ~1e-5 mm of noise).
-double WeldLengthOutside(const std::vector<Move2D>& moves, const std::vector<PolygonWithHoles>& area) {
-  double outside = 0.0;
-  for (std::size_t k = 1; k < moves.size(); ++k) {
-    if (!moves[k].weld) continue;
-    const double len = (moves[k].p - moves[k - 1].p).norm();
-    double in = 0.0;
-    for (const Polyline& piece : internal::ClipPolylines({{moves[k - 1].p, moves[k].p}}, area)) {
-      in += internal::Length(piece);
-    }
-    outside = std::max(outside, len - in);
-  }
-  return outside;
+  return testing::UncoveredFraction(region, moves, kW);
 }
 
 std::vector<std::pair<std::string, PolygonWithHoles>> AllShapes() {
