@@ -6,6 +6,7 @@
 
 #include "models/core/error.h"
 #include "planner/geometry/clipper_adapter.h"
+#include "planner/path/pattern_common.h"
 #include "pattern_checks.h"
 #include "test_shapes.h"
 
@@ -186,6 +187,51 @@ TEST(PlanLayerPattern, SeparateRegionsAreSeparatePasses) {
   const std::vector<Move2D> moves =
       PlanLayerPattern({{testing::Rect(0, 0, 50, 50), {}}, {testing::Rect(80, 0, 130, 50), {}}}, options);
   EXPECT_EQ(CountPasses(moves), 2);
+}
+
+TEST(SimplifyMoves, MergesStraightRunsOnly) {
+  const double tol = internal::kStraightPathToleranceMm;
+  // Travel to (0,0); weld along x through points 0.5 tol off the line; a corner; then arc off and weld again.
+  std::vector<Move2D> moves{{{0, 0}, false}, {{10, 0.5 * tol}, true}, {{20, -0.5 * tol}, true}, {{30, 0}, true},
+                            {{30, 10}, true}, {{30, 20}, true}, {{40, 20}, false}, {{50, 20}, true}};
+  const std::vector<Move2D> out = internal::SimplifyMoves(moves, tol);
+  ASSERT_EQ(out.size(), 5u) << "expected start, one move along x, one along y, travel, weld";
+  EXPECT_EQ(out[1].p, Eigen::Vector2d(30, 0));
+  EXPECT_EQ(out[2].p, Eigen::Vector2d(30, 20));
+  EXPECT_FALSE(out[3].weld) << "arc-off travel is kept";
+  EXPECT_TRUE(out[4].weld);
+  // A point further off the line than the tolerance is a corner and stays.
+  const std::vector<Move2D> bent{{{0, 0}, false}, {{10, 2 * tol}, true}, {{20, 0}, true}};
+  EXPECT_EQ(internal::SimplifyMoves(bent, tol).size(), 3u);
+  // A move that turns back is never merged, however small the offset.
+  const std::vector<Move2D> back{{{0, 0}, false}, {{10, 0}, true}, {{5, 0}, true}};
+  EXPECT_EQ(internal::SimplifyMoves(back, tol).size(), 3u);
+}
+
+// A circle of radius 60 mm tessellated into 400 sides (0.94 mm edges): the outer contour ring must not keep 400
+// elements. A chord of sagitta <= 0.05 mm spans <= 2 acos(1 - 0.05 / 57) = 4.8 degrees of the ring's 57 mm centre
+// line, so the ring needs >= 75 chords; merging only points within the tolerance keeps it under twice that.
+TEST(SimplifyMoves, FinelyTessellatedRingBecomesFewElements) {
+  const std::vector<Move2D> moves = Plan({testing::Circle(0, 0, 60, 400), {}}, "contour");
+  int ring_elements = 0;
+  for (std::size_t k = 1; k < moves.size() && moves[k].weld; ++k) ++ring_elements;  // the outer ring comes first
+  EXPECT_LT(ring_elements, 150) << "elements in the outer contour ring";
+  EXPECT_GE(ring_elements, 75) << "the ring cannot be followed within 0.05 mm with fewer chords";
+  for (int k = 1; k <= ring_elements; ++k) {
+    // Each move is a chord of the 57 mm ring: its mid-point lies at most the tolerances inside the ring.
+    const double mid_radius = (0.5 * (moves[k].p + moves[k - 1].p)).norm();
+    EXPECT_GT(mid_radius, 57.0 - internal::kStraightPathToleranceMm - internal::kArcToleranceMm) << "move " << k;
+  }
+}
+
+// The continuous path on a 2000-sided circle: the contour chain alone has ~1000 vertices and the turnarounds on
+// the other chain hundreds more; merged, the whole loop is the ~27 rasters, their turnarounds and < 75 chords.
+TEST(SimplifyMoves, ContinuousPathOnAFineCircle) {
+  const PolygonWithHoles disc{testing::Circle(0, 0, 60, 2000), {}};
+  const std::vector<Move2D> moves = Plan(disc, "continuous");
+  EXPECT_EQ(CountPasses(moves), 1);
+  EXPECT_LT(CountWeldMoves(moves), 200) << "weld moves (path elements) in the layer";
+  EXPECT_LT(UncoveredFraction(disc, moves), 0.01);
 }
 
 TEST(PlanLayerPattern, EmptySliceGivesNoMoves) { EXPECT_TRUE(PlanLayerPattern({}, PatternOptions{}).empty()); }
