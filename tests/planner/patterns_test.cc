@@ -1,11 +1,15 @@
 // Tests of the layer patterns: pass counts, coverage, staying inside, start alternation and bad options.
 #include "planner/path/layer_pattern.h"
 
+#include <cmath>
+#include <numbers>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
 #include "planner/geometry/clipper_adapter.h"
+#include "planner/path/convex_fill.h"
 #include "planner/path/pattern_common.h"
 #include "pattern_checks.h"
 #include "test_shapes.h"
@@ -232,6 +236,29 @@ TEST(SimplifyMoves, ContinuousPathOnAFineCircle) {
   EXPECT_EQ(CountPasses(moves), 1);
   EXPECT_LT(CountWeldMoves(moves), 200) << "weld moves (path elements) in the layer";
   EXPECT_LT(UncoveredFraction(disc, moves), 0.01);
+}
+
+// Trapezoids with one wall at 30 degrees to the rasters, on the right or (mirrored) on the left: turnarounds on
+// that wall lie 2 l apart along it and leave wedges, so the contour must be laid on that wall. The continuous path
+// covers as well as the better of the two ways round of Ding's per-piece loop, and clearly better than the worse.
+TEST(ContinuousPattern, ContourGoesOnTheObliqueWall) {
+  const double run = 40 * std::sqrt(3.0);
+  for (const Ring& trapezoid : {testing::Poly({{0, 0}, {120, 0}, {120 - run, 40}, {0, 40}}),
+                                testing::Poly({{0, 0}, {120, 0}, {120, 40}, {run, 40}})}) {
+    const PolygonWithHoles region{trapezoid, {}};
+    const OverlapSpacing spacing = OverlapSpacingFor("proposed", kW);
+    auto loop_moves = [&](double angle) {
+      std::vector<Move2D> moves;
+      internal::AppendLoop(internal::ConvexPieceLoop(trapezoid, angle, spacing), Eigen::Vector2d::Zero(), false,
+                           &moves);
+      return moves;
+    };
+    const double one_way = UncoveredFraction(region, loop_moves(0.0));
+    const double other_way = UncoveredFraction(region, loop_moves(std::numbers::pi));
+    const double planned = UncoveredFraction(region, Plan(region, "continuous"));
+    EXPECT_LE(planned, std::min(one_way, other_way) + 1e-4) << one_way << " / " << other_way;
+    EXPECT_GT(std::max(one_way, other_way), planned + 0.002) << "the two ways round should differ on this part";
+  }
 }
 
 TEST(PlanLayerPattern, EmptySliceGivesNoMoves) { EXPECT_TRUE(PlanLayerPattern({}, PatternOptions{}).empty()); }
