@@ -13,9 +13,10 @@ namespace waam::planner::internal {
 // Clipper works on 64-bit integers. 1e4 units per mm gives a 0.1 um grid, far below any bead or robot tolerance,
 // and keeps parts up to +-107 m inside Clipper's fast 62-bit range (loRange = 2^30 units).
 inline constexpr double kClipperUnitsPerMm = 1e4;
-// Largest distance (mm) between a round join or cap and its chords. 0.02 mm keeps a 90 degree turn of a 3 mm
-// radius to 4 chords, so round corners add few path elements while staying well inside a bead's flank.
-inline constexpr double kArcToleranceMm = 0.02;
+// Largest distance (mm) between a round join or cap and its chords. 0.05 mm makes a 90 degree turn of a 3 mm
+// radius (w/2 of a 6 mm bead) 4 chords (0.02 mm made it 7), so round corners add few path elements; the chord
+// error is far below the bead's own waviness (a few tenths of a mm), so the weld does not see it.
+inline constexpr double kArcToleranceMm = 0.05;
 
 // An open polyline in the slice plane (mm).
 using Polyline = std::vector<Eigen::Vector2d>;

@@ -173,6 +173,25 @@ Ring Simplify(const std::vector<Vec>& in) {
   return out;
 }
 
+// Area (mm2) of `piece` that beads of width w laid along the closed loop leave uncovered.
+double UncoveredArea(const Ring& piece, const std::vector<Vec>& loop, double w) {
+  if (loop.size() < 2) return Area(PolygonWithHoles{piece, {}});
+  Polyline closed(loop.begin(), loop.end());
+  closed.push_back(loop.front());
+  return Area(Difference({PolygonWithHoles{piece, {}}}, BufferPolylines({closed}, 0.5 * w)));
+}
+
+// The piece's contour + zigzag loop with the rasters at `angle_rad`, laid either way round: the contour on one
+// chain and the raster turnarounds on the other (Ding 3.2). Where a chain runs at a small angle to the rasters,
+// consecutive raster ends lie far apart along it and turnarounds leave wedges next to the wall that only a contour
+// fills; so the way round that leaves less of the piece uncovered is kept.
+std::vector<Vec> BetterCoveringLoop(const Ring& piece, double angle_rad, double w, const OverlapSpacing& spacing) {
+  std::vector<Vec> best = ConvexPieceLoop(piece, angle_rad, spacing);
+  const std::vector<Vec> flipped = ConvexPieceLoop(piece, angle_rad + std::numbers::pi, spacing);
+  if (UncoveredArea(piece, flipped, w) < UncoveredArea(piece, best, w) - 1e-6) best = flipped;
+  return best;
+}
+
 // Convex polygon with `sides` edges at evenly spaced normals, each a support line of `ring`: it contains the ring.
 Ring Circumscribe(const Ring& ring, int sides) {
   Eigen::Vector2d lo = ring.front(), hi = ring.front();
@@ -258,7 +277,7 @@ void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& option
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     if (ConvexHull(pieces[i]).size() < 3) continue;  // a degenerate sliver: no path, nothing to join
     const double angle = options.zigzag_auto ? MinimumWidthDirection(pieces[i], nullptr) : options.zigzag_angle_rad;
-    loops[i].p = ConvexPieceLoop(pieces[i], angle, spacing);
+    loops[i].p = BetterCoveringLoop(pieces[i], angle, options.bead_width_mm, spacing);
     loops[i].piece.assign(loops[i].p.size(), static_cast<int>(i));
   }
   for (const Ring& ring : prepared.hole_rings) {

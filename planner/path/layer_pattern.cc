@@ -54,7 +54,9 @@ std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice,
       internal::PlanContinuous(region, options, spacing, &moves);
     }
   }
-  return moves;
+  // Round joins and faceted meshes leave runs of tiny, nearly collinear moves: one straight move each is what the
+  // robot should get (Ding Table 2 counts such lines as path elements).
+  return internal::SimplifyMoves(moves, internal::kStraightPathToleranceMm);
 }
 
 }  // namespace waam::planner

@@ -81,6 +81,32 @@ void AppendLoop(const Ring& loop, const Eigen::Vector2d& start_near, bool revers
   }
 }
 
+std::vector<Move2D> SimplifyMoves(const std::vector<Move2D>& moves, double tolerance_mm) {
+  std::vector<Move2D> out;
+  std::vector<Vec> dropped;  // points merged away inside the last weld move of `out`
+  for (const Move2D& move : moves) {
+    if (move.weld && out.size() >= 2 && out.back().weld) {
+      // Try to extend the last weld move a -> b to a -> c, dropping b.
+      const Vec a = out[out.size() - 2].p, b = out.back().p, c = move.p;
+      const double len = (c - a).norm();
+      auto near_chord = [&](const Vec& q) {
+        const double t = (q - a).dot(c - a) / len;
+        return t > 0.0 && t < len && std::abs((c - a).x() * (q - a).y() - (c - a).y() * (q - a).x()) / len <= tolerance_mm;
+      };
+      bool straight = len > 1e-9 && near_chord(b);
+      for (const Vec& q : dropped) straight = straight && near_chord(q);
+      if (straight) {
+        dropped.push_back(b);
+        out.back().p = c;
+        continue;
+      }
+    }
+    out.push_back(move);
+    dropped.clear();
+  }
+  return out;
+}
+
 std::vector<Move2D> ReverseMoves(const std::vector<Move2D>& moves) {
   std::vector<Move2D> out(moves.rbegin(), moves.rend());
   for (std::size_t k = 0; k < out.size(); ++k) {

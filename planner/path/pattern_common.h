@@ -25,6 +25,14 @@ Eigen::Vector2d PointAlongRing(const Ring& ring, double fraction);
 // around the loop back to it. `reverse` walks the loop the other way.
 void AppendLoop(const Ring& loop, const Eigen::Vector2d& start_near, bool reverse, std::vector<Move2D>* moves);
 
+// Largest distance (mm) a welded point may be moved off the path when consecutive weld moves that run nearly
+// straight on are merged into one (SimplifyMoves).
+inline constexpr double kStraightPathToleranceMm = 0.05;
+
+// Merges consecutive weld moves into one wherever every point dropped between them lies within `tolerance_mm` of
+// the new straight move (and between its ends). Arc-on and arc-off points and travel moves are kept as they are.
+std::vector<Move2D> SimplifyMoves(const std::vector<Move2D>& moves, double tolerance_mm);
+
 // Reverses the order of a move list, keeping each weld flag on the segment it belongs to.
 std::vector<Move2D> ReverseMoves(const std::vector<Move2D>& moves);
 

@@ -1,4 +1,5 @@
-// Test polygons for the path planner: L, T, U, a plate with holes, random stars and four Ding-like geometries.
+// Test polygons for the path planner: L, T, U, a plate with holes, random stars, four Ding-like geometries and
+// round parts (ellipses, rounded rectangles, sliced cylinders).
 #pragma once
 
 #include <algorithm>
@@ -34,6 +35,50 @@ inline Ring Circle(double cx, double cy, double r, int n, bool hole = false) {
     ring.emplace_back(cx + r * std::cos(a), cy + r * std::sin(a));
   }
   if (hole) std::reverse(ring.begin(), ring.end());
+  return ring;
+}
+
+// Ellipse with semi-axes a, b (mm) around the origin, its a axis at `angle_rad` from +x, as an n-gon; CCW.
+inline Ring Ellipse(double a, double b, double angle_rad, int n) {
+  Ring ring;
+  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  for (int k = 0; k < n; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / n;
+    const double x = a * std::cos(t), y = b * std::sin(t);
+    ring.emplace_back(c * x - s * y, s * x + c * y);
+  }
+  return ring;
+}
+
+// Rectangle [0, width] x [0, height] (mm) with corners rounded to `radius_mm`, each quarter arc in `arc_segments`
+// straight pieces; CCW.
+inline Ring RoundedRect(double width, double height, double radius_mm, int arc_segments) {
+  Ring ring;
+  const double cx[4] = {width - radius_mm, radius_mm, radius_mm, width - radius_mm};
+  const double cy[4] = {height - radius_mm, height - radius_mm, radius_mm, radius_mm};
+  // Corner q (NE, NW, SW, SE) is the quarter arc from angle q pi/2 to (q + 1) pi/2; SE first keeps the ring CCW.
+  for (int q : {3, 0, 1, 2}) {
+    for (int k = 0; k <= arc_segments; ++k) {
+      const double a = 0.5 * std::numbers::pi * (q + static_cast<double>(k) / arc_segments);
+      ring.emplace_back(cx[q] + radius_mm * std::cos(a), cy[q] + radius_mm * std::sin(a));
+    }
+  }
+  return ring;
+}
+
+// What a planar slicer returns for a faceted cylinder of `n` sides and radius r (mm): the regular n-gon with one
+// more point on every edge (where the cut plane crosses the side facet's diagonal), at a fraction U(0.02, 0.98) of
+// the edge and moved U(-jitter, jitter) mm across it (float STL coordinates and Clipper's grid). Seeded, CCW.
+inline Ring SlicedCylinder(std::mt19937_64& rng, double r, int n, double jitter_mm) {
+  std::uniform_real_distribution<double> along(0.02, 0.98), across(-jitter_mm, jitter_mm);
+  const Ring corners = Circle(0.0, 0.0, r, n);
+  Ring ring;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector2d a = corners[k], b = corners[(k + 1) % n];
+    const Eigen::Vector2d normal = Eigen::Vector2d((b - a).y(), -(b - a).x()).normalized();
+    ring.push_back(a);
+    ring.push_back(a + along(rng) * (b - a) + across(rng) * normal);
+  }
   return ring;
 }
 
