@@ -16,7 +16,7 @@ using ::testing::HasSubstr;
 
 // Table 9 lists, per bead width, the spacings used in the experiments (rounded to 0.01-0.1 mm).
 TEST(OverlapSpacing, MatchesDissertationTable9) {
-  std::ifstream in(std::string(WAAM_SHARED_DIR) + "/data/nguyen2022_table9_overlap.csv");
+  std::ifstream in(std::string(WAAM_SOURCE_DIR) + "/models/data/nguyen2022_table9_overlap.csv");
   ASSERT_TRUE(in) << "Table 9 CSV should be in the shared data folder";
   std::string line;
   int rows = 0;

@@ -42,7 +42,7 @@ struct Table9Row {
   double wire_feed = 0, travel = 0, w = 0, l = 0, d1 = 0, d2 = 0;
 };
 std::vector<Table9Row> ReadTable9() {
-  std::ifstream in(std::string(WAAM_SHARED_DIR) + "/data/nguyen2022_table9_overlap.csv");
+  std::ifstream in(std::string(WAAM_SOURCE_DIR) + "/models/data/nguyen2022_table9_overlap.csv");
   std::vector<Table9Row> rows;
   std::string line;
   while (std::getline(in, line)) {
@@ -83,7 +83,7 @@ BlockResult SimulateBlock(const Table9Row& row, double d2, double d1, double l) 
 
 TEST(SurfaceMetrics, BlockExperimentBoundaryLag) {
   const std::vector<Table9Row> rows = ReadTable9();
-  ASSERT_EQ(rows.size(), 3u) << "expected the three rows of Table 9 in ../shared/data";
+  ASSERT_EQ(rows.size(), 3u) << "expected the three rows of Table 9 in models/data";
   for (const Table9Row& row : rows) {
     // Existing model: 0.738 w everywhere; proposed: d2 = 0.5 w, d1 = 0.47 w, l = 0.738 w (eq. 3.15, 3.17).
     const BlockResult existing = SimulateBlock(row, row.l, row.l, row.l);

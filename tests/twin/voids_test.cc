@@ -67,7 +67,7 @@ TEST(Voids, VoxelSizesMustAgree) {
 
 // Measured void lengths of the symmetric X junctions (two walls crossing, angles theta, 180 - theta): D1 and F1-F8.
 std::map<int, double> MeasuredXJunctionVoids() {
-  std::ifstream in(std::string(WAAM_SHARED_DIR) + "/data/nguyen2022_appendixA1_junction_voids.csv");
+  std::ifstream in(std::string(WAAM_SOURCE_DIR) + "/models/data/nguyen2022_appendixA1_junction_voids.csv");
   std::map<int, double> by_angle;
   std::string line;
   while (std::getline(in, line)) {
