@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "models/bead/parabolic_bead.h"
 #include "planner/path/tool_path.h"
 #include "planner/scenario/simulation_settings.h"
 
@@ -28,14 +29,8 @@ struct ExecutedPass {
   double length_mm() const { return points.empty() ? 0.0 : points.back().s_mm; }
 };
 
-// The bead section at one place of a pass. Same shape and names as models::ParabolicBead (branch models), which
-// replaces it once that lands.
-struct BeadSection {
-  double width_mm = 0.0;
-  double height_mm = 0.0;
-  // Area of the parabolic section z = -4h/w^2 y^2 + h (003 eq. 3.2-3.3): 2wh/3, mm^2.
-  double Area() const { return 2.0 * width_mm * height_mm / 3.0; }
-};
+// The bead section at one place of a pass: the parabolic bead of the models library (003 eq. 3.1-3.3).
+using BeadSection = models::ParabolicBead;
 
 // Splits every layer of `plan` into weld passes and blends their corners as `settings.blend` says (the TCP does not
 // reach a sharp vertex; the arc is tangent to both segments and at most half of each). Travel moves are timed at
