@@ -131,9 +131,12 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   double lo_level = air_floor - sag - v;
   // The molten pool cannot stand higher than 1.5 h above the highest ground under it: what does not fit (a step
   // that owns few columns, e.g. a short chord at a sharp turn) is carried to the next steps of the pass instead of
-  // piling up in a spike. The last step of a pass takes whatever is left.
+  // piling up in a spike. The last step of a pass takes what is left up to a stop blob of kStopBlobHeights x h;
+  // metal beyond that had nowhere to go (the path runs where the part is already full, e.g. a degenerate inner
+  // contour) and is not placed: it shows as deposited < expected volume, which the report flags.
+  constexpr double kStopBlobHeights = 4.0;
   double hi_level = highest + h + v * (static_cast<double>(target_voxels) + 2.0);
-  if (!last_step) hi_level = std::min(hi_level, highest + 1.5 * h);
+  hi_level = std::min(hi_level, highest + (last_step ? kStopBlobHeights : 1.5) * h);
   for (int iter = 0; iter < 48 && hi_level - lo_level > 1e-4 * v; ++iter) {
     const double mid = 0.5 * (lo_level + hi_level);
     (count(mid, false) >= target_voxels ? hi_level : lo_level) = mid;
