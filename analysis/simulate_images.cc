@@ -17,17 +17,19 @@
 namespace waam::analysis {
 namespace {
 
-// Scales a picture up (nearest) so that its longer side is at least 600 px, flips it so +y (or +z) points up, adds
-// a caption line, and writes it atomically as PNG.
+// Scales a picture (nearest, so voxels stay crisp) so that its longer side is about 800 px, flips it so +y (or +z)
+// points up, adds a caption line as wide as it needs, and writes it atomically as PNG.
 void Save(const cv::Mat& raw, const std::string& caption, const std::filesystem::path& path) {
   cv::Mat image;
   cv::flip(raw, image, 0);
   const int longer = std::max(image.cols, image.rows);
-  const int scale = std::max(1, 600 / std::max(1, longer));
-  if (scale > 1) cv::resize(image, image, cv::Size(), scale, scale, cv::INTER_NEAREST);
-  cv::Mat framed(image.rows + 30, std::max(image.cols, 420), CV_8UC3, cv::Scalar(255, 255, 255));
+  const double scale = std::clamp(800.0 / std::max(1, longer), 1.0, 16.0);
+  if (scale > 1.0) cv::resize(image, image, cv::Size(), scale, scale, cv::INTER_NEAREST);
+  int baseline = 0;
+  const cv::Size text = cv::getTextSize(caption, cv::FONT_HERSHEY_SIMPLEX, 0.5, 1, &baseline);
+  cv::Mat framed(image.rows + 30, std::max(image.cols, text.width + 10), CV_8UC3, cv::Scalar(255, 255, 255));
   image.copyTo(framed(cv::Rect(0, 30, image.cols, image.rows)));
-  cv::putText(framed, caption, cv::Point(5, 20), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(framed, caption, cv::Point(5, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   std::vector<unsigned char> bytes;
   WAAM_THROW_UNLESS(cv::imencode(".png", framed, bytes), "cannot encode " << path.string() << " as PNG");
   WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
