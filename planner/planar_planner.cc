@@ -5,7 +5,10 @@
 
 #include "models/core/error.h"
 #include "models/bead/parabolic_bead.h"
+#include "models/bead/speed_height_model.h"
+#include "models/bead/width_height_model.h"
 #include "models/core/progress.h"
+#include "models/fit/model_file.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/path/layer_pattern.h"
@@ -52,26 +55,43 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
 
   const std::vector<std::vector<PolygonWithHoles>> slices = SlicePlanar(result.mesh, heights);
 
+  // The bead: either the scenario's speed and width with the height from the wire-feed volume balance (003
+  // eq. 3.4: area = efficiency * wire area * wire feed / travel speed; eq. 3.3: A = 2wh/3), or the speed for the
+  // layer height and the width that comes with it from the fitted models (sec. 6.3.2.1, eq. 6.6-6.7).
+  const ProcessSettings& process = scenario.process;
+  result.layer_height_mm = layer_height;
+  result.travel_speed_mm_min = process.travel_speed_mm_min;
+  result.bead_width_mm = scenario.path.bead_width_mm;
+  if (process.bead_model == "speed_height") {
+    const auto speed_height = models::SpeedHeightModel::Load(
+        process.speed_height_model.empty() ? models::DefaultModelPath("speed_height") : process.speed_height_model);
+    const auto width_height = models::WidthHeightModel::Load(
+        process.width_height_model.empty() ? models::DefaultModelPath("width_height") : process.width_height_model);
+    const models::BeadSetpoint setpoint = models::SetpointForHeight(speed_height, width_height, layer_height);
+    result.travel_speed_mm_min = setpoint.speed.speed_mm_per_min;
+    result.bead_width_mm = setpoint.width_mm;
+    result.speed_clamp = models::ToString(setpoint.speed.clamp);
+    result.bead_height_mm = setpoint.speed.achieved_mm;
+    result.bead_area_mm2 = models::ParabolicBead{result.bead_width_mm, result.bead_height_mm}.Area();
+  } else {
+    result.bead_area_mm2 = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
+                                                        process.travel_speed_mm_min, process.deposition_efficiency);
+    result.bead_height_mm = 1.5 * result.bead_area_mm2 / result.bead_width_mm;
+  }
+  // Overlapping beads at the zigzag spacing l grow a layer by A / l; when that differs from the slicing step, the
+  // twin shows the part ending high or low, as a real build would.
+  result.layer_growth_mm =
+      result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).zigzag_mm;
+
   PatternOptions options;
   options.pattern = scenario.path.pattern;
-  options.bead_width_mm = scenario.path.bead_width_mm;
+  options.bead_width_mm = result.bead_width_mm;
   options.overlap_model = scenario.path.overlap_model;
   options.zigzag_auto = scenario.path.zigzag_angle_auto;
   options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
   options.alternate_start = scenario.path.alternate_start;
   options.seed = scenario.path.seed;
-  const double speed_mm_s = scenario.process.travel_speed_mm_min / 60.0;
-
-  // The bead is what the wire brings (003 eq. 3.4): area = efficiency * wire area * wire feed / travel speed, laid
-  // as a parabola of the planned width (eq. 3.3: A = 2wh/3). Overlapping beads at spacing l grow a layer by A / l;
-  // when that differs from the slicing step, the twin shows the part ending high or low, as a real build would.
-  const ProcessSettings& process = scenario.process;
-  result.layer_height_mm = layer_height;
-  result.bead_area_mm2 = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
-                                                      process.travel_speed_mm_min, process.deposition_efficiency);
-  result.bead_height_mm = 1.5 * result.bead_area_mm2 / scenario.path.bead_width_mm;
-  result.layer_growth_mm =
-      result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, scenario.path.bead_width_mm).zigzag_mm;
+  const double speed_mm_s = result.travel_speed_mm_min / 60.0;
 
   result.plan.name = scenario.name;
   result.plan.layers.reserve(layer_count);
@@ -85,7 +105,7 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
       PathPoint point;
       point.p_P = Eigen::Vector3d(move.p.x(), move.p.y(), layer.z_mm);
       point.tool_dir_P = Eigen::Vector3d::UnitZ();
-      point.bead_width_mm = scenario.path.bead_width_mm;
+      point.bead_width_mm = result.bead_width_mm;
       point.bead_height_mm = result.bead_height_mm;
       point.speed_mm_s = speed_mm_s;
       point.weld = move.weld;

@@ -1,6 +1,8 @@
 // The planar planning pipeline: scenario -> mesh -> slices -> one path per layer -> statistics.
 #pragma once
 
+#include <string>
+
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
 #include "planner/scenario/scenario.h"
@@ -21,6 +23,9 @@ struct PlanResult {
   double bead_area_mm2 = 0.0;       // bead cross-section from the wire-feed volume balance (003 eq. 3.4)
   double bead_height_mm = 0.0;      // parabolic cap height of that area at the planned width (eq. 3.3)
   double layer_growth_mm = 0.0;     // height a layer of beads at the zigzag spacing l grows: area / l
+  double travel_speed_mm_min = 0.0; // the welding speed used
+  double bead_width_mm = 0.0;       // the bead width used (from the scenario or the width-height model)
+  std::string speed_clamp = "none"; // speed_height mode: none | at_minimum | at_maximum of the feasible window
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

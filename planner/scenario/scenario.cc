@@ -130,6 +130,17 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     p.wire_feed_mm_min = process.Number("wire_feed_mm_min", 100.0, 30000.0);
     p.wire_diameter_mm = process.Number("wire_diameter_mm", 0.6, 2.4, 1.0);
     p.deposition_efficiency = process.Number("deposition_efficiency", 0.05, 1.0, 1.0);
+    p.bead_model = process.Choice("bead_model", {"volume_balance", "speed_height"}, "volume_balance");
+    for (auto [key, target] : {std::pair{"speed_height_model", &p.speed_height_model},
+                               std::pair{"width_height_model", &p.width_height_model}}) {
+      if (!process.Has(key)) continue;
+      fs::path file = process.String(key);
+      if (file.is_relative()) file = scenario.file.parent_path() / file;
+      std::error_code ec;
+      WAAM_THROW_UNLESS(fs::is_regular_file(file, ec),
+                        process.Where(key) << ": model file " << file.string() << " not found");
+      *target = file.lexically_normal();
+    }
     p.rapid_speed_mm_min = process.Number("rapid_speed_mm_min", 100.0, 100000.0, 6000.0);
     process.CheckNoUnknownKeys();
   }

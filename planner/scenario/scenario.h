@@ -40,6 +40,12 @@ struct ProcessSettings {
   double wire_feed_mm_min = 3200.0;    // wire feed speed
   double wire_diameter_mm = 1.0;
   double deposition_efficiency = 1.0;  // share of the wire volume that lands in the bead (eq. 3.4), (0, 1]
+  // Where the bead comes from: "volume_balance" (travel speed and bead width as given, height from eq. 3.4) or
+  // "speed_height" (speed for the layer height and the width that comes with it, from the fitted speed-height and
+  // width-height models, dissertation sec. 6.3.2.1; path.bead_width_mm and travel_speed_mm_min are then ignored).
+  std::string bead_model = "volume_balance";
+  std::filesystem::path speed_height_model;  // model JSON (waam fit speed-height); empty = models/data default
+  std::filesystem::path width_height_model;  // model JSON (waam fit width-height); empty = models/data default
   double rapid_speed_mm_min = 6000.0;  // arc-off travel moves
 };
 

@@ -57,6 +57,30 @@ TEST(PlanScenarioTest, BeadComesFromTheWireFeedVolumeBalance) {
   }
 }
 
+TEST(PlanScenarioTest, SpeedHeightModeTakesSpeedAndWidthFromTheFittedModels) {
+  Scenario s = BoxScenario();
+  s.process.bead_model = "speed_height";
+  s.slicing.layer_height_mm = 1.5;
+  const PlanResult result = PlanScenario(s, nullptr);
+  // The default fits (models/data, dissertation Table 18 rows 2-17): v = 673.8 h^-2.069, w(1.5 mm) about 5.1 mm.
+  EXPECT_NEAR(result.travel_speed_mm_min, 673.847 * std::pow(1.5, -2.06916), 1.0);
+  EXPECT_NEAR(result.bead_width_mm, 5.08, 0.1);
+  EXPECT_EQ(result.speed_clamp, "none");
+  EXPECT_NEAR(result.bead_height_mm, 1.5, 1e-6);
+  const PathPoint& point = result.plan.layers[0].points.back();
+  EXPECT_DOUBLE_EQ(point.speed_mm_s, result.travel_speed_mm_min / 60.0);
+  EXPECT_DOUBLE_EQ(point.bead_width_mm, result.bead_width_mm);
+}
+
+TEST(PlanScenarioTest, SpeedHeightModeClampsAHeightOutsideTheWindow) {
+  Scenario s = BoxScenario();
+  s.process.bead_model = "speed_height";
+  s.slicing.layer_height_mm = 3.0;  // would need ~70 mm/min, below the 150 mm/min feasible minimum
+  const PlanResult result = PlanScenario(s, nullptr);
+  EXPECT_EQ(result.speed_clamp, "at_minimum");
+  EXPECT_DOUBLE_EQ(result.travel_speed_mm_min, 150.0);
+}
+
 TEST(PlanScenarioTest, PartIsPutOnTheSubstrate) {
   // A mesh floating at z = 50 is planned from z = 0.
   const fs::path dir = fs::temp_directory_path() / ("waam_planar_planner_test_" + std::to_string(::getpid()));

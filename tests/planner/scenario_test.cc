@@ -161,6 +161,15 @@ TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {
   }
 }
 
+TEST_F(ScenarioTest, BeadModelAndModelFiles) {
+  std::string text = Valid();
+  text += "  bead_model: speed_height\n  speed_height_model: models/none.json\n";
+  text.replace(text.find("process:\n"), 9, "process:\n");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("process.speed_height_model: model file"));
+  std::string bad = Valid() + "  bead_model: csw\n";
+  EXPECT_THAT(ErrorOf(bad), HasSubstr("process.bead_model = 'csw': unknown value"));
+}
+
 TEST_F(ScenarioTest, MissingFileIsNamed) {
   try {
     LoadScenario(dir_ / "nope.yaml");
