@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/h5_handle.h"
 #include "analysis/plan_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -12,21 +13,7 @@
 namespace waam::analysis {
 namespace {
 
-// Closes an HDF5 handle when it goes out of scope.
-class H5Handle {
- public:
-  H5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~H5Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  H5Handle(const H5Handle&) = delete;
-  H5Handle& operator=(const H5Handle&) = delete;
-  hid_t get() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
+using internal::H5Handle;
 
 constexpr std::array<const char*, 11> kColumns = {
     "x_mm", "y_mm", "z_mm", "tool_x", "tool_y", "tool_z", "bead_width_mm", "bead_height_mm",

@@ -1,6 +1,8 @@
 // `waam simulate` without the planning step: deposit, scan, and write the outputs.
 #include "analysis/simulate_command.h"
 
+#include "planner/mesh/stl_io.h"
+
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -118,7 +120,7 @@ twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planne
   const planner::TriangleMesh surface =
       factor == 1 ? twin::ExtractSurface(result.depositor.grid())
                   : twin::ExtractSurface(twin::Coarsen(result.depositor.grid(), factor));
-  WriteBinaryStl(surface, options.out_dir / "part.stl", "waam simulate: " + scenario.name);
+  planner::WriteStlBinary(surface, options.out_dir / "part.stl", "waam simulate: " + scenario.name);
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
   WriteSimulationH5(result, options.out_dir / "part.h5");
   if (options.images) {

@@ -36,9 +36,6 @@ twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planne
 // The simulate.json document (the public contract; fields documented in `waam simulate --help`).
 nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::TwinResult& result);
 
-// Writes a binary STL (80-byte header, facet normals from the winding).
-void WriteBinaryStl(const planner::TriangleMesh& mesh, const std::filesystem::path& path, const std::string& header);
-
 // Writes the voxel grid and the top height map to HDF5: /voxels/{ijk (N x 3 int32), bead (N uint32),
 // layer (N int32), time_s (N float32)}, /top_height_mm (ny x nx float32, NaN where empty), /beads table,
 // attributes voxel_mm and origin (mm).

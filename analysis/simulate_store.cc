@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "analysis/h5_handle.h"
 #include "analysis/simulate_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -18,21 +19,7 @@
 namespace waam::analysis {
 namespace {
 
-// Closes an HDF5 handle on scope exit.
-class H5Handle {
- public:
-  H5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~H5Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  H5Handle(const H5Handle&) = delete;
-  H5Handle& operator=(const H5Handle&) = delete;
-  hid_t get() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
+using internal::H5Handle;
 
 void Check(bool ok, const std::filesystem::path& path, const char* what) {
   WAAM_THROW_UNLESS(ok, "cannot write " << path.string() << ": HDF5 " << what << " failed");
@@ -60,39 +47,6 @@ void WriteDoubleAttribute(hid_t object, const char* name, const std::vector<doub
 }
 
 }  // namespace
-
-void WriteBinaryStl(const planner::TriangleMesh& mesh, const std::filesystem::path& path, const std::string& header) {
-  // Streamed to the temporary file: a large part's STL does not have to fit in memory twice.
-  AtomicOutput out(path);
-  {
-    std::ofstream file(out.temp_path(), std::ios::binary);
-    WAAM_THROW_UNLESS(file.good(), "cannot write " << path.string());
-    char head[80] = {};
-    std::memcpy(head, header.data(), std::min<std::size_t>(header.size(), 80));
-    file.write(head, 80);
-    const auto count = static_cast<std::uint32_t>(mesh.facets.size());
-    file.write(reinterpret_cast<const char*>(&count), 4);
-    for (const auto& f : mesh.facets) {
-      const Eigen::Vector3d& a = mesh.vertices[f[0]];
-      const Eigen::Vector3d& b = mesh.vertices[f[1]];
-      const Eigen::Vector3d& c = mesh.vertices[f[2]];
-      Eigen::Vector3d n = (b - a).cross(c - a);
-      if (n.norm() > 0) n.normalize();
-      float values[12];
-      for (int k = 0; k < 3; ++k) {
-        values[k] = static_cast<float>(n[k]);
-        values[3 + k] = static_cast<float>(a[k]);
-        values[6 + k] = static_cast<float>(b[k]);
-        values[9 + k] = static_cast<float>(c[k]);
-      }
-      file.write(reinterpret_cast<const char*>(values), sizeof(values));
-      file.write("\0\0", 2);  // attribute byte count
-    }
-    file.flush();
-    WAAM_THROW_UNLESS(file.good(), "cannot write " << path.string() << ": disk full?");
-  }
-  out.Commit();
-}
 
 void WriteSimulationH5(const twin::TwinResult& result, const std::filesystem::path& path) {
   const twin::VoxelGrid& grid = result.depositor.grid();

@@ -261,38 +261,47 @@ void CheckSliceable(const MeshReport& report) {
                            << (report.non_manifold_edges == 0 ? " or raise the weld tolerance)" : ")"));
 }
 
-void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path) {
+void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path, const std::string& header_text) {
   WAAM_THROW_UNLESS(mesh.facets.size() <= kMaxStlFacets,
                     path.string() << ": " << mesh.facets.size() << " facets exceed the STL limit of " << kMaxStlFacets);
   AtomicOutput output(path);
-  std::ofstream out(output.temp_path(), std::ios::binary | std::ios::trunc);
-  WAAM_THROW_UNLESS(out.is_open(), path.string() << ": cannot open for writing");
-  char header[80] = {};
-  std::snprintf(header, sizeof(header), "binary STL written by waam-twin, millimetres");
-  out.write(header, sizeof(header));
-  const auto count = static_cast<std::uint32_t>(mesh.facets.size());
-  out.write(reinterpret_cast<const char*>(&count), sizeof(count));
-  std::vector<char> buffer(kFacetBytes * mesh.facets.size());
-  char* p = buffer.data();
-  for (const std::array<int, 3>& f : mesh.facets) {
-    const Eigen::Vector3d& a = mesh.vertices[f[0]];
-    const Eigen::Vector3d& b = mesh.vertices[f[1]];
-    const Eigen::Vector3d& c = mesh.vertices[f[2]];
-    Eigen::Vector3d n = (b - a).cross(c - a);
-    if (n.norm() > 0.0) n.normalize();
-    float values[12];
-    for (int k = 0; k < 3; ++k) {
-      values[k] = static_cast<float>(n[k]);
-      values[3 + k] = static_cast<float>(a[k]);
-      values[6 + k] = static_cast<float>(b[k]);
-      values[9 + k] = static_cast<float>(c[k]);
+  {
+    std::ofstream out(output.temp_path(), std::ios::binary | std::ios::trunc);
+    WAAM_THROW_UNLESS(out.is_open(), path.string() << ": cannot open for writing");
+    char header[80] = {};
+    std::memcpy(header, header_text.data(), std::min<std::size_t>(header_text.size(), sizeof(header)));
+    out.write(header, sizeof(header));
+    const auto count = static_cast<std::uint32_t>(mesh.facets.size());
+    out.write(reinterpret_cast<const char*>(&count), sizeof(count));
+    // Streamed in chunks, so a large part's STL never has to fit in memory next to its mesh.
+    constexpr std::size_t kChunkFacets = 1 << 16;
+    std::vector<char> buffer;
+    buffer.reserve(kFacetBytes * std::min(kChunkFacets, mesh.facets.size()));
+    for (std::size_t i = 0; i < mesh.facets.size(); ++i) {
+      const std::array<int, 3>& f = mesh.facets[i];
+      const Eigen::Vector3d& a = mesh.vertices[f[0]];
+      const Eigen::Vector3d& b = mesh.vertices[f[1]];
+      const Eigen::Vector3d& c = mesh.vertices[f[2]];
+      Eigen::Vector3d n = (b - a).cross(c - a);
+      if (n.norm() > 0.0) n.normalize();
+      float values[12];
+      for (int k = 0; k < 3; ++k) {
+        values[k] = static_cast<float>(n[k]);
+        values[3 + k] = static_cast<float>(a[k]);
+        values[6 + k] = static_cast<float>(b[k]);
+        values[9 + k] = static_cast<float>(c[k]);
+      }
+      const char* bytes = reinterpret_cast<const char*>(values);
+      buffer.insert(buffer.end(), bytes, bytes + sizeof(values));
+      buffer.push_back(0);  // attribute byte count
+      buffer.push_back(0);
+      if (buffer.size() >= kFacetBytes * kChunkFacets || i + 1 == mesh.facets.size()) {
+        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        buffer.clear();
+      }
     }
-    std::memcpy(p, values, sizeof(values));
-    std::memset(p + 48, 0, 2);
-    p += kFacetBytes;
+    WriteOrThrow(out, path);
   }
-  out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-  WriteOrThrow(out, path);
   output.Commit();
 }
 

@@ -33,7 +33,8 @@ void CheckSliceable(const MeshReport& report);
 
 // Writes `mesh` as binary STL (float32, facet normals from the vertex order) atomically.
 // Throws InputError if the file cannot be written.
-void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path);
+void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path,
+                    const std::string& header_text = "binary STL written by waam-twin, millimetres");
 
 // The report as a JSON object text (keys as the MeshReport fields; bbox as [x, y, z] in mm) plus "sliceable" and
 // "not_sliceable_reason" (the CheckSliceable message, empty when sliceable), indented by 2.
