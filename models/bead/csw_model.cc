@@ -83,14 +83,7 @@ CswFit FitCsw(const CswSamples& s, const DataSource& data, const SpeedRange* fea
                       data.file << ": row " << i + 1 << ": speed " << s.speed_mm_per_min[i] << " mm/min and radius "
                                 << s.radius_mm[i] << " mm must both be > 0");
   }
-  SpeedRange range;
-  if (feasible != nullptr) {
-    range = *feasible;
-  } else {
-    const auto [lo, hi] = std::minmax_element(s.speed_mm_per_min.begin(), s.speed_mm_per_min.end());
-    range = {*lo, *hi};
-  }
-  range.Validate(data.file);
+  const SpeedRange range = FitSpeedRange(s.speed_mm_per_min, feasible, data.file);
 
   // The model is linear in (m, p, t); start from a plausible point and let LM converge in a few steps.
   double mpt[3] = {50.0, 0.0, 0.0};

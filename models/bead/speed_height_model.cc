@@ -99,14 +99,7 @@ SpeedHeightFit FitSpeedHeight(const SpeedHeightSamples& s, const DataSource& dat
                       data.file << ": row " << i + 1 << ": speed " << s.speed_mm_per_min[i] << " mm/min and height "
                                 << s.height_mm[i] << " mm must both be > 0");
   }
-  SpeedRange range;
-  if (feasible != nullptr) {
-    range = *feasible;
-  } else {
-    const auto [lo, hi] = std::minmax_element(s.speed_mm_per_min.begin(), s.speed_mm_per_min.end());
-    range = {*lo, *hi};
-  }
-  range.Validate(data.file);
+  const SpeedRange range = FitSpeedRange(s.speed_mm_per_min, feasible, data.file);
 
   // Start from the least-squares line ln v = ln a + b ln h (closed form), then refine in the chosen space.
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

@@ -1,6 +1,7 @@
 // Feasible speed windows and clamping.
 #include "models/bead/speed_range.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "models/core/error.h"
@@ -54,6 +55,19 @@ SpeedChoice ClampSpeed(double wanted, const SpeedRange& range) {
     c.clamp = SpeedClamp::kAtMaximum;
   }
   return c;
+}
+
+SpeedRange FitSpeedRange(const std::vector<double>& speeds_mm_per_min, const SpeedRange* feasible,
+                         const std::string& where) {
+  SpeedRange range;
+  if (feasible != nullptr) {
+    range = *feasible;
+  } else if (!speeds_mm_per_min.empty()) {
+    const auto [lo, hi] = std::minmax_element(speeds_mm_per_min.begin(), speeds_mm_per_min.end());
+    range = {*lo, *hi};
+  }
+  range.Validate(where);
+  return range;
 }
 
 }  // namespace waam::models

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,11 @@ struct SpeedChoice {
   double achieved_mm = 0.0;        // the width (CSW) or height (speed-height) the model predicts at `speed`
   SpeedClamp clamp = SpeedClamp::kNone;
 };
+
+// The feasible window for a fit: `*feasible` if given, else the span of the measured `speeds_mm_per_min`.
+// Throws InputError naming `where` if the result is not a window.
+SpeedRange FitSpeedRange(const std::vector<double>& speeds_mm_per_min, const SpeedRange* feasible,
+                         const std::string& where);
 
 // Clamps `wanted` [mm/min] into `range`, recording the side.
 SpeedChoice ClampSpeed(double wanted, const SpeedRange& range);

@@ -5,10 +5,11 @@
 #include <cmath>
 #include <limits>
 
+#include "planner/kinematics/angles.h"
+
 namespace waam::planner {
 namespace {
 
-constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kWristSingularSin = 1e-9;  // |sin j5| below this: j4 and j6 are coupled
 
 double Deg(double d) { return d * M_PI / 180.0; }
@@ -16,24 +17,6 @@ double Deg(double d) { return d * M_PI / 180.0; }
 Eigen::Matrix3d Rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).toRotationMatrix(); }
 Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix(); }
 Eigen::Matrix3d Rz(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix(); }
-
-// Wraps `q` by multiples of 2 pi into [lo, hi] as close to `target` as possible; if no copy fits, the copy
-// nearest `target` (so that a path running past a limit stays continuous).
-double WrapInto(double q, double lo, double hi, double target) {
-  q = std::remainder(q, kTwoPi);
-  double best = q;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (int k = -2; k <= 2; ++k) {
-    const double c = q + k * kTwoPi;
-    const bool inside = c >= lo && c <= hi;
-    const double cost = (inside ? 0.0 : 1e6) + std::abs(c - target);
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = c;
-    }
-  }
-  return best;
-}
 
 }  // namespace
 
@@ -144,7 +127,7 @@ IkSolutions SolveIk(const OpwArm& arm, const Eigen::Isometry3d& X_RF, const Join
         sol.within_limits = true;
         for (int j = 0; j < 6; ++j) {
           const double target = seed ? (*seed)[j] : 0.0;
-          sol.q[j] = WrapInto(sol.q[j], arm.lower[j], arm.upper[j], target);
+          sol.q[j] = NearestAngleCopy(sol.q[j], arm.lower[j], arm.upper[j], target);
           if (sol.q[j] < arm.lower[j] || sol.q[j] > arm.upper[j]) sol.within_limits = false;
         }
       }

@@ -5,29 +5,9 @@
 #include <cmath>
 #include <limits>
 
+#include "planner/kinematics/angles.h"
+
 namespace waam::planner {
-namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
-
-// The 2 pi copy of `r` inside [lo, hi] nearest `target`; if none fits, the copy nearest `target`.
-double NearestCopy(double r, double lo, double hi, double target) {
-  r = std::remainder(r, kTwoPi);
-  double best = r;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (int k = -2; k <= 2; ++k) {
-    const double c = r + k * kTwoPi;
-    const bool inside = c >= lo && c <= hi;
-    const double cost = (inside ? 0.0 : 1e6) + std::abs(c - target);
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = c;
-    }
-  }
-  return best;
-}
-
-}  // namespace
 
 Eigen::Isometry3d PartPose(const Positioner& positioner, double tilt, double rotation) {
   // eq. 5.9: R_xz = Rx(tilt) * Rz(rotation), with the axis offsets of the chain (eq. 5.1, 5.6).
@@ -59,7 +39,7 @@ PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen
     double best_cost = std::numeric_limits<double>::infinity();
     for (int s = 0; s < 2; ++s) {
       const double tilt = s ? -t : t;
-      const double rot = NearestCopy((s ? -M_PI_2 : M_PI_2) - phi, positioner.rotation_lower,
+      const double rot = NearestAngleCopy((s ? -M_PI_2 : M_PI_2) - phi, positioner.rotation_lower,
                                      positioner.rotation_upper, previous.rotation);
       const double tilt_clamped = std::clamp(tilt, positioner.tilt_lower, positioner.tilt_upper);
       const bool rot_inside = rot >= positioner.rotation_lower && rot <= positioner.rotation_upper;
