@@ -189,5 +189,32 @@ TEST(ConePlannerTest, PartPastTheApexIsRefused) {
       InputError);
 }
 
+TEST(ConePlannerTest, PartInsideTheFirstSurfaceIsRefused) {
+  Scenario s = BladeScenario();
+  s.slicing.cone_R_mm = 200;  // every blade lies inside this cone
+  try {
+    PlanScenario(s, nullptr);
+    FAIL() << "expected an InputError for a part inside the first surface";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("lies inside the first surface"));
+  }
+}
+
+TEST(ConePlannerTest, ALayerRoundTheAxisIsRefusedWithItsIndex) {
+  // A tube round the cylinder's axis: every layer is a full ring that no cutting line can miss.
+  Scenario s = BladeScenario();
+  s.part.generator = "cylinder";
+  s.part.params = {{"radius_mm", {50.0}}, {"height_mm", {20.0}}};
+  s.slicing.type = "cylinder";
+  s.slicing.cone_R_mm = 40;
+  try {
+    PlanScenario(s, nullptr);
+    FAIL() << "expected an InputError for a contour winding round the axis";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("layer 0"));
+    EXPECT_THAT(e.what(), HasSubstr("winds round the surface axis"));
+  }
+}
+
 }  // namespace
 }  // namespace waam::planner
