@@ -50,6 +50,15 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       any_weld = true;
     }
   }
+  nlohmann::json sub_volumes = nlohmann::json::array();
+  for (const planner::SubVolumeReport& sub : result.sub_volumes) {
+    sub_volumes.push_back({{"name", sub.name},
+                           {"direction", {sub.direction.x(), sub.direction.y(), sub.direction.z()}},
+                           {"first_layer", sub.first_layer},
+                           {"layers", sub.layers},
+                           {"volume_mm3", sub.volume_mm3},
+                           {"support_mm3", sub.support_mm3}});
+  }
   return {
       {"scenario", scenario.name},
       {"slicing", scenario.slicing.type},
@@ -74,6 +83,7 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       {"travel_length_mm", stats.travel_length_mm},
       {"estimated_time_s", stats.estimated_time_s},
       {"layer_details", layers},
+      {"sub_volumes", sub_volumes},
   };
 }
 

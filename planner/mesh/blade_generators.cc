@@ -2,7 +2,9 @@
 #include "planner/mesh/blade_generators.h"
 
 #include <cmath>
+#include <limits>
 
+#include "planner/mesh/extrude.h"
 #include "planner/mesh/mesh_ops.h"
 
 namespace waam::planner {
@@ -67,6 +69,17 @@ TriangleMesh BuildConeBlades(const ConeBladeParams& p) {
   if (EnclosedVolume(mesh) < 0.0) {
     for (auto& f : mesh.facets) std::swap(f[1], f[2]);
   }
+  return mesh;
+}
+
+TriangleMesh BuildPropeller(ConeBladeParams p, double hub_height_mm) {
+  p.H_mm = std::numeric_limits<double>::infinity();
+  p.root_mm = 0.0;
+  p.root_z_mm = 0.5 * hub_height_mm;
+  TriangleMesh mesh = BuildConeBlades(p);
+  const double half = p.R_mm - 0.01;
+  AppendMesh(ExtrudeRegions({PolygonWithHoles{RectangleRing(-half, -half, half, half), {}}}, 0.0, hub_height_mm),
+             &mesh);
   return mesh;
 }
 

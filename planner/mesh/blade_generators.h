@@ -29,4 +29,10 @@ struct ConeBladeParams {
 
 TriangleMesh BuildConeBlades(const ConeBladeParams& p);
 
+// A propeller like Lim & Soh's (seed 002): a square hub prism of half-width p.R_mm (the blade roots sit on its flats,
+// the split planes of the hub-and-blade decomposition) and `hub_height_mm` tall from z = 0, with p.blades blades (a
+// cylinder of radius R: p.H_mm is ignored) rooted on the flats (root_mm is taken as 0: the hub stands 0.01 mm
+// clear of the blade roots so that the shells do not touch). Needs 4 blades at most (one per flat).
+TriangleMesh BuildPropeller(ConeBladeParams p, double hub_height_mm);
+
 }  // namespace waam::planner

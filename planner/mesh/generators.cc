@@ -295,6 +295,28 @@ const std::map<std::string, GeneratorSpec>& Registry() {
           return BuildConeBlades(p);
         },
         true};
+    r["propeller"] = {
+        "Lim & Soh-like propeller: square hub (blade roots on its flats) and blades round the z axis, kept in the "
+        "hub's frame (axis x = y = 0, hub from z = 0), for slicing.type multi_directional",
+        {{"blades", {4.0}, 1, 1, 4, true, "blades, one per hub flat (at 0, 90, 180, 270 deg)"},
+         {"hub_mm", {126.0, 120.0}, 2, 1.0, kBig, false, "hub width across the flats and height (mm)"},
+         {"span_mm", {287.0}, 1, 1.0, kBig, false, "blade length from the hub flat (mm)"},
+         {"chord_mm", {120.0}, 1, 1.0, kBig, false, "blade chord (mm)"},
+         {"thickness_mm", {50.0, 20.0}, 2, 0.5, kBig, false, "thickness at the root and at the tip (mm)"},
+         {"pitch_deg", {30.0, 60.0}, 2, -89.0, 89.0, false, "pitch at the root and the tip (deg, 0 = along the axis)"}},
+        [](const Args& a) {
+          ConeBladeParams p;
+          p.blades = a.Int("blades");
+          p.R_mm = 0.5 * a("hub_mm", 0);
+          p.span_mm = a("span_mm");
+          p.chord_mm = a("chord_mm");
+          p.root_thickness_mm = a("thickness_mm", 0);
+          p.tip_thickness_mm = a("thickness_mm", 1);
+          p.pitch_root_deg = a("pitch_deg", 0);
+          p.pitch_tip_deg = a("pitch_deg", 1);
+          return BuildPropeller(p, a("hub_mm", 1));
+        },
+        true};
     r["ding_d"] = {"Ding 2014 case-4-like large solid cross with four notches",
                    {height, scale},
                    [](const Args& a) {

@@ -97,7 +97,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   // slicing
   {
     YamlMap slicing = top.Map("slicing");
-    scenario.slicing.type = slicing.Choice("type", {"planar", "cone", "cylinder"}, "planar");
+    scenario.slicing.type = slicing.Choice("type", {"planar", "cone", "cylinder", "multi_directional"}, "planar");
     scenario.slicing.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0);
     if (scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder") {
       SlicingSettings& s = scenario.slicing;
@@ -110,6 +110,26 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
       const std::vector<double> axis = slicing.Numbers("axis_mm", 3, -1e5, 1e5, {0.0, 0.0, 0.0});
       std::copy(axis.begin(), axis.end(), s.cone_axis_mm.begin());
       s.cone_rotation_step_deg = slicing.Number("rotation_step_deg", 1.0, 180.0, 11.0);
+    }
+    if (scenario.slicing.type == "multi_directional") {
+      for (YamlMap sub : slicing.Maps("sub_volumes")) {
+        SubVolumeSpec spec;
+        spec.name = sub.String("name");
+        const std::vector<double> d = sub.Numbers("direction", 3, -1e3, 1e3);
+        const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        WAAM_THROW_UNLESS(norm > 1e-9, sub.Where("direction") << ": must not be the zero vector");
+        for (int k = 0; k < 3; ++k) spec.direction[k] = d[k] / norm;
+        const std::vector<double> keep = sub.Numbers("keep", -1, -1e6, 1e6, {});
+        WAAM_THROW_UNLESS(keep.size() % 4 == 0, sub.Where("keep") << ": " << keep.size()
+                              << " numbers: give 4 per half-space n . p <= c (nx, ny, nz, c in mm)");
+        for (std::size_t k = 0; k < keep.size(); k += 4) {
+          spec.keep.push_back({keep[k], keep[k + 1], keep[k + 2], keep[k + 3]});
+        }
+        sub.CheckNoUnknownKeys();
+        scenario.slicing.sub_volumes.push_back(std::move(spec));
+      }
+      WAAM_THROW_UNLESS(!scenario.slicing.sub_volumes.empty(),
+                        slicing.Where("sub_volumes") << ": give at least one sub-volume");
     }
     slicing.CheckNoUnknownKeys();
   }

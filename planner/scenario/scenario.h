@@ -21,8 +21,16 @@ struct PartSpec {
   std::string where;                 // "file:line: part" for messages about the part
 };
 
+// A sub-volume of a multi-directional decomposition (Lim & Soh): the part's metal inside every `keep` half-space
+// n . p <= c (n, then c in mm; user-given split planes), planar-sliced along `direction` (unit after loading).
+struct SubVolumeSpec {
+  std::string name;
+  std::array<double, 3> direction = {0.0, 0.0, 1.0};
+  std::vector<std::array<double, 4>> keep;
+};
+
 struct SlicingSettings {
-  std::string type = "planar";       // planar | cone | cylinder (later: skeleton, multi-directional)
+  std::string type = "planar";       // planar | cone | cylinder | multi_directional (later: skeleton)
   double layer_height_mm = 1.5;      // > 0 (cone, cylinder: normal distance d between equidistant surfaces)
   // cone | cylinder (Dai et al. 2020, planner/cone_planner.h): the first surface x^2 + y^2 = R^2 (z/H - 1)^2
   // about a vertical axis through axis_mm; layer i is its equidistant surface at (i + 1/2) d.
@@ -30,6 +38,7 @@ struct SlicingSettings {
   double cone_H_mm = 200.0;                         // axis_mm to the apex, mm (cone only; < 0: widens upwards)
   std::array<double, 3> cone_axis_mm = {0.0, 0.0, 0.0};  // point on the axis, part frame, mm
   double cone_rotation_step_deg = 11.0;             // rotation step before flattening (Dai sec. 2.2), deg
+  std::vector<SubVolumeSpec> sub_volumes;           // multi_directional: built in this order
 };
 
 struct PathSettings {

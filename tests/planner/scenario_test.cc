@@ -172,6 +172,17 @@ TEST_F(ScenarioTest, BeadModelAndModelFiles) {
   EXPECT_THAT(ErrorOf(Valid() + "  bead_model: csw\n"), HasSubstr("csw: needs slicing.type cone or cylinder"));
 }
 
+TEST_F(ScenarioTest, SubVolumeKeys) {
+  std::string text = Valid();
+  text.replace(text.find("type: planar"), 12,
+               "type: multi_directional\n  sub_volumes:\n    - {name: hub, direction: [0, 0, 0]}");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("direction: must not be the zero vector"));
+  text = Valid();
+  text.replace(text.find("type: planar"), 12,
+               "type: multi_directional\n  sub_volumes:\n    - {name: hub, direction: [0, 0, 1], keep: [1, 0, 0]}");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("keep: 3 numbers: give 4 per half-space"));
+}
+
 TEST_F(ScenarioTest, ConeSlicingKeys) {
   std::string text = Valid();
   text.replace(text.find("type: planar"), 12, "type: cone\n  R_mm: 60\n  H_mm: 0.5");
