@@ -152,15 +152,25 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
     options.layer_index = layer.index;
     const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, options);
 
-    // Densify every move on the plane, so that the mapped path follows the surface.
+    // Densify every move on the plane, so that the mapped path follows the surface. A weld move stays inside its
+    // region; a travel move between regions of a cone is interpolated in the polar coordinates of the development,
+    // because a straight line between two points of a sector wider than pi can leave the sector (and cross the
+    // cutting line).
     std::vector<Eigen::Vector2d> q_flat;
     std::vector<bool> weld;
     for (const Move2D& move : moves) {
       if (!q_flat.empty()) {
         const Eigen::Vector2d from = q_flat.back();
-        const int steps = std::max(1, static_cast<int>(std::ceil((move.p - from).norm() / kPointStepMm)));
+        const bool polar = !move.weld && !middle.cylinder();
+        const double rho0 = from.norm(), rho1 = move.p.norm();
+        const double phi0 = std::atan2(from.y(), from.x()), phi1 = std::atan2(move.p.y(), move.p.x());
+        const double length = polar ? std::max(std::abs(rho1 - rho0), std::max(rho0, rho1) * std::abs(phi1 - phi0))
+                                    : (move.p - from).norm();
+        const int steps = std::max(1, static_cast<int>(std::ceil(length / kPointStepMm)));
         for (int k = 1; k < steps; ++k) {
-          q_flat.push_back(from + (move.p - from) * (static_cast<double>(k) / steps));
+          const double f = static_cast<double>(k) / steps;
+          const double rho = rho0 + f * (rho1 - rho0), phi = phi0 + f * (phi1 - phi0);
+          q_flat.push_back(polar ? Eigen::Vector2d(rho * std::cos(phi), rho * std::sin(phi)) : from + (move.p - from) * f);
           weld.push_back(move.weld);
         }
       }

@@ -174,6 +174,25 @@ TEST(ConePlannerTest, CswSpeedsUpOnTighterCurves) {
   EXPECT_GT(hi, lo + 50) << "speed range " << lo << " - " << hi;
 }
 
+TEST(ConePlannerTest, PathStaysOnTheSurfaceAcrossAWideDevelopment) {
+  // R = 80, H = 70: the development is a sector of 270 deg, wider than pi; weld and travel moves between the nine
+  // blades must stay on the surface, consecutive points a step apart (no jump across the cutting line).
+  Scenario s = BladeScenario();
+  s.part.params = {{"blades", {9.0}}, {"R_mm", {80.0}}, {"H_mm", {70.0}}, {"root_z_mm", {20.0}}, {"span_mm", {6.0}},
+                   {"chord_mm", {30.0}}, {"thickness_mm", {12.0, 10.0}}, {"pitch_deg", {20.0, 30.0}}};
+  s.slicing.cone_R_mm = 80;
+  s.slicing.cone_H_mm = 70;
+  const PlanResult result = PlanScenario(s, nullptr);
+  ASSERT_FALSE(result.plan.layers.empty());
+  for (const LayerPath& layer : result.plan.layers) {
+    EXPECT_EQ(result.stats.passes_per_layer[layer.index], 9u) << "one contour pass per blade";
+    for (std::size_t j = 1; j < layer.points.size(); ++j) {
+      EXPECT_LT((layer.points[j].p_P - layer.points[j - 1].p_P).norm(), 3.0)
+          << "layer " << layer.index << " point " << j << (layer.points[j].weld ? " (weld)" : " (travel)");
+    }
+  }
+}
+
 TEST(ConePlannerTest, PartPastTheApexIsRefused) {
   Scenario s = BladeScenario();
   s.slicing.cone_H_mm = 70;
