@@ -1,6 +1,7 @@
 // `waam plan`: planning plus its outputs (JSON summary, HDF5 points, per-layer pictures).
 #include "analysis/plan_command.h"
 
+#include <algorithm>
 #include <string>
 
 #include "models/core/error.h"
@@ -37,8 +38,31 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
                       {"path_elements", stats.path_elements_per_layer[i]},
                       {"points", layer.points.size()}});
   }
+  // Weld travel speeds actually planned (they vary per point with bead_model csw), mm/min.
+  double speed_lo = 0.0, speed_hi = 0.0;
+  bool any_weld = false;
+  for (const planner::LayerPath& layer : result.plan.layers) {
+    for (const planner::PathPoint& point : layer.points) {
+      if (!point.weld) continue;
+      const double v = point.speed_mm_s * 60.0;
+      speed_lo = any_weld ? std::min(speed_lo, v) : v;
+      speed_hi = any_weld ? std::max(speed_hi, v) : v;
+      any_weld = true;
+    }
+  }
+  nlohmann::json sub_volumes = nlohmann::json::array();
+  for (const planner::SubVolumeReport& sub : result.sub_volumes) {
+    sub_volumes.push_back({{"name", sub.name},
+                           {"direction", {sub.direction.x(), sub.direction.y(), sub.direction.z()}},
+                           {"first_layer", sub.first_layer},
+                           {"layers", sub.layers},
+                           {"volume_mm3", sub.volume_mm3},
+                           {"support_mm3", sub.support_mm3}});
+  }
   return {
       {"scenario", scenario.name},
+      {"slicing", scenario.slicing.type},
+      {"weld_speed_range_mm_min", {speed_lo, speed_hi}},
       {"pattern", scenario.path.pattern},
       {"overlap_model", scenario.path.overlap_model},
       {"bead_model", scenario.process.bead_model},
@@ -59,6 +83,7 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       {"travel_length_mm", stats.travel_length_mm},
       {"estimated_time_s", stats.estimated_time_s},
       {"layer_details", layers},
+      {"sub_volumes", sub_volumes},
   };
 }
 

@@ -9,6 +9,8 @@
 #include "models/bead/width_height_model.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
+#include "planner/cone_planner.h"
+#include "planner/multidir_planner.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/path/layer_pattern.h"
@@ -34,6 +36,8 @@ void PlaceOnSubstrate(TriangleMesh* mesh, MeshReport* report) {
 }  // namespace
 
 PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
+  if (scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder") return PlanConeScenario(scenario, progress);
+  if (scenario.slicing.type == "multi_directional") return PlanMultiDirectionalScenario(scenario, progress);
   PlanResult result;
   if (!scenario.part.mesh_path.empty()) {
     result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);

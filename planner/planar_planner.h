@@ -2,6 +2,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
@@ -12,6 +15,16 @@ class Progress;
 }
 
 namespace waam::planner {
+
+// One sub-volume of a multi-directional plan (planner/multidir_planner.h).
+struct SubVolumeReport {
+  std::string name;
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // build direction, part frame (unit)
+  int first_layer = 0;             // index of its first layer in the plan
+  int layers = 0;
+  double volume_mm3 = 0.0;         // sum of slice area x layer height
+  double support_mm3 = 0.0;        // metal needed under overhangs to build it along its direction (Lim & Soh Table 1)
+};
 
 // Everything `waam plan` produces in memory; the analysis module writes it to plan.json, plan.h5 and PNGs.
 struct PlanResult {
@@ -26,6 +39,7 @@ struct PlanResult {
   double travel_speed_mm_min = 0.0; // the welding speed used
   double bead_width_mm = 0.0;       // the bead width used (from the scenario or the width-height model)
   std::string speed_clamp = "none"; // speed_height mode: none | at_minimum | at_maximum of the feasible window
+  std::vector<SubVolumeReport> sub_volumes;  // multi_directional only
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

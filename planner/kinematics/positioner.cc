@@ -26,6 +26,8 @@ PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen
   // m_z = cos t (eq. 5.13, third line) and the rotation must bring the horizontal part of m onto +-y. With
   // a = 0, eq. B.1/B.5 reduce to tan(theta_z) = d / e, the same rotation. Lim & Soh's eq. 5-6 give the same pair
   // for a table with axes y-then-z; here the tilt axis is x as in the dissertation's FANUC positioner.
+  // The first solution is also Dai et al. 2020's solution 2 (sec. 3.2, eq. 4) with v_t = v_z: gamma = atan2(Y, X),
+  // alpha = acos(Z) (planner/kinematics/five_axis.cc; the two agree in tests/planner/five_axis_test.cc).
   const Eigen::Vector3d m = (positioner.X_CP.linear() * build_dir_P).normalized();
   const double horizontal = std::hypot(m.x(), m.y());
   PositionerAngles out;

@@ -14,9 +14,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include "models/core/error.h"
+#include "planner/mesh/blade_generators.h"
 #include "planner/mesh/extrude.h"
 #include "planner/mesh/mesh_ops.h"
 
@@ -55,6 +57,7 @@ struct GeneratorSpec {
   std::string summary;
   std::vector<ParamSpec> params;
   std::function<TriangleMesh(const Args&)> build;
+  bool keep_frame = false;  // true: the part stays in the frame it was built in (not centred, not set on z = 0)
 };
 
 Ring Polygon(std::initializer_list<std::pair<double, double>> points, double scale) {
@@ -264,6 +267,56 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                      region.holes.push_back(CircleRing(Vec2(95 * s, 72 * s), 14 * s, a.Int("segments")));
                      return Extrude(std::move(region), a("height_mm"));
                    }};
+    r["thruster_blades"] = {
+        "blades on the cone x^2+y^2 = R^2 (z/H-1)^2 round the z axis (Dai 2020 thruster; kept in the cone's frame: "
+        "axis x = y = 0, radius R at z = 0, for slicing.type cone)",
+        {{"blades", {6.0}, 1, 1, 64, true, "blades round the axis"},
+         {"R_mm", {60.0}, 1, 1.0, kBig, false, "cone radius at z = 0 (mm)"},
+         {"H_mm", {200.0}, 1, 0.0, kBig, false, "height of the apex above z = 0 (mm); 0 = a cylinder of radius R"},
+         {"root_z_mm", {60.0}, 1, -kBig, kBig, false, "height of the blade root centre on the cone (mm)"},
+         {"span_mm", {70.0}, 1, 1.0, kBig, false, "blade length along the cone normal (mm)"},
+         {"chord_mm", {60.0}, 1, 1.0, kBig, false, "blade chord (mm)"},
+         {"thickness_mm", {24.0, 14.0}, 2, 0.5, kBig, false, "thickness at the root and at the tip (mm)"},
+         {"pitch_deg", {25.0, 45.0}, 2, -89.0, 89.0, false, "pitch at the root and the tip (deg, 0 = along the axis)"}},
+        [](const Args& a) {
+          ConeBladeParams p;
+          p.blades = a.Int("blades");
+          p.R_mm = a("R_mm");
+          p.H_mm = a("H_mm") > 0.0 ? a("H_mm") : std::numeric_limits<double>::infinity();
+          WAAM_THROW_UNLESS(!std::isfinite(p.H_mm) || a("root_z_mm") + a("chord_mm") < p.H_mm,
+                            a.where() << ": thruster_blades.root_z_mm + chord_mm must stay below the apex H_mm");
+          p.root_z_mm = a("root_z_mm");
+          p.span_mm = a("span_mm");
+          p.chord_mm = a("chord_mm");
+          p.root_thickness_mm = a("thickness_mm", 0);
+          p.tip_thickness_mm = a("thickness_mm", 1);
+          p.pitch_root_deg = a("pitch_deg", 0);
+          p.pitch_tip_deg = a("pitch_deg", 1);
+          return BuildConeBlades(p);
+        },
+        true};
+    r["propeller"] = {
+        "Lim & Soh-like propeller: square hub (blade roots on its flats) and blades round the z axis, kept in the "
+        "hub's frame (axis x = y = 0, hub from z = 0), for slicing.type multi_directional",
+        {{"blades", {4.0}, 1, 1, 4, true, "blades, one per hub flat (at 0, 90, 180, 270 deg)"},
+         {"hub_mm", {126.0, 120.0}, 2, 1.0, kBig, false, "hub width across the flats and height (mm)"},
+         {"span_mm", {287.0}, 1, 1.0, kBig, false, "blade length from the hub flat (mm)"},
+         {"chord_mm", {120.0}, 1, 1.0, kBig, false, "blade chord (mm)"},
+         {"thickness_mm", {50.0, 20.0}, 2, 0.5, kBig, false, "thickness at the root and at the tip (mm)"},
+         {"pitch_deg", {30.0, 60.0}, 2, -89.0, 89.0, false, "pitch at the root and the tip (deg, 0 = along the axis)"}},
+        [](const Args& a) {
+          ConeBladeParams p;
+          p.blades = a.Int("blades");
+          p.R_mm = 0.5 * a("hub_mm", 0);
+          p.span_mm = a("span_mm");
+          p.chord_mm = a("chord_mm");
+          p.root_thickness_mm = a("thickness_mm", 0);
+          p.tip_thickness_mm = a("thickness_mm", 1);
+          p.pitch_root_deg = a("pitch_deg", 0);
+          p.pitch_tip_deg = a("pitch_deg", 1);
+          return BuildPropeller(p, a("hub_mm", 1));
+        },
+        true};
     r["ding_d"] = {"Ding 2014 case-4-like large solid cross with four notches",
                    {height, scale},
                    [](const Args& a) {
@@ -323,6 +376,7 @@ TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params
     values[p.name] = v;
   }
   TriangleMesh mesh = spec.build(Args(std::move(values), where));
+  if (spec.keep_frame) return mesh;
   // Centre the bounding box on x = y = 0 and rest the part on z = 0.
   Eigen::Vector3d lo, hi;
   BoundingBox(mesh, &lo, &hi);

@@ -14,7 +14,8 @@ namespace waam::planner {
 using GeneratorParams = std::map<std::string, std::vector<double>>;
 
 // Builds the part `type` with `params` (missing ones take their defaults; see GeneratorHelp()). The mesh is closed,
-// with outward normals, deterministic, in mm, centred on x = y = 0 (bounding box centre) and sitting on z = 0.
+// with outward normals, deterministic, in mm, centred on x = y = 0 (bounding box centre) and sitting on z = 0,
+// except the parts built in the frame of the surface they grow on (thruster_blades: the cone's frame).
 // `where` prefixes every message ("file:line: part.generator"). Throws InputError for an unknown type, an unknown
 // parameter, a wrong number of values, a value out of range or parameters that contradict each other.
 TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params, const std::string& where);

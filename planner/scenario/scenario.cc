@@ -1,6 +1,7 @@
 // Scenario loading: every section validated up front, with the key path in each message.
 #include "planner/scenario/scenario.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "models/core/error.h"
@@ -97,8 +98,40 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   // slicing
   {
     YamlMap slicing = top.Map("slicing");
-    scenario.slicing.type = slicing.Choice("type", {"planar"}, "planar");
+    scenario.slicing.type = slicing.Choice("type", {"planar", "cone", "cylinder", "multi_directional"}, "planar");
     scenario.slicing.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0);
+    if (scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder") {
+      SlicingSettings& s = scenario.slicing;
+      s.cone_R_mm = slicing.Number("R_mm", 0.1, 1e5);
+      if (s.type == "cone") {
+        s.cone_H_mm = slicing.Number("H_mm", -1e6, 1e6);
+        WAAM_THROW_UNLESS(std::abs(s.cone_H_mm) >= 1.0, slicing.Where("H_mm") << " = " << s.cone_H_mm
+                              << ": |H| must be >= 1 mm (a cylinder is slicing.type: cylinder)");
+      }
+      const std::vector<double> axis = slicing.Numbers("axis_mm", 3, -1e5, 1e5, {0.0, 0.0, 0.0});
+      std::copy(axis.begin(), axis.end(), s.cone_axis_mm.begin());
+      s.cone_rotation_step_deg = slicing.Number("rotation_step_deg", 1.0, 180.0, 11.0);
+    }
+    if (scenario.slicing.type == "multi_directional") {
+      for (YamlMap sub : slicing.Maps("sub_volumes")) {
+        SubVolumeSpec spec;
+        spec.name = sub.String("name");
+        const std::vector<double> d = sub.Numbers("direction", 3, -1e3, 1e3);
+        const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        WAAM_THROW_UNLESS(norm > 1e-9, sub.Where("direction") << ": must not be the zero vector");
+        for (int k = 0; k < 3; ++k) spec.direction[k] = d[k] / norm;
+        const std::vector<double> keep = sub.Numbers("keep", -1, -1e6, 1e6, {});
+        WAAM_THROW_UNLESS(keep.size() % 4 == 0, sub.Where("keep") << ": " << keep.size()
+                              << " numbers: give 4 per half-space n . p <= c (nx, ny, nz, c in mm)");
+        for (std::size_t k = 0; k < keep.size(); k += 4) {
+          spec.keep.push_back({keep[k], keep[k + 1], keep[k + 2], keep[k + 3]});
+        }
+        sub.CheckNoUnknownKeys();
+        scenario.slicing.sub_volumes.push_back(std::move(spec));
+      }
+      WAAM_THROW_UNLESS(!scenario.slicing.sub_volumes.empty(),
+                        slicing.Where("sub_volumes") << ": give at least one sub-volume");
+    }
     slicing.CheckNoUnknownKeys();
   }
 
@@ -131,8 +164,15 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     p.wire_feed_mm_min = process.Number("wire_feed_mm_min", 100.0, 30000.0);
     p.wire_diameter_mm = process.Number("wire_diameter_mm", 0.6, 2.4, 1.0);
     p.deposition_efficiency = process.Number("deposition_efficiency", 0.05, 1.0, 1.0);
-    p.bead_model = process.Choice("bead_model", {"volume_balance", "speed_height"}, "volume_balance");
-    for (auto [key, target] : {std::pair{"speed_height_model", &p.speed_height_model},
+    p.bead_model = process.Choice("bead_model", {"volume_balance", "speed_height", "csw"}, "volume_balance");
+    const bool curved = scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder";
+    WAAM_THROW_UNLESS(curved || p.bead_model != "csw", process.Where("bead_model")
+                          << " = csw: needs slicing.type cone or cylinder (planar planning has no csw mode)");
+    WAAM_THROW_UNLESS(!curved || p.bead_model != "speed_height", process.Where("bead_model")
+                          << " = speed_height: not available with slicing.type " << scenario.slicing.type
+                          << " (use csw or volume_balance)");
+    for (auto [key, target] : {std::pair{"csw_model", &p.csw_model},
+                               std::pair{"speed_height_model", &p.speed_height_model},
                                std::pair{"width_height_model", &p.width_height_model}}) {
       if (!process.Has(key)) continue;
       fs::path file = process.String(key);

@@ -1,6 +1,7 @@
 // A scenario: the part, how to slice it, which path pattern, which process settings (loaded from YAML).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -20,9 +21,24 @@ struct PartSpec {
   std::string where;                 // "file:line: part" for messages about the part
 };
 
+// A sub-volume of a multi-directional decomposition (Lim & Soh): the part's metal inside every `keep` half-space
+// n . p <= c (n, then c in mm; user-given split planes), planar-sliced along `direction` (unit after loading).
+struct SubVolumeSpec {
+  std::string name;
+  std::array<double, 3> direction = {0.0, 0.0, 1.0};
+  std::vector<std::array<double, 4>> keep;
+};
+
 struct SlicingSettings {
-  std::string type = "planar";       // planar (later: cone, cylinder, skeleton, multi-directional)
-  double layer_height_mm = 1.5;      // > 0
+  std::string type = "planar";       // planar | cone | cylinder | multi_directional (later: skeleton)
+  double layer_height_mm = 1.5;      // > 0 (cone, cylinder: normal distance d between equidistant surfaces)
+  // cone | cylinder (Dai et al. 2020, planner/cone_planner.h): the first surface x^2 + y^2 = R^2 (z/H - 1)^2
+  // about a vertical axis through axis_mm; layer i is its equidistant surface at (i + 1/2) d.
+  double cone_R_mm = 60.0;                          // radius at axis_mm, mm
+  double cone_H_mm = 200.0;                         // axis_mm to the apex, mm (cone only; < 0: widens upwards)
+  std::array<double, 3> cone_axis_mm = {0.0, 0.0, 0.0};  // point on the axis, part frame, mm
+  double cone_rotation_step_deg = 11.0;             // rotation step before flattening (Dai sec. 2.2), deg
+  std::vector<SubVolumeSpec> sub_volumes;           // multi_directional: built in this order
 };
 
 struct PathSettings {
@@ -43,7 +59,10 @@ struct ProcessSettings {
   // Where the bead comes from: "volume_balance" (travel speed and bead width as given, height from eq. 3.4) or
   // "speed_height" (speed for the layer height and the width that comes with it, from the fitted speed-height and
   // width-height models, dissertation sec. 6.3.2.1; path.bead_width_mm and travel_speed_mm_min are then ignored).
+  // "csw" (cone/cylinder slicing only): speed per point from the path curvature with the CSW model of Dai et al.
+  // for the bead width path.bead_width_mm, height from eq. 3.4.
   std::string bead_model = "volume_balance";
+  std::filesystem::path csw_model;           // model JSON (waam fit csw); empty = models/data default
   std::filesystem::path speed_height_model;  // model JSON (waam fit speed-height); empty = models/data default
   std::filesystem::path width_height_model;  // model JSON (waam fit width-height); empty = models/data default
   double rapid_speed_mm_min = 6000.0;  // arc-off travel moves

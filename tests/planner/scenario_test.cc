@@ -170,8 +170,30 @@ TEST_F(ScenarioTest, BeadModelAndModelFiles) {
   text += "  bead_model: speed_height\n  speed_height_model: models/none.json\n";
   text.replace(text.find("process:\n"), 9, "process:\n");
   EXPECT_THAT(ErrorOf(text), HasSubstr("process.speed_height_model: model file"));
-  std::string bad = Valid() + "  bead_model: csw\n";
-  EXPECT_THAT(ErrorOf(bad), HasSubstr("process.bead_model = 'csw': unknown value"));
+  std::string bad = Valid() + "  bead_model: magic\n";
+  EXPECT_THAT(ErrorOf(bad), HasSubstr("process.bead_model = 'magic': unknown value"));
+  // The CSW model sets speeds from the curvature of curved-layer paths only.
+  EXPECT_THAT(ErrorOf(Valid() + "  bead_model: csw\n"), HasSubstr("csw: needs slicing.type cone or cylinder"));
+}
+
+TEST_F(ScenarioTest, SubVolumeKeys) {
+  std::string text = Valid();
+  text.replace(text.find("type: planar"), 12,
+               "type: multi_directional\n  sub_volumes:\n    - {name: hub, direction: [0, 0, 0]}");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("direction: must not be the zero vector"));
+  text = Valid();
+  text.replace(text.find("type: planar"), 12,
+               "type: multi_directional\n  sub_volumes:\n    - {name: hub, direction: [0, 0, 1], keep: [1, 0, 0]}");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("keep: 3 numbers: give 4 per half-space"));
+}
+
+TEST_F(ScenarioTest, ConeSlicingKeys) {
+  std::string text = Valid();
+  text.replace(text.find("type: planar"), 12, "type: cone\n  R_mm: 60\n  H_mm: 0.5");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("slicing.H_mm = 0.5: |H| must be >= 1 mm"));
+  text = Valid();
+  text.replace(text.find("type: planar"), 12, "type: cylinder\n  R_mm: 60\n  H_mm: 200");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("H_mm"));
 }
 
 TEST_F(ScenarioTest, MissingFileIsNamed) {

@@ -1,0 +1,223 @@
+// Cone and cylinder planning of Dai et al. 2020 sec. 2 and 4-5: slice with equidistant surfaces, flatten, fill with
+// the planar patterns, map back, tool along the normal, CSW speed from the curvature of the flat path.
+#include "planner/cone_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "models/bead/csw_model.h"
+#include "models/bead/parabolic_bead.h"
+#include "models/core/error.h"
+#include "models/core/progress.h"
+#include "models/fit/model_file.h"
+#include "planner/mesh/generators.h"
+#include "planner/mesh/mesh_ops.h"
+#include "planner/mesh/stl_io.h"
+#include "planner/path/layer_pattern.h"
+#include "planner/slicing/cone_slicer.h"
+
+namespace waam::planner {
+namespace {
+
+constexpr double kWeldToleranceMm = 1e-4;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Longest step between path points after mapping back: a straight flat line is a geodesic, curved in space.
+constexpr double kPointStepMm = 2.0;
+
+// Circumradius of three flat points (mm); +inf when they are collinear.
+double CircumRadius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  if (std::abs(cross) < 1e-9) return kInf;
+  return (b - a).norm() * (c - b).norm() * (c - a).norm() / (2.0 * std::abs(cross));
+}
+
+// Curvature radius (mm) of each point of a flat weld pass, from the points about `window_mm` of arc before and after
+// it. The flattening is an isometry, so this is the geodesic curvature radius of the bead on the surface, the radius
+// the CSW model was fitted for (beads on a flat plate, Dai sec. 4).
+std::vector<double> PassRadii(const std::vector<Eigen::Vector2d>& pass, double window_mm) {
+  const std::size_t n = pass.size();
+  std::vector<double> s(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) s[i] = s[i - 1] + (pass[i] - pass[i - 1]).norm();
+  std::vector<double> radii(n, kInf);
+  std::size_t lo = 0;
+  std::size_t hi = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    while (lo + 1 < i && s[i] - s[lo + 1] >= window_mm) ++lo;
+    hi = std::max(hi, i);
+    while (hi + 1 < n && s[hi] - s[i] < window_mm) ++hi;
+    if (lo < i && hi > i) radii[i] = CircumRadius(pass[lo], pass[i], pass[hi]);
+  }
+  return radii;
+}
+
+TriangleMesh LoadPart(const Scenario& scenario, MeshReport* report) {
+  TriangleMesh mesh;
+  if (!scenario.part.mesh_path.empty()) {
+    mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, report);
+  } else {
+    mesh = GeneratePart(scenario.part.generator, scenario.part.params, scenario.part.where);
+    *report = InspectMesh(mesh, kWeldToleranceMm, scenario.part.generator);
+  }
+  CheckSliceable(*report);
+  return mesh;
+}
+
+}  // namespace
+
+PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
+  const SlicingSettings& slicing = scenario.slicing;
+  const std::string where = scenario.file.filename().string() + ": slicing";
+  PlanResult result;
+  result.mesh = LoadPart(scenario, &result.mesh_report);
+
+  ConeSurface base;
+  base.axis_P = Eigen::Vector3d(slicing.cone_axis_mm[0], slicing.cone_axis_mm[1], slicing.cone_axis_mm[2]);
+  base.R = slicing.cone_R_mm;
+  base.H = slicing.type == "cylinder" ? kInf : slicing.cone_H_mm;
+  const double d = slicing.layer_height_mm;
+
+  // The layers grow away from the axis; the part must lie on the nappe's side of the apex and outside the surface.
+  double max_offset = -kInf;
+  for (const Eigen::Vector3d& v : result.mesh.vertices) {
+    if (!base.cylinder()) {
+      const double z = v.z() - base.axis_P.z();
+      WAAM_THROW_UNLESS(z / base.H < 1.0, where << ": the part reaches past the cone apex (vertex at z = " << v.z()
+                                                << " mm, apex at z = " << base.axis_P.z() + base.H
+                                                << " mm); the cone slices only the nappe below its apex");
+    }
+    max_offset = std::max(max_offset, base.NormalOffset(v));
+  }
+  WAAM_THROW_UNLESS(max_offset > 0.5 * d, where << ": the part lies inside the first surface (largest normal "
+                                                << "distance " << max_offset << " mm, layer height " << d
+                                                << " mm); the layers grow away from the axis");
+  const int layer_count = std::max(1, static_cast<int>(std::ceil(max_offset / d - 0.5)));
+  if (progress) progress->SetTotal(layer_count);
+
+  // The bead: width from the scenario; speed from the CSW model per point (the straight-line speed is the
+  // nominal one), or the scenario's speed; height from the wire-feed volume balance (003 eq. 3.4, 3.3).
+  const ProcessSettings& process = scenario.process;
+  const double width = scenario.path.bead_width_mm;
+  const bool csw = process.bead_model == "csw";
+  std::optional<models::CswModel> csw_model;
+  if (csw) {
+    csw_model = models::CswModel::Load(process.csw_model.empty() ? models::DefaultModelPath("csw")
+                                                                 : process.csw_model);
+  }
+  auto speed_for = [&](double radius_mm, models::SpeedClamp* clamp) {
+    if (!csw) return process.travel_speed_mm_min;
+    const models::SpeedChoice choice = csw_model->SpeedForWidth(width, radius_mm);
+    if (clamp) *clamp = choice.clamp;
+    return choice.speed_mm_per_min;
+  };
+  models::SpeedClamp straight_clamp = models::SpeedClamp::kNone;
+  result.layer_height_mm = d;
+  result.bead_width_mm = width;
+  result.travel_speed_mm_min = speed_for(kInf, &straight_clamp);
+  result.speed_clamp = models::ToString(straight_clamp);
+  auto area_at = [&](double speed_mm_min) {
+    return models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min, speed_mm_min,
+                                        process.deposition_efficiency);
+  };
+  result.bead_area_mm2 = area_at(result.travel_speed_mm_min);
+  result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
+  result.layer_growth_mm =
+      result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
+
+  PatternOptions options;
+  options.pattern = scenario.path.pattern;
+  options.bead_width_mm = width;
+  options.overlap_model = scenario.path.overlap_model;
+  options.zigzag_auto = scenario.path.zigzag_angle_auto;
+  options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
+  options.alternate_start = scenario.path.alternate_start;
+  options.seed = scenario.path.seed;
+  const double step_rad = slicing.cone_rotation_step_deg * kPi / 180.0;
+  const double window_mm = std::max(0.5 * width, 2.0 * kPointStepMm);
+
+  result.plan.name = scenario.name;
+  for (int i = 0; i < layer_count; ++i) {
+    CheckInterrupt();
+    // Slice at the layer's middle, weld on its top: both are equidistant surfaces of the first one (sec. 5).
+    const ConeSurface middle = base.Offset((i + 0.5) * d);
+    const std::vector<Contour3d> contours = SliceWithCone(result.mesh, middle, nullptr);
+    if (contours.empty()) continue;
+    const FlatLayer flat = FlattenLayer(contours, middle, step_rad);
+    WAAM_THROW_UNLESS(flat.ok, where << ": layer " << i << " (surface R = " << middle.R << " mm): " << flat.message);
+    LayerPath layer;
+    layer.index = static_cast<int>(result.plan.layers.size());
+    layer.slice = flat.regions;
+    options.layer_index = layer.index;
+    const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, options);
+
+    // Densify every move on the plane, so that the mapped path follows the surface. A weld move stays inside its
+    // region; a travel move between regions of a cone is interpolated in the polar coordinates of the development,
+    // because a straight line between two points of a sector wider than pi can leave the sector (and cross the
+    // cutting line).
+    std::vector<Eigen::Vector2d> q_flat;
+    std::vector<bool> weld;
+    for (const Move2D& move : moves) {
+      if (!q_flat.empty()) {
+        const Eigen::Vector2d from = q_flat.back();
+        const bool polar = !move.weld && !middle.cylinder();
+        const double rho0 = from.norm(), rho1 = move.p.norm();
+        const double phi0 = std::atan2(from.y(), from.x()), phi1 = std::atan2(move.p.y(), move.p.x());
+        const double length = polar ? std::max(std::abs(rho1 - rho0), std::max(rho0, rho1) * std::abs(phi1 - phi0))
+                                    : (move.p - from).norm();
+        const int steps = std::max(1, static_cast<int>(std::ceil(length / kPointStepMm)));
+        for (int k = 1; k < steps; ++k) {
+          const double f = static_cast<double>(k) / steps;
+          const double rho = rho0 + f * (rho1 - rho0), phi = phi0 + f * (phi1 - phi0);
+          q_flat.push_back(polar ? Eigen::Vector2d(rho * std::cos(phi), rho * std::sin(phi)) : from + (move.p - from) * f);
+          weld.push_back(move.weld);
+        }
+      }
+      q_flat.push_back(move.p);
+      weld.push_back(q_flat.size() == 1 ? false : move.weld);
+    }
+    // Curvature radius per point along each weld pass (a pass starts at the point before its first weld move).
+    std::vector<double> radius(q_flat.size(), kInf);
+    for (std::size_t j = 1; j < q_flat.size();) {
+      if (!weld[j]) {
+        ++j;
+        continue;
+      }
+      std::size_t end = j;
+      while (end < q_flat.size() && weld[end]) ++end;
+      const std::vector<Eigen::Vector2d> pass(q_flat.begin() + (j - 1), q_flat.begin() + end);
+      const std::vector<double> r = PassRadii(pass, window_mm);
+      for (std::size_t k = 0; k < r.size(); ++k) radius[j - 1 + k] = r[k];
+      j = end;
+    }
+    Eigen::Vector3d dir_sum = Eigen::Vector3d::Zero();
+    double z_sum = 0.0;
+    for (std::size_t j = 0; j < q_flat.size(); ++j) {
+      const Eigen::Vector3d p_middle = middle.Unflatten(q_flat[j], flat.alpha);
+      const Eigen::Vector3d n = middle.Normal(p_middle);
+      PathPoint point;
+      point.p_P = p_middle + 0.5 * d * n;  // on the top surface, offset (i + 1) d
+      point.tool_dir_P = n;
+      point.weld = weld[j];
+      const double speed = speed_for(radius[j], nullptr);
+      point.speed_mm_s = speed / 60.0;
+      point.bead_width_mm = csw ? csw_model->Width(speed, radius[j]) : width;
+      point.bead_height_mm = 1.5 * area_at(speed) / point.bead_width_mm;
+      dir_sum += n;
+      z_sum += point.p_P.z();
+      layer.points.push_back(point);
+    }
+    if (layer.points.empty()) continue;
+    layer.build_dir_P = dir_sum.normalized();
+    layer.z_mm = z_sum / static_cast<double>(layer.points.size());
+    result.plan.layers.push_back(std::move(layer));
+    if (progress) progress->Update(i + 1);
+  }
+  if (progress) progress->Finish();
+  WAAM_THROW_UNLESS(!result.plan.layers.empty(), where << ": no layer of the part meets the surfaces");
+  result.stats = ComputeStats(result.plan, process.rapid_speed_mm_min / 60.0);
+  return result;
+}
+
+}  // namespace waam::planner

@@ -1,0 +1,183 @@
+// Multi-directional planar planning after Lim & Soh (seed 002): sub-volumes cut by user-given split planes, each
+// planar-sliced along its build direction (the hub along the axis, each blade from its root outwards), and the
+// support each needs (their Table 1).
+#include "planner/multidir_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
+
+#include "models/bead/parabolic_bead.h"
+#include "models/core/error.h"
+#include "models/core/progress.h"
+#include "planner/geometry/clipper_adapter.h"
+#include "planner/mesh/generators.h"
+#include "planner/mesh/mesh_ops.h"
+#include "planner/mesh/stl_io.h"
+#include "planner/path/layer_pattern.h"
+#include "planner/slicing/planar_slicer.h"
+
+namespace waam::planner {
+namespace {
+
+constexpr double kWeldToleranceMm = 1e-4;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kFarMm = 1e5;          // half-planes are clipped as squares this large
+constexpr double kMinRegionMm2 = 1.0;   // slivers along a split plane are dropped
+
+// Rotation R_PS whose columns are the sub-volume frame S in P: z_S = the build direction.
+Eigen::Matrix3d FrameFor(const Eigen::Vector3d& z) {
+  const Eigen::Vector3d helper = std::abs(z.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d x = helper.cross(z).normalized();
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = z.cross(x);
+  R.col(2) = z;
+  return R;
+}
+
+// The half-plane a x + b y <= c of the slice plane as a large square (mm).
+PolygonWithHoles HalfPlane(const Eigen::Vector2d& ab, double c) {
+  const double norm = ab.norm();
+  const Eigen::Vector2d m = ab / norm;
+  const Eigen::Vector2d p0 = m * (c / norm);
+  const Eigen::Vector2d t(-m.y(), m.x());
+  Ring ring = {p0 - kFarMm * t, p0 + kFarMm * t, p0 + kFarMm * t - 2 * kFarMm * m, p0 - kFarMm * t - 2 * kFarMm * m};
+  if (SignedArea(ring) < 0) std::reverse(ring.begin(), ring.end());
+  return {ring, {}};
+}
+
+}  // namespace
+
+PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* progress) {
+  const std::string where = scenario.file.filename().string() + ": slicing";
+  const ProcessSettings& process = scenario.process;
+  WAAM_THROW_UNLESS(process.bead_model == "volume_balance",
+                    scenario.file.filename().string() << ": process.bead_model = " << process.bead_model
+                                                      << ": multi_directional plans with volume_balance only");
+  PlanResult result;
+  if (!scenario.part.mesh_path.empty()) {
+    result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);
+  } else {
+    result.mesh = GeneratePart(scenario.part.generator, scenario.part.params, scenario.part.where);
+    result.mesh_report = InspectMesh(result.mesh, kWeldToleranceMm, scenario.part.generator);
+  }
+  CheckSliceable(result.mesh_report);
+
+  // The bead from the wire-feed volume balance (003 eq. 3.4, 3.3), as in the planar planner.
+  const double width = scenario.path.bead_width_mm;
+  result.travel_speed_mm_min = process.travel_speed_mm_min;
+  result.bead_width_mm = width;
+  result.bead_area_mm2 = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
+                                                      process.travel_speed_mm_min, process.deposition_efficiency);
+  result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
+  result.layer_growth_mm = result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
+  PatternOptions options;
+  options.pattern = scenario.path.pattern;
+  options.bead_width_mm = width;
+  options.overlap_model = scenario.path.overlap_model;
+  options.zigzag_auto = scenario.path.zigzag_angle_auto;
+  options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
+  options.alternate_start = scenario.path.alternate_start;
+  options.seed = scenario.path.seed;
+  const double d = scenario.slicing.layer_height_mm;
+  if (progress) progress->SetTotal(static_cast<int>(scenario.slicing.sub_volumes.size()));
+
+  result.plan.name = scenario.name;
+  double height_sum = 0.0;
+  int sub_index = 0;
+  for (const SubVolumeSpec& spec : scenario.slicing.sub_volumes) {
+    const Eigen::Vector3d n(spec.direction[0], spec.direction[1], spec.direction[2]);
+    const Eigen::Matrix3d R_PS = FrameFor(n);
+    TriangleMesh rotated = result.mesh;
+    for (Eigen::Vector3d& v : rotated.vertices) v = R_PS.transpose() * v;
+    // Extent along the direction: the mesh's, narrowed by split planes normal to the direction.
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (const Eigen::Vector3d& v : rotated.vertices) {
+      lo = std::min(lo, v.z());
+      hi = std::max(hi, v.z());
+    }
+    std::vector<std::pair<Eigen::Vector3d, double>> keeps;  // in S: m . p <= c
+    for (const auto& k : spec.keep) {
+      const Eigen::Vector3d m = R_PS.transpose() * Eigen::Vector3d(k[0], k[1], k[2]);
+      if (m.head<2>().norm() < 1e-9 * m.norm()) {
+        if (m.z() < 0) lo = std::max(lo, k[3] / m.z());
+        if (m.z() > 0) hi = std::min(hi, k[3] / m.z());
+      } else {
+        keeps.emplace_back(m, k[3]);
+      }
+    }
+    WAAM_THROW_UNLESS(hi > lo + 0.5 * d, where << ".sub_volumes: '" << spec.name << "' holds no metal along its "
+                                               << "direction (extent " << lo << " to " << hi << " mm)");
+    const int count = std::max(1, static_cast<int>(std::lround((hi - lo) / d)));
+    const double h = (hi - lo) / count;
+    std::vector<double> heights(count);
+    for (int i = 0; i < count; ++i) heights[i] = lo + (i + 0.5) * h;
+    const std::vector<std::vector<PolygonWithHoles>> slices = SlicePlanar(rotated, heights);
+
+    SubVolumeReport report;
+    report.name = spec.name;
+    report.direction = n;
+    report.first_layer = static_cast<int>(result.plan.layers.size());
+    std::vector<std::vector<PolygonWithHoles>> kept(count);
+    for (int i = 0; i < count; ++i) {
+      std::vector<PolygonWithHoles> region = slices[i];
+      for (const auto& [m, c] : keeps) {
+        if (region.empty()) break;
+        region = internal::Intersection(region, {HalfPlane(m.head<2>(), c - m.z() * heights[i])});
+      }
+      std::erase_if(region, [](const PolygonWithHoles& r) { return Area(r) < kMinRegionMm2; });
+      kept[i] = std::move(region);
+      report.volume_mm3 += Area(kept[i]) * h;
+    }
+    // Support (Lim & Soh Table 1): the metal needed under each layer so that everything above it stands on
+    // something when built along the direction: U_i = S_i u U_(i+1), support = sum (|U_i| - |S_i|) h. This
+    // counts overhangs of any angle; Lim & Soh do not state the overhang angle their support allowed.
+    std::vector<PolygonWithHoles> shadow;
+    for (int i = count - 1; i >= 0; --i) {
+      std::vector<PolygonWithHoles> both = shadow;
+      both.insert(both.end(), kept[i].begin(), kept[i].end());
+      shadow = internal::Union(both);
+      report.support_mm3 += (Area(shadow) - Area(kept[i])) * h;
+    }
+    for (int i = 0; i < count; ++i) {
+      CheckInterrupt();
+      if (kept[i].empty()) continue;
+      LayerPath layer;
+      layer.index = static_cast<int>(result.plan.layers.size());
+      layer.slice = kept[i];
+      layer.build_dir_P = n;
+      options.layer_index = layer.index;
+      const double top = lo + (i + 1) * h;
+      for (const Move2D& move : PlanLayerPattern(kept[i], options)) {
+        PathPoint point;
+        point.p_P = R_PS * Eigen::Vector3d(move.p.x(), move.p.y(), top);
+        point.tool_dir_P = n;
+        point.bead_width_mm = width;
+        point.bead_height_mm = result.bead_height_mm;
+        point.speed_mm_s = process.travel_speed_mm_min / 60.0;
+        point.weld = move.weld;
+        layer.points.push_back(point);
+      }
+      if (layer.points.empty()) continue;
+      double z_sum = 0.0;
+      for (const PathPoint& p : layer.points) z_sum += p.p_P.z();
+      layer.z_mm = z_sum / static_cast<double>(layer.points.size());
+      result.plan.layers.push_back(std::move(layer));
+      ++report.layers;
+    }
+    height_sum += h * report.layers;
+    result.sub_volumes.push_back(report);
+    if (progress) progress->Update(++sub_index);
+  }
+  if (progress) progress->Finish();
+  WAAM_THROW_UNLESS(!result.plan.layers.empty(), where << ": no sub-volume gave a layer to weld");
+  result.layer_height_mm = height_sum / static_cast<double>(result.plan.layers.size());
+  result.stats = ComputeStats(result.plan, process.rapid_speed_mm_min / 60.0);
+  return result;
+}
+
+}  // namespace waam::planner

@@ -1,0 +1,80 @@
+// Tests of the multi-directional hub-and-blade planning (Lim & Soh, seed 002).
+#include "planner/multidir_planner.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+#include "planner/mesh/mesh_ops.h"
+
+namespace waam::planner {
+namespace {
+using ::testing::HasSubstr;
+
+// A small propeller: hub 60 mm across the flats and 60 mm tall, four blades 40 mm long.
+Scenario SmallPropeller(double pitch_root_deg, double pitch_tip_deg) {
+  Scenario s;
+  s.name = "propeller";
+  s.part.generator = "propeller";
+  s.part.params = {{"hub_mm", {60.0, 60.0}},
+                   {"span_mm", {40.0}},
+                   {"chord_mm", {40.0}},
+                   {"thickness_mm", {16.0, 10.0}},
+                   {"pitch_deg", {pitch_root_deg, pitch_tip_deg}}};
+  s.part.where = "test: part.generator";
+  s.slicing.type = "multi_directional";
+  s.slicing.layer_height_mm = 2.5;
+  s.slicing.sub_volumes.push_back({"hub", {0, 0, 1}, {{1, 0, 0, 30}, {-1, 0, 0, 30}, {0, 1, 0, 30}, {0, -1, 0, 30}}});
+  s.slicing.sub_volumes.push_back({"blade_0", {1, 0, 0}, {{-1, 0, 0, -30}}});
+  s.slicing.sub_volumes.push_back({"blade_90", {0, 1, 0}, {{0, -1, 0, -30}}});
+  s.slicing.sub_volumes.push_back({"blade_180", {-1, 0, 0}, {{1, 0, 0, -30}}});
+  s.slicing.sub_volumes.push_back({"blade_270", {0, -1, 0}, {{0, 1, 0, -30}}});
+  s.path.pattern = "contour";
+  s.path.bead_width_mm = 6.0;
+  return s;
+}
+
+TEST(MultiDirectionalTest, SubVolumesAddUpToThePartAndWeldAlongTheirDirection) {
+  const PlanResult result = PlanScenario(SmallPropeller(30, 50), nullptr);
+  ASSERT_EQ(result.sub_volumes.size(), 5u);
+  double sum = 0.0;
+  for (const SubVolumeReport& sub : result.sub_volumes) {
+    sum += sub.volume_mm3;
+    ASSERT_GT(sub.layers, 0) << sub.name;
+    for (int i = sub.first_layer; i < sub.first_layer + sub.layers; ++i) {
+      for (const PathPoint& p : result.plan.layers[i].points) {
+        EXPECT_LT((p.tool_dir_P - sub.direction).norm(), 1e-12) << sub.name;
+        // Blades weld beyond their split plane (the hub flat at 30 mm), the hub inside the flats.
+        if (sub.name != "hub") EXPECT_GT(p.p_P.dot(sub.direction), 30.0) << sub.name;
+      }
+    }
+  }
+  const double volume = EnclosedVolume(result.mesh);
+  EXPECT_NEAR(sum / volume, 1.0, 0.01) << "slice areas x layer heights against the divergence-theorem volume";
+  EXPECT_NEAR(result.sub_volumes[0].support_mm3, 0.0, 1.0) << "the hub prism needs no support";
+  EXPECT_GT(result.sub_volumes[1].support_mm3, 0.01 * result.sub_volumes[1].volume_mm3)
+      << "a pitched blade overhangs its root when built radially";
+}
+
+TEST(MultiDirectionalTest, UnpitchedTaperedBladesNeedNoSupport) {
+  // With zero pitch every blade section lies inside the one below it (the thickness only shrinks).
+  const PlanResult result = PlanScenario(SmallPropeller(0, 0), nullptr);
+  for (std::size_t k = 1; k < result.sub_volumes.size(); ++k) {
+    EXPECT_LT(result.sub_volumes[k].support_mm3, 1e-3 * result.sub_volumes[k].volume_mm3)
+        << result.sub_volumes[k].name;
+  }
+}
+
+TEST(MultiDirectionalTest, ASubVolumeWithoutMetalIsNamed) {
+  Scenario s = SmallPropeller(30, 50);
+  s.slicing.sub_volumes.push_back({"nothing", {0, 0, 1}, {{0, 0, -1, -500}}});
+  try {
+    PlanScenario(s, nullptr);
+    FAIL() << "expected an InputError for a sub-volume above the part";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'nothing' holds no metal"));
+  }
+}
+
+}  // namespace
+}  // namespace waam::planner
