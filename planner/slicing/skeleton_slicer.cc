@@ -198,9 +198,19 @@ SkeletonSlicing SliceAlongSkeleton(const TriangleMesh& mesh, const SkeletonSlice
     for (int round = 0; round < options.max_iterations; ++round) {
       const Eigen::Vector3d G = below.centroid_P + step * direction;
       Cut cut = CutPlane(mesh, G, direction, below.e1_P, reach, &below.section);
-      // Re-orient the plane about G perpendicular to V until gamma = angle(N, V) <= beta (eq. 5.24-5.26).
+      // Re-orient the plane about G perpendicular to V until gamma = angle(N, V) <= beta (eq. 5.24-5.26). V is taken
+      // between the centroids of two parallel cuts, through I_i and through G, both with the candidate normal: an
+      // oblique cut of a tapered section shifts its centroid towards the wide side, and measured from I_i of the
+      // plane below that shift feeds back into the next tilt (on a cone the plane would run away); two parallel cuts
+      // shift alike and the bias cancels.
       for (int turn = 0; cut.found && turn < options.max_iterations; ++turn) {
-        const Eigen::Vector3d V = (cut.layer.centroid_P - below.centroid_P).normalized();
+        Eigen::Vector3d I_below = below.centroid_P;
+        if (AngleBetween(cut.layer.normal_P, below.normal_P) > 1e-9) {
+          const Cut parallel =
+              CutPlane(mesh, below.centroid_P, cut.layer.normal_P, below.e1_P, reach, &below.section);
+          if (parallel.found) I_below = parallel.layer.centroid_P;
+        }
+        const Eigen::Vector3d V = (cut.layer.centroid_P - I_below).normalized();
         if (AngleBetween(cut.layer.normal_P, V) <= options.beta_rad) break;
         // A plane turned more than kMaxTurnRad from the last one is not following the axis (e.g. near an end face).
         if (AngleBetween(direction, V) > kMaxTurnRad) break;
