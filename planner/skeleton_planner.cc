@@ -213,10 +213,11 @@ PlanResult PlanSkeletonScenario(const Scenario& scenario, Progress* progress) {
   if (scenario.part.generator != "bent_tube") {
     // A mesh: eq. 6.4 on the tightest bend measured along the centroid chain (+-3 layers), 2 % slack for facets.
     const BendEstimate bend = EstimateTightestBend(slicing, 3);
-    if (std::isfinite(bend.radius_mm)) {
+    if (std::isfinite(bend.radius_mm) &&
+        1.02 * bend.radius_mm < MinimumBendRadius(bend.extent_mm, s.h_min_mm, s.h_max_mm)) {
       std::ostringstream where;
-      where << scenario.part.where << " (bend measured at layer " << bend.layer << ")";
-      CheckBendRule(bend.radius_mm * 1.02, bend.extent_mm, s.h_min_mm, s.h_max_mm, where.str());
+      where << scenario.part.where << " (bend measured along the centroid chain at layer " << bend.layer << ")";
+      CheckBendRule(bend.radius_mm, bend.extent_mm, s.h_min_mm, s.h_max_mm, where.str());
     }
   }
 
