@@ -30,7 +30,7 @@ struct SubVolumeSpec {
 };
 
 struct SlicingSettings {
-  std::string type = "planar";       // planar | cone | cylinder | multi_directional (later: skeleton)
+  std::string type = "planar";       // planar | cone | cylinder | multi_directional | skeleton
   double layer_height_mm = 1.5;      // > 0 (cone, cylinder: normal distance d between equidistant surfaces)
   // cone | cylinder (Dai et al. 2020, planner/cone_planner.h): the first surface x^2 + y^2 = R^2 (z/H - 1)^2
   // about a vertical axis through axis_mm; layer i is its equidistant surface at (i + 1/2) d.
@@ -39,10 +39,17 @@ struct SlicingSettings {
   std::array<double, 3> cone_axis_mm = {0.0, 0.0, 0.0};  // point on the axis, part frame, mm
   double cone_rotation_step_deg = 11.0;             // rotation step before flattening (Dai sec. 2.2), deg
   std::vector<SubVolumeSpec> sub_volumes;           // multi_directional: built in this order
+  // skeleton: adaptive slicing along the central axis (dissertation 6.3.1, Fig. 56; Table 16 limits)
+  double h_min_mm = 1.0;             // thinnest depositable layer, mm
+  double h_max_mm = 2.0;             // thickest depositable layer, mm
+  double point_spacing_mm = 2.0;     // path point spacing along each layer, mm (2 mm in sec. 6.3.3)
+  double first_step_mm = 0.0;        // initial moving distance h', mm; 0 = (h_min + h_max) / 2
+  double beta_deg = 0.1;             // plane re-orientation threshold on gamma (eq. 5.26), deg
+  double wall_mm = 0.0;              // wall of the part for its mid-wall path, mm; 0 = measured on the base section
 };
 
 struct PathSettings {
-  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous
+  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous | spiral (skeleton slicing only)
   double bead_width_mm = 6.0;          // > 0
   std::string overlap_model = "proposed";  // proposed (0.738 w / 0.47 w / 0.5 w) | existing (0.738 w everywhere)
   bool zigzag_angle_auto = true;       // minimum-width direction (Ding Lemma 1)
