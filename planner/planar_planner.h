@@ -5,6 +5,7 @@
 
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
+#include "planner/path/void_filling.h"
 #include "planner/scenario/scenario.h"
 
 namespace waam {
@@ -26,6 +27,7 @@ struct PlanResult {
   double travel_speed_mm_min = 0.0; // the welding speed used
   double bead_width_mm = 0.0;       // the bead width used (from the scenario or the width-height model)
   std::string speed_clamp = "none"; // speed_height mode: none | at_minimum | at_maximum of the feasible window
+  std::vector<CornerCorrection> void_corrections;  // junction corners moved by path.void_filling (003 sec. 4.4)
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

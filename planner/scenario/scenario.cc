@@ -105,7 +105,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   {
     YamlMap path = top.Map("path");
     PathSettings& s = scenario.path;
-    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous"}, "");
+    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous", "eulerian"}, "");
     s.bead_width_mm = path.Number("bead_width_mm", 0.5, 50.0);
     s.overlap_model = path.Choice("overlap_model", {"proposed", "existing"}, "proposed");
     if (path.Has("zigzag_angle_deg")) {
@@ -119,6 +119,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     }
     s.alternate_start = path.Bool("alternate_start", true);
     s.seed = static_cast<std::uint64_t>(path.Integer("seed", 0, 2147483647, 1));
+    internal::ParseVoidFillingSection(path, scenario.file.parent_path(), &s.void_filling);
     path.CheckNoUnknownKeys();
   }
 
