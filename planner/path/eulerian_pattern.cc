@@ -8,6 +8,7 @@
 #include <queue>
 #include <random>
 
+#include "models/core/error.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/path/pattern_common.h"
 
@@ -250,6 +251,14 @@ void PlanEulerian(const PolygonWithHoles& region, const PatternOptions& options,
   // overlap or touch), so a connector between them is welded on metal.
   const std::uint64_t seed = options.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(options.layer_index);
   const JoinedCurves joined = JoinOffsetCurves(curves, {region}, options.bead_width_mm, seed);
+  // A slice whose curves cannot all be joined is not a rib web of double-bead walls (e.g. a cell too small for a
+  // straight stretch three gaps long, or walls that do not hold two beads side by side).
+  WAAM_THROW_UNLESS(joined.loops.size() == 1,
+                    "path.pattern eulerian: layer " << options.layer_index << ": the " << joined.curves
+                        << " offset curves of the region near (" << region.outer.front().x() << ", "
+                        << region.outer.front().y() << ") mm join into " << joined.loops.size()
+                        << " closed passes, not 1: every wall must hold two beads at most one bead width ("
+                        << options.bead_width_mm << " mm) apart along a straight stretch at least three gaps long");
   const double fraction = StartFraction(options);
   const bool reverse = options.alternate_start && options.layer_index % 2 == 1;
   const std::size_t first_move = moves->size();

@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "models/core/error.h"
 #include "planner/path/layer_pattern.h"
 #include "tests/planner/pattern_checks.h"
 #include "tests/planner/test_shapes.h"
@@ -121,6 +122,21 @@ TEST(Eulerian, ContoursNeedOnePassPerCurve) {
   options.overlap_model = "existing";
   EXPECT_EQ(CountPasses(PlanLayerPattern({Grid(2, 2, 60, 60, 9)}, options)), 5)
       << "the 2x2 grid of Fig. 47: outer wall and four cells, five contours (003 Table 13)";
+}
+
+TEST(Eulerian, RegionThatIsNotARibWebIsRefused) {
+  // A plate with a small round hole: the hole's curve has no straight stretch to put connectors on.
+  PolygonWithHoles plate{Rect(0, 0, 80, 80), {testing::Circle(40, 40, 3, 12, true)}};
+  PatternOptions options;
+  options.pattern = "eulerian";
+  options.layer_index = 3;
+  try {
+    PlanLayerPattern({plate}, options);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("path.pattern eulerian: layer 3:"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("closed passes, not 1: every wall must hold two beads"));
+  }
 }
 
 }  // namespace
