@@ -12,7 +12,7 @@ void AddPlanCommand(CLI::App& app, CommandRunner* runner) {
   CLI::App* command = app.add_subcommand(
       "plan",
       "Slice a part and plan its weld path layer by layer.\n"
-      "Reads a scenario YAML (part mesh or generator, layer height, path pattern contour|zigzag|hybrid|continuous,\n"
+      "Reads a scenario YAML (part mesh or generator, layer height, path pattern contour|zigzag|hybrid|continuous|eulerian,\n"
       "bead width, overlap model, process speeds) and writes to the output directory:\n"
       "  plan.json       layers, passes (arc starts), passes_per_layer, path_elements, weld_length_mm,\n"
       "                  travel_length_mm, estimated_time_s, the mesh report\n"
