@@ -27,7 +27,8 @@ struct TuneVoidsOptions {
 // One simulation of a junction with a given shift.
 struct TuneTrial {
   double shift_mm = 0.0;                // PP_N* at the sharpest turning point
-  double void_volume_mm3 = 0.0;         // empty voxels enclosed in horizontal cuts near the junction, below the top layer
+  double void_volume_mm3 = 0.0;         // empty voxels enclosed in horizontal cuts near the junction below the top
+                                        // layer, mm^3
   double void_length_mm = 0.0;          // longest such region in one cut (L of Fig. 30), mm
   double peak_height_mm = 0.0;          // highest top near the junction minus the walls' crowns around it, mm
 };

@@ -93,8 +93,8 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   options.seed = scenario.path.seed;
   const double speed_mm_s = result.travel_speed_mm_min / 60.0;
   // Junction void filling on the planned moves; l is the spacing of the two beads of a wall (d2).
-  const VoidFiller void_filler(scenario.path.void_filling, result.bead_width_mm,
-                               OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).contour_to_contour_mm);
+  const double l_mm = OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).contour_to_contour_mm;
+  const VoidFiller void_filler(scenario.path.void_filling, result.bead_width_mm, l_mm);
 
   result.plan.name = scenario.name;
   result.plan.layers.reserve(layer_count);

@@ -55,7 +55,8 @@ CornerCorrection CorrectCorner(const Vec& a, const Vec& p, const Vec& b, const V
   const double pe = l_mm / (2.0 * s);
   WAAM_THROW_UNLESS(pe < pa.norm() && pe < pb.norm(),
                     where << ": turning point at " << Point(p) << " with theta = " << theta_deg
-                          << " deg is too sharp to correct: E and F lie " << pe << " mm from P (eq. 4.4) but its legs are "
+                          << " deg is too sharp to correct: E and F lie " << pe
+                          << " mm from P (eq. 4.4) but its legs are "
                           << std::min(pa.norm(), pb.norm()) << " mm long");
   c.e = p + pe * pa.normalized();
   c.f = p + pe * pb.normalized();
@@ -71,7 +72,9 @@ double LambdaForVoidLength(double void_length_mm, double theta_min_rad, double l
 }
 
 VoidFiller::VoidFiller(const VoidFillingSettings& settings, double bead_width_mm, double l_mm)
-    : settings_(settings), bead_width_mm_(bead_width_mm), l_mm_(settings.spacing_mm > 0.0 ? settings.spacing_mm : l_mm) {
+    : settings_(settings),
+      bead_width_mm_(bead_width_mm),
+      l_mm_(settings.spacing_mm > 0.0 ? settings.spacing_mm : l_mm) {
   const std::string& where = settings_.where;
   WAAM_THROW_UNLESS(std::isfinite(l_mm_) && l_mm_ > 0.0, where << ": bead spacing l = " << l_mm_ << " mm: must be > 0");
   if (settings_.mode == "model") {

@@ -62,8 +62,9 @@ TEST(TuneVoids, CrossJunctionVoidFallsAsTheShiftGrows) {
             FirstDataHeader(fs::path(WAAM_SOURCE_DIR) / "models/data/nguyen2022_appendixA1_junction_voids.csv"));
 
   // The planner takes the tuned shift back from tune.json (mode tuned).
-  const planner::Scenario scenario = planner::LoadScenario(
-      kCross, {"path.void_filling.mode=tuned", "path.void_filling.tune_file=" + (options.out_dir / "tune.json").string()});
+  const std::string tune_file = (options.out_dir / "tune.json").string();
+  const planner::Scenario scenario =
+      planner::LoadScenario(kCross, {"path.void_filling.mode=tuned", "path.void_filling.tune_file=" + tune_file});
   const planner::PlanResult plan = planner::PlanScenario(scenario, nullptr);
   ASSERT_EQ(plan.void_corrections.size(), plan.plan.layers.size()) << "one corrected corner per layer";
   for (const planner::CornerCorrection& c : plan.void_corrections) EXPECT_NEAR(c.shift_mm, j.tuned.shift_mm, 1e-9);
