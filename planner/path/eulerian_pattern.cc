@@ -113,8 +113,10 @@ JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector
     const Ring& rb = curves[s.b];
     const Vec a0 = ra[s.seg_a], da = (ra[(s.seg_a + 1) % ra.size()] - a0).normalized();
     const Vec b0 = rb[s.seg_b], db = (rb[(s.seg_b + 1) % rb.size()] - b0).normalized();
-    // Between one third and two thirds of the shared stretch (sec. 4.3), so connectors of successive layers do not
-    // stack up and leave a trace on the wall.
+    // Between one third and two thirds of the shared stretch, so connectors of successive layers do not stack up and
+    // leave a trace on the wall. Sec. 4.3 says "of the selected segment"; we take the part of the segment the two
+    // curves share, which is the whole segment for the straight walls of a grid and keeps the connectors on the wall
+    // where the curves run side by side. The cut is one gap long, so the two connectors weld as much as they remove.
     const double third = (s.s1 - s.s0) / 3.0;
     const double c = std::uniform_real_distribution<double>(s.s0 + third, s.s0 + 2.0 * third)(rng);
     Cut cut{s, {}, {}, {}, {}, 0.0, 0.0, c - 0.5 * s.gap, c + 0.5 * s.gap};

@@ -67,7 +67,9 @@ std::vector<Junction> FindJunctions(const std::vector<PolygonWithHoles>& slice, 
     if (InSlice(slice, p + reach * bisector)) continue;
     points.push_back(TurningPoint{k, p, theta, -bisector});
   }
-  // Single-linkage groups of turning points closer than two bead widths.
+  // Single-linkage groups of turning points closer than two bead widths. The dissertation classifies junctions by
+  // hand from the CAD model (Fig. 32); here they are found on the path, which holds for walls up to about two bead
+  // widths thick and cells larger than two bead widths (else neighbouring junctions merge).
   std::vector<int> group(points.size(), -1);
   int groups = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {

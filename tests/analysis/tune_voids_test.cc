@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "analysis/plan_command.h"
 #include "models/core/error.h"
 #include "planner/planar_planner.h"
 #include "planner/scenario/scenario.h"
@@ -68,6 +69,9 @@ TEST(TuneVoids, CrossJunctionVoidFallsAsTheShiftGrows) {
   const planner::PlanResult plan = planner::PlanScenario(scenario, nullptr);
   ASSERT_EQ(plan.void_corrections.size(), plan.plan.layers.size()) << "one corrected corner per layer";
   for (const planner::CornerCorrection& c : plan.void_corrections) EXPECT_NEAR(c.shift_mm, j.tuned.shift_mm, 1e-9);
+  const nlohmann::json plan_json = PlanToJson(scenario, plan)["void_filling"];
+  EXPECT_EQ(plan_json["corrected_corners"].get<std::size_t>(), plan.plan.layers.size());
+  EXPECT_NEAR(plan_json["classes"]["4 ribs 90/90/90/90"]["mean_shift_mm"].get<double>(), j.tuned.shift_mm, 1e-9);
 }
 
 TEST(TuneVoids, BadInputIsNamed) {
