@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the deposition twin on the reproduction scenarios and prints its measures: the 003 Table 9 block with the
-# existing and the proposed overlap model (boundary lag), and Ding's four shapes planned hybrid and continuous
-# (Ra, waviness). Needs a built ./build/waam.
+# existing and the proposed overlap model (boundary lag), and Ding's four shapes planned hybrid and continuous,
+# three layers as Ding measured (Ra, waviness). Needs a built ./build/waam.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/twin_table}"
@@ -18,7 +18,8 @@ done
 for shape in ding_a ding_b ding_c ding_d; do
   for pattern in hybrid continuous; do
     dir="$out/$shape-$pattern"
-    ./build/waam simulate "scenarios/$shape.yaml" --set "path.pattern=$pattern" -o "$dir" -q --no-images >/dev/null
+    ./build/waam simulate "scenarios/twin/${shape}_3layers.yaml" --set "path.pattern=$pattern" -o "$dir" -q \
+      --no-images >/dev/null
     printf '%-16s %-10s %6s %8.3f %8.2f %8.2f %8s %10.4f\n' "$shape" "$pattern" "$(field "$dir" "d['beads']")" \
       "$(field "$dir" "d['ra_mm']")" "$(field "$dir" "d['waviness_mm']")" "$(field "$dir" "d['boundary_lag_mm']")" \
       "$(field "$dir" "d['voids']['count']")" "$(field "$dir" "d['volume_error_pct']")"

@@ -72,6 +72,7 @@ void ApplyOverride(YAML::Node root, const std::string& override_text) {
       node[key] = value;
       return;
     }
+    if (!node[key].IsDefined()) node[key] = YAML::Node(YAML::NodeType::Map);  // an absent optional section
     YAML::Node child = node[key];
     node.reset(child);
     start = dot + 1;
@@ -147,7 +148,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   }
 
   scenario.cell = internal::ParseCellSection(top, scenario.file.parent_path());
-  internal::ParseSimulationSection(top, &scenario.simulation);
+  internal::ParseSimulationSection(top, &scenario.simulation, scenario.file.parent_path());
   top.CheckNoUnknownKeys();
   return scenario;
 }
