@@ -2,6 +2,7 @@
 #include "planner/path/eulerian_pattern.h"
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <string>
@@ -12,6 +13,8 @@
 
 #include "models/core/error.h"
 #include "planner/path/layer_pattern.h"
+#include "planner/planar_planner.h"
+#include "planner/scenario/scenario.h"
 #include "tests/planner/pattern_checks.h"
 #include "tests/planner/test_shapes.h"
 
@@ -122,6 +125,21 @@ TEST(Eulerian, ContoursNeedOnePassPerCurve) {
   options.overlap_model = "existing";
   EXPECT_EQ(CountPasses(PlanLayerPattern({Grid(2, 2, 60, 60, 9)}, options)), 5)
       << "the 2x2 grid of Fig. 47: outer wall and four cells, five contours (003 Table 13)";
+}
+
+// Every rib-web scenario plans; the Eulerian ones with one pass per layer.
+TEST(Eulerian, RibWebScenariosPlan) {
+  int eulerian = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(WAAM_SOURCE_DIR) + "/scenarios/ribweb")) {
+    if (entry.path().extension() != ".yaml") continue;
+    const Scenario scenario = LoadScenario(entry.path());
+    const PlanResult result = PlanScenario(scenario, nullptr);
+    ASSERT_FALSE(result.plan.layers.empty()) << entry.path();
+    if (scenario.path.pattern != "eulerian") continue;
+    ++eulerian;
+    for (std::size_t n : result.stats.passes_per_layer) EXPECT_EQ(n, 1u) << entry.path();
+  }
+  EXPECT_GE(eulerian, 4) << "rib web, cross, k-shaped and three-rib junction";
 }
 
 TEST(Eulerian, RegionThatIsNotARibWebIsRefused) {
