@@ -2,6 +2,7 @@
 #include "analysis/plan_command.h"
 
 #include <algorithm>
+#include <map>
 #include <string>
 
 #include "models/core/error.h"
@@ -59,6 +60,19 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
                            {"volume_mm3", sub.volume_mm3},
                            {"support_mm3", sub.support_mm3}});
   }
+  // Junction void filling (003 sec. 4.4): corrected corners and the mean shift per junction class.
+  std::map<std::string, std::pair<int, double>> by_class;
+  for (const planner::CornerCorrection& c : result.void_corrections) {
+    by_class[c.junction_class].first += 1;
+    by_class[c.junction_class].second += c.shift_mm;
+  }
+  nlohmann::json classes = nlohmann::json::object();
+  for (const auto& [name, count_sum] : by_class) {
+    classes[name] = {{"corners", count_sum.first}, {"mean_shift_mm", count_sum.second / count_sum.first}};
+  }
+  const nlohmann::json void_filling = {{"mode", scenario.path.void_filling.mode},
+                                       {"corrected_corners", result.void_corrections.size()},
+                                       {"classes", classes}};
   return {
       {"scenario", scenario.name},
       {"slicing", scenario.slicing.type},
@@ -87,6 +101,7 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       {"weld_length_mm", stats.weld_length_mm},
       {"travel_length_mm", stats.travel_length_mm},
       {"estimated_time_s", stats.estimated_time_s},
+      {"void_filling", void_filling},
       {"layer_details", layers},
       {"sub_volumes", sub_volumes},
   };

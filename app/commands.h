@@ -24,5 +24,6 @@ void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_
 void AddFitCommand(CLI::App& app, CommandRunner* runner);       // app/fit_cli.cc
 void AddCheckCommand(CLI::App& app, CommandRunner* runner);     // app/check_cli.cc
 void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_cli.cc
+void AddTuneVoidsCommand(CLI::App& app, CommandRunner* runner);  // app/tune_voids_cli.cc
 
 }  // namespace waam::app

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   AddFitCommand(app, &runner);
   AddCheckCommand(app, &runner);
   AddSimulateCommand(app, &runner);
+  AddTuneVoidsCommand(app, &runner);
 
   try {
     app.parse(argc, argv);

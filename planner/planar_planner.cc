@@ -98,6 +98,9 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   options.alternate_start = scenario.path.alternate_start;
   options.seed = scenario.path.seed;
   const double speed_mm_s = result.travel_speed_mm_min / 60.0;
+  // Junction void filling on the planned moves; l is the spacing of the two beads of a wall (d2).
+  const double l_mm = OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).contour_to_contour_mm;
+  const VoidFiller void_filler(scenario.path.void_filling, result.bead_width_mm, l_mm);
 
   result.plan.name = scenario.name;
   result.plan.layers.reserve(layer_count);
@@ -107,7 +110,9 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
     layer.z_mm = (i + 1) * layer_height;
     layer.slice = slices[i];
     options.layer_index = i;
-    for (const Move2D& move : PlanLayerPattern(layer.slice, options)) {
+    const std::vector<Move2D> moves =
+        void_filler.Apply(layer.slice, PlanLayerPattern(layer.slice, options), i, &result.void_corrections);
+    for (const Move2D& move : moves) {
       PathPoint point;
       point.p_P = Eigen::Vector3d(move.p.x(), move.p.y(), layer.z_mm);
       point.tool_dir_P = Eigen::Vector3d::UnitZ();

@@ -8,6 +8,7 @@
 
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
+#include "planner/path/void_filling.h"
 #include "planner/scenario/scenario.h"
 
 namespace waam {
@@ -47,6 +48,7 @@ struct PlanResult {
   double speed_max_mm_min = 0.0;     // fastest, mm/min
   int layers_out_of_range = 0;       // skeleton layers whose thickness left [h_min, h_max] (Fig. 56 could not fix)
   std::vector<Eigen::Vector3d> axis_P;  // skeleton: central axis (chain of section centroids), part frame, mm
+  std::vector<CornerCorrection> void_corrections;  // junction corners moved by path.void_filling (003 sec. 4.4)
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

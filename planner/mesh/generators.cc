@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "models/core/error.h"
+#include "planner/geometry/clipper_adapter.h"
 #include "planner/mesh/blade_generators.h"
 #include "planner/mesh/extrude.h"
 #include "planner/mesh/mesh_ops.h"
@@ -162,6 +163,35 @@ TriangleMesh BuildRibWeb(const Args& a) {
   return Extrude(std::move(region), a("height_mm"));
 }
 
+// A rib junction (003 Fig. 30-32): straight ribs `wall_mm` thick running `arm_mm` out from the centre at the given
+// directions, united with a hub of the ribs' half-thickness so the back of the junction has no notch.
+TriangleMesh BuildJunction(const Args& a) {
+  std::vector<double> angles = a.List("arm_angles_deg");
+  const double half = a("wall_mm") / 2, arm = a("arm_mm");
+  WAAM_THROW_UNLESS(angles.size() >= 2, a.where() << ": junction.arm_angles_deg: needs at least 2 arms");
+  WAAM_THROW_UNLESS(arm > 2 * a("wall_mm"), a.where() << ": junction.arm_mm = " << arm
+                                                      << ": must be more than twice wall_mm (" << a("wall_mm") << ")");
+  std::sort(angles.begin(), angles.end());
+  for (std::size_t k = 0; k < angles.size(); ++k) {
+    const double next = k + 1 < angles.size() ? angles[k + 1] : angles[0] + 360.0;
+    WAAM_THROW_UNLESS(next - angles[k] >= 15.0, a.where() << ": junction.arm_angles_deg: arms at " << angles[k]
+                                                          << " and " << std::fmod(next, 360.0)
+                                                          << " deg are less than 15 deg apart");
+  }
+  std::vector<PolygonWithHoles> parts;
+  for (double deg : angles) {
+    const Vec2 d(std::cos(deg * kPi / 180.0), std::sin(deg * kPi / 180.0));
+    const Vec2 n(-d.y(), d.x());
+    parts.push_back({{-half * n, arm * d - half * n, arm * d + half * n, half * n}, {}});
+  }
+  Ring hub;
+  for (int k = 0; k < 64; ++k) hub.push_back(half * Vec2(std::cos(2 * kPi * k / 64), std::sin(2 * kPi * k / 64)));
+  parts.push_back({hub, {}});
+  std::vector<PolygonWithHoles> united = internal::Union(parts);
+  WAAM_THROW_UNLESS(united.size() == 1, a.where() << ": junction: the arms do not form one part");
+  return Extrude(std::move(united[0]), a("height_mm"));
+}
+
 const std::map<std::string, GeneratorSpec>& Registry() {
   static const std::map<std::string, GeneratorSpec> registry = [] {
     const double kBig = 5000.0;  // mm: larger than any WAAM cell
@@ -249,6 +279,13 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                      {"wall_mm", {9.0}, 1, 0.1, kBig, false, "wall and rib thickness (mm)"},
                      {"height_mm", {45.0}, 1, 0.1, kBig, false, "height (mm)"}},
                     BuildRibWeb};
+    r["junction"] = {"rib junction: straight ribs from a common centre (003 Fig. 30-32)",
+                     {{"arm_angles_deg", {0.0, 90.0, 180.0, 270.0}, 0, -360.0, 360.0, false,
+                       "directions of the ribs (deg from +x), at least 2, 15 deg apart"},
+                      {"arm_mm", {40.0}, 1, 1.0, kBig, false, "rib length from the centre (mm)"},
+                      {"wall_mm", {9.0}, 1, 0.1, kBig, false, "rib thickness (mm)"},
+                      {"height_mm", {21.6}, 1, 0.1, kBig, false, "height (mm)"}},
+                     BuildJunction};
     // Outlines of the Ding et al. 2014 stand-ins (see the top of this file), in mm before scaling.
     r["ding_a"] = {"Ding 2014 case-1-like non-convex polygon with four notches",
                    {height, scale},

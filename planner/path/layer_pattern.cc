@@ -7,6 +7,7 @@
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/path/continuous_pattern.h"
 #include "planner/path/contour_pattern.h"
+#include "planner/path/eulerian_pattern.h"
 #include "planner/path/hybrid_pattern.h"
 #include "planner/path/pattern_common.h"
 #include "planner/path/zigzag_pattern.h"
@@ -48,6 +49,8 @@ std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice,
       internal::PlanContour(region, options, spacing, &moves);
     } else if (options.pattern == "zigzag") {
       internal::PlanZigzag(region, options, spacing, &moves);
+    } else if (options.pattern == "eulerian") {
+      internal::PlanEulerian(region, options, spacing, &moves);
     } else if (options.pattern == "hybrid") {
       internal::PlanHybrid(region, options, spacing, &moves);
     } else {

@@ -1,4 +1,4 @@
-// Path patterns that fill one planar slice: contour, zigzag, hybrid and Ding's continuous path.
+// Path patterns that fill one planar slice: contour, zigzag, hybrid, Ding's continuous path, Eulerian rib-web path.
 #pragma once
 
 #include <cstdint>
@@ -30,7 +30,7 @@ struct OverlapSpacing {
 OverlapSpacing OverlapSpacingFor(const std::string& model, double bead_width_mm);
 
 struct PatternOptions {
-  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous
+  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous | eulerian
   double bead_width_mm = 6.0;
   std::string overlap_model = "proposed";
   bool zigzag_auto = true;             // minimum-width direction per region/piece (Ding Lemma 1)

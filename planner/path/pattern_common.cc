@@ -23,9 +23,9 @@ constexpr double kRasterInsetMm = 1e-3;
 }  // namespace
 
 void ValidatePatternOptions(const PatternOptions& options) {
-  static const char* const kPatterns[] = {"contour", "zigzag", "hybrid", "continuous"};
+  static const char* const kPatterns[] = {"contour", "zigzag", "hybrid", "continuous", "eulerian"};
   WAAM_THROW_UNLESS(std::find(std::begin(kPatterns), std::end(kPatterns), options.pattern) != std::end(kPatterns),
-                    "path pattern '" << options.pattern << "': must be one of contour, zigzag, hybrid, continuous");
+                    "path pattern '" << options.pattern << "': must be one of contour, zigzag, hybrid, continuous, eulerian");
   WAAM_THROW_UNLESS(std::isfinite(options.bead_width_mm) && options.bead_width_mm > 0.0,
                     "path bead_width_mm = " << options.bead_width_mm << ": must be > 0");
   WAAM_THROW_UNLESS(options.overlap_model == "proposed" || options.overlap_model == "existing",

@@ -152,7 +152,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   {
     YamlMap path = top.Map("path");
     PathSettings& s = scenario.path;
-    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous", "spiral"}, "");
+    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous", "eulerian", "spiral"}, "");
     WAAM_THROW_UNLESS(scenario.slicing.type == "skeleton" || s.pattern != "spiral",
                       path.Where("pattern") << " = spiral: needs slicing.type = skeleton");
     WAAM_THROW_UNLESS(scenario.slicing.type != "skeleton" || s.pattern == "spiral" || s.pattern == "contour",
@@ -174,6 +174,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     }
     s.alternate_start = path.Bool("alternate_start", true);
     s.seed = static_cast<std::uint64_t>(path.Integer("seed", 0, 2147483647, 1));
+    internal::ParseVoidFillingSection(path, scenario.file.parent_path(), &s.void_filling);
     path.CheckNoUnknownKeys();
   }
 

@@ -10,6 +10,7 @@
 
 #include "planner/scenario/cell_settings.h"
 #include "planner/scenario/simulation_settings.h"
+#include "planner/scenario/void_filling_settings.h"
 
 namespace waam::planner {
 
@@ -49,13 +50,14 @@ struct SlicingSettings {
 };
 
 struct PathSettings {
-  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous | spiral (skeleton slicing only)
+  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous | eulerian (003 sec. 4.3) | spiral (skeleton slicing only)
   double bead_width_mm = 6.0;          // > 0
   std::string overlap_model = "proposed";  // proposed (0.738 w / 0.47 w / 0.5 w) | existing (0.738 w everywhere)
   bool zigzag_angle_auto = true;       // minimum-width direction (Ding Lemma 1)
   double zigzag_angle_deg = 0.0;       // used when not auto
   bool alternate_start = true;         // shift the start point layer to layer so starts do not stack
   std::uint64_t seed = 1;              // for any random choice in planning
+  VoidFillingSettings void_filling;    // optional `void_filling:` junction correction (003 sec. 4.4)
 };
 
 struct ProcessSettings {

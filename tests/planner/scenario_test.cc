@@ -101,7 +101,7 @@ TEST_F(ScenarioTest, UnknownPatternListsTheChoices) {
   std::string text = Valid();
   text.replace(text.find("pattern: continuous"), 19, "pattern: wobble");
   EXPECT_THAT(ErrorOf(text), HasSubstr("path.pattern = 'wobble': unknown value, expected one of contour, zigzag, "
-                                       "hybrid, continuous, spiral"));
+                                       "hybrid, continuous, eulerian, spiral"));
 }
 
 TEST_F(ScenarioTest, UnknownKeyIsRefusedWithItsPath) {
