@@ -24,5 +24,7 @@ void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_
 void AddFitCommand(CLI::App& app, CommandRunner* runner);       // app/fit_cli.cc
 void AddCheckCommand(CLI::App& app, CommandRunner* runner);     // app/check_cli.cc
 void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_cli.cc
+void AddRunCommand(CLI::App& app, CommandRunner* runner);       // app/run_cli.cc
+void AddBenchCommand(CLI::App& app, CommandRunner* runner);     // app/bench_cli.cc
 
 }  // namespace waam::app

@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   AddFitCommand(app, &runner);
   AddCheckCommand(app, &runner);
   AddSimulateCommand(app, &runner);
+  AddRunCommand(app, &runner);
+  AddBenchCommand(app, &runner);
 
   try {
     app.parse(argc, argv);
