@@ -42,7 +42,7 @@ std::string Base64(const std::vector<unsigned char>& bytes) {
 }
 
 // An <img> with the PNG at `path` scaled down to at most `max_width` px, or "" if the file is absent.
-std::string EmbeddedPng(const fs::path& path, const std::string& caption, int max_width = 460) {
+std::string EmbeddedPng(const fs::path& path, const std::string& caption, int max_width = 600) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return "";
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
