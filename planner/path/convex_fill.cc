@@ -6,8 +6,8 @@
 //   B -> right chain of C -> T -> down the left chain to the first raster -> zigzag downwards, where the left ends
 //   of the rasters lie on C (the left turnarounds follow C) and the right ends lie on Z = C inset by d1 (the right
 //   turnarounds follow Z, d1 inside the contour just laid) -> down the left chain to B.
-// The number of rasters is made even so the zigzag ends on the left chain and the loop closes at B; the rasters are
-// spread evenly from the top to the bottom of Z, so their pitch is at most l.
+// The number of rasters is even so the zigzag ends on the left chain and the loop closes at B; the count and the
+// gaps to the contour are chosen so the pitch stays near l (ChooseRasterLevels; Ding spreads them evenly over Z).
 #include "planner/path/convex_fill.h"
 
 #include <algorithm>
@@ -86,6 +86,36 @@ void Append(const std::vector<Vec>& points, Ring* loop) {
   }
 }
 
+// How the zigzag fills a strip of height `range_mm` between the top and bottom of Z (Z is d1 inside the contour).
+struct RasterLevels {
+  int lines = 2;              // even: the loop runs down the left chain after the zigzag and closes at B
+  double pitch_mm = 0.0;      // between neighbouring rasters
+  double extra_gap_mm = 0.0;  // added to d1 at the top and at the bottom of the zigzag
+};
+
+// The loop needs an even number of rasters, so a strip holds either a raster too few (pitch above l: a valley
+// between beads) or one too many (pitch below l: a bump). Ding's even spreading over the strip can put rasters at a
+// third of l in a narrow piece, so nearly three beads of metal land where one belongs, and the same piece repeats
+// on every layer. Here the two even counts around range/l are compared: with the larger count the gaps to the
+// contour may grow from d1 up to l (the existing model's spacing, 003 Table 9) before the pitch drops below l; the
+// count whose pitch is nearer l (by ratio) is kept.
+RasterLevels ChooseRasterLevels(double range_mm, const OverlapSpacing& spacing) {
+  const double l = spacing.zigzag_mm;
+  const double max_extra = std::max(0.0, l - spacing.contour_to_zigzag_mm);
+  const int exact = std::max(2, static_cast<int>(std::ceil(range_mm / l - 1e-9)) + 1);  // fewest with pitch <= l
+  const int more = exact % 2 == 0 ? exact : exact + 1;
+  RasterLevels dense;
+  dense.lines = more;
+  dense.extra_gap_mm = std::clamp(0.5 * (range_mm - (more - 1) * l), 0.0, max_extra);
+  if (range_mm - 2.0 * dense.extra_gap_mm <= 0.0) dense.extra_gap_mm = 0.0;
+  dense.pitch_mm = (range_mm - 2.0 * dense.extra_gap_mm) / (more - 1);
+  if (more - 2 < 2) return dense;
+  RasterLevels sparse;
+  sparse.lines = more - 2;
+  sparse.pitch_mm = range_mm / (sparse.lines - 1);
+  return std::abs(std::log(sparse.pitch_mm / l)) < std::abs(std::log(dense.pitch_mm / l)) ? sparse : dense;
+}
+
 }  // namespace
 
 Ring ConvexPieceLoop(const Ring& piece, double angle_rad, const OverlapSpacing& spacing) {
@@ -100,10 +130,10 @@ Ring ConvexPieceLoop(const Ring& piece, double angle_rad, const OverlapSpacing& 
   const double z_hi = f.h(zig[zig_top]) - kLevelInsetMm, z_lo = f.h(zig[0]) + kLevelInsetMm;
   // A zigzag strip thinner than a quarter step-over adds little but doubled metal: the contour alone fills it.
   if (z_hi - z_lo < 0.25 * spacing.zigzag_mm) return contour;
-  int lines = std::max(2, static_cast<int>(std::ceil((z_hi - z_lo) / spacing.zigzag_mm - 1e-9)) + 1);
-  if (lines % 2 == 1) ++lines;
-  const double step = (z_hi - z_lo) / (lines - 1);
-  auto level = [&](int k) { return z_hi - k * step; };  // k = 0 .. lines-1, top to bottom
+  const RasterLevels levels = ChooseRasterLevels(z_hi - z_lo, spacing);
+  const int lines = levels.lines;
+  const double first_level = z_hi - levels.extra_gap_mm;
+  auto level = [&](int k) { return first_level - k * levels.pitch_mm; };  // k = 0 .. lines-1, top to bottom
 
   std::vector<Vec> left(contour.begin() + top, contour.end());  // C's left chain, T down to B
   left.push_back(contour.front());

@@ -1,6 +1,7 @@
 // Tests of the layer patterns: pass counts, coverage, staying inside, start alternation and bad options.
 #include "planner/path/layer_pattern.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -273,6 +274,31 @@ TEST(ContinuousPattern, ContourGoesOnTheObliqueWall) {
     const double planned = UncoveredFraction(region, Plan(region, "continuous"));
     EXPECT_LE(planned, std::min(one_way, other_way) + 1e-4) << one_way << " / " << other_way;
     EXPECT_GT(std::max(one_way, other_way), planned + 0.002) << "the two ways round should differ on this part";
+  }
+}
+
+// The loop needs an even number of rasters. Spreading them evenly over every piece (Ding) put rasters a third of l
+// apart in pieces a little taller than one step, nearly tripling the metal there on every layer; the count is now
+// the even one whose pitch is nearest l, so the pitch stays between 0.55 l and 1.8 l once a piece holds more than two rasters.
+TEST(ContinuousPattern, RasterPitchStaysNearTheStepOver) {
+  const OverlapSpacing spacing = OverlapSpacingFor("proposed", kW);
+  const double l = spacing.zigzag_mm;
+  for (double height = 16.0; height <= 40.0; height += 0.37) {
+    const Ring piece = testing::Poly({{0, 0}, {60, 0}, {60, height}, {0, height}});
+    const Ring loop = internal::ConvexPieceLoop(piece, 0.0, spacing);
+    std::vector<double> levels;  // heights of the long horizontal runs: top contour, rasters, bottom contour
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Eigen::Vector2d& a = loop[i];
+      const Eigen::Vector2d& b = loop[(i + 1) % loop.size()];
+      if (std::abs(a.y() - b.y()) < 1e-6 && std::abs(a.x() - b.x()) > 30.0) levels.push_back(a.y());
+    }
+    std::sort(levels.begin(), levels.end());
+    ASSERT_GE(levels.size(), 4u) << "height " << height;
+    for (std::size_t k = 2; k + 1 < levels.size(); ++k) {  // between rasters, not to the contour
+      const double pitch = levels[k] - levels[k - 1];
+      EXPECT_GT(pitch, 0.55 * l) << "height " << height << " mm: rasters " << pitch << " mm apart, l = " << l;
+      EXPECT_LT(pitch, 1.8 * l) << "height " << height << " mm: rasters " << pitch << " mm apart, l = " << l;
+    }
   }
 }
 
