@@ -2,6 +2,9 @@
 // step selection errors, the bench's child processes, resume and report.
 #include "analysis/run_command.h"
 
+#include <sys/wait.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -233,6 +236,43 @@ TEST(BenchReference, ComparesPublishedFiguresWithOurResults) {
   // Model rows come from models/data/*.json, whatever was benched.
   EXPECT_NEAR(by_id["nguyen_speed_height_b"]["ours"].get<double>(), -2.069, 0.05);
   EXPECT_NEAR(by_id["dai_csw_r2"]["ours"].get<double>(), 0.98, 0.01);
+}
+
+}  // namespace
+}  // namespace waam::analysis
+
+namespace waam::analysis {
+namespace {
+
+// Runs `waam <arguments>` and returns its exit code; stderr goes to *err.
+int RunWaamCli(const std::string& arguments, std::string* err) {
+  const fs::path err_file = fs::path(::testing::TempDir()) / "waam_test_run_cli.stderr";
+  const std::string command = std::string(WAAM_BINARY) + " " + arguments + " >/dev/null 2>" + err_file.string();
+  const int status = std::system(command.c_str());
+  *err = ReadFile(err_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(RunCli, PlantedCellFaultExitsThreeAsExpected) {
+  const fs::path out = fs::path(::testing::TempDir()) / "waam_test_run_cli_fault";
+  fs::remove_all(out);
+  std::string err;
+  const fs::path scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "cell_out_of_reach.yaml";
+  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + out.string() + " -q --no-images --steps plan check",
+                       &err), 3) << err;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["expected_exit_code"].get<int>(), 3) << "the planted fault declares run.expected_exit_code";
+  EXPECT_TRUE(summary["as_expected"].get<bool>());
+  EXPECT_EQ(summary["steps"][1]["status"], "violations");
+}
+
+TEST(RunCli, BadScenarioIsExitTwoWithOneLine) {
+  const fs::path scenario = WriteScenario("tiny_bad_layer", "name: x\npart:\n  generator: {type: box}\n"
+                                                            "slicing:\n  layer_height_mm: -1\n");
+  std::string err;
+  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + ::testing::TempDir() + "/waam_test_run_cli_bad", &err), 2);
+  EXPECT_THAT(err, HasSubstr("waam: error:"));
+  EXPECT_THAT(err, HasSubstr("slicing.layer_height_mm"));
 }
 
 }  // namespace
