@@ -1,5 +1,5 @@
 // The registry of `waam run` steps: what each step needs, when the default chain includes it, and how it runs.
-// Adding a step = one function (in its own file) and one line in kRunSteps (analysis/run_steps.cc).
+// Adding a step = one function (in its own file) and one line in the table of RunSteps() (analysis/run_steps.cc).
 #pragma once
 
 #include <filesystem>
