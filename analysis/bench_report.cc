@@ -81,10 +81,16 @@ nlohmann::json Metric(const nlohmann::json& entry, const std::string& step, cons
   return s && s->contains("metrics") && (*s)["metrics"].contains(key) ? (*s)["metrics"][key] : nlohmann::json();
 }
 
+// user + system CPU time of a scenario's child process, s (the wall time depends on the machine's load).
+std::string CpuSeconds(const nlohmann::json& timing) {
+  if (!timing.contains("user_s") || !timing.contains("sys_s")) return Cell(nullptr);
+  return Cell(timing["user_s"].get<double>() + timing["sys_s"].get<double>());
+}
+
 std::string OverviewTable(const nlohmann::json& scenarios) {
   std::ostringstream html;
-  html << "<table><tr><th>scenario</th><th>outcome</th><th>exit (expected)</th><th>wall s</th><th>peak MiB</th>"
-          "<th>layers</th><th>passes / layer</th><th>weld m</th><th>check violations</th><th>volume error %</th>"
+  html << "<table><tr><th>scenario</th><th>outcome</th><th>exit (expected)</th><th>wall s</th><th>CPU s</th>"
+          "<th>peak MiB</th><th>layers</th><th>passes / layer</th><th>weld m</th><th>check violations</th><th>volume error %</th>"
           "<th>deviation rms mm</th><th>voids</th><th>Ra mm</th><th>boundary lag mm</th></tr>\n";
   for (const nlohmann::json& e : scenarios) {
     const std::string outcome = e.value("outcome", "fail");
@@ -92,7 +98,8 @@ std::string OverviewTable(const nlohmann::json& scenarios) {
     html << "<tr><td><a href=\"#" << HtmlEscape(e.value("id", "")) << "\">" << HtmlEscape(e.value("id", ""))
          << "</a></td><td class=\"" << outcome << "\">" << outcome << "</td><td>" << Cell(e["exit_code"]) << " ("
          << Cell(e["expected_exit_code"]) << ")</td><td>" << Cell(e["timing"].value("wall_s", nlohmann::json()))
-         << "</td><td>" << Cell(e["timing"].value("peak_rss_mb", nlohmann::json())) << "</td><td>"
+         << "</td><td>" << CpuSeconds(e["timing"]) << "</td><td>"
+         << Cell(e["timing"].value("peak_rss_mb", nlohmann::json())) << "</td><td>"
          << Cell(Metric(e, "plan", "layers")) << "</td><td>" << Cell(Metric(e, "plan", "max_passes_per_layer"))
          << "</td><td>" << (weld.is_number() ? Cell(weld.get<double>() / 1000.0) : Cell(weld)) << "</td><td>"
          << Cell(Metric(e, "check", "violation_count")) << "</td><td>"
