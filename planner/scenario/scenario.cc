@@ -72,6 +72,8 @@ void ApplyOverride(YAML::Node root, const std::string& override_text) {
       node[key] = value;
       return;
     }
+    // A section the file does not have (e.g. --set run.steps=[plan]) is created empty.
+    if (!node[key].IsDefined()) node[key] = YAML::Node(YAML::NodeType::Map);
     YAML::Node child = node[key];
     node.reset(child);
     start = dot + 1;

@@ -138,6 +138,10 @@ TEST_F(ScenarioTest, OverridesReplaceAndAddKeys) {
   EXPECT_EQ(s.path.pattern, "hybrid");
   EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 2.5);
   EXPECT_EQ(s.path.seed, 7u);
+  // A section absent from the file is created by the override.
+  const Scenario t = LoadScenario(Write(Valid()), {"simulation.voxel_mm=1", "run.steps=[plan, check]"});
+  EXPECT_DOUBLE_EQ(t.simulation.voxel_mm, 1.0);
+  EXPECT_EQ(t.run.steps, (std::vector<std::string>{"plan", "check"}));
 }
 
 TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {
