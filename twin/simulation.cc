@@ -97,22 +97,25 @@ TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh*
       BoundaryLag& lag = m.boundary_lag;
       lag.interior_columns = along_x.interior_columns + along_y.interior_columns;
       lag.boundary_columns = along_x.boundary_columns + along_y.boundary_columns;
-      if (lag.interior_columns > 0) {
-        lag.interior_mean_mm = (along_x.interior_mean_mm * along_x.interior_columns +
-                                along_y.interior_mean_mm * along_y.interior_columns) / lag.interior_columns;
-      }
-      if (lag.boundary_columns > 0) {
-        lag.boundary_mean_mm = (along_x.boundary_mean_mm * along_x.boundary_columns +
-                                along_y.boundary_mean_mm * along_y.boundary_columns) / lag.boundary_columns;
-      }
-      lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;
+      // Column-weighted means of the two lines; a line without columns of a kind adds nothing (its mean is NaN).
+      auto pooled = [](double mean_x, std::size_t n_x, double mean_y, std::size_t n_y) {
+        if (n_x + n_y == 0) return std::numeric_limits<double>::quiet_NaN();
+        return ((n_x > 0 ? mean_x * n_x : 0.0) + (n_y > 0 ? mean_y * n_y : 0.0)) / (n_x + n_y);
+      };
+      lag.interior_mean_mm = pooled(along_x.interior_mean_mm, along_x.interior_columns, along_y.interior_mean_mm,
+                                    along_y.interior_columns);
+      lag.boundary_mean_mm = pooled(along_x.boundary_mean_mm, along_x.boundary_columns, along_y.boundary_mean_mm,
+                                    along_y.boundary_columns);
+      lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;  // NaN on thin walls: no interior to compare
     }
   }
   if (target != nullptr && !target->facets.empty()) {
     result.deviation = MeasureDeviation(grid, *target);
-    result.voids = FindVoids(grid, TargetVolume::FromMesh(*target, grid.voxel_mm(), settings.max_voxels));
+    result.voids = FindVoids(grid, TargetVolume::FromMesh(*target, grid.voxel_mm(), settings.max_voxels),
+                             settings.min_void_volume_mm3);
   } else if (!plan.layers.empty()) {
-    result.voids = FindVoids(grid, TargetVolume::FromLayers(plan, grid.voxel_mm(), settings.max_voxels));
+    result.voids = FindVoids(grid, TargetVolume::FromLayers(plan, grid.voxel_mm(), settings.max_voxels),
+                             settings.min_void_volume_mm3);
   }
   return result;
 }

@@ -72,8 +72,7 @@ void ApplyOverride(YAML::Node root, const std::string& override_text) {
       node[key] = value;
       return;
     }
-    // A section the file does not have (e.g. --set run.steps=[plan]) is created empty.
-    if (!node[key].IsDefined()) node[key] = YAML::Node(YAML::NodeType::Map);
+    if (!node[key].IsDefined()) node[key] = YAML::Node(YAML::NodeType::Map);  // an absent optional section
     YAML::Node child = node[key];
     node.reset(child);
     start = dot + 1;
@@ -148,7 +147,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   }
 
   scenario.cell = internal::ParseCellSection(top, scenario.file.parent_path());
-  internal::ParseSimulationSection(top, &scenario.simulation);
+  internal::ParseSimulationSection(top, &scenario.simulation, scenario.file.parent_path());
   internal::ParseRunSection(top, &scenario.run);
   top.CheckNoUnknownKeys();
   return scenario;

@@ -2,9 +2,13 @@
 #include "planner/scenario/simulation_settings.h"
 #include "planner/scenario/yaml_fields.h"
 
+#include <system_error>
+
+#include "models/core/error.h"
+
 namespace waam::planner::internal {
 
-void ParseSimulationSection(YamlMap& top, SimulationSettings* out) {
+void ParseSimulationSection(YamlMap& top, SimulationSettings* out, const std::filesystem::path& base_dir) {
   if (!top.Has("simulation")) return;
   YamlMap sim = top.Map("simulation");
   SimulationSettings& s = *out;
@@ -22,6 +26,17 @@ void ParseSimulationSection(YamlMap& top, SimulationSettings* out) {
   s.edge_sag_factor = sim.Number("edge_sag_factor", 0.0, 10.0, s.edge_sag_factor);
   s.edge_spread_factor = sim.Number("edge_spread_factor", 0.0, 1.0, s.edge_spread_factor);
   s.step_mm = sim.Number("step_mm", 0.0, 10.0, s.step_mm);
+  s.min_void_volume_mm3 = sim.Number("min_void_volume_mm3", 0.0, 1.0e6, s.min_void_volume_mm3);
+  s.curvature_width = sim.Choice("curvature_width", {"csw", "none"}, s.curvature_width);
+  s.csw_min_radius_mm = sim.Number("csw_min_radius_mm", 1.0, 10000.0, s.csw_min_radius_mm);
+  if (sim.Has("csw_model")) {
+    std::filesystem::path file = sim.String("csw_model");
+    if (file.is_relative()) file = base_dir / file;
+    std::error_code ec;
+    WAAM_THROW_UNLESS(std::filesystem::is_regular_file(file, ec),
+                      sim.Where("csw_model") << ": model file " << file.string() << " not found");
+    s.csw_model = file.lexically_normal();
+  }
   sim.CheckNoUnknownKeys();
 }
 

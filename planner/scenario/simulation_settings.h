@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
 
 namespace waam::planner {
@@ -31,15 +32,25 @@ struct SimulationSettings {
   // Molten metal wets lower ground next to the bead: the parabolic cap continues past w/2 up to
   // (0.5 + edge_spread_factor) x w from the path, filling only where the ground lies below it (a free side).
   double edge_spread_factor = 0.15;
+  // Bead width on curved paths (Dai et al. CSW model): csw = wider and lower on curves by the model's curvature term,
+  // none = the planned width everywhere. csw_model: a model file from `waam fit csw` (empty = models/data/csw.json);
+  // radii below csw_min_radius_mm (the smallest radius the model was fitted to) are clamped to it.
+  std::string curvature_width = "csw";
+  std::filesystem::path csw_model;
+  double csw_min_radius_mm = 30.0;
   // Deposition step along the path, mm (0 = one voxel).
   double step_mm = 0.0;
+  // Voids and valleys smaller than this are voxel-scale gaps between beads, counted apart from the voids (mm3; the
+  // default is a 1 mm cube, eight voxels at 0.5 mm, well below the millimetre voids that milled sections show).
+  double min_void_volume_mm3 = 1.0;
 };
 
 namespace internal {
 class YamlMap;
-// Reads the optional `simulation:` mapping of the scenario's top level into `out` (defaults where a key is absent).
-// Throws InputError naming file, line and key for unknown keys and out-of-range values.
-void ParseSimulationSection(YamlMap& top, SimulationSettings* out);
+// Reads the optional `simulation:` mapping of the scenario's top level into `out` (defaults where a key is absent);
+// a relative csw_model path is taken from `base_dir` (the scenario's folder). Throws InputError naming file, line and
+// key for unknown keys, out-of-range values and a model file that does not exist.
+void ParseSimulationSection(YamlMap& top, SimulationSettings* out, const std::filesystem::path& base_dir = {});
 }  // namespace internal
 
 }  // namespace waam::planner

@@ -134,13 +134,15 @@ TEST_F(ScenarioTest, YamlSyntaxErrorGivesLine) {
 
 TEST_F(ScenarioTest, OverridesReplaceAndAddKeys) {
   const Scenario s =
-      LoadScenario(Write(Valid()), {"path.pattern=hybrid", "slicing.layer_height_mm=2.5", "path.seed=7"});
+      LoadScenario(Write(Valid()), {"path.pattern=hybrid", "slicing.layer_height_mm=2.5", "path.seed=7",
+                                    "simulation.voxel_mm=1", "simulation.curvature_width=none"});
   EXPECT_EQ(s.path.pattern, "hybrid");
   EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 2.5);
   EXPECT_EQ(s.path.seed, 7u);
-  // A section absent from the file is created by the override.
-  const Scenario t = LoadScenario(Write(Valid()), {"simulation.voxel_mm=1", "run.steps=[plan, check]"});
-  EXPECT_DOUBLE_EQ(t.simulation.voxel_mm, 1.0);
+  // An optional section the file does not have is created by the override.
+  EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 1.0);
+  EXPECT_EQ(s.simulation.curvature_width, "none");
+  const Scenario t = LoadScenario(Write(Valid()), {"run.steps=[plan, check]"});
   EXPECT_EQ(t.run.steps, (std::vector<std::string>{"plan", "check"}));
 }
 

@@ -37,6 +37,22 @@ TEST(SurfaceMetrics, BoundaryLagNeedsPositiveWidth) {
   }
 }
 
+// A 9 mm wall 6 mm beads wide has no column 1.5 w from its outline: the lag is not measured (NaN), not the negative
+// of the boundary's height.
+TEST(SurfaceMetrics, BoundaryLagOfAThinWallIsNotMeasured) {
+  HeightMap map;
+  map.voxel_mm = 0.5;
+  map.nx = 100;
+  map.ny = 18;
+  map.top_mm.assign(static_cast<std::size_t>(map.nx) * map.ny, 10.0f);
+  const planner::PolygonWithHoles wall{{{0, 0}, {50, 0}, {50, 9}, {0, 9}}, {}};
+  const BoundaryLag lag = MeasureBoundaryLag(map, {wall}, 6.0);
+  EXPECT_EQ(lag.interior_columns, 0u);
+  EXPECT_GT(lag.boundary_columns, 0u);
+  EXPECT_NEAR(lag.boundary_mean_mm, 10.0, 1e-6);
+  EXPECT_TRUE(std::isnan(lag.lag_mm)) << "got " << lag.lag_mm;
+}
+
 // One row of Table 9 (003): wire feed and travel speed in mm/min, bead width and the spacings in mm.
 struct Table9Row {
   double wire_feed = 0, travel = 0, w = 0, l = 0, d1 = 0, d2 = 0;

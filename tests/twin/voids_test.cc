@@ -38,6 +38,11 @@ TEST(Voids, FindsAKnownCavityAndTellsItFromAValley) {
   EXPECT_EQ(report.voids[0].voxels, 8u);
   EXPECT_NEAR(report.void_volume_mm3, 8.0, 1e-9);
   EXPECT_TRUE(report.valleys.empty());
+  const VoidReport filtered = FindVoids(grid, target, 8.5);  // a 2^3 mm cavity is below 8.5 mm3
+  EXPECT_TRUE(filtered.voids.empty()) << "a region below the minimum volume is not listed";
+  EXPECT_EQ(filtered.small_regions, 1u);
+  EXPECT_NEAR(filtered.small_volume_mm3, 8.0, 1e-9);
+  EXPECT_EQ(FindVoids(grid, target, 8.0).voids.size(), 1u) << "a region of exactly the minimum volume is kept";
   const std::vector<EmptyRegion> cut = SectionVoids(grid, target, 3.5);
   ASSERT_EQ(cut.size(), 1u) << "a cut through the cavity shows one hole";
   EXPECT_EQ(cut[0].voxels, 4u);

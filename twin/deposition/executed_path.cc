@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Geometry>
 
+#include "models/bead/csw_model.h"
 #include "models/core/error.h"
+#include "models/fit/model_file.h"
+#include "twin/deposition/curvature_width.h"
 
 namespace waam::twin {
 namespace {
@@ -94,6 +98,10 @@ ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::Sim
 std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
                                       double rapid_speed_mm_s) {
   WAAM_THROW_UNLESS(rapid_speed_mm_s > 0.0, "simulate: rapid speed = " << rapid_speed_mm_s << " mm/s: must be > 0");
+  std::optional<models::CswModel> csw;
+  if (settings.curvature_width == "csw") {
+    csw = models::CswModel::Load(settings.csw_model.empty() ? models::DefaultModelPath("csw") : settings.csw_model);
+  }
   std::vector<ExecutedPass> passes;
   double time_s = 0.0;
   for (const planner::LayerPath& layer : plan.layers) {
@@ -103,6 +111,7 @@ std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::
         double length = 0.0;
         for (std::size_t i = 1; i < run.size(); ++i) length += (run[i].p_P - run[i - 1].p_P).norm();
         ExecutedPass pass = BlendPass(run, settings, settings.voxel_mm);
+        if (csw) ApplyCurvatureWidth(*csw, settings.csw_min_radius_mm, &pass);
         pass.layer = layer.index;
         pass.start_time_s = time_s;
         // Time of the pass along the executed path at the planned speeds.
@@ -151,8 +160,8 @@ BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm
     hf *= 1.0 + (settings.stop_height_factor - 1.0) * t;
     wf *= 1.0 + (settings.stop_width_factor - 1.0) * t;
   }
-  section.width_mm *= wf;
-  section.height_mm *= hf;
+  section.width_mm *= wf * p.width_factor;
+  section.height_mm *= hf / p.width_factor;
   return section;
 }
 

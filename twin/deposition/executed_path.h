@@ -19,6 +19,9 @@ struct ExecutedPoint {
   double bead_height_mm = 0.0;                            // planned height, mm
   double speed_mm_s = 0.0;                                // travel speed, mm/s
   double s_mm = 0.0;                                      // arc length from the start of the pass, mm
+  // Width on the path's curvature over the straight-line width (CSW model, curvature_width.h); the height is divided
+  // by it, so the bead's area (set by wire feed and speed) is kept.
+  double width_factor = 1.0;
 };
 
 // One continuous weld pass: one arc start, one arc stop.
@@ -34,7 +37,9 @@ using BeadSection = models::ParabolicBead;
 
 // Splits every layer of `plan` into weld passes and blends their corners as `settings.blend` says (the TCP does not
 // reach a sharp vertex; the arc is tangent to both segments and at most half of each). Travel moves are timed at
-// `rapid_speed_mm_s` (> 0). Throws InputError for a weld move with a non-positive speed, width or height.
+// `rapid_speed_mm_s` (> 0). With settings.curvature_width = "csw" the beads widen on curves as the CSW model says
+// (curvature_width.h). Throws InputError for a weld move with a non-positive speed, width or height, or a CSW model
+// file that cannot be read.
 std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
                                       double rapid_speed_mm_s);
 

@@ -159,9 +159,10 @@ BoundaryLag MeasureBoundaryLag(const HeightMap& map, const std::vector<planner::
       for (int i = map.i0; i < map.i0 + map.nx; ++i) visit(map.ColumnCenter(i, j), map.At(i, j));
     }
   }
-  if (lag.interior_columns > 0) lag.interior_mean_mm = interior_sum / lag.interior_columns;
-  if (lag.boundary_columns > 0) lag.boundary_mean_mm = boundary_sum / lag.boundary_columns;
-  lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;
+  constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
+  lag.interior_mean_mm = lag.interior_columns > 0 ? interior_sum / lag.interior_columns : kNotMeasured;
+  lag.boundary_mean_mm = lag.boundary_columns > 0 ? boundary_sum / lag.boundary_columns : kNotMeasured;
+  lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;  // NaN when either side has no column
   return lag;
 }
 

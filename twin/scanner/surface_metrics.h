@@ -54,11 +54,12 @@ std::vector<double> RegionHeights(const HeightMap& map, const std::vector<planne
 
 // Boundary lag (003 Fig. 23-24): mean top height of the interior (columns more than 1.5 w from the outline) minus
 // the mean top height along the outer bead (columns w/4 to 3w/4 from the outline, around its centre line), mm.
-// Positive when the boundary is lower. `bead_width_mm` > 0.
+// Positive when the boundary is lower. `bead_width_mm` > 0. A part with no column 1.5 w from its outline (a thin
+// wall, a rib-web) has no interior to compare with: the lag and interior mean are then NaN (null in JSON).
 struct BoundaryLag {
-  double interior_mean_mm = 0.0;
-  double boundary_mean_mm = 0.0;
-  double lag_mm = 0.0;
+  double interior_mean_mm = 0.0;  // NaN without interior columns
+  double boundary_mean_mm = 0.0;  // NaN without boundary columns
+  double lag_mm = 0.0;            // NaN unless both were measured
   std::size_t interior_columns = 0;
   std::size_t boundary_columns = 0;
 };

@@ -112,11 +112,12 @@ std::vector<EmptyRegion> SectionVoids(const VoxelGrid& grid, const TargetVolume&
   return regions;
 }
 
-VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target) {
+VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target, double min_volume_mm3) {
   const double v = grid.voxel_mm();
   WAAM_THROW_UNLESS(std::abs(target.voxel_mm() - v) < 1e-12,
                     "voids: target voxel " << target.voxel_mm() << " mm differs from the grid's " << v << " mm");
   VoidReport report;
+  report.min_volume_mm3 = min_volume_mm3;
   const Eigen::Vector3i n = target.size();
   if ((n.array() <= 0).any()) return report;
   // Padded box: one ring of air around the target in x and y.
@@ -178,6 +179,11 @@ VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target) {
           }
         }
         const EmptyRegion region = Describe(cells, v);
+        if (region.volume_mm3 < min_volume_mm3) {
+          ++report.small_regions;
+          report.small_volume_mm3 += region.volume_mm3;
+          continue;
+        }
         (open ? report.valleys : report.voids).push_back(region);
       }
     }

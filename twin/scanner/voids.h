@@ -29,11 +29,16 @@ struct VoidReport {
   double void_max_length_mm = 0.0;
   double valley_volume_mm3 = 0.0;
   double valley_max_length_mm = 0.0;
+  // Enclosed regions and valleys smaller than the minimum volume: voxel-scale gaps, counted here only.
+  double min_volume_mm3 = 0.0;
+  std::size_t small_regions = 0;
+  double small_volume_mm3 = 0.0;
 };
 
 // Finds voids and valleys (6-connected regions, largest first) of `grid` inside `target` (same voxel size).
+// Regions smaller than `min_volume_mm3` are not listed, only counted in `small_regions` / `small_volume_mm3`.
 // Throws InputError if the voxel sizes differ.
-VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target);
+VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target, double min_volume_mm3 = 0.0);
 
 // The enclosed empty regions a horizontal cut at height `z_mm` shows (a milled section, 003 sec. 4.4.2): 4-connected
 // cells of the cut inside the target that the air around the part cannot reach within the cut. Longest first.
