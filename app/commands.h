@@ -25,5 +25,7 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner);       // app/fit_cli.c
 void AddCheckCommand(CLI::App& app, CommandRunner* runner);     // app/check_cli.cc
 void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_cli.cc
 void AddTuneVoidsCommand(CLI::App& app, CommandRunner* runner);  // app/tune_voids_cli.cc
+void AddRunCommand(CLI::App& app, CommandRunner* runner);       // app/run_cli.cc
+void AddBenchCommand(CLI::App& app, CommandRunner* runner);     // app/bench_cli.cc
 
 }  // namespace waam::app

@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   AddCheckCommand(app, &runner);
   AddSimulateCommand(app, &runner);
   AddTuneVoidsCommand(app, &runner);
+  AddRunCommand(app, &runner);
+  AddBenchCommand(app, &runner);
 
   try {
     app.parse(argc, argv);

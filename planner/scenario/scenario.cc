@@ -213,6 +213,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
 
   scenario.cell = internal::ParseCellSection(top, scenario.file.parent_path());
   internal::ParseSimulationSection(top, &scenario.simulation, scenario.file.parent_path());
+  internal::ParseRunSection(top, &scenario.run);
   top.CheckNoUnknownKeys();
   return scenario;
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "planner/scenario/cell_settings.h"
+#include "planner/scenario/run_settings.h"
 #include "planner/scenario/simulation_settings.h"
 #include "planner/scenario/void_filling_settings.h"
 
@@ -86,6 +87,7 @@ struct Scenario {
   ProcessSettings process;
   CellSettings cell;                 // optional `cell:` section (planner/scenario/cell_settings.h)
   SimulationSettings simulation;     // optional section `simulation` (voxel twin)
+  RunSettings run;                   // optional section `run` (the steps of `waam run`, planner/scenario/run_settings.h)
 };
 
 // Loads and validates a scenario file. Unknown keys, wrong types and out-of-range values throw InputError naming

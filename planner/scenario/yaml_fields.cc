@@ -127,6 +127,18 @@ std::vector<double> YamlMap::Numbers(const std::string& key, int size, double mi
   return Has(key) ? Numbers(key, size, min, max) : fallback;
 }
 
+std::vector<std::string> YamlMap::Strings(const std::string& key, const std::vector<std::string>& fallback) {
+  if (!Has(key)) return fallback;
+  YAML::Node value = Get(key);
+  WAAM_THROW_UNLESS(value.IsSequence(), Where(key) << ": must be a list of strings, e.g. [plan, simulate]");
+  std::vector<std::string> strings;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    WAAM_THROW_UNLESS(value[i].IsScalar(), Where(key) << "[" << i << "]: must be a string");
+    strings.push_back(value[i].Scalar());
+  }
+  return strings;
+}
+
 YamlMap YamlMap::Map(const std::string& key) {
   YAML::Node value = Get(key);
   WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required section '" << key << "'");

@@ -32,6 +32,8 @@ class YamlMap {
   std::vector<double> Numbers(const std::string& key, int size, double min, double max);
   std::vector<double> Numbers(const std::string& key, int size, double min, double max,
                               const std::vector<double>& fallback);
+  // A list of strings (`fallback` when the key is absent).
+  std::vector<std::string> Strings(const std::string& key, const std::vector<std::string>& fallback);
   // A nested mapping.
   YamlMap Map(const std::string& key);
   // A list of mappings.

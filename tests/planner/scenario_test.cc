@@ -142,6 +142,8 @@ TEST_F(ScenarioTest, OverridesReplaceAndAddKeys) {
   // An optional section the file does not have is created by the override.
   EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 1.0);
   EXPECT_EQ(s.simulation.curvature_width, "none");
+  const Scenario t = LoadScenario(Write(Valid()), {"run.steps=[plan, check]"});
+  EXPECT_EQ(t.run.steps, (std::vector<std::string>{"plan", "check"}));
 }
 
 TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {

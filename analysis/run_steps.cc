@@ -1,0 +1,103 @@
+// The built-in `waam run` steps (plan, check, simulate) and the step registry.
+#include "analysis/run_steps.h"
+
+#include <algorithm>
+
+#include "analysis/check_command.h"
+#include "analysis/plan_command.h"
+#include "analysis/simulate_command.h"
+#include "models/core/files.h"
+
+namespace waam::analysis::internal {
+namespace fs = std::filesystem;
+
+namespace {
+
+bool Always(const planner::Scenario&) { return true; }
+
+}  // namespace
+
+// To add a step (e.g. tune_voids when the scenario has a tuning section, compensate when it has a compensation
+// section): write `StepOutcome RunXStep(RunContext&, const fs::path&)` in its own file, declare it in run_steps.h
+// and add one line here; `needs` names the step whose results it reads from the context.
+const std::vector<RunStep>& RunSteps() {
+  static const std::vector<RunStep> steps = {
+      {"plan", nullptr, Always, RunPlanStep, "plan.json"},
+      {"check", "plan", Always, RunCheckStep, "check.json"},
+      {"simulate", "plan", Always, RunSimulateStep, "simulate.json"},
+  };
+  return steps;
+}
+
+nlohmann::json PickMetrics(const nlohmann::json& document, const std::vector<std::string>& keys) {
+  nlohmann::json metrics = nlohmann::json::object();
+  for (const std::string& key : keys) {
+    const nlohmann::json::json_pointer pointer(key);
+    if (document.contains(pointer)) metrics[key.substr(1)] = document.at(pointer);
+  }
+  return metrics;
+}
+
+StepOutcome RunPlanStep(RunContext& context, const fs::path& step_dir) {
+  PlanOptions options;
+  options.scenario = context.options.scenario;
+  options.out_dir = step_dir;
+  options.overrides = context.options.overrides;
+  options.quiet = context.options.quiet;
+  options.layer_images = context.options.images;
+  context.planned = RunPlan(options);
+  nlohmann::json document = PlanToJson(context.scenario, *context.planned);
+  StepOutcome outcome;
+  outcome.metrics = PickMetrics(document, {"/layers", "/passes", "/path_elements", "/weld_length_mm",
+                                           "/travel_length_mm", "/estimated_time_s", "/bead_width_mm",
+                                           "/bead_height_mm", "/layer_height_mm", "/travel_speed_mm_min"});
+  int max_passes = 0;
+  for (int passes : context.planned->stats.passes_per_layer) max_passes = std::max(max_passes, passes);
+  outcome.metrics["max_passes_per_layer"] = max_passes;
+  context.results["plan"] = std::move(document);
+  return outcome;
+}
+
+StepOutcome RunCheckStep(RunContext& context, const fs::path& step_dir) {
+  CheckOptions options;
+  options.scenario = context.options.scenario;
+  options.out_dir = step_dir;
+  options.overrides = context.options.overrides;
+  options.quiet = context.options.quiet;
+  options.images = context.options.images;
+  const twin::CheckReport report = RunCheckOnPlan(context.scenario, context.planned->plan, options);
+  nlohmann::json document = nlohmann::json::parse(ReadFile(step_dir / "check.json"));
+  StepOutcome outcome;
+  outcome.status = report.ok ? "ok" : "violations";
+  outcome.exit_code = report.ok ? 0 : 3;
+  outcome.metrics = PickMetrics(document, {"/ok", "/ik", "/samples", "/violation_count", "/min_joint_margin_deg",
+                                           "/max_joint_speed_ratio", "/min_j5_deg", "/max_torch_tilt_deg",
+                                           "/duration_s"});
+  nlohmann::json kinds = nlohmann::json::object();
+  for (const twin::CheckViolation& v : report.violations) kinds[v.kind] = kinds.value(v.kind, 0) + 1;
+  outcome.metrics["violations_by_kind"] = kinds;
+  context.results["check"] = std::move(document);
+  return outcome;
+}
+
+StepOutcome RunSimulateStep(RunContext& context, const fs::path& step_dir) {
+  SimulateOptions options;
+  options.scenario = context.options.scenario;
+  options.out_dir = step_dir;
+  options.overrides = context.options.overrides;
+  options.quiet = context.options.quiet;
+  options.images = context.options.images;
+  const twin::TwinResult result = SimulatePlanned(context.scenario, *context.planned, options);
+  nlohmann::json document = SimulationToJson(context.scenario, result);
+  document.erase("performance");  // timings and memory: summary.json keeps them under `timing`
+  StepOutcome outcome;
+  outcome.metrics = PickMetrics(
+      document, {"/voxels", "/deposited_volume_mm3", "/expected_volume_mm3", "/volume_error_pct",
+                 "/deviation/min_mm", "/deviation/max_mm", "/deviation/rms_mm", "/voids/count",
+                 "/voids/volume_mm3", "/valleys/count", "/ra_mm", "/waviness_mm", "/boundary_lag_mm",
+                 "/build_time_s"});
+  context.results["simulate"] = std::move(document);
+  return outcome;
+}
+
+}  // namespace waam::analysis::internal

@@ -1,0 +1,54 @@
+// The registry of `waam run` steps: what each step needs, when the default chain includes it, and how it runs.
+// Adding a step = one function (in its own file) and one line in the table of RunSteps() (analysis/run_steps.cc).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/run_command.h"
+#include "planner/planar_planner.h"
+#include "planner/scenario/scenario.h"
+
+namespace waam::analysis::internal {
+
+// What the steps of one run share: the scenario, the options, and what earlier steps produced.
+struct RunContext {
+  const planner::Scenario& scenario;
+  const RunOptions& options;
+  std::optional<planner::PlanResult> planned;  // set by the plan step
+  nlohmann::json results = nlohmann::json::object();  // each finished step's full JSON document, by step name
+};
+
+// What a step returns (status ok | violations; exit code 0 or 3; its key metrics, no timings).
+struct StepOutcome {
+  std::string status = "ok";
+  int exit_code = 0;
+  nlohmann::json metrics = nlohmann::json::object();
+};
+
+using StepFunction = StepOutcome (*)(RunContext& context, const std::filesystem::path& step_dir);
+
+struct RunStep {
+  const char* name;                              // the step's name in run.steps and its output folder
+  const char* needs;                             // a step that must have run before (nullptr: none)
+  bool (*in_default_chain)(const planner::Scenario&);  // true: run when the scenario lists no steps
+  StepFunction run;
+  const char* main_output;                       // the file marking the step complete, relative to its folder
+};
+
+// The registered steps in their default order.
+const std::vector<RunStep>& RunSteps();
+
+// The built-in steps (analysis/run_steps.cc).
+StepOutcome RunPlanStep(RunContext& context, const std::filesystem::path& step_dir);
+StepOutcome RunCheckStep(RunContext& context, const std::filesystem::path& step_dir);
+StepOutcome RunSimulateStep(RunContext& context, const std::filesystem::path& step_dir);
+
+// Copies the keys listed in `keys` (JSON pointers such as "/deviation/rms_mm") from `document` into a flat object
+// named by the pointers without the leading slash ("deviation/rms_mm"); missing keys are left out.
+nlohmann::json PickMetrics(const nlohmann::json& document, const std::vector<std::string>& keys);
+
+}  // namespace waam::analysis::internal

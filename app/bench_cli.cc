@@ -1,0 +1,58 @@
+// `waam bench [scenarios...] -o <dir>`: command-line options of the scenario benchmark.
+#include <unistd.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "analysis/bench_command.h"
+#include "app/commands.h"
+
+namespace waam::app {
+
+void AddBenchCommand(CLI::App& app, CommandRunner* runner) {
+  auto options = std::make_shared<analysis::BenchOptions>();
+  CLI::App* command = app.add_subcommand(
+      "bench",
+      "Benchmark scenarios reproducibly: each scenario runs as `waam run` in its own child process (plan, check,\n"
+      "simulate and the scenario's optional steps), one after the other, with its wall time and peak memory.\n"
+      "Arguments are scenario files or folders (every *.yaml under a folder); default: scenarios/. Scenarios with\n"
+      "`run: {expected_exit_code: 3}` (the planted cell faults) count as expected_fail when check finds the fault.\n"
+      "Writes to the output directory:\n"
+      "  <id>/                 the scenario's `waam run` outputs (summary.json, plan/, check/, simulate/), run.log\n"
+      "                        (its stdout and stderr) and bench_entry.json (written last: the completed result)\n"
+      "  bench.json            scenarios [{id, file, scenario, exit_code, expected_exit_code, outcome (pass |\n"
+      "                        expected_fail | fail), steps [{name, status, exit_code, outputs, metrics}], error,\n"
+      "                        timing {wall_s, peak_rss_mb, user_s, sys_s, steps}}], counts, reference (the papers'\n"
+      "                        figures next to ours), timing {total_s, scenarios_wall_s, reused_results, perf}\n"
+      "  report.html           one self-contained page: tables, published figures, model and void plots, pictures\n"
+      "An interrupted bench resumes: scenarios whose bench_entry.json matches the scenario text are not rerun\n"
+      "(--fresh reruns all). Inner-loop benchmarks: tools/perf_bench.sh <dir>/perf writes Google Benchmark JSON that\n"
+      "the report includes. Exit code 3 when a scenario did not end with its expected exit code.");
+  command->add_option("scenarios", options->scenarios, "Scenario files or folders (default: scenarios)");
+  command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
+  command->add_option("--set", options->overrides,
+                      "Override a setting in every scenario, key.path=value (repeatable), e.g. "
+                      "--set simulation.voxel_mm=1");
+  command->add_option("--perf", options->perf_dir,
+                      "Folder of Google Benchmark JSON files for the report (default: <out>/perf)");
+  command->add_flag("--fresh", options->fresh, "Rerun every scenario even if its completed result is there");
+  command->add_flag("-q,--quiet", options->quiet, "No progress lines on stderr");
+  command->callback([options, runner] {
+    *runner = [options] {
+      char self[4096];
+      const ssize_t n = readlink("/proc/self/exe", self, sizeof(self) - 1);
+      if (n > 0) options->waam_binary = std::string(self, static_cast<std::size_t>(n));
+      const nlohmann::json bench = analysis::RunBench(*options);
+      const nlohmann::json& c = bench["counts"];
+      const nlohmann::json& t = bench["timing"];
+      std::printf("%d scenarios: %d pass, %d expected fail, %d fail; %.1f s of scenario runs (%d results reused), "
+                  "%.1f s now -> %s\n",
+                  c["total"].get<int>(), c["pass"].get<int>(), c["expected_fail"].get<int>(), c["fail"].get<int>(),
+                  t["scenarios_wall_s"].get<double>(), t["reused_results"].get<int>(), t["total_s"].get<double>(),
+                  (options->out_dir / "report.html").string().c_str());
+      return c["fail"].get<int>() == 0 ? kExitOk : kExitViolations;
+    };
+  });
+}
+
+}  // namespace waam::app

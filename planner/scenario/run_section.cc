@@ -1,0 +1,23 @@
+// The scenario's optional `run` section: the steps of `waam run` and the exit code a benchmark expects.
+#include "models/core/error.h"
+#include "planner/scenario/run_settings.h"
+#include "planner/scenario/yaml_fields.h"
+
+namespace waam::planner::internal {
+
+void ParseRunSection(YamlMap& top, RunSettings* out) {
+  if (!top.Has("run")) return;
+  YamlMap run = top.Map("run");
+  if (run.Has("steps")) {
+    out->where = run.Where("steps");
+    out->steps = run.Strings("steps", {});
+    WAAM_THROW_UNLESS(!out->steps.empty(), out->where << ": must list at least one step, e.g. [plan, check]");
+  }
+  out->expected_exit_code = run.Integer("expected_exit_code", 0, 3, 0);
+  WAAM_THROW_UNLESS(out->expected_exit_code == 0 || out->expected_exit_code == 3,
+                    run.Where("expected_exit_code") << " = " << out->expected_exit_code
+                    << ": must be 0 (success) or 3 (check violations)");
+  run.CheckNoUnknownKeys();
+}
+
+}  // namespace waam::planner::internal
