@@ -24,5 +24,7 @@ void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_
 void AddFitCommand(CLI::App& app, CommandRunner* runner);       // app/fit_cli.cc
 void AddCheckCommand(CLI::App& app, CommandRunner* runner);     // app/check_cli.cc
 void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_cli.cc
+void AddDeviationCommand(CLI::App& app, CommandRunner* runner);   // app/distortion_cli.cc
+void AddCompensateCommand(CLI::App& app, CommandRunner* runner);  // app/distortion_cli.cc
 
 }  // namespace waam::app

@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   AddFitCommand(app, &runner);
   AddCheckCommand(app, &runner);
   AddSimulateCommand(app, &runner);
+  AddDeviationCommand(app, &runner);
+  AddCompensateCommand(app, &runner);
 
   try {
     app.parse(argc, argv);
