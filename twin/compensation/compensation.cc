@@ -5,9 +5,9 @@
 // j near r_i in its layer band (d_j signed deviation, n_j target normal at the closest point). A wall that moved
 // sideways by s gives +s on one face and -s on the other, both along the move, so the mean is the move (the central
 // axis bent against its deviation); a wall that only got thicker cancels. Only the component in the layer plane moves
-// the point. The build-direction shrinkage, which a scan sees only on the top surface, is compensated by scaling
-// every bead height (and the travel speed inversely, same wire feed) by H / (H + delta_top) -- a deviation from the
-// dissertation, which corrects the cross sections only (its speed-height model already held the shrinkage, sec. 6.6.2).
+// the point. Like the dissertation (which corrects the cross sections and the axis), the build-direction shrinkage is
+// not compensated: the top end face, whose height is set by the bead model, is left out of the deviation measures
+// (points whose target normal is within 45 degrees of the last layer's build direction) and of the corrections.
 #include "twin/compensation/compensation.h"
 
 #include <Eigen/Geometry>
@@ -28,6 +28,8 @@
 
 namespace waam::twin {
 namespace {
+
+constexpr double kTopCos = 0.7071;  // cos 45 deg
 
 // Spatial hash of scan points for radius queries.
 class PointHash {
@@ -80,16 +82,13 @@ void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& ta
 
 // The corrections S_i (mm) of every point of `nominal`, from the scan of the part built with the current path.
 std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
-                                                              double bead_width_mm, double* top_shift_mm) {
+                                                              double bead_width_mm) {
   const double radius = 0.5 * bead_width_mm + std::min(scan.max_abs_mm, 20.0) + 1.0;
   const PointHash hash(scan.points, radius);
   std::vector<std::vector<Eigen::Vector3d>> s(nominal.layers.size());
-  double top_sum = 0.0;
-  int top_n = 0;
   for (std::size_t l = 0; l < nominal.layers.size(); ++l) {
     const planner::LayerPath& layer = nominal.layers[l];
     const Eigen::Vector3d n = layer.build_dir_P.normalized();
-    const bool top = l + 1 == nominal.layers.size();
     s[l].assign(layer.points.size(), Eigen::Vector3d::Zero());
     std::vector<std::uint8_t> known(layer.points.size(), 0);
     for (std::size_t i = 0; i < layer.points.size(); ++i) {
@@ -100,10 +99,6 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
       hash.ForEachNear(p.p_P, radius, [&](int j) {
         const Eigen::Vector3d r = scan.points[j] - p.p_P;
         const double along = r.dot(n);
-        if (top && along > 0.0 && scan.normal[j].dot(n) > 0.7) {
-          top_sum += scan.deviation_mm[j];
-          ++top_n;
-        }
         if (std::abs(along) > band) return;
         sum += scan.deviation_mm[j] * scan.normal[j];
         ++count;
@@ -128,7 +123,6 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
       }
     }
   }
-  *top_shift_mm = top_n > 0 ? top_sum / top_n : 0.0;
   return s;
 }
 
@@ -308,10 +302,14 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
           ComputeDistortion(twin.depositor.grid(), history, options.params, options.distortion, &it.distortion);
       points = ScanDistortedPart(twin.depositor.grid(), field);
     }
-    const ScanDeviation against_target = MeasureScanDeviation(points, distance);
+    // Side surfaces only: the top end face (target normal within 45 degrees of the last layer's build direction).
+    const Eigen::Vector3d top_dir = nominal.layers.empty() ? Eigen::Vector3d::UnitZ()
+                                                           : Eigen::Vector3d(nominal.layers.back().build_dir_P.normalized());
+    const ScanDeviation against_target = ExcludeFacing(MeasureScanDeviation(points, distance), top_dir, kTopCos);
     it.max_abs_vs_target_mm = against_target.max_abs_mm;
     it.rms_vs_target_mm = against_target.rms_mm;
-    const ScanDeviation scan = twin_reference ? MeasureScanDeviation(points, *reference) : against_target;
+    const ScanDeviation scan =
+        twin_reference ? ExcludeFacing(MeasureScanDeviation(points, *reference), top_dir, kTopCos) : against_target;
     Summarize(scan, target_surface, options.axis_step_mm, &it);
     if (iter == 0) {
       result.tolerance_mm = options.tolerance_mm > 0.0 ? options.tolerance_mm : result.waviness_mm;
@@ -326,24 +324,12 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     result.last_scan = scan;
     if (!done && !diverging && iter < options.max_iterations) {
       // r*_i = r_i - S_i on the current path; S from the scan around the nominal point.
-      double top_shift = 0.0;
-      const std::vector<std::vector<Eigen::Vector3d>> s =
-          EstimateCorrections(nominal, scan, options.bead_width_mm, &top_shift);
-      double top_z = 0.0;
-      for (const planner::LayerPath& layer : nominal.layers) {
-        for (const planner::PathPoint& p : layer.points) top_z = std::max(top_z, p.p_P.z());
-      }
-      const double scale = top_z > 0.0 ? std::clamp(top_z / (top_z + top_shift), 0.8, 1.25) : 1.0;
+      const std::vector<std::vector<Eigen::Vector3d>> s = EstimateCorrections(nominal, scan, options.bead_width_mm);
       for (std::size_t l = 0; l < current.layers.size(); ++l) {
         for (std::size_t i = 0; i < current.layers[l].points.size(); ++i) {
-          planner::PathPoint& p = current.layers[l].points[i];
-          p.p_P -= s[l][i];
+          current.layers[l].points[i].p_P -= s[l][i];
           it.max_correction_mm = std::max(it.max_correction_mm, s[l][i].norm());
-          p.p_P.z() *= scale;
-          p.bead_height_mm *= scale;
-          p.speed_mm_s /= scale;
         }
-        current.layers[l].z_mm *= scale;
       }
     }
     result.iterations.push_back(it);

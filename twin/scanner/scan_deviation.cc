@@ -39,6 +39,30 @@ ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, con
   return r;
 }
 
+ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& dir, double min_cos) {
+  ScanDeviation r;
+  double sum = 0.0, sum2 = 0.0;
+  r.min_mm = std::numeric_limits<double>::infinity();
+  r.max_mm = -r.min_mm;
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    if (scan.normal[i].dot(dir) > min_cos) continue;
+    const double d = scan.deviation_mm[i];
+    r.points.push_back(scan.points[i]);
+    r.deviation_mm.push_back(d);
+    r.normal.push_back(scan.normal[i]);
+    sum += d;
+    sum2 += d * d;
+    r.min_mm = std::min(r.min_mm, d);
+    r.max_mm = std::max(r.max_mm, d);
+  }
+  if (r.points.empty()) return ScanDeviation{};
+  const double n = static_cast<double>(r.points.size());
+  r.mean_mm = sum / n;
+  r.rms_mm = std::sqrt(sum2 / n);
+  r.max_abs_mm = std::max(std::abs(r.min_mm), std::abs(r.max_mm));
+  return r;
+}
+
 double Ovality(double d_max_mm, double d_min_mm) {
   return d_max_mm + d_min_mm > 0.0 ? 200.0 * (d_max_mm - d_min_mm) / (d_max_mm + d_min_mm) : 0.0;  // eq. 6.5
 }
@@ -133,10 +157,18 @@ AxisComparison CompareAxis(const std::vector<Eigen::Vector3d>& target_surface,
   c.stations = CentralAxis(target_surface, step_mm, slab_mm);
   double reach = 0.0;
   for (const AxisStation& s : c.stations) reach = std::max(reach, 1.5 * s.radius_mm + slab_mm);
-  for (const AxisStation& s : c.stations) {
+  for (std::size_t i = 0; i < c.stations.size(); ++i) {
+    const AxisStation& s = c.stations[i];
     const SectionMeasure m = MeasureSection(scan, s, slab_mm, 1.5 * s.radius_mm + 2.0 * slab_mm + 5.0);
+    const SectionMeasure t = MeasureSection(target_surface, s, slab_mm, 1.5 * s.radius_mm + 2.0 * slab_mm + 5.0);
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
-    if (m.points > 0) {
+    // Only complete sections count: near the ends of a tilted or shifted part the slab cuts a partial ring whose
+    // caliper centre is not the axis.
+    // Within one section radius of either end the slab cuts the end cap or a plane that is still turning.
+    const bool end = s.s_mm < s.radius_mm || s.s_mm > c.stations.back().s_mm - s.radius_mm;
+    const bool complete = !end && m.points > 0 && m.d_min_mm >= 0.8 * t.d_min_mm && m.d_max_mm >= 0.8 * t.d_max_mm &&
+                          m.d_max_mm <= 1.25 * t.d_max_mm;
+    if (complete) {
       d = m.centroid - s.center;
       d -= d.dot(s.normal) * s.normal;
     }

@@ -26,6 +26,10 @@ struct ScanDeviation {
 // Measures every point of `scan` against `target`. Throws InputError for an empty scan.
 ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, const MeshDistance& target);
 
+// The points of `scan` whose target normal is NOT within acos(`min_cos`) of the unit `dir` (e.g. without the top
+// end face), with the statistics recomputed; empty if none is left.
+ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& dir, double min_cos);
+
 // One station of a central axis: the section centroid and the section plane normal (unit, along the axis).
 struct AxisStation {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
