@@ -87,9 +87,16 @@ TEST(ScanDeviation, OvalityOfEquation6_5) {
               0.2) << "a circle has no ovality";
 }
 
-TEST(ScanDeviation, CentralAxisFollowsATiltedTubeAndSeesAShift) {
+TEST(ScanDeviation, CentralAxisFollowsALeaningTubeAndSeesAShift) {
+  // A tube built on a flat substrate that leans along x: horizontal circles of radius 20 centred at (0.3 z, 0, z).
   const Eigen::Vector3d dir = Eigen::Vector3d(0.3, 0.0, 1.0).normalized();
-  const auto tube = EllipticTube(20, 20, 60, dir);
+  std::vector<Eigen::Vector3d> tube;
+  for (double z = 0.0; z <= 60.0; z += 0.25) {
+    for (int k = 0; k < 360; ++k) {
+      const double q = k * M_PI / 180.0;
+      tube.emplace_back(0.3 * z + 20.0 * std::cos(q), 20.0 * std::sin(q), z);
+    }
+  }
   const auto axis = CentralAxis(tube, 2.0, 1.0);
   ASSERT_GT(axis.size(), 10u);
   EXPECT_GT(axis[axis.size() / 2].normal.dot(dir), 0.99) << "the slicing plane turns normal to the tube axis";

@@ -139,6 +139,9 @@ std::vector<AxisStation> CentralAxis(const std::vector<Eigen::Vector3d>& surface
     if (!axis.empty()) {
       const Eigen::Vector3d d = s.center - axis.back().center;
       if (d.norm() < 1e-6) break;
+      // Past the end the slab catches a partial ring whose centre runs off: stop when the plane would turn by more
+      // than 30 degrees in one step or the section grows by a quarter over the first.
+      if (d.normalized().dot(axis.back().normal) < 0.866 || s.radius_mm > 1.25 * axis.front().radius_mm) break;
       s.normal = d.normalized();   // the plane turns perpendicular to I_i I_{i+1}
       s.s_mm = axis.back().s_mm + d.norm();
     } else {
@@ -164,8 +167,9 @@ AxisComparison CompareAxis(const std::vector<Eigen::Vector3d>& target_surface,
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
     // Only complete sections count: near the ends of a tilted or shifted part the slab cuts a partial ring whose
     // caliper centre is not the axis.
-    // Within one section radius of either end the slab cuts the end cap or a plane that is still turning.
-    const bool end = s.s_mm < s.radius_mm || s.s_mm > c.stations.back().s_mm - s.radius_mm;
+    // Within half a section radius (at most 15 % of the axis) of either end the slab cuts the end cap or a plane that is still turning.
+    const double margin = std::min(0.5 * s.radius_mm, 0.15 * c.stations.back().s_mm);
+    const bool end = s.s_mm < margin || s.s_mm > c.stations.back().s_mm - margin;
     const bool complete = !end && m.points > 0 && m.d_min_mm >= 0.8 * t.d_min_mm && m.d_max_mm >= 0.8 * t.d_max_mm &&
                           m.d_max_mm <= 1.25 * t.d_max_mm;
     if (complete) {
