@@ -13,7 +13,9 @@ void AddPlanCommand(CLI::App& app, CommandRunner* runner) {
       "plan",
       "Slice a part and plan its weld path layer by layer.\n"
       "Reads a scenario YAML (part mesh or generator, layer height, path pattern contour|zigzag|hybrid|continuous,\n"
-      "bead width, overlap model, process speeds) and writes to the output directory:\n"
+      "bead width, overlap model, process speeds; or slicing.type skeleton for bent thin-walled tubes: planes along\n"
+      "the central axis, layers of 1-2 mm thickness, speed and width per point, path pattern spiral|contour)\n"
+      "and writes to the output directory:\n"
       "  plan.json       layers, passes (arc starts), passes_per_layer, path_elements, weld_length_mm,\n"
       "                  travel_length_mm, estimated_time_s, the mesh report\n"
       "  plan.h5         /layers/layer_NNNN: one row per path point (x, y, z mm, tool direction, bead width and\n"

@@ -12,6 +12,7 @@
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/path/layer_pattern.h"
+#include "planner/skeleton_planner.h"
 #include "planner/slicing/planar_slicer.h"
 
 namespace waam::planner {
@@ -34,6 +35,7 @@ void PlaceOnSubstrate(TriangleMesh* mesh, MeshReport* report) {
 }  // namespace
 
 PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
+  if (scenario.slicing.type == "skeleton") return PlanSkeletonScenario(scenario, progress);
   PlanResult result;
   if (!scenario.part.mesh_path.empty()) {
     result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);
@@ -116,6 +118,8 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   }
   if (progress) progress->Finish();
   result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
+  result.layer_height_min_mm = result.layer_height_max_mm = result.layer_height_mm;
+  result.speed_min_mm_min = result.speed_max_mm_min = result.travel_speed_mm_min;
   return result;
 }
 

@@ -2,6 +2,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
@@ -26,6 +29,13 @@ struct PlanResult {
   double travel_speed_mm_min = 0.0; // the welding speed used
   double bead_width_mm = 0.0;       // the bead width used (from the scenario or the width-height model)
   std::string speed_clamp = "none"; // speed_height mode: none | at_minimum | at_maximum of the feasible window
+  // Non-uniform layers (slicing.type skeleton): ranges over all weld points; equal to the values above otherwise.
+  double layer_height_min_mm = 0.0;  // thinnest planned layer thickness at a point, mm
+  double layer_height_max_mm = 0.0;  // thickest, mm
+  double speed_min_mm_min = 0.0;     // slowest weld travel speed, mm/min
+  double speed_max_mm_min = 0.0;     // fastest, mm/min
+  int layers_out_of_range = 0;       // skeleton layers whose thickness left [h_min, h_max] (Fig. 56 could not fix)
+  std::vector<Eigen::Vector3d> axis_P;  // skeleton: central axis (chain of section centroids), part frame, mm
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

@@ -19,6 +19,7 @@
 #include "models/core/error.h"
 #include "planner/mesh/extrude.h"
 #include "planner/mesh/mesh_ops.h"
+#include "planner/mesh/tube_generators.h"
 
 namespace waam::planner {
 namespace {
@@ -45,6 +46,7 @@ class Args {
   int Int(const std::string& name, std::size_t i = 0) const { return static_cast<int>(std::lround((*this)(name, i))); }
   const std::vector<double>& List(const std::string& name) const { return values_.at(name); }
   const std::string& where() const { return where_; }
+  const std::map<std::string, std::vector<double>>& values() const { return values_; }
 
  private:
   std::map<std::string, std::vector<double>> values_;
@@ -192,6 +194,18 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                     return BuildTorus(a("major_radius_mm"), a("minor_radius_mm"), a.Int("major_segments"),
                                       a.Int("minor_segments"));
                   }};
+    r["bent_tube"] = {"thin-walled tube swept along a straight-arc-straight axis (dissertation 6.2, parts I-IV)",
+                      {{"diameter_mm", {100.0, 100.0}, 2, 1.0, kBig, false,
+                        "mid-wall section size at base and top: diameter, or width across flats (mm)"},
+                       {"sides", {0.0, 0.0}, 2, 0, 64, true, "section at base and top: 0 circle, 4 rounded square, n n-gon"},
+                       {"squareness_exponent", {6.0}, 1, 2.0, 50.0, false, "rounded square |x|^p + |y|^p = a^p"},
+                       {"wall_mm", {4.0}, 1, 0.1, 100.0, false, "wall thickness (mm)"},
+                       {"bend_radius_mm", {150.0}, 1, 1.0, kBig, false, "radius of the central axis' arc (mm)"},
+                       {"bend_angle_deg", {90.0}, 1, 1.0, 180.0, false, "bend angle (deg)"},
+                       {"straight_mm", {20.0, 0.0}, 2, 0.0, kBig, false, "straight lengths before and after the bend (mm)"},
+                       {"section_points", {128.0}, 1, 8, 4096, true, "points around the section"},
+                       {"axis_step_mm", {1.0}, 1, 0.1, 100.0, false, "section spacing along the axis (mm)"}},
+                      [](const Args& a) { return BuildBentTube(BentTubeSpecFromParams(a.values()), a.where()).mesh; }};
     r["plate_with_holes"] = {"plate with round through-holes",
                              {{"size_mm", {160.0, 100.0, 12.0}, 3, 0.1, kBig, false, "x, y, thickness (mm)"},
                               {"hole_diameters_mm", {30.0, 20.0, 20.0}, 0, 0.1, kBig, false, "one per hole (mm)"},
@@ -288,7 +302,8 @@ std::string Join(const std::vector<double>& values) {
 
 }  // namespace
 
-TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params, const std::string& where) {
+GeneratorParams ResolveGeneratorParams(const std::string& type, const GeneratorParams& params,
+                                       const std::string& where) {
   const auto& registry = Registry();
   const auto it = registry.find(type);
   if (it == registry.end()) {
@@ -322,7 +337,12 @@ TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params
     }
     values[p.name] = v;
   }
-  TriangleMesh mesh = spec.build(Args(std::move(values), where));
+  return values;
+}
+
+TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params, const std::string& where) {
+  GeneratorParams values = ResolveGeneratorParams(type, params, where);
+  TriangleMesh mesh = Registry().at(type).build(Args(std::move(values), where));
   // Centre the bounding box on x = y = 0 and rest the part on z = 0.
   Eigen::Vector3d lo, hi;
   BoundingBox(mesh, &lo, &hi);

@@ -19,6 +19,10 @@ using GeneratorParams = std::map<std::string, std::vector<double>>;
 // parameter, a wrong number of values, a value out of range or parameters that contradict each other.
 TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params, const std::string& where);
 
+// The parameters of `type` after the same checks as GeneratePart, with every default filled in.
+GeneratorParams ResolveGeneratorParams(const std::string& type, const GeneratorParams& params,
+                                       const std::string& where);
+
 // The generator type names, sorted.
 std::vector<std::string> GeneratorTypes();
 

@@ -6,17 +6,20 @@ namespace waam::planner {
 PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s) {
   PathStats stats;
   stats.layers = plan.layers.size();
+  bool arc_on = false;
+  const PathPoint* last = nullptr;  // the previous layer's last point
   for (const LayerPath& layer : plan.layers) {
     std::size_t passes = 0;
     std::size_t elements = 0;
-    bool arc_on = false;
     for (std::size_t i = 0; i < layer.points.size(); ++i) {
       const PathPoint& point = layer.points[i];
-      if (i == 0) {
+      // A layer starts a new pass unless its first move continues the previous layer's (continuous spiral).
+      if (i == 0 && !(point.weld && last != nullptr)) {
         arc_on = false;
         continue;
       }
-      const double length = (point.p_P - layer.points[i - 1].p_P).norm();
+      const PathPoint& from = i == 0 ? *last : layer.points[i - 1];
+      const double length = (point.p_P - from.p_P).norm();
       if (point.weld) {
         if (!arc_on) ++passes;
         ++elements;
@@ -28,6 +31,7 @@ PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s) {
       }
       arc_on = point.weld;
     }
+    if (!layer.points.empty()) last = &layer.points.back();
     stats.passes += passes;
     stats.passes_per_layer.push_back(passes);
     stats.path_elements += elements;

@@ -13,7 +13,8 @@ namespace waam::planner {
 
 // One point of the torch path in the part frame P.
 // `weld` describes the move that ENDS at this point: true = arc on (a bead is laid from the previous point to this
-// one), false = arc off (a travel move). The first point of a layer has weld = false.
+// one), false = arc off (a travel move). The first point of a layer has weld = false, except in a continuous spiral
+// (path.pattern spiral), where weld = true means the move from the previous layer's last point continues its pass.
 struct PathPoint {
   Eigen::Vector3d p_P = Eigen::Vector3d::Zero();               // TCP position, mm
   Eigen::Vector3d tool_dir_P = Eigen::Vector3d::UnitZ();       // unit vector from the TCP up the torch axis

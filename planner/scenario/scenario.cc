@@ -96,8 +96,21 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   // slicing
   {
     YamlMap slicing = top.Map("slicing");
-    scenario.slicing.type = slicing.Choice("type", {"planar"}, "planar");
-    scenario.slicing.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0);
+    SlicingSettings& sl = scenario.slicing;
+    sl.type = slicing.Choice("type", {"planar", "skeleton"}, "planar");
+    if (sl.type == "skeleton") {
+      sl.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0, 1.5);
+      sl.h_min_mm = slicing.Number("h_min_mm", 0.05, 20.0, 1.0);
+      sl.h_max_mm = slicing.Number("h_max_mm", 0.05, 20.0, 2.0);
+      WAAM_THROW_UNLESS(sl.h_max_mm >= sl.h_min_mm, slicing.Where("h_max_mm") << " = " << sl.h_max_mm
+                                                     << ": must be >= slicing.h_min_mm = " << sl.h_min_mm);
+      sl.point_spacing_mm = slicing.Number("point_spacing_mm", 0.1, 100.0, 2.0);
+      sl.first_step_mm = slicing.Number("first_step_mm", 0.0, 20.0, 0.0);
+      sl.beta_deg = slicing.Number("beta_deg", 1e-4, 10.0, 0.1);
+      sl.wall_mm = slicing.Number("wall_mm", 0.0, 100.0, 0.0);
+    } else {
+      sl.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0);
+    }
     slicing.CheckNoUnknownKeys();
   }
 
@@ -105,8 +118,16 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   {
     YamlMap path = top.Map("path");
     PathSettings& s = scenario.path;
-    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous"}, "");
-    s.bead_width_mm = path.Number("bead_width_mm", 0.5, 50.0);
+    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous", "spiral"}, "");
+    WAAM_THROW_UNLESS(scenario.slicing.type == "skeleton" || s.pattern != "spiral",
+                      path.Where("pattern") << " = spiral: needs slicing.type = skeleton");
+    WAAM_THROW_UNLESS(scenario.slicing.type != "skeleton" || s.pattern == "spiral" || s.pattern == "contour",
+                      path.Where("pattern") << " = " << s.pattern
+                                            << ": slicing.type = skeleton plans a single-bead wall: use spiral "
+                                               "(one pass) or contour (one closed pass per layer)");
+    // Skeleton slicing takes the width at every point from the width-height model (eq. 6.7).
+    s.bead_width_mm = scenario.slicing.type == "skeleton" ? path.Number("bead_width_mm", 0.5, 50.0, s.bead_width_mm)
+                                                          : path.Number("bead_width_mm", 0.5, 50.0);
     s.overlap_model = path.Choice("overlap_model", {"proposed", "existing"}, "proposed");
     if (path.Has("zigzag_angle_deg")) {
       const std::string raw = path.String("zigzag_angle_deg");
@@ -126,7 +147,10 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   {
     YamlMap process = top.Map("process");
     ProcessSettings& p = scenario.process;
-    p.travel_speed_mm_min = process.Number("travel_speed_mm_min", 10.0, 10000.0);
+    // Skeleton slicing takes the speed at every point from the speed-height model (eq. 6.6).
+    p.travel_speed_mm_min = scenario.slicing.type == "skeleton"
+                                ? process.Number("travel_speed_mm_min", 10.0, 10000.0, p.travel_speed_mm_min)
+                                : process.Number("travel_speed_mm_min", 10.0, 10000.0);
     p.wire_feed_mm_min = process.Number("wire_feed_mm_min", 100.0, 30000.0);
     p.wire_diameter_mm = process.Number("wire_diameter_mm", 0.6, 2.4, 1.0);
     p.deposition_efficiency = process.Number("deposition_efficiency", 0.05, 1.0, 1.0);

@@ -21,12 +21,19 @@ struct PartSpec {
 };
 
 struct SlicingSettings {
-  std::string type = "planar";       // planar (later: cone, cylinder, skeleton, multi-directional)
-  double layer_height_mm = 1.5;      // > 0
+  std::string type = "planar";       // planar | skeleton (later: cone, cylinder, multi-directional)
+  double layer_height_mm = 1.5;      // > 0 (planar; not used by skeleton)
+  // skeleton: adaptive slicing along the central axis (dissertation 6.3.1, Fig. 56; Table 16 limits)
+  double h_min_mm = 1.0;             // thinnest depositable layer, mm
+  double h_max_mm = 2.0;             // thickest depositable layer, mm
+  double point_spacing_mm = 2.0;     // path point spacing along each layer, mm (2 mm in sec. 6.3.3)
+  double first_step_mm = 0.0;        // initial moving distance h', mm; 0 = (h_min + h_max) / 2
+  double beta_deg = 0.1;             // plane re-orientation threshold on gamma (eq. 5.26), deg
+  double wall_mm = 0.0;              // wall of the part for its mid-wall path, mm; 0 = measured on the base section
 };
 
 struct PathSettings {
-  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous
+  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous | spiral (skeleton slicing only)
   double bead_width_mm = 6.0;          // > 0
   std::string overlap_model = "proposed";  // proposed (0.738 w / 0.47 w / 0.5 w) | existing (0.738 w everywhere)
   bool zigzag_angle_auto = true;       // minimum-width direction (Ding Lemma 1)

@@ -57,7 +57,7 @@ INSTANTIATE_TEST_SUITE_P(Generators, EveryGenerator, ::testing::ValuesIn(Generat
 
 std::vector<std::string> PrismTypes() {
   std::vector<std::string> types = GeneratorTypes();
-  std::erase_if(types, [](const std::string& t) { return t == "sphere" || t == "torus"; });
+  std::erase_if(types, [](const std::string& t) { return t == "sphere" || t == "torus" || t == "bent_tube"; });
   return types;
 }
 INSTANTIATE_TEST_SUITE_P(Generators, PrismGenerator, ::testing::ValuesIn(PrismTypes()));
@@ -65,7 +65,7 @@ INSTANTIATE_TEST_SUITE_P(Generators, PrismGenerator, ::testing::ValuesIn(PrismTy
 TEST(Generators, ListsTheRequiredTypes) {
   const std::vector<std::string> types = GeneratorTypes();
   for (const char* type : {"box", "plate_with_holes", "l_shape", "t_shape", "ding_a", "ding_b", "ding_c", "ding_d",
-                           "cylinder", "rib_web", "sphere", "torus"}) {
+                           "cylinder", "rib_web", "sphere", "torus", "bent_tube"}) {
     EXPECT_NE(std::find(types.begin(), types.end(), type), types.end()) << type;
   }
 }
@@ -125,7 +125,7 @@ std::string ErrorOf(const std::string& type, const GeneratorParams& params) {
 }
 
 TEST(GeneratorErrors, NameTheTypeParameterAndRule) {
-  EXPECT_THAT(ErrorOf("blob", {}), HasSubstr("s.yaml:7: part.generator: unknown generator type 'blob' (known: box"));
+  EXPECT_THAT(ErrorOf("blob", {}), HasSubstr("s.yaml:7: part.generator: unknown generator type 'blob' (known: bent_tube, box"));
   EXPECT_THAT(ErrorOf("box", {{"radius_mm", {1}}}),
               HasSubstr("s.yaml:7: part.generator: unknown parameter 'radius_mm' for generator box (known: size_mm)"));
   EXPECT_THAT(ErrorOf("box", {{"size_mm", {1, 2}}}), HasSubstr("box.size_mm = [1, 2]: needs 3 values"));

@@ -96,39 +96,48 @@ std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::
   WAAM_THROW_UNLESS(rapid_speed_mm_s > 0.0, "simulate: rapid speed = " << rapid_speed_mm_s << " mm/s: must be > 0");
   std::vector<ExecutedPass> passes;
   double time_s = 0.0;
-  for (const planner::LayerPath& layer : plan.layers) {
-    std::vector<ExecutedPoint> run;
-    auto flush = [&]() {
-      if (run.size() >= 2) {
-        double length = 0.0;
-        for (std::size_t i = 1; i < run.size(); ++i) length += (run[i].p_P - run[i - 1].p_P).norm();
-        ExecutedPass pass = BlendPass(run, settings, settings.voxel_mm);
-        pass.layer = layer.index;
-        pass.start_time_s = time_s;
-        // Time of the pass along the executed path at the planned speeds.
-        for (std::size_t i = 1; i < pass.points.size(); ++i) {
-          time_s += (pass.points[i].p_P - pass.points[i - 1].p_P).norm() / pass.points[i].speed_mm_s;
-        }
-        if (pass.points.size() >= 2 && length > 0.0) passes.push_back(std::move(pass));
+  // A run may carry over into the next layer when that layer's first move is a weld move (continuous spiral); the
+  // pass then keeps the layer it started in.
+  std::vector<ExecutedPoint> run;
+  int run_layer = 0;
+  auto flush = [&]() {
+    if (run.size() >= 2) {
+      double length = 0.0;
+      for (std::size_t i = 1; i < run.size(); ++i) length += (run[i].p_P - run[i - 1].p_P).norm();
+      ExecutedPass pass = BlendPass(run, settings, settings.voxel_mm);
+      pass.layer = run_layer;
+      pass.start_time_s = time_s;
+      // Time of the pass along the executed path at the planned speeds.
+      for (std::size_t i = 1; i < pass.points.size(); ++i) {
+        time_s += (pass.points[i].p_P - pass.points[i - 1].p_P).norm() / pass.points[i].speed_mm_s;
       }
-      run.clear();
-    };
+      if (pass.points.size() >= 2 && length > 0.0) passes.push_back(std::move(pass));
+    }
+    run.clear();
+  };
+  const planner::PathPoint* last = nullptr;  // the previous layer's last point
+  for (const planner::LayerPath& layer : plan.layers) {
     for (std::size_t i = 0; i < layer.points.size(); ++i) {
       const planner::PathPoint& p = layer.points[i];
-      if (i > 0 && p.weld) {
+      const planner::PathPoint* from = i > 0 ? &layer.points[i - 1] : last;
+      if (from != nullptr && p.weld) {
         WAAM_THROW_UNLESS(p.speed_mm_s > 0.0 && p.bead_width_mm > 0.0 && p.bead_height_mm > 0.0,
                           "simulate: layer " << layer.index << " point " << i << ": weld move needs speed, bead "
                           "width and height > 0 (got " << p.speed_mm_s << " mm/s, " << p.bead_width_mm << " mm, "
                           << p.bead_height_mm << " mm)");
-        if (run.empty()) run.push_back(FromPathPoint(layer.points[i - 1]));
+        if (run.empty()) {
+          run.push_back(FromPathPoint(*from));
+          run_layer = layer.index;
+        }
         run.push_back(FromPathPoint(p));
       } else {
         flush();
         if (i > 0) time_s += (p.p_P - layer.points[i - 1].p_P).norm() / rapid_speed_mm_s;
       }
     }
-    flush();
+    if (!layer.points.empty()) last = &layer.points.back();
   }
+  flush();
   return passes;
 }
 
