@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   AddTuneVoidsCommand(app, &runner);
   AddRunCommand(app, &runner);
   AddBenchCommand(app, &runner);
+  AddDeviationCommand(app, &runner);
+  AddCompensateCommand(app, &runner);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,116 @@
+// `waam compensate`: plan the scenario, run the compensation loop in the twin, write the corrected path and program.
+#include <iostream>
+
+#include "analysis/check_command.h"
+#include "analysis/distortion_command.h"
+#include "analysis/plan_command.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/core/progress.h"
+#include "models/fit/model_file.h"
+#include "planner/planar_planner.h"
+#include "planner/scenario/scenario.h"
+#include "twin/scanner/point_cloud_io.h"
+
+namespace waam::analysis {
+namespace {
+
+nlohmann::json IterationJson(const twin::CompensationIteration& it) {
+  return {{"max_abs_deviation_mm", it.max_abs_deviation_mm},
+          {"rms_deviation_mm", it.rms_deviation_mm},
+          {"min_deviation_mm", it.min_deviation_mm},
+          {"max_deviation_mm", it.max_deviation_mm},
+          {"axis_deviation_mm", it.axis_deviation_mm},
+          {"ovality_pct", it.ovality_pct},
+          {"max_abs_vs_target_mm", it.max_abs_vs_target_mm},
+          {"rms_vs_target_mm", it.rms_vs_target_mm},
+          {"max_correction_mm", it.max_correction_mm},
+          {"real_scan", it.real_scan},
+          {"distortion",
+           {{"elements", it.distortion.elements},
+            {"dofs", it.distortion.dofs},
+            {"nonzeros", it.distortion.nonzeros},
+            {"solves", it.distortion.solves},
+            {"dropped_elements", it.distortion.dropped_elements},
+            {"solve_s", it.distortion.solve_s},
+            {"max_displacement_mm", it.distortion.max_displacement_mm}}}};
+}
+
+}  // namespace
+
+twin::CompensationResult RunCompensate(const CompensateOptions& options) {
+  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+  const std::filesystem::path model_path =
+      options.model.empty() ? models::DefaultModelPath("distortion") : options.model;
+  twin::CompensationOptions loop;
+  loop.params = models::ReadDistortionParams(model_path);
+  loop.max_iterations = options.max_iterations;
+  loop.tolerance_mm = options.tolerance_mm;
+  loop.rapid_speed_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
+  loop.wire_feed_mm_s = scenario.process.wire_feed_mm_min / 60.0;
+  loop.bead_width_mm = scenario.path.bead_width_mm;
+  loop.distortion.mode = options.mode.empty() ? loop.params.mode : options.mode;
+  loop.distortion.element_mm = options.element_mm;
+  loop.distortion.groups = options.groups;
+  twin::ValidateDistortionOptions(loop.distortion);
+  if (!options.first_scan.empty()) loop.first_scan = twin::ReadPointCloud(options.first_scan, 0.5);
+  planner::PlanResult planned;
+  {
+    Progress progress("plan", 0, "layers", options.quiet);
+    planned = planner::PlanScenario(scenario, &progress);
+  }
+  WAAM_THROW_UNLESS(!planned.mesh.facets.empty(), options.scenario.string() << ": compensate needs a target part mesh");
+  EnsureOutputDirectory(options.out_dir);
+  Progress progress("compensate", static_cast<std::size_t>(options.max_iterations) + 1, "builds", options.quiet);
+  const twin::CompensationResult result =
+      twin::Compensate(planned.plan, planned.mesh, scenario.simulation, loop,
+                       [&](int i, const twin::CompensationIteration&) { progress.Update(i + 1); });
+  progress.Finish();
+
+  WritePlanH5(result.plan, options.out_dir / "compensated_path.h5");
+  twin::WritePlyWithDeviation(options.out_dir / "scan_before.ply", result.first_scan.points,
+                              result.first_scan.deviation_mm);
+  twin::WritePlyWithDeviation(options.out_dir / "scan_after.ply", result.last_scan.points,
+                              result.last_scan.deviation_mm);
+  if (options.images) {
+    const double range = std::max(result.first_scan.max_abs_mm, result.last_scan.max_abs_mm);
+    WriteScanDeviationPng(result.first_scan, "before compensation", range, options.out_dir / "deviation_before.png");
+    WriteScanDeviationPng(result.last_scan,
+                          "after " + std::to_string(result.iterations.size() - 1) + " compensation(s)", range,
+                          options.out_dir / "deviation_after.png");
+  }
+  nlohmann::json program = {{"written", false}};
+  if (options.program) {
+    // The compensated path through the cell check, which writes program.ls / program.csv for the robot.
+    CheckOptions check;
+    check.out_dir = options.out_dir / "program";
+    check.quiet = true;
+    check.images = false;
+    check.program = true;
+    const twin::CheckReport report = RunCheckOnPlan(scenario, result.plan, check);
+    program = {{"written", true}, {"dir", "program"}, {"check", "program/check.json"}};
+  }
+  nlohmann::json iterations = nlohmann::json::array();
+  for (const twin::CompensationIteration& it : result.iterations) iterations.push_back(IterationJson(it));
+  const nlohmann::json json = {
+      {"scenario", scenario.name},
+      {"model", model_path.string()},
+      {"mode", loop.distortion.mode},
+      {"element_mm", loop.distortion.element_mm},
+      {"groups", loop.distortion.groups},
+      {"reference", result.reference},
+      {"tolerance_mm", result.tolerance_mm},
+      {"waviness_mm", result.waviness_mm},
+      {"converged", result.converged},
+      {"status", result.status},
+      {"message", result.message},
+      {"first_scan", options.first_scan.empty() ? "" : options.first_scan.string()},
+      {"iterations", iterations},
+      {"program", program},
+  };
+  WriteFileAtomic(options.out_dir / "compensate.json", json.dump(2) + "\n");
+  if (!options.quiet) std::cerr << "compensate: " << result.message << "\n";
+  return result;
+}
+
+}  // namespace waam::analysis

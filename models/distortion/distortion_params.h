@@ -1,0 +1,38 @@
+// Parameters of the inherent-strain distortion model: shrinkage strains, their heat-input dependence, the substrate.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace waam::models {
+
+// The fitted distortion parameters (model file models/data/distortion.json). The inherent strain of a deposited
+// voxel is eps(q) = strain x (q / reference_heat_input)^heat_exponent, q = heat input per length of its bead.
+struct DistortionParams {
+  double strain = 0.004;                 // in-layer shrinkage strain at the reference heat input, 1 (> 0 shrinks)
+  double vertical_ratio = 0.5;           // build-direction strain / in-layer strain, 1
+  double heat_exponent = 0.5;            // n of (q / q_ref)^n, 1
+  double reference_heat_input_j_mm = 240.0;  // q_ref, J/mm (CMT, 1.0 mm steel wire 3.2 m/min at 400 mm/min)
+  double arc_energy_per_wire_j_mm = 30.0;    // arc energy per mm of wire fed (synergic line), J/mm
+  double substrate_stiffness_n_mm3 = 2000.0; // Winkler modulus of the clamped substrate under the part, N/mm^3
+  double youngs_modulus_mpa = 200000.0;  // E of the deposited metal at room temperature, MPa
+  double poisson = 0.3;                  // nu, 1
+  std::string mode = "fe";               // model the parameters were fitted for: fe | reduced
+
+  // Heat input per length of a bead laid at `speed_mm_s` with wire feed `wire_feed_mm_s` (both > 0), J/mm.
+  double HeatInput(double wire_feed_mm_s, double speed_mm_s) const;
+  // In-layer inherent strain at heat input `q_j_mm` (> 0), 1.
+  double StrainAt(double q_j_mm) const;
+};
+
+// Throws InputError "<where>: <field> = value: must be ..." for a parameter out of its range.
+void ValidateDistortionParams(const DistortionParams& params, const std::string& where);
+
+// The model file (format of models/fit/model_file.h, "model": "distortion"); `fit` (may be null) is stored as is.
+nlohmann::json DistortionParamsToJson(const DistortionParams& params, const nlohmann::json* fit = nullptr);
+// Reads and validates a distortion model file. Throws InputError naming the file and the field.
+DistortionParams ReadDistortionParams(const std::filesystem::path& path);
+
+}  // namespace waam::models

@@ -1,0 +1,362 @@
+// The compensation loop of 003 sec. 6.5.2 in the twin. Each reference point r_i of the tool path (2 mm apart) is
+// moved against the deviation S_i the scan shows around it: r*_i = r_i - S_i.
+//
+// S_i is estimated from the scan alone, so a real scan works the same way: the mean of d_j n_j over the scan points
+// j near r_i in its layer band (d_j signed deviation, n_j target normal at the closest point). A wall that moved
+// sideways by s gives +s on one face and -s on the other, both along the move, so the mean is the move (the central
+// axis bent against its deviation); a wall that only got thicker cancels. Only the component in the layer plane moves
+// the point. Like the dissertation (which corrects the cross sections and the axis), the build-direction shrinkage is
+// not compensated: the top end face, whose height is set by the bead model, is left out of the deviation measures
+// (points whose target normal is within 45 degrees of the last layer's build direction) and of the corrections.
+#include "twin/compensation/compensation.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <unordered_map>
+
+#include "models/core/error.h"
+#include "models/core/progress.h"
+#include "twin/deposition/bead_deposition.h"
+#include "twin/distortion/deposit_history.h"
+#include "twin/scanner/mesh_distance.h"
+#include "twin/scanner/point_cloud_io.h"
+#include "twin/scanner/surface_mesh.h"
+#include "twin/simulation.h"
+
+namespace waam::twin {
+namespace {
+
+constexpr double kTopCos = 0.7071;  // cos 45 deg
+
+// Spatial hash of scan points for radius queries.
+class PointHash {
+ public:
+  PointHash(const std::vector<Eigen::Vector3d>& points, double cell_mm) : points_(points), cell_(cell_mm) {
+    for (std::size_t i = 0; i < points.size(); ++i) cells_[Key(Cell(points[i]))].push_back(static_cast<int>(i));
+  }
+  template <typename F>
+  void ForEachNear(const Eigen::Vector3d& p, double radius, F&& f) const {
+    const Eigen::Vector3i c = Cell(p);
+    const int reach = static_cast<int>(std::ceil(radius / cell_));
+    for (int dz = -reach; dz <= reach; ++dz) {
+      for (int dy = -reach; dy <= reach; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+          auto it = cells_.find(Key(c + Eigen::Vector3i(dx, dy, dz)));
+          if (it == cells_.end()) continue;
+          for (int i : it->second) {
+            if ((points_[i] - p).squaredNorm() <= radius * radius) f(i);
+          }
+        }
+      }
+    }
+  }
+
+ private:
+  Eigen::Vector3i Cell(const Eigen::Vector3d& p) const {
+    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell_)), static_cast<int>(std::floor(p.y() / cell_)),
+                           static_cast<int>(std::floor(p.z() / cell_)));
+  }
+  static std::uint64_t Key(const Eigen::Vector3i& c) {
+    return (static_cast<std::uint64_t>(c.x() + (1 << 20)) & 0x1FFFFF) |
+           ((static_cast<std::uint64_t>(c.y() + (1 << 20)) & 0x1FFFFF) << 21) |
+           ((static_cast<std::uint64_t>(c.z() + (1 << 20)) & 0x1FFFFF) << 42);
+  }
+  const std::vector<Eigen::Vector3d>& points_;
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& target_surface, double axis_step_mm,
+               CompensationIteration* it) {
+  it->max_abs_deviation_mm = scan.max_abs_mm;
+  it->rms_deviation_mm = scan.rms_mm;
+  it->min_deviation_mm = scan.min_mm;
+  it->max_deviation_mm = scan.max_mm;
+  const AxisComparison axis = CompareAxis(target_surface, scan.points, axis_step_mm, 0.5 * axis_step_mm);
+  it->axis_deviation_mm = axis.max_axis_deviation_mm;
+  it->ovality_pct = axis.scan_top.ovality_pct;
+}
+
+// The corrections S_i (mm) of every point of `nominal`, from the scan of the part built with the current path.
+std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
+                                                              double bead_width_mm) {
+  const double radius = 0.5 * bead_width_mm + std::min(scan.max_abs_mm, 20.0) + 1.0;
+  const PointHash hash(scan.points, radius);
+  std::vector<std::vector<Eigen::Vector3d>> s(nominal.layers.size());
+  for (std::size_t l = 0; l < nominal.layers.size(); ++l) {
+    const planner::LayerPath& layer = nominal.layers[l];
+    const Eigen::Vector3d n = layer.build_dir_P.normalized();
+    s[l].assign(layer.points.size(), Eigen::Vector3d::Zero());
+    std::vector<std::uint8_t> known(layer.points.size(), 0);
+    for (std::size_t i = 0; i < layer.points.size(); ++i) {
+      const planner::PathPoint& p = layer.points[i];
+      const double band = std::max(p.bead_height_mm, 1.0);
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      int count = 0;
+      hash.ForEachNear(p.p_P, radius, [&](int j) {
+        const Eigen::Vector3d r = scan.points[j] - p.p_P;
+        const double along = r.dot(n);
+        if (std::abs(along) > band) return;
+        sum += scan.deviation_mm[j] * scan.normal[j];
+        ++count;
+      });
+      if (count > 0) {
+        Eigen::Vector3d v = sum / count;
+        s[l][i] = v - v.dot(n) * n;
+        known[i] = 1;
+      }
+    }
+    // Points with no scan near them (inside a solid layer) take the correction of the nearest known point.
+    for (std::size_t i = 0; i < layer.points.size(); ++i) {
+      if (known[i]) continue;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < layer.points.size(); ++k) {
+        if (!known[k]) continue;
+        const double d = (layer.points[k].p_P - layer.points[i].p_P).squaredNorm();
+        if (d < best) {
+          best = d;
+          s[l][i] = s[l][k];
+        }
+      }
+    }
+  }
+  return s;
+}
+
+// Side-wall waviness of the undistorted twin part (the termination condition of 003 sec. 6.5.2 is the wall's
+// waviness, 1.22 mm for part I): scan points off the top and bottom faces are binned by their closest target point in
+// cubes of `cell_mm` (about three layers), each bin's peak-to-valley of the deviation taken, and the median returned.
+double WallWaviness(const ScanDeviation& scan, double cell_mm) {
+  std::unordered_map<std::uint64_t, std::pair<double, double>> bins;
+  std::unordered_map<std::uint64_t, int> counts;
+  double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
+  for (const Eigen::Vector3d& p : scan.points) {
+    z_lo = std::min(z_lo, p.z());
+    z_hi = std::max(z_hi, p.z());
+  }
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    if (std::abs(scan.normal[i].z()) > 0.5) continue;  // top and bottom faces
+    const Eigen::Vector3d closest = scan.points[i] - scan.deviation_mm[i] * scan.normal[i];
+    if (closest.z() < z_lo + cell_mm || closest.z() > z_hi - cell_mm) continue;
+    const Eigen::Vector3i c(static_cast<int>(std::floor(closest.x() / cell_mm)),
+                            static_cast<int>(std::floor(closest.y() / cell_mm)),
+                            static_cast<int>(std::floor(closest.z() / cell_mm)));
+    // Separate the faces of a thin wall by the side they look to.
+    const int side = (scan.normal[i].x() > 0 ? 1 : 0) + (scan.normal[i].y() > 0 ? 2 : 0);
+    const std::uint64_t key = (static_cast<std::uint64_t>(c.x() + (1 << 19)) & 0xFFFFF) |
+                              ((static_cast<std::uint64_t>(c.y() + (1 << 19)) & 0xFFFFF) << 20) |
+                              ((static_cast<std::uint64_t>(c.z() + (1 << 19)) & 0xFFFFF) << 40) |
+                              (static_cast<std::uint64_t>(side) << 60);
+    auto [it, inserted] = bins.try_emplace(key, scan.deviation_mm[i], scan.deviation_mm[i]);
+    it->second.first = std::min(it->second.first, scan.deviation_mm[i]);
+    it->second.second = std::max(it->second.second, scan.deviation_mm[i]);
+    ++counts[key];
+  }
+  std::vector<double> p2v;
+  for (const auto& [key, range] : bins) {
+    if (counts[key] >= 8) p2v.push_back(range.second - range.first);
+  }
+  if (p2v.empty()) return 0.0;
+  std::nth_element(p2v.begin(), p2v.begin() + p2v.size() / 2, p2v.end());
+  return p2v[p2v.size() / 2];
+}
+
+}  // namespace
+
+planner::Plan ResamplePlan(const planner::Plan& plan, double spacing_mm) {
+  WAAM_THROW_UNLESS(spacing_mm > 0.0, "compensation reference spacing " << spacing_mm << " mm: must be > 0");
+  planner::Plan out = plan;
+  for (planner::LayerPath& layer : out.layers) {
+    std::vector<planner::PathPoint> points;
+    for (std::size_t i = 0; i < layer.points.size(); ++i) {
+      const planner::PathPoint& p = layer.points[i];
+      if (i > 0 && p.weld) {
+        const planner::PathPoint& a = layer.points[i - 1];
+        const int n = static_cast<int>(std::ceil((p.p_P - a.p_P).norm() / spacing_mm));
+        for (int k = 1; k < n; ++k) {
+          planner::PathPoint q = p;
+          q.p_P = a.p_P + (p.p_P - a.p_P) * (static_cast<double>(k) / n);
+          points.push_back(q);
+        }
+      }
+      points.push_back(p);
+    }
+    layer.points = std::move(points);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> ScanDistortedPart(const VoxelGrid& grid, const DistortionField& field) {
+  std::vector<Eigen::Vector3d> points;
+  VoxelIndex lo, hi;
+  if (!grid.Bounds(&lo, &hi)) return points;
+  // Air: the empty voxels of the bounding box (one voxel larger, above the substrate) that the outside reaches
+  // (6-connected flood fill). Faces towards enclosed voids are not seen by a scanner.
+  lo -= VoxelIndex::Ones();
+  hi += VoxelIndex::Ones();
+  lo.z() = 0;
+  const Eigen::Vector3i size = hi - lo + VoxelIndex::Ones();
+  const std::size_t total = static_cast<std::size_t>(size.x()) * size.y() * size.z();
+  auto offset = [&](const VoxelIndex& v) {
+    return (static_cast<std::size_t>(v.z() - lo.z()) * size.y() + (v.y() - lo.y())) * size.x() + (v.x() - lo.x());
+  };
+  auto inside = [&](const VoxelIndex& v) { return (v.array() >= lo.array()).all() && (v.array() <= hi.array()).all(); };
+  std::vector<std::uint8_t> air(total, 0);
+  std::vector<VoxelIndex> stack;
+  const Eigen::Vector3i dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  auto seed = [&](const VoxelIndex& v) {
+    if (!grid.Occupied(v) && !air[offset(v)]) {
+      air[offset(v)] = 1;
+      stack.push_back(v);
+    }
+  };
+  for (int z = lo.z(); z <= hi.z(); ++z) {
+    for (int y = lo.y(); y <= hi.y(); ++y) {
+      seed(VoxelIndex(lo.x(), y, z));
+      seed(VoxelIndex(hi.x(), y, z));
+    }
+    for (int x = lo.x(); x <= hi.x(); ++x) {
+      seed(VoxelIndex(x, lo.y(), z));
+      seed(VoxelIndex(x, hi.y(), z));
+    }
+  }
+  for (int y = lo.y(); y <= hi.y(); ++y) {
+    for (int x = lo.x(); x <= hi.x(); ++x) seed(VoxelIndex(x, y, hi.z()));
+  }
+  while (!stack.empty()) {
+    const VoxelIndex v = stack.back();
+    stack.pop_back();
+    for (const Eigen::Vector3i& d : dirs) {
+      const VoxelIndex n = v + d;
+      if (inside(n)) seed(n);
+    }
+  }
+  const double s = grid.voxel_mm();
+  grid.ForEach([&](const VoxelIndex& idx, const VoxelData&) {
+    for (const Eigen::Vector3i& d : dirs) {
+      const VoxelIndex n = idx + d;
+      if (n.z() < 0 || !inside(n) || !air[offset(n)]) continue;
+      const Eigen::Vector3d p = grid.Center(idx) + 0.5 * s * d.cast<double>();
+      points.push_back(p + field.Displacement(p));
+    }
+  });
+  return points;
+}
+
+CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
+                              const planner::SimulationSettings& settings, const CompensationOptions& options,
+                              const std::function<void(int, const CompensationIteration&)>& on_iteration) {
+  WAAM_THROW_UNLESS(options.max_iterations >= 0 && options.max_iterations <= 20,
+                    "compensate --max-iter = " << options.max_iterations << ": must be in [0, 20]");
+  WAAM_THROW_UNLESS(options.tolerance_mm >= 0.0, "compensate --tol-mm = " << options.tolerance_mm << ": must be >= 0");
+  WAAM_THROW_UNLESS(!target.facets.empty(), "compensate: the target part has no facets");
+  WAAM_THROW_UNLESS(options.reference == "twin" || options.reference == "target",
+                    "compensate --reference = '" << options.reference << "': must be twin or target");
+  ValidateDistortionOptions(options.distortion);
+  models::ValidateDistortionParams(options.params, "distortion model");
+  const planner::Plan nominal = ResamplePlan(plan, options.reference_spacing_mm);
+  const MeshDistance distance(target);
+  const std::vector<Eigen::Vector3d> target_surface = SampleSurface(target, 0.5 * options.axis_step_mm);
+
+  CompensationResult result;
+  planner::Plan current = nominal;
+  // The reference the loop drives the part to. "twin": the nominal path deposited without distortion (what the
+  // process makes of the target; bead-shape errors no path shift can fix, such as arc starts and corners, are left
+  // out). "target": the target mesh itself, as 003 compares scans with the CAD model (always so with a real scan).
+  const bool twin_reference = options.reference == "twin" && options.first_scan.empty();
+  planner::TriangleMesh reference_mesh;
+  std::unique_ptr<MeshDistance> reference;
+  result.reference = twin_reference ? "twin" : "target";
+  for (int iter = 0; iter <= options.max_iterations; ++iter) {
+    CheckInterrupt();
+    CompensationIteration it;
+    std::vector<Eigen::Vector3d> points;
+    if (iter == 0) {
+      const TwinResult nominal_twin =
+          SimulateBuild(current, nullptr, settings, options.rapid_speed_mm_s, options.bead_width_mm, {});
+      const ScanDeviation undistorted = MeasureScanDeviation(
+          ScanDistortedPart(nominal_twin.depositor.grid(), DistortionField()), distance);
+      result.waviness_mm = WallWaviness(undistorted, 2.0 * options.reference_spacing_mm);
+      if (twin_reference) {
+        reference_mesh = ExtractSurface(nominal_twin.depositor.grid());
+        reference = std::make_unique<MeshDistance>(reference_mesh);
+      }
+      if (!options.first_scan.empty()) {
+        it.real_scan = true;
+        points = options.first_scan;
+      } else {
+        const DepositHistory history(current, nominal_twin.depositor, settings, options.rapid_speed_mm_s,
+                                     options.wire_feed_mm_s);
+        const DistortionField field = ComputeDistortion(nominal_twin.depositor.grid(), history, options.params,
+                                                        options.distortion, &it.distortion);
+        points = ScanDistortedPart(nominal_twin.depositor.grid(), field);
+      }
+    } else {
+      const TwinResult twin =
+          SimulateBuild(current, nullptr, settings, options.rapid_speed_mm_s, options.bead_width_mm, {});
+      const DepositHistory history(current, twin.depositor, settings, options.rapid_speed_mm_s, options.wire_feed_mm_s);
+      const DistortionField field =
+          ComputeDistortion(twin.depositor.grid(), history, options.params, options.distortion, &it.distortion);
+      points = ScanDistortedPart(twin.depositor.grid(), field);
+    }
+    // Side surfaces only: the top end face (target normal within 45 degrees of the last layer's build direction).
+    const Eigen::Vector3d top_dir = nominal.layers.empty() ? Eigen::Vector3d::UnitZ()
+                                                           : Eigen::Vector3d(nominal.layers.back().build_dir_P.normalized());
+    const ScanDeviation against_target = ExcludeFacing(MeasureScanDeviation(points, distance), top_dir, kTopCos);
+    it.max_abs_vs_target_mm = against_target.max_abs_mm;
+    it.rms_vs_target_mm = against_target.rms_mm;
+    const ScanDeviation scan =
+        twin_reference ? ExcludeFacing(MeasureScanDeviation(points, *reference), top_dir, kTopCos) : against_target;
+    Summarize(scan, target_surface, options.axis_step_mm, &it);
+    if (iter == 0) {
+      result.tolerance_mm = options.tolerance_mm > 0.0 ? options.tolerance_mm : result.waviness_mm;
+      WAAM_THROW_UNLESS(result.tolerance_mm > 0.0,
+                        "compensate: the simulated part has no measurable waviness (first scan given?); pass --tol-mm");
+      result.first_scan = scan;
+    }
+    const bool done = it.max_abs_deviation_mm < result.tolerance_mm;
+    const double previous = result.iterations.empty() ? std::numeric_limits<double>::infinity()
+                                                      : result.iterations.back().max_abs_deviation_mm;
+    const bool diverging = iter > 0 && it.max_abs_deviation_mm > 0.95 * previous;
+    result.last_scan = scan;
+    if (!done && !diverging && iter < options.max_iterations) {
+      // r*_i = r_i - S_i on the current path; S from the scan around the nominal point.
+      const std::vector<std::vector<Eigen::Vector3d>> s = EstimateCorrections(nominal, scan, options.bead_width_mm);
+      for (std::size_t l = 0; l < current.layers.size(); ++l) {
+        for (std::size_t i = 0; i < current.layers[l].points.size(); ++i) {
+          current.layers[l].points[i].p_P -= s[l][i];
+          it.max_correction_mm = std::max(it.max_correction_mm, s[l][i].norm());
+        }
+      }
+    }
+    result.iterations.push_back(it);
+    if (on_iteration) on_iteration(iter, it);
+    if (done) {
+      result.converged = true;
+      result.status = "converged";
+      result.message = "converged: max |deviation| " + std::to_string(it.max_abs_deviation_mm) + " mm < tolerance " +
+                       std::to_string(result.tolerance_mm) + " mm after " + std::to_string(iter) + " compensation(s)";
+      break;
+    }
+    if (diverging) {
+      result.status = "diverging";
+      result.message = "cannot converge: max |deviation| went from " + std::to_string(previous) + " to " +
+                       std::to_string(it.max_abs_deviation_mm) + " mm (tolerance " +
+                       std::to_string(result.tolerance_mm) + " mm); the loop stops instead of repeating";
+      break;
+    }
+    if (iter == options.max_iterations) {
+      result.status = "max_iterations";
+      result.message = "not converged after " + std::to_string(iter) + " compensation(s): max |deviation| " +
+                       std::to_string(it.max_abs_deviation_mm) + " mm >= tolerance " +
+                       std::to_string(result.tolerance_mm) + " mm";
+    }
+  }
+  result.plan = current;
+  return result;
+}
+
+}  // namespace waam::twin

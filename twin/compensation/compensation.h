@@ -1,0 +1,74 @@
+// The offline compensation loop of 003 sec. 6.5.2 run against the twin: deposit, distort, scan, move every reference
+// point of the tool path against the measured deviation (r*_i = r_i - S_i), repeat.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/distortion/distortion_params.h"
+#include "planner/mesh/triangle_mesh.h"
+#include "planner/path/tool_path.h"
+#include "planner/scenario/simulation_settings.h"
+#include "twin/distortion/distortion.h"
+#include "twin/scanner/scan_deviation.h"
+
+namespace waam::twin {
+
+struct CompensationOptions {
+  int max_iterations = 3;            // compensated builds after the first (uncompensated) one, >= 0
+  double tolerance_mm = 0.0;         // stop when max |deviation| < tolerance; 0 = the simulated part's waviness
+  double reference_spacing_mm = 2.0; // reference points of the tool path at most this far apart, mm (003: 2 mm)
+  double axis_step_mm = 2.0;         // central-axis station spacing, mm
+  double rapid_speed_mm_s = 100.0;   // arc-off travel speed, mm/s
+  double wire_feed_mm_s = 53.3;      // process wire feed, mm/s (heat input)
+  double bead_width_mm = 6.0;        // planned bead width, mm (scan neighbourhood and waviness margin)
+  models::DistortionParams params;
+  DistortionOptions distortion;
+  std::string reference = "twin";    // twin: the undistorted deposit of the nominal path | target: the mesh
+  std::vector<Eigen::Vector3d> first_scan;  // a real scan of the first part (part frame, mm); empty = simulate it
+};
+
+// One build of the loop and what the scan of it showed.
+struct CompensationIteration {
+  double max_abs_deviation_mm = 0.0;
+  double rms_deviation_mm = 0.0;
+  double min_deviation_mm = 0.0;
+  double max_deviation_mm = 0.0;
+  double axis_deviation_mm = 0.0;    // largest central-axis offset from the target axis
+  double ovality_pct = 0.0;          // eq. 6.5 at the top cut of Fig. 69
+  double max_abs_vs_target_mm = 0.0; // the same scan against the target mesh (bead-shape errors included)
+  double rms_vs_target_mm = 0.0;
+  double max_correction_mm = 0.0;    // largest |S_i| applied to the next tool path
+  bool real_scan = false;            // the scan came from a file, not the twin
+  DistortionStats distortion;
+};
+
+struct CompensationResult {
+  std::vector<CompensationIteration> iterations;  // [0] = uncompensated (or the real scan)
+  bool converged = false;
+  std::string status;                // converged | max_iterations | diverging
+  std::string message;               // one line for the user
+  double tolerance_mm = 0.0;
+  std::string reference;             // what the deviations are measured against: twin | target
+  double waviness_mm = 0.0;          // side-wall waviness of the undistorted twin part (median p2v in 4 mm cells)
+  planner::Plan plan;                // the last compensated tool path (the nominal one resampled if none)
+  ScanDeviation first_scan;          // scan of the first build
+  ScanDeviation last_scan;           // scan of the last build
+};
+
+// Resamples every weld move of `plan` so that reference points are at most `spacing_mm` (> 0) apart.
+planner::Plan ResamplePlan(const planner::Plan& plan, double spacing_mm);
+
+// Runs the loop on `plan` (already planned) against `target`. `on_iteration(i, iteration)` may be empty.
+// Throws InputError for invalid options or parameters.
+CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
+                              const planner::SimulationSettings& settings, const CompensationOptions& options,
+                              const std::function<void(int, const CompensationIteration&)>& on_iteration = {});
+
+// The twin's scan of a distorted part: every exposed voxel face centre moved by the displacement field, mm.
+std::vector<Eigen::Vector3d> ScanDistortedPart(const VoxelGrid& grid, const DistortionField& field);
+
+}  // namespace waam::twin

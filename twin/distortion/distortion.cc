@@ -1,0 +1,111 @@
+// ComputeDistortion: mesh the deposit, run the chosen model, and interpolate its nodal displacements.
+#include "twin/distortion/distortion.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "models/core/error.h"
+#include "twin/distortion/hex_mesh.h"
+#include "twin/distortion/inherent_strain.h"
+
+namespace waam::twin {
+
+void ValidateDistortionOptions(const DistortionOptions& o) {
+  WAAM_THROW_UNLESS(o.mode == "fe" || o.mode == "reduced",
+                    "distortion.mode = '" << o.mode << "': must be fe or reduced");
+  WAAM_THROW_UNLESS(o.element_mm > 0.0 && o.element_mm <= 50.0,
+                    "distortion.element_mm = " << o.element_mm << ": must be in (0, 50] mm");
+  WAAM_THROW_UNLESS(o.groups >= 1 && o.groups <= 1000, "distortion.groups = " << o.groups << ": must be in [1, 1000]");
+  WAAM_THROW_UNLESS(o.solver == "ldlt" || o.solver == "cg",
+                    "distortion.solver = '" << o.solver << "': must be ldlt or cg");
+}
+
+std::uint64_t DistortionField::Key(int i, int j, int k) {
+  constexpr std::int64_t kOffset = 1 << 20;
+  return (static_cast<std::uint64_t>(i + kOffset) & 0x1FFFFF) |
+         ((static_cast<std::uint64_t>(j + kOffset) & 0x1FFFFF) << 21) |
+         ((static_cast<std::uint64_t>(k + kOffset) & 0x1FFFFF) << 42);
+}
+
+DistortionField::DistortionField(double element_mm, std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes,
+                                 std::unordered_map<std::uint64_t, std::uint8_t> elements)
+    : element_mm_(element_mm), nodes_(std::move(nodes)), elements_(std::move(elements)) {}
+
+const Eigen::Vector3d* DistortionField::Node(int i, int j, int k) const {
+  auto it = nodes_.find(Key(i, j, k));
+  return it == nodes_.end() ? nullptr : &it->second;
+}
+
+Eigen::Vector3d DistortionField::Displacement(const Eigen::Vector3d& p_P) const {
+  const Eigen::Vector3d s = p_P / element_mm_;
+  const Eigen::Vector3i cell(static_cast<int>(std::floor(s.x())), static_cast<int>(std::floor(s.y())),
+                             static_cast<int>(std::floor(s.z())));
+  // The element containing the point, else the active neighbour whose centre is nearest.
+  Eigen::Vector3i best = cell;
+  if (!elements_.count(Key(cell.x(), cell.y(), cell.z()))) {
+    double best_d = std::numeric_limits<double>::infinity();
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const Eigen::Vector3i c = cell + Eigen::Vector3i(dx, dy, dz);
+          if (!elements_.count(Key(c.x(), c.y(), c.z()))) continue;
+          const double d = (c.cast<double>() + Eigen::Vector3d::Constant(0.5) - s).squaredNorm();
+          if (d < best_d) {
+            best_d = d;
+            best = c;
+          }
+        }
+      }
+    }
+    if (!std::isfinite(best_d)) return Eigen::Vector3d::Zero();
+  }
+  const Eigen::Vector3d t = (s - best.cast<double>()).cwiseMax(0.0).cwiseMin(1.0);
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  for (int n = 0; n < 8; ++n) {
+    const int dx = n & 1, dy = (n >> 1) & 1, dz = (n >> 2) & 1;
+    const Eigen::Vector3d* node = Node(best.x() + dx, best.y() + dy, best.z() + dz);
+    if (node == nullptr) continue;
+    const double w = (dx ? t.x() : 1 - t.x()) * (dy ? t.y() : 1 - t.y()) * (dz ? t.z() : 1 - t.z());
+    u += w * *node;
+  }
+  return u;
+}
+
+DistortionField ComputeDistortion(const VoxelGrid& grid, const DepositHistory& history,
+                                  const models::DistortionParams& params, const DistortionOptions& options,
+                                  DistortionStats* stats) {
+  ValidateDistortionOptions(options);
+  models::ValidateDistortionParams(params, "distortion model");
+  WAAM_THROW_UNLESS(grid.occupied() > 0, "distortion: the deposited part is empty");
+  const auto start = std::chrono::steady_clock::now();
+  const int factor = std::max(1, static_cast<int>(std::lround(options.element_mm / grid.voxel_mm())));
+  const internal::HexMesh mesh = internal::BuildHexMesh(grid, history, params, factor, options.groups);
+  WAAM_THROW_UNLESS(!mesh.elements.empty(),
+                    "distortion.element_mm = " << options.element_mm << ": no element is half full of metal; the "
+                    "part is thinner than two elements, use a smaller element_mm");
+  DistortionStats local;
+  DistortionStats& s = stats != nullptr ? *stats : local;
+  s = DistortionStats{};
+  s.elements = mesh.elements.size();
+  s.nodes = mesh.node_ijk.size();
+  const std::vector<Eigen::Vector3d> u = options.mode == "reduced"
+                                             ? internal::SolveReduced(mesh, history, params)
+                                             : internal::SolveInherentStrain(mesh, params, options, &s);
+  std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes;
+  nodes.reserve(u.size());
+  for (std::size_t n = 0; n < u.size(); ++n) {
+    const Eigen::Vector3i& ijk = mesh.node_ijk[n];
+    nodes.emplace(DistortionField::Key(ijk.x(), ijk.y(), ijk.z()), u[n]);
+    s.max_displacement_mm = std::max(s.max_displacement_mm, u[n].norm());
+  }
+  std::unordered_map<std::uint64_t, std::uint8_t> elements;
+  elements.reserve(mesh.elements.size());
+  for (const internal::HexElement& e : mesh.elements) elements.emplace(DistortionField::Key(e.ijk.x(), e.ijk.y(), e.ijk.z()), 1);
+  s.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return DistortionField(mesh.h_mm, std::move(nodes), std::move(elements));
+}
+
+}  // namespace waam::twin

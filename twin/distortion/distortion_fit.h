@@ -1,0 +1,39 @@
+// Fitting the distortion parameters with Ceres to a measured scan of the distorted part (real or twin-generated).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/distortion/distortion_params.h"
+#include "models/fit/fit_stats.h"
+#include "twin/deposition/voxel_grid.h"
+#include "twin/distortion/deposit_history.h"
+#include "twin/distortion/distortion.h"
+
+namespace waam::twin {
+
+struct DistortionFitOptions {
+  std::vector<std::string> free = {"strain", "heat_exponent"};  // any of strain, heat_exponent, vertical_ratio,
+                                                                // substrate_stiffness_n_mm3
+  std::size_t max_points = 3000;   // scan points used (every k-th point, deterministic), >= 10
+  int max_iterations = 30;
+};
+
+struct DistortionFitResult {
+  models::DistortionParams params;   // the start with the free parameters replaced by the fit
+  models::SolverReport solver;
+  double rms_mm = 0.0;               // rms distance of the used scan points to the fitted distorted surface
+  std::size_t points = 0;
+};
+
+// Fits the free parameters of `start` so that the twin's distorted surface of `grid` (deposited as `history` says)
+// passes through the `scan` points (part frame, mm): residual = distance of each scan point to the surface of the
+// deposit moved by the displacement field. Throws InputError for an unknown free parameter, too few points or
+// invalid start parameters; a fit that fails comes back with solver.usable = false.
+DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
+                                  const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
+                                  const DistortionOptions& options, const DistortionFitOptions& fit);
+
+}  // namespace waam::twin
