@@ -6,6 +6,7 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"
+#include "models/core/run_outputs.h"
 #include "planner/program/fanuc_ls.h"
 #include "planner/program/robot_program.h"
 #include "twin/cell/mujoco_cell.h"
@@ -91,6 +92,7 @@ twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planne
                                  const CheckOptions& options) {
   EnsureOutputDirectory(options.out_dir);
   twin::MujocoCell cell(scenario.cell.mjcf);
+  RunOutputs outputs(options.out_dir / "check.json");
   twin::CheckReport report;
   {
     Progress progress("check", 0, "samples", options.quiet);
@@ -100,14 +102,17 @@ twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planne
   const planner::CellKinematics kin = twin::PlaceCell(cell, scenario.cell);
   if (options.program) {
     const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
-    WriteFileAtomic(options.out_dir / "program.csv", planner::ProgramToCsv(program));
-    WriteFileAtomic(options.out_dir / "program.ls", planner::ProgramToFanucLs(program, planner::FanucLsOptions{}));
+    WriteFileAtomic(outputs.Add(options.out_dir / "program.csv"), planner::ProgramToCsv(program));
+    WriteFileAtomic(outputs.Add(options.out_dir / "program.ls"),
+                    planner::ProgramToFanucLs(program, planner::FanucLsOptions{}));
   }
   if (options.images && !report.motion.empty()) {
-    WriteCellPng(cell, kin, plan, report, options.out_dir / "cell_worst.png");
-    WriteJointPlots(kin, report, options.out_dir / "joints.png");
+    WriteCellPng(cell, kin, plan, report, outputs.Add(options.out_dir / "cell_worst.png"));
+    WriteJointPlots(kin, report, outputs.Add(options.out_dir / "joints.png"));
   }
+  CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   WriteFileAtomic(options.out_dir / "check.json", CheckToJson(scenario, cell.file(), report).dump(2) + "\n");
+  outputs.Complete();
   return report;
 }
 

@@ -8,6 +8,7 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"
+#include "models/core/run_outputs.h"
 #include "planner/scenario/scenario.h"
 
 namespace waam::analysis {
@@ -118,18 +119,21 @@ planner::PlanResult RunPlan(const PlanOptions& options) {
     result = planner::PlanScenario(scenario, &progress);
   }
 
-  WritePlanH5(result.plan, options.out_dir / "plan.h5");
+  RunOutputs outputs(options.out_dir / "plan.json");
+  WritePlanH5(result.plan, outputs.Add(options.out_dir / "plan.h5"));
   if (options.layer_images) {
     Progress progress("pictures", result.plan.layers.size(), "layers", options.quiet);
     for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
       char name[32];
       std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
-      WriteLayerPng(result.plan.layers[i], options.out_dir / "layers" / name);
+      WriteLayerPng(result.plan.layers[i], outputs.Add(options.out_dir / "layers" / name));
       progress.Update(i + 1);
     }
     progress.Finish();
   }
+  CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   WriteFileAtomic(options.out_dir / "plan.json", PlanToJson(scenario, result).dump(2) + "\n");
+  outputs.Complete();
   return result;
 }
 

@@ -12,6 +12,7 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"
+#include "models/core/run_outputs.h"
 #include "twin/scanner/surface_mesh.h"
 
 namespace waam::analysis {
@@ -85,6 +86,7 @@ nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::T
 twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planner::PlanResult& planned,
                                  const SimulateOptions& options) {
   EnsureOutputDirectory(options.out_dir);
+  RunOutputs outputs(options.out_dir / "simulate.json");
   const planner::SimulationSettings& settings = scenario.simulation;
   // Refuse up front what cannot fit: the expected bead volume in voxels against the limit.
   double weld_mm3 = 0.0;
@@ -122,19 +124,21 @@ twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planne
   const planner::TriangleMesh surface =
       factor == 1 ? twin::ExtractSurface(result.depositor.grid())
                   : twin::ExtractSurface(twin::Coarsen(result.depositor.grid(), factor));
-  planner::WriteStlBinary(surface, options.out_dir / "part.stl", "waam simulate: " + scenario.name);
+  planner::WriteStlBinary(surface, outputs.Add(options.out_dir / "part.stl"), "waam simulate: " + scenario.name);
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
-  WriteSimulationH5(result, options.out_dir / "part.h5");
+  WriteSimulationH5(result, outputs.Add(options.out_dir / "part.h5"));
   if (options.images) {
-    WriteHeightMapPng(result.top, options.out_dir / "top_height.png");
-    WriteSectionPng(result, 0, options.out_dir / "section_xz.png");
-    WriteSectionPng(result, 1, options.out_dir / "section_yz.png");
-    WriteDeviationPng(result, options.out_dir / "deviation_map.png");
+    WriteHeightMapPng(result.top, outputs.Add(options.out_dir / "top_height.png"));
+    WriteSectionPng(result, 0, outputs.Add(options.out_dir / "section_xz.png"));
+    WriteSectionPng(result, 1, outputs.Add(options.out_dir / "section_yz.png"));
+    WriteDeviationPng(result, outputs.Add(options.out_dir / "deviation_map.png"));
   }
   nlohmann::json json = SimulationToJson(scenario, result);
   json["stl_voxel_mm"] = stl_voxel_mm;
   json["stl_facets"] = surface.facets.size();
+  CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   WriteFileAtomic(options.out_dir / "simulate.json", json.dump(2) + "\n");
+  outputs.Complete();
   return result;
 }
 

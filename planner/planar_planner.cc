@@ -14,6 +14,7 @@
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/path/layer_pattern.h"
+#include "planner/plan_limits.h"
 #include "planner/skeleton_planner.h"
 #include "planner/slicing/planar_slicer.h"
 
@@ -53,6 +54,7 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   // Layer i fills [i h, (i + 1) h]; it is sliced at its mid-height and the TCP runs on its top, z = (i + 1) h.
   const double h = scenario.slicing.layer_height_mm;
   const double part_height = result.mesh_report.bbox_max.z() - result.mesh_report.bbox_min.z();
+  CheckLayerCount(part_height, h, scenario.part.where);
   const int layer_count = std::max(1, static_cast<int>(std::lround(part_height / h)));
   std::vector<double> heights(layer_count);
   for (int i = 0; i < layer_count; ++i) heights[i] = (i + 0.5) * part_height / layer_count;
@@ -88,6 +90,8 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   // twin shows the part ending high or low, as a real build would.
   result.layer_growth_mm =
       result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).zigzag_mm;
+  CheckWeldLengthEstimate(slices, OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).zigzag_mm,
+                          scenario.part.where);
 
   PatternOptions options;
   options.pattern = scenario.path.pattern;
@@ -104,6 +108,7 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
 
   result.plan.name = scenario.name;
   result.plan.layers.reserve(layer_count);
+  std::size_t points = 0;
   for (int i = 0; i < layer_count; ++i) {
     LayerPath layer;
     layer.index = i;
@@ -122,6 +127,8 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
       point.weld = move.weld;
       layer.points.push_back(point);
     }
+    points += layer.points.size();
+    CheckPathPoints(points, i, scenario.part.where);
     result.plan.layers.push_back(std::move(layer));
     if (progress) progress->Update(i + 1);
   }

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package waam-twin needs to build, test and benchmark; idempotent.
+# With --fuzz it also installs clang and libFuzzer (tools/fuzz.sh); the normal build does not need them.
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,9 @@ packages=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang-14 libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -402,7 +402,9 @@ GeneratorParams ResolveGeneratorParams(const std::string& type, const GeneratorP
     WAAM_THROW(where << ": unknown generator type '" << type << "' (known: " << known.str() << ")");
   }
   const GeneratorSpec& spec = it->second;
-  for (const auto& [name, values] : params) {
+  // A plain loop variable, not a structured binding: clang 14 cannot capture bindings in the lambdas below.
+  for (const auto& param : params) {
+    const std::string& name = param.first;
     const bool known = std::any_of(spec.params.begin(), spec.params.end(), [&](const ParamSpec& p) { return p.name == name; });
     if (!known) {
       std::ostringstream names;

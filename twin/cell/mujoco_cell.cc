@@ -71,7 +71,21 @@ MujocoCell::MujocoCell(const fs::path& mjcf) : impl_(std::make_unique<Impl>()) {
   WAAM_THROW_UNLESS(fs::is_regular_file(file_, ec), file_.string() << ": MJCF cell model not found");
   char error[1024] = "";
   impl_->m = mj_loadXML(file_.string().c_str(), nullptr, error, sizeof(error));
-  WAAM_THROW_UNLESS(impl_->m != nullptr, file_.string() << ": MuJoCo cannot load the cell model: " << error);
+  if (impl_->m == nullptr) {
+    // MuJoCo's XML errors span several lines ("XML parse error 14:\nError=... Line number=1: ..."): join them so
+    // the CLI prints the one line the bad-input contract promises, with the line number MuJoCo reports.
+    std::string message;
+    for (const char* c = error; *c != '\0'; ++c) {
+      const bool space = *c == '\n' || *c == '\r' || *c == ' ' || *c == '\t';
+      if (!space) {
+        message.push_back(*c);
+      } else if (!message.empty() && message.back() != ' ') {
+        message.push_back(' ');
+      }
+    }
+    while (!message.empty() && message.back() == ' ') message.pop_back();
+    WAAM_THROW(file_.string() << ": MuJoCo cannot load the cell model: " << message);
+  }
   impl_->d = mj_makeData(impl_->m);
   impl_->ik = mj_makeData(impl_->m);
   const mjModel* m = impl_->m;

@@ -1,0 +1,15 @@
+// Helpers shared by the fuzz targets: a scratch folder for readers that take a file path.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+
+namespace waam::fuzz {
+
+// Writes `size` bytes to `name` inside a per-process scratch folder (created once, under $TMPDIR or /tmp, with
+// `meshes` linked to the repository's scenarios/meshes both inside it and in its parent, so the scenario files'
+// relative mesh paths resolve) and returns the file's path. Aborts if the file cannot be written.
+std::filesystem::path WriteScratchFile(const char* name, const std::uint8_t* data, std::size_t size);
+
+}  // namespace waam::fuzz

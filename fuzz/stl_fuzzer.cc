@@ -1,0 +1,23 @@
+// libFuzzer target: the STL reader (binary and ASCII), the mesh report and the sliceability check.
+// Any input may be refused with waam::InputError; anything else (a crash, a sanitizer report, another exception,
+// a hang) is a bug.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz/fuzz_input.h"
+#include "models/core/error.h"
+#include "planner/mesh/stl_io.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const auto path = waam::fuzz::WriteScratchFile("input.stl", data, size);
+  // The weld tolerance comes from the first byte when there is one, so both exact and tolerant welding are tried.
+  const double weld_tolerance_mm = size > 0 ? (data[0] % 4) * 0.01 : 0.0;
+  try {
+    waam::planner::MeshReport report;
+    waam::planner::ReadStl(path, weld_tolerance_mm, &report);
+    (void)waam::planner::MeshReportJson(report);
+    waam::planner::CheckSliceable(report);
+  } catch (const waam::InputError&) {
+  }
+  return 0;
+}

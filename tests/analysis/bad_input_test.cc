@@ -1,0 +1,243 @@
+// The bad-input catalogue: every kind of broken user file, fed to the built `waam` binary, must end in exit code 2,
+// one line on stderr naming the file and the place, and no output file. docs/BAD_INPUTS.md lists the same cases.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace waam::analysis {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+using Facet = std::array<std::array<float, 3>, 3>;
+
+// A closed tetrahedron (4 facets, outward normals) with a corner at the origin and edges `s` mm along the axes.
+std::vector<Facet> Tetrahedron(float s = 10.0f) {
+  const std::array<float, 3> a{0, 0, 0}, b{s, 0, 0}, c{0, s, 0}, d{0, 0, s};
+  return {Facet{a, c, b}, Facet{a, b, d}, Facet{a, d, c}, Facet{b, c, d}};
+}
+
+// Binary STL bytes: an 80-byte header, `header_count` (the real count when negative), the facets.
+std::string BinaryStl(const std::vector<Facet>& facets, long long header_count = -1) {
+  std::string bytes(80, ' ');
+  bytes.replace(0, 20, "waam bad input test ");
+  const std::uint32_t count = static_cast<std::uint32_t>(header_count < 0 ? facets.size() : header_count);
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  for (const Facet& f : facets) {
+    const float normal[3] = {0, 0, 0};
+    bytes.append(reinterpret_cast<const char*>(normal), 12);
+    for (const auto& v : f) bytes.append(reinterpret_cast<const char*>(v.data()), 12);
+    bytes.append(2, '\0');
+  }
+  return bytes;
+}
+
+// A scenario with the part from `mesh` (relative to the scenario) and every other value valid; `edit` replaces
+// one line ("key: value" as written below) to break it. Lines: 3 part.mesh, 5 layer_height_mm, 7 pattern,
+// 8 bead_width_mm, 10 travel_speed_mm_min.
+std::string Scenario(const std::string& mesh = "part.stl", const std::string& from = "", const std::string& to = "") {
+  std::string text =
+      "name: bad_input\n"
+      "part:\n"
+      "  mesh: " + mesh + "\n"
+      "slicing:\n"
+      "  layer_height_mm: 1.5\n"
+      "path:\n"
+      "  pattern: contour\n"
+      "  bead_width_mm: 6\n"
+      "process:\n"
+      "  travel_speed_mm_min: 400\n"
+      "  wire_feed_mm_min: 3200\n";
+  if (!from.empty()) text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+std::string CellScenario(const std::string& extra_cell_line) {
+  return "name: bad_cell\n"
+         "part:\n"
+         "  generator: {type: box, size_mm: [100, 60, 15]}\n"
+         "slicing:\n"
+         "  layer_height_mm: 1.5\n"
+         "path:\n"
+         "  pattern: contour\n"
+         "  bead_width_mm: 6\n"
+         "process:\n"
+         "  travel_speed_mm_min: 400\n"
+         "  wire_feed_mm_min: 3200\n"
+         "cell:\n" +
+         extra_cell_line +
+         "  robot: {base_mm: [0, 0, 0], yaw_deg: 0}\n"
+         "  positioner: {base_mm: [1050, 0, 0], yaw_deg: 90, rotation_deg: 0}\n";
+}
+
+// One row of the catalogue (docs/BAD_INPUTS.md has the same rows, by id).
+struct BadInput {
+  std::string id;
+  std::string command;                         // "plan", "check" or "fit <model>"
+  std::string input;                           // the file named on the command line, in the case's folder
+  std::map<std::string, std::string> files;    // name -> contents, written into the case's folder
+  std::vector<std::string> expected;           // each must appear in the one stderr line
+  std::vector<std::string> folders = {};       // folders created in the case's folder
+};
+
+std::vector<BadInput> Catalogue() {
+  const std::string ok = Scenario();
+  std::vector<Facet> tetra = Tetrahedron();
+  std::vector<Facet> nan_facets = tetra;
+  nan_facets[1][1][2] = std::numeric_limits<float>::quiet_NaN();
+  // Two tetrahedra sharing the edge (0,0,0)-(10,0,0): that edge has four facets, every other edge two.
+  std::vector<Facet> two = tetra;
+  const std::array<float, 3> a{0, 0, 0}, b{10, 0, 0}, e{0, -10, 0}, f{0, 0, -10};
+  for (const Facet& g : {Facet{a, b, e}, Facet{a, f, b}, Facet{a, e, f}, Facet{b, f, e}}) two.push_back(g);
+  std::vector<Facet> open = tetra;
+  open.pop_back();
+  const std::string flat = BinaryStl({Facet{{{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}}, Facet{{{1, 1, 1}, {1, 1, 1}, {5, 5, 5}}}});
+  const std::string full = BinaryStl(tetra);
+  const std::string csw_header = "travel_speed_mm_per_min,curvature_radius_mm,width_mm\n";
+  return {
+      {"stl-truncated-mid-facet", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", full.substr(0, 84 + 50 + 20)}},
+       {"part.stl: truncated binary STL: header says 4 facets", "it ends inside facet 2"}},
+      {"stl-wrong-facet-count", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(tetra, 3)}},
+       {"part.stl: binary STL header facet count 3 disagrees with the file size 284 bytes"}},
+      {"stl-2gb-header-claim", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(tetra, 40'000'000)}},
+       {"part.stl: binary STL header claims 40000000 facets, more than the limit of 20000000"}},
+      {"stl-nan-coordinate", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(nan_facets)}},
+       {"part.stl: binary STL facet 2 of 4: vertex 2 has a non-finite coordinate"}},
+      {"stl-inf-coordinate", "plan", "s.yaml",
+       {{"s.yaml", ok},
+        {"part.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex inf 0 0\nvertex 0 1 0\n"
+                     "endloop\nendfacet\nendsolid t\n"}},
+       {"part.stl: ASCII STL line 5: vertex x 'inf' is not finite"}},
+      {"stl-zero-area-facets-only", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", flat}},
+       {"part.stl: no usable facet: 2 facets read, 2 degenerate"}},
+      {"stl-open-mesh", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(open)}},
+       {"part.stl: the mesh is open: 3 boundary edges"}},
+      {"stl-non-manifold-edges", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(two)}},
+       {"part.stl: the mesh has 1 non-manifold edges (used by more than two facets)"}},
+      {"scenario-wrong-type", "plan", "s.yaml",
+       {{"s.yaml", Scenario("part.stl", "travel_speed_mm_min: 400", "travel_speed_mm_min: fast")}, {"part.stl", full}},
+       {"s.yaml:10: process.travel_speed_mm_min = 'fast': must be a number"}},
+      {"scenario-negative-length", "plan", "s.yaml",
+       {{"s.yaml", Scenario("part.stl", "layer_height_mm: 1.5", "layer_height_mm: -1")}, {"part.stl", full}},
+       {"s.yaml:5: slicing.layer_height_mm = -1: must be in [0.05, 20]"}},
+      {"scenario-zero-length", "plan", "s.yaml",
+       {{"s.yaml", Scenario("part.stl", "bead_width_mm: 6", "bead_width_mm: 0")}, {"part.stl", full}},
+       {"s.yaml:8: path.bead_width_mm = 0: must be in [0.5, 50]"}},
+      {"scenario-unknown-pattern", "plan", "s.yaml",
+       {{"s.yaml", Scenario("part.stl", "pattern: contour", "pattern: wobble")}, {"part.stl", full}},
+       {"s.yaml:7: path.pattern = 'wobble': unknown value, expected one of contour, zigzag, hybrid, continuous, "
+        "eulerian, spiral"}},
+      {"scenario-missing-mesh", "plan", "s.yaml", {{"s.yaml", Scenario("nothere.stl")}},
+       {"s.yaml:3: part.mesh: mesh file ", "nothere.stl not found"}},
+      {"scenario-mesh-is-a-directory", "plan", "s.yaml", {{"s.yaml", Scenario("adir")}},
+       {"s.yaml:3: part.mesh: ", "adir is a directory, expected an STL file"}, {"adir"}},
+      {"csv-missing-column", "fit csw", "bad.csv",
+       {{"bad.csv", "travel_speed_mm_per_min,curvature_radius_mm\n300,30\n600,40\n900,50\n"}},
+       {"bad.csv: no column 'width_mm'"}},
+      {"csv-text-in-a-number", "fit csw", "bad.csv", {{"bad.csv", csw_header + "300,30,12.5\n600,abc,9.8\n"}},
+       {"bad.csv:3: column 'curvature_radius_mm': 'abc' is not a number"}},
+      {"csv-too-few-rows", "fit speed-height", "bad.csv",
+       {{"bad.csv", "travel_speed_mm_per_min,height_mm\n300,1.5\n600,1.0\n"}},
+       {"bad.csv: 2 rows: the power law has 2 parameters and needs at least 3"}},
+      {"robot-model-does-not-parse", "check", "s.yaml",
+       {{"s.yaml", CellScenario("  mjcf: broken.xml\n")}, {"broken.xml", "<mujoco><worldbody><body></mujoco>\n"}},
+       {"broken.xml: MuJoCo cannot load the cell model: XML parse error", "Line number=1"}},
+  };
+}
+
+struct CliRun {
+  int exit_code = -1;
+  std::string err;
+};
+
+CliRun Waam(const std::string& args, const fs::path& err_file) {
+  const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
+  const int status = std::system(command.c_str());
+  std::ifstream in(err_file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+std::vector<std::string> FilesUnder(const fs::path& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (!entry.is_directory()) files.push_back(entry.path().string());
+  }
+  return files;
+}
+
+fs::path CaseDir(const std::string& id) {
+  const fs::path dir = fs::temp_directory_path() / ("waam_bad_input_" + std::to_string(::getpid())) / id;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(BadInputCatalogue, EveryCaseExitsTwoWithOneLineNamingFileAndPlaceAndNoOutput) {
+  for (const BadInput& c : Catalogue()) {
+    SCOPED_TRACE(c.id);
+    const fs::path dir = CaseDir(c.id);
+    for (const auto& [name, contents] : c.files) std::ofstream(dir / name, std::ios::binary) << contents;
+    for (const std::string& folder : c.folders) fs::create_directories(dir / folder);
+    const bool fit = c.command.rfind("fit", 0) == 0;
+    const fs::path out = fit ? dir / "out" / "model.json" : dir / "out";
+    const std::string args = c.command + " " + (dir / c.input).string() + " -o " + out.string() +
+                             (fit ? "" : " -q --no-images");
+    const CliRun run = Waam(args, dir / "stderr.txt");
+    EXPECT_EQ(run.exit_code, 2) << "expected exit code 2 (bad input) for " << c.id << "; stderr: " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "expected one line on stderr: " << run.err;
+    EXPECT_THAT(run.err, ::testing::StartsWith("waam: error: "));
+    for (const std::string& expected : c.expected) EXPECT_THAT(run.err, HasSubstr(expected));
+    EXPECT_THAT(FilesUnder(dir / "out"), ::testing::IsEmpty()) << "no output may be left behind on bad input";
+  }
+}
+
+// docs/BAD_INPUTS.md must list every case of the catalogue with its message, so the document cannot drift.
+TEST(BadInputCatalogue, DocumentListsEveryCaseAndItsMessage) {
+  std::ifstream in(fs::path(WAAM_SOURCE_DIR) / "docs" / "BAD_INPUTS.md");
+  ASSERT_TRUE(in) << "docs/BAD_INPUTS.md is missing";
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  for (const BadInput& c : Catalogue()) {
+    EXPECT_THAT(doc, HasSubstr("`" + c.id + "`")) << "docs/BAD_INPUTS.md has no row for " << c.id;
+    for (const std::string& expected : c.expected) {
+      EXPECT_THAT(doc, HasSubstr(expected)) << "docs/BAD_INPUTS.md row " << c.id << " lacks its message";
+    }
+  }
+}
+
+// The one catalogue entry that is not bad input: a path point no IK branch reaches is a check result (exit 3,
+// check.json lists it with its layer and point), because the file is valid and the answer is "not weldable here".
+TEST(BadInputCatalogue, UnreachablePathPointIsACheckViolationNamingThePoint) {
+  const fs::path dir = CaseDir("unreachable");
+  const CliRun run = Waam("check " + std::string(WAAM_SOURCE_DIR) +
+                              "/scenarios/cell/cell_out_of_reach.yaml -q --no-images -o " + (dir / "out").string(),
+                          dir / "stderr.txt");
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  std::ifstream in(dir / "out" / "check.json");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_THAT(ss.str(), HasSubstr("\"unreachable\"")) << "check.json must list the unreachable points";
+}
+
+}  // namespace
+}  // namespace waam::analysis

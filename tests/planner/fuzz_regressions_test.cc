@@ -1,0 +1,72 @@
+// Replays every input kept in fuzz/regressions/ (inputs that once crashed or hung a fuzz target, see tools/fuzz.sh)
+// through the same reader as its fuzz target: each must give a result or an InputError, nothing else.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "models/core/csv.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "planner/mesh/stl_io.h"
+#include "planner/scenario/scenario.h"
+
+namespace waam::planner {
+namespace {
+namespace fs = std::filesystem;
+
+std::vector<fs::path> Inputs(const std::string& target) {
+  std::vector<fs::path> files;
+  const fs::path dir = fs::path(WAAM_SOURCE_DIR) / "fuzz" / "regressions" / target;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.is_regular_file() && entry.path().filename() != "README.md") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Runs `read` on every kept input of `target`; an InputError is a fine answer, any other exception fails.
+template <typename Read>
+void Replay(const std::string& target, Read read) {
+  const std::vector<fs::path> inputs = Inputs(target);
+  ASSERT_FALSE(inputs.empty()) << "fuzz/regressions/" << target << " holds no input";
+  for (const fs::path& input : inputs) {
+    try {
+      read(input);
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << input << ": the message must be one line";
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << input << ": expected a result or an InputError, got another exception: " << e.what();
+    }
+  }
+}
+
+TEST(FuzzRegressions, StlInputsGiveAMeshOrAnInputError) {
+  Replay("stl", [](const fs::path& input) {
+    MeshReport report;
+    ReadStl(input, 0.01, &report);
+    (void)MeshReportJson(report);
+    CheckSliceable(report);
+  });
+}
+
+TEST(FuzzRegressions, ScenarioInputsGiveAScenarioOrAnInputError) {
+  Replay("scenario", [](const fs::path& input) { (void)LoadScenario(input); });
+}
+
+TEST(FuzzRegressions, CsvInputsGiveATableOrAnInputError) {
+  Replay("csv", [](const fs::path& input) {
+    const CsvTable table = CsvTable::Parse(ReadFile(input), input.string());
+    for (const std::string& column : table.header()) {
+      try {
+        (void)table.Numbers(column, true);
+      } catch (const InputError&) {
+      }
+    }
+  });
+}
+
+}  // namespace
+}  // namespace waam::planner

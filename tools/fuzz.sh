@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Builds one libFuzzer target (clang, ASan + UBSan, in build-fuzz/) and runs it for a given time.
+#   tools/fuzz.sh <stl|scenario|csv> <seconds> [more libFuzzer flags]
+# The seed corpus is the repository's own files (meshes, scenarios, data tables) plus fuzz/regressions/<target>;
+# the growing corpus stays in build-fuzz/corpus/<target>, crashing inputs go to build-fuzz/artifacts/<target>/.
+# The 60 s timeout is for a shared, loaded machine (a unit normally takes milliseconds); a real hang still trips it.
+# Keep every crashing input in fuzz/regressions/<target>/ once fixed: the normal build replays them
+# (tests/planner/fuzz_regressions_test.cc).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+target=${1:?usage: tools/fuzz.sh <stl|scenario|csv> <seconds> [libFuzzer flags]}
+seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv> <seconds> [libFuzzer flags]}
+shift 2
+build=${WAAM_FUZZ_BUILD_DIR:-$root/build-fuzz}
+
+case "$target" in
+  stl) seeds=$(find scenarios/meshes fuzz/seeds/stl -name '*.stl' -size -64k); max_len=65536 ;;
+  scenario) seeds=$(find scenarios fuzz/seeds/scenario -name '*.yaml'); max_len=4096 ;;
+  csv) seeds=$(find models/data fuzz/seeds/csv -name '*.csv'); max_len=8192 ;;
+  *) echo "fuzz.sh: unknown target '$target' (stl, scenario or csv)" >&2; exit 2 ;;
+esac
+
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  launcher=()
+  if command -v ccache >/dev/null; then
+    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+  fi
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    -DWAAM_BUILD_FUZZERS=ON -DWAAM_BUILD_TESTS=OFF -DWAAM_BUILD_BENCHMARKS=OFF "${launcher[@]}"
+fi
+cmake --build "$build" -j"${WAAM_FUZZ_JOBS:-2}" --target "waam_fuzz_$target"
+
+corpus=$build/corpus/$target
+artifacts=$build/artifacts/$target
+mkdir -p "$corpus" "$artifacts"
+# shellcheck disable=SC2086
+cp $seeds "$corpus"/
+if [ -d "fuzz/regressions/$target" ]; then cp "fuzz/regressions/$target"/* "$corpus"/ 2>/dev/null || true; fi
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+exec "$build/fuzz/waam_fuzz_$target" "$corpus" -max_total_time="$seconds" -max_len="$max_len" -timeout=60 \
+  -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$artifacts/" "$@"
