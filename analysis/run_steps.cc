@@ -14,6 +14,7 @@ namespace fs = std::filesystem;
 namespace {
 
 bool Always(const planner::Scenario&) { return true; }
+bool WhenListed(const planner::Scenario&) { return false; }  // only when run.steps or --steps names it
 
 }  // namespace
 
@@ -25,6 +26,8 @@ const std::vector<RunStep>& RunSteps() {
       {"plan", nullptr, Always, RunPlanStep, "plan.json"},
       {"check", "plan", Always, RunCheckStep, "check.json"},
       {"simulate", "plan", Always, RunSimulateStep, "simulate.json"},
+      {"tune_voids", nullptr, WhenListed, RunTuneVoidsStep, "tune.json"},
+      {"compensate", nullptr, WhenListed, RunCompensateStep, "compensate.json"},
   };
   return steps;
 }

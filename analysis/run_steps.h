@@ -46,6 +46,10 @@ const std::vector<RunStep>& RunSteps();
 StepOutcome RunPlanStep(RunContext& context, const std::filesystem::path& step_dir);
 StepOutcome RunCheckStep(RunContext& context, const std::filesystem::path& step_dir);
 StepOutcome RunSimulateStep(RunContext& context, const std::filesystem::path& step_dir);
+// The optional steps (analysis/run_optional_steps.cc), run only when listed: tune_voids (waam tune-voids) and
+// compensate (waam compensate with its default options).
+StepOutcome RunTuneVoidsStep(RunContext& context, const std::filesystem::path& step_dir);
+StepOutcome RunCompensateStep(RunContext& context, const std::filesystem::path& step_dir);
 
 // Copies the keys listed in `keys` (JSON pointers such as "/deviation/rms_mm") from `document` into a flat object
 // named by the pointers without the leading slash ("deviation/rms_mm"); missing keys are left out.

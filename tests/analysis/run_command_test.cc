@@ -120,6 +120,19 @@ TEST(RunCommand, ScenarioStepsAndImplicitPlan) {
   EXPECT_FALSE(fs::exists(options.out_dir / "check")) << "check was not asked for";
 }
 
+// The optional steps run only when listed; tune_voids writes tune.json into its folder and reports each junction class.
+TEST(RunCommand, TuneVoidsRunsWhenListed) {
+  RunOptions options = TinyRun("waam_test_run_tune_voids");
+  options.scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "ribweb" / "three_rib_junction.yaml";
+  options.steps = {"tune_voids"};
+  const RunSummary summary = RunScenario(options);
+  ASSERT_EQ(summary.steps.size(), 1u);
+  EXPECT_EQ(summary.steps[0].name, "tune_voids");
+  EXPECT_TRUE(fs::exists(options.out_dir / "tune_voids" / "tune.json"));
+  const nlohmann::json run = ReadJson(options.out_dir / "summary.json");
+  EXPECT_EQ(run["steps"][0]["metrics"]["junction_classes"], 1) << run.dump();
+}
+
 TEST(RunCommand, UnknownStepNamesTheScenarioKey) {
   RunOptions options = TinyRun("waam_test_run_unknown_step");
   options.scenario = WriteScenario("tiny_bad_step", std::string(kTinyScenario) + "run:\n  steps: [plan, weld]\n");
