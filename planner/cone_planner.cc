@@ -126,14 +126,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
   result.layer_growth_mm =
       result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
 
-  PatternOptions options;
-  options.pattern = scenario.path.pattern;
-  options.bead_width_mm = width;
-  options.overlap_model = scenario.path.overlap_model;
-  options.zigzag_auto = scenario.path.zigzag_angle_auto;
-  options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
-  options.alternate_start = scenario.path.alternate_start;
-  options.seed = scenario.path.seed;
+  PatternOptions options = PatternOptionsFor(scenario, width);
   const double step_rad = slicing.cone_rotation_step_deg * kPi / 180.0;
   const double window_mm = std::max(0.5 * width, 2.0 * kPointStepMm);
 

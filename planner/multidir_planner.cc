@@ -74,14 +74,7 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
                                                       process.travel_speed_mm_min, process.deposition_efficiency);
   result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
   result.layer_growth_mm = result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
-  PatternOptions options;
-  options.pattern = scenario.path.pattern;
-  options.bead_width_mm = width;
-  options.overlap_model = scenario.path.overlap_model;
-  options.zigzag_auto = scenario.path.zigzag_angle_auto;
-  options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
-  options.alternate_start = scenario.path.alternate_start;
-  options.seed = scenario.path.seed;
+  PatternOptions options = PatternOptionsFor(scenario, width);
   const double d = scenario.slicing.layer_height_mm;
   if (progress) progress->SetTotal(static_cast<int>(scenario.slicing.sub_volumes.size()));
 

@@ -37,6 +37,18 @@ void PlaceOnSubstrate(TriangleMesh* mesh, MeshReport* report) {
 
 }  // namespace
 
+PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm) {
+  PatternOptions options;
+  options.pattern = scenario.path.pattern;
+  options.bead_width_mm = bead_width_mm;
+  options.overlap_model = scenario.path.overlap_model;
+  options.zigzag_auto = scenario.path.zigzag_angle_auto;
+  options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
+  options.alternate_start = scenario.path.alternate_start;
+  options.seed = scenario.path.seed;
+  return options;
+}
+
 PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   if (scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder") return PlanConeScenario(scenario, progress);
   if (scenario.slicing.type == "multi_directional") return PlanMultiDirectionalScenario(scenario, progress);
@@ -93,14 +105,7 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   CheckWeldLengthEstimate(slices, OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).zigzag_mm,
                           scenario.part.where);
 
-  PatternOptions options;
-  options.pattern = scenario.path.pattern;
-  options.bead_width_mm = result.bead_width_mm;
-  options.overlap_model = scenario.path.overlap_model;
-  options.zigzag_auto = scenario.path.zigzag_angle_auto;
-  options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
-  options.alternate_start = scenario.path.alternate_start;
-  options.seed = scenario.path.seed;
+  PatternOptions options = PatternOptionsFor(scenario, result.bead_width_mm);
   const double speed_mm_s = result.travel_speed_mm_min / 60.0;
   // Junction void filling on the planned moves; l is the spacing of the two beads of a wall (d2).
   const double l_mm = OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).contour_to_contour_mm;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "planner/mesh/triangle_mesh.h"
+#include "planner/path/layer_pattern.h"
 #include "planner/path/tool_path.h"
 #include "planner/path/void_filling.h"
 #include "planner/scenario/scenario.h"
@@ -55,5 +56,9 @@ struct PlanResult {
 // pattern. Throws InputError for a mesh that cannot be sliced or settings that cannot be planned.
 // `progress` may be null.
 PlanResult PlanScenario(const Scenario& scenario, Progress* progress);
+
+// The layer-pattern options of the scenario's `path` section for beads `bead_width_mm` wide (layer index 0); shared
+// by the planar, cone and multi-directional planners.
+PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm);
 
 }  // namespace waam::planner

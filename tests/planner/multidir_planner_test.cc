@@ -45,7 +45,9 @@ TEST(MultiDirectionalTest, SubVolumesAddUpToThePartAndWeldAlongTheirDirection) {
       for (const PathPoint& p : result.plan.layers[i].points) {
         EXPECT_LT((p.tool_dir_P - sub.direction).norm(), 1e-12) << sub.name;
         // Blades weld beyond their split plane (the hub flat at 30 mm), the hub inside the flats.
-        if (sub.name != "hub") EXPECT_GT(p.p_P.dot(sub.direction), 30.0) << sub.name;
+        if (sub.name != "hub") {
+          EXPECT_GT(p.p_P.dot(sub.direction), 30.0) << sub.name;
+        }
       }
     }
   }
