@@ -8,6 +8,8 @@
 //   turnarounds follow Z, d1 inside the contour just laid) -> down the left chain to B.
 // The number of rasters is even so the zigzag ends on the left chain and the loop closes at B; the count and the
 // gaps to the contour are chosen so the pitch stays near l (ChooseRasterLevels; Ding spreads them evenly over Z).
+// Sides shared with a neighbouring piece are not walls: there C runs l/2 inside and Z l inside C (not w/2 and d1),
+// so the beads of two pieces lie l apart across their shared line (see continuous_pattern.cc).
 #include "planner/path/convex_fill.h"
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 
 namespace waam::planner::internal {
 
-// Closed loop (last point not repeated, mm) that fills the convex `piece` with zigzag lines at `angle_rad` (radians
+// Closed loop (last point not repeated, mm) that fills the convex `piece` (CCW) with zigzag lines at `angle_rad` (radians
 // from +x): contour w/2 inside the piece on one chain, zigzag lines l apart whose ends reach the contour on that
 // chain and stop d1 short of it on the other. Edge k of the piece (piece[k] -> piece[k+1]) flagged in `shared`
 // (empty: none) is a line it shares with a neighbouring piece, not a wall: the contour runs l/2 inside it and the
