@@ -193,12 +193,18 @@ double UncoveredArea(const Ring& piece, const std::vector<Vec>& loop, double w) 
 // chain and the raster turnarounds on the other (Ding 3.2). Where a chain runs at a small angle to the rasters,
 // consecutive raster ends lie far apart along it and turnarounds leave wedges next to the wall that only a contour
 // fills; so the way round that leaves less of the piece uncovered is kept.
+//
+// On odd layers (`mirror`) the other way round is laid instead, unless it leaves more than 1 % of the piece
+// uncovered beyond the better one: the turnarounds and the contour then change sides layer by layer, so their
+// piles and gaps do not stack (both ways are Ding's loop: which chain is the "left" one follows the zigzag's sense).
 std::vector<Vec> BetterCoveringLoop(const Ring& piece, const std::vector<bool>& shared, double angle_rad, double w,
-                                    const OverlapSpacing& spacing) {
+                                    const OverlapSpacing& spacing, bool mirror) {
   std::vector<Vec> best = ConvexPieceLoop(piece, angle_rad, spacing, shared);
-  const std::vector<Vec> flipped = ConvexPieceLoop(piece, angle_rad + std::numbers::pi, spacing, shared);
-  if (UncoveredArea(piece, flipped, w) < UncoveredArea(piece, best, w) - 1e-6) best = flipped;
-  return best;
+  std::vector<Vec> other = ConvexPieceLoop(piece, angle_rad + std::numbers::pi, spacing, shared);
+  double best_uncovered = UncoveredArea(piece, best, w), other_uncovered = UncoveredArea(piece, other, w);
+  if (other_uncovered < best_uncovered - 1e-6) std::swap(best, other), std::swap(best_uncovered, other_uncovered);
+  const double tolerance = 0.01 * Area(PolygonWithHoles{piece, {}});
+  return mirror && !other.empty() && other_uncovered <= best_uncovered + tolerance ? other : best;
 }
 
 // Distance (mm) from p to the nearest boundary ring (outline or hole) of `region`.
@@ -317,7 +323,8 @@ void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& option
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     if (ConvexHull(pieces[i]).size() < 3) continue;  // a degenerate sliver: no path, nothing to join
     const double angle = options.zigzag_auto ? MinimumWidthDirection(pieces[i], nullptr) : options.zigzag_angle_rad;
-    loops[i].p = BetterCoveringLoop(pieces[i], piece_shared[i], angle, options.bead_width_mm, spacing);
+    const bool mirror = options.alternate_start && options.layer_index % 2 == 1;
+    loops[i].p = BetterCoveringLoop(pieces[i], piece_shared[i], angle, options.bead_width_mm, spacing, mirror);
     loops[i].piece.assign(loops[i].p.size(), static_cast<int>(i));
   }
   for (const Ring& ring : prepared.hole_rings) {

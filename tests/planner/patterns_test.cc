@@ -339,6 +339,31 @@ TEST(ContinuousPattern, SharedSideKeepsTheZigzagSpacing) {
   }
 }
 
+// On odd layers each piece's loop runs the other way round (contour and turnarounds change sides), so the piles
+// and gaps at the turnarounds do not stack up layer on layer. A 60 x 40 rectangle: rasters along x, the turnarounds
+// on one end, the contour on the other.
+TEST(ContinuousPattern, TurnaroundsChangeSidesOnOddLayers) {
+  const PolygonWithHoles region{testing::Rect(0, 0, 60, 40), {}};
+  auto corners_on_left = [&](int layer) {
+    const std::vector<Move2D> moves = Plan(region, "continuous", layer);
+    // Points on the contour's centre line at either end (w/2 from the wall): there the rasters turn, while on the
+    // contour's end only its two corners lie on it (the rasters stop d1 short).
+    int left = 0, right = 0;
+    for (const Move2D& m : moves) {
+      if (m.p.x() < 0.5 * kW + 0.1) ++left;
+      if (m.p.x() > 60.0 - 0.5 * kW - 0.1) ++right;
+    }
+    EXPECT_GT(std::max(left, right), 2 * std::min(left, right)) << "layer " << layer << ": " << left << " / " << right;
+    return left > right;
+  };
+  const bool even = corners_on_left(0);
+  EXPECT_NE(corners_on_left(1), even) << "layer 1 should have its turnarounds on the other end";
+  EXPECT_EQ(corners_on_left(2), even) << "layer 2 should be laid like layer 0";
+  for (int layer : {0, 1}) {
+    EXPECT_LT(UncoveredFraction(region, Plan(region, "continuous", layer)), 0.01) << "layer " << layer;
+  }
+}
+
 TEST(PlanLayerPattern, EmptySliceGivesNoMoves) { EXPECT_TRUE(PlanLayerPattern({}, PatternOptions{}).empty()); }
 
 TEST(PlanLayerPattern, RejectsBadOptions) {
