@@ -16,6 +16,10 @@
 // l from it, so the beads across the line are spaced like all others (003 eq. 3.15). On the three-layer Ding
 // scenarios this took Ra of the continuous path from 0.610 / 0.788 / 0.876 / 0.351 mm to 0.588 / 0.763 / 0.866 /
 // 0.332 mm (ding_a-d) and W_t down on all four.
+//
+// Odd layers (not in the paper): each piece's loop is laid the other way round (BetterCoveringLoop), so the
+// turnarounds and the contour change sides and their piles and gaps do not stack: 0.588 / 0.763 / 0.866 / 0.332 ->
+// 0.561 / 0.717 / 0.848 / 0.343 mm.
 #include "planner/path/continuous_pattern.h"
 
 #include <algorithm>
