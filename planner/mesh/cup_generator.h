@@ -15,12 +15,12 @@ namespace waam::planner {
 // touch. All lengths mm.
 struct CupParams {
   double radius_mm = 37.5;
-  double height_mm = 80.0;
+  double height_mm = 90.0;
   double wall_mm = 5.0;
   double bottom_mm = 5.0;
   double handle_radius_mm = 22.0;
   double handle_tube_mm = 5.0;
-  double handle_z_mm = 45.0;
+  double handle_z_mm = 58.0;
   int segments = 96;          // round the cup
   int handle_sections = 48;   // along each handle's half circle
   int handle_points = 24;     // round each handle's section
