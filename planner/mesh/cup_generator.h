@@ -16,7 +16,7 @@ namespace waam::planner {
 struct CupParams {
   double radius_mm = 37.5;
   double height_mm = 90.0;
-  double wall_mm = 5.0;
+  double wall_mm = 4.0;
   double bottom_mm = 5.0;
   double handle_radius_mm = 22.0;
   double handle_tube_mm = 5.0;

@@ -375,7 +375,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
         "multi_directional with split: centroid_shift",
         {{"radius_mm", {37.5}, 1, 1.0, kBig, false, "outer radius of the cup (mm)"},
          {"height_mm", {90.0}, 1, 1.0, kBig, false, "height of the cup (mm)"},
-         {"wall_mm", {5.0}, 1, 0.1, kBig, false, "wall thickness (mm)"},
+         {"wall_mm", {4.0}, 1, 0.1, kBig, false, "wall thickness (mm)"},
          {"bottom_mm", {5.0}, 1, 0.1, kBig, false, "bottom thickness (mm)"},
          {"handle_mm", {22.0, 5.0}, 2, 0.1, kBig, false, "handle centre-line radius and tube radius (mm)"},
          {"handle_z_mm", {58.0}, 1, 0.0, kBig, false, "height of the handles' centre on the wall (mm)"}},

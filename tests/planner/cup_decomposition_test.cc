@@ -124,7 +124,7 @@ Scenario CupScenario() {
   s.slicing.split = "centroid_shift";
   s.slicing.layer_height_mm = 2.5;  // divides the 5 mm bottom: the slices count it exactly
   s.path.pattern = "contour";
-  s.path.bead_width_mm = 5.0;
+  s.path.bead_width_mm = 4.0;
   return s;
 }
 
