@@ -103,6 +103,18 @@ TEST(CentroidDecompositionTest, PartsWithoutOverhangsAreNotSplit) {
   EXPECT_GT(sphere.candidates_merged, 0) << "the sphere's lower half should give overhang candidates";
 }
 
+TEST(CentroidDecompositionTest, HandlesLeaningLessThanTheLimitStayWithTheBody) {
+  // The handles' centroid chains lean about 66 deg (eq. 5.26); with a 70 deg limit (a layer may step out 3 mm) the
+  // handles still start candidates, but the centroid-shift test keeps them with the body.
+  CentroidSplitOptions options;
+  options.step_mm = 1.1;
+  options.overhang_deg = 70.0;
+  const CentroidDecomposition d = DecomposeByCentroidShift(GeneratePart("cup_two_handles", {}, "test"), options, "test");
+  EXPECT_TRUE(d.features.empty()) << d.features.size() << " features";
+  EXPECT_GE(d.candidates_merged, 2) << "at least one candidate per handle";
+  ASSERT_EQ(d.sub_volumes.size(), 1u);
+}
+
 TEST(CentroidDecompositionTest, BadOptionsAreNamed) {
   const TriangleMesh mesh = GeneratePart("box", {}, "test");
   CentroidSplitOptions options;
