@@ -171,7 +171,10 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
         point.weld = move.weld;
         layer.points.push_back(point);
       }
-      if (layer.points.empty()) continue;
+      if (layer.points.empty()) {
+        report.unwelded_mm3 += Area(kept[i]) * h;  // the pattern found no path in this slice
+        continue;
+      }
       double z_sum = 0.0;
       for (const PathPoint& p : layer.points) z_sum += p.p_P.z();
       layer.z_mm = z_sum / static_cast<double>(layer.points.size());

@@ -161,6 +161,9 @@ TEST(CentroidDecompositionTest, PlannedSubVolumesAddUpToThePart) {
     }
   }
   EXPECT_NEAR(sum / EnclosedVolume(result.mesh), 1.0, 0.02) << "the sub-volumes share the part between them";
+  for (const SubVolumeReport& sub : result.sub_volumes) {
+    EXPECT_EQ(sub.unwelded_mm3, 0.0) << sub.name << ": the contour pattern should find a path in every slice";
+  }
   EXPECT_LT(result.sub_volumes[0].support_mm3, 0.01 * result.sub_volumes[0].volume_mm3)
       << "the cup body built upwards stands on its bottom";
 }
