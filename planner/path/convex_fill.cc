@@ -8,6 +8,8 @@
 //   turnarounds follow Z, d1 inside the contour just laid) -> down the left chain to B.
 // The number of rasters is even so the zigzag ends on the left chain and the loop closes at B; the count and the
 // gaps to the contour are chosen so the pitch stays near l (ChooseRasterLevels; Ding spreads them evenly over Z).
+// Sides shared with a neighbouring piece are not walls: there C runs l/2 inside and Z l inside C (not w/2 and d1),
+// so the beads of two pieces lie l apart across their shared line (see continuous_pattern.cc).
 #include "planner/path/convex_fill.h"
 
 #include <algorithm>
@@ -37,6 +39,33 @@ Ring InsetConvex(const Ring& ring, double inset_mm) {
   for (const PolygonWithHoles& r : Offset({PolygonWithHoles{ring, {}}}, -inset_mm)) {
     if (Area(r) > best_area) best_area = Area(r), best = r.outer;
   }
+  return best;
+}
+
+// The convex CCW `ring` with edge k moved inward by inset_mm[k]: the intersection of the shifted edges' half-planes
+// (Clipper), so an edge that the others overtake simply drops out. Empty if nothing is left.
+Ring InsetEdges(const Ring& ring, const std::vector<double>& inset_mm) {
+  Vec lo = ring.front(), hi = ring.front();
+  for (const Vec& p : ring) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double big = 4.0 * (hi - lo).norm() + 1.0;
+  std::vector<PolygonWithHoles> cell{{{lo - Vec(big, big), Vec(hi.x() + big, lo.y() - big), hi + Vec(big, big),
+                                       Vec(lo.x() - big, hi.y() + big)}, {}}};
+  const std::size_t n = ring.size();
+  for (std::size_t k = 0; k < n && !cell.empty(); ++k) {
+    const Vec a = ring[k], b = ring[(k + 1) % n];
+    if ((b - a).norm() < 1e-9) continue;
+    const Vec t = (b - a).normalized(), inward(-t.y(), t.x());
+    const Vec base = a + inset_mm[k] * inward;
+    // A square on the inner side of the shifted edge line, larger than the ring.
+    const Vec far = 6.0 * big * t, deep = 6.0 * big * inward;
+    cell = Intersection(cell, {{{base - far, base + far, base + far + deep, base - far + deep}, {}}});
+  }
+  Ring best;
+  double best_area = 0.0;
+  for (const PolygonWithHoles& r : cell) {
+    if (Area(r) > best_area) best_area = Area(r), best = r.outer;
+  }
+  if (!best.empty() && SignedArea(best) < 0.0) std::reverse(best.begin(), best.end());
   return best;
 }
 
@@ -118,13 +147,31 @@ RasterLevels ChooseRasterLevels(double range_mm, const OverlapSpacing& spacing) 
 
 }  // namespace
 
-Ring ConvexPieceLoop(const Ring& piece, double angle_rad, const OverlapSpacing& spacing) {
-  Ring contour = InsetConvex(piece, spacing.boundary_offset_mm);
+Ring ConvexPieceLoop(const Ring& piece, double angle_rad, const OverlapSpacing& spacing,
+                     const std::vector<bool>& shared) {
+  const bool any_shared = std::find(shared.begin(), shared.end(), true) != shared.end();
+  Ring contour;
+  Ring zig;
+  if (any_shared && shared.size() == piece.size()) {
+    // Along a shared line the neighbour's bead lies l/2 beyond it, so this piece's bead is laid l/2 inside and the
+    // rasters keep the zigzag spacing l from it (003 eq. 3.15: l between neighbouring beads; d1 < l is the gap to a
+    // contour on a free wall, whose outer side sags).
+    const double l = spacing.zigzag_mm;
+    std::vector<double> c_inset(piece.size()), z_inset(piece.size());
+    for (std::size_t k = 0; k < piece.size(); ++k) {
+      c_inset[k] = shared[k] ? 0.5 * l : spacing.boundary_offset_mm;
+      z_inset[k] = c_inset[k] + (shared[k] ? l : spacing.contour_to_zigzag_mm);
+    }
+    contour = InsetEdges(piece, c_inset);
+    zig = InsetEdges(piece, z_inset);
+  } else {
+    contour = InsetConvex(piece, spacing.boundary_offset_mm);
+    if (contour.size() >= 3) zig = InsetConvex(contour, spacing.contour_to_zigzag_mm);
+  }
   if (contour.size() < 3) return {};
   const Frame f{Vec(std::cos(angle_rad), std::sin(angle_rad)), Vec(-std::sin(angle_rad), std::cos(angle_rad))};
   const int top = RotateToBottom(f, &contour);
 
-  Ring zig = InsetConvex(contour, spacing.contour_to_zigzag_mm);
   if (zig.size() < 3) return contour;
   const int zig_top = RotateToBottom(f, &zig);
   const double z_hi = f.h(zig[zig_top]) - kLevelInsetMm, z_lo = f.h(zig[0]) + kLevelInsetMm;

@@ -302,6 +302,68 @@ TEST(ContinuousPattern, RasterPitchStaysNearTheStepOver) {
   }
 }
 
+// A side a piece shares with its neighbour is not a wall: its bead goes l/2 inside (the neighbour's l/2 beyond), the
+// rasters l from it; the walls keep w/2 and d1. Square 40 x 40, rasters along x, the top side shared.
+TEST(ContinuousPattern, SharedSideKeepsTheZigzagSpacing) {
+  const OverlapSpacing spacing = OverlapSpacingFor("proposed", kW);
+  const double l = spacing.zigzag_mm;
+  const Ring square = testing::Poly({{0, 0}, {40, 0}, {40, 40}, {0, 40}});
+  const std::vector<bool> top_shared{false, false, true, false};  // edge 2: (40,40) -> (0,40)
+  for (const std::vector<bool>& shared : {std::vector<bool>{}, top_shared}) {
+    const Ring loop = internal::ConvexPieceLoop(square, 0.0, spacing, shared);
+    ASSERT_GE(loop.size(), 4u);
+    double y_max = -1.0, y_min = 1e9, x_min = 1e9, x_max = -1.0;
+    std::vector<double> levels;  // heights of the long runs along x
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Eigen::Vector2d& a = loop[i];
+      const Eigen::Vector2d& b = loop[(i + 1) % loop.size()];
+      y_max = std::max(y_max, a.y()), y_min = std::min(y_min, a.y());
+      x_min = std::min(x_min, a.x()), x_max = std::max(x_max, a.x());
+      if (std::abs(a.y() - b.y()) < 1e-6 && std::abs(a.x() - b.x()) > 15.0) levels.push_back(a.y());
+    }
+    std::sort(levels.begin(), levels.end());
+    levels.erase(std::unique(levels.begin(), levels.end(), [](double a, double b) { return std::abs(a - b) < 1e-6; }),
+                 levels.end());
+    ASSERT_GE(levels.size(), 3u);
+    const bool top_is_shared = !shared.empty();
+    EXPECT_NEAR(40.0 - y_max, top_is_shared ? 0.5 * l : 0.5 * kW, 1e-3) << "top bead inset";
+    EXPECT_NEAR(y_min, 0.5 * kW, 1e-3) << "a wall keeps its bead w/2 inside";
+    EXPECT_NEAR(x_min, 0.5 * kW, 1e-3);
+    EXPECT_NEAR(40.0 - x_max, 0.5 * kW, 1e-3);
+    const double top_gap = levels.back() - levels[levels.size() - 2];
+    if (top_is_shared) {
+      EXPECT_GE(top_gap, l - 1e-3) << "first raster l (not d1) below the bead on a shared side";
+    } else {
+      EXPECT_GE(top_gap, spacing.contour_to_zigzag_mm - 1e-3);
+    }
+  }
+}
+
+// On odd layers each piece's loop runs the other way round (contour and turnarounds change sides), so the piles
+// and gaps at the turnarounds do not stack up layer on layer. A 60 x 40 rectangle: rasters along x, the turnarounds
+// on one end, the contour on the other.
+TEST(ContinuousPattern, TurnaroundsChangeSidesOnOddLayers) {
+  const PolygonWithHoles region{testing::Rect(0, 0, 60, 40), {}};
+  auto corners_on_left = [&](int layer) {
+    const std::vector<Move2D> moves = Plan(region, "continuous", layer);
+    // Points on the contour's centre line at either end (w/2 from the wall): there the rasters turn, while on the
+    // contour's end only its two corners lie on it (the rasters stop d1 short).
+    int left = 0, right = 0;
+    for (const Move2D& m : moves) {
+      if (m.p.x() < 0.5 * kW + 0.1) ++left;
+      if (m.p.x() > 60.0 - 0.5 * kW - 0.1) ++right;
+    }
+    EXPECT_GT(std::max(left, right), 2 * std::min(left, right)) << "layer " << layer << ": " << left << " / " << right;
+    return left > right;
+  };
+  const bool even = corners_on_left(0);
+  EXPECT_NE(corners_on_left(1), even) << "layer 1 should have its turnarounds on the other end";
+  EXPECT_EQ(corners_on_left(2), even) << "layer 2 should be laid like layer 0";
+  for (int layer : {0, 1}) {
+    EXPECT_LT(UncoveredFraction(region, Plan(region, "continuous", layer)), 0.01) << "layer " << layer;
+  }
+}
+
 TEST(PlanLayerPattern, EmptySliceGivesNoMoves) { EXPECT_TRUE(PlanLayerPattern({}, PatternOptions{}).empty()); }
 
 TEST(PlanLayerPattern, RejectsBadOptions) {
