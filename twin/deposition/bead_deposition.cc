@@ -14,19 +14,20 @@ namespace {
 
 constexpr double kNoGround = -std::numeric_limits<double>::infinity();
 
-// Voxel index along `axis` of the voxel whose "height" index (counted along the build direction) is m.
-int AxisIndex(int m, int sign) { return sign > 0 ? m : -1 - m; }
 
 }  // namespace
 
 struct Depositor::Column {
-  int i0 = 0;        // voxel index along the first in-plane axis
-  int i1 = 0;        // along the second
+  int i0 = 0;        // lattice cell of the torch frame (internal::TorchFrame), first axis
+  int i1 = 0;        // second axis
   double d_mm = 0.0; // lateral distance from the path, mm
   double u_mm = 0.0; // distance along the segment (clamped to it), mm
   double ground_mm = 0.0;  // top of the solid under the column, along the build direction, mm (or kNoGround)
-  int lo = 0;        // voxel height indices to fill (inclusive), set by the level search
-  int hi = -1;
+  std::size_t begin = 0;   // the column's voxels in the step's buffer, by increasing height: [begin, end)
+  std::size_t end = 0;
+  std::size_t floor = 0;   // the first voxel above the ground (voxels below it in the column are not filled)
+  std::size_t lo = 0;      // the voxels to fill, set by the level search: [lo, hi)
+  std::size_t hi = 0;
 };
 
 void ValidateSimulationSettings(const planner::SimulationSettings& s) {
@@ -55,46 +56,66 @@ void ValidateSimulationSettings(const planner::SimulationSettings& s) {
 Depositor::Depositor(const planner::SimulationSettings& settings)
     : settings_(settings), grid_((ValidateSimulationSettings(settings), settings.voxel_mm), settings.max_voxels) {}
 
-// Fills one step. The molten metal settles under a cap z = L - 4h/w^2 y^2 (eq. 3.2 shifted to the water level L):
-// each column takes the free voxels between its ground (or, over air past a free edge, (1 + sag) h under the crown)
-// and the cap. L is the lowest level whose voxels hold the step's volume, so valleys fill first.
+// Fills one step. The molten metal settles under a cap z = L - 4h/w^2 y^2 (eq. 3.2 shifted to the water level L, z
+// along the torch axis, y across the path in the plane perpendicular to it): each column takes the free voxels between
+// its ground (or, over air past a free edge, (1 + sag) h under the crown) and the cap. L is the lowest level whose
+// voxels hold the step's volume, so valleys fill first.
 double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3,
-                           double zeta_tcp_mm, int axis, int sign, const VoxelData& data, bool last_step) {
+                           double zeta_tcp_mm, const internal::TorchFrame& frame, const VoxelData& data,
+                           bool last_step) {
   const double v = grid_.voxel_mm();
   const double h = section.height_mm;
   const double w = section.width_mm;
   const long target_voxels = std::lround(target_mm3 / (v * v * v));
   if (target_voxels <= 0 || columns.empty()) return 0.0;
-  const int a0 = (axis + 1) % 3;
-  const int a1 = (axis + 2) % 3;
-  auto voxel = [&](const Column& c, int m) {
-    VoxelIndex idx;
-    idx[a0] = c.i0;
-    idx[a1] = c.i1;
-    idx[axis] = AxisIndex(m, sign);
-    return idx;
-  };
+  // The pool stands at most kStopBlobHeights x h above the highest ground under it (see the level search below).
+  constexpr double kStopBlobHeights = 4.0;
 
-  // Ground under each column: scan down along the build direction from above the crown.
+  // Ground under each column: from the voxel at the crown (zeta + h) down to 4 h + 2 mm below the TCP, or up past
+  // the part's top when that voxel is already metal. Heights are those of voxel centres along the torch axis.
   const int m_start = static_cast<int>(std::floor((zeta_tcp_mm + h) / v));
   const int m_min = static_cast<int>(std::floor((zeta_tcp_mm - 4.0 * h - 2.0) / v));
   const int m_up = m_start + static_cast<int>(std::ceil(4.0 * h / v)) + 2;
+  const double eps = 1e-9 * v;
+  const double start_mm = (m_start + 0.5) * v + eps;
+  const double down_mm = (m_min + 0.5) * v - eps;
+  const double up_mm = (m_up + 0.5) * v + eps;
+  // Every voxel the fill can reach: down to the air floor below the lowest ground, up to the stop blob.
+  const double reach_lo = std::min(down_mm, zeta_tcp_mm - 4.0 * h) - settings_.edge_sag_factor * h - v;
+  const double reach_hi = up_mm + kStopBlobHeights * h + v;
+  std::vector<internal::ColumnVoxel>& voxels = column_voxels_;
+  voxels.clear();
   double lowest = std::numeric_limits<double>::infinity();
   double highest = -std::numeric_limits<double>::infinity();
   for (Column& c : columns) {
+    c.begin = voxels.size();
+    frame.CollectColumn(c.i0, c.i1, reach_lo, reach_hi, &voxels);
+    c.end = voxels.size();
     c.ground_mm = kNoGround;
-    if (grid_.Solid(voxel(c, m_start))) {
-      for (int m = m_start + 1; m <= m_up; ++m) {
-        if (!grid_.Solid(voxel(c, m))) {
-          c.ground_mm = m * v;
+    c.floor = c.end;
+    // The crown voxel: the last one at or below the crown height.
+    const auto begin = voxels.begin() + static_cast<std::ptrdiff_t>(c.begin);
+    const auto end = voxels.begin() + static_cast<std::ptrdiff_t>(c.end);
+    const auto above = std::upper_bound(begin, end, start_mm, [](double x, const internal::ColumnVoxel& cv) {
+      return x < cv.height_mm;
+    });
+    std::size_t j0 = static_cast<std::size_t>(above - voxels.begin());
+    if (j0 == c.begin) continue;
+    --j0;
+    if (grid_.Solid(voxels[j0].index)) {
+      for (std::size_t j = j0 + 1; j < c.end && voxels[j].height_mm <= up_mm; ++j) {
+        if (!grid_.Solid(voxels[j].index)) {
+          c.ground_mm = voxels[j].height_mm - 0.5 * v;
+          c.floor = j;
           break;
         }
       }
       if (c.ground_mm == kNoGround) c.ground_mm = std::numeric_limits<double>::infinity();  // buried: unusable
     } else {
-      for (int m = m_start - 1; m >= m_min; --m) {
-        if (grid_.Solid(voxel(c, m))) {
-          c.ground_mm = (m + 1) * v;
+      for (std::size_t j = j0; j-- > c.begin && voxels[j].height_mm >= down_mm;) {
+        if (grid_.Solid(voxels[j].index)) {
+          c.ground_mm = voxels[j].height_mm + 0.5 * v;
+          c.floor = j + 1;
           break;
         }
       }
@@ -112,19 +133,27 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // lowest supported column, and never more than (1 + edge_sag_factor) x h below the crown.
   const double sag = (1.0 + settings_.edge_sag_factor) * h;
   const double air_floor = lowest - settings_.edge_sag_factor * h;
+  auto first_at_or_above = [&](const Column& c, double height) {
+    const auto it = std::lower_bound(voxels.begin() + static_cast<std::ptrdiff_t>(c.begin),
+                                     voxels.begin() + static_cast<std::ptrdiff_t>(c.end), height,
+                                     [](const internal::ColumnVoxel& cv, double x) { return cv.height_mm < x; });
+    return static_cast<std::size_t>(it - voxels.begin());
+  };
   auto count = [&](double level, bool store) {
     long total = 0;
     for (Column& c : columns) {
       if (c.ground_mm == std::numeric_limits<double>::infinity()) continue;
       const double top = level - 4.0 * h / (w * w) * c.d_mm * c.d_mm;
-      const double bottom = std::max(c.ground_mm == kNoGround ? air_floor : c.ground_mm, level - sag);
-      const int lo = static_cast<int>(std::ceil(bottom / v - 0.5));
-      const int hi = static_cast<int>(std::floor(top / v - 0.5));
+      const double bottom = c.ground_mm == kNoGround ? std::max(air_floor, level - sag) : level - sag;
+      // Voxels with centres in [bottom, top], and above the ground voxel.
+      std::size_t lo = first_at_or_above(c, bottom);
+      if (c.ground_mm != kNoGround) lo = std::max(lo, c.floor);
+      const std::size_t hi = first_at_or_above(c, std::nextafter(top, std::numeric_limits<double>::infinity()));
       if (store) {
         c.lo = lo;
-        c.hi = hi;
+        c.hi = std::max(lo, hi);
       }
-      if (hi >= lo) total += hi - lo + 1;
+      if (hi > lo) total += static_cast<long>(hi - lo);
     }
     return total;
   };
@@ -134,7 +163,6 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // piling up in a spike. The last step of a pass takes what is left up to a stop blob of kStopBlobHeights x h;
   // metal beyond that had nowhere to go (the path runs where the part is already full, e.g. a degenerate inner
   // contour) and is not placed: it shows as deposited < expected volume, which the report flags.
-  constexpr double kStopBlobHeights = 4.0;
   double hi_level = highest + h + v * (static_cast<double>(target_voxels) + 2.0);
   hi_level = std::min(hi_level, highest + (last_step ? kStopBlobHeights : 1.5) * h);
   for (int iter = 0; iter < 48 && hi_level - lo_level > 1e-4 * v; ++iter) {
@@ -144,8 +172,8 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   count(hi_level, true);
   long placed = 0;
   for (const Column& c : columns) {
-    for (int m = c.lo; m <= c.hi; ++m) {
-      if (grid_.Set(voxel(c, m), data)) ++placed;
+    for (std::size_t j = c.lo; j < c.hi; ++j) {
+      if (grid_.Set(voxels[j].index, data)) ++placed;
     }
   }
   return static_cast<double>(placed) * v * v * v;
@@ -167,14 +195,11 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
     const ExecutedPoint& B = pts[i];
     const double len3 = (B.p_P - A.p_P).norm();
     if (len3 < 1e-9) continue;
-    // Columns run along the grid axis nearest the torch axis, growing towards the torch.
-    const Eigen::Vector3d tool = (A.tool_dir_P + B.tool_dir_P).normalized();
-    int axis = 0;
-    tool.cwiseAbs().maxCoeff(&axis);
-    const int sign = tool[axis] >= 0.0 ? 1 : -1;
-    const int a0 = (axis + 1) % 3;
-    const int a1 = (axis + 2) % 3;
-    auto plane = [&](const Eigen::Vector3d& p) { return Eigen::Vector2d(p[a0], p[a1]); };
+    // The bead is swept in the torch frame: its footprint is a lattice at voxel pitch in the plane perpendicular to
+    // the torch axis, and each lattice cell a column of voxels growing along the axis, towards the torch.
+    const Eigen::Vector3d tool = A.tool_dir_P + B.tool_dir_P;
+    const internal::TorchFrame frame(tool.norm() > 1e-9 ? tool : B.tool_dir_P, v);
+    auto plane = [&](const Eigen::Vector3d& p) { return frame.Plane(p); };
     const Eigen::Vector2d A2 = plane(A.p_P);
     const Eigen::Vector2d B2 = plane(B.p_P);
     const double L2 = (B2 - A2).norm();
@@ -253,12 +278,12 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       for (std::size_t c = first; c < last; ++c) {
         if (cols[c].d_mm <= (0.5 + settings_.edge_spread_factor) * section.width_mm) chunk.push_back(cols[c]);
       }
-      const double zeta_tcp = sign * ((1.0 - f) * A.p_P[axis] + f * B.p_P[axis]);
+      const double zeta_tcp = frame.Height((1.0 - f) * A.p_P + f * B.p_P);
       VoxelData data;
       data.bead = bead;
       data.time_s = static_cast<float>(pass.start_time_s + s / std::max(B.speed_mm_s, 1e-9));
       const bool last_step = i + 1 == pts.size() && last == cols.size();
-      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, axis, sign, data, last_step);
+      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, frame, data, last_step);
       debt += volume - placed;
       record.deposited_volume_mm3 += placed;
       boundary = next_boundary;
