@@ -13,7 +13,30 @@ namespace waam::twin {
 namespace {
 
 constexpr double kNoGround = -std::numeric_limits<double>::infinity();
+// Free voxels less than this many voxels below the top of the ground in a tilted column are pinholes (see below).
+constexpr double kPinholeDepth = 1.5;
 
+
+// Where the torch axis turned since the metal below was laid, a column of this segment's lattice cuts across the old
+// columns and sees their top jagged at voxel scale: free voxels can lie just below the highest solid one (j). Molten
+// metal fills them, so those less than 1.5 voxels below it are moved just above it (their height set to its height)
+// and filled first (a wall turning 2.5 deg per layer kept 205 such pinholes without this, 1 with it; test
+// TorchTurningBetweenLayersLeavesNoPinholes). Only for tilted columns: a grid column's voxels are one pitch apart and
+// a free voxel under its top is a real void. Returns the index of the first voxel to fill.
+std::size_t PinholesOnTheGround(std::vector<internal::ColumnVoxel>& voxels, std::size_t begin, std::size_t j,
+                                const VoxelGrid& grid) {
+  const double top = voxels[j].height_mm;
+  const double depth = kPinholeDepth * grid.voxel_mm();
+  std::size_t p = j;
+  while (p > begin && voxels[p - 1].height_mm > top - depth) --p;
+  if (p == j) return j + 1;
+  // Solid voxels first (in height order), then the free ones.
+  const auto first_free = std::stable_partition(
+      voxels.begin() + static_cast<std::ptrdiff_t>(p), voxels.begin() + static_cast<std::ptrdiff_t>(j + 1),
+      [&](const internal::ColumnVoxel& cv) { return grid.Solid(cv.index); });
+  for (auto it = first_free; it != voxels.begin() + static_cast<std::ptrdiff_t>(j + 1); ++it) it->height_mm = top;
+  return static_cast<std::size_t>(first_free - voxels.begin());
+}
 
 }  // namespace
 
@@ -26,6 +49,8 @@ struct Depositor::Column {
   std::size_t begin = 0;   // the column's voxels in the step's buffer, by increasing height: [begin, end)
   std::size_t end = 0;
   std::size_t floor = 0;   // the first voxel above the ground (voxels below it in the column are not filled)
+  bool full = false;       // the voxels were collected over the whole reach of the fill, not a window
+  double from_mm = 0.0;    // lowest height collected, mm
   std::size_t lo = 0;      // the voxels to fill, set by the level search: [lo, hi)
   std::size_t hi = 0;
 };
@@ -68,7 +93,8 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   const double w = section.width_mm;
   const long target_voxels = std::lround(target_mm3 / (v * v * v));
   if (target_voxels <= 0 || columns.empty()) return 0.0;
-  // The pool stands at most kStopBlobHeights x h above the highest ground under it (see the level search below).
+  // The pool stands at most 1.5 h (kStopBlobHeights x h at the end of a pass) above the highest ground under it (see
+  // the level search below).
   constexpr double kStopBlobHeights = 4.0;
 
   // Ground under each column: from the voxel at the crown (zeta + h) down to 4 h + 2 mm below the TCP, or up past
@@ -83,46 +109,81 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // Every voxel the fill can reach: down to the air floor below the lowest ground, up to the stop blob.
   const double reach_lo = std::min(down_mm, zeta_tcp_mm - 4.0 * h) - settings_.edge_sag_factor * h - v;
   const double reach_hi = up_mm + kStopBlobHeights * h + v;
+  // Most columns need far less: ground a little below the TCP and the pool at most cap_h above the highest ground.
+  // Each column is first collected over that window and again over the whole reach when its search runs out of it.
+  const double cap_h = (last_step ? kStopBlobHeights : 1.5) * h;
+  const double window_lo = std::max(reach_lo, zeta_tcp_mm - 2.0 * h - v);
+  const double window_hi = start_mm + 0.5 * v + cap_h + v;
   std::vector<internal::ColumnVoxel>& voxels = column_voxels_;
   voxels.clear();
-  double lowest = std::numeric_limits<double>::infinity();
-  double highest = -std::numeric_limits<double>::infinity();
-  for (Column& c : columns) {
+  auto collect = [&](Column& c, double lo, double hi) {
     c.begin = voxels.size();
-    frame.CollectColumn(c.i0, c.i1, reach_lo, reach_hi, &voxels);
+    frame.CollectColumn(c.i0, c.i1, lo, hi, &voxels);
     c.end = voxels.size();
+    c.full = lo <= reach_lo && hi >= reach_hi;
+    c.from_mm = lo;
+  };
+  // Ground search of one column; false when it ran out of the collected voxels before its limits.
+  auto search = [&](Column& c) {
     c.ground_mm = kNoGround;
     c.floor = c.end;
     // The crown voxel: the last one at or below the crown height.
-    const auto begin = voxels.begin() + static_cast<std::ptrdiff_t>(c.begin);
-    const auto end = voxels.begin() + static_cast<std::ptrdiff_t>(c.end);
-    const auto above = std::upper_bound(begin, end, start_mm, [](double x, const internal::ColumnVoxel& cv) {
-      return x < cv.height_mm;
-    });
+    const auto above = std::upper_bound(voxels.begin() + static_cast<std::ptrdiff_t>(c.begin),
+                                        voxels.begin() + static_cast<std::ptrdiff_t>(c.end), start_mm,
+                                        [](double x, const internal::ColumnVoxel& cv) { return x < cv.height_mm; });
     std::size_t j0 = static_cast<std::size_t>(above - voxels.begin());
-    if (j0 == c.begin) continue;
+    if (j0 == c.begin) return c.full;
     --j0;
     if (grid_.Solid(voxels[j0].index)) {
-      for (std::size_t j = j0 + 1; j < c.end && voxels[j].height_mm <= up_mm; ++j) {
+      std::size_t j = j0 + 1;
+      for (; j < c.end && voxels[j].height_mm <= up_mm; ++j) {
         if (!grid_.Solid(voxels[j].index)) {
           c.ground_mm = voxels[j].height_mm - 0.5 * v;
           c.floor = j;
-          break;
+          return true;
         }
       }
-      if (c.ground_mm == kNoGround) c.ground_mm = std::numeric_limits<double>::infinity();  // buried: unusable
-    } else {
-      for (std::size_t j = j0; j-- > c.begin && voxels[j].height_mm >= down_mm;) {
-        if (grid_.Solid(voxels[j].index)) {
-          c.ground_mm = voxels[j].height_mm + 0.5 * v;
-          c.floor = j + 1;
-          break;
-        }
+      if (j == c.end && !c.full) return false;
+      c.ground_mm = std::numeric_limits<double>::infinity();  // buried: unusable
+      return true;
+    }
+    for (std::size_t j = j0; j > c.begin;) {
+      --j;
+      if (voxels[j].height_mm < down_mm) return true;  // no ground within reach: over air
+      if (grid_.Solid(voxels[j].index)) {
+        // The pinholes under it must lie in the collected voxels too.
+        if (!frame.aligned() && !c.full && voxels[j].height_mm - kPinholeDepth * v < c.from_mm) return false;
+        c.ground_mm = voxels[j].height_mm + 0.5 * v;
+        c.floor = frame.aligned() ? j + 1 : PinholesOnTheGround(voxels, c.begin, j, grid_);
+        return true;
       }
+    }
+    return c.full;  // ran out of the collected voxels: of a window, search the whole reach
+  };
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -std::numeric_limits<double>::infinity();
+  for (Column& c : columns) {
+    collect(c, window_lo, window_hi);
+    if (!search(c)) {
+      collect(c, reach_lo, reach_hi);
+      search(c);
+    }
+    // A column over air fills down to the air floor, below its window.
+    if (c.ground_mm == kNoGround && !c.full) {
+      collect(c, reach_lo, reach_hi);
+      search(c);
     }
     if (std::isfinite(c.ground_mm)) {
       lowest = std::min(lowest, c.ground_mm);
       highest = std::max(highest, c.ground_mm);
+    }
+  }
+  // A buried column's ground lies above the window: then the pool may reach past every window.
+  if (highest + cap_h > window_hi - v) {
+    for (Column& c : columns) {
+      if (c.full) continue;
+      collect(c, reach_lo, reach_hi);
+      search(c);
     }
   }
   if (!std::isfinite(lowest)) {
@@ -133,10 +194,21 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // lowest supported column, and never more than (1 + edge_sag_factor) x h below the crown.
   const double sag = (1.0 + settings_.edge_sag_factor) * h;
   const double air_floor = lowest - settings_.edge_sag_factor * h;
-  auto first_at_or_above = [&](const Column& c, double height) {
-    const auto it = std::lower_bound(voxels.begin() + static_cast<std::ptrdiff_t>(c.begin),
-                                     voxels.begin() + static_cast<std::ptrdiff_t>(c.end), height,
-                                     [](const internal::ColumnVoxel& cv, double x) { return cv.height_mm < x; });
+  // Index of the first voxel of column c whose centre lies at or above `height` (above it when `strictly`). A grid
+  // column's centres are one pitch apart: found by arithmetic as the grid-axis fill always did; else by bisection.
+  auto first_above = [&](const Column& c, double height, bool strictly) {
+    if (frame.aligned() && c.end > c.begin) {
+      const double m0 = voxels[c.begin].height_mm / v - 0.5;  // an integer
+      const double m = strictly ? std::floor(height / v - 0.5) + 1.0 : std::ceil(height / v - 0.5);
+      return c.begin + static_cast<std::size_t>(std::clamp(m - std::round(m0), 0.0, static_cast<double>(c.end - c.begin)));
+    }
+    const auto first = voxels.begin() + static_cast<std::ptrdiff_t>(c.begin);
+    const auto last = voxels.begin() + static_cast<std::ptrdiff_t>(c.end);
+    const auto it = strictly ? std::upper_bound(first, last, height, [](double x, const internal::ColumnVoxel& cv) {
+      return x < cv.height_mm;
+    }) : std::lower_bound(first, last, height, [](const internal::ColumnVoxel& cv, double x) {
+      return cv.height_mm < x;
+    });
     return static_cast<std::size_t>(it - voxels.begin());
   };
   auto count = [&](double level, bool store) {
@@ -146,9 +218,9 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
       const double top = level - 4.0 * h / (w * w) * c.d_mm * c.d_mm;
       const double bottom = c.ground_mm == kNoGround ? std::max(air_floor, level - sag) : level - sag;
       // Voxels with centres in [bottom, top], and above the ground voxel.
-      std::size_t lo = first_at_or_above(c, bottom);
+      std::size_t lo = first_above(c, bottom, false);
       if (c.ground_mm != kNoGround) lo = std::max(lo, c.floor);
-      const std::size_t hi = first_at_or_above(c, std::nextafter(top, std::numeric_limits<double>::infinity()));
+      const std::size_t hi = first_above(c, top, true);
       if (store) {
         c.lo = lo;
         c.hi = std::max(lo, hi);
@@ -164,7 +236,7 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // metal beyond that had nowhere to go (the path runs where the part is already full, e.g. a degenerate inner
   // contour) and is not placed: it shows as deposited < expected volume, which the report flags.
   double hi_level = highest + h + v * (static_cast<double>(target_voxels) + 2.0);
-  hi_level = std::min(hi_level, highest + (last_step ? kStopBlobHeights : 1.5) * h);
+  hi_level = std::min(hi_level, highest + cap_h);
   for (int iter = 0; iter < 48 && hi_level - lo_level > 1e-4 * v; ++iter) {
     const double mid = 0.5 * (lo_level + hi_level);
     (count(mid, false) >= target_voxels ? hi_level : lo_level) = mid;

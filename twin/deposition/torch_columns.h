@@ -25,6 +25,8 @@ class TorchFrame {
   TorchFrame(const Eigen::Vector3d& tool_dir_P, double voxel_mm);
 
   const Eigen::Vector3d& axis() const { return t_; }
+  // True when the torch is along a grid axis: the lattice is the grid and a column's voxels are one pitch apart.
+  bool aligned() const { return aligned_; }
   // Coordinates of `p_P` (mm) in the lattice plane, mm.
   Eigen::Vector2d Plane(const Eigen::Vector3d& p_P) const { return {p_P.dot(e1_), p_P.dot(e2_)}; }
   // Height of `p_P` (mm) along the torch axis, mm.
