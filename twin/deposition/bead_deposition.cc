@@ -51,6 +51,7 @@ struct Depositor::Column {
   std::size_t floor = 0;   // the first voxel above the ground (voxels below it in the column are not filled)
   bool full = false;       // the voxels were collected over the whole reach of the fill, not a window
   double from_mm = 0.0;    // lowest height collected, mm
+  double m0 = 0.0;         // grid-aligned column: voxel height index (height / v - 1/2) of its first voxel
   std::size_t lo = 0;      // the voxels to fill, set by the level search: [lo, hi)
   std::size_t hi = 0;
 };
@@ -121,6 +122,7 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
     frame.CollectColumn(c.i0, c.i1, lo, hi, &voxels);
     c.end = voxels.size();
     c.full = lo <= reach_lo && hi >= reach_hi;
+    if (c.end > c.begin) c.m0 = std::round(voxels[c.begin].height_mm / v - 0.5);
     c.from_mm = lo;
   };
   // Ground search of one column; false when it ran out of the collected voxels before its limits.
@@ -197,10 +199,9 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // Index of the first voxel of column c whose centre lies at or above `height` (above it when `strictly`). A grid
   // column's centres are one pitch apart: found by arithmetic as the grid-axis fill always did; else by bisection.
   auto first_above = [&](const Column& c, double height, bool strictly) {
-    if (frame.aligned() && c.end > c.begin) {
-      const double m0 = voxels[c.begin].height_mm / v - 0.5;  // an integer
+    if (frame.aligned()) {
       const double m = strictly ? std::floor(height / v - 0.5) + 1.0 : std::ceil(height / v - 0.5);
-      return c.begin + static_cast<std::size_t>(std::clamp(m - std::round(m0), 0.0, static_cast<double>(c.end - c.begin)));
+      return c.begin + static_cast<std::size_t>(std::clamp(m - c.m0, 0.0, static_cast<double>(c.end - c.begin)));
     }
     const auto first = voxels.begin() + static_cast<std::ptrdiff_t>(c.begin);
     const auto last = voxels.begin() + static_cast<std::ptrdiff_t>(c.end);

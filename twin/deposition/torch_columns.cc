@@ -54,13 +54,15 @@ void TorchFrame::CollectColumn(int i0, int i1, double lo_mm, double hi_mm, std::
     const double sign = ta > 0.0 ? 1.0 : -1.0;
     const int m_lo = static_cast<int>(std::ceil(lo_mm / v_ - 0.5));
     const int m_hi = static_cast<int>(std::floor(hi_mm / v_ - 0.5));
-    for (int m = m_lo; m <= m_hi; ++m) {
-      ColumnVoxel c;
-      c.index[a0_] = i0;
-      c.index[a1_] = i1;
-      c.index[axis_] = sign > 0.0 ? m : -1 - m;
-      c.height_mm = (m + 0.5) * v_;
-      out->push_back(c);
+    if (m_hi < m_lo) return;
+    const std::size_t first = out->size();
+    out->resize(first + static_cast<std::size_t>(m_hi - m_lo + 1));
+    ColumnVoxel* c = out->data() + first;
+    for (int m = m_lo; m <= m_hi; ++m, ++c) {
+      c->index[a0_] = i0;
+      c->index[a1_] = i1;
+      c->index[axis_] = sign > 0.0 ? m : -1 - m;
+      c->height_mm = (m + 0.5) * v_;
     }
     return;
   }
