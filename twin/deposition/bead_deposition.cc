@@ -16,7 +16,6 @@ constexpr double kNoGround = -std::numeric_limits<double>::infinity();
 // Free voxels less than this many voxels below the top of the ground in a tilted column are pinholes (see below).
 constexpr double kPinholeDepth = 1.5;
 
-
 // Where the torch axis turned since the metal below was laid, a column of this segment's lattice cuts across the old
 // columns and sees their top jagged at voxel scale: free voxels can lie just below the highest solid one (j). Molten
 // metal fills them, so those less than 1.5 voxels below it are moved just above it (their height set to its height)
