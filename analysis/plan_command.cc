@@ -59,7 +59,10 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
                            {"first_layer", sub.first_layer},
                            {"layers", sub.layers},
                            {"volume_mm3", sub.volume_mm3},
-                           {"support_mm3", sub.support_mm3}});
+                           {"support_mm3", sub.support_mm3},
+                           {"keep", sub.keep},
+                           {"centroid_lean_deg", sub.centroid_lean_deg},
+                           {"unwelded_mm3", sub.unwelded_mm3}});
   }
   // Junction void filling (003 sec. 4.4): corrected corners and the mean shift per junction class.
   std::map<std::string, std::pair<int, double>> by_class;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include <Eigen/Geometry>
 
@@ -17,6 +18,7 @@
 #include "planner/mesh/mesh_ops.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/path/layer_pattern.h"
+#include "planner/slicing/centroid_decomposition.h"
 #include "planner/slicing/planar_slicer.h"
 
 namespace waam::planner {
@@ -66,6 +68,18 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
   }
   CheckSliceable(result.mesh_report);
 
+  // The sub-volumes: the user's split planes, or those of the centroid-shift decomposition (003 sec. 5.4).
+  std::vector<SubVolumeSpec> specs = scenario.slicing.sub_volumes;
+  std::map<std::string, double> lean_deg;
+  if (scenario.slicing.split == "centroid_shift") {
+    CentroidSplitOptions split;
+    split.step_mm = scenario.slicing.layer_height_mm;
+    split.overhang_deg = scenario.slicing.overhang_deg;
+    const CentroidDecomposition decomposition = DecomposeByCentroidShift(result.mesh, split, where);
+    specs = decomposition.sub_volumes;
+    for (const OverhangFeature& f : decomposition.features) lean_deg[f.name] = f.max_gamma_deg;
+  }
+
   // The bead from the wire-feed volume balance (003 eq. 3.4, 3.3), as in the planar planner.
   const double width = scenario.path.bead_width_mm;
   result.travel_speed_mm_min = process.travel_speed_mm_min;
@@ -76,12 +90,12 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
   result.layer_growth_mm = result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
   PatternOptions options = PatternOptionsFor(scenario, width);
   const double d = scenario.slicing.layer_height_mm;
-  if (progress) progress->SetTotal(static_cast<int>(scenario.slicing.sub_volumes.size()));
+  if (progress) progress->SetTotal(static_cast<int>(specs.size()));
 
   result.plan.name = scenario.name;
   double height_sum = 0.0;
   int sub_index = 0;
-  for (const SubVolumeSpec& spec : scenario.slicing.sub_volumes) {
+  for (const SubVolumeSpec& spec : specs) {
     const Eigen::Vector3d n(spec.direction[0], spec.direction[1], spec.direction[2]);
     const Eigen::Matrix3d R_PS = FrameFor(n);
     TriangleMesh rotated = result.mesh;
@@ -115,6 +129,8 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
     report.name = spec.name;
     report.direction = n;
     report.first_layer = static_cast<int>(result.plan.layers.size());
+    report.keep = spec.keep;
+    if (lean_deg.count(spec.name)) report.centroid_lean_deg = lean_deg.at(spec.name);
     std::vector<std::vector<PolygonWithHoles>> kept(count);
     for (int i = 0; i < count; ++i) {
       std::vector<PolygonWithHoles> region = slices[i];
@@ -155,7 +171,10 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
         point.weld = move.weld;
         layer.points.push_back(point);
       }
-      if (layer.points.empty()) continue;
+      if (layer.points.empty()) {
+        report.unwelded_mm3 += Area(kept[i]) * h;  // the pattern found no path in this slice
+        continue;
+      }
       double z_sum = 0.0;
       for (const PathPoint& p : layer.points) z_sum += p.p_P.z();
       layer.z_mm = z_sum / static_cast<double>(layer.points.size());

@@ -1,6 +1,7 @@
 // The planar planning pipeline: scenario -> mesh -> slices -> one path per layer -> statistics.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct SubVolumeReport {
   int layers = 0;
   double volume_mm3 = 0.0;         // sum of slice area x layer height
   double support_mm3 = 0.0;        // metal needed under overhangs to build it along its direction (Lim & Soh Table 1)
+  std::vector<std::array<double, 4>> keep;  // its half-spaces n . p <= c (n, c mm): the split planes
+  double centroid_lean_deg = 0.0;  // split: centroid_shift features: largest lean of the centroid chain (eq. 5.26), deg
+  double unwelded_mm3 = 0.0;        // metal in slices where the path pattern gave no path (part of volume_mm3)
 };
 
 // Everything `waam plan` produces in memory; the analysis module writes it to plan.json, plan.h5 and PNGs.

@@ -20,6 +20,7 @@
 #include "models/core/error.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/mesh/blade_generators.h"
+#include "planner/mesh/cup_generator.h"
 #include "planner/mesh/extrude.h"
 #include "planner/mesh/mesh_ops.h"
 #include "planner/mesh/tube_generators.h"
@@ -366,6 +367,28 @@ const std::map<std::string, GeneratorSpec>& Registry() {
           p.pitch_root_deg = a("pitch_deg", 0);
           p.pitch_tip_deg = a("pitch_deg", 1);
           return BuildPropeller(p, a("hub_mm", 1));
+        },
+        true};
+    r["cup_two_handles"] = {
+        "cup with two handles (dissertation 003 Fig. 52, the overhang decomposition example): a cylindrical shell "
+        "with a bottom, axis x = y = 0 from z = 0, two half-torus handles on +x and -x, for slicing.type "
+        "multi_directional with split: centroid_shift",
+        {{"radius_mm", {37.5}, 1, 1.0, kBig, false, "outer radius of the cup (mm)"},
+         {"height_mm", {90.0}, 1, 1.0, kBig, false, "height of the cup (mm)"},
+         {"wall_mm", {4.0}, 1, 0.1, kBig, false, "wall thickness (mm)"},
+         {"bottom_mm", {5.0}, 1, 0.1, kBig, false, "bottom thickness (mm)"},
+         {"handle_mm", {22.0, 5.0}, 2, 0.1, kBig, false, "handle centre-line radius and tube radius (mm)"},
+         {"handle_z_mm", {58.0}, 1, 0.0, kBig, false, "height of the handles' centre on the wall (mm)"}},
+        [](const Args& a) {
+          CupParams p;
+          p.radius_mm = a("radius_mm");
+          p.height_mm = a("height_mm");
+          p.wall_mm = a("wall_mm");
+          p.bottom_mm = a("bottom_mm");
+          p.handle_radius_mm = a("handle_mm", 0);
+          p.handle_tube_mm = a("handle_mm", 1);
+          p.handle_z_mm = a("handle_z_mm");
+          return BuildCupTwoHandles(p, a.where());
         },
         true};
     r["ding_d"] = {"Ding 2014 case-4-like large solid cross with four notches",

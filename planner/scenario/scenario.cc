@@ -126,6 +126,14 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
       s.cone_rotation_step_deg = slicing.Number("rotation_step_deg", 1.0, 180.0, 11.0);
     }
     if (scenario.slicing.type == "multi_directional") {
+      sl.split = slicing.Choice("split", {"planes", "centroid_shift"}, "planes");
+      if (sl.split == "centroid_shift") {
+        sl.overhang_deg = slicing.Number("overhang_deg", 1.0, 80.0, 15.0);
+        WAAM_THROW_UNLESS(!slicing.Has("sub_volumes"), slicing.Where("sub_volumes")
+                              << ": split = centroid_shift finds the sub-volumes itself: remove sub_volumes");
+      }
+    }
+    if (scenario.slicing.type == "multi_directional" && sl.split == "planes") {
       for (YamlMap sub : slicing.Maps("sub_volumes")) {
         SubVolumeSpec spec;
         spec.name = sub.String("name");

@@ -41,6 +41,10 @@ struct SlicingSettings {
   std::array<double, 3> cone_axis_mm = {0.0, 0.0, 0.0};  // point on the axis, part frame, mm
   double cone_rotation_step_deg = 11.0;             // rotation step before flattening (Dai sec. 2.2), deg
   std::vector<SubVolumeSpec> sub_volumes;           // multi_directional: built in this order
+  // multi_directional: "planes" (the user's sub_volumes) or "centroid_shift" (found by the overhang decomposition of
+  // the dissertation, sec. 5.4: planner/slicing/centroid_decomposition.h)
+  std::string split = "planes";
+  double overhang_deg = 15.0;        // centroid_shift: self-supporting overhang from +z, deg
   // skeleton: adaptive slicing along the central axis (dissertation 6.3.1, Fig. 56; Table 16 limits)
   double h_min_mm = 1.0;             // thinnest depositable layer, mm
   double h_max_mm = 2.0;             // thickest depositable layer, mm
