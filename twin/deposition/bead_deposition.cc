@@ -15,6 +15,8 @@ namespace {
 constexpr double kNoGround = -std::numeric_limits<double>::infinity();
 // Free voxels less than this many voxels below the top of the ground in a tilted column are pinholes (see below).
 constexpr double kPinholeDepth = 1.5;
+// A segment keeps the torch frame of the metal laid before it while its torch axis is within this angle of it, rad.
+constexpr double kFrameHoldRad = 2.0 * 3.14159265358979323846 / 180.0;
 
 // Where the torch axis turned since the metal below was laid, a column of this segment's lattice cuts across the old
 // columns and sees their top jagged at voxel scale: free voxels can lie just below the highest solid one (j). Molten
@@ -270,7 +272,15 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
     // The bead is swept in the torch frame: its footprint is a lattice at voxel pitch in the plane perpendicular to
     // the torch axis, and each lattice cell a column of voxels growing along the axis, towards the torch.
     const Eigen::Vector3d tool = A.tool_dir_P + B.tool_dir_P;
-    const internal::TorchFrame frame(tool.norm() > 1e-9 ? tool : B.tool_dir_P, v);
+    const internal::TorchFrame candidate(tool.norm() > 1e-9 ? tool : B.tool_dir_P, v);
+    // A torch that turns a little keeps the lattice of the metal before it (within kFrameHoldRad), so neighbouring
+    // segments and layers share their columns: seams between lattices, where a voxel can be left to neither, only
+    // come where the torch has turned further. A grid-aligned torch always gets the grid.
+    if (!held_frame_ || candidate.aligned() || held_frame_->aligned() ||
+        candidate.axis().dot(held_frame_->axis()) < std::cos(kFrameHoldRad)) {
+      held_frame_ = candidate;
+    }
+    const internal::TorchFrame frame = *held_frame_;
     auto plane = [&](const Eigen::Vector3d& p) { return frame.Plane(p); };
     const Eigen::Vector2d A2 = plane(A.p_P);
     const Eigen::Vector2d B2 = plane(B.p_P);

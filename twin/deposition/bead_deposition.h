@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "planner/path/tool_path.h"
@@ -57,6 +58,7 @@ class Depositor {
   double expected_volume_mm3_ = 0.0;
   double weld_length_mm_ = 0.0;
   std::vector<internal::ColumnVoxel> column_voxels_;  // scratch of FillStep: the voxels of one step's columns
+  std::optional<internal::TorchFrame> held_frame_;    // the lattice of the last segment (see DepositPass)
 };
 
 // Executes and deposits a whole plan (travel timed at `rapid_speed_mm_s`); `progress` (may be null) counts passes.
