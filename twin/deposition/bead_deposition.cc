@@ -13,20 +13,48 @@ namespace waam::twin {
 namespace {
 
 constexpr double kNoGround = -std::numeric_limits<double>::infinity();
+// Free voxels less than this many voxels below the top of the ground in a tilted column are pinholes (see below).
+constexpr double kPinholeDepth = 1.5;
+// A segment keeps the torch frame of the metal laid before it while its torch axis is within this angle of it, rad.
+constexpr double kFrameHoldRad = 2.0 * 3.14159265358979323846 / 180.0;
 
-// Voxel index along `axis` of the voxel whose "height" index (counted along the build direction) is m.
-int AxisIndex(int m, int sign) { return sign > 0 ? m : -1 - m; }
+// Where the torch axis turned since the metal below was laid, a column of this segment's lattice cuts across the old
+// columns and sees their top jagged at voxel scale: free voxels can lie just below the highest solid one (j). Molten
+// metal fills them, so those less than 1.5 voxels below it are moved just above it (their height set to its height)
+// and filled first (a wall turning 2.5 deg per layer kept 205 such pinholes without this, 1 with it; test
+// TorchTurningBetweenLayersLeavesNoPinholes). Only for tilted columns: a grid column's voxels are one pitch apart and
+// a free voxel under its top is a real void. Returns the index of the first voxel to fill.
+std::size_t PinholesOnTheGround(std::vector<internal::ColumnVoxel>& voxels, std::size_t begin, std::size_t j,
+                                const VoxelGrid& grid) {
+  const double top = voxels[j].height_mm;
+  const double depth = kPinholeDepth * grid.voxel_mm();
+  std::size_t p = j;
+  while (p > begin && voxels[p - 1].height_mm > top - depth) --p;
+  if (p == j) return j + 1;
+  // Solid voxels first (in height order), then the free ones.
+  const auto first_free = std::stable_partition(
+      voxels.begin() + static_cast<std::ptrdiff_t>(p), voxels.begin() + static_cast<std::ptrdiff_t>(j + 1),
+      [&](const internal::ColumnVoxel& cv) { return grid.Solid(cv.index); });
+  for (auto it = first_free; it != voxels.begin() + static_cast<std::ptrdiff_t>(j + 1); ++it) it->height_mm = top;
+  return static_cast<std::size_t>(first_free - voxels.begin());
+}
 
 }  // namespace
 
 struct Depositor::Column {
-  int i0 = 0;        // voxel index along the first in-plane axis
-  int i1 = 0;        // along the second
+  int i0 = 0;        // lattice cell of the torch frame (internal::TorchFrame), first axis
+  int i1 = 0;        // second axis
   double d_mm = 0.0; // lateral distance from the path, mm
   double u_mm = 0.0; // distance along the segment (clamped to it), mm
   double ground_mm = 0.0;  // top of the solid under the column, along the build direction, mm (or kNoGround)
-  int lo = 0;        // voxel height indices to fill (inclusive), set by the level search
-  int hi = -1;
+  std::size_t begin = 0;   // the column's voxels in the step's buffer, by increasing height: [begin, end)
+  std::size_t end = 0;
+  std::size_t floor = 0;   // the first voxel above the ground (voxels below it in the column are not filled)
+  bool full = false;       // the voxels were collected over the whole reach of the fill, not a window
+  double from_mm = 0.0;    // lowest height collected, mm
+  double m0 = 0.0;         // grid-aligned column: voxel height index (height / v - 1/2) of its first voxel
+  std::size_t lo = 0;      // the voxels to fill, set by the level search: [lo, hi)
+  std::size_t hi = 0;
 };
 
 void ValidateSimulationSettings(const planner::SimulationSettings& s) {
@@ -55,53 +83,110 @@ void ValidateSimulationSettings(const planner::SimulationSettings& s) {
 Depositor::Depositor(const planner::SimulationSettings& settings)
     : settings_(settings), grid_((ValidateSimulationSettings(settings), settings.voxel_mm), settings.max_voxels) {}
 
-// Fills one step. The molten metal settles under a cap z = L - 4h/w^2 y^2 (eq. 3.2 shifted to the water level L):
-// each column takes the free voxels between its ground (or, over air past a free edge, (1 + sag) h under the crown)
-// and the cap. L is the lowest level whose voxels hold the step's volume, so valleys fill first.
+// Fills one step. The molten metal settles under a cap z = L - 4h/w^2 y^2 (eq. 3.2 shifted to the water level L, z
+// along the torch axis, y across the path in the plane perpendicular to it): each column takes the free voxels between
+// its ground (or, over air past a free edge, (1 + sag) h under the crown) and the cap. L is the lowest level whose
+// voxels hold the step's volume, so valleys fill first.
 double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3,
-                           double zeta_tcp_mm, int axis, int sign, const VoxelData& data, bool last_step) {
+                           double zeta_tcp_mm, const internal::TorchFrame& frame, const VoxelData& data,
+                           bool last_step) {
   const double v = grid_.voxel_mm();
   const double h = section.height_mm;
   const double w = section.width_mm;
   const long target_voxels = std::lround(target_mm3 / (v * v * v));
   if (target_voxels <= 0 || columns.empty()) return 0.0;
-  const int a0 = (axis + 1) % 3;
-  const int a1 = (axis + 2) % 3;
-  auto voxel = [&](const Column& c, int m) {
-    VoxelIndex idx;
-    idx[a0] = c.i0;
-    idx[a1] = c.i1;
-    idx[axis] = AxisIndex(m, sign);
-    return idx;
-  };
+  // The pool stands at most 1.5 h (kStopBlobHeights x h at the end of a pass) above the highest ground under it (see
+  // the level search below).
+  constexpr double kStopBlobHeights = 4.0;
 
-  // Ground under each column: scan down along the build direction from above the crown.
+  // Ground under each column: from the voxel at the crown (zeta + h) down to 4 h + 2 mm below the TCP, or up past
+  // the part's top when that voxel is already metal. Heights are those of voxel centres along the torch axis.
   const int m_start = static_cast<int>(std::floor((zeta_tcp_mm + h) / v));
   const int m_min = static_cast<int>(std::floor((zeta_tcp_mm - 4.0 * h - 2.0) / v));
   const int m_up = m_start + static_cast<int>(std::ceil(4.0 * h / v)) + 2;
+  const double eps = 1e-9 * v;
+  const double start_mm = (m_start + 0.5) * v + eps;
+  const double down_mm = (m_min + 0.5) * v - eps;
+  const double up_mm = (m_up + 0.5) * v + eps;
+  // Every voxel the fill can reach: down to the air floor below the lowest ground, up to the stop blob.
+  const double reach_lo = std::min(down_mm, zeta_tcp_mm - 4.0 * h) - settings_.edge_sag_factor * h - v;
+  const double reach_hi = up_mm + kStopBlobHeights * h + v;
+  // Most columns need far less: ground a little below the TCP and the pool at most cap_h above the highest ground.
+  // Each column is first collected over that window and again over the whole reach when its search runs out of it.
+  const double cap_h = (last_step ? kStopBlobHeights : 1.5) * h;
+  const double window_lo = std::max(reach_lo, zeta_tcp_mm - 2.0 * h - v);
+  const double window_hi = start_mm + 0.5 * v + cap_h + v;
+  std::vector<internal::ColumnVoxel>& voxels = column_voxels_;
+  voxels.clear();
+  auto collect = [&](Column& c, double lo, double hi) {
+    c.begin = voxels.size();
+    frame.CollectColumn(c.i0, c.i1, lo, hi, &voxels);
+    c.end = voxels.size();
+    c.full = lo <= reach_lo && hi >= reach_hi;
+    if (c.end > c.begin) c.m0 = std::round(voxels[c.begin].height_mm / v - 0.5);
+    c.from_mm = lo;
+  };
+  // Ground search of one column; false when it ran out of the collected voxels before its limits.
+  auto search = [&](Column& c) {
+    c.ground_mm = kNoGround;
+    c.floor = c.end;
+    // The crown voxel: the last one at or below the crown height.
+    const auto above = std::upper_bound(voxels.begin() + static_cast<std::ptrdiff_t>(c.begin),
+                                        voxels.begin() + static_cast<std::ptrdiff_t>(c.end), start_mm,
+                                        [](double x, const internal::ColumnVoxel& cv) { return x < cv.height_mm; });
+    std::size_t j0 = static_cast<std::size_t>(above - voxels.begin());
+    if (j0 == c.begin) return c.full;
+    --j0;
+    if (grid_.Solid(voxels[j0].index)) {
+      std::size_t j = j0 + 1;
+      for (; j < c.end && voxels[j].height_mm <= up_mm; ++j) {
+        if (!grid_.Solid(voxels[j].index)) {
+          c.ground_mm = voxels[j].height_mm - 0.5 * v;
+          c.floor = j;
+          return true;
+        }
+      }
+      if (j == c.end && !c.full) return false;
+      c.ground_mm = std::numeric_limits<double>::infinity();  // buried: unusable
+      return true;
+    }
+    for (std::size_t j = j0; j > c.begin;) {
+      --j;
+      if (voxels[j].height_mm < down_mm) return true;  // no ground within reach: over air
+      if (grid_.Solid(voxels[j].index)) {
+        // The pinholes under it must lie in the collected voxels too.
+        if (!frame.aligned() && !c.full && voxels[j].height_mm - kPinholeDepth * v < c.from_mm) return false;
+        c.ground_mm = voxels[j].height_mm + 0.5 * v;
+        c.floor = frame.aligned() ? j + 1 : PinholesOnTheGround(voxels, c.begin, j, grid_);
+        return true;
+      }
+    }
+    return c.full;  // ran out of the collected voxels: of a window, search the whole reach
+  };
   double lowest = std::numeric_limits<double>::infinity();
   double highest = -std::numeric_limits<double>::infinity();
   for (Column& c : columns) {
-    c.ground_mm = kNoGround;
-    if (grid_.Solid(voxel(c, m_start))) {
-      for (int m = m_start + 1; m <= m_up; ++m) {
-        if (!grid_.Solid(voxel(c, m))) {
-          c.ground_mm = m * v;
-          break;
-        }
-      }
-      if (c.ground_mm == kNoGround) c.ground_mm = std::numeric_limits<double>::infinity();  // buried: unusable
-    } else {
-      for (int m = m_start - 1; m >= m_min; --m) {
-        if (grid_.Solid(voxel(c, m))) {
-          c.ground_mm = (m + 1) * v;
-          break;
-        }
-      }
+    collect(c, window_lo, window_hi);
+    if (!search(c)) {
+      collect(c, reach_lo, reach_hi);
+      search(c);
+    }
+    // A column over air fills down to the air floor, below its window.
+    if (c.ground_mm == kNoGround && !c.full) {
+      collect(c, reach_lo, reach_hi);
+      search(c);
     }
     if (std::isfinite(c.ground_mm)) {
       lowest = std::min(lowest, c.ground_mm);
       highest = std::max(highest, c.ground_mm);
+    }
+  }
+  // A buried column's ground lies above the window: then the pool may reach past every window.
+  if (highest + cap_h > window_hi - v) {
+    for (Column& c : columns) {
+      if (c.full) continue;
+      collect(c, reach_lo, reach_hi);
+      search(c);
     }
   }
   if (!std::isfinite(lowest)) {
@@ -112,19 +197,37 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // lowest supported column, and never more than (1 + edge_sag_factor) x h below the crown.
   const double sag = (1.0 + settings_.edge_sag_factor) * h;
   const double air_floor = lowest - settings_.edge_sag_factor * h;
+  // Index of the first voxel of column c whose centre lies at or above `height` (above it when `strictly`). A grid
+  // column's centres are one pitch apart: found by arithmetic as the grid-axis fill always did; else by bisection.
+  auto first_above = [&](const Column& c, double height, bool strictly) {
+    if (frame.aligned()) {
+      const double m = strictly ? std::floor(height / v - 0.5) + 1.0 : std::ceil(height / v - 0.5);
+      return c.begin + static_cast<std::size_t>(std::clamp(m - c.m0, 0.0, static_cast<double>(c.end - c.begin)));
+    }
+    const auto first = voxels.begin() + static_cast<std::ptrdiff_t>(c.begin);
+    const auto last = voxels.begin() + static_cast<std::ptrdiff_t>(c.end);
+    const auto it = strictly ? std::upper_bound(first, last, height, [](double x, const internal::ColumnVoxel& cv) {
+      return x < cv.height_mm;
+    }) : std::lower_bound(first, last, height, [](const internal::ColumnVoxel& cv, double x) {
+      return cv.height_mm < x;
+    });
+    return static_cast<std::size_t>(it - voxels.begin());
+  };
   auto count = [&](double level, bool store) {
     long total = 0;
     for (Column& c : columns) {
       if (c.ground_mm == std::numeric_limits<double>::infinity()) continue;
       const double top = level - 4.0 * h / (w * w) * c.d_mm * c.d_mm;
-      const double bottom = std::max(c.ground_mm == kNoGround ? air_floor : c.ground_mm, level - sag);
-      const int lo = static_cast<int>(std::ceil(bottom / v - 0.5));
-      const int hi = static_cast<int>(std::floor(top / v - 0.5));
+      const double bottom = c.ground_mm == kNoGround ? std::max(air_floor, level - sag) : level - sag;
+      // Voxels with centres in [bottom, top], and above the ground voxel.
+      std::size_t lo = first_above(c, bottom, false);
+      if (c.ground_mm != kNoGround) lo = std::max(lo, c.floor);
+      const std::size_t hi = first_above(c, top, true);
       if (store) {
         c.lo = lo;
-        c.hi = hi;
+        c.hi = std::max(lo, hi);
       }
-      if (hi >= lo) total += hi - lo + 1;
+      if (hi > lo) total += static_cast<long>(hi - lo);
     }
     return total;
   };
@@ -134,9 +237,8 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   // piling up in a spike. The last step of a pass takes what is left up to a stop blob of kStopBlobHeights x h;
   // metal beyond that had nowhere to go (the path runs where the part is already full, e.g. a degenerate inner
   // contour) and is not placed: it shows as deposited < expected volume, which the report flags.
-  constexpr double kStopBlobHeights = 4.0;
   double hi_level = highest + h + v * (static_cast<double>(target_voxels) + 2.0);
-  hi_level = std::min(hi_level, highest + (last_step ? kStopBlobHeights : 1.5) * h);
+  hi_level = std::min(hi_level, highest + cap_h);
   for (int iter = 0; iter < 48 && hi_level - lo_level > 1e-4 * v; ++iter) {
     const double mid = 0.5 * (lo_level + hi_level);
     (count(mid, false) >= target_voxels ? hi_level : lo_level) = mid;
@@ -144,8 +246,8 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   count(hi_level, true);
   long placed = 0;
   for (const Column& c : columns) {
-    for (int m = c.lo; m <= c.hi; ++m) {
-      if (grid_.Set(voxel(c, m), data)) ++placed;
+    for (std::size_t j = c.lo; j < c.hi; ++j) {
+      if (grid_.Set(voxels[j].index, data)) ++placed;
     }
   }
   return static_cast<double>(placed) * v * v * v;
@@ -167,14 +269,19 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
     const ExecutedPoint& B = pts[i];
     const double len3 = (B.p_P - A.p_P).norm();
     if (len3 < 1e-9) continue;
-    // Columns run along the grid axis nearest the torch axis, growing towards the torch.
-    const Eigen::Vector3d tool = (A.tool_dir_P + B.tool_dir_P).normalized();
-    int axis = 0;
-    tool.cwiseAbs().maxCoeff(&axis);
-    const int sign = tool[axis] >= 0.0 ? 1 : -1;
-    const int a0 = (axis + 1) % 3;
-    const int a1 = (axis + 2) % 3;
-    auto plane = [&](const Eigen::Vector3d& p) { return Eigen::Vector2d(p[a0], p[a1]); };
+    // The bead is swept in the torch frame: its footprint is a lattice at voxel pitch in the plane perpendicular to
+    // the torch axis, and each lattice cell a column of voxels growing along the axis, towards the torch.
+    const Eigen::Vector3d tool = A.tool_dir_P + B.tool_dir_P;
+    const internal::TorchFrame candidate(tool.norm() > 1e-9 ? tool : B.tool_dir_P, v);
+    // A torch that turns a little keeps the lattice of the metal before it (within kFrameHoldRad), so neighbouring
+    // segments and layers share their columns: seams between lattices, where a voxel can be left to neither, only
+    // come where the torch has turned further. A grid-aligned torch always gets the grid.
+    if (!held_frame_ || candidate.aligned() || held_frame_->aligned() ||
+        candidate.axis().dot(held_frame_->axis()) < std::cos(kFrameHoldRad)) {
+      held_frame_ = candidate;
+    }
+    const internal::TorchFrame frame = *held_frame_;
+    auto plane = [&](const Eigen::Vector3d& p) { return frame.Plane(p); };
     const Eigen::Vector2d A2 = plane(A.p_P);
     const Eigen::Vector2d B2 = plane(B.p_P);
     const double L2 = (B2 - A2).norm();
@@ -253,12 +360,12 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       for (std::size_t c = first; c < last; ++c) {
         if (cols[c].d_mm <= (0.5 + settings_.edge_spread_factor) * section.width_mm) chunk.push_back(cols[c]);
       }
-      const double zeta_tcp = sign * ((1.0 - f) * A.p_P[axis] + f * B.p_P[axis]);
+      const double zeta_tcp = frame.Height((1.0 - f) * A.p_P + f * B.p_P);
       VoxelData data;
       data.bead = bead;
       data.time_s = static_cast<float>(pass.start_time_s + s / std::max(B.speed_mm_s, 1e-9));
       const bool last_step = i + 1 == pts.size() && last == cols.size();
-      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, axis, sign, data, last_step);
+      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, frame, data, last_step);
       debt += volume - placed;
       record.deposited_volume_mm3 += placed;
       boundary = next_boundary;

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "planner/path/tool_path.h"
 #include "planner/scenario/simulation_settings.h"
 #include "twin/deposition/executed_path.h"
+#include "twin/deposition/torch_columns.h"
 #include "twin/deposition/voxel_grid.h"
 
 namespace waam {
@@ -48,13 +50,15 @@ class Depositor {
  private:
   struct Column;
   double FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3, double zeta_tcp_mm,
-                  int axis, int sign, const VoxelData& data, bool last_step);
+                  const internal::TorchFrame& frame, const VoxelData& data, bool last_step);
 
   planner::SimulationSettings settings_;
   VoxelGrid grid_;
   std::vector<BeadRecord> beads_;
   double expected_volume_mm3_ = 0.0;
   double weld_length_mm_ = 0.0;
+  std::vector<internal::ColumnVoxel> column_voxels_;  // scratch of FillStep: the voxels of one step's columns
+  std::optional<internal::TorchFrame> held_frame_;    // the lattice of the last segment (see DepositPass)
 };
 
 // Executes and deposits a whole plan (travel timed at `rapid_speed_mm_s`); `progress` (may be null) counts passes.
