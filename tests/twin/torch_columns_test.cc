@@ -49,7 +49,9 @@ TEST(TorchColumns, TiltedColumnsPartitionTheVoxels) {
           EXPECT_EQ(static_cast<int>(std::floor(q.x() / v)), i0) << "voxel outside its lattice cell";
           EXPECT_EQ(static_cast<int>(std::floor(q.y() / v)), i1);
           EXPECT_NEAR(all[k].height_mm, frame.Height(c), 1e-12);
-          if (k > first) EXPECT_LE(all[k - 1].height_mm, all[k].height_mm) << "column not sorted by height";
+          if (k > first) {
+            EXPECT_LE(all[k - 1].height_mm, all[k].height_mm) << "column not sorted by height";
+          }
         }
       }
     }
