@@ -22,8 +22,11 @@ class DepositHistory {
 
   int layers() const { return static_cast<int>(layer_dir_.size()); }
   double wire_feed_mm_s() const { return wire_feed_mm_s_; }
-  // Layer of bead `bead`.
+  // Layer of bead `bead` (the layer its pass started in).
   int LayerOfBead(std::uint32_t bead) const { return bead_layer_[bead]; }
+  // Plan layer of the metal bead `bead` laid at build time `time_s`: a continuous spiral is one pass that climbs
+  // through every layer, and each of its loops belongs to its own layer.
+  int LayerAt(std::uint32_t bead, double time_s) const;
   // Build direction (unit) and mean planned bead height (mm) of layer `layer`.
   const Eigen::Vector3d& LayerDir(int layer) const { return layer_dir_[layer]; }
   double LayerHeight(int layer) const { return layer_height_[layer]; }
@@ -34,6 +37,7 @@ class DepositHistory {
   struct PassTiming {
     std::vector<double> time_s;   // deposition time the depositor gives metal laid at each executed point
     std::vector<double> speed_mm_s;
+    std::vector<int> layer;        // plan layer of the segment ending at each executed point
   };
   std::vector<int> bead_layer_;
   std::vector<PassTiming> passes_;

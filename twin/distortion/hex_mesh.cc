@@ -38,7 +38,7 @@ HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const
       order.push_back(key);
     }
     Accum& a = it->second;
-    const int layer = history.LayerOfBead(d.bead);
+    const int layer = history.LayerAt(d.bead, d.time_s);
     const double q = params.HeatInput(history.wire_feed_mm_s(), history.SpeedAt(d.bead, d.time_s));
     a.count += 1;
     a.layer += layer;
