@@ -32,13 +32,15 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       "                scan, not a CSV: .ply (vertex x y z), .xyz (x y z per line) or .stl (sampled every 0.5 mm), in\n"
       "                the part frame in mm (aligned; substrate top z = 0). The scenario is planned and deposited in\n"
       "                the voxel twin as built; Ceres moves the --free parameters (from --start) until the distorted\n"
-      "                twin surface passes through the scan (residual: point-to-surface distance, mm, Huber 1 mm).\n"
-      "                Prints the fitted values, rms distance at the start and fitted [mm], Ceres iterations; the\n"
+      "                twin surface passes through the scan (residual: each scan point pulled back through the twin's\n"
+      "                displacement field, its distance to the deposited surface [mm], Huber loss 1 mm).\n"
+      "                Prints the fitted values, rms point-to-surface distance at the start and fitted [mm], Ceres\n"
+      "                iterations; a fit Ceres did not converge is not written (exit 2). The\n"
       "                JSON gets a \"fit\" record (scan, scenario, free, start, rms_start_mm, rms_mm, solver).\n"
       "                A twin scan at known parameters: `waam compensate <part.yaml> --model known.json --max-iter 0\n"
-      "                --no-program -o dir` writes dir/scan_before.ply.\n"
+      "                --no-program -o dir` writes dir/scan_before.ply (side faces, top end face left out).\n"
       "Exit code 2 for bad input or a fit the solver could not make usable (the message says why).");
-  fit->add_option("model", options->model, "csw | speed-height | width-height | void-length")
+  fit->add_option("model", options->model, "csw | speed-height | width-height | void-length | distortion")
       ->required()
       ->check(CLI::IsMember({"csw", "speed-height", "width-height", "void-length", "distortion"}));
   fit->add_option("data", options->data, "CSV file with a header row (distortion: the scan, .ply, .xyz or .stl)")
