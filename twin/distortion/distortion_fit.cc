@@ -2,8 +2,9 @@
 // one distortion solve per parameter and side.
 //
 // The residual of a scan point s is the signed distance of its pre-image x = s - u(x) (the point the displacement
-// field u carried onto s, found by fixed-point iteration; |grad u| << 1 makes it a contraction) to the undistorted
-// deposit surface. It is zero exactly where the distorted surface x + u(x) passes through s and equals the distance of
+// field u carried onto s, found by fixed-point iteration from the point of the undistorted surface nearest to s, so
+// that the iterates stay where u is defined even when the part moved by more than its wall thickness; |grad u| << 1
+// makes it a contraction) to the undistorted deposit surface. It is zero exactly where the distorted surface x + u(x) passes through s and equals the distance of
 // s to that surface to first order in grad u, yet needs the distance structure of the undistorted surface only, built
 // once instead of once per evaluation. The rms reported before and after the fit is the true point-to-surface
 // distance to the moved surface mesh.
@@ -41,6 +42,7 @@ struct ScanResidual {
   const VoxelGrid* grid;
   const DepositHistory* history;
   const std::vector<Eigen::Vector3d>* points;
+  const std::vector<Eigen::Vector3d>* seeds;  // per point: nearest point of the undistorted surface
   const MeshDistance* undistorted;
   models::DistortionParams start;
   DistortionOptions options;
@@ -61,7 +63,7 @@ struct ScanResidual {
     const DistortionField field = ComputeDistortion(*grid, *history, p, options);
     for (std::size_t i = 0; i < points->size(); ++i) {
       const Eigen::Vector3d& s = (*points)[i];
-      Eigen::Vector3d x = s;
+      Eigen::Vector3d x = (*seeds)[i];
       for (int k = 0; k < kPullBackIterations; ++k) x = s - field.Displacement(x);
       residual[i] = undistorted->SignedDistance(x);
     }
@@ -135,8 +137,10 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   for (std::size_t i = 0; i < scan.size(); i += step) used.push_back(scan[i]);
   const planner::TriangleMesh surface = ExtractSurface(grid);
   const MeshDistance undistorted(surface);
+  std::vector<Eigen::Vector3d> seeds(used.size());
+  for (std::size_t i = 0; i < used.size(); ++i) undistorted.SignedDistance(used[i], &seeds[i]);
 
-  auto* functor = new ScanResidual{&grid, &history, &used, &undistorted, start, options, fit.free};
+  auto* functor = new ScanResidual{&grid, &history, &used, &seeds, &undistorted, start, options, fit.free};
   std::vector<double> x(fit.free.size());
   for (std::size_t k = 0; k < fit.free.size(); ++k) {
     models::DistortionParams p = start;
@@ -169,7 +173,7 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   result.solver.initial_cost = summary.initial_cost;
   result.solver.final_cost = summary.final_cost;
   result.solver.seconds = summary.total_time_in_seconds;
-  const ScanResidual eval{&grid, &history, &used, &undistorted, start, options, fit.free};
+  const ScanResidual eval{&grid, &history, &used, &seeds, &undistorted, start, options, fit.free};
   result.params = eval.Params(x.data());
   result.initial_rms_mm = ForwardRms(grid, history, surface, used, start, options);
   if (result.solver.usable) result.rms_mm = ForwardRms(grid, history, surface, used, result.params, options);
