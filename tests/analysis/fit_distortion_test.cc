@@ -87,7 +87,8 @@ TEST_F(FitDistortionTest, RecoversKnownParametersFromATwinScan) {
   EXPECT_EQ(fit.at("scenario"), "small_bent_tube");
   EXPECT_EQ(fit.at("free"), nlohmann::json({"strain", "vertical_ratio"}));
   EXPECT_GT(fit.at("rms_start_mm").get<double>(), 0.1) << "the perturbed start must be visibly off the scan";
-  EXPECT_LT(fit.at("rms_mm").get<double>(), 0.02) << "the fitted surface must pass through the scan";
+  EXPECT_LT(fit.at("rms_mm").get<double>(), 0.05)
+      << "the fitted surface must pass through the scan (to the clamping of the field at the part's skin)";
   EXPECT_EQ(fit.at("solver").at("termination"), "CONVERGENCE");
   EXPECT_THAT(out.str(), HasSubstr("vertical_ratio"));
 }
@@ -130,6 +131,14 @@ TEST_F(FitDistortionTest, BadInputIsOneClearLine) {
   o.data = *dir_ / "few.xyz";
   std::ofstream(o.data) << "0 0 0\n1 0 0\n";
   EXPECT_THAT([&] { RunFit(o, out); }, ::testing::ThrowsMessage<InputError>(HasSubstr("few.xyz: the scan has 2 points")));
+  o = Options("bad.json");
+  o.data = *dir_ / "far.xyz";
+  {
+    std::ofstream far(o.data);
+    for (int i = 0; i < 20; ++i) far << 1000 + i << " 1000 1000\n";
+  }
+  EXPECT_THAT([&] { RunFit(o, out); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("20 of 20 scan points are farther than 50 mm")));
   o = Options("bad.json");
   o.scenario = *dir_ / "missing.yaml";
   EXPECT_THAT([&] { RunFit(o, out); }, ::testing::ThrowsMessage<InputError>(HasSubstr("missing.yaml")));
