@@ -1,13 +1,13 @@
 // Ceres fit of the inherent-strain parameters to a scan of the distorted part. Derivatives by central differences:
 // one distortion solve per parameter and side.
 //
-// The residual of a scan point s is the signed distance of its pre-image x = s - u(x) (the point the displacement
-// field u carried onto s, found by fixed-point iteration from the undistorted voxel face nearest to s, so that the
-// iterates stay where u is defined even when the part moved by more than its wall thickness; |grad u| << 1 makes it a
-// contraction) to the plane of the nearest exposed voxel face of the undistorted deposit. It is zero exactly where the
-// distorted surface x + u(x) passes through s and equals the distance of s to that surface to first order in grad u,
-// yet needs the faces of the undistorted deposit only, found once instead of once per evaluation, and exact at any
-// part size (a surface mesh is coarsened past its facet limit, 0.2 mm off on part I).
+// The residual of a scan point s is a point-to-plane distance to the distorted twin surface, sampled at the exposed
+// voxel faces of the undistorted deposit (the faces the twin's scan samples; exact at any part size, where a surface
+// mesh is coarsened past its facet limit). Its face c is found by pulling s back through the displacement field u:
+// c_(k+1) = the face nearest to s - u(c_k), from the face nearest to s, until it repeats (u is evaluated at face
+// centres only, so the search never leaves the part even when the part moved farther than its wall is thick, and
+// |grad u| << 1 makes it settle in a few steps). The residual is n_c . (s - c - u(c)): zero where the distorted
+// surface passes through s, smooth in the parameters for a given face and continuous across a flat wall.
 #include "twin/distortion/distortion_fit.h"
 
 #include <algorithm>
@@ -33,8 +33,7 @@ double* Field(models::DistortionParams* p, const std::string& name) {
 // Strains and stiffnesses are fitted as logarithms (positive, and of very different sizes); the exponent as is.
 bool LogScale(const std::string& name) { return name != "heat_exponent"; }
 
-// Fixed-point iterations of the pre-image x = s - u(x): a fixed count keeps the residual a smooth function of the
-// parameters for the numeric derivatives (the error shrinks as |grad u|^k, below 1e-9 of u for any real distortion).
+// Steps of the face search (it settles in two or three on the test parts).
 constexpr int kPullBackIterations = 8;
 // A scan point farther than this from the undistorted part is not of it (mm); a pre-image is searched this far.
 constexpr double kSeedReachMm = 50.0;
@@ -44,7 +43,7 @@ struct ScanResidual {
   const VoxelGrid* grid;
   const DepositHistory* history;
   const std::vector<Eigen::Vector3d>* points;
-  const std::vector<Eigen::Vector3d>* seeds;  // per point: centre of the nearest undistorted voxel face
+  const std::vector<int>* seeds;  // per point: the undistorted voxel face nearest to it
   const internal::VoxelFaces* faces;
   models::DistortionParams start;
   DistortionOptions options;
@@ -65,10 +64,13 @@ struct ScanResidual {
     const DistortionField field = ComputeDistortion(*grid, *history, p, options);
     for (std::size_t i = 0; i < points->size(); ++i) {
       const Eigen::Vector3d& s = (*points)[i];
-      Eigen::Vector3d x = (*seeds)[i];
-      for (int k = 0; k < kPullBackIterations; ++k) x = s - field.Displacement(x);
-      const int f = faces->Nearest(x, kFaceReachMm);
-      residual[i] = f < 0 ? kFaceReachMm : faces->PlaneDistance(f, x);
+      int c = (*seeds)[i];
+      for (int k = 0; k < kPullBackIterations; ++k) {
+        const int next = faces->Nearest(s - field.Displacement(faces->centre(c)), kFaceReachMm);
+        if (next < 0 || next == c) break;
+        c = next;
+      }
+      residual[i] = faces->PlaneDistance(c, s - field.Displacement(faces->centre(c)));
     }
     return true;
   }
@@ -134,7 +136,8 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   const internal::VoxelFaces faces(grid);
   WAAM_THROW_UNLESS(faces.size() > 0, "distortion fit: the deposit is empty");
   // Every k-th scan point with its seed; points nowhere near the part are left out (and counted).
-  std::vector<Eigen::Vector3d> used, seeds;
+  std::vector<Eigen::Vector3d> used;
+  std::vector<int> seeds;
   std::size_t far = 0;
   const std::size_t step = std::max<std::size_t>(1, scan.size() / fit.max_points);
   for (std::size_t i = 0; i < scan.size(); i += step) {
@@ -144,7 +147,7 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
       continue;
     }
     used.push_back(scan[i]);
-    seeds.push_back(faces.centre(f));
+    seeds.push_back(f);
   }
   WAAM_THROW_UNLESS(used.size() >= 10 && far <= used.size(),
                     "distortion fit: " << far << " of " << far + used.size() << " scan points are farther than "
