@@ -4,7 +4,7 @@
 // The residual of a scan point s is a point-to-plane distance to the distorted twin surface, sampled at the exposed
 // voxel faces of the undistorted deposit (the faces the twin's scan samples; exact at any part size, where a surface
 // mesh is coarsened past its facet limit). Its face c is found by pulling s back through the displacement field u:
-// c_(k+1) = the face nearest to s - u(c_k), from the face nearest to s, until it repeats (u is evaluated at face
+// c_(k+1) = the face nearest to s - u(c_k), from the face the start parameters move nearest to s, until it repeats (u is evaluated at face
 // centres only, so the search never leaves the part even when the part moved farther than its wall is thick, and
 // |grad u| << 1 makes it settle in a few steps). The residual is n_c . (s - c - u(c)): zero where the distorted
 // surface passes through s, smooth in the parameters for a given face and continuous across a flat wall.
@@ -139,9 +139,14 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   std::vector<Eigen::Vector3d> used;
   std::vector<int> seeds;
   std::size_t far = 0;
+  // Seeds: the face whose centre the start parameters move nearest to the scan point, so that the face search starts
+  // next to its answer (from the undistorted faces it can settle on a wrong face where the part moved by centimetres).
+  const DistortionField start_field = ComputeDistortion(grid, history, start, options);
+  const internal::VoxelFaces moved =
+      faces.Moved([&](const Eigen::Vector3d& c) { return start_field.Displacement(c); });
   const std::size_t step = std::max<std::size_t>(1, scan.size() / fit.max_points);
   for (std::size_t i = 0; i < scan.size(); i += step) {
-    const int f = faces.Nearest(scan[i], kSeedReachMm);
+    const int f = moved.Nearest(scan[i], kSeedReachMm);
     if (f < 0) {
       ++far;
       continue;

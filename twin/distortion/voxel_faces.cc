@@ -21,6 +21,18 @@ VoxelFaces::VoxelFaces(const VoxelGrid& grid) : cell_mm_(2.0 * grid.voxel_mm()) 
   });
 }
 
+VoxelFaces VoxelFaces::Moved(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& u) const {
+  VoxelFaces moved;
+  moved.cell_mm_ = cell_mm_;
+  moved.normal_ = normal_;
+  moved.centre_.reserve(centre_.size());
+  for (std::size_t f = 0; f < centre_.size(); ++f) {
+    moved.centre_.push_back(centre_[f] + u(centre_[f]));
+    moved.cells_[Key(moved.Cell(moved.centre_.back()))].push_back(static_cast<int>(f));
+  }
+  return moved;
+}
+
 Eigen::Vector3i VoxelFaces::Cell(const Eigen::Vector3d& p) const {
   return (p / cell_mm_).array().floor().cast<int>();
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <vector>
 
@@ -18,6 +19,8 @@ class VoxelFaces {
   explicit VoxelFaces(const VoxelGrid& grid);
 
   std::size_t size() const { return centre_.size(); }
+  // The same faces (same indices and normals) with every centre c moved to c + u(c) by `u` (mm).
+  VoxelFaces Moved(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& u) const;
   // Index of the face whose centre is nearest to `p` (mm), searching at most `max_mm` (> 0) away; -1 if none.
   int Nearest(const Eigen::Vector3d& p, double max_mm) const;
   // Signed distance (mm) of `p` to the plane of face `face` (+ on the air side).
@@ -27,9 +30,10 @@ class VoxelFaces {
   const Eigen::Vector3d& centre(int face) const { return centre_[face]; }
 
  private:
+  VoxelFaces() = default;
   Eigen::Vector3i Cell(const Eigen::Vector3d& p) const;
   static std::uint64_t Key(const Eigen::Vector3i& c);
-  double cell_mm_;
+  double cell_mm_ = 1.0;
   std::vector<Eigen::Vector3d> centre_;
   std::vector<Eigen::Vector3d> normal_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
