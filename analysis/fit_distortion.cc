@@ -106,7 +106,7 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
     out << "  " << std::left << std::setw(26) << name << std::right << " = " << b << "  (start " << a << ")\n";
   }
   out << "  rms      = " << result.initial_rms_mm << " mm at the start -> " << result.rms_mm
-      << " mm fitted (point-to-surface, " << result.points << " scan points)\n";
+      << " mm fitted (point-to-plane residuals, " << result.points << " scan points)\n";
   PrintSolver(out, result.solver);
   out << "  wall     = " << std::setprecision(3) << wall_s << " s (plan, deposit and fit)\n";
 
