@@ -31,7 +31,8 @@ const std::map<std::string, Columns>& AllDefaults() {
         {"theta3", "theta3_deg"},
         {"theta4", "theta4_deg"},
         {"void", "void_length_mm"},
-        {"label", "group"}}}};
+        {"label", "group"}}},
+      {"distortion", {}}};  // reads a scan, not a CSV
   return defaults;
 }
 
@@ -198,11 +199,13 @@ FitOutcome RunWidthHeight(const FitOptions& options, const CsvTable& table, std:
 std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::string& model) {
   const auto it = AllDefaults().find(model);
   WAAM_THROW_UNLESS(it != AllDefaults().end(),
-                    "unknown model '" << model << "': must be csw, speed-height, width-height or void-length");
+                    "unknown model '" << model
+                                     << "': must be csw, speed-height, width-height, void-length or distortion");
   return it->second;
 }
 
 FitOutcome RunFit(const FitOptions& options, std::ostream& out) {
+  if (options.model == "distortion") return internal::RunFitDistortion(options, out);
   DefaultFitColumns(options.model);  // rejects an unknown model before reading anything
   WAAM_THROW_UNLESS(!options.output.empty(), "-o/--output: the model JSON file to write is required");
   const CsvTable table = CsvTable::Read(options.data);

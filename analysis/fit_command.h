@@ -14,8 +14,8 @@ namespace waam::analysis {
 
 // Everything `waam fit` accepts; the CLI fills it, tests build it directly.
 struct FitOptions {
-  std::string model;                      // csw | speed-height | width-height | void-length
-  std::filesystem::path data;             // CSV input
+  std::string model;                      // csw | speed-height | width-height | void-length | distortion
+  std::filesystem::path data;             // CSV input (distortion: the scan, .ply, .xyz or .stl, part frame, mm)
   std::filesystem::path output;           // model JSON output
   std::vector<std::string> columns;       // "role=column" overrides of the default column names
   std::optional<std::pair<double, double>> speed_range;  // feasible travel speeds [mm/min]; default: the data's
@@ -33,6 +33,16 @@ struct FitOptions {
   bool leave_one_out = false;
   std::string angle_order = "as_given";   // as_given | sorted
   std::vector<std::string> holdout = {"F7", "H3", "H15"};  // dissertation Table 11; empty = skip
+  // distortion: the scan of a part built from `scenario` is matched by the distorted twin of that build
+  std::filesystem::path scenario;         // scenario YAML of the nominal build the scan came from
+  std::vector<std::string> overrides;     // --set key.path=value on the scenario
+  std::filesystem::path start;            // start parameters (distortion model JSON); empty = models/data/distortion.json
+  std::vector<std::string> free = {"strain", "vertical_ratio"};  // fitted; the others stay at the start values
+  std::string mode;                       // fe | reduced; empty = the start file's mode
+  double element_mm = 2.0;                // fe element edge, mm
+  int groups = 4;                         // fe activation groups
+  std::size_t max_points = 3000;          // scan points used (every k-th), >= 10
+  int max_iterations = 30;                // Ceres iterations, 1-1000
   bool quiet = false;                     // no progress bar
 };
 

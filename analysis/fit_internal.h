@@ -35,4 +35,9 @@ std::vector<models::JunctionSample> ReadJunctions(const FitOptions& options, con
 // model trained on the other rows, prints all of it and writes the JSON.
 FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::ostream& out);
 
+// `waam fit distortion`: plans and deposits options.scenario in the twin, fits the free distortion parameters to the
+// scan options.data (point-to-surface residuals), prints the fit and writes the model JSON with a "fit" record.
+// Throws InputError for bad input; a fit Ceres did not converge comes back with ok = false and nothing written.
+FitOutcome RunFitDistortion(const FitOptions& options, std::ostream& out);
+
 }  // namespace waam::analysis::internal

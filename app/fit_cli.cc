@@ -1,4 +1,4 @@
-// `waam fit`: command-line options for fitting a process model to a CSV table.
+// `waam fit`: command-line options for fitting a process model to a CSV table (or the distortion model to a scan).
 #include <iostream>
 #include <memory>
 
@@ -27,11 +27,24 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       "                restarts, averaged) or the baseline L = a + b (1/sin(theta_min/2) - 1); both are cross-validated\n"
       "                (--folds or --loo) and the Table 11 junctions (--holdout) predicted from the other rows\n"
       "                [eta=eta theta1=theta1_deg .. theta4=theta4_deg void=void_length_mm label=group]\n"
+      "  distortion    inherent-strain distortion parameters (models/data/distortion.json format) from a scan of a\n"
+      "                built part: `waam fit distortion <scan> --scenario <part.yaml> -o <out.json>`. The data is the\n"
+      "                scan, not a CSV: .ply (vertex x y z), .xyz (x y z per line) or .stl (sampled every 0.5 mm), in\n"
+      "                the part frame in mm (aligned; substrate top z = 0). The scenario is planned and deposited in\n"
+      "                the voxel twin as built; Ceres moves the --free parameters (from --start) until the distorted\n"
+      "                twin surface passes through the scan (residual: each scan point pulled back through the twin's\n"
+      "                displacement field onto the deposit's exposed voxel faces, its distance to the face's plane\n"
+      "                [mm], Huber loss 1 mm). Prints the fitted values, rms residual at the start and fitted [mm], Ceres\n"
+      "                iterations; a fit Ceres did not converge is not written (exit 2). The\n"
+      "                JSON gets a \"fit\" record (scan, scenario, free, start, rms_start_mm, rms_mm, solver).\n"
+      "                A twin scan at known parameters: `waam compensate <part.yaml> --model known.json --max-iter 0\n"
+      "                --no-program -o dir` writes dir/scan_before.ply (side faces, top end face left out).\n"
       "Exit code 2 for bad input or a fit the solver could not make usable (the message says why).");
-  fit->add_option("model", options->model, "csw | speed-height | width-height | void-length")
+  fit->add_option("model", options->model, "csw | speed-height | width-height | void-length | distortion")
       ->required()
-      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "void-length"}));
-  fit->add_option("data", options->data, "CSV file with a header row")->required();
+      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "void-length", "distortion"}));
+  fit->add_option("data", options->data, "CSV file with a header row (distortion: the scan, .ply, .xyz or .stl)")
+      ->required();
   fit->add_option("-o,--output", options->output, "model JSON to write (atomically)")->required();
   fit->add_option("--columns", options->columns,
                   "role=column overrides, e.g. --columns speed=v,width=w_mm (roles listed above)")
@@ -59,6 +72,24 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       ->capture_default_str();
   fit->add_option("--holdout", options->holdout, "labels predicted from a model trained on the other rows")
       ->delimiter(',');
+  fit->add_option("--scenario", options->scenario, "distortion: scenario YAML the scanned part was built from");
+  fit->add_option("--set", options->overrides, "distortion: override a scenario setting, key.path=value (repeatable)");
+  fit->add_option("--start", options->start,
+                  "distortion: start parameters, a distortion model JSON (default models/data/distortion.json); the\n"
+                  "parameters not in --free keep its values");
+  fit->add_option("--free", options->free,
+                  "distortion: parameters fitted, any of strain [1], vertical_ratio [1], heat_exponent [1],\n"
+                  "substrate_stiffness_n_mm3 [N/mm^3] (fe mode only)")
+      ->delimiter(',')
+      ->default_str("strain,vertical_ratio");
+  fit->add_option("--mode", options->mode, "distortion: fe | reduced (default: the --start file's mode)");
+  fit->add_option("--element-mm", options->element_mm, "distortion: fe element edge, mm")->capture_default_str();
+  fit->add_option("--groups", options->groups, "distortion: fe layer groups activated in turn")->capture_default_str();
+  fit->add_option("--max-points", options->max_points, "distortion: scan points used (every k-th point)")
+      ->capture_default_str();
+  fit->add_option("--max-iter", options->max_iterations,
+                  "distortion: Ceres iterations (1-1000); a fit that has not converged by then is not written")
+      ->capture_default_str();
   fit->add_flag("-q,--quiet", options->quiet, "no progress bar");
   fit->callback([runner, options, speed_range] {
     if (speed_range->size() == 2) options->speed_range = std::make_pair((*speed_range)[0], (*speed_range)[1]);

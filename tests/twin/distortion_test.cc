@@ -40,6 +40,29 @@ planner::Plan StraightWall(int layers, double length, double speed, double hot_s
   return plan;
 }
 
+// A square tube of `layers` loops (30 x 20 mm, 1.5 mm apart) welded as one continuous spiral pass; the loops on the
+// +x side are welded at `hot_speed` (the rest at 8 mm/s), so the tube bends towards +x.
+planner::Plan SpiralTube(int layers, double hot_speed) {
+  planner::Plan plan;
+  const double corners[5][2] = {{-15, -10}, {15, -10}, {15, 10}, {-15, 10}, {-15, -10}};
+  for (int l = 0; l < layers; ++l) {
+    planner::LayerPath layer;
+    layer.index = l;
+    layer.z_mm = 1.5 * (l + 1);
+    for (int k = 0; k < 5; ++k) {
+      planner::PathPoint p;
+      p.p_P = Eigen::Vector3d(corners[k][0], corners[k][1], layer.z_mm);
+      p.bead_width_mm = 4.0;
+      p.bead_height_mm = 1.5;
+      p.speed_mm_s = k == 2 ? hot_speed : 8.0;  // the segment along x = +15 ends at corner 2
+      p.weld = k > 0 || l > 0;
+      layer.points.push_back(p);
+    }
+    plan.layers.push_back(layer);
+  }
+  return plan;
+}
+
 struct Build {
   planner::SimulationSettings settings;
   planner::Plan plan;
@@ -77,7 +100,7 @@ TEST(Distortion, DisplacementIsLinearInTheStrain) {
   const Build b(StraightWall(8, 30.0, 8.0, 8.0), 0.5);
   const DistortionField one = ComputeDistortion(b.depositor.grid(), b.history, Params(0.002, 0.0), Fe());
   const DistortionField two = ComputeDistortion(b.depositor.grid(), b.history, Params(0.004, 0.0), Fe());
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(14, 0, 10), Eigen::Vector3d(-10, 1, 5), Eigen::Vector3d(0, 0, 11)}) {
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(14, 0, 10), Eigen::Vector3d(-10, 1, 5), Eigen::Vector3d(0, 0, 11)}) {
     EXPECT_LT((two.Displacement(p) - 2.0 * one.Displacement(p)).norm(), 1e-6 + 1e-3 * two.Displacement(p).norm())
         << "linear elasticity: twice the inherent strain, twice the displacement at " << p.transpose();
   }
@@ -124,6 +147,40 @@ TEST(Distortion, HotSideBendsTheWallTowardsItInBothModes) {
     EXPECT_LT(f.Displacement({10.0, 0.0, 7.0}).z(), f.Displacement({-10.0, 0.0, 7.0}).z())
         << mode << ": the hot end of the top must sink more";
   }
+}
+
+TEST(Distortion, EachLoopOfASpiralPassIsItsOwnLayer) {
+  const Build b(SpiralTube(6, 4.0), 0.5);
+  ASSERT_EQ(b.depositor.beads().size(), 1u) << "the spiral must be one pass";
+  std::vector<double> z_sum(6, 0.0);
+  std::vector<int> count(6, 0);
+  b.depositor.grid().ForEach([&](const VoxelIndex& v, const VoxelData& d) {
+    const int layer = b.history.At(d.bead, d.time_s, b.depositor.grid().Center(v)).layer;
+    ASSERT_GE(layer, 0);
+    ASSERT_LT(layer, 6);
+    z_sum[layer] += b.depositor.grid().Center(v).z();
+    ++count[layer];
+  });
+  for (int l = 0; l < 6; ++l) {
+    ASSERT_GT(count[l], 0) << "loop " << l << " must own voxels";
+    EXPECT_NEAR(count[l], count[0], 0.2 * count[0]) << "every loop lays the same metal; loop " << l;
+    if (l > 0) {
+      EXPECT_GT(z_sum[l] / count[l] - z_sum[l - 1] / count[l - 1], 0.4)
+          << "the metal of loop " << l << " lies above that of loop " << l - 1;
+    }
+  }
+  // The reduced model bends a spiral tube only through the layers below each point: the build-direction strain
+  // (vertical_ratio) must change the displacement of the top.
+  DistortionOptions o = Fe(1.0);
+  o.mode = "reduced";
+  models::DistortionParams p = Params(0.004, 1.0);
+  const Eigen::Vector3d top(15.0, 0.0, 4.5);  // near the top of the +x wall (the tube is about 5 mm tall)
+  const Eigen::Vector3d u1 = ComputeDistortion(b.depositor.grid(), b.history, p, o).Displacement(top);
+  ASSERT_GT(u1.norm(), 0.0) << "the top of the hot wall must move";
+  p.vertical_ratio *= 2.0;
+  const Eigen::Vector3d u2 = ComputeDistortion(b.depositor.grid(), b.history, p, o).Displacement(top);
+  EXPECT_GT((u2 - u1).norm(), 0.2 * u1.norm()) << "vertical_ratio must matter on a spiral: " << u1.transpose()
+                                                << " vs " << u2.transpose();
 }
 
 TEST(Distortion, BadOptionsNameTheField) {

@@ -3,11 +3,24 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "models/core/error.h"
 #include "twin/deposition/executed_path.h"
 
 namespace waam::twin {
+namespace {
+
+constexpr double kCellMm = 4.0;  // cell of the segment hash, mm
+
+std::uint64_t CellKey(const Eigen::Vector3i& c) {
+  return (static_cast<std::uint64_t>(c.x() + (1 << 20)) & 0x1FFFFF) |
+         ((static_cast<std::uint64_t>(c.y() + (1 << 20)) & 0x1FFFFF) << 21) |
+         ((static_cast<std::uint64_t>(c.z() + (1 << 20)) & 0x1FFFFF) << 42);
+}
+
+}  // namespace
 
 DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depositor,
                                const planner::SimulationSettings& settings, double rapid_speed_mm_s,
@@ -35,19 +48,129 @@ DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depos
     layer_height_[layer.index] = n > 0 ? sum / n : 0.0;
   }
   for (const BeadRecord& bead : depositor.beads()) bead_layer_.push_back(bead.layer);
+  // The plan layer along each pass. The passes are rebuilt from the plan as ExecutePlan splits it (a run of weld moves,
+  // carried over a layer change by a continuous spiral), with the arc length at which each plan point is reached.
+  struct RunPoint {
+    double s_mm;
+    int layer;
+  };
+  std::vector<std::vector<RunPoint>> runs;
+  {
+    std::vector<RunPoint> run;
+    const planner::PathPoint* last = nullptr;
+    auto flush = [&]() {
+      if (run.size() >= 2 && run.back().s_mm > 0.0) runs.push_back(run);
+      run.clear();
+    };
+    for (const planner::LayerPath& layer : plan.layers) {
+      for (std::size_t i = 0; i < layer.points.size(); ++i) {
+        const planner::PathPoint& p = layer.points[i];
+        const planner::PathPoint* from = i > 0 ? &layer.points[i - 1] : last;
+        if (from != nullptr && p.weld) {
+          if (run.empty()) run.push_back({0.0, layer.index});
+          run.push_back({run.back().s_mm + (p.p_P - from->p_P).norm(), layer.index});
+        } else {
+          flush();
+        }
+      }
+      if (!layer.points.empty()) last = &layer.points.back();
+    }
+    flush();
+  }
+  const bool runs_match = runs.size() == passes.size();
   // The depositor stamps metal laid at arc length s of a pass with time start + s / v (v: speed of the segment).
   passes_.reserve(passes.size());
-  for (const ExecutedPass& pass : passes) {
+  for (std::size_t b = 0; b < passes.size(); ++b) {
+    const ExecutedPass& pass = passes[b];
     PassTiming t;
     double running = pass.start_time_s;
+    // Blending shortens the corners a little: the executed arc length is scaled onto the planned one.
+    const double scale =
+        runs_match && pass.length_mm() > 0.0 ? runs[b].back().s_mm / pass.length_mm() : 1.0;
+    std::size_t r = 1;
     for (const ExecutedPoint& p : pass.points) {
       const double v = std::max(p.speed_mm_s, 1e-9);
       running = std::max(running, pass.start_time_s + p.s_mm / v);  // kept monotonic for the search
       t.time_s.push_back(running);
       t.speed_mm_s.push_back(p.speed_mm_s > 0.0 ? p.speed_mm_s : pass.points.back().speed_mm_s);
+      if (!runs_match) {
+        t.layer.push_back(pass.layer);
+        continue;
+      }
+      const std::vector<RunPoint>& run = runs[b];
+      while (r + 1 < run.size() && run[r].s_mm < p.s_mm * scale - 1e-9) ++r;
+      t.layer.push_back(run[r].layer);
+    }
+    // Segment windows: the depositor stamps metal laid by segment k at arc length s with start + s / v_k.
+    for (std::size_t k = 1; k < pass.points.size(); ++k) {
+      const ExecutedPoint& a = pass.points[k - 1];
+      const ExecutedPoint& e = pass.points[k];
+      const double v = std::max(e.speed_mm_s, 1e-9);
+      Segment seg{a.p_P, e.p_P, pass.start_time_s + a.s_mm / v, pass.start_time_s + e.s_mm / v,
+                  static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(k)};
+      // Every cell a voxel of this segment's bead can lie in: the box of the segment grown by the bead's reach.
+      const double reach = e.bead_width_mm * std::max(1.0, e.width_factor) + 2.0 * e.bead_height_mm + 1.0;
+      const Eigen::Vector3d lo = a.p_P.cwiseMin(e.p_P).array() - reach;
+      const Eigen::Vector3d hi = a.p_P.cwiseMax(e.p_P).array() + reach;
+      const Eigen::Vector3i clo = (lo / kCellMm).array().floor().cast<int>();
+      const Eigen::Vector3i chi = (hi / kCellMm).array().floor().cast<int>();
+      for (int z = clo.z(); z <= chi.z(); ++z) {
+        for (int y = clo.y(); y <= chi.y(); ++y) {
+          for (int x = clo.x(); x <= chi.x(); ++x) {
+            cells_[CellKey(Eigen::Vector3i(x, y, z))].push_back(static_cast<std::uint32_t>(segments_.size()));
+          }
+        }
+      }
+      segments_.push_back(seg);
     }
     passes_.push_back(std::move(t));
   }
+}
+
+VoxelDeposit DepositHistory::At(std::uint32_t bead, double time_s, const Eigen::Vector3d& p_P) const {
+  WAAM_THROW_UNLESS(bead < passes_.size(), "distortion: voxel of bead " << bead << " but the history has "
+                                                                        << passes_.size() << " passes");
+  const PassTiming& t = passes_[bead];
+  // The stamp times are stored as float and the windows of a pass with varying speed overlap: the time selects the
+  // candidates, the position the segment.
+  const double tolerance = 1e-3 + 1e-6 * std::abs(time_s);
+  double best = std::numeric_limits<double>::infinity();
+  std::uint32_t k = 0;
+  auto it = cells_.find(CellKey((p_P / kCellMm).array().floor().cast<int>()));
+  if (it != cells_.end()) {
+    for (std::uint32_t i : it->second) {
+      const Segment& seg = segments_[i];
+      if (seg.pass != bead) continue;
+      const Eigen::Vector3d ab = seg.b - seg.a;
+      const double len2 = ab.squaredNorm();
+      const double u = len2 > 0.0 ? std::clamp((p_P - seg.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      const bool in_window = time_s >= std::min(seg.t0, seg.t1) - tolerance &&
+                             time_s <= std::max(seg.t0, seg.t1) + tolerance;
+      const double score = (p_P - (seg.a + u * ab)).norm() + (in_window ? 0.0 : 1e6);
+      if (score < best) {
+        best = score;
+        k = seg.index;
+      }
+    }
+  }
+  if (k == 0) {
+    // Not near any segment of its pass (cannot happen for the depositor's voxels): the time alone.
+    auto at = std::lower_bound(t.time_s.begin(), t.time_s.end(), time_s);
+    k = at == t.time_s.end() ? static_cast<std::uint32_t>(t.time_s.size() - 1)
+                             : static_cast<std::uint32_t>(at - t.time_s.begin());
+    if (k == 0 && t.time_s.size() > 1) k = 1;
+  }
+  return {t.speed_mm_s[k], t.layer[k]};
+}
+
+const std::vector<VoxelDeposit>& DepositHistory::Voxels(const VoxelGrid& grid) const {
+  if (cached_grid_ == &grid && cached_count_ == grid.occupied()) return cached_;
+  cached_.clear();
+  cached_.reserve(grid.occupied());
+  grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) { cached_.push_back(At(d.bead, d.time_s, grid.Center(v))); });
+  cached_grid_ = &grid;
+  cached_count_ = grid.occupied();
+  return cached_;
 }
 
 double DepositHistory::SpeedAt(std::uint32_t bead, double time_s) const {

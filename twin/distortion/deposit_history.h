@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -9,8 +10,15 @@
 #include "planner/path/tool_path.h"
 #include "planner/scenario/simulation_settings.h"
 #include "twin/deposition/bead_deposition.h"
+#include "twin/deposition/voxel_grid.h"
 
 namespace waam::twin {
+
+// What the distortion model reads of one deposited voxel.
+struct VoxelDeposit {
+  double speed_mm_s = 0.0;  // travel speed of the segment that laid it, mm/s
+  int layer = 0;            // plan layer of that segment
+};
 
 // The deposition history of a twin build: the bead table and the travel speed along every executed pass.
 class DepositHistory {
@@ -22,8 +30,15 @@ class DepositHistory {
 
   int layers() const { return static_cast<int>(layer_dir_.size()); }
   double wire_feed_mm_s() const { return wire_feed_mm_s_; }
-  // Layer of bead `bead`.
+  // Layer of bead `bead` (the layer its pass started in).
   int LayerOfBead(std::uint32_t bead) const { return bead_layer_[bead]; }
+  // Speed and plan layer of the metal of bead `bead` stamped at `time_s` (s) into the voxel centred at `p_P` (mm):
+  // the segment of the pass nearest to p_P among those whose stamp-time window holds time_s. A continuous spiral is
+  // one pass through every layer; each of its loops belongs to its own layer.
+  VoxelDeposit At(std::uint32_t bead, double time_s, const Eigen::Vector3d& p_P) const;
+  // At() of every voxel of `grid` in VoxelGrid::ForEach order, computed on the first call for this grid and kept (the
+  // grid must not change while this history is used with it). Throws InputError for a voxel of an unknown bead.
+  const std::vector<VoxelDeposit>& Voxels(const VoxelGrid& grid) const;
   // Build direction (unit) and mean planned bead height (mm) of layer `layer`.
   const Eigen::Vector3d& LayerDir(int layer) const { return layer_dir_[layer]; }
   double LayerHeight(int layer) const { return layer_height_[layer]; }
@@ -34,12 +49,25 @@ class DepositHistory {
   struct PassTiming {
     std::vector<double> time_s;   // deposition time the depositor gives metal laid at each executed point
     std::vector<double> speed_mm_s;
+    std::vector<int> layer;        // plan layer of the segment ending at each executed point
+  };
+  // Segment k of a pass (executed points k-1 to k) and the window of stamp times the depositor gives its metal.
+  struct Segment {
+    Eigen::Vector3d a, b;
+    double t0 = 0.0, t1 = 0.0;
+    std::uint32_t pass = 0;
+    std::uint32_t index = 0;  // k
   };
   std::vector<int> bead_layer_;
   std::vector<PassTiming> passes_;
   std::vector<Eigen::Vector3d> layer_dir_;
   std::vector<double> layer_height_;
   double wire_feed_mm_s_;
+  std::vector<Segment> segments_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;  // spatial hash of segments_
+  mutable const VoxelGrid* cached_grid_ = nullptr;
+  mutable std::size_t cached_count_ = 0;
+  mutable std::vector<VoxelDeposit> cached_;
 };
 
 }  // namespace waam::twin

@@ -1,6 +1,13 @@
-// Ceres fit of the inherent-strain parameters: each residual is the distance of a scan point to the predicted
-// distorted surface (the deposit's surface mesh with every vertex moved by the displacement field). Derivatives by
-// central differences: one distortion solve per parameter and side.
+// Ceres fit of the inherent-strain parameters to a scan of the distorted part. Derivatives by central differences:
+// one distortion solve per parameter and side.
+//
+// The residual of a scan point s is a point-to-plane distance to the distorted twin surface, sampled at the exposed
+// voxel faces of the undistorted deposit (the faces the twin's scan samples; exact at any part size, where a surface
+// mesh is coarsened past its facet limit). Its face c is found by pulling s back through the displacement field u:
+// c_(k+1) = the face nearest to s - u(c_k), from the face the start parameters move nearest to s, until it repeats (u is evaluated at face
+// centres only, so the search never leaves the part even when the part moved farther than its wall is thick, and
+// |grad u| << 1 makes it settle in a few steps). The residual is n_c . (s - c - u(c)): zero where the distorted
+// surface passes through s, smooth in the parameters for a given face and continuous across a flat wall.
 #include "twin/distortion/distortion_fit.h"
 
 #include <algorithm>
@@ -9,8 +16,8 @@
 #include <ceres/ceres.h>
 
 #include "models/core/error.h"
-#include "twin/scanner/mesh_distance.h"
-#include "twin/scanner/surface_mesh.h"
+#include "models/core/progress.h"
+#include "twin/distortion/voxel_faces.h"
 
 namespace waam::twin {
 namespace {
@@ -26,11 +33,18 @@ double* Field(models::DistortionParams* p, const std::string& name) {
 // Strains and stiffnesses are fitted as logarithms (positive, and of very different sizes); the exponent as is.
 bool LogScale(const std::string& name) { return name != "heat_exponent"; }
 
+// Steps of the face search (it settles in two or three on the test parts).
+constexpr int kPullBackIterations = 8;
+// A scan point farther than this from the undistorted part is not of it (mm); a pre-image is searched this far.
+constexpr double kSeedReachMm = 50.0;
+constexpr double kFaceReachMm = 20.0;
+
 struct ScanResidual {
   const VoxelGrid* grid;
   const DepositHistory* history;
   const std::vector<Eigen::Vector3d>* points;
-  const planner::TriangleMesh* surface;
+  const std::vector<int>* seeds;  // per point: the undistorted voxel face nearest to it
+  const internal::VoxelFaces* faces;
   models::DistortionParams start;
   DistortionOptions options;
   std::vector<std::string> free;
@@ -48,42 +62,110 @@ struct ScanResidual {
       return false;  // outside the valid range: Ceres shortens the step
     }
     const DistortionField field = ComputeDistortion(*grid, *history, p, options);
-    planner::TriangleMesh moved = *surface;
-    for (Eigen::Vector3d& v : moved.vertices) v += field.Displacement(v);
-    const MeshDistance distance(moved);
-    for (std::size_t i = 0; i < points->size(); ++i) residual[i] = distance.SignedDistance((*points)[i]);
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      const Eigen::Vector3d& s = (*points)[i];
+      int c = (*seeds)[i];
+      for (int k = 0; k < kPullBackIterations; ++k) {
+        const int next = faces->Nearest(s - field.Displacement(faces->centre(c)), kFaceReachMm);
+        if (next < 0 || next == c) break;
+        c = next;
+      }
+      residual[i] = faces->PlaneDistance(c, s - field.Displacement(faces->centre(c)));
+    }
     return true;
   }
 };
 
+// Rms (mm) of the residuals at `x`, 0 when the parameters are invalid.
+double ResidualRms(const ScanResidual& residual, const std::vector<double>& x, std::size_t n) {
+  std::vector<double> r(n);
+  const double* xs[1] = {x.data()};
+  if (!residual(xs, r.data())) return 0.0;
+  double sum = 0.0;
+  for (double v : r) sum += v * v;
+  return std::sqrt(sum / std::max<std::size_t>(1, n));
+}
+// Reports each iteration; stops the solve on Ctrl-C (an exception must not cross Ceres).
+class IterationReporter : public ceres::IterationCallback {
+ public:
+  explicit IterationReporter(const std::function<void(int)>& f) : f_(f) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    try {
+      if (f_) f_(summary.iteration);
+    } catch (const Interrupted&) {
+      return ceres::SOLVER_ABORT;
+    }
+    return InterruptRequested() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::function<void(int)>& f_;
+};
+
 }  // namespace
 
-DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
-                                  const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
-                                  const DistortionOptions& options, const DistortionFitOptions& fit) {
-  models::ValidateDistortionParams(start, "distortion fit start");
-  ValidateDistortionOptions(options);
+void ValidateDistortionFitOptions(const DistortionFitOptions& fit, const std::string& mode) {
   WAAM_THROW_UNLESS(!fit.free.empty(), "distortion fit: no free parameter");
-  for (const std::string& name : fit.free) {
+  for (std::size_t k = 0; k < fit.free.size(); ++k) {
+    const std::string& name = fit.free[k];
     models::DistortionParams probe;
     WAAM_THROW_UNLESS(Field(&probe, name) != nullptr,
                       "distortion fit: free parameter '" << name << "': must be one of strain, heat_exponent, "
                       "vertical_ratio, substrate_stiffness_n_mm3");
+    for (std::size_t j = 0; j < k; ++j) {
+      WAAM_THROW_UNLESS(fit.free[j] != name, "distortion fit: free parameter '" << name << "' is given twice");
+    }
+    // The reduced model has no substrate: its stiffness would be a free parameter with a zero Jacobian column.
+    WAAM_THROW_UNLESS(!(mode == "reduced" && name == "substrate_stiffness_n_mm3"),
+                      "distortion fit: free parameter 'substrate_stiffness_n_mm3' has no effect in mode reduced "
+                      "(no substrate compliance): fit it in mode fe");
   }
   WAAM_THROW_UNLESS(fit.max_points >= 10, "distortion fit: max_points = " << fit.max_points << ": must be >= 10");
-  WAAM_THROW_UNLESS(scan.size() >= 10, "distortion fit: the scan has " << scan.size() << " points: need >= 10");
-  std::vector<Eigen::Vector3d> used;
-  const std::size_t step = std::max<std::size_t>(1, scan.size() / fit.max_points);
-  for (std::size_t i = 0; i < scan.size(); i += step) used.push_back(scan[i]);
-  const planner::TriangleMesh surface = ExtractSurface(grid);
+  WAAM_THROW_UNLESS(fit.max_iterations >= 1 && fit.max_iterations <= 1000,
+                    "distortion fit: max_iterations = " << fit.max_iterations << ": must be in [1, 1000]");
+}
 
-  auto* functor = new ScanResidual{&grid, &history, &used, &surface, start, options, fit.free};
+DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
+                                  const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
+                                  const DistortionOptions& options, const DistortionFitOptions& fit,
+                                  const std::function<void(int)>& on_iteration) {
+  models::ValidateDistortionParams(start, "distortion fit start");
+  ValidateDistortionOptions(options);
+  ValidateDistortionFitOptions(fit, options.mode);
+  WAAM_THROW_UNLESS(scan.size() >= 10, "distortion fit: the scan has " << scan.size() << " points: need >= 10");
+  const internal::VoxelFaces faces(grid);
+  WAAM_THROW_UNLESS(faces.size() > 0, "distortion fit: the deposit is empty");
+  // Every k-th scan point with its seed; points nowhere near the part are left out (and counted).
+  std::vector<Eigen::Vector3d> used;
+  std::vector<int> seeds;
+  std::size_t far = 0;
+  // Seeds: the face whose centre the start parameters move nearest to the scan point, so that the face search starts
+  // next to its answer (from the undistorted faces it can settle on a wrong face where the part moved by centimetres).
+  const DistortionField start_field = ComputeDistortion(grid, history, start, options);
+  const internal::VoxelFaces moved =
+      faces.Moved([&](const Eigen::Vector3d& c) { return start_field.Displacement(c); });
+  const std::size_t step = std::max<std::size_t>(1, scan.size() / fit.max_points);
+  for (std::size_t i = 0; i < scan.size(); i += step) {
+    const int f = moved.Nearest(scan[i], kSeedReachMm);
+    if (f < 0) {
+      ++far;
+      continue;
+    }
+    used.push_back(scan[i]);
+    seeds.push_back(f);
+  }
+  WAAM_THROW_UNLESS(used.size() >= 10 && far <= used.size(),
+                    "distortion fit: " << far << " of " << far + used.size() << " scan points are farther than "
+                    << kSeedReachMm << " mm from the twin part: the scan must be of this part, in its part frame (mm)");
+
+  auto* functor = new ScanResidual{&grid, &history, &used, &seeds, &faces, start, options, fit.free};
   std::vector<double> x(fit.free.size());
   for (std::size_t k = 0; k < fit.free.size(); ++k) {
     models::DistortionParams p = start;
     const double v = *Field(&p, fit.free[k]);
     x[k] = LogScale(fit.free[k]) ? std::log(std::max(v, 1e-12)) : v;
   }
+  const std::vector<double> x0 = x;
   auto* cost = new ceres::DynamicNumericDiffCostFunction<ScanResidual, ceres::CENTRAL>(functor);
   cost->AddParameterBlock(static_cast<int>(x.size()));
   cost->SetNumResiduals(static_cast<int>(used.size()));
@@ -95,8 +177,11 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   solver.function_tolerance = 1e-10;
   solver.parameter_tolerance = 1e-8;
   solver.logging_type = ceres::SILENT;
+  IterationReporter reporter(on_iteration);
+  solver.callbacks.push_back(&reporter);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
+  CheckInterrupt();
 
   DistortionFitResult result;
   result.points = used.size();
@@ -107,15 +192,10 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   result.solver.initial_cost = summary.initial_cost;
   result.solver.final_cost = summary.final_cost;
   result.solver.seconds = summary.total_time_in_seconds;
-  ScanResidual eval{&grid, &history, &used, &surface, start, options, fit.free};
+  const ScanResidual eval{&grid, &history, &used, &seeds, &faces, start, options, fit.free};
   result.params = eval.Params(x.data());
-  std::vector<double> r(used.size());
-  const double* xs[1] = {x.data()};
-  if (eval(xs, r.data())) {
-    double sum = 0.0;
-    for (double v : r) sum += v * v;
-    result.rms_mm = std::sqrt(sum / std::max<std::size_t>(1, r.size()));
-  }
+  result.initial_rms_mm = ResidualRms(eval, x0, used.size());
+  if (result.solver.usable) result.rms_mm = ResidualRms(eval, x, used.size());
   return result;
 }
 

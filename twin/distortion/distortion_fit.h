@@ -1,6 +1,7 @@
 // Fitting the distortion parameters with Ceres to a measured scan of the distorted part (real or twin-generated).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,22 +19,31 @@ struct DistortionFitOptions {
   std::vector<std::string> free = {"strain", "heat_exponent"};  // any of strain, heat_exponent, vertical_ratio,
                                                                 // substrate_stiffness_n_mm3
   std::size_t max_points = 3000;   // scan points used (every k-th point, deterministic), >= 10
-  int max_iterations = 30;
+  int max_iterations = 30;         // Ceres iterations, in [1, 1000]
 };
+
+// Throws InputError naming the option for an unknown or repeated free parameter, one that has no effect in distortion
+// mode `mode` (substrate_stiffness_n_mm3 in reduced mode), max_points < 10 or max_iterations outside [1, 1000].
+void ValidateDistortionFitOptions(const DistortionFitOptions& fit, const std::string& mode);
 
 struct DistortionFitResult {
   models::DistortionParams params;   // the start with the free parameters replaced by the fit
   models::SolverReport solver;
-  double rms_mm = 0.0;               // rms distance of the used scan points to the fitted distorted surface
+  double initial_rms_mm = 0.0;       // rms distance of the used scan points to the distorted surface at the start, mm
+  double rms_mm = 0.0;               // rms distance of the used scan points to the fitted distorted surface, mm
   std::size_t points = 0;
 };
 
 // Fits the free parameters of `start` so that the twin's distorted surface of `grid` (deposited as `history` says)
-// passes through the `scan` points (part frame, mm): residual = distance of each scan point to the surface of the
-// deposit moved by the displacement field. Throws InputError for an unknown free parameter, too few points or
-// invalid start parameters; a fit that fails comes back with solver.usable = false.
+// passes through the `scan` points (part frame, mm): residual = distance of each scan point, pulled back through the
+// displacement field, to the deposit's surface (zero where the moved surface passes through it). Throws InputError
+// for invalid fit options (ValidateDistortionFitOptions), too few points or invalid start parameters; a fit that
+// fails comes back with solver.usable = false.
+// `on_iteration(i)` (may be empty) is called after every Ceres iteration; a Ctrl-C stops the solve and throws
+// waam::Interrupted.
 DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
                                   const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
-                                  const DistortionOptions& options, const DistortionFitOptions& fit);
+                                  const DistortionOptions& options, const DistortionFitOptions& fit,
+                                  const std::function<void(int)>& on_iteration = {});
 
 }  // namespace waam::twin

@@ -29,7 +29,9 @@ HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const
   mesh.h_mm = factor * grid.voxel_mm();
   std::unordered_map<std::uint64_t, Accum> bins;
   std::vector<std::uint64_t> order;
-  grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) {
+  const std::vector<VoxelDeposit>& deposits = history.Voxels(grid);
+  std::size_t n = 0;
+  grid.ForEach([&](const VoxelIndex& v, const VoxelData&) {
     const int I = FloorDiv(v.x(), factor), J = FloorDiv(v.y(), factor), K = FloorDiv(v.z(), factor);
     const std::uint64_t key = DistortionField::Key(I, J, K);
     auto [it, inserted] = bins.try_emplace(key);
@@ -38,8 +40,9 @@ HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const
       order.push_back(key);
     }
     Accum& a = it->second;
-    const int layer = history.LayerOfBead(d.bead);
-    const double q = params.HeatInput(history.wire_feed_mm_s(), history.SpeedAt(d.bead, d.time_s));
+    const VoxelDeposit& deposit = deposits[n++];
+    const int layer = deposit.layer;
+    const double q = params.HeatInput(history.wire_feed_mm_s(), deposit.speed_mm_s);
     a.count += 1;
     a.layer += layer;
     a.strain += params.StrainAt(q);

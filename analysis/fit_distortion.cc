@@ -1,0 +1,145 @@
+// `waam fit distortion`: the scan of a built part and its scenario -> twin build -> Ceres fit of the inherent-strain
+// parameters -> the distortion model JSON with a record of the fit.
+#include <chrono>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+#include "analysis/fit_internal.h"
+#include "models/core/error.h"
+#include "models/core/progress.h"
+#include "models/distortion/distortion_params.h"
+#include "models/fit/model_file.h"
+#include "planner/planar_planner.h"
+#include "planner/scenario/scenario.h"
+#include "twin/compensation/compensation.h"
+#include "twin/distortion/deposit_history.h"
+#include "twin/distortion/distortion_fit.h"
+#include "twin/scanner/point_cloud_io.h"
+#include "twin/simulation.h"
+
+namespace waam::analysis {
+namespace {
+
+// STL scans are sampled at this spacing (mm), as `waam compensate --scan` reads them.
+constexpr double kStlSpacingMm = 0.5;
+// The twin deposits the path with reference points this far apart (mm), as the compensation loop does, so that a scan
+// written by `waam compensate` is of the very part this fit deposits.
+constexpr double kReferenceSpacingMm = 2.0;
+
+double Value(const models::DistortionParams& p, const std::string& name) {
+  if (name == "strain") return p.strain;
+  if (name == "heat_exponent") return p.heat_exponent;
+  if (name == "vertical_ratio") return p.vertical_ratio;
+  return p.substrate_stiffness_n_mm3;
+}
+
+std::string Join(const std::vector<std::string>& items) {
+  std::string s;
+  for (const std::string& item : items) s += (s.empty() ? "" : ",") + item;
+  return s;
+}
+
+}  // namespace
+
+FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& out) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  // Everything that can be checked without the expensive build is checked first.
+  WAAM_THROW_UNLESS(!options.output.empty(), "-o/--output: the model JSON file to write is required");
+  WAAM_THROW_UNLESS(!options.scenario.empty(),
+                    "fit distortion: --scenario is required (the scenario YAML the scanned part was built from)");
+  WAAM_THROW_UNLESS(options.columns.empty() && !options.speed_range,
+                    "fit distortion: --columns and --speed-range apply to CSV models only");
+  const std::filesystem::path start_path =
+      options.start.empty() ? models::DefaultModelPath("distortion") : options.start;
+  models::DistortionParams start = models::ReadDistortionParams(start_path);
+  twin::DistortionOptions distortion;
+  distortion.mode = options.mode.empty() ? start.mode : options.mode;
+  distortion.element_mm = options.element_mm;
+  distortion.groups = options.groups;
+  twin::ValidateDistortionOptions(distortion);
+  start.mode = distortion.mode;
+  twin::DistortionFitOptions fit;
+  fit.free = options.free;
+  fit.max_points = options.max_points;
+  fit.max_iterations = options.max_iterations;
+  twin::ValidateDistortionFitOptions(fit, distortion.mode);
+  const std::vector<Eigen::Vector3d> scan = twin::ReadPointCloud(options.data, kStlSpacingMm);
+  WAAM_THROW_UNLESS(scan.size() >= 10, options.data.string() << ": the scan has " << scan.size()
+                                                             << " points: the fit needs at least 10");
+  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+
+  out << "waam fit distortion: " << options.data.string() << " (" << scan.size() << " points) against scenario "
+      << scenario.name << ", mode " << distortion.mode << ", free " << Join(fit.free) << "\n";
+  planner::PlanResult planned;
+  {
+    Progress progress("plan", 0, "layers", options.quiet);
+    planned = planner::PlanScenario(scenario, &progress);
+  }
+  WAAM_THROW_UNLESS(!planned.plan.layers.empty(), options.scenario.string() << ": the plan has no layers to deposit");
+  const planner::Plan plan = twin::ResamplePlan(planned.plan, kReferenceSpacingMm);
+  const double rapid_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
+  const twin::TwinResult build = [&] {
+    Progress progress("deposit", 0, "passes", options.quiet);
+    return twin::SimulateBuild(plan, nullptr, scenario.simulation, rapid_mm_s, scenario.path.bead_width_mm,
+                               [&](std::size_t done, std::size_t total) {
+                                 progress.SetTotal(total);
+                                 progress.Update(done);
+                               });
+  }();
+  const twin::DepositHistory history(plan, build.depositor, scenario.simulation, rapid_mm_s,
+                                     scenario.process.wire_feed_mm_min / 60.0);
+  twin::DistortionFitResult result;
+  {
+    Progress progress("fit", static_cast<std::size_t>(fit.max_iterations), "Ceres iterations", options.quiet);
+    result = twin::FitDistortion(build.depositor.grid(), history, scan, start, distortion, fit,
+                                 [&](int i) { progress.Update(static_cast<std::size_t>(i)); });
+  }
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  out << std::setprecision(6);
+  nlohmann::json start_json, fitted_json;
+  for (const std::string& name : fit.free) {
+    const double a = Value(start, name), b = Value(result.params, name);
+    start_json[name] = a;
+    fitted_json[name] = b;
+    out << "  " << std::left << std::setw(26) << name << std::right << " = " << b << "  (start " << a << ")\n";
+  }
+  out << "  rms      = " << result.initial_rms_mm << " mm at the start -> " << result.rms_mm
+      << " mm fitted (point-to-plane residuals, " << result.points << " scan points)\n";
+  PrintSolver(out, result.solver);
+  out << "  wall     = " << std::setprecision(3) << wall_s << " s (plan, deposit and fit)\n";
+
+  const nlohmann::json record = {
+      {"scan", options.data.string()},
+      {"scan_points", scan.size()},
+      {"points_used", result.points},
+      {"scenario", scenario.name},
+      {"scenario_file", options.scenario.string()},
+      {"overrides", options.overrides},
+      {"start_file", start_path.string()},
+      {"mode", distortion.mode},
+      {"element_mm", distortion.element_mm},
+      {"groups", distortion.groups},
+      {"free", fit.free},
+      {"start", start_json},
+      {"fitted", fitted_json},
+      {"rms_start_mm", result.initial_rms_mm},
+      {"rms_mm", result.rms_mm},
+      {"residual", "signed distance of each scan point to the distorted twin surface, mm (Huber loss, 1 mm)"},
+      {"solver", models::ToJson(result.solver)},
+  };
+  // A fit Ceres stopped short of convergence (iteration limit, failure) is not written: its parameters are not a fit.
+  bool ok = result.solver.usable && result.solver.termination == "CONVERGENCE";
+  std::string message;
+  if (!ok) {
+    std::ostringstream why;
+    why << "Ceres " << result.solver.termination << " after " << result.solver.iterations << " iterations ("
+        << result.solver.message << "); rms " << result.rms_mm
+        << " mm. Check that the scan is of this scenario's part, aligned in its part frame, or raise --max-iter";
+    message = why.str();
+  }
+  return Finish(ok, message, models::DistortionParamsToJson(result.params, &record), options, out);
+}
+
+}  // namespace waam::analysis

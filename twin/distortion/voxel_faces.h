@@ -1,0 +1,42 @@
+// Internal to the distortion fit: the exposed faces of the deposited voxels, for signed point-to-face distances.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "twin/deposition/voxel_grid.h"
+
+namespace waam::twin::internal {
+
+// Every face of an occupied voxel whose neighbour is empty (not the substrate below z = 0): the faces the twin's scan
+// samples (ScanDistortedPart), exact at any part size, unlike a surface mesh coarsened past its facet limit.
+class VoxelFaces {
+ public:
+  explicit VoxelFaces(const VoxelGrid& grid);
+
+  std::size_t size() const { return centre_.size(); }
+  // The same faces (same indices and normals) with every centre c moved to c + u(c) by `u` (mm).
+  VoxelFaces Moved(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& u) const;
+  // Index of the face whose centre is nearest to `p` (mm), searching at most `max_mm` (> 0) away; -1 if none.
+  int Nearest(const Eigen::Vector3d& p, double max_mm) const;
+  // Signed distance (mm) of `p` to the plane of face `face` (+ on the air side).
+  double PlaneDistance(int face, const Eigen::Vector3d& p) const {
+    return (p - centre_[face]).dot(normal_[face]);
+  }
+  const Eigen::Vector3d& centre(int face) const { return centre_[face]; }
+
+ private:
+  VoxelFaces() = default;
+  Eigen::Vector3i Cell(const Eigen::Vector3d& p) const;
+  static std::uint64_t Key(const Eigen::Vector3i& c);
+  double cell_mm_ = 1.0;
+  std::vector<Eigen::Vector3d> centre_;
+  std::vector<Eigen::Vector3d> normal_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+}  // namespace waam::twin::internal
