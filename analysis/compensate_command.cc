@@ -25,7 +25,9 @@ nlohmann::json IterationJson(const twin::CompensationIteration& it) {
           {"max_abs_vs_target_mm", it.max_abs_vs_target_mm},
           {"rms_vs_target_mm", it.rms_vs_target_mm},
           {"max_correction_mm", it.max_correction_mm},
+          {"top_band_mm", it.top_band_mm},
           {"real_scan", it.real_scan},
+          {"twin_correction_error_mm", it.twin_correction_error_mm},
           {"distortion",
            {{"elements", it.distortion.elements},
             {"dofs", it.distortion.dofs},
@@ -52,6 +54,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   loop.distortion.mode = options.mode.empty() ? loop.params.mode : options.mode;
   loop.distortion.element_mm = options.element_mm;
   loop.distortion.groups = options.groups;
+  loop.correction = options.correction;
   twin::ValidateDistortionOptions(loop.distortion);
   if (!options.first_scan.empty()) loop.first_scan = twin::ReadPointCloud(options.first_scan, 0.5);
   planner::PlanResult planned;
@@ -99,8 +102,10 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
       {"element_mm", loop.distortion.element_mm},
       {"groups", loop.distortion.groups},
       {"reference", result.reference},
+      {"correction", loop.correction},
       {"tolerance_mm", result.tolerance_mm},
       {"waviness_mm", result.waviness_mm},
+      {"top_band_mm", result.top_band_mm},
       {"converged", result.converged},
       {"status", result.status},
       {"message", result.message},

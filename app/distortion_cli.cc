@@ -64,6 +64,9 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("--mode", options->mode, "fe (inherent-strain FE) or reduced (layer shrinkage + axis bending)");
   command->add_option("--element-mm", options->element_mm, "FE element edge, mm (default 2)");
   command->add_option("--groups", options->groups, "Layer groups activated in turn (default 4)");
+  command->add_option("--correction", options->correction,
+                      "axis (default: bend the central axis back by the scan's section-centre offset, then correct the\n"
+                      "cross sections point by point) or points (per-point closest-point deviation only)");
   command->add_option("--set", options->overrides, "Override a scenario setting, key.path=value (repeatable)");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw the PNGs");
