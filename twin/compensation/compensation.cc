@@ -5,9 +5,9 @@
 // axis of the scan is compared with the reference axis section by section and bent back against its offset, and the
 // cross sections are corrected point by point from the closest-point deviations of the scan moved back onto the
 // reference axis. Only the component in the layer plane moves the point. Like the dissertation (which corrects the
-// cross sections and the axis), the build-direction shrinkage is not compensated: the top end face, whose height is
-// set by the bead model, is left out of the deviation measures (points whose target normal is within 45 degrees of
-// the last layer's build direction) and of the corrections.
+// cross sections and the axis), the build-direction shrinkage is not compensated: the top end (the scan points whose
+// reference point lies within two bead heights plus the measured shortening of the planned top, along the last
+// layer's build direction) is left out of the deviation measures.
 #include "twin/compensation/compensation.h"
 
 #include <Eigen/Geometry>
@@ -28,8 +28,6 @@
 
 namespace waam::twin {
 namespace {
-
-constexpr double kTopCos = 0.7071;  // cos 45 deg
 
 void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& target_surface, double axis_step_mm,
                CompensationIteration* it) {
@@ -70,11 +68,15 @@ ScanDeviation ExcludeTopBand(const ScanDeviation& scan, const Eigen::Vector3d& d
   return r;
 }
 
-// The highest of `points` along the unit `dir`, mm.
+// The top of `points` along the unit `dir`, mm: the 99.5th percentile, so that a few stray voxels (a spatter-like
+// spike of the deposit) do not set it.
 double TopOf(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& dir) {
-  double top = -std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& p : points) top = std::max(top, p.dot(dir));
-  return top;
+  if (points.empty()) return 0.0;
+  std::vector<double> h(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) h[i] = points[i].dot(dir);
+  const std::size_t k = std::min(h.size() - 1, static_cast<std::size_t>(0.995 * static_cast<double>(h.size())));
+  std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(k), h.end());
+  return h[k];
 }
 
 // The highest path point along the unit `dir`, mm.
@@ -274,7 +276,8 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
       field = ComputeDistortion(depositor.grid(), history, options.params, options.distortion, &it.distortion);
       points = ScanDistortedPart(depositor.grid(), field);
     }
-    // Side surfaces only: the top end face (target normal within 45 degrees of the last layer's build direction).
+    // Without the top end: the end face and the rim below it (a band along the last layer's build direction, not
+    // a normal cone: the side walls of a bent tube's first layers face the last layer's build direction too).
     const Eigen::Vector3d top_dir = nominal.layers.empty() ? Eigen::Vector3d::UnitZ()
                                                            : Eigen::Vector3d(nominal.layers.back().build_dir_P.normalized());
     const double path_top = PathTop(nominal, top_dir);
@@ -284,14 +287,12 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
         std::max(0.0, TopOf(twin_reference ? reference_points : target_surface, top_dir) - TopOf(points, top_dir));
     it.top_band_mm = result.top_band_mm + shortening;
     const ScanDeviation against_target =
-        ExcludeTopBand(ExcludeFacing(MeasureScanDeviation(points, distance), top_dir, kTopCos), top_dir,
-                       path_top, it.top_band_mm);
+        ExcludeTopBand(MeasureScanDeviation(points, distance), top_dir, path_top, it.top_band_mm);
     it.max_abs_vs_target_mm = against_target.max_abs_mm;
     it.rms_vs_target_mm = against_target.rms_mm;
     const MeshDistance& reference_distance = twin_reference ? *reference : distance;
     const ScanDeviation scan =
-        twin_reference ? ExcludeTopBand(ExcludeFacing(MeasureScanDeviation(points, *reference), top_dir, kTopCos),
-                                        top_dir, path_top, it.top_band_mm)
+        twin_reference ? ExcludeTopBand(MeasureScanDeviation(points, *reference), top_dir, path_top, it.top_band_mm)
                        : against_target;
     Summarize(scan, target_surface, options.axis_step_mm, &it);
     if (iter == 0) {
