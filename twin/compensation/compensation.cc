@@ -29,15 +29,25 @@
 namespace waam::twin {
 namespace {
 
-void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& target_surface, double axis_step_mm,
+// Deviation statistics, the central-axis offset against the reference's axis (the same reference as the deviations:
+// the undistorted twin part or the target) and the ovality (eq. 6.5) of the highest complete scan section (the top
+// cut of Fig. 69; the shortened top end cuts partial rings).
+void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& reference_points, double axis_step_mm,
                CompensationIteration* it) {
   it->max_abs_deviation_mm = scan.max_abs_mm;
   it->rms_deviation_mm = scan.rms_mm;
   it->min_deviation_mm = scan.min_mm;
   it->max_deviation_mm = scan.max_mm;
-  const AxisComparison axis = CompareAxis(target_surface, scan.points, axis_step_mm, 0.5 * axis_step_mm);
+  const AxisComparison axis = CompareAxis(reference_points, scan.points, axis_step_mm, 0.5 * axis_step_mm);
   it->axis_deviation_mm = axis.max_axis_deviation_mm;
   it->ovality_pct = axis.scan_top.ovality_pct;
+  for (std::size_t i = axis.stations.size(); i-- > 0;) {
+    if (axis.deviation[i].squaredNorm() > 0.0) {
+      const AxisStation& s = axis.stations[i];
+      it->ovality_pct = MeasureSection(scan.points, s, 0.5 * axis_step_mm, 1.5 * s.radius_mm + axis_step_mm + 5.0).ovality_pct;
+      break;
+    }
+  }
 }
 
 // `scan` without the points whose closest reference point lies within `band_mm` of the top end (`top`, the largest
@@ -294,7 +304,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     const ScanDeviation scan =
         twin_reference ? ExcludeTopBand(MeasureScanDeviation(points, *reference), top_dir, path_top, it.top_band_mm)
                        : against_target;
-    Summarize(scan, target_surface, options.axis_step_mm, &it);
+    Summarize(scan, reference_points, options.axis_step_mm, &it);
     if (iter == 0) {
       result.tolerance_mm = options.tolerance_mm > 0.0 ? options.tolerance_mm : result.waviness_mm;
       WAAM_THROW_UNLESS(result.tolerance_mm > 0.0,

@@ -38,8 +38,8 @@ struct CompensationIteration {
   double rms_deviation_mm = 0.0;
   double min_deviation_mm = 0.0;
   double max_deviation_mm = 0.0;
-  double axis_deviation_mm = 0.0;    // largest central-axis offset from the target axis
-  double ovality_pct = 0.0;          // eq. 6.5 at the top cut of Fig. 69
+  double axis_deviation_mm = 0.0;    // largest central-axis offset from the reference's axis (twin part or target)
+  double ovality_pct = 0.0;          // eq. 6.5 at the highest complete section (top cut of Fig. 69)
   double max_abs_vs_target_mm = 0.0; // the same scan against the target mesh (bead-shape errors included)
   double rms_vs_target_mm = 0.0;
   double max_correction_mm = 0.0;    // largest |S_i| applied to the next tool path
