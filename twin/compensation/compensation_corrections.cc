@@ -262,8 +262,12 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
     ss += ds * ds;
   }
   if (ss > 0.0) slope /= ss;
+  // The line is trusted over the shortened top end only (at most kExtrapolateMm of axis), then held.
+  constexpr double kExtrapolateMm = 20.0;
+  const double s_last = a.stations[ok.back()].s_mm;
   for (std::size_t i = ok.back() + 1; i < a.stations.size(); ++i) {
-    const Eigen::Vector3d d = mean + slope * (a.stations[i].s_mm - s_mean);
+    const double s_i = std::min(a.stations[i].s_mm, s_last + kExtrapolateMm);
+    const Eigen::Vector3d d = mean + slope * (s_i - s_mean);
     a.shift[i] = d - d.dot(a.stations[i].normal) * a.stations[i].normal;
     a.outline[i] = a.outline[ok.back()];
   }
@@ -314,8 +318,11 @@ double CorrectionError(const planner::Plan& nominal, const planner::Plan& curren
     const Eigen::Vector3d n = nominal.layers[l].build_dir_P.normalized();
     double layer_worst = 0.0, s_max = 0.0, e_max = 0.0, axial = 0.0;
     for (std::size_t i = 0; i < nominal.layers[l].points.size(); ++i) {
+      // Welded points on the part only: travel points and points off the deposit have no displacement.
+      if (!current.layers[l].points[i].weld) continue;
       const Eigen::Vector3d r = current.layers[l].points[i].p_P;
       const Eigen::Vector3d u = field.Displacement(r);
+      if (u.squaredNorm() == 0.0) continue;
       Eigen::Vector3d e = r + u - nominal.layers[l].points[i].p_P;
       axial = std::max(axial, std::abs(e.dot(n)));
       e -= e.dot(n) * n;

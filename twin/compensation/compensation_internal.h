@@ -36,7 +36,7 @@ struct SectionShift {
 // Compares `scan` with `reference` (both surface point clouds in the part frame, mm) at reference-axis stations
 // `step_mm` (> 0) apart. Stations where the scan section is incomplete (the ends) take the nearest measured values
 // at the bottom, and at the top a straight-line extrapolation of the last measured axis offsets (a bend keeps
-// growing) and the last measured outline.
+// growing; over at most 20 mm of axis, then held) and the last measured outline.
 SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
                                  const std::vector<Eigen::Vector3d>& scan, double step_mm);
 
@@ -52,7 +52,7 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
 
 // Diagnostic only, never an input of the loop: the largest in-plane difference (mm) between the corrections `s` and
 // the error the twin's hidden displacement `field` gives at each point of `current`, (r_i + u(r_i) - r0_i)_perp with
-// r0_i the point of `nominal`. Set WAAM_COMPENSATE_DEBUG=1 to print it per layer on stderr.
+// r0_i the point of `nominal`, over the welded points where the field is defined. Set WAAM_COMPENSATE_DEBUG=1 to print it per layer on stderr.
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
                        const std::vector<std::vector<Eigen::Vector3d>>& s);
 
