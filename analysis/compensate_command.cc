@@ -18,6 +18,7 @@ namespace {
 nlohmann::json IterationJson(const twin::CompensationIteration& it) {
   return {{"max_abs_deviation_mm", it.max_abs_deviation_mm},
           {"rms_deviation_mm", it.rms_deviation_mm},
+          {"p99_abs_deviation_mm", it.p99_abs_deviation_mm},
           {"min_deviation_mm", it.min_deviation_mm},
           {"max_deviation_mm", it.max_deviation_mm},
           {"axis_deviation_mm", it.axis_deviation_mm},

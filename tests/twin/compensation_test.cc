@@ -79,6 +79,8 @@ TEST(Compensation, BentTubeConvergesWithinTwoIterationsFromTheScan) {
   ASSERT_GE(r.iterations.size(), 2u);
   const CompensationIteration& first = r.iterations.front();
   EXPECT_GT(first.max_abs_deviation_mm, 1.5 * r.tolerance_mm) << "the uncompensated part must be out of tolerance";
+  EXPECT_GT(first.p99_abs_deviation_mm, first.rms_deviation_mm) << "99th percentile of |d| lies above the rms";
+  EXPECT_LE(first.p99_abs_deviation_mm, first.max_abs_deviation_mm) << "and not above the max";
   EXPECT_TRUE(r.converged) << r.status << ": " << r.message;
   EXPECT_EQ(r.status, "converged");
   EXPECT_LE(r.iterations.size(), 3u) << "at most two compensated builds after the first";
