@@ -18,6 +18,7 @@ namespace {
 nlohmann::json IterationJson(const twin::CompensationIteration& it) {
   return {{"max_abs_deviation_mm", it.max_abs_deviation_mm},
           {"rms_deviation_mm", it.rms_deviation_mm},
+          {"p99_abs_deviation_mm", it.p99_abs_deviation_mm},
           {"min_deviation_mm", it.min_deviation_mm},
           {"max_deviation_mm", it.max_deviation_mm},
           {"axis_deviation_mm", it.axis_deviation_mm},
@@ -25,7 +26,9 @@ nlohmann::json IterationJson(const twin::CompensationIteration& it) {
           {"max_abs_vs_target_mm", it.max_abs_vs_target_mm},
           {"rms_vs_target_mm", it.rms_vs_target_mm},
           {"max_correction_mm", it.max_correction_mm},
+          {"top_band_mm", it.top_band_mm},
           {"real_scan", it.real_scan},
+          {"twin_correction_error_mm", it.twin_correction_error_mm},
           {"distortion",
            {{"elements", it.distortion.elements},
             {"dofs", it.distortion.dofs},
@@ -52,6 +55,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   loop.distortion.mode = options.mode.empty() ? loop.params.mode : options.mode;
   loop.distortion.element_mm = options.element_mm;
   loop.distortion.groups = options.groups;
+  loop.correction = options.correction;
   twin::ValidateDistortionOptions(loop.distortion);
   if (!options.first_scan.empty()) loop.first_scan = twin::ReadPointCloud(options.first_scan, 0.5);
   planner::PlanResult planned;
@@ -99,8 +103,10 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
       {"element_mm", loop.distortion.element_mm},
       {"groups", loop.distortion.groups},
       {"reference", result.reference},
+      {"correction", loop.correction},
       {"tolerance_mm", result.tolerance_mm},
       {"waviness_mm", result.waviness_mm},
+      {"top_band_mm", result.top_band_mm},
       {"converged", result.converged},
       {"status", result.status},
       {"message", result.message},

@@ -44,6 +44,7 @@ struct CompensateOptions {
   std::string mode;                       // fe | reduced; empty = the model file's
   double element_mm = 2.0;
   int groups = 4;
+  std::string correction = "axis";       // axis (central axis + cross sections) | points (per point only)
   bool quiet = false;
   bool images = true;
   bool program = true;                    // write the compensated robot program (needs the scenario's cell)

@@ -46,12 +46,15 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
       "Offline shrinkage and distortion compensation (003 sec. 6.5.2) tuned in the twin: plan the scenario, deposit\n"
       "it in the voxel twin, let it shrink and distort (inherent-strain model, models/data/distortion.json), scan it,\n"
       "then move every reference point of the tool path (2 mm apart) against the deviation measured around it,\n"
-      "r*_i = r_i - S_i (the central axis is bent back against its deviation; build-direction shrinkage is made up\n"
-      "by taller beads at a slower speed), and build again, until max |deviation| < tolerance (default: the\n"
-      "simulated part's waviness) or --max-iter compensations are done. A loop whose deviation stops shrinking says\n"
-      "so and stops. --scan replaces the first simulated part with a real scan (aligned, part frame, mm).\n"
+      "r*_i = r_i - S_i, in each layer's plane: S_i is the scan's section-centre offset from the reference's central\n"
+      "axis plus the move of its section outline (72 directions), plus the closest-point remainder. The build-direction\n"
+      "shrinkage is not corrected by the path: the top rim (2 bead heights + the shortening the scan shows) is left\n"
+      "out of the measures. Build again until max |deviation| < tolerance (default: the simulated part's waviness)\n"
+      "or --max-iter compensations are done. A loop whose deviation stops shrinking says so and stops (status\n"
+      "diverging). --scan replaces the first simulated part with a real scan (aligned, part frame, mm).\n"
       "Writes: compensate.json (tolerance_mm, converged, status, message, iterations[]: max_abs_deviation_mm,\n"
-      "rms_deviation_mm, axis_deviation_mm, ovality_pct (eq. 6.5, top section), max_correction_mm, distortion solve\n"
+      "rms_deviation_mm, p99_abs_deviation_mm, axis_deviation_mm, ovality_pct (eq. 6.5, highest complete section),\n"
+      "max_correction_mm, top_band_mm, twin_correction_error_mm (twin-only check, never used), distortion solve\n"
       "size and time), compensated_path.h5 (plan.h5 layout), program/ (program.ls, program.csv, check.json of the\n"
       "compensated path), scan_before.ply, scan_after.ply, deviation_before.png, deviation_after.png.\n"
       "Exit code 0 also when the loop did not converge (see `converged`).");
@@ -64,6 +67,9 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("--mode", options->mode, "fe (inherent-strain FE) or reduced (layer shrinkage + axis bending)");
   command->add_option("--element-mm", options->element_mm, "FE element edge, mm (default 2)");
   command->add_option("--groups", options->groups, "Layer groups activated in turn (default 4)");
+  command->add_option("--correction", options->correction,
+                      "axis (default: bend the central axis back by the scan's section-centre offset, then correct the\n"
+                      "cross sections point by point) or points (per-point closest-point deviation only)");
   command->add_option("--set", options->overrides, "Override a scenario setting, key.path=value (repeatable)");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw the PNGs");

@@ -1,14 +1,17 @@
-// One inherent-strain distortion solve of a part-I-sized tube (003 Fig. 60: 100 mm diameter), default resolution:
-// time, linear-system size (unknowns, stored nonzeros) and peak memory. Part I itself is bent (skeleton slicing,
-// issue 7); until that generator is merged this is the straight tube of the same section and axis length.
+// One inherent-strain distortion solve of part I (003 Fig. 60: 100 mm diameter), default resolution: time,
+// linear-system size (unknowns, stored nonzeros) and peak memory. BM_DistortionSolvePartI: a straight tube of the same
+// section and axis length; BM_DistortionSolveBentPartI: scenarios/tubes/part_1.yaml itself (bent, skeleton slicing).
 // Arg 0: fe with SimplicialLDLT, 1: reduced mode, 2: fe with ConjugateGradient (incomplete Cholesky, the default).
 #include <sys/resource.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include <benchmark/benchmark.h>
 
 #include "planner/path/tool_path.h"
+#include "planner/planar_planner.h"
+#include "planner/scenario/scenario.h"
 #include "twin/deposition/bead_deposition.h"
 #include "twin/distortion/deposit_history.h"
 #include "twin/distortion/distortion.h"
@@ -66,5 +69,36 @@ void BM_DistortionSolvePartI(benchmark::State& state) {
   state.counters["peak_rss_mb"] = usage.ru_maxrss / 1024.0;
 }
 BENCHMARK(BM_DistortionSolvePartI)->Arg(0)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond);
+
+void BM_DistortionSolveBentPartI(benchmark::State& state) {
+  const waam::planner::Scenario scenario =
+      waam::planner::LoadScenario(std::filesystem::path(WAAM_SOURCE_DIR) / "scenarios/tubes/part_1.yaml");
+  const waam::planner::Plan plan = waam::planner::PlanScenario(scenario, nullptr).plan;
+  const double rapid = scenario.process.rapid_speed_mm_min / 60.0;
+  const waam::twin::Depositor depositor = waam::twin::DepositPlan(plan, scenario.simulation, rapid, nullptr);
+  const waam::twin::DepositHistory history(plan, depositor, scenario.simulation, rapid,
+                                           scenario.process.wire_feed_mm_min / 60.0);
+  waam::models::DistortionParams params;
+  waam::twin::DistortionOptions options;  // fe, 2 mm elements, 4 groups
+  options.mode = state.range(0) == 1 ? "reduced" : "fe";
+  options.solver = state.range(0) == 0 ? "ldlt" : "cg";
+  waam::twin::DistortionStats stats;
+  for (auto _ : state) {
+    const waam::twin::DistortionField field =
+        waam::twin::ComputeDistortion(depositor.grid(), history, params, options, &stats);
+    benchmark::DoNotOptimize(field.nodes());
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["voxels"] = static_cast<double>(depositor.grid().occupied());
+  state.counters["elements"] = static_cast<double>(stats.elements);
+  state.counters["dofs"] = static_cast<double>(stats.dofs);
+  state.counters["nonzeros"] = static_cast<double>(stats.nonzeros);
+  state.counters["solves"] = stats.solves;
+  state.counters["solve_s"] = stats.solve_s;
+  state.counters["max_u_mm"] = stats.max_displacement_mm;
+  state.counters["peak_rss_mb"] = usage.ru_maxrss / 1024.0;
+}
+BENCHMARK(BM_DistortionSolveBentPartI)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace

@@ -1,13 +1,13 @@
 // The compensation loop of 003 sec. 6.5.2 in the twin. Each reference point r_i of the tool path (2 mm apart) is
 // moved against the deviation S_i the scan shows around it: r*_i = r_i - S_i.
 //
-// S_i is estimated from the scan alone, so a real scan works the same way: the mean of d_j n_j over the scan points
-// j near r_i in its layer band (d_j signed deviation, n_j target normal at the closest point). A wall that moved
-// sideways by s gives +s on one face and -s on the other, both along the move, so the mean is the move (the central
-// axis bent against its deviation); a wall that only got thicker cancels. Only the component in the layer plane moves
-// the point. Like the dissertation (which corrects the cross sections and the axis), the build-direction shrinkage is
-// not compensated: the top end face, whose height is set by the bead model, is left out of the deviation measures
-// (points whose target normal is within 45 degrees of the last layer's build direction) and of the corrections.
+// S_i is estimated from the scan alone, so a real scan works the same way (compensation_corrections.cc): the central
+// axis of the scan is compared with the reference axis section by section and bent back against its offset, and the
+// cross sections are corrected point by point from the closest-point deviations of the scan moved back onto the
+// reference axis. Only the component in the layer plane moves the point. Like the dissertation (which corrects the
+// cross sections and the axis), the build-direction shrinkage is not compensated: the top end (the scan points whose
+// reference point lies within two bead heights plus the measured shortening of the planned top, along the last
+// layer's build direction) is left out of the deviation measures.
 #include "twin/compensation/compensation.h"
 
 #include <Eigen/Geometry>
@@ -24,106 +24,85 @@
 #include "twin/scanner/mesh_distance.h"
 #include "twin/scanner/point_cloud_io.h"
 #include "twin/scanner/surface_mesh.h"
-#include "twin/simulation.h"
+#include "twin/compensation/compensation_internal.h"
 
 namespace waam::twin {
 namespace {
 
-constexpr double kTopCos = 0.7071;  // cos 45 deg
-
-// Spatial hash of scan points for radius queries.
-class PointHash {
- public:
-  PointHash(const std::vector<Eigen::Vector3d>& points, double cell_mm) : points_(points), cell_(cell_mm) {
-    for (std::size_t i = 0; i < points.size(); ++i) cells_[Key(Cell(points[i]))].push_back(static_cast<int>(i));
-  }
-  template <typename F>
-  void ForEachNear(const Eigen::Vector3d& p, double radius, F&& f) const {
-    const Eigen::Vector3i c = Cell(p);
-    const int reach = static_cast<int>(std::ceil(radius / cell_));
-    for (int dz = -reach; dz <= reach; ++dz) {
-      for (int dy = -reach; dy <= reach; ++dy) {
-        for (int dx = -reach; dx <= reach; ++dx) {
-          auto it = cells_.find(Key(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (int i : it->second) {
-            if ((points_[i] - p).squaredNorm() <= radius * radius) f(i);
-          }
-        }
-      }
-    }
-  }
-
- private:
-  Eigen::Vector3i Cell(const Eigen::Vector3d& p) const {
-    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell_)), static_cast<int>(std::floor(p.y() / cell_)),
-                           static_cast<int>(std::floor(p.z() / cell_)));
-  }
-  static std::uint64_t Key(const Eigen::Vector3i& c) {
-    return (static_cast<std::uint64_t>(c.x() + (1 << 20)) & 0x1FFFFF) |
-           ((static_cast<std::uint64_t>(c.y() + (1 << 20)) & 0x1FFFFF) << 21) |
-           ((static_cast<std::uint64_t>(c.z() + (1 << 20)) & 0x1FFFFF) << 42);
-  }
-  const std::vector<Eigen::Vector3d>& points_;
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-};
-
-void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& target_surface, double axis_step_mm,
+// Deviation statistics, the central-axis offset against the reference's axis (the same reference as the deviations:
+// the undistorted twin part or the target) and the ovality (eq. 6.5) of the highest complete scan section (the top
+// cut of Fig. 69; the shortened top end cuts partial rings).
+void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& reference_points, double axis_step_mm,
                CompensationIteration* it) {
   it->max_abs_deviation_mm = scan.max_abs_mm;
   it->rms_deviation_mm = scan.rms_mm;
+  if (!scan.deviation_mm.empty()) {
+    std::vector<double> a(scan.deviation_mm.size());
+    for (std::size_t i = 0; i < a.size(); ++i) a[i] = std::abs(scan.deviation_mm[i]);
+    const std::size_t k = std::min(a.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(a.size())));
+    std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k), a.end());
+    it->p99_abs_deviation_mm = a[k];
+  }
   it->min_deviation_mm = scan.min_mm;
   it->max_deviation_mm = scan.max_mm;
-  const AxisComparison axis = CompareAxis(target_surface, scan.points, axis_step_mm, 0.5 * axis_step_mm);
+  const AxisComparison axis = CompareAxis(reference_points, scan.points, axis_step_mm, 0.5 * axis_step_mm);
   it->axis_deviation_mm = axis.max_axis_deviation_mm;
   it->ovality_pct = axis.scan_top.ovality_pct;
-}
-
-// The corrections S_i (mm) of every point of `nominal`, from the scan of the part built with the current path.
-std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
-                                                              double bead_width_mm) {
-  const double radius = 0.5 * bead_width_mm + std::min(scan.max_abs_mm, 20.0) + 1.0;
-  const PointHash hash(scan.points, radius);
-  std::vector<std::vector<Eigen::Vector3d>> s(nominal.layers.size());
-  for (std::size_t l = 0; l < nominal.layers.size(); ++l) {
-    const planner::LayerPath& layer = nominal.layers[l];
-    const Eigen::Vector3d n = layer.build_dir_P.normalized();
-    s[l].assign(layer.points.size(), Eigen::Vector3d::Zero());
-    std::vector<std::uint8_t> known(layer.points.size(), 0);
-    for (std::size_t i = 0; i < layer.points.size(); ++i) {
-      const planner::PathPoint& p = layer.points[i];
-      const double band = std::max(p.bead_height_mm, 1.0);
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      int count = 0;
-      hash.ForEachNear(p.p_P, radius, [&](int j) {
-        const Eigen::Vector3d r = scan.points[j] - p.p_P;
-        const double along = r.dot(n);
-        if (std::abs(along) > band) return;
-        sum += scan.deviation_mm[j] * scan.normal[j];
-        ++count;
-      });
-      if (count > 0) {
-        Eigen::Vector3d v = sum / count;
-        s[l][i] = v - v.dot(n) * n;
-        known[i] = 1;
-      }
-    }
-    // Points with no scan near them (inside a solid layer) take the correction of the nearest known point.
-    for (std::size_t i = 0; i < layer.points.size(); ++i) {
-      if (known[i]) continue;
-      double best = std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < layer.points.size(); ++k) {
-        if (!known[k]) continue;
-        const double d = (layer.points[k].p_P - layer.points[i].p_P).squaredNorm();
-        if (d < best) {
-          best = d;
-          s[l][i] = s[l][k];
-        }
-      }
+  for (std::size_t i = axis.stations.size(); i-- > 0;) {
+    if (axis.deviation[i].squaredNorm() > 0.0) {
+      const AxisStation& s = axis.stations[i];
+      it->ovality_pct = MeasureSection(scan.points, s, 0.5 * axis_step_mm, 1.5 * s.radius_mm + axis_step_mm + 5.0).ovality_pct;
+      break;
     }
   }
-  return s;
+}
+
+// `scan` without the points whose closest reference point lies within `band_mm` of the top end (`top`, the largest
+// coordinate of the planned path along the unit `dir`), statistics recomputed. The rim of the last layers shows the
+// build-direction shrinkage, which the in-plane path correction does not address (003 makes it up by bead height).
+ScanDeviation ExcludeTopBand(const ScanDeviation& scan, const Eigen::Vector3d& dir, double top, double band_mm) {
+  ScanDeviation r;
+  double sum = 0.0, sum2 = 0.0;
+  r.min_mm = std::numeric_limits<double>::infinity();
+  r.max_mm = -r.min_mm;
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    const Eigen::Vector3d closest = scan.points[i] - scan.deviation_mm[i] * scan.normal[i];
+    if (closest.dot(dir) > top - band_mm) continue;
+    const double d = scan.deviation_mm[i];
+    r.points.push_back(scan.points[i]);
+    r.deviation_mm.push_back(d);
+    r.normal.push_back(scan.normal[i]);
+    sum += d;
+    sum2 += d * d;
+    r.min_mm = std::min(r.min_mm, d);
+    r.max_mm = std::max(r.max_mm, d);
+  }
+  if (r.points.empty()) return ScanDeviation{};
+  const double n = static_cast<double>(r.points.size());
+  r.mean_mm = sum / n;
+  r.rms_mm = std::sqrt(sum2 / n);
+  r.max_abs_mm = std::max(std::abs(r.min_mm), std::abs(r.max_mm));
+  return r;
+}
+
+// The top of `points` along the unit `dir`, mm: the 99.5th percentile, so that a few stray voxels (a spatter-like
+// spike of the deposit) do not set it.
+double TopOf(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& dir) {
+  if (points.empty()) return 0.0;
+  std::vector<double> h(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) h[i] = points[i].dot(dir);
+  const std::size_t k = std::min(h.size() - 1, static_cast<std::size_t>(0.995 * static_cast<double>(h.size())));
+  std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(k), h.end());
+  return h[k];
+}
+
+// The highest path point along the unit `dir`, mm.
+double PathTop(const planner::Plan& plan, const Eigen::Vector3d& dir) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (const planner::LayerPath& layer : plan.layers) {
+    for (const planner::PathPoint& p : layer.points) top = std::max(top, p.p_P.dot(dir));
+  }
+  return top;
 }
 
 // Side-wall waviness of the undistorted twin part (the termination condition of 003 sec. 6.5.2 is the wall's
@@ -207,8 +186,16 @@ std::vector<Eigen::Vector3d> ScanDistortedPart(const VoxelGrid& grid, const Dist
   std::vector<std::uint8_t> air(total, 0);
   std::vector<VoxelIndex> stack;
   const Eigen::Vector3i dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  // A laser line scanner does not see into one-voxel slots (seams between bead rasters): an empty voxel with metal on
+  // both sides along an axis is not air the scanner reaches.
+  auto slot = [&](const VoxelIndex& v) {
+    for (int a = 0; a < 3; ++a) {
+      if (grid.Occupied(v + VoxelIndex::Unit(a)) && grid.Occupied(v - VoxelIndex::Unit(a))) return true;
+    }
+    return false;
+  };
   auto seed = [&](const VoxelIndex& v) {
-    if (!grid.Occupied(v) && !air[offset(v)]) {
+    if (!grid.Occupied(v) && !air[offset(v)] && !slot(v)) {
       air[offset(v)] = 1;
       stack.push_back(v);
     }
@@ -255,6 +242,8 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
   WAAM_THROW_UNLESS(!target.facets.empty(), "compensate: the target part has no facets");
   WAAM_THROW_UNLESS(options.reference == "twin" || options.reference == "target",
                     "compensate --reference = '" << options.reference << "': must be twin or target");
+  WAAM_THROW_UNLESS(options.correction == "axis" || options.correction == "points",
+                    "compensate --correction = '" << options.correction << "': must be axis or points");
   ValidateDistortionOptions(options.distortion);
   models::ValidateDistortionParams(options.params, "distortion model");
   const planner::Plan nominal = ResamplePlan(plan, options.reference_spacing_mm);
@@ -269,48 +258,60 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
   const bool twin_reference = options.reference == "twin" && options.first_scan.empty();
   planner::TriangleMesh reference_mesh;
   std::unique_ptr<MeshDistance> reference;
+  std::vector<Eigen::Vector3d> reference_points = target_surface;
   result.reference = twin_reference ? "twin" : "target";
+  // The top rim left out of the measures: two bead heights of the last layer (plus each scan's shortening).
+  if (!nominal.layers.empty()) {
+    double sum = 0.0;
+    for (const planner::PathPoint& p : nominal.layers.back().points) sum += p.bead_height_mm;
+    result.top_band_mm = nominal.layers.back().points.empty() ? 0.0 : 2.0 * sum / nominal.layers.back().points.size();
+  }
   for (int iter = 0; iter <= options.max_iterations; ++iter) {
     CheckInterrupt();
     CompensationIteration it;
     std::vector<Eigen::Vector3d> points;
+    DistortionField field;
+    bool simulated = true;
+    const Depositor depositor = DepositPlan(current, settings, options.rapid_speed_mm_s, nullptr);
     if (iter == 0) {
-      const TwinResult nominal_twin =
-          SimulateBuild(current, nullptr, settings, options.rapid_speed_mm_s, options.bead_width_mm, {});
-      const ScanDeviation undistorted = MeasureScanDeviation(
-          ScanDistortedPart(nominal_twin.depositor.grid(), DistortionField()), distance);
+      const ScanDeviation undistorted =
+          MeasureScanDeviation(ScanDistortedPart(depositor.grid(), DistortionField()), distance);
       result.waviness_mm = WallWaviness(undistorted, 2.0 * options.reference_spacing_mm);
       if (twin_reference) {
-        reference_mesh = ExtractSurface(nominal_twin.depositor.grid());
+        reference_mesh = ExtractSurface(depositor.grid());
         reference = std::make_unique<MeshDistance>(reference_mesh);
+        reference_points = undistorted.points;
       }
       if (!options.first_scan.empty()) {
         it.real_scan = true;
+        simulated = false;
         points = options.first_scan;
-      } else {
-        const DepositHistory history(current, nominal_twin.depositor, settings, options.rapid_speed_mm_s,
-                                     options.wire_feed_mm_s);
-        const DistortionField field = ComputeDistortion(nominal_twin.depositor.grid(), history, options.params,
-                                                        options.distortion, &it.distortion);
-        points = ScanDistortedPart(nominal_twin.depositor.grid(), field);
       }
-    } else {
-      const TwinResult twin =
-          SimulateBuild(current, nullptr, settings, options.rapid_speed_mm_s, options.bead_width_mm, {});
-      const DepositHistory history(current, twin.depositor, settings, options.rapid_speed_mm_s, options.wire_feed_mm_s);
-      const DistortionField field =
-          ComputeDistortion(twin.depositor.grid(), history, options.params, options.distortion, &it.distortion);
-      points = ScanDistortedPart(twin.depositor.grid(), field);
     }
-    // Side surfaces only: the top end face (target normal within 45 degrees of the last layer's build direction).
+    if (simulated) {
+      const DepositHistory history(current, depositor, settings, options.rapid_speed_mm_s, options.wire_feed_mm_s);
+      field = ComputeDistortion(depositor.grid(), history, options.params, options.distortion, &it.distortion);
+      points = ScanDistortedPart(depositor.grid(), field);
+    }
+    // Without the top end: the end face and the rim below it (a band along the last layer's build direction, not
+    // a normal cone: the side walls of a bent tube's first layers face the last layer's build direction too).
     const Eigen::Vector3d top_dir = nominal.layers.empty() ? Eigen::Vector3d::UnitZ()
                                                            : Eigen::Vector3d(nominal.layers.back().build_dir_P.normalized());
-    const ScanDeviation against_target = ExcludeFacing(MeasureScanDeviation(points, distance), top_dir, kTopCos);
+    const double path_top = PathTop(nominal, top_dir);
+    // The rim: two bead heights plus the shortening the scan shows at the top end (its highest point below the
+    // reference's along the build direction).
+    const double shortening =
+        std::max(0.0, TopOf(twin_reference ? reference_points : target_surface, top_dir) - TopOf(points, top_dir));
+    it.top_band_mm = result.top_band_mm + shortening;
+    const ScanDeviation against_target =
+        ExcludeTopBand(MeasureScanDeviation(points, distance), top_dir, path_top, it.top_band_mm);
     it.max_abs_vs_target_mm = against_target.max_abs_mm;
     it.rms_vs_target_mm = against_target.rms_mm;
+    const MeshDistance& reference_distance = twin_reference ? *reference : distance;
     const ScanDeviation scan =
-        twin_reference ? ExcludeFacing(MeasureScanDeviation(points, *reference), top_dir, kTopCos) : against_target;
-    Summarize(scan, target_surface, options.axis_step_mm, &it);
+        twin_reference ? ExcludeTopBand(MeasureScanDeviation(points, *reference), top_dir, path_top, it.top_band_mm)
+                       : against_target;
+    Summarize(scan, reference_points, options.axis_step_mm, &it);
     if (iter == 0) {
       result.tolerance_mm = options.tolerance_mm > 0.0 ? options.tolerance_mm : result.waviness_mm;
       WAAM_THROW_UNLESS(result.tolerance_mm > 0.0,
@@ -324,7 +325,10 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     result.last_scan = scan;
     if (!done && !diverging && iter < options.max_iterations) {
       // r*_i = r_i - S_i on the current path; S from the scan around the nominal point.
-      const std::vector<std::vector<Eigen::Vector3d>> s = EstimateCorrections(nominal, scan, options.bead_width_mm);
+      const std::vector<std::vector<Eigen::Vector3d>> s =
+          internal::EstimateCorrections(nominal, scan, reference_distance, reference_points, options.bead_width_mm,
+                                        options.axis_step_mm, options.correction);
+      if (simulated) it.twin_correction_error_mm = internal::CorrectionError(nominal, current, field, s);
       for (std::size_t l = 0; l < current.layers.size(); ++l) {
         for (std::size_t i = 0; i < current.layers[l].points.size(); ++i) {
           current.layers[l].points[i].p_P -= s[l][i];

@@ -28,6 +28,7 @@ struct CompensationOptions {
   models::DistortionParams params;
   DistortionOptions distortion;
   std::string reference = "twin";    // twin: the undistorted deposit of the nominal path | target: the mesh
+  std::string correction = "axis";   // axis: central-axis offset + per-point cross section | points: per point only
   std::vector<Eigen::Vector3d> first_scan;  // a real scan of the first part (part frame, mm); empty = simulate it
 };
 
@@ -35,14 +36,19 @@ struct CompensationOptions {
 struct CompensationIteration {
   double max_abs_deviation_mm = 0.0;
   double rms_deviation_mm = 0.0;
+  double p99_abs_deviation_mm = 0.0; // 99th percentile of |deviation|: the bulk, without a few local spots, mm
   double min_deviation_mm = 0.0;
   double max_deviation_mm = 0.0;
-  double axis_deviation_mm = 0.0;    // largest central-axis offset from the target axis
-  double ovality_pct = 0.0;          // eq. 6.5 at the top cut of Fig. 69
+  double axis_deviation_mm = 0.0;    // largest central-axis offset from the reference's axis (twin part or target)
+  double ovality_pct = 0.0;          // eq. 6.5 at the highest complete section (top cut of Fig. 69)
   double max_abs_vs_target_mm = 0.0; // the same scan against the target mesh (bead-shape errors included)
   double rms_vs_target_mm = 0.0;
   double max_correction_mm = 0.0;    // largest |S_i| applied to the next tool path
+  double top_band_mm = 0.0;          // rim below the planned top left out: 2 bead heights + measured shortening, mm
   bool real_scan = false;            // the scan came from a file, not the twin
+  // Diagnostic only (the loop never uses it): largest in-plane difference between S_i and the error the twin's
+  // hidden displacement field gives at the same point, (r_i + u(r_i) - r0_i)_perp, mm; 0 when not computed.
+  double twin_correction_error_mm = 0.0;
   DistortionStats distortion;
 };
 
@@ -53,7 +59,8 @@ struct CompensationResult {
   std::string message;               // one line for the user
   double tolerance_mm = 0.0;
   std::string reference;             // what the deviations are measured against: twin | target
-  double waviness_mm = 0.0;          // side-wall waviness of the undistorted twin part (median p2v in 4 mm cells)
+  double waviness_mm = 0.0;
+  double top_band_mm = 0.0;          // two bead heights of the last layer: the least top rim left out, mm          // side-wall waviness of the undistorted twin part (median p2v in 4 mm cells)
   planner::Plan plan;                // the last compensated tool path (the nominal one resampled if none)
   ScanDeviation first_scan;          // scan of the first build
   ScanDeviation last_scan;           // scan of the last build

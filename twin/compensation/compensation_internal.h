@@ -1,0 +1,59 @@
+// Internals of the compensation loop: the corrections S_i estimated from a scan alone, and the central-axis shift.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "planner/path/tool_path.h"
+#include "twin/distortion/distortion.h"
+#include "twin/scanner/mesh_distance.h"
+#include "twin/scanner/scan_deviation.h"
+
+namespace waam::twin::internal {
+
+// The scan's cross sections against the reference's, station by station along the reference axis (003 sec. 6.3.1):
+// the offset of the section centre (the central axis) and the outward move of the section outline in 72 directions
+// of the section plane (support function of the section, outline minus its centre: shrinkage and ovality).
+struct SectionShift {
+  static constexpr int kDirections = 72;
+  std::vector<AxisStation> stations;      // reference axis
+  std::vector<Eigen::Vector3d> t1;        // first in-plane axis of each station, transported along the axis (unit)
+  std::vector<Eigen::Vector3d> shift;     // scan section centre - reference centre, in the section plane, mm
+  std::vector<std::array<double, kDirections>> outline;  // outward move of the outline at angle 5k deg, mm
+  std::vector<std::uint8_t> measured;     // 1: a complete scan section; 0: filled in from the measured ones
+  double max_measured_mm = 0.0;           // largest |shift| over the measured stations, mm
+
+  // Axis offset at `p` (mm), interpolated between the two stations whose planes enclose it; zero without stations.
+  Eigen::Vector3d Axis(const Eigen::Vector3d& p) const;
+  // Outward move of the outline at `p` (mm, along the in-plane direction from the reference centre to `p`).
+  Eigen::Vector3d Outline(const Eigen::Vector3d& p) const;
+};
+
+// Compares `scan` with `reference` (both surface point clouds in the part frame, mm) at reference-axis stations
+// `step_mm` (> 0) apart. Stations where the scan section is incomplete (the ends) take the nearest measured values
+// at the bottom, and at the top a straight-line extrapolation of the last measured axis offsets (a bend keeps
+// growing; over at most 20 mm of axis, then held) and the last measured outline.
+SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
+                                 const std::vector<Eigen::Vector3d>& scan, double step_mm);
+
+// The corrections S_i (mm, in each layer's plane) of every point of `nominal` from `scan` (deviations against
+// `reference_distance`, the reference surface whose points are `reference_points`).
+//   method "points": S_i = mean of d_j n_j over the scan points near r_i in its layer band (closest-point only).
+//   method "axis":   S_i = axis offset + outline move at r_i + the same mean measured on the scan moved back by both.
+std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
+                                                              const MeshDistance& reference_distance,
+                                                              const std::vector<Eigen::Vector3d>& reference_points,
+                                                              double bead_width_mm, double axis_step_mm,
+                                                              const std::string& method);
+
+// Diagnostic only, never an input of the loop: the largest in-plane difference (mm) between the corrections `s` and
+// the error the twin's hidden displacement `field` gives at each point of `current`, (r_i + u(r_i) - r0_i)_perp with
+// r0_i the point of `nominal`, over the welded points where the field is defined. Set WAAM_COMPENSATE_DEBUG=1 to print it per layer on stderr.
+double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
+                       const std::vector<std::vector<Eigen::Vector3d>>& s);
+
+}  // namespace waam::twin::internal
