@@ -41,12 +41,10 @@ waam::planner::Plan Tube(double r, int layers, double w, double h, double speed)
   return plan;
 }
 
-void BM_DistortionSolvePartI(benchmark::State& state) {
-  // Part I: 100 mm tube; bent axis of radius 150 mm over 90 degrees is about 235 mm long; layers 1-2 mm (Table 16).
-  const waam::planner::Plan plan = Tube(50.0, 157, 5.0, 1.5, 8.0);
-  waam::planner::SimulationSettings settings;  // default voxel_mm 0.5
-  const waam::twin::Depositor depositor = waam::twin::DepositPlan(plan, settings, 100.0, nullptr);
-  const waam::twin::DepositHistory history(plan, depositor, settings, 100.0, 53.3);
+// Times ComputeDistortion on the deposit (arg 0: fe with ldlt, 1: reduced, 2: fe with cg) and reports the size of
+// the linear system and the peak memory as counters.
+void SolveAndReport(benchmark::State& state, const waam::twin::Depositor& depositor,
+                    const waam::twin::DepositHistory& history) {
   waam::models::DistortionParams params;
   waam::twin::DistortionOptions options;  // fe, 2 mm elements, 4 groups
   options.mode = state.range(0) == 1 ? "reduced" : "fe";
@@ -68,6 +66,15 @@ void BM_DistortionSolvePartI(benchmark::State& state) {
   state.counters["max_u_mm"] = stats.max_displacement_mm;
   state.counters["peak_rss_mb"] = usage.ru_maxrss / 1024.0;
 }
+
+void BM_DistortionSolvePartI(benchmark::State& state) {
+  // Part I: 100 mm tube; bent axis of radius 150 mm over 90 degrees is about 235 mm long; layers 1-2 mm (Table 16).
+  const waam::planner::Plan plan = Tube(50.0, 157, 5.0, 1.5, 8.0);
+  waam::planner::SimulationSettings settings;  // default voxel_mm 0.5
+  const waam::twin::Depositor depositor = waam::twin::DepositPlan(plan, settings, 100.0, nullptr);
+  const waam::twin::DepositHistory history(plan, depositor, settings, 100.0, 53.3);
+  SolveAndReport(state, depositor, history);
+}
 BENCHMARK(BM_DistortionSolvePartI)->Arg(0)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond);
 
 void BM_DistortionSolveBentPartI(benchmark::State& state) {
@@ -78,26 +85,7 @@ void BM_DistortionSolveBentPartI(benchmark::State& state) {
   const waam::twin::Depositor depositor = waam::twin::DepositPlan(plan, scenario.simulation, rapid, nullptr);
   const waam::twin::DepositHistory history(plan, depositor, scenario.simulation, rapid,
                                            scenario.process.wire_feed_mm_min / 60.0);
-  waam::models::DistortionParams params;
-  waam::twin::DistortionOptions options;  // fe, 2 mm elements, 4 groups
-  options.mode = state.range(0) == 1 ? "reduced" : "fe";
-  options.solver = state.range(0) == 0 ? "ldlt" : "cg";
-  waam::twin::DistortionStats stats;
-  for (auto _ : state) {
-    const waam::twin::DistortionField field =
-        waam::twin::ComputeDistortion(depositor.grid(), history, params, options, &stats);
-    benchmark::DoNotOptimize(field.nodes());
-  }
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  state.counters["voxels"] = static_cast<double>(depositor.grid().occupied());
-  state.counters["elements"] = static_cast<double>(stats.elements);
-  state.counters["dofs"] = static_cast<double>(stats.dofs);
-  state.counters["nonzeros"] = static_cast<double>(stats.nonzeros);
-  state.counters["solves"] = stats.solves;
-  state.counters["solve_s"] = stats.solve_s;
-  state.counters["max_u_mm"] = stats.max_displacement_mm;
-  state.counters["peak_rss_mb"] = usage.ru_maxrss / 1024.0;
+  SolveAndReport(state, depositor, history);
 }
 BENCHMARK(BM_DistortionSolveBentPartI)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond);
 

@@ -61,28 +61,10 @@ void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& re
 // coordinate of the planned path along the unit `dir`), statistics recomputed. The rim of the last layers shows the
 // build-direction shrinkage, which the in-plane path correction does not address (003 makes it up by bead height).
 ScanDeviation ExcludeTopBand(const ScanDeviation& scan, const Eigen::Vector3d& dir, double top, double band_mm) {
-  ScanDeviation r;
-  double sum = 0.0, sum2 = 0.0;
-  r.min_mm = std::numeric_limits<double>::infinity();
-  r.max_mm = -r.min_mm;
-  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+  return KeepScanPoints(scan, [&](std::size_t i) {
     const Eigen::Vector3d closest = scan.points[i] - scan.deviation_mm[i] * scan.normal[i];
-    if (closest.dot(dir) > top - band_mm) continue;
-    const double d = scan.deviation_mm[i];
-    r.points.push_back(scan.points[i]);
-    r.deviation_mm.push_back(d);
-    r.normal.push_back(scan.normal[i]);
-    sum += d;
-    sum2 += d * d;
-    r.min_mm = std::min(r.min_mm, d);
-    r.max_mm = std::max(r.max_mm, d);
-  }
-  if (r.points.empty()) return ScanDeviation{};
-  const double n = static_cast<double>(r.points.size());
-  r.mean_mm = sum / n;
-  r.rms_mm = std::sqrt(sum2 / n);
-  r.max_abs_mm = std::max(std::abs(r.min_mm), std::abs(r.max_mm));
-  return r;
+    return closest.dot(dir) <= top - band_mm;
+  });
 }
 
 // The top of `points` along the unit `dir`, mm: the 99.5th percentile, so that a few stray voxels (a spatter-like

@@ -39,13 +39,13 @@ ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, con
   return r;
 }
 
-ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& dir, double min_cos) {
+ScanDeviation KeepScanPoints(const ScanDeviation& scan, const std::function<bool(std::size_t)>& keep) {
   ScanDeviation r;
   double sum = 0.0, sum2 = 0.0;
   r.min_mm = std::numeric_limits<double>::infinity();
   r.max_mm = -r.min_mm;
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    if (scan.normal[i].dot(dir) > min_cos) continue;
+    if (!keep(i)) continue;
     const double d = scan.deviation_mm[i];
     r.points.push_back(scan.points[i]);
     r.deviation_mm.push_back(d);
@@ -61,6 +61,10 @@ ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& di
   r.rms_mm = std::sqrt(sum2 / n);
   r.max_abs_mm = std::max(std::abs(r.min_mm), std::abs(r.max_mm));
   return r;
+}
+
+ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& dir, double min_cos) {
+  return KeepScanPoints(scan, [&](std::size_t i) { return scan.normal[i].dot(dir) <= min_cos; });
 }
 
 double Ovality(double d_max_mm, double d_min_mm) {

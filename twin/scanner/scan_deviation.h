@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,9 @@ ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, con
 // The points of `scan` whose target normal is NOT within acos(`min_cos`) of the unit `dir` (e.g. without the top
 // end face), with the statistics recomputed; empty if none is left.
 ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& dir, double min_cos);
+
+// `scan` with only the points i for which `keep(i)` is true, statistics recomputed (empty if none is kept).
+ScanDeviation KeepScanPoints(const ScanDeviation& scan, const std::function<bool(std::size_t)>& keep);
 
 // One station of a central axis: the section centroid and the section plane normal (unit, along the axis).
 struct AxisStation {
