@@ -1,6 +1,7 @@
 // Tests of cone/cylinder slicing, flattening and planning (Dai et al. 2020 sec. 2 and 5).
 #include "planner/slicing/cone_slicer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -232,6 +233,26 @@ TEST(ConePlannerTest, ALayerRoundTheAxisIsRefusedWithItsIndex) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("layer 0"));
     EXPECT_THAT(e.what(), HasSubstr("winds round the surface axis"));
+  }
+}
+
+TEST(ConePlannerTest, NoLayerIsDroppedSilentlyWhateverThePattern) {
+  // Every pattern either welds all five layers of the blades or stops naming the layer it could not fill: a slice
+  // wider than a bead that ends without a weld path must never vanish from the plan, the cell check and the twin.
+  for (const char* pattern : {"contour", "zigzag", "hybrid", "continuous"}) {
+    Scenario s = BladeScenario();
+    s.path.pattern = pattern;
+    try {
+      const PlanResult result = PlanScenario(s, nullptr);
+      EXPECT_EQ(result.plan.layers.size(), 5u) << pattern << ": 12 mm span at 2.5 mm layers";
+      for (const LayerPath& layer : result.plan.layers) {
+        EXPECT_TRUE(std::any_of(layer.points.begin(), layer.points.end(), [](const PathPoint& p) { return p.weld; }))
+            << pattern << ": layer " << layer.index << " has no weld move";
+      }
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("found no weld path")) << pattern;
+      EXPECT_THAT(e.what(), HasSubstr("layer ")) << pattern;
+    }
   }
 }
 
