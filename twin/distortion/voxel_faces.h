@@ -13,7 +13,9 @@
 namespace waam::twin::internal {
 
 // Every face of an occupied voxel whose neighbour is empty (not the substrate below z = 0): the faces the twin's scan
-// samples (ScanDistortedPart), exact at any part size, unlike a surface mesh coarsened past its facet limit.
+// samples (ScanDistortedPart) plus those it does not see (faces of enclosed voids and of the one-voxel slots it
+// bridges), which only add candidates to the nearest-face search; exact at any part size, unlike a surface mesh
+// coarsened past its facet limit.
 class VoxelFaces {
  public:
   explicit VoxelFaces(const VoxelGrid& grid);
