@@ -13,52 +13,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
-#include <unordered_map>
 
 #include <Eigen/Geometry>
 
 #include "twin/compensation/compensation_internal.h"
+#include "twin/scanner/point_hash.h"
 
 namespace waam::twin::internal {
 namespace {
-
-// Spatial hash of points for radius queries.
-class PointHash {
- public:
-  PointHash(const std::vector<Eigen::Vector3d>& points, double cell_mm) : points_(points), cell_(cell_mm) {
-    for (std::size_t i = 0; i < points.size(); ++i) cells_[Key(Cell(points[i]))].push_back(static_cast<int>(i));
-  }
-  template <typename F>
-  void ForEachNear(const Eigen::Vector3d& p, double radius, F&& f) const {
-    const Eigen::Vector3i c = Cell(p);
-    const int reach = static_cast<int>(std::ceil(radius / cell_));
-    for (int dz = -reach; dz <= reach; ++dz) {
-      for (int dy = -reach; dy <= reach; ++dy) {
-        for (int dx = -reach; dx <= reach; ++dx) {
-          auto it = cells_.find(Key(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (int i : it->second) {
-            if ((points_[i] - p).squaredNorm() <= radius * radius) f(i);
-          }
-        }
-      }
-    }
-  }
-
- private:
-  Eigen::Vector3i Cell(const Eigen::Vector3d& p) const {
-    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell_)), static_cast<int>(std::floor(p.y() / cell_)),
-                           static_cast<int>(std::floor(p.z() / cell_)));
-  }
-  static std::uint64_t Key(const Eigen::Vector3i& c) {
-    return (static_cast<std::uint64_t>(c.x() + (1 << 20)) & 0x1FFFFF) |
-           ((static_cast<std::uint64_t>(c.y() + (1 << 20)) & 0x1FFFFF) << 21) |
-           ((static_cast<std::uint64_t>(c.z() + (1 << 20)) & 0x1FFFFF) << 42);
-  }
-  const std::vector<Eigen::Vector3d>& points_;
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-};
 
 // Per-point in-plane correction: the mean of d_j n_j over the scan points near each nominal point in its layer band.
 // A wall moved sideways by s shows +s on one face and -s on the other, both along the move, so the mean is the move;
@@ -320,6 +282,7 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
   const ScanDeviation local_scan = MeasureScanDeviation(recentred, reference_distance);
   std::vector<std::vector<Eigen::Vector3d>> s = LocalCorrections(nominal, local_scan, bead_width_mm);
   const bool print = std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr;
+  const bool every_layer = print && std::string(std::getenv("WAAM_COMPENSATE_DEBUG")) == "2";
   if (print) {
     std::fprintf(stderr, "sections: %zu stations, %zu measured, max measured axis shift %.3f mm, recentred max |d| %.3f\n",
                  sections.stations.size(),
@@ -340,7 +303,7 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
       }
       s[l][i] += a - a.dot(n) * n;
     }
-    if (print && (l % 10 == 0 || l + 1 == nominal.layers.size())) {
+    if (print && (every_layer || l % 10 == 0 || l + 1 == nominal.layers.size())) {
       std::fprintf(stderr, "layer %3zu  max|axis| %6.3f  max|outline| %6.3f  max|local| %6.3f\n", l, axis_max,
                    outline_max, local_max);
     }
@@ -351,6 +314,7 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
                        const std::vector<std::vector<Eigen::Vector3d>>& s) {
   const bool print = std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr;
+  const bool every_layer = print && std::string(std::getenv("WAAM_COMPENSATE_DEBUG")) == "2";
   double worst = 0.0;
   for (std::size_t l = 0; l < nominal.layers.size(); ++l) {
     const Eigen::Vector3d n = nominal.layers[l].build_dir_P.normalized();
@@ -369,7 +333,7 @@ double CorrectionError(const planner::Plan& nominal, const planner::Plan& curren
       e_max = std::max(e_max, e.norm());
     }
     worst = std::max(worst, layer_worst);
-    if (print && (l % 10 == 0 || l + 1 == nominal.layers.size())) {
+    if (print && (every_layer || l % 10 == 0 || l + 1 == nominal.layers.size())) {
       std::fprintf(stderr, "layer %3zu  max|S| %6.3f  max|e_true| %6.3f  max|S-e| %6.3f  max|axial| %6.3f\n", l, s_max,
                    e_max, layer_worst, axial);
     }
