@@ -152,7 +152,7 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
 
 PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   PlanResult result = PlanWithoutRetracts(scenario, progress);
-  AddRetracts(scenario.path.retract_mm, &result.plan);
+  result.retract = AddRetracts(scenario.path.retract_mm, &result.plan);
   result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
   return result;
 }
