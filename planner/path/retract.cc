@@ -235,17 +235,21 @@ RetractReport AddRetracts(double clearance_mm, Plan* plan) {
     ++report.travels;
     const PathPoint approach = TravelPoint(p, p.p_P + r * p.tool_dir_P, p.tool_dir_P);
     std::vector<std::pair<std::size_t, PathPoint>> route;
-    for (const auto& [layer, q] : between) route.emplace_back(layer, TravelPoint(q, q.p_P + r * q.tool_dir_P, q.tool_dir_P));
+    for (const auto& [layer, q] : between) {
+      route.emplace_back(layer, TravelPoint(q, q.p_P + r * q.tool_dir_P, q.tool_dir_P));
+    }
     route.emplace_back(l, approach);
-    bool clear = true;  // the approach to the first pass comes from outside the plan
-    Vector3d from = have_lift ? lift.p_P : route.front().second.p_P;
-    for (const auto& [layer, q] : route) {
-      if (!have_lift) break;
-      if (welded.Closer(from, q.p_P, limit)) {
-        clear = false;
-        break;
+    // The planner's travel, lifted, if it keeps the clearance (the approach to the first pass comes from outside).
+    bool clear = true;
+    if (have_lift) {
+      Vector3d from = lift.p_P;
+      for (const auto& [layer, q] : route) {
+        if (welded.Closer(from, q.p_P, limit)) {
+          clear = false;
+          break;
+        }
+        from = q.p_P;
       }
-      from = q.p_P;
     }
     if (!clear) {
       // Out of the grown bounding box along each torch axis, over its top, back down. The crossing is the move into
