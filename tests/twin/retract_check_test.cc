@@ -60,8 +60,9 @@ PartHits CheckPart(double retract_mm) {
 TEST(RetractCheckTest, StraightRapidsIntoTheBladesCutTheHubAndRetractsDoNot) {
   ASSERT_TRUE(planner::CellSettings{}.part_collision);
   const PartHits rapids = CheckPart(0.0);
-  EXPECT_GT(rapids.travel, 0) << "a straight rapid from the hub's top to a blade's root must cut the hub (measured: the\n"
-                                 "four rapids into the blades, 12-25 mm deep)";
+  EXPECT_GT(rapids.travel, 0)
+      << "a straight rapid from the hub's top to a blade's root must cut the hub (measured: the four rapids into the "
+         "blades, 12-25 mm deep)";
   const PartHits retracts = CheckPart(15.0);
   EXPECT_EQ(retracts.travel, 0) << "with 15 mm retracts no arc-off move reaches the metal:\n" << retracts.text;
   EXPECT_EQ(retracts.weld, rapids.weld) << "the weld moves are the same";
