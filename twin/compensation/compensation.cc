@@ -83,11 +83,13 @@ double TopOf(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& 
   return h[k];
 }
 
-// The highest path point along the unit `dir`, mm.
+// The highest weld point of the path along the unit `dir`, mm (not the retract above the last pass).
 double PathTop(const planner::Plan& plan, const Eigen::Vector3d& dir) {
   double top = -std::numeric_limits<double>::infinity();
   for (const planner::LayerPath& layer : plan.layers) {
-    for (const planner::PathPoint& p : layer.points) top = std::max(top, p.p_P.dot(dir));
+    for (const planner::PathPoint& p : layer.points) {
+      if (p.weld) top = std::max(top, p.p_P.dot(dir));
+    }
   }
   return top;
 }
@@ -315,6 +317,10 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     const double shortening =
         std::max(0.0, TopOf(twin_reference ? reference_points : target_surface, top_dir) - TopOf(points, top_dir));
     it.top_band_mm = result.top_band_mm + shortening;
+    if (std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr) {
+      std::fprintf(stderr, "top: dir (%.3f %.3f %.3f), path top %.2f mm, band %.2f mm (shortening %.2f mm)\n",
+                   top_dir.x(), top_dir.y(), top_dir.z(), path_top, it.top_band_mm, shortening);
+    }
     const ScanDeviation against_target =
         ExcludeTopBand(MeasureScanDeviation(points, distance), top_dir, path_top, it.top_band_mm);
     it.max_abs_vs_target_mm = against_target.max_abs_mm;

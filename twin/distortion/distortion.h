@@ -46,7 +46,7 @@ class DistortionField {
                   std::unordered_map<std::uint64_t, std::uint8_t> elements);
 
   // Displacement at `p_P` (mm): trilinear in the element containing it, or in the nearest active element within one
-  // element (clamped); zero farther from the part.
+  // element, else within two (clamped); zero farther from the part.
   Eigen::Vector3d Displacement(const Eigen::Vector3d& p_P) const;
   double element_mm() const { return element_mm_; }
   std::size_t nodes() const { return nodes_.size(); }
