@@ -49,10 +49,12 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
       "r*_i = r_i - S_i, in each layer's plane: S_i is the scan's section-centre offset from the reference's central\n"
       "axis plus the move of its section outline (72 directions), plus the closest-point remainder. The build-direction\n"
       "shrinkage is not corrected by the path: the top rim (2 bead heights + the shortening the scan shows) is left\n"
-      "out of the measures. Build again until max |deviation| < tolerance (default: the simulated part's waviness)\n"
+      "out of the measures. Build again until max |deviation| < tolerance (default: the maximum side-wall waviness\n"
+      "of the simulated part, W_t in 4 mm cells, 99th percentile: 003 stops 'within the maximum waviness')\n"
       "or --max-iter compensations are done. A loop whose deviation stops shrinking says so and stops (status\n"
       "diverging). --scan replaces the first simulated part with a real scan (aligned, part frame, mm).\n"
-      "Writes: compensate.json (tolerance_mm, converged, status, message, iterations[]: max_abs_deviation_mm,\n"
+      "Writes: compensate.json (tolerance_mm, waviness_mm, waviness_median_mm, converged, status, message,\n"
+      "iterations[]: max_abs_deviation_mm,\n"
       "rms_deviation_mm, p99_abs_deviation_mm, axis_deviation_mm, ovality_pct (eq. 6.5, highest complete section),\n"
       "max_correction_mm, top_band_mm, twin_correction_error_mm (twin-only check, never used), distortion solve\n"
       "size and time), compensated_path.h5 (plan.h5 layout), program/ (program.ls, program.csv, check.json of the\n"
@@ -61,7 +63,7 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
   command->add_option("--max-iter", options->max_iterations, "Compensated builds after the first, 0-20 (default 3)");
-  command->add_option("--tol-mm", options->tolerance_mm, "Tolerance on max |deviation|, mm (default: waviness)");
+  command->add_option("--tol-mm", options->tolerance_mm, "Tolerance on max |deviation|, mm (default: maximum waviness)");
   command->add_option("--scan", options->first_scan, "Real scan of the first part (.ply, .xyz or .stl, mm)");
   command->add_option("--model", options->model, "Distortion model JSON (default models/data/distortion.json)");
   command->add_option("--mode", options->mode, "fe (inherent-strain FE) or reduced (layer shrinkage + axis bending)");
