@@ -183,8 +183,18 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
       highest = std::max(highest, c.ground_mm);
     }
   }
-  // A buried column's ground lies above the window: then the pool may reach past every window.
-  if (highest + cap_h > window_hi - v) {
+  // The ground under the path: that of the supported column nearest to it (the cold start's reference).
+  double centre_ground = std::isfinite(highest) ? highest : 0.0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Column& c : columns) {
+    if (std::isfinite(c.ground_mm) && c.d_mm < nearest) {
+      nearest = c.d_mm;
+      centre_ground = c.ground_mm;
+    }
+  }
+  // A buried column's ground lies above the window, or a cold start's pool follows ground well above the one under
+  // the path: then the pool may reach past every window.
+  if (highest + cap_h + drape * (highest - centre_ground) > window_hi - v) {
     for (Column& c : columns) {
       if (c.full) continue;
       collect(c, reach_lo, reach_hi);
@@ -194,15 +204,6 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   if (!std::isfinite(lowest)) {
     lowest = zeta_tcp_mm - 4.0 * h;
     highest = lowest;
-  }
-  // The ground under the path: that of the supported column nearest to it (the cold start's reference).
-  double centre_ground = highest;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const Column& c : columns) {
-    if (std::isfinite(c.ground_mm) && c.d_mm < nearest) {
-      nearest = c.d_mm;
-      centre_ground = c.ground_mm;
-    }
   }
   // Over air (no ground within reach) the metal runs down the part's side at most edge_sag_factor x h below the
   // lowest supported column, and never more than (1 + edge_sag_factor) x h below the crown.
