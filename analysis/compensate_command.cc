@@ -106,6 +106,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
       {"correction", loop.correction},
       {"tolerance_mm", result.tolerance_mm},
       {"waviness_mm", result.waviness_mm},
+      {"waviness_median_mm", result.waviness_median_mm},
       {"top_band_mm", result.top_band_mm},
       {"converged", result.converged},
       {"status", result.status},

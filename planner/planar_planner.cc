@@ -14,6 +14,7 @@
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/path/layer_pattern.h"
+#include "planner/path/retract.h"
 #include "planner/plan_limits.h"
 #include "planner/skeleton_planner.h"
 #include "planner/slicing/planar_slicer.h"
@@ -49,7 +50,10 @@ PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm)
   return options;
 }
 
-PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
+namespace {
+
+// The plan with the planners' own arc-off moves (straight, on the layer).
+PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
   if (scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder") return PlanConeScenario(scenario, progress);
   if (scenario.slicing.type == "multi_directional") return PlanMultiDirectionalScenario(scenario, progress);
   if (scenario.slicing.type == "skeleton") return PlanSkeletonScenario(scenario, progress);
@@ -141,6 +145,15 @@ PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
   result.layer_height_min_mm = result.layer_height_max_mm = result.layer_height_mm;
   result.speed_min_mm_min = result.speed_max_mm_min = result.travel_speed_mm_min;
+  return result;
+}
+
+}  // namespace
+
+PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
+  PlanResult result = PlanWithoutRetracts(scenario, progress);
+  result.retract = AddRetracts(scenario.path.retract_mm, &result.plan);
+  result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
   return result;
 }
 

@@ -9,6 +9,7 @@
 
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/layer_pattern.h"
+#include "planner/path/retract.h"
 #include "planner/path/tool_path.h"
 #include "planner/path/void_filling.h"
 #include "planner/scenario/scenario.h"
@@ -54,6 +55,7 @@ struct PlanResult {
   int layers_out_of_range = 0;       // skeleton layers whose thickness left [h_min, h_max] (Fig. 56 could not fix)
   std::vector<Eigen::Vector3d> axis_P;  // skeleton: central axis (chain of section centroids), part frame, mm
   std::vector<CornerCorrection> void_corrections;  // junction corners moved by path.void_filling (003 sec. 4.4)
+  RetractReport retract;             // the arc-off travels rebuilt by path.retract_mm (planner/path/retract.h)
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

@@ -13,11 +13,10 @@ PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s) {
     std::size_t elements = 0;
     for (std::size_t i = 0; i < layer.points.size(); ++i) {
       const PathPoint& point = layer.points[i];
-      // A layer starts a new pass unless its first move continues the previous layer's (continuous spiral).
-      if (i == 0 && !(point.weld && last != nullptr)) {
-        arc_on = false;
-        continue;
-      }
+      // A layer starts a new pass unless its first move continues the previous layer's (continuous spiral); the
+      // travel into it from the previous layer's last point counts as travel.
+      if (i == 0 && !(point.weld && last != nullptr)) arc_on = false;
+      if (i == 0 && last == nullptr) continue;
       const PathPoint& from = i == 0 ? *last : layer.points[i - 1];
       const double length = (point.p_P - from.p_P).norm();
       if (point.weld) {

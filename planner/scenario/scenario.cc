@@ -182,6 +182,7 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     }
     s.alternate_start = path.Bool("alternate_start", true);
     s.seed = static_cast<std::uint64_t>(path.Integer("seed", 0, 2147483647, 1));
+    s.retract_mm = path.Number("retract_mm", 0.0, 500.0, s.retract_mm);
     internal::ParseVoidFillingSection(path, scenario.file.parent_path(), &s.void_filling);
     path.CheckNoUnknownKeys();
   }

@@ -62,6 +62,8 @@ struct PathSettings {
   double zigzag_angle_deg = 0.0;       // used when not auto
   bool alternate_start = true;         // shift the start point layer to layer so starts do not stack
   std::uint64_t seed = 1;              // for any random choice in planning
+  double retract_mm = 15.0;            // >= 0: arc-off lift / approach along the torch axis, and the travel's
+                                       // clearance over the metal (planner/path/retract.h); 0 = straight rapids
   VoidFillingSettings void_filling;    // optional `void_filling:` junction correction (003 sec. 4.4)
 };
 

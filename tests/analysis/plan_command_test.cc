@@ -58,12 +58,14 @@ TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
 
   const nlohmann::json plan = ReadJson(options.out_dir / "plan.json");
   for (const char* field : {"layers", "passes", "passes_per_layer", "path_elements", "weld_length_mm",
-                            "travel_length_mm", "estimated_time_s", "mesh"}) {
+                            "travel_length_mm", "estimated_time_s", "retract", "mesh"}) {
     EXPECT_TRUE(plan.contains(field)) << "plan.json must have '" << field << "'";
   }
   EXPECT_EQ(plan["layers"].get<std::size_t>(), result.plan.layers.size());
   EXPECT_EQ(plan["passes_per_layer"].size(), result.plan.layers.size());
   EXPECT_GT(plan["weld_length_mm"].get<double>(), 0.0);
+  EXPECT_EQ(plan["retract"]["travels"].get<std::size_t>(), result.plan.layers.empty() ? 0u : result.stats.passes)
+      << "one approach per pass: the first from outside, the others from the previous pass's lift";
   EXPECT_TRUE(plan["mesh"]["watertight"].get<bool>());
   for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
     char name[32];

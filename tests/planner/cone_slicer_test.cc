@@ -140,7 +140,8 @@ Scenario BladeScenario() {
 }
 
 TEST(ConePlannerTest, PathLiesOnTheLayerTopsWithTheToolAlongTheNormal) {
-  const Scenario scenario = BladeScenario();
+  Scenario scenario = BladeScenario();
+  scenario.path.retract_mm = 0.0;  // the planner's own travel, on the surface (retracts: retract_test.cc)
   const PlanResult result = PlanScenario(scenario, nullptr);
   ASSERT_EQ(result.plan.layers.size(), 5u) << "12 mm span at 2.5 mm layers";
   const ConeSurface base = Cone(60, 200);
@@ -183,6 +184,7 @@ TEST(ConePlannerTest, PathStaysOnTheSurfaceAcrossAWideDevelopment) {
                    {"chord_mm", {30.0}}, {"thickness_mm", {12.0, 10.0}}, {"pitch_deg", {20.0, 30.0}}};
   s.slicing.cone_R_mm = 80;
   s.slicing.cone_H_mm = 70;
+  s.path.retract_mm = 0.0;  // the planner's own travel, on the surface (retracts: retract_test.cc)
   const PlanResult result = PlanScenario(s, nullptr);
   ASSERT_FALSE(result.plan.layers.empty());
   for (const LayerPath& layer : result.plan.layers) {

@@ -91,6 +91,15 @@ TEST_F(ScenarioTest, ZeroBeadWidthIsRefused) {
   EXPECT_THAT(ErrorOf(text), HasSubstr("path.bead_width_mm = 0: must be in"));
 }
 
+TEST_F(ScenarioTest, RetractDefaultsTo15MmAndANegativeOneIsRefused) {
+  EXPECT_DOUBLE_EQ(LoadScenario(Write(Valid())).path.retract_mm, 15.0);
+  std::string text = Valid();
+  text.replace(text.find("bead_width_mm: 6"), 16, "bead_width_mm: 6\n  retract_mm: 0");
+  EXPECT_DOUBLE_EQ(LoadScenario(Write(text)).path.retract_mm, 0.0) << "0 = the planners' straight rapids";
+  text.replace(text.find("retract_mm: 0"), 13, "retract_mm: -5");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("path.retract_mm = -5: must be in"));
+}
+
 TEST_F(ScenarioTest, WrongTypeIsRefused) {
   std::string text = Valid();
   text.replace(text.find("travel_speed_mm_min: 400"), 24, "travel_speed_mm_min: fast");

@@ -13,6 +13,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <unordered_map>
@@ -22,6 +24,7 @@
 #include "twin/deposition/bead_deposition.h"
 #include "twin/distortion/deposit_history.h"
 #include "twin/scanner/mesh_distance.h"
+#include "twin/scanner/point_hash.h"
 #include "twin/scanner/point_cloud_io.h"
 #include "twin/scanner/surface_mesh.h"
 #include "twin/compensation/compensation_internal.h"
@@ -60,10 +63,12 @@ void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& re
 // `scan` without the points whose closest reference point lies within `band_mm` of the top end (`top`, the largest
 // coordinate of the planned path along the unit `dir`), statistics recomputed. The rim of the last layers shows the
 // build-direction shrinkage, which the in-plane path correction does not address (003 makes it up by bead height).
+// A point is in the band when it or its closest reference point is: a rim that bulges out over the band's edge (the
+// last layers, whose sections the scan cannot measure whole) is the rim, not the wall below it.
 ScanDeviation ExcludeTopBand(const ScanDeviation& scan, const Eigen::Vector3d& dir, double top, double band_mm) {
   return KeepScanPoints(scan, [&](std::size_t i) {
     const Eigen::Vector3d closest = scan.points[i] - scan.deviation_mm[i] * scan.normal[i];
-    return closest.dot(dir) <= top - band_mm;
+    return closest.dot(dir) <= top - band_mm && scan.points[i].dot(dir) <= top - band_mm;
   });
 }
 
@@ -87,10 +92,19 @@ double PathTop(const planner::Plan& plan, const Eigen::Vector3d& dir) {
   return top;
 }
 
-// Side-wall waviness of the undistorted twin part (the termination condition of 003 sec. 6.5.2 is the wall's
-// waviness, 1.22 mm for part I): scan points off the top and bottom faces are binned by their closest target point in
-// cubes of `cell_mm` (about three layers), each bin's peak-to-valley of the deviation taken, and the median returned.
-double WallWaviness(const ScanDeviation& scan, double cell_mm) {
+// Side-wall waviness of the undistorted twin part: scan points off the top and bottom faces are binned by their
+// closest target point in cubes of `cell_mm` (about three layers) and each bin's peak-to-valley of the deviation is
+// its W_t (DIN EN ISO 4287, as 003 sec. 6.4.1). The termination condition of 003 sec. 6.5.2 is the *maximum*
+// waviness: part I's W_t "fluctuates, and limits to 1.22 mm" (sec. 6.6.3.1, Fig. 80), and the loop stops once "the
+// surface deviation is within the maximum waviness". That is also the floor of the loop: a part built on a moved
+// path lays its ripple elsewhere than the reference's, so their difference reaches the ripple's peak-to-valley.
+// `max_mm` is the 99th percentile of the bins (so that a few odd bins do not set it), `median_mm` the typical bin.
+struct Waviness {
+  double median_mm = 0.0;
+  double max_mm = 0.0;
+};
+
+Waviness WallWaviness(const ScanDeviation& scan, double cell_mm) {
   std::unordered_map<std::uint64_t, std::pair<double, double>> bins;
   std::unordered_map<std::uint64_t, int> counts;
   double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
@@ -120,9 +134,14 @@ double WallWaviness(const ScanDeviation& scan, double cell_mm) {
   for (const auto& [key, range] : bins) {
     if (counts[key] >= 8) p2v.push_back(range.second - range.first);
   }
-  if (p2v.empty()) return 0.0;
-  std::nth_element(p2v.begin(), p2v.begin() + p2v.size() / 2, p2v.end());
-  return p2v[p2v.size() / 2];
+  if (p2v.empty()) return {};
+  std::sort(p2v.begin(), p2v.end());
+  auto at = [&](double q) { return p2v[std::min(p2v.size() - 1, static_cast<std::size_t>(q * p2v.size()))]; };
+  if (std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr) {
+    std::fprintf(stderr, "waviness: %zu cells, p2v median %.3f p90 %.3f p95 %.3f p99 %.3f p99.9 %.3f max %.3f mm\n",
+                 p2v.size(), at(0.5), at(0.9), at(0.95), at(0.99), at(0.999), p2v.back());
+  }
+  return {at(0.5), at(0.99)};
 }
 
 }  // namespace
@@ -212,7 +231,16 @@ std::vector<Eigen::Vector3d> ScanDistortedPart(const VoxelGrid& grid, const Dist
       points.push_back(p + field.Displacement(p));
     }
   });
-  return points;
+  // Radius outlier removal, as the scanner's software does: a face sample needs 8 others within two voxels. A
+  // surface keeps every sample (about 12 within that radius on a flat face, 9 on a wall's edge); a lone voxel (6
+  // faces, 5 neighbours each) is dropped. After two compensations of part IV the max |deviation| (7.06 mm) was set by
+  // such specks: single voxels, no other sample within 1.5 mm, 5-7 mm off the surface.
+  const std::vector<std::size_t> keep = DenseScanPoints(points, 2.0 * s, 8);
+  if (keep.size() == points.size()) return points;
+  std::vector<Eigen::Vector3d> dense;
+  dense.reserve(keep.size());
+  for (std::size_t i : keep) dense.push_back(points[i]);
+  return dense;
 }
 
 CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
@@ -258,7 +286,9 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     if (iter == 0) {
       const ScanDeviation undistorted =
           MeasureScanDeviation(ScanDistortedPart(depositor.grid(), DistortionField()), distance);
-      result.waviness_mm = WallWaviness(undistorted, 2.0 * options.reference_spacing_mm);
+      const Waviness waviness = WallWaviness(undistorted, 2.0 * options.reference_spacing_mm);
+      result.waviness_mm = waviness.max_mm;
+      result.waviness_median_mm = waviness.median_mm;
       if (twin_reference) {
         reference_mesh = ExtractSurface(depositor.grid());
         reference = std::make_unique<MeshDistance>(reference_mesh);
@@ -308,8 +338,8 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     if (!done && !diverging && iter < options.max_iterations) {
       // r*_i = r_i - S_i on the current path; S from the scan around the nominal point.
       const std::vector<std::vector<Eigen::Vector3d>> s =
-          internal::EstimateCorrections(nominal, scan, reference_distance, reference_points, options.bead_width_mm,
-                                        options.axis_step_mm, options.correction);
+          internal::EstimateCorrections(nominal, scan, points, reference_distance, reference_points,
+                                        options.bead_width_mm, options.axis_step_mm, options.correction);
       if (simulated) it.twin_correction_error_mm = internal::CorrectionError(nominal, current, field, s);
       for (std::size_t l = 0; l < current.layers.size(); ++l) {
         for (std::size_t i = 0; i < current.layers[l].points.size(); ++i) {

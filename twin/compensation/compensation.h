@@ -19,7 +19,7 @@ namespace waam::twin {
 
 struct CompensationOptions {
   int max_iterations = 3;            // compensated builds after the first (uncompensated) one, >= 0
-  double tolerance_mm = 0.0;         // stop when max |deviation| < tolerance; 0 = the simulated part's waviness
+  double tolerance_mm = 0.0;         // stop when max |deviation| < tolerance; 0 = the simulated part's max waviness
   double reference_spacing_mm = 2.0; // reference points of the tool path at most this far apart, mm (003: 2 mm)
   double axis_step_mm = 2.0;         // central-axis station spacing, mm
   double rapid_speed_mm_s = 100.0;   // arc-off travel speed, mm/s
@@ -59,8 +59,9 @@ struct CompensationResult {
   std::string message;               // one line for the user
   double tolerance_mm = 0.0;
   std::string reference;             // what the deviations are measured against: twin | target
-  double waviness_mm = 0.0;
-  double top_band_mm = 0.0;          // two bead heights of the last layer: the least top rim left out, mm          // side-wall waviness of the undistorted twin part (median p2v in 4 mm cells)
+  double waviness_mm = 0.0;          // maximum side-wall W_t of the undistorted twin part (99th pct. of 4 mm cells), mm
+  double waviness_median_mm = 0.0;   // its typical W_t (median of the cells), mm
+  double top_band_mm = 0.0;          // two bead heights of the last layer: the least top rim left out, mm
   planner::Plan plan;                // the last compensated tool path (the nominal one resampled if none)
   ScanDeviation first_scan;          // scan of the first build
   ScanDeviation last_scan;           // scan of the last build

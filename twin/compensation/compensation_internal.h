@@ -41,10 +41,12 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
                                  const std::vector<Eigen::Vector3d>& scan, double step_mm);
 
 // The corrections S_i (mm, in each layer's plane) of every point of `nominal` from `scan` (deviations against
-// `reference_distance`, the reference surface whose points are `reference_points`).
+// `reference_distance`, the reference surface whose points are `reference_points`; the top rim left out) and
+// `scan_points` (the whole scan, rim included, for the cross sections: a station through the rim is a whole ring).
 //   method "points": S_i = mean of d_j n_j over the scan points near r_i in its layer band (closest-point only).
 //   method "axis":   S_i = axis offset + outline move at r_i + the same mean measured on the scan moved back by both.
 std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
+                                                              const std::vector<Eigen::Vector3d>& scan_points,
                                                               const MeshDistance& reference_distance,
                                                               const std::vector<Eigen::Vector3d>& reference_points,
                                                               double bead_width_mm, double axis_step_mm,

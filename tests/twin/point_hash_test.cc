@@ -1,0 +1,77 @@
+// Radius queries over a point cloud and the radius outlier removal of the twin's scan.
+#include "twin/scanner/point_hash.h"
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "models/core/error.h"
+
+namespace waam::twin {
+namespace {
+
+// Exposed face centres of a solid block of 12 x 12 x 4 voxels of 0.5 mm (edges and corners included), plus the six
+// face centres of one voxel floating 5 mm above it. The first `*block` points are the block's.
+std::vector<Eigen::Vector3d> BlockAndSpeck(std::size_t* block = nullptr) {
+  std::vector<Eigen::Vector3d> points;
+  const Eigen::Vector3i n(12, 12, 4);
+  auto inside = [&](const Eigen::Vector3i& v) { return (v.array() >= 0).all() && (v.array() < n.array()).all(); };
+  for (int z = 0; z < n.z(); ++z) {
+    for (int y = 0; y < n.y(); ++y) {
+      for (int x = 0; x < n.x(); ++x) {
+        const Eigen::Vector3i v(x, y, z);
+        for (int a = 0; a < 3; ++a) {
+          for (int sign : {-1, 1}) {
+            if (inside(v + sign * Eigen::Vector3i::Unit(a))) continue;
+            points.push_back(0.5 * (v.cast<double>() + Eigen::Vector3d::Constant(0.5)) +
+                             0.25 * sign * Eigen::Vector3d::Unit(a));
+          }
+        }
+      }
+    }
+  }
+  if (block != nullptr) *block = points.size();
+  const Eigen::Vector3d c(3.0, 3.0, 7.0);
+  for (int a = 0; a < 3; ++a) {
+    points.push_back(c + 0.25 * Eigen::Vector3d::Unit(a));
+    points.push_back(c - 0.25 * Eigen::Vector3d::Unit(a));
+  }
+  return points;
+}
+
+TEST(PointHashTest, ForEachNearFindsExactlyThePointsInTheBall) {
+  const std::vector<Eigen::Vector3d> points = BlockAndSpeck();
+  const PointHash hash(points, 0.7);
+  const Eigen::Vector3d q(2.6, 3.1, 0.2);
+  std::vector<int> found;
+  hash.ForEachNear(q, 1.3, [&](int i) { found.push_back(i); });
+  std::sort(found.begin(), found.end());
+  std::vector<int> expected;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if ((points[i] - q).norm() <= 1.3) expected.push_back(static_cast<int>(i));
+  }
+  EXPECT_EQ(found, expected);
+  EXPECT_EQ(hash.CountNear(q, 1.3, 1000), static_cast<int>(expected.size()));
+  EXPECT_EQ(hash.CountNear(q, 1.3, 3), 3) << "the count stops at the cap";
+}
+
+TEST(PointHashTest, OutlierRemovalDropsALoneVoxelAndKeepsTheSurface) {
+  std::size_t block = 0;
+  const std::vector<Eigen::Vector3d> points = BlockAndSpeck(&block);
+  const std::vector<std::size_t> keep = DenseScanPoints(points, 1.0, 8);
+  ASSERT_EQ(keep.size(), block) << "every sample of the block (edges and corners included) and none of the speck";
+  for (std::size_t i : keep) EXPECT_LT(i, block);
+}
+
+TEST(PointHashTest, RejectsANonPositiveCell) {
+  const std::vector<Eigen::Vector3d> points = BlockAndSpeck();
+  try {
+    PointHash hash(points, 0.0);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("must be > 0"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace waam::twin
