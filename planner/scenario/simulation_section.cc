@@ -23,6 +23,8 @@ void ParseSimulationSection(YamlMap& top, SimulationSettings* out, const std::fi
   s.stop_length_mm = sim.Number("stop_length_mm", 0.0, 200.0, s.stop_length_mm);
   s.stop_height_factor = sim.Number("stop_height_factor", 0.2, 3.0, s.stop_height_factor);
   s.stop_width_factor = sim.Number("stop_width_factor", 0.2, 3.0, s.stop_width_factor);
+  s.stop_crater = sim.Choice("stop_crater", {"lip", "lost"}, s.stop_crater);
+  s.start_wetting = sim.Choice("start_wetting", {"cold", "hot"}, s.start_wetting);
   s.edge_sag_factor = sim.Number("edge_sag_factor", 0.0, 10.0, s.edge_sag_factor);
   s.edge_spread_factor = sim.Number("edge_spread_factor", 0.0, 1.0, s.edge_spread_factor);
   s.step_mm = sim.Number("step_mm", 0.0, 10.0, s.step_mm);

@@ -176,6 +176,20 @@ TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {
   }
 }
 
+TEST_F(ScenarioTest, ArcStartAndStopChoicesAreChecked) {
+  const Scenario s =
+      LoadScenario(Write(Valid()), {"simulation.stop_crater=lost", "simulation.start_wetting=cold"});
+  EXPECT_EQ(s.simulation.stop_crater, "lost");
+  EXPECT_EQ(s.simulation.start_wetting, "cold");
+  EXPECT_EQ(LoadScenario(Write(Valid())).simulation.stop_crater, "lip") << "the crater's metal freezes in its lip";
+  try {
+    LoadScenario(Write(Valid()), {"simulation.stop_crater=fill"});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("simulation.stop_crater = 'fill': unknown value"));
+  }
+}
+
 TEST_F(ScenarioTest, BeadModelAndModelFiles) {
   std::string text = Valid();
   text += "  bead_model: speed_height\n  speed_height_model: models/none.json\n";

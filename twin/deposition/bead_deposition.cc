@@ -86,10 +86,12 @@ Depositor::Depositor(const planner::SimulationSettings& settings)
 // Fills one step. The molten metal settles under a cap z = L - 4h/w^2 y^2 (eq. 3.2 shifted to the water level L, z
 // along the torch axis, y across the path in the plane perpendicular to it): each column takes the free voxels between
 // its ground (or, over air past a free edge, (1 + sag) h under the crown) and the cap. L is the lowest level whose
-// voxels hold the step's volume, so valleys fill first.
+// voxels hold the step's volume, so valleys fill first. `drape` in [0, 1] is the part of a cold start that does not
+// level (see DepositPass): each supported column's cap and floor are shifted by drape x (its ground - the ground
+// under the path).
 double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3,
                            double zeta_tcp_mm, const internal::TorchFrame& frame, const VoxelData& data,
-                           bool last_step) {
+                           bool last_step, double drape) {
   const double v = grid_.voxel_mm();
   const double h = section.height_mm;
   const double w = section.width_mm;
@@ -181,8 +183,18 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
       highest = std::max(highest, c.ground_mm);
     }
   }
-  // A buried column's ground lies above the window: then the pool may reach past every window.
-  if (highest + cap_h > window_hi - v) {
+  // The ground under the path: that of the supported column nearest to it (the cold start's reference).
+  double centre_ground = std::isfinite(highest) ? highest : 0.0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Column& c : columns) {
+    if (std::isfinite(c.ground_mm) && c.d_mm < nearest) {
+      nearest = c.d_mm;
+      centre_ground = c.ground_mm;
+    }
+  }
+  // A buried column's ground lies above the window, or a cold start's pool follows ground well above the one under
+  // the path: then the pool may reach past every window.
+  if (highest + cap_h + drape * (highest - centre_ground) > window_hi - v) {
     for (Column& c : columns) {
       if (c.full) continue;
       collect(c, reach_lo, reach_hi);
@@ -217,8 +229,11 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
     long total = 0;
     for (Column& c : columns) {
       if (c.ground_mm == std::numeric_limits<double>::infinity()) continue;
-      const double top = level - 4.0 * h / (w * w) * c.d_mm * c.d_mm;
-      const double bottom = c.ground_mm == kNoGround ? std::max(air_floor, level - sag) : level - sag;
+      // A cold start's pool follows the ground instead of levelling over it (drape = 1: the section of the bead
+      // laid on the ground under the path, whatever the ground does beside it).
+      const double local = c.ground_mm == kNoGround ? level : level + drape * (c.ground_mm - centre_ground);
+      const double top = local - 4.0 * h / (w * w) * c.d_mm * c.d_mm;
+      const double bottom = c.ground_mm == kNoGround ? std::max(air_floor, level - sag) : local - sag;
       // Voxels with centres in [bottom, top], and above the ground voxel.
       std::size_t lo = first_above(c, bottom, false);
       if (c.ground_mm != kNoGround) lo = std::max(lo, c.floor);
@@ -365,7 +380,14 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       data.bead = bead;
       data.time_s = static_cast<float>(pass.start_time_s + s / std::max(B.speed_mm_s, 1e-9));
       const bool last_step = i + 1 == pts.size() && last == cols.size();
-      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, frame, data, last_step);
+      // Cold start (Ding Fig. 1, 003 sec. 1.3.3.2: lower penetration at the start, so the bead stands higher): the
+      // first metal meets a cold base, wets it poorly and sets where it lands, a hump draped over the ground under
+      // it; it does not run into the valleys under its footprint as the steady hot pool does. Fades linearly to
+      // the levelled pool over start_length_mm.
+      const double drape = settings_.start_wetting == "cold" && settings_.start_length_mm > 0.0
+                               ? std::clamp(1.0 - s / settings_.start_length_mm, 0.0, 1.0)
+                               : 0.0;
+      const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, frame, data, last_step, drape);
       debt += volume - placed;
       record.deposited_volume_mm3 += placed;
       boundary = next_boundary;

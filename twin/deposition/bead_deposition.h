@@ -50,7 +50,7 @@ class Depositor {
  private:
   struct Column;
   double FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3, double zeta_tcp_mm,
-                  const internal::TorchFrame& frame, const VoxelData& data, bool last_step);
+                  const internal::TorchFrame& frame, const VoxelData& data, bool last_step, double drape);
 
   planner::SimulationSettings settings_;
   VoxelGrid grid_;

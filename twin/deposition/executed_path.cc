@@ -155,7 +155,8 @@ BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm
   const ExecutedPoint& p = pass.points[std::min(segment, pass.points.size() - 1)];
   BeadSection section{p.bead_width_mm, p.bead_height_mm};
   const double length = pass.length_mm();
-  // Linear blend of the start and stop shapes (Ding Fig. 1); on a pass shorter than both they multiply.
+  // Linear blend of the start and stop shapes (Ding Fig. 1, 003 Fig. 5: higher at the start, sloping down into the
+  // crater at the end); on a pass shorter than both they multiply.
   double hf = 1.0;
   double wf = 1.0;
   if (settings.start_length_mm > 0.0 && s_mm < settings.start_length_mm) {
@@ -164,10 +165,26 @@ BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm
     wf *= 1.0 + (settings.start_width_factor - 1.0) * t;
   }
   const double to_end = length - s_mm;
-  if (settings.stop_length_mm > 0.0 && to_end < settings.stop_length_mm) {
-    const double t = 1.0 - std::max(0.0, to_end) / settings.stop_length_mm;
+  const double lp = settings.stop_length_mm;
+  if (lp > 0.0 && to_end < lp) {
+    const double t = 1.0 - std::max(0.0, to_end) / lp;
     hf *= 1.0 + (settings.stop_height_factor - 1.0) * t;
     wf *= 1.0 + (settings.stop_width_factor - 1.0) * t;
+  }
+  // The crater's lip. The wire feeds at a constant rate until the arc stops (Ding sec. 4: the hybrid's arcs stop
+  // abruptly, no crater fill), so the last pool length receives its full share of metal; the crater is the frozen
+  // front of the pool, depressed under the arc, and its missing metal was pushed back into the pool's tail, which
+  // solidified just before it. Over the stop_length_mm before the crater the bead is taller by the crater's mean
+  // deficit: 1 - mean of (1 + a t)(1 + b t) over t in [0, 1] = -(a + b) / 2 - a b / 3, a and b the stop height and
+  // width factors minus 1. A pass shorter than 1.25 crater lengths has no room for the lip (its metal is lost, as
+  // with stop_crater: lost).
+  const double lip_mm = std::min(lp, length - lp);
+  // Stop factors above 1 (a stop blob, no crater) get no lip.
+  if (settings.stop_crater == "lip" && lp > 0.0 && lip_mm >= 0.25 * lp && to_end >= lp && to_end < lp + lip_mm) {
+    const double a = settings.stop_height_factor - 1.0;
+    const double b = settings.stop_width_factor - 1.0;
+    const double deficit = -(a + b) / 2.0 - a * b / 3.0;
+    if (deficit > 0.0) hf *= 1.0 + deficit * lp / lip_mm;
   }
   section.width_mm *= wf * p.width_factor;
   section.height_mm *= hf / p.width_factor;

@@ -47,7 +47,8 @@ std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::
 ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::SimulationSettings& settings,
                        double voxel_mm);
 
-// The bead section at arc length `s_mm` of `pass`, with the start and stop shapes of `settings` applied.
+// The bead section at arc length `s_mm` of `pass`, with the start and stop shapes of `settings` applied (and, with
+// settings.stop_crater = lip, the crater's metal in the stop_length_mm of bead before it).
 BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm,
                       const planner::SimulationSettings& settings);
 
