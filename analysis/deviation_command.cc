@@ -85,9 +85,11 @@ void WriteScanDeviationPng(const twin::ScanDeviation& scan, const std::string& t
     }
   }
   char caption[256];
-  std::snprintf(caption, sizeof(caption), "%s: front (x-z) and side (y-z); blue -%.2f .. red +%.2f mm", title.c_str(),
-                range, range);
-  cv::putText(image, caption, cv::Point(5, 20), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  // Two lines: one line of title and colour scale is wider than a narrow part's picture.
+  std::snprintf(caption, sizeof(caption), "%s: front (x-z) and side (y-z)", title.c_str());
+  cv::putText(image, caption, cv::Point(5, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  std::snprintf(caption, sizeof(caption), "blue -%.2f .. red +%.2f mm", range, range);
+  cv::putText(image, caption, cv::Point(5, 34), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   std::snprintf(caption, sizeof(caption), "min %.2f mm, max %.2f mm, rms %.2f mm, %zu points", scan.min_mm,
                 scan.max_mm, scan.rms_mm, scan.points.size());
   cv::putText(image, caption, cv::Point(5, image.rows - 10), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1,
