@@ -297,8 +297,8 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
       const Eigen::Vector3d& p = nominal.layers[l].points[i].p_P;
       // The remainder is measured on the scan around p, which is only whole where the section is: at the stations
       // filled in from the measured ones (the shortened top end) the scan there is the rounded rim and the band left
-      // out, and its closest-point deviations are not the wall's (part I: 1.6-3.9 mm of remainder in the last five
-      // layers against a true 0-1 mm). There only the section terms act.
+      // out, and its closest-point deviations are not the wall's (part I: 1.6-3.9 mm of remainder on layers 164-168,
+      // 0.1-0.6 mm below). There only the section terms act (docs/compensation.md gives what it changed).
       if (!sections.stations.empty() && !sections.measured[Enclosing(sections.stations, p).k]) s[l][i].setZero();
       const Eigen::Vector3d axis = sections.Axis(p), outline = sections.Outline(p);
       const Eigen::Vector3d a = axis + outline;
