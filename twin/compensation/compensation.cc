@@ -139,7 +139,7 @@ Waviness WallWaviness(const ScanDeviation& scan, double cell_mm) {
   if (p2v.empty()) return {};
   std::sort(p2v.begin(), p2v.end());
   auto at = [&](double q) { return p2v[std::min(p2v.size() - 1, static_cast<std::size_t>(q * p2v.size()))]; };
-  if (std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr) {
+  if (internal::DebugLevel() >= 1) {
     std::fprintf(stderr, "waviness: %zu cells, p2v median %.3f p90 %.3f p95 %.3f p99 %.3f p99.9 %.3f max %.3f mm\n",
                  p2v.size(), at(0.5), at(0.9), at(0.95), at(0.99), at(0.999), p2v.back());
   }
@@ -317,7 +317,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     const double shortening =
         std::max(0.0, TopOf(twin_reference ? reference_points : target_surface, top_dir) - TopOf(points, top_dir));
     it.top_band_mm = result.top_band_mm + shortening;
-    if (std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr) {
+    if (internal::DebugLevel() >= 1) {
       std::fprintf(stderr, "top: dir (%.3f %.3f %.3f), path top %.2f mm, band %.2f mm (shortening %.2f mm)\n",
                    top_dir.x(), top_dir.y(), top_dir.z(), path_top, it.top_band_mm, shortening);
     }

@@ -266,6 +266,12 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
   return a;
 }
 
+int DebugLevel() {
+  const char* value = std::getenv("WAAM_COMPENSATE_DEBUG");
+  if (value == nullptr) return 0;
+  return std::string(value) == "2" ? 2 : 1;
+}
+
 std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
                                                               const std::vector<Eigen::Vector3d>& scan_points,
                                                               const MeshDistance& reference_distance,
@@ -282,8 +288,8 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
   }
   const ScanDeviation local_scan = MeasureScanDeviation(recentred, reference_distance);
   std::vector<std::vector<Eigen::Vector3d>> s = LocalCorrections(nominal, local_scan, bead_width_mm);
-  const bool print = std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr;
-  const bool every_layer = print && std::string(std::getenv("WAAM_COMPENSATE_DEBUG")) == "2";
+  const int debug = DebugLevel();
+  const bool print = debug >= 1, every_layer = debug >= 2;
   if (print) {
     std::fprintf(stderr, "sections: %zu stations, %zu measured, max measured axis shift %.3f mm, recentred max |d| %.3f\n",
                  sections.stations.size(),
@@ -319,8 +325,8 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
 
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
                        const std::vector<std::vector<Eigen::Vector3d>>& s) {
-  const bool print = std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr;
-  const bool every_layer = print && std::string(std::getenv("WAAM_COMPENSATE_DEBUG")) == "2";
+  const int debug = DebugLevel();
+  const bool print = debug >= 1, every_layer = debug >= 2;
   double worst = 0.0;
   for (std::size_t l = 0; l < nominal.layers.size(); ++l) {
     const Eigen::Vector3d n = nominal.layers[l].build_dir_P.normalized();

@@ -52,9 +52,14 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
                                                               double bead_width_mm, double axis_step_mm,
                                                               const std::string& method);
 
+// The level of the diagnostics printed on stderr, from the environment variable WAAM_COMPENSATE_DEBUG: 0 when it is
+// not set, 2 when it is "2" (every layer), 1 otherwise (every tenth layer and the last).
+int DebugLevel();
+
 // Diagnostic only, never an input of the loop: the largest in-plane difference (mm) between the corrections `s` and
 // the error the twin's hidden displacement `field` gives at each point of `current`, (r_i + u(r_i) - r0_i)_perp with
-// r0_i the point of `nominal`, over the welded points where the field is defined. Set WAAM_COMPENSATE_DEBUG=1 to print it per layer on stderr.
+// r0_i the point of `nominal`, over the welded points where the field is defined. Printed per layer on stderr when
+// DebugLevel() >= 1.
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
                        const std::vector<std::vector<Eigen::Vector3d>>& s);
 
