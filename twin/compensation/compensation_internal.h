@@ -27,10 +27,23 @@ struct SectionShift {
   std::vector<std::uint8_t> measured;     // 1: a complete scan section; 0: filled in from the measured ones
   double max_measured_mm = 0.0;           // largest |shift| over the measured stations, mm
 
+  // The station `k` whose centre is nearest a point, its neighbour `j` on the other side of the point and the weight
+  // `t` (0..1) of the neighbour: the two stations whose planes enclose the point.
+  struct Bracket {
+    std::size_t k = 0, j = 0;
+    double t = 0.0;
+  };
+
+  // The stations enclosing `p` (mm); needs at least one station.
+  Bracket Enclosing(const Eigen::Vector3d& p) const;
   // Axis offset at `p` (mm), interpolated between the two stations whose planes enclose it; zero without stations.
   Eigen::Vector3d Axis(const Eigen::Vector3d& p) const;
+  // The same from the stations `b` = Enclosing(p), found once for several measures at one point.
+  Eigen::Vector3d Axis(const Bracket& b) const;
   // Outward move of the outline at `p` (mm, along the in-plane direction from the reference centre to `p`).
   Eigen::Vector3d Outline(const Eigen::Vector3d& p) const;
+  // The same from the stations `b` = Enclosing(p).
+  Eigen::Vector3d Outline(const Eigen::Vector3d& p, const Bracket& b) const;
 };
 
 // Compares `scan` with `reference` (both surface point clouds in the part frame, mm) at reference-axis stations
