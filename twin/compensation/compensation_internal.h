@@ -65,6 +65,25 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
                                                               double bead_width_mm, double axis_step_mm,
                                                               const std::string& method);
 
+// Side-wall waviness of the undistorted twin part: scan points off the top and bottom faces are binned by their
+// closest target point in cubes of `cell_mm` (about three layers) and each bin's peak-to-valley of the deviation is
+// its W_t (DIN EN ISO 4287, as 003 sec. 6.4.1). The termination condition of 003 sec. 6.5.2 is the *maximum*
+// waviness: part I's W_t "fluctuates, and limits to 1.22 mm" (sec. 6.6.3.1, Fig. 80), and the loop stops once "the
+// surface deviation is within the maximum waviness". That is also the floor of the loop: a part built on a moved
+// path lays its ripple elsewhere than the reference's, so their difference reaches the ripple's peak-to-valley.
+// `max_mm` is the 99th percentile of the bins (so that a few odd bins do not set it), `median_mm` the typical bin.
+struct Waviness {
+  double median_mm = 0.0;
+  double max_mm = 0.0;
+};
+
+// W_t over the bins of `cell_mm` (> 0; the loop uses 2 reference spacings, 4 mm) that hold at least 8 side-wall
+// points of `scan`, mm; zero when no bin does.
+Waviness WallWaviness(const ScanDeviation& scan, double cell_mm);
+
+// The loop's stop tolerance on max |deviation| (mm): `requested_mm` when > 0 (--tol-mm), else the maximum waviness.
+double StopTolerance(double requested_mm, const Waviness& waviness);
+
 // The level of the diagnostics printed on stderr, from the environment variable WAAM_COMPENSATE_DEBUG: 0 when it is
 // not set, 2 when it is "2" (every layer), 1 otherwise (every tenth layer and the last).
 int DebugLevel();
