@@ -1,5 +1,6 @@
 // Tests of the compensation loop on a short tube that bends towards its hot side (reduced distortion mode): the
-// loop converges from the scan alone, the axis correction sees the bend, and a loop that cannot converge says so.
+// loop converges from the scan alone, the axis correction sees the bend, and a loop that cannot converge says so;
+// the default tolerance is the maximum side-wall waviness.
 #include "twin/compensation/compensation.h"
 
 #include <algorithm>
@@ -159,6 +160,40 @@ TEST(Compensation, LoopThatCannotReachTheToleranceSaysSo) {
   const CompensationResult none = Compensate(tube.plan, tube.target, Coarse(), o);
   EXPECT_EQ(none.status, "max_iterations");
   EXPECT_THAT(none.message, HasSubstr("not converged after 0 compensation(s)"));
+}
+
+// A hand-made scan of a side wall facing +x: 12 x 10 cells of 4 mm (y x z), each with 8 points whose deviations
+// span 0 .. W_c, W_c = 0.01, 0.02, ..., 1.20 mm, between a bottom and a top face (their points, facing -z and +z with
+// deviations of 5 mm, are not side wall). Sorted, the cells' W_t are 0.01 (c + 1) mm: the 99th percentile is the
+// 119th of 120 (1.19 mm, not the largest 1.20), the median the 61st (0.61 mm).
+TEST(Compensation, DefaultToleranceIsTheNinetyNinthPercentileOfTheWallWaviness) {
+  constexpr double kCellMm = 4.0;  // what the loop uses: 2 reference spacings of 2 mm
+  ScanDeviation scan;
+  auto add = [&](const Eigen::Vector3d& closest, const Eigen::Vector3d& normal, double deviation) {
+    scan.points.push_back(closest + deviation * normal);
+    scan.normal.push_back(normal);
+    scan.deviation_mm.push_back(deviation);
+  };
+  int cell = 0;
+  for (int yb = 0; yb < 12; ++yb) {
+    for (int zb = 1; zb <= 10; ++zb) {
+      const double w = 0.01 * (++cell);
+      for (int k = 0; k < 8; ++k) {
+        const Eigen::Vector3d closest(2.0, kCellMm * yb + 1.0 + 0.6 * (k % 4), kCellMm * zb + 1.0 + 1.5 * (k / 4));
+        add(closest, Eigen::Vector3d::UnitX(), w * (k / 7.0));
+      }
+    }
+  }
+  for (int yb = 0; yb < 12; ++yb) {
+    add(Eigen::Vector3d(2.0, kCellMm * yb + 2.0, 0.0), -Eigen::Vector3d::UnitZ(), 5.0);
+    add(Eigen::Vector3d(2.0, kCellMm * yb + 2.0, 44.0), Eigen::Vector3d::UnitZ(), 5.0);
+  }
+  const internal::Waviness w = internal::WallWaviness(scan, kCellMm);
+  EXPECT_DOUBLE_EQ(w.max_mm, 0.01 * 119) << "the maximum waviness is the 99th percentile of the cells' W_t";
+  EXPECT_DOUBLE_EQ(w.median_mm, 0.01 * 61) << "the typical waviness is the median of the cells' W_t";
+  EXPECT_DOUBLE_EQ(internal::StopTolerance(0.0, w), w.max_mm)
+      << "the default tolerance is the maximum waviness (003 sec. 6.5.2), not the median " << w.median_mm << " mm";
+  EXPECT_DOUBLE_EQ(internal::StopTolerance(0.5, w), 0.5) << "a tolerance the user gives (--tol-mm) is kept";
 }
 
 TEST(Compensation, BadCorrectionMethodNamesTheOption) {

@@ -55,6 +55,18 @@ TEST(PointHashTest, ForEachNearFindsExactlyThePointsInTheBall) {
   EXPECT_EQ(hash.CountNear(q, 1.3, 3), 3) << "the count stops at the cap";
 }
 
+TEST(PointHashTest, ForEachNearStopsWhenTheVisitorReturnsFalse) {
+  const std::vector<Eigen::Vector3d> points = BlockAndSpeck();
+  const PointHash hash(points, 0.7);
+  const Eigen::Vector3d q(2.6, 3.1, 0.2);
+  int all = 0;
+  EXPECT_TRUE(hash.ForEachNear(q, 1.3, [&](int) { return ++all > 0; })) << "a visitor that never says stop sees all";
+  ASSERT_GT(all, 3) << "the query ball must hold more points than the stop below";
+  int visited = 0;
+  EXPECT_FALSE(hash.ForEachNear(q, 1.3, [&](int) { return ++visited < 3; })) << "the search reports that it stopped";
+  EXPECT_EQ(visited, 3) << "no point is visited after the visitor returned false";
+}
+
 TEST(PointHashTest, OutlierRemovalDropsALoneVoxelAndKeepsTheSurface) {
   std::size_t block = 0;
   const std::vector<Eigen::Vector3d> points = BlockAndSpeck(&block);

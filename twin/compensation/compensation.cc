@@ -94,18 +94,11 @@ double PathTop(const planner::Plan& plan, const Eigen::Vector3d& dir) {
   return top;
 }
 
-// Side-wall waviness of the undistorted twin part: scan points off the top and bottom faces are binned by their
-// closest target point in cubes of `cell_mm` (about three layers) and each bin's peak-to-valley of the deviation is
-// its W_t (DIN EN ISO 4287, as 003 sec. 6.4.1). The termination condition of 003 sec. 6.5.2 is the *maximum*
-// waviness: part I's W_t "fluctuates, and limits to 1.22 mm" (sec. 6.6.3.1, Fig. 80), and the loop stops once "the
-// surface deviation is within the maximum waviness". That is also the floor of the loop: a part built on a moved
-// path lays its ripple elsewhere than the reference's, so their difference reaches the ripple's peak-to-valley.
-// `max_mm` is the 99th percentile of the bins (so that a few odd bins do not set it), `median_mm` the typical bin.
-struct Waviness {
-  double median_mm = 0.0;
-  double max_mm = 0.0;
-};
+}  // namespace
 
+namespace internal {
+
+// W_t of each bin: the peak-to-valley of the deviation (DIN EN ISO 4287, as 003 sec. 6.4.1).
 Waviness WallWaviness(const ScanDeviation& scan, double cell_mm) {
   std::unordered_map<std::uint64_t, std::pair<double, double>> bins;
   std::unordered_map<std::uint64_t, int> counts;
@@ -139,14 +132,19 @@ Waviness WallWaviness(const ScanDeviation& scan, double cell_mm) {
   if (p2v.empty()) return {};
   std::sort(p2v.begin(), p2v.end());
   auto at = [&](double q) { return p2v[std::min(p2v.size() - 1, static_cast<std::size_t>(q * p2v.size()))]; };
-  if (std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr) {
+  if (DebugLevel() >= 1) {
     std::fprintf(stderr, "waviness: %zu cells, p2v median %.3f p90 %.3f p95 %.3f p99 %.3f p99.9 %.3f max %.3f mm\n",
                  p2v.size(), at(0.5), at(0.9), at(0.95), at(0.99), at(0.999), p2v.back());
   }
   return {at(0.5), at(0.99)};
 }
 
-}  // namespace
+// 003 sec. 6.5.2: the loop stops "whenever the surface deviation is within the maximum waviness".
+double StopTolerance(double requested_mm, const Waviness& waviness) {
+  return requested_mm > 0.0 ? requested_mm : waviness.max_mm;
+}
+
+}  // namespace internal
 
 planner::Plan ResamplePlan(const planner::Plan& plan, double spacing_mm) {
   WAAM_THROW_UNLESS(spacing_mm > 0.0, "compensation reference spacing " << spacing_mm << " mm: must be > 0");
@@ -288,9 +286,10 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     if (iter == 0) {
       const ScanDeviation undistorted =
           MeasureScanDeviation(ScanDistortedPart(depositor.grid(), DistortionField()), distance);
-      const Waviness waviness = WallWaviness(undistorted, 2.0 * options.reference_spacing_mm);
+      const internal::Waviness waviness = internal::WallWaviness(undistorted, 2.0 * options.reference_spacing_mm);
       result.waviness_mm = waviness.max_mm;
       result.waviness_median_mm = waviness.median_mm;
+      result.tolerance_mm = internal::StopTolerance(options.tolerance_mm, waviness);
       if (twin_reference) {
         reference_mesh = ExtractSurface(depositor.grid());
         reference = std::make_unique<MeshDistance>(reference_mesh);
@@ -317,7 +316,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     const double shortening =
         std::max(0.0, TopOf(twin_reference ? reference_points : target_surface, top_dir) - TopOf(points, top_dir));
     it.top_band_mm = result.top_band_mm + shortening;
-    if (std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr) {
+    if (internal::DebugLevel() >= 1) {
       std::fprintf(stderr, "top: dir (%.3f %.3f %.3f), path top %.2f mm, band %.2f mm (shortening %.2f mm)\n",
                    top_dir.x(), top_dir.y(), top_dir.z(), path_top, it.top_band_mm, shortening);
     }
@@ -331,7 +330,6 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
                        : against_target;
     Summarize(scan, reference_points, options.axis_step_mm, &it);
     if (iter == 0) {
-      result.tolerance_mm = options.tolerance_mm > 0.0 ? options.tolerance_mm : result.waviness_mm;
       WAAM_THROW_UNLESS(result.tolerance_mm > 0.0,
                         "compensate: the simulated part has no measurable waviness (first scan given?); pass --tol-mm");
       result.first_scan = scan;

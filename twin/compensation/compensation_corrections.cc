@@ -74,30 +74,6 @@ std::vector<std::vector<Eigen::Vector3d>> LocalCorrections(const planner::Plan& 
 
 namespace {
 
-// The station whose plane is nearest `p` and its neighbour on the other side, with the weight of the neighbour.
-struct Bracket {
-  std::size_t k = 0, j = 0;
-  double t = 0.0;
-};
-
-Bracket Enclosing(const std::vector<AxisStation>& stations, const Eigen::Vector3d& p) {
-  Bracket b;
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < stations.size(); ++i) {
-    const double d = (p - stations[i].center).squaredNorm();
-    if (d < best) {
-      best = d;
-      b.k = i;
-    }
-  }
-  const double a = (p - stations[b.k].center).dot(stations[b.k].normal);
-  b.j = a >= 0.0 ? std::min(b.k + 1, stations.size() - 1) : (b.k > 0 ? b.k - 1 : 0);
-  if (b.j == b.k) return b;
-  const double c = (p - stations[b.j].center).dot(stations[b.j].normal);
-  b.t = std::abs(a) + std::abs(c) > 1e-12 ? std::abs(a) / (std::abs(a) + std::abs(c)) : 0.0;
-  return b;
-}
-
 // In-plane unit direction from the centre of `station` to `p` and its angle from `t1` (unit, in the plane), rad.
 bool PlaneDirection(const AxisStation& station, const Eigen::Vector3d& t1, const Eigen::Vector3d& p,
                     Eigen::Vector3d* e, double* angle) {
@@ -164,15 +140,37 @@ std::vector<Eigen::Vector3d> InSlab(const std::vector<Eigen::Vector3d>& cloud, c
 
 }  // namespace
 
+SectionShift::Bracket SectionShift::Enclosing(const Eigen::Vector3d& p) const {
+  Bracket b;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    const double d = (p - stations[i].center).squaredNorm();
+    if (d < best) {
+      best = d;
+      b.k = i;
+    }
+  }
+  const double a = (p - stations[b.k].center).dot(stations[b.k].normal);
+  b.j = a >= 0.0 ? std::min(b.k + 1, stations.size() - 1) : (b.k > 0 ? b.k - 1 : 0);
+  if (b.j == b.k) return b;
+  const double c = (p - stations[b.j].center).dot(stations[b.j].normal);
+  b.t = std::abs(a) + std::abs(c) > 1e-12 ? std::abs(a) / (std::abs(a) + std::abs(c)) : 0.0;
+  return b;
+}
+
 Eigen::Vector3d SectionShift::Axis(const Eigen::Vector3d& p) const {
   if (stations.empty()) return Eigen::Vector3d::Zero();
-  const Bracket b = Enclosing(stations, p);
-  return (1.0 - b.t) * shift[b.k] + b.t * shift[b.j];
+  return Axis(Enclosing(p));
 }
+
+Eigen::Vector3d SectionShift::Axis(const Bracket& b) const { return (1.0 - b.t) * shift[b.k] + b.t * shift[b.j]; }
 
 Eigen::Vector3d SectionShift::Outline(const Eigen::Vector3d& p) const {
   if (stations.empty()) return Eigen::Vector3d::Zero();
-  const Bracket b = Enclosing(stations, p);
+  return Outline(p, Enclosing(p));
+}
+
+Eigen::Vector3d SectionShift::Outline(const Eigen::Vector3d& p, const Bracket& b) const {
   Eigen::Vector3d e;
   double angle = 0.0;
   if (!PlaneDirection(stations[b.k], t1[b.k], p, &e, &angle)) return Eigen::Vector3d::Zero();
@@ -266,6 +264,12 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
   return a;
 }
 
+int DebugLevel() {
+  const char* value = std::getenv("WAAM_COMPENSATE_DEBUG");
+  if (value == nullptr) return 0;
+  return std::string(value) == "2" ? 2 : 1;
+}
+
 std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
                                                               const std::vector<Eigen::Vector3d>& scan_points,
                                                               const MeshDistance& reference_distance,
@@ -282,8 +286,8 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
   }
   const ScanDeviation local_scan = MeasureScanDeviation(recentred, reference_distance);
   std::vector<std::vector<Eigen::Vector3d>> s = LocalCorrections(nominal, local_scan, bead_width_mm);
-  const bool print = std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr;
-  const bool every_layer = print && std::string(std::getenv("WAAM_COMPENSATE_DEBUG")) == "2";
+  const int debug = DebugLevel();
+  const bool print = debug >= 1, every_layer = debug >= 2;
   if (print) {
     std::fprintf(stderr, "sections: %zu stations, %zu measured, max measured axis shift %.3f mm, recentred max |d| %.3f\n",
                  sections.stations.size(),
@@ -299,8 +303,13 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
       // filled in from the measured ones (the shortened top end) the scan there is the rounded rim and the band left
       // out, and its closest-point deviations are not the wall's (part I: 1.6-3.9 mm of remainder on layers 164-168,
       // 0.1-0.6 mm below). There only the section terms act (docs/compensation.md gives what it changed).
-      if (!sections.stations.empty() && !sections.measured[Enclosing(sections.stations, p).k]) s[l][i].setZero();
-      const Eigen::Vector3d axis = sections.Axis(p), outline = sections.Outline(p);
+      Eigen::Vector3d axis = Eigen::Vector3d::Zero(), outline = Eigen::Vector3d::Zero();
+      if (!sections.stations.empty()) {
+        const SectionShift::Bracket b = sections.Enclosing(p);
+        if (!sections.measured[b.k]) s[l][i].setZero();
+        axis = sections.Axis(b);
+        outline = sections.Outline(p, b);
+      }
       const Eigen::Vector3d a = axis + outline;
       if (print) {
         axis_max = std::max(axis_max, (axis - axis.dot(n) * n).norm());
@@ -319,8 +328,8 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
 
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
                        const std::vector<std::vector<Eigen::Vector3d>>& s) {
-  const bool print = std::getenv("WAAM_COMPENSATE_DEBUG") != nullptr;
-  const bool every_layer = print && std::string(std::getenv("WAAM_COMPENSATE_DEBUG")) == "2";
+  const int debug = DebugLevel();
+  const bool print = debug >= 1, every_layer = debug >= 2;
   double worst = 0.0;
   for (std::size_t l = 0; l < nominal.layers.size(); ++l) {
     const Eigen::Vector3d n = nominal.layers[l].build_dir_P.normalized();

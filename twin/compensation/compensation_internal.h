@@ -27,10 +27,23 @@ struct SectionShift {
   std::vector<std::uint8_t> measured;     // 1: a complete scan section; 0: filled in from the measured ones
   double max_measured_mm = 0.0;           // largest |shift| over the measured stations, mm
 
+  // The station `k` whose centre is nearest a point, its neighbour `j` on the other side of the point and the weight
+  // `t` (0..1) of the neighbour: the two stations whose planes enclose the point.
+  struct Bracket {
+    std::size_t k = 0, j = 0;
+    double t = 0.0;
+  };
+
+  // The stations enclosing `p` (mm); needs at least one station.
+  Bracket Enclosing(const Eigen::Vector3d& p) const;
   // Axis offset at `p` (mm), interpolated between the two stations whose planes enclose it; zero without stations.
   Eigen::Vector3d Axis(const Eigen::Vector3d& p) const;
+  // The same from the stations `b` = Enclosing(p), found once for several measures at one point.
+  Eigen::Vector3d Axis(const Bracket& b) const;
   // Outward move of the outline at `p` (mm, along the in-plane direction from the reference centre to `p`).
   Eigen::Vector3d Outline(const Eigen::Vector3d& p) const;
+  // The same from the stations `b` = Enclosing(p).
+  Eigen::Vector3d Outline(const Eigen::Vector3d& p, const Bracket& b) const;
 };
 
 // Compares `scan` with `reference` (both surface point clouds in the part frame, mm) at reference-axis stations
@@ -52,9 +65,33 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
                                                               double bead_width_mm, double axis_step_mm,
                                                               const std::string& method);
 
+// Side-wall waviness of the undistorted twin part: scan points off the top and bottom faces are binned by their
+// closest target point in cubes of `cell_mm` (about three layers) and each bin's peak-to-valley of the deviation is
+// its W_t (DIN EN ISO 4287, as 003 sec. 6.4.1). The termination condition of 003 sec. 6.5.2 is the *maximum*
+// waviness: part I's W_t "fluctuates, and limits to 1.22 mm" (sec. 6.6.3.1, Fig. 80), and the loop stops once "the
+// surface deviation is within the maximum waviness". That is also the floor of the loop: a part built on a moved
+// path lays its ripple elsewhere than the reference's, so their difference reaches the ripple's peak-to-valley.
+// `max_mm` is the 99th percentile of the bins (so that a few odd bins do not set it), `median_mm` the typical bin.
+struct Waviness {
+  double median_mm = 0.0;
+  double max_mm = 0.0;
+};
+
+// W_t over the bins of `cell_mm` (> 0; the loop uses 2 reference spacings, 4 mm) that hold at least 8 side-wall
+// points of `scan`, mm; zero when no bin does.
+Waviness WallWaviness(const ScanDeviation& scan, double cell_mm);
+
+// The loop's stop tolerance on max |deviation| (mm): `requested_mm` when > 0 (--tol-mm), else the maximum waviness.
+double StopTolerance(double requested_mm, const Waviness& waviness);
+
+// The level of the diagnostics printed on stderr, from the environment variable WAAM_COMPENSATE_DEBUG: 0 when it is
+// not set, 2 when it is "2" (every layer), 1 otherwise (every tenth layer and the last).
+int DebugLevel();
+
 // Diagnostic only, never an input of the loop: the largest in-plane difference (mm) between the corrections `s` and
 // the error the twin's hidden displacement `field` gives at each point of `current`, (r_i + u(r_i) - r0_i)_perp with
-// r0_i the point of `nominal`, over the welded points where the field is defined. Set WAAM_COMPENSATE_DEBUG=1 to print it per layer on stderr.
+// r0_i the point of `nominal`, over the welded points where the field is defined. Printed per layer on stderr when
+// DebugLevel() >= 1.
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
                        const std::vector<std::vector<Eigen::Vector3d>>& s);
 

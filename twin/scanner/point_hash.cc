@@ -11,20 +11,8 @@ PointHash::PointHash(const std::vector<Eigen::Vector3d>& points, double cell_mm)
 }
 
 int PointHash::CountNear(const Eigen::Vector3d& p, double radius, int cap) const {
-  const Eigen::Vector3i c = Cell(p);
-  const int reach = static_cast<int>(std::ceil(radius / cell_));
   int count = 0;
-  for (int dz = -reach; dz <= reach; ++dz) {
-    for (int dy = -reach; dy <= reach; ++dy) {
-      for (int dx = -reach; dx <= reach; ++dx) {
-        auto it = cells_.find(Key(c + Eigen::Vector3i(dx, dy, dz)));
-        if (it == cells_.end()) continue;
-        for (int i : it->second) {
-          if ((points_[i] - p).squaredNorm() <= radius * radius && ++count >= cap) return count;
-        }
-      }
-    }
-  }
+  ForEachNear(p, radius, [&](int) { return ++count < cap; });
   return count;
 }
 

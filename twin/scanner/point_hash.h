@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -15,9 +16,10 @@ class PointHash {
  public:
   PointHash(const std::vector<Eigen::Vector3d>& points, double cell_mm);
 
-  // Calls f(i) for every point i within `radius` (mm) of `p` (p itself included when it is in the cloud).
+  // Calls f(i) for every point i within `radius` (mm) of `p` (p itself included when it is in the cloud). `f` may
+  // return bool: false stops the search there. Returns false when `f` stopped it, true when every point was visited.
   template <typename F>
-  void ForEachNear(const Eigen::Vector3d& p, double radius, F&& f) const {
+  bool ForEachNear(const Eigen::Vector3d& p, double radius, F&& f) const {
     const Eigen::Vector3i c = Cell(p);
     const int reach = static_cast<int>(std::ceil(radius / cell_));
     for (int dz = -reach; dz <= reach; ++dz) {
@@ -26,11 +28,18 @@ class PointHash {
           auto it = cells_.find(Key(c + Eigen::Vector3i(dx, dy, dz)));
           if (it == cells_.end()) continue;
           for (int i : it->second) {
-            if ((points_[i] - p).squaredNorm() <= radius * radius) f(i);
+            if ((points_[i] - p).squaredNorm() <= radius * radius) {
+              if constexpr (std::is_same_v<std::invoke_result_t<F&, int>, bool>) {
+                if (!f(i)) return false;
+              } else {
+                f(i);
+              }
+            }
           }
         }
       }
     }
+    return true;
   }
 
   // Number of points within `radius` (mm) of `p`, counted up to `cap` (the count stops there).
