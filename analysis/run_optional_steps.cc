@@ -11,11 +11,7 @@ namespace fs = std::filesystem;
 
 // Runs `waam tune-voids` on the scenario into the step's folder (tune.json, junction pictures).
 StepOutcome RunTuneVoidsStep(RunContext& context, const fs::path& step_dir) {
-  TuneVoidsOptions options;
-  options.scenario = context.options.scenario;
-  options.out_dir = step_dir;
-  options.overrides = context.options.overrides;
-  options.quiet = context.options.quiet;
+  auto options = StepOptions<TuneVoidsOptions>(context, step_dir);
   options.images = context.options.images;
   const TuneVoidsResult result = RunTuneVoids(options);
   StepOutcome outcome;
@@ -34,11 +30,7 @@ StepOutcome RunTuneVoidsStep(RunContext& context, const fs::path& step_dir) {
 // Runs `waam compensate` on the scenario into the step's folder. A loop that does not reach its tolerance is not a
 // failed run (the iterations are the result); its status is reported.
 StepOutcome RunCompensateStep(RunContext& context, const fs::path& step_dir) {
-  CompensateOptions options;
-  options.scenario = context.options.scenario;
-  options.out_dir = step_dir;
-  options.overrides = context.options.overrides;
-  options.quiet = context.options.quiet;
+  auto options = StepOptions<CompensateOptions>(context, step_dir);
   options.images = context.options.images;
   const twin::CompensationResult result = RunCompensate(options);
   StepOutcome outcome;

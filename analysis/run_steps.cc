@@ -42,11 +42,7 @@ nlohmann::json PickMetrics(const nlohmann::json& document, const std::vector<std
 }
 
 StepOutcome RunPlanStep(RunContext& context, const fs::path& step_dir) {
-  PlanOptions options;
-  options.scenario = context.options.scenario;
-  options.out_dir = step_dir;
-  options.overrides = context.options.overrides;
-  options.quiet = context.options.quiet;
+  auto options = StepOptions<PlanOptions>(context, step_dir);
   options.layer_images = context.options.images;
   context.planned = RunPlan(options);
   nlohmann::json document = PlanToJson(context.scenario, *context.planned);
@@ -62,11 +58,7 @@ StepOutcome RunPlanStep(RunContext& context, const fs::path& step_dir) {
 }
 
 StepOutcome RunCheckStep(RunContext& context, const fs::path& step_dir) {
-  CheckOptions options;
-  options.scenario = context.options.scenario;
-  options.out_dir = step_dir;
-  options.overrides = context.options.overrides;
-  options.quiet = context.options.quiet;
+  auto options = StepOptions<CheckOptions>(context, step_dir);
   options.images = context.options.images;
   const twin::CheckReport report = RunCheckOnPlan(context.scenario, context.planned->plan, options);
   nlohmann::json document = nlohmann::json::parse(ReadFile(step_dir / "check.json"));
@@ -84,11 +76,7 @@ StepOutcome RunCheckStep(RunContext& context, const fs::path& step_dir) {
 }
 
 StepOutcome RunSimulateStep(RunContext& context, const fs::path& step_dir) {
-  SimulateOptions options;
-  options.scenario = context.options.scenario;
-  options.out_dir = step_dir;
-  options.overrides = context.options.overrides;
-  options.quiet = context.options.quiet;
+  auto options = StepOptions<SimulateOptions>(context, step_dir);
   options.images = context.options.images;
   const twin::TwinResult result = SimulatePlanned(context.scenario, *context.planned, options);
   nlohmann::json document = SimulationToJson(context.scenario, result);

@@ -39,6 +39,19 @@ struct RunStep {
   const char* main_output;                       // the file marking the step complete, relative to its folder
 };
 
+// The options of a step's command (PlanOptions, CheckOptions, SimulateOptions, TuneVoidsOptions, CompensateOptions)
+// with what every command takes from the run: its scenario file, --set overrides and quiet flag, and `step_dir` as the
+// output folder. The step sets its own picture flag; everything else keeps the command's defaults.
+template <typename CommandOptions>
+CommandOptions StepOptions(const RunContext& context, const std::filesystem::path& step_dir) {
+  CommandOptions options;
+  options.scenario = context.options.scenario;
+  options.out_dir = step_dir;
+  options.overrides = context.options.overrides;
+  options.quiet = context.options.quiet;
+  return options;
+}
+
 // The registered steps in their default order.
 const std::vector<RunStep>& RunSteps();
 

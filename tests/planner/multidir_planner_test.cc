@@ -6,33 +6,12 @@
 
 #include "models/core/error.h"
 #include "planner/mesh/mesh_ops.h"
+#include "tests/planner/test_scenarios.h"
 
 namespace waam::planner {
 namespace {
 using ::testing::HasSubstr;
-
-// A small propeller: hub 60 mm across the flats and 60 mm tall, four blades 40 mm long.
-Scenario SmallPropeller(double pitch_root_deg, double pitch_tip_deg) {
-  Scenario s;
-  s.name = "propeller";
-  s.part.generator = "propeller";
-  s.part.params = {{"hub_mm", {60.0, 60.0}},
-                   {"span_mm", {40.0}},
-                   {"chord_mm", {40.0}},
-                   {"thickness_mm", {16.0, 10.0}},
-                   {"pitch_deg", {pitch_root_deg, pitch_tip_deg}}};
-  s.part.where = "test: part.generator";
-  s.slicing.type = "multi_directional";
-  s.slicing.layer_height_mm = 2.5;
-  s.slicing.sub_volumes.push_back({"hub", {0, 0, 1}, {{1, 0, 0, 30}, {-1, 0, 0, 30}, {0, 1, 0, 30}, {0, -1, 0, 30}}});
-  s.slicing.sub_volumes.push_back({"blade_0", {1, 0, 0}, {{-1, 0, 0, -30}}});
-  s.slicing.sub_volumes.push_back({"blade_90", {0, 1, 0}, {{0, -1, 0, -30}}});
-  s.slicing.sub_volumes.push_back({"blade_180", {-1, 0, 0}, {{1, 0, 0, -30}}});
-  s.slicing.sub_volumes.push_back({"blade_270", {0, -1, 0}, {{0, 1, 0, -30}}});
-  s.path.pattern = "contour";
-  s.path.bead_width_mm = 6.0;
-  return s;
-}
+using testing::SmallPropeller;
 
 TEST(MultiDirectionalTest, SubVolumesAddUpToThePartAndWeldAlongTheirDirection) {
   const PlanResult result = PlanScenario(SmallPropeller(30, 50), nullptr);

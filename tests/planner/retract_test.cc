@@ -9,11 +9,13 @@
 #include <gtest/gtest.h>
 
 #include "planner/planar_planner.h"
+#include "tests/planner/test_scenarios.h"
 
 namespace waam::planner {
 namespace {
 
 using Eigen::Vector3d;
+using testing::SmallPropellerWithRetract;
 constexpr double kClearance = 15.0;
 
 PathPoint Point(const Vector3d& p, const Vector3d& tool, bool weld) {
@@ -42,30 +44,6 @@ Plan TiltedLayer() {
     plan.layers[0].points.push_back(Point(base + 40.0 * u + 0.5 * v, n, true));
   }
   return plan;
-}
-
-// The small propeller of multidir_planner_test: the hub along +z, then four blades along +-x, +-y.
-Scenario SmallPropeller(double retract_mm) {
-  Scenario s;
-  s.name = "propeller";
-  s.part.generator = "propeller";
-  s.part.params = {{"hub_mm", {60.0, 60.0}},
-                   {"span_mm", {40.0}},
-                   {"chord_mm", {40.0}},
-                   {"thickness_mm", {16.0, 10.0}},
-                   {"pitch_deg", {30.0, 50.0}}};
-  s.part.where = "test: part.generator";
-  s.slicing.type = "multi_directional";
-  s.slicing.layer_height_mm = 2.5;
-  s.slicing.sub_volumes.push_back({"hub", {0, 0, 1}, {{1, 0, 0, 30}, {-1, 0, 0, 30}, {0, 1, 0, 30}, {0, -1, 0, 30}}});
-  s.slicing.sub_volumes.push_back({"blade_0", {1, 0, 0}, {{-1, 0, 0, -30}}});
-  s.slicing.sub_volumes.push_back({"blade_90", {0, 1, 0}, {{0, -1, 0, -30}}});
-  s.slicing.sub_volumes.push_back({"blade_180", {-1, 0, 0}, {{1, 0, 0, -30}}});
-  s.slicing.sub_volumes.push_back({"blade_270", {0, -1, 0}, {{0, 1, 0, -30}}});
-  s.path.pattern = "contour";
-  s.path.bead_width_mm = 6.0;
-  s.path.retract_mm = retract_mm;
-  return s;
 }
 
 struct Flat {
@@ -149,7 +127,7 @@ TEST(RetractTest, ZeroClearanceLeavesThePlanAlone) {
 
 TEST(RetractTest, SubVolumesBuiltSidewaysAreReachedOverThePart) {
   // Straight from the hub's top to a blade's root would cut the hub's edge: those travels go over the top.
-  PlanResult planned = PlanScenario(SmallPropeller(0.0), nullptr);
+  PlanResult planned = PlanScenario(SmallPropellerWithRetract(0.0), nullptr);
   const RetractReport report = AddRetracts(kClearance, &planned.plan);
   EXPECT_GE(report.via_top, 4u) << "at least hub -> blade_0 and blade to blade go over the top";
   EXPECT_LT(report.via_top, report.travels) << "travels inside a sub-volume stay straight";
@@ -157,8 +135,8 @@ TEST(RetractTest, SubVolumesBuiltSidewaysAreReachedOverThePart) {
 }
 
 TEST(RetractTest, WeldMovesAreUnchangedAndOnlyTravelGrows) {
-  const PlanResult without = PlanScenario(SmallPropeller(0.0), nullptr);
-  const PlanResult with = PlanScenario(SmallPropeller(kClearance), nullptr);
+  const PlanResult without = PlanScenario(SmallPropellerWithRetract(0.0), nullptr);
+  const PlanResult with = PlanScenario(SmallPropellerWithRetract(kClearance), nullptr);
   // The weld moves, in order: (from, to) of every arc-on move.
   auto weld_moves = [](const Plan& plan) {
     std::vector<std::pair<Vector3d, Vector3d>> moves;

@@ -1,0 +1,41 @@
+// Small scenarios built in code for the planner and twin tests: a hub-and-blade propeller planned multi-directionally.
+#pragma once
+
+#include "planner/scenario/scenario.h"
+
+namespace waam::planner::testing {
+
+// A small propeller (hub 60 mm across the flats and 60 mm tall, four blades 40 mm long and 40 mm wide, 16 -> 10 mm
+// thick, pitched `pitch_root_deg` -> `pitch_tip_deg` degrees from root to tip), sliced multi-directionally: the hub
+// along +z, then each blade along its own radial direction (+x, +y, -x, -y) beyond the hub's flat at 30 mm; contour
+// passes, 2.5 mm layers, 6 mm beads, the scenario's default path.retract_mm.
+inline Scenario SmallPropeller(double pitch_root_deg = 30.0, double pitch_tip_deg = 50.0) {
+  Scenario s;
+  s.name = "propeller";
+  s.part.generator = "propeller";
+  s.part.params = {{"hub_mm", {60.0, 60.0}},
+                   {"span_mm", {40.0}},
+                   {"chord_mm", {40.0}},
+                   {"thickness_mm", {16.0, 10.0}},
+                   {"pitch_deg", {pitch_root_deg, pitch_tip_deg}}};
+  s.part.where = "test: part.generator";
+  s.slicing.type = "multi_directional";
+  s.slicing.layer_height_mm = 2.5;
+  s.slicing.sub_volumes.push_back({"hub", {0, 0, 1}, {{1, 0, 0, 30}, {-1, 0, 0, 30}, {0, 1, 0, 30}, {0, -1, 0, 30}}});
+  s.slicing.sub_volumes.push_back({"blade_0", {1, 0, 0}, {{-1, 0, 0, -30}}});
+  s.slicing.sub_volumes.push_back({"blade_90", {0, 1, 0}, {{0, -1, 0, -30}}});
+  s.slicing.sub_volumes.push_back({"blade_180", {-1, 0, 0}, {{1, 0, 0, -30}}});
+  s.slicing.sub_volumes.push_back({"blade_270", {0, -1, 0}, {{0, 1, 0, -30}}});
+  s.path.pattern = "contour";
+  s.path.bead_width_mm = 6.0;
+  return s;
+}
+
+// The same propeller (pitch 30 -> 50 deg) with arc-off retracts of `retract_mm` mm (0: straight rapids).
+inline Scenario SmallPropellerWithRetract(double retract_mm) {
+  Scenario s = SmallPropeller();
+  s.path.retract_mm = retract_mm;
+  return s;
+}
+
+}  // namespace waam::planner::testing
