@@ -108,6 +108,11 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
     csw_model = models::CswModel::Load(process.csw_model.empty() ? models::DefaultModelPath("csw")
                                                                  : process.csw_model);
   }
+  // The model is used only where it describes the bead: corners count as straight and tight curves as the
+  // smallest radius of its data (CswModel::ApplicableRadius, the twin's rule too).
+  auto model_radius = [&](double radius_mm) {
+    return models::CswModel::ApplicableRadius(radius_mm, width, scenario.simulation.csw_min_radius_mm);
+  };
   auto speed_for = [&](double radius_mm, models::SpeedClamp* clamp) {
     if (!csw) return process.travel_speed_mm_min;
     const models::SpeedChoice choice = csw_model->SpeedForWidth(width, radius_mm);
@@ -203,9 +208,9 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
       point.p_P = p_middle + 0.5 * d * n;  // on the top surface, offset (i + 1) d
       point.tool_dir_P = n;
       point.weld = weld[j];
-      const double speed = speed_for(radius[j], nullptr);
+      const double speed = speed_for(model_radius(radius[j]), nullptr);
       point.speed_mm_s = speed / 60.0;
-      point.bead_width_mm = csw ? csw_model->Width(speed, radius[j]) : width;
+      point.bead_width_mm = csw ? csw_model->Width(speed, model_radius(radius[j])) : width;
       point.bead_height_mm = 1.5 * area_at(speed) / point.bead_width_mm;
       dir_sum += n;
       z_sum += point.p_P.z();

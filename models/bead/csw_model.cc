@@ -36,6 +36,12 @@ double CswModel::Width(double speed_mm_per_min, double radius_mm) const {
   return params_.m / std::cbrt(speed_mm_per_min) + params_.p / radius_mm + params_.t;
 }
 
+double CswModel::ApplicableRadius(double radius_mm, double bead_width_mm, double min_radius_mm) {
+  WAAM_THROW_UNLESS(min_radius_mm > 0.0, "CSW model: minimum radius " << min_radius_mm << " mm: must be > 0");
+  if (!(radius_mm >= bead_width_mm) || std::isinf(radius_mm)) return INFINITY;
+  return std::max(radius_mm, min_radius_mm);
+}
+
 SpeedChoice CswModel::SpeedForWidth(double width_mm, double radius_mm) const {
   WAAM_THROW_UNLESS(params_.m > 0.0, "CSW model: m = " << params_.m << ": must be > 0 to choose a speed for a width");
   WAAM_THROW_UNLESS(width_mm > 0.0, "CSW model: wanted width " << width_mm << " mm: must be > 0");

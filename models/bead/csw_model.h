@@ -30,6 +30,12 @@ class CswModel {
   // The travel speed that gives `width_mm` on radius `radius_mm`, clamped to the feasible window; the clamp and
   // the width actually obtained are reported. Throws InputError if m <= 0 (width would not fall with speed).
   SpeedChoice SpeedForWidth(double width_mm, double radius_mm) const;
+  // The radius (mm) to evaluate the model at for a bead `bead_width_mm` wide on a path of local curvature radius
+  // `radius_mm`; the planner's speed choice and the twin's widening use the same rule. +inf (straight) below one
+  // bead width: that is a corner, for which the model has no term (the swept bead shapes it). Otherwise at least
+  // `min_radius_mm` (> 0), the smallest radius of the data the model was fitted to (30 mm in Dai's Table 1): p/r
+  // grows without bound below it (p = 52.7 mm^2 gives 53 mm of extra width at r = 1 mm).
+  static double ApplicableRadius(double radius_mm, double bead_width_mm, double min_radius_mm);
 
   const CswParams& params() const { return params_; }
   const SpeedRange& feasible() const { return feasible_; }

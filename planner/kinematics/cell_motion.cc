@@ -69,6 +69,16 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
     const PositionerAngles layer_angles = SolvePositionerAngles(cell.positioner, layer.build_dir_P, angles);
     if (first_layer) previous_layer_angles = layer_angles;
     first_layer = false;
+    // A layer entered by a weld move (a spiral: no arc-off move between layers to turn the positioner in) turns
+    // from the last layer's angles to its own along its whole length, as coordinated motion does, instead of within
+    // the first move: turning 30 deg during one 2 mm weld step asks the positioner for several times its speed.
+    const bool welded_entry = prev != nullptr && !layer.points.empty() && layer.points.front().weld;
+    double layer_length = 0.0;
+    if (welded_entry) {
+      const PathPoint* q = prev;
+      for (const PathPoint& p : layer.points) layer_length += (p.p_P - q->p_P).norm(), q = &p;
+    }
+    double along = 0.0;  // path length from the last layer's end to the current sample, for welded_entry
     for (std::size_t i = 0; i < layer.points.size(); ++i) {
       const PathPoint& cur = layer.points[i];
       ++global_point;
@@ -78,6 +88,7 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
       const bool reorient = (i == 0);
       for (int k = 1; k <= n; ++k) {
         const double f = prev ? static_cast<double>(k) / n : 1.0;
+        if (welded_entry) along += length / n;
         CellSample s;
         s.layer = layer.index;
         s.point = global_point;
@@ -95,7 +106,12 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
           s.positioner_at_limit = angles.at_limit;
         } else {
           angles = layer_angles;
-          if (reorient) {
+          if (welded_entry && layer_length > 0.0) {
+            const double g = std::min(1.0, along / layer_length);
+            angles.tilt = previous_layer_angles.tilt + g * (layer_angles.tilt - previous_layer_angles.tilt);
+            angles.rotation =
+                previous_layer_angles.rotation + g * (layer_angles.rotation - previous_layer_angles.rotation);
+          } else if (reorient) {
             angles.tilt = previous_layer_angles.tilt + f * (layer_angles.tilt - previous_layer_angles.tilt);
             angles.rotation =
                 previous_layer_angles.rotation + f * (layer_angles.rotation - previous_layer_angles.rotation);

@@ -42,7 +42,8 @@ struct SimulationSettings {
   double edge_spread_factor = 0.15;
   // Bead width on curved paths (Dai et al. CSW model): csw = wider and lower on curves by the model's curvature term,
   // none = the planned width everywhere. csw_model: a model file from `waam fit csw` (empty = models/data/csw.json);
-  // radii below csw_min_radius_mm (the smallest radius the model was fitted to) are clamped to it.
+  // radii below csw_min_radius_mm (the smallest radius the model was fitted to) are clamped to it, here and in the
+  // cone planner's CSW speed choice (process.bead_model: csw).
   std::string curvature_width = "csw";
   std::filesystem::path csw_model;
   double csw_min_radius_mm = 30.0;

@@ -94,6 +94,26 @@ TEST(CellMotionTest, PositionerReorientsDuringTheTravelMoveIntoALayer) {
   EXPECT_NEAR(second_layer_tilt, M_PI / 4, 1e-9);
 }
 
+TEST(CellMotionTest, PositionerTurnsAlongTheWholeLayerWhenTheLayerIsEnteredWelding) {
+  // A spiral: the second layer is entered by a weld move (61 mm), with no arc-off move to turn the positioner in.
+  // The turn is spread over the entry move and the layer (61 + 60 mm), not done within the entry move.
+  Plan plan = TwoLayers(Eigen::Vector3d(1.0, 0.0, 1.0));
+  plan.layers[1].points.front().weld = true;
+  const std::vector<CellSample> motion = PlanCellMotion(DefaultCell(), plan, MotionOptions{}, {});
+  const int entry_point = static_cast<int>(plan.layers[0].points.size());  // global index of layer 1's point 0
+  double at_entry_end = -1.0, last = 0.0, previous = 0.0;
+  for (const CellSample& s : motion) {
+    if (s.layer != 1) continue;
+    EXPECT_GE(std::abs(s.q[6]), previous - 1e-12) << "the tilt rises steadily, sample at point " << s.point;
+    previous = std::abs(s.q[6]);
+    if (s.point == entry_point) at_entry_end = std::abs(s.q[6]);
+    last = std::abs(s.q[6]);
+  }
+  const double entry = (plan.layers[1].points.front().p_P - plan.layers[0].points.back().p_P).norm();
+  EXPECT_NEAR(at_entry_end, M_PI / 4 * entry / (entry + 60.0), 1e-9) << "about half way along the turning path";
+  EXPECT_NEAR(last, M_PI / 4, 1e-9);
+}
+
 TEST(CellMotionTest, PerPointPositionerKeepsTheTorchVerticalOnACurvedLayer) {
   // One ring whose local normals lean 25 deg outwards (a conical layer): the positioner follows every point.
   const CellKinematics cell = DefaultCell();

@@ -176,6 +176,26 @@ TEST(ConePlannerTest, CswSpeedsUpOnTighterCurves) {
   EXPECT_GT(hi, lo + 50) << "speed range " << lo << " - " << hi;
 }
 
+TEST(ConePlannerTest, CswIsNotUsedBeyondItsData) {
+  // The blade sections' rounded ends turn on radii below one bead width: corners, where p/r (p = 52.7 mm^2) would
+  // plan beads twice as wide and a tenth as high. Corners keep the straight-line speed and width; curves below the
+  // smallest radius of Dai's Table 1 (30 mm) are planned as 30 mm (CswModel::ApplicableRadius).
+  const Scenario scenario = BladeScenario();
+  const PlanResult result = PlanScenario(scenario, nullptr);
+  const models::CswModel csw = models::CswModel::Load(models::DefaultModelPath("csw"));
+  const double widest = csw.Width(csw.feasible().min_mm_per_min, scenario.simulation.csw_min_radius_mm);
+  std::size_t weld_points = 0;
+  for (const LayerPath& layer : result.plan.layers) {
+    for (const PathPoint& p : layer.points) {
+      if (!p.weld) continue;
+      ++weld_points;
+      EXPECT_LE(p.bead_width_mm, widest + 1e-9) << "layer " << layer.index << " at " << p.p_P.transpose();
+      EXPECT_NEAR(p.bead_width_mm, 9.0, 0.01) << "the speed window reaches 9 mm on every radius the model covers";
+    }
+  }
+  EXPECT_GT(weld_points, 100u);
+}
+
 TEST(ConePlannerTest, PathStaysOnTheSurfaceAcrossAWideDevelopment) {
   // R = 80, H = 70: the development is a sector of 270 deg, wider than pi; weld and travel moves between the nine
   // blades must stay on the surface, consecutive points a step apart (no jump across the cutting line).

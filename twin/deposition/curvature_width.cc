@@ -52,12 +52,13 @@ void ApplyCurvatureWidth(const models::CswModel& csw, double min_radius_mm, Exec
     p.width_factor = 1.0;
     const double w = p.bead_width_mm;
     if (w <= 0.0 || p.speed_mm_s <= 0.0) continue;
-    const double radius = PathRadiusAt(*pass, 0.5 * (pts[i - 1].s_mm + p.s_mm), w);
-    if (!(radius >= w) || radius == inf) continue;  // straight, or a corner the sweep already shapes
+    const double radius = models::CswModel::ApplicableRadius(PathRadiusAt(*pass, 0.5 * (pts[i - 1].s_mm + p.s_mm), w),
+                                                             w, min_radius_mm);
+    if (radius == inf) continue;  // straight, or a corner the sweep already shapes
     const double v = std::clamp(60.0 * p.speed_mm_s, csw.feasible().min_mm_per_min, csw.feasible().max_mm_per_min);
     const double straight = csw.Width(v, inf);
     if (straight <= 0.0) continue;
-    p.width_factor = csw.Width(v, std::max(radius, min_radius_mm)) / straight;
+    p.width_factor = csw.Width(v, radius) / straight;
   }
 }
 
