@@ -3,6 +3,7 @@
 #include "twin/deposition/bead_deposition.h"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <limits>
 
@@ -268,6 +269,14 @@ double Depositor::FillStep(std::vector<Column>& columns, const BeadSection& sect
   return static_cast<double>(placed) * v * v * v;
 }
 
+int Depositor::LayerOf(const VoxelData& data) const {
+  const BeadRecord& bead = beads_[data.bead];
+  const auto& starts = bead.layer_starts;
+  const auto after = std::upper_bound(starts.begin(), starts.end(), data.time_s,
+                                      [](float t, const std::pair<float, int>& start) { return t < start.first; });
+  return after == starts.begin() ? bead.layer : std::prev(after)->second;
+}
+
 std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
   const auto bead = static_cast<std::uint32_t>(beads_.size());
   BeadRecord record;
@@ -279,6 +288,13 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
   const double width_factor = std::max({1.0, settings_.start_width_factor, settings_.stop_width_factor});
   double debt = 0.0;  // volume owed to the part by earlier steps (voxel rounding), mm^3
   const auto& pts = pass.points;
+  const std::vector<double> times = PassTimes(pass);  // from the arc start at each point, s
+  for (std::size_t i = 1; i < pass.points.size(); ++i) {
+    const int before = record.layer_starts.empty() ? pass.layer : record.layer_starts.back().second;
+    if (pass.points[i].layer > before) {
+      record.layer_starts.emplace_back(static_cast<float>(pass.start_time_s + times[i - 1]), pass.points[i].layer);
+    }
+  }
   for (std::size_t i = 1; i < pts.size(); ++i) {
     const ExecutedPoint& A = pts[i - 1];
     const ExecutedPoint& B = pts[i];
@@ -378,7 +394,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       const double zeta_tcp = frame.Height((1.0 - f) * A.p_P + f * B.p_P);
       VoxelData data;
       data.bead = bead;
-      data.time_s = static_cast<float>(pass.start_time_s + s / std::max(B.speed_mm_s, 1e-9));
+      data.time_s = static_cast<float>(pass.start_time_s + times[i - 1] + (s - A.s_mm) / std::max(B.speed_mm_s, 1e-9));
       const bool last_step = i + 1 == pts.size() && last == cols.size();
       // Cold start (Ding Fig. 1, 003 sec. 1.3.3.2: lower penetration at the start, so the bead stands higher): the
       // first metal meets a cold base, wets it poorly and sets where it lands, a hump draped over the ground under

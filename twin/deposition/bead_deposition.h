@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "planner/path/tool_path.h"
@@ -25,6 +26,9 @@ struct BeadRecord {
   double expected_volume_mm3 = 0.0;      // integral of the section area along the pass, mm^3
   double deposited_volume_mm3 = 0.0;     // voxels occupied by this bead x voxel volume, mm^3
   double start_time_s = 0.0;             // arc start, s from the start of the build
+  // A pass that runs on into later layers (a spiral): (time from the start of the build, s; layer) where each
+  // later layer begins. Empty for a pass within one layer.
+  std::vector<std::pair<float, int>> layer_starts;
 };
 
 // Checks the settings; throws InputError naming the `simulation.<key>` that is out of range.
@@ -44,8 +48,9 @@ class Depositor {
   const planner::SimulationSettings& settings() const { return settings_; }
   double expected_volume_mm3() const { return expected_volume_mm3_; }
   double weld_length_mm() const { return weld_length_mm_; }
-  // Layer of an occupied voxel's bead.
-  int LayerOf(const VoxelData& data) const { return beads_[data.bead].layer; }
+  // Layer of an occupied voxel: its bead's, or for a pass through several layers the layer it was laid in
+  // (by the voxel's deposition time).
+  int LayerOf(const VoxelData& data) const;
 
  private:
   struct Column;

@@ -37,6 +37,14 @@ void AccumulateArcLength(ExecutedPass* pass) {
 
 }  // namespace
 
+std::vector<double> PassTimes(const ExecutedPass& pass) {
+  std::vector<double> t(pass.points.size(), 0.0);
+  for (std::size_t i = 1; i < pass.points.size(); ++i) {
+    t[i] = t[i - 1] + (pass.points[i].s_mm - pass.points[i - 1].s_mm) / std::max(pass.points[i].speed_mm_s, 1e-9);
+  }
+  return t;
+}
+
 ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::SimulationSettings& settings,
                        double voxel_mm) {
   ExecutedPass pass;
@@ -136,9 +144,11 @@ std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::
                           << p.bead_height_mm << " mm)");
         if (run.empty()) {
           run.push_back(FromPathPoint(*from));
+          run.back().layer = layer.index;
           run_layer = layer.index;
         }
         run.push_back(FromPathPoint(p));
+        run.back().layer = layer.index;
       } else {
         flush();
         if (i > 0) time_s += (p.p_P - layer.points[i - 1].p_P).norm() / rapid_speed_mm_s;

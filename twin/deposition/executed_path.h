@@ -22,6 +22,7 @@ struct ExecutedPoint {
   // Width on the path's curvature over the straight-line width (CSW model, curvature_width.h); the height is divided
   // by it, so the bead's area (set by wire feed and speed) is kept.
   double width_factor = 1.0;
+  int layer = 0;  // layer of the planned move that ends here (a spiral pass runs through many)
 };
 
 // One continuous weld pass: one arc start, one arc stop.
@@ -31,6 +32,11 @@ struct ExecutedPass {
   std::vector<ExecutedPoint> points;   // >= 2 points
   double length_mm() const { return points.empty() ? 0.0 : points.back().s_mm; }
 };
+
+// Time from the arc start at each point of `pass`, s: the sum of (s_i - s_(i-1)) / v_i, each move at the speed of
+// the point it ends at. The depositor stamps metal laid on move i at T_(i-1) + (s - s_(i-1)) / v_i (voxel time_s),
+// and the distortion's deposit history reads those stamps back by the same times.
+std::vector<double> PassTimes(const ExecutedPass& pass);
 
 // The bead section at one place of a pass: the parabolic bead of the models library (003 eq. 3.1-3.3).
 using BeadSection = models::ParabolicBead;

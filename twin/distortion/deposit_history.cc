@@ -78,20 +78,20 @@ DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depos
     flush();
   }
   const bool runs_match = runs.size() == passes.size();
-  // The depositor stamps metal laid at arc length s of a pass with time start + s / v (v: speed of the segment).
+  // The depositor stamps metal laid at arc length s of move k with start + T_(k-1) + (s - s_(k-1)) / v_k
+  // (PassTimes).
   passes_.reserve(passes.size());
   for (std::size_t b = 0; b < passes.size(); ++b) {
     const ExecutedPass& pass = passes[b];
     PassTiming t;
-    double running = pass.start_time_s;
+    const std::vector<double> times = PassTimes(pass);
     // Blending shortens the corners a little: the executed arc length is scaled onto the planned one.
     const double scale =
         runs_match && pass.length_mm() > 0.0 ? runs[b].back().s_mm / pass.length_mm() : 1.0;
     std::size_t r = 1;
-    for (const ExecutedPoint& p : pass.points) {
-      const double v = std::max(p.speed_mm_s, 1e-9);
-      running = std::max(running, pass.start_time_s + p.s_mm / v);  // kept monotonic for the search
-      t.time_s.push_back(running);
+    for (std::size_t k = 0; k < pass.points.size(); ++k) {
+      const ExecutedPoint& p = pass.points[k];
+      t.time_s.push_back(pass.start_time_s + times[k]);
       t.speed_mm_s.push_back(p.speed_mm_s > 0.0 ? p.speed_mm_s : pass.points.back().speed_mm_s);
       if (!runs_match) {
         t.layer.push_back(pass.layer);
@@ -101,12 +101,11 @@ DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depos
       while (r + 1 < run.size() && run[r].s_mm < p.s_mm * scale - 1e-9) ++r;
       t.layer.push_back(run[r].layer);
     }
-    // Segment windows: the depositor stamps metal laid by segment k at arc length s with start + s / v_k.
+    // Segment windows: the depositor stamps metal laid by segment k between start + T_(k-1) and start + T_k.
     for (std::size_t k = 1; k < pass.points.size(); ++k) {
       const ExecutedPoint& a = pass.points[k - 1];
       const ExecutedPoint& e = pass.points[k];
-      const double v = std::max(e.speed_mm_s, 1e-9);
-      Segment seg{a.p_P, e.p_P, pass.start_time_s + a.s_mm / v, pass.start_time_s + e.s_mm / v,
+      Segment seg{a.p_P, e.p_P, pass.start_time_s + times[k - 1], pass.start_time_s + times[k],
                   static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(k)};
       // Every cell a voxel of this segment's bead can lie in: the box of the segment grown by the bead's reach.
       const double reach = e.bead_width_mm * std::max(1.0, e.width_factor) + 2.0 * e.bead_height_mm + 1.0;
