@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -27,7 +29,8 @@ class FitDistortionTest : public ::testing::Test {
  protected:
   // One twin scan for the suite: the small tube at the part-I demo parameters (reduced mode).
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::path(::testing::TempDir()) / "fit_distortion_test");
+    // Per process: ctest runs each test of the suite as its own process, in parallel with -j.
+    dir_ = new fs::path(fs::path(::testing::TempDir()) / ("fit_distortion_test_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     truth_ = new models::DistortionParams(

@@ -3,6 +3,7 @@
 #include "analysis/run_command.h"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -40,7 +41,8 @@ simulation:
 )";
 
 fs::path WriteScenario(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "waam_test_run_scenarios";
+  // Per process: tests writing the same scenario run in parallel under ctest -j.
+  const fs::path dir = fs::path(::testing::TempDir()) / ("waam_test_run_scenarios_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / (name + ".yaml");
   std::ofstream(file) << text;
