@@ -38,6 +38,8 @@ TEST(SpiralPass, ContinuesAcrossLayers) {
   const std::vector<ExecutedPass> layers = ExecutePlan(TwoLoops(false), settings, 100.0);
   ASSERT_EQ(layers.size(), 2u) << "an arc-off first point starts a new pass";
   EXPECT_EQ(layers[1].layer, 1);
+  // The first loop at 5 mm/s, then the arc-off move up into the second layer at the rapid speed.
+  EXPECT_NEAR(layers[1].start_time_s, 80.0 / 5.0 + 1.5 / 100.0, 1e-9) << "the move into a layer is timed";
 }
 
 TEST(SpiralPass, VoxelsKnowTheirLayerAndTime) {

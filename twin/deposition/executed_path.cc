@@ -151,7 +151,8 @@ std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::
         run.back().layer = layer.index;
       } else {
         flush();
-        if (i > 0) time_s += (p.p_P - layer.points[i - 1].p_P).norm() / rapid_speed_mm_s;
+        // An arc-off move, the one into a layer included, at the rapid speed.
+        if (from != nullptr) time_s += (p.p_P - from->p_P).norm() / rapid_speed_mm_s;
       }
     }
     if (!layer.points.empty()) last = &layer.points.back();
