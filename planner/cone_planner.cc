@@ -208,9 +208,10 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
       point.p_P = p_middle + 0.5 * d * n;  // on the top surface, offset (i + 1) d
       point.tool_dir_P = n;
       point.weld = weld[j];
-      const double speed = speed_for(model_radius(radius[j]), nullptr);
+      const double r = model_radius(radius[j]);
+      const double speed = speed_for(r, nullptr);
       point.speed_mm_s = speed / 60.0;
-      point.bead_width_mm = csw ? csw_model->Width(speed, model_radius(radius[j])) : width;
+      point.bead_width_mm = csw ? csw_model->Width(speed, r) : width;
       point.bead_height_mm = 1.5 * area_at(speed) / point.bead_width_mm;
       dir_sum += n;
       z_sum += point.p_P.z();

@@ -48,36 +48,6 @@ DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depos
     layer_height_[layer.index] = n > 0 ? sum / n : 0.0;
   }
   for (const BeadRecord& bead : depositor.beads()) bead_layer_.push_back(bead.layer);
-  // The plan layer along each pass. The passes are rebuilt from the plan as ExecutePlan splits it (a run of weld moves,
-  // carried over a layer change by a continuous spiral), with the arc length at which each plan point is reached.
-  struct RunPoint {
-    double s_mm;
-    int layer;
-  };
-  std::vector<std::vector<RunPoint>> runs;
-  {
-    std::vector<RunPoint> run;
-    const planner::PathPoint* last = nullptr;
-    auto flush = [&]() {
-      if (run.size() >= 2 && run.back().s_mm > 0.0) runs.push_back(run);
-      run.clear();
-    };
-    for (const planner::LayerPath& layer : plan.layers) {
-      for (std::size_t i = 0; i < layer.points.size(); ++i) {
-        const planner::PathPoint& p = layer.points[i];
-        const planner::PathPoint* from = i > 0 ? &layer.points[i - 1] : last;
-        if (from != nullptr && p.weld) {
-          if (run.empty()) run.push_back({0.0, layer.index});
-          run.push_back({run.back().s_mm + (p.p_P - from->p_P).norm(), layer.index});
-        } else {
-          flush();
-        }
-      }
-      if (!layer.points.empty()) last = &layer.points.back();
-    }
-    flush();
-  }
-  const bool runs_match = runs.size() == passes.size();
   // The depositor stamps metal laid at arc length s of move k with start + T_(k-1) + (s - s_(k-1)) / v_k
   // (PassTimes).
   passes_.reserve(passes.size());
@@ -85,21 +55,11 @@ DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depos
     const ExecutedPass& pass = passes[b];
     PassTiming t;
     const std::vector<double> times = PassTimes(pass);
-    // Blending shortens the corners a little: the executed arc length is scaled onto the planned one.
-    const double scale =
-        runs_match && pass.length_mm() > 0.0 ? runs[b].back().s_mm / pass.length_mm() : 1.0;
-    std::size_t r = 1;
     for (std::size_t k = 0; k < pass.points.size(); ++k) {
       const ExecutedPoint& p = pass.points[k];
       t.time_s.push_back(pass.start_time_s + times[k]);
       t.speed_mm_s.push_back(p.speed_mm_s > 0.0 ? p.speed_mm_s : pass.points.back().speed_mm_s);
-      if (!runs_match) {
-        t.layer.push_back(pass.layer);
-        continue;
-      }
-      const std::vector<RunPoint>& run = runs[b];
-      while (r + 1 < run.size() && run[r].s_mm < p.s_mm * scale - 1e-9) ++r;
-      t.layer.push_back(run[r].layer);
+      t.layer.push_back(p.layer);  // the plan layer of the move ending here (a spiral runs through many)
     }
     // Segment windows: the depositor stamps metal laid by segment k between start + T_(k-1) and start + T_k.
     for (std::size_t k = 1; k < pass.points.size(); ++k) {
@@ -130,8 +90,8 @@ VoxelDeposit DepositHistory::At(std::uint32_t bead, double time_s, const Eigen::
   WAAM_THROW_UNLESS(bead < passes_.size(), "distortion: voxel of bead " << bead << " but the history has "
                                                                         << passes_.size() << " passes");
   const PassTiming& t = passes_[bead];
-  // The stamp times are stored as float and the windows of a pass with varying speed overlap: the time selects the
-  // candidates, the position the segment.
+  // The stamp times are stored as float, so a stamp at a segment's end falls in the next segment's window too: the
+  // time selects the candidates, the position the segment.
   const double tolerance = 1e-3 + 1e-6 * std::abs(time_s);
   // Segments whose window holds the time are tested first (a spiral's cell holds a segment of every loop, about 200
   // per voxel on part I, and at most a few share the window); only if none does, the nearest of all. Same result as
