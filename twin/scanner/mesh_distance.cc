@@ -3,9 +3,9 @@
 #include "twin/scanner/mesh_distance.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -47,55 +47,61 @@ double BoxDistance2(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const E
   return d.squaredNorm();
 }
 
+// Nodes of the hierarchy Build() makes over `count` facets (leaves of at most 4).
+std::size_t TreeNodes(std::size_t count) {
+  return count <= 4 ? 1 : 1 + TreeNodes(count / 2) + TreeNodes(count - count / 2);
+}
+
 }  // namespace
 
+// Memory: a voxel part's surface has ~10^7 facets (part III of the tubes: 13.1 M), so nothing per facet is kept but
+// the facet order of the tree and each vertex's facet list; the normals are recomputed for the one closest feature
+// of a query. The vertex lists replace a map of edges (19.7 M entries, 1.3 GB on part III) and per-facet normal
+// tables (3.3 GB with the tree before).
 MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
   WAAM_THROW_UNLESS(!mesh.facets.empty(), "mesh distance: the target mesh has no facets");
   const int nv = static_cast<int>(mesh.vertices.size());
   const std::size_t nf = mesh.facets.size();
-  face_normal_.resize(nf);
-  centroid_.resize(nf);
-  edge_normal_.resize(nf);
-  vertex_normal_.assign(mesh.vertices.size(), Eigen::Vector3d::Zero());
-  std::map<std::pair<int, int>, Eigen::Vector3d> edge_sum;
   for (std::size_t f = 0; f < nf; ++f) {
     const auto& t = mesh.facets[f];
     for (int k = 0; k < 3; ++k) {
       WAAM_THROW_UNLESS(t[k] >= 0 && t[k] < nv, "mesh distance: facet " << f << " refers to vertex " << t[k]
                                                                         << " of " << nv);
     }
-    const Eigen::Vector3d& a = mesh.vertices[t[0]];
-    const Eigen::Vector3d& b = mesh.vertices[t[1]];
-    const Eigen::Vector3d& c = mesh.vertices[t[2]];
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    face_normal_[f] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
-    centroid_[f] = (a + b + c) / 3.0;
-    // Angle-weighted vertex normals.
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d& p = mesh.vertices[t[k]];
-      const Eigen::Vector3d e1 = mesh.vertices[t[(k + 1) % 3]] - p;
-      const Eigen::Vector3d e2 = mesh.vertices[t[(k + 2) % 3]] - p;
-      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
-      vertex_normal_[t[k]] += angle * face_normal_[f];
-      const std::pair<int, int> key(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
-      // Eigen vectors are not zero-initialized: start each edge's sum explicitly.
-      auto [it, inserted] = edge_sum.try_emplace(key, Eigen::Vector3d::Zero());
-      it->second += face_normal_[f];
-    }
   }
-  for (std::size_t f = 0; f < nf; ++f) {
+  // The tree first, so that the centroids (needed only to build it) are freed before the vertex lists exist.
+  {
+    std::vector<Eigen::Vector3d> centroid(nf);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const auto& t = mesh.facets[f];
+      centroid[f] = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
+    }
+    order_.resize(nf);
+    for (std::size_t f = 0; f < nf; ++f) order_[f] = static_cast<int>(f);
+    nodes_.reserve(TreeNodes(nf));
+    Build(0, static_cast<int>(nf), centroid);
+  }
+  // Each vertex's facets in ascending order (a facet that repeats a vertex is listed once).
+  vertex_start_.assign(mesh.vertices.size() + 1, 0);
+  auto for_each_vertex = [&](std::size_t f, auto&& visit) {
     const auto& t = mesh.facets[f];
     for (int k = 0; k < 3; ++k) {
-      edge_normal_[f][k] = edge_sum[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+      if ((k > 0 && t[k] == t[0]) || (k > 1 && t[k] == t[1])) continue;
+      visit(t[k]);
+    }
+  };
+  for (std::size_t f = 0; f < nf; ++f) for_each_vertex(f, [&](int v) { ++vertex_start_[v + 1]; });
+  for (int v = 0; v < nv; ++v) vertex_start_[v + 1] += vertex_start_[v];
+  vertex_facets_.resize(static_cast<std::size_t>(vertex_start_[nv]));
+  {
+    std::vector<int> next(vertex_start_.begin(), vertex_start_.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f) {
+      for_each_vertex(f, [&](int v) { vertex_facets_[next[v]++] = static_cast<int>(f); });
     }
   }
-  order_.resize(nf);
-  for (std::size_t f = 0; f < nf; ++f) order_[f] = static_cast<int>(f);
-  nodes_.reserve(2 * nf / 4 + 8);
-  Build(0, static_cast<int>(nf));
 }
 
-int MeshDistance::Build(int first, int count) {
+int MeshDistance::Build(int first, int count, const std::vector<Eigen::Vector3d>& centroid) {
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -118,24 +124,74 @@ int MeshDistance::Build(int first, int count) {
   (hi - lo).maxCoeff(&axis);
   const int mid = first + count / 2;
   std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count,
-                   [&](int a, int b) { return centroid_[a][axis] < centroid_[b][axis]; });
-  const int left = Build(first, mid - first);
-  const int right = Build(mid, first + count - mid);
-  nodes_[index].left = left;
-  nodes_[index].right = right;
+                   [&](int a, int b) { return centroid[a][axis] < centroid[b][axis]; });
+  Build(first, mid - first, centroid);  // the left child: index + 1
+  const int right = Build(mid, first + count - mid, centroid);
+  nodes_[index].first = right;
   return index;
+}
+
+Eigen::Vector3d MeshDistance::FaceNormal(int f) const {
+  const auto& t = mesh_.facets[f];
+  const Eigen::Vector3d& a = mesh_.vertices[t[0]];
+  const Eigen::Vector3d& b = mesh_.vertices[t[1]];
+  const Eigen::Vector3d& c = mesh_.vertices[t[2]];
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  return n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
+}
+
+Eigen::Vector3d MeshDistance::VertexNormal(int v) const {
+  // Angle-weighted: each facet's normal times its angle at v, summed in facet order.
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int i = vertex_start_[v]; i < vertex_start_[v + 1]; ++i) {
+    const int f = vertex_facets_[i];
+    const auto& t = mesh_.facets[f];
+    const Eigen::Vector3d n = FaceNormal(f);
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] != v) continue;
+      const Eigen::Vector3d& p = mesh_.vertices[t[k]];
+      const Eigen::Vector3d e1 = mesh_.vertices[t[(k + 1) % 3]] - p;
+      const Eigen::Vector3d e2 = mesh_.vertices[t[(k + 2) % 3]] - p;
+      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      sum += angle * n;
+    }
+  }
+  return sum;
+}
+
+Eigen::Vector3d MeshDistance::EdgeNormal(int a, int b) const {
+  // The normals of the facets with edge (a, b), either direction, in facet order.
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const int lo = std::min(a, b), hi = std::max(a, b);
+  for (int i = vertex_start_[a]; i < vertex_start_[a + 1]; ++i) {
+    const int f = vertex_facets_[i];
+    const auto& t = mesh_.facets[f];
+    for (int k = 0; k < 3; ++k) {
+      if (std::min(t[k], t[(k + 1) % 3]) == lo && std::max(t[k], t[(k + 1) % 3]) == hi) sum += FaceNormal(f);
+    }
+  }
+  return sum;
+}
+
+std::size_t MeshDistance::MemoryBytes() const {
+  return nodes_.capacity() * sizeof(Node) +
+         (order_.capacity() + vertex_start_.capacity() + vertex_facets_.capacity()) * sizeof(int);
 }
 
 double MeshDistance::SignedDistance(const Eigen::Vector3d& p, Eigen::Vector3d* closest) const {
   double best2 = std::numeric_limits<double>::infinity();
   Eigen::Vector3d best_point = Eigen::Vector3d::Zero();
-  Eigen::Vector3d best_normal = Eigen::Vector3d::UnitZ();
-  std::vector<int> stack = {0};
-  while (!stack.empty()) {
-    const Node& node = nodes_[stack.back()];
-    stack.pop_back();
+  int best_facet = -1;
+  Feature best_feature = Feature::kFace;
+  // Depth-first: at most one pending right sibling per level, and the tree is ~log2(facets / 4) deep.
+  std::array<int, 128> stack;
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int index = stack[--top];
+    const Node& node = nodes_[index];
     if (BoxDistance2(p, node.lo, node.hi) >= best2) continue;
-    if (node.left < 0) {
+    if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int f = order_[i];
         const auto& t = mesh_.facets[f];
@@ -146,27 +202,34 @@ double MeshDistance::SignedDistance(const Eigen::Vector3d& p, Eigen::Vector3d* c
         if (d2 >= best2) continue;
         best2 = d2;
         best_point = q;
-        switch (feature) {
-          case Feature::kFace: best_normal = face_normal_[f]; break;
-          case Feature::kV0: best_normal = vertex_normal_[t[0]]; break;
-          case Feature::kV1: best_normal = vertex_normal_[t[1]]; break;
-          case Feature::kV2: best_normal = vertex_normal_[t[2]]; break;
-          case Feature::kE01: best_normal = edge_normal_[f][0]; break;
-          case Feature::kE12: best_normal = edge_normal_[f][1]; break;
-          case Feature::kE20: best_normal = edge_normal_[f][2]; break;
-        }
+        best_facet = f;
+        best_feature = feature;
       }
       continue;
     }
     // Visit the nearer child first.
-    const double dl = BoxDistance2(p, nodes_[node.left].lo, nodes_[node.left].hi);
-    const double dr = BoxDistance2(p, nodes_[node.right].lo, nodes_[node.right].hi);
+    const int left = index + 1, right = node.first;
+    const double dl = BoxDistance2(p, nodes_[left].lo, nodes_[left].hi);
+    const double dr = BoxDistance2(p, nodes_[right].lo, nodes_[right].hi);
     if (dl < dr) {
-      stack.push_back(node.right);
-      stack.push_back(node.left);
+      stack[top++] = right;
+      stack[top++] = left;
     } else {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
+      stack[top++] = left;
+      stack[top++] = right;
+    }
+  }
+  Eigen::Vector3d best_normal = Eigen::Vector3d::UnitZ();
+  if (best_facet >= 0) {
+    const auto& t = mesh_.facets[best_facet];
+    switch (best_feature) {
+      case Feature::kFace: best_normal = FaceNormal(best_facet); break;
+      case Feature::kV0: best_normal = VertexNormal(t[0]); break;
+      case Feature::kV1: best_normal = VertexNormal(t[1]); break;
+      case Feature::kV2: best_normal = VertexNormal(t[2]); break;
+      case Feature::kE01: best_normal = EdgeNormal(t[0], t[1]); break;
+      case Feature::kE12: best_normal = EdgeNormal(t[1], t[2]); break;
+      case Feature::kE20: best_normal = EdgeNormal(t[2], t[0]); break;
     }
   }
   if (closest != nullptr) *closest = best_point;

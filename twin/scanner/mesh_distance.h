@@ -1,7 +1,7 @@
 // Signed distance from points to a triangle mesh: a bounding-volume hierarchy and angle-weighted pseudonormals.
 #pragma once
 
-#include <array>
+#include <cstddef>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,24 +19,29 @@ class MeshDistance {
   // Signed distance of `p` to the surface, mm: positive outside the closed surface, negative inside (the sign of
   // the angle-weighted pseudonormal at the closest feature, Baerentzen & Aanaes 2005). `closest` may be null.
   double SignedDistance(const Eigen::Vector3d& p, Eigen::Vector3d* closest = nullptr) const;
+  // Heap memory of the query structure (the mesh not included), bytes.
+  std::size_t MemoryBytes() const;
 
  private:
+  // A node of the hierarchy; the left child of an inner node is the next node (depth-first order).
   struct Node {
     Eigen::Vector3d lo, hi;
-    int left = -1;     // children, or -1 for a leaf
-    int right = -1;
-    int first = 0;     // leaf: range in order_
-    int count = 0;
+    int first = 0;     // leaf: range in order_; inner node: index of the right child
+    int count = 0;     // leaf: number of facets (> 0); inner node: 0
   };
-  int Build(int first, int count);
+  int Build(int first, int count, const std::vector<Eigen::Vector3d>& centroid);
+  // Unit normal of facet `f`; the angle-weighted pseudonormal of vertex `v`; the sum of the normals of the facets
+  // along edge (a, b). Recomputed when a query needs them rather than stored (a voxel part's surface has ~10^7
+  // facets), in the same order of summation as a precomputed table would be, so the values are the same.
+  Eigen::Vector3d FaceNormal(int f) const;
+  Eigen::Vector3d VertexNormal(int v) const;
+  Eigen::Vector3d EdgeNormal(int a, int b) const;
 
   const planner::TriangleMesh& mesh_;
   std::vector<Node> nodes_;
-  std::vector<int> order_;                          // facet indices, grouped by leaf
-  std::vector<Eigen::Vector3d> centroid_;
-  std::vector<Eigen::Vector3d> face_normal_;        // unit
-  std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per facet edge (v0v1, v1v2, v2v0), summed faces
-  std::vector<Eigen::Vector3d> vertex_normal_;      // angle weighted
+  std::vector<int> order_;           // facet indices, grouped by leaf
+  std::vector<int> vertex_start_;    // facets of vertex v: vertex_facets_[vertex_start_[v] .. vertex_start_[v + 1])
+  std::vector<int> vertex_facets_;   // ascending facet indices per vertex
 };
 
 }  // namespace waam::twin
