@@ -47,17 +47,17 @@ double BoxDistance2(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const E
   return d.squaredNorm();
 }
 
-// Nodes of the hierarchy Build() makes over `count` facets (leaves of at most 4).
-std::size_t TreeNodes(std::size_t count) {
-  return count <= 4 ? 1 : 1 + TreeNodes(count / 2) + TreeNodes(count - count / 2);
+// Inner nodes of the hierarchy Build() makes over `count` facets (leaves of at most 4).
+std::size_t InnerNodes(std::size_t count) {
+  return count <= 4 ? 0 : 1 + InnerNodes(count / 2) + InnerNodes(count - count / 2);
 }
 
 }  // namespace
 
-// Memory: a voxel part's surface has ~10^7 facets (part III of the tubes: 13.1 M), so nothing per facet is kept but
-// the facet order of the tree and each vertex's facet list; the normals are recomputed for the one closest feature
-// of a query. The vertex lists replace a map of edges (19.7 M entries, 1.3 GB on part III) and per-facet normal
-// tables (3.3 GB with the tree before).
+// Memory: a voxel part's surface has ~10^7 facets (part III of the tubes: 13.1 M), so per facet only the facet order
+// of the tree and each vertex's facet list are kept, and the boxes of the inner nodes; the normals are recomputed
+// for the one closest feature of a query. This replaced a map of edges (19.7 M entries, 1.3 GB on part III),
+// per-facet normal tables and a node per leaf (3.3 GB with the tree); 0.47 GB are left.
 MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
   WAAM_THROW_UNLESS(!mesh.facets.empty(), "mesh distance: the target mesh has no facets");
   const int nv = static_cast<int>(mesh.vertices.size());
@@ -78,7 +78,7 @@ MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
     }
     order_.resize(nf);
     for (std::size_t f = 0; f < nf; ++f) order_[f] = static_cast<int>(f);
-    nodes_.reserve(TreeNodes(nf));
+    nodes_.reserve(InnerNodes(nf));
     Build(0, static_cast<int>(nf), centroid);
   }
   // Each vertex's facets in ascending order (a facet that repeats a vertex is listed once).
@@ -101,33 +101,33 @@ MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
   }
 }
 
-int MeshDistance::Build(int first, int count, const std::vector<Eigen::Vector3d>& centroid) {
-  const int index = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
+void MeshDistance::RangeBox(int first, int count, Eigen::Vector3d* lo, Eigen::Vector3d* hi) const {
+  *lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  *hi = -*lo;
   for (int i = first; i < first + count; ++i) {
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d& p = mesh_.vertices[mesh_.facets[order_[i]][k]];
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
+      *lo = lo->cwiseMin(p);
+      *hi = hi->cwiseMax(p);
     }
   }
+}
+
+int MeshDistance::Build(int first, int count, const std::vector<Eigen::Vector3d>& centroid) {
+  if (count <= 4) return -1;  // a leaf
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  Eigen::Vector3d lo, hi;
+  RangeBox(first, count, &lo, &hi);
   nodes_[index].lo = lo;
   nodes_[index].hi = hi;
-  if (count <= 4) {
-    nodes_[index].first = first;
-    nodes_[index].count = count;
-    return index;
-  }
   int axis = 0;
   (hi - lo).maxCoeff(&axis);
   const int mid = first + count / 2;
   std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count,
                    [&](int a, int b) { return centroid[a][axis] < centroid[b][axis]; });
-  Build(first, mid - first, centroid);  // the left child: index + 1
-  const int right = Build(mid, first + count - mid, centroid);
-  nodes_[index].first = right;
+  Build(first, mid - first, centroid);  // an inner left child is index + 1
+  nodes_[index].right = Build(mid, first + count - mid, centroid);
   return index;
 }
 
@@ -183,16 +183,27 @@ double MeshDistance::SignedDistance(const Eigen::Vector3d& p, Eigen::Vector3d* c
   Eigen::Vector3d best_point = Eigen::Vector3d::Zero();
   int best_facet = -1;
   Feature best_feature = Feature::kFace;
+  // A subtree to visit: its node (-1 for a leaf), its range of order_ and the squared distance to its box.
+  struct Pending {
+    int node, first, count;
+    double box2;
+  };
+  auto pending = [&](int node, int first, int count) {
+    if (node >= 0) return Pending{node, first, count, BoxDistance2(p, nodes_[node].lo, nodes_[node].hi)};
+    Eigen::Vector3d lo, hi;
+    RangeBox(first, count, &lo, &hi);
+    return Pending{node, first, count, BoxDistance2(p, lo, hi)};
+  };
   // Depth-first: at most one pending right sibling per level, and the tree is ~log2(facets / 4) deep.
-  std::array<int, 128> stack;
+  std::array<Pending, 128> stack;
   int top = 0;
-  stack[top++] = 0;
+  const int facets = static_cast<int>(order_.size());
+  stack[top++] = pending(nodes_.empty() ? -1 : 0, 0, facets);
   while (top > 0) {
-    const int index = stack[--top];
-    const Node& node = nodes_[index];
-    if (BoxDistance2(p, node.lo, node.hi) >= best2) continue;
-    if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
+    const Pending e = stack[--top];
+    if (e.box2 >= best2) continue;
+    if (e.node < 0) {
+      for (int i = e.first; i < e.first + e.count; ++i) {
         const int f = order_[i];
         const auto& t = mesh_.facets[f];
         Feature feature;
@@ -208,10 +219,10 @@ double MeshDistance::SignedDistance(const Eigen::Vector3d& p, Eigen::Vector3d* c
       continue;
     }
     // Visit the nearer child first.
-    const int left = index + 1, right = node.first;
-    const double dl = BoxDistance2(p, nodes_[left].lo, nodes_[left].hi);
-    const double dr = BoxDistance2(p, nodes_[right].lo, nodes_[right].hi);
-    if (dl < dr) {
+    const int mid = e.first + e.count / 2;
+    const Pending left = pending(mid - e.first > 4 ? e.node + 1 : -1, e.first, mid - e.first);
+    const Pending right = pending(nodes_[e.node].right, mid, e.first + e.count - mid);
+    if (left.box2 < right.box2) {
       stack[top++] = right;
       stack[top++] = left;
     } else {

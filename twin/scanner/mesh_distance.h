@@ -23,13 +23,16 @@ class MeshDistance {
   std::size_t MemoryBytes() const;
 
  private:
-  // A node of the hierarchy; the left child of an inner node is the next node (depth-first order).
+  // An inner node of the hierarchy (more than 4 facets). The tree is the median split of order_ ranges, so a node's
+  // children are its range's halves; a child of at most 4 facets is a leaf, not stored (its box is recomputed from
+  // its facets when needed, half the nodes of a voxel surface). An inner left child is the next node.
   struct Node {
     Eigen::Vector3d lo, hi;
-    int first = 0;     // leaf: range in order_; inner node: index of the right child
-    int count = 0;     // leaf: number of facets (> 0); inner node: 0
+    int right = -1;    // index of the right child, -1 for a leaf
   };
   int Build(int first, int count, const std::vector<Eigen::Vector3d>& centroid);
+  // Box of the facets order_[first .. first + count), mm.
+  void RangeBox(int first, int count, Eigen::Vector3d* lo, Eigen::Vector3d* hi) const;
   // Unit normal of facet `f`; the angle-weighted pseudonormal of vertex `v`; the sum of the normals of the facets
   // along edge (a, b). Recomputed when a query needs them rather than stored (a voxel part's surface has ~10^7
   // facets), in the same order of summation as a precomputed table would be, so the values are the same.

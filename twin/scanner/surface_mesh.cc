@@ -110,6 +110,11 @@ planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
       }
     }
   }
+  // The vertex map first, then the slack of the arrays grown by push_back (a voxel part's surface has ~10^7 facets:
+  // up to half their size again).
+  std::unordered_map<std::uint64_t, int>().swap(vertex_of);
+  mesh.vertices.shrink_to_fit();
+  mesh.facets.shrink_to_fit();
   return mesh;
 }
 
