@@ -55,9 +55,9 @@ std::size_t InnerNodes(std::size_t count) {
 }  // namespace
 
 // Memory: a voxel part's surface has ~10^7 facets (part III of the tubes: 13.1 M), so per facet only the facet order
-// of the tree and each vertex's facet list are kept, and the boxes of the inner nodes; the normals are recomputed
-// for the one closest feature of a query. This replaced a map of edges (19.7 M entries, 1.3 GB on part III),
-// per-facet normal tables and a node per leaf (3.3 GB with the tree); 0.47 GB are left.
+// of the tree is kept, and the boxes of the inner nodes; the normals of the one closest feature of a query are
+// recomputed, the facets around its vertex found through the tree. This replaced a map of edges (19.7 M entries,
+// 1.3 GB on part III), per-facet normal tables and a node per leaf (3.3 GB with the tree); 0.29 GB are left.
 MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
   WAAM_THROW_UNLESS(!mesh.facets.empty(), "mesh distance: the target mesh has no facets");
   const int nv = static_cast<int>(mesh.vertices.size());
@@ -69,36 +69,15 @@ MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
                                                                         << " of " << nv);
     }
   }
-  // The tree first, so that the centroids (needed only to build it) are freed before the vertex lists exist.
-  {
-    std::vector<Eigen::Vector3d> centroid(nf);
-    for (std::size_t f = 0; f < nf; ++f) {
-      const auto& t = mesh.facets[f];
-      centroid[f] = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
-    }
-    order_.resize(nf);
-    for (std::size_t f = 0; f < nf; ++f) order_[f] = static_cast<int>(f);
-    nodes_.reserve(InnerNodes(nf));
-    Build(0, static_cast<int>(nf), centroid);
-  }
-  // Each vertex's facets in ascending order (a facet that repeats a vertex is listed once).
-  vertex_start_.assign(mesh.vertices.size() + 1, 0);
-  auto for_each_vertex = [&](std::size_t f, auto&& visit) {
+  std::vector<Eigen::Vector3d> centroid(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
     const auto& t = mesh.facets[f];
-    for (int k = 0; k < 3; ++k) {
-      if ((k > 0 && t[k] == t[0]) || (k > 1 && t[k] == t[1])) continue;
-      visit(t[k]);
-    }
-  };
-  for (std::size_t f = 0; f < nf; ++f) for_each_vertex(f, [&](int v) { ++vertex_start_[v + 1]; });
-  for (int v = 0; v < nv; ++v) vertex_start_[v + 1] += vertex_start_[v];
-  vertex_facets_.resize(static_cast<std::size_t>(vertex_start_[nv]));
-  {
-    std::vector<int> next(vertex_start_.begin(), vertex_start_.end() - 1);
-    for (std::size_t f = 0; f < nf; ++f) {
-      for_each_vertex(f, [&](int v) { vertex_facets_[next[v]++] = static_cast<int>(f); });
-    }
+    centroid[f] = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
   }
+  order_.resize(nf);
+  for (std::size_t f = 0; f < nf; ++f) order_[f] = static_cast<int>(f);
+  nodes_.reserve(InnerNodes(nf));
+  Build(0, static_cast<int>(nf), centroid);
 }
 
 void MeshDistance::RangeBox(int first, int count, Eigen::Vector3d* lo, Eigen::Vector3d* hi) const {
@@ -140,11 +119,42 @@ Eigen::Vector3d MeshDistance::FaceNormal(int f) const {
   return n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
 }
 
+void MeshDistance::FacetsAt(int v, std::vector<int>* facets) const {
+  facets->clear();
+  const Eigen::Vector3d& x = mesh_.vertices[v];
+  auto has_v = [&](int f) {
+    const auto& t = mesh_.facets[f];
+    return t[0] == v || t[1] == v || t[2] == v;
+  };
+  struct Range {
+    int node, first, count;
+  };
+  std::array<Range, 128> stack;
+  int top = 0;
+  stack[top++] = {nodes_.empty() ? -1 : 0, 0, static_cast<int>(order_.size())};
+  while (top > 0) {
+    const Range r = stack[--top];
+    if (r.node < 0) {
+      for (int i = r.first; i < r.first + r.count; ++i) {
+        if (has_v(order_[i])) facets->push_back(order_[i]);
+      }
+      continue;
+    }
+    const Node& node = nodes_[r.node];
+    if ((x.array() < node.lo.array()).any() || (x.array() > node.hi.array()).any()) continue;
+    const int mid = r.first + r.count / 2;
+    stack[top++] = {mid - r.first > 4 ? r.node + 1 : -1, r.first, mid - r.first};
+    stack[top++] = {node.right, mid, r.first + r.count - mid};
+  }
+  std::sort(facets->begin(), facets->end());
+}
+
 Eigen::Vector3d MeshDistance::VertexNormal(int v) const {
   // Angle-weighted: each facet's normal times its angle at v, summed in facet order.
+  std::vector<int> facets;
+  FacetsAt(v, &facets);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (int i = vertex_start_[v]; i < vertex_start_[v + 1]; ++i) {
-    const int f = vertex_facets_[i];
+  for (const int f : facets) {
     const auto& t = mesh_.facets[f];
     const Eigen::Vector3d n = FaceNormal(f);
     for (int k = 0; k < 3; ++k) {
@@ -161,10 +171,11 @@ Eigen::Vector3d MeshDistance::VertexNormal(int v) const {
 
 Eigen::Vector3d MeshDistance::EdgeNormal(int a, int b) const {
   // The normals of the facets with edge (a, b), either direction, in facet order.
+  std::vector<int> facets;
+  FacetsAt(a, &facets);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   const int lo = std::min(a, b), hi = std::max(a, b);
-  for (int i = vertex_start_[a]; i < vertex_start_[a + 1]; ++i) {
-    const int f = vertex_facets_[i];
+  for (const int f : facets) {
     const auto& t = mesh_.facets[f];
     for (int k = 0; k < 3; ++k) {
       if (std::min(t[k], t[(k + 1) % 3]) == lo && std::max(t[k], t[(k + 1) % 3]) == hi) sum += FaceNormal(f);
@@ -174,8 +185,7 @@ Eigen::Vector3d MeshDistance::EdgeNormal(int a, int b) const {
 }
 
 std::size_t MeshDistance::MemoryBytes() const {
-  return nodes_.capacity() * sizeof(Node) +
-         (order_.capacity() + vertex_start_.capacity() + vertex_facets_.capacity()) * sizeof(int);
+  return nodes_.capacity() * sizeof(Node) + order_.capacity() * sizeof(int);
 }
 
 double MeshDistance::SignedDistance(const Eigen::Vector3d& p, Eigen::Vector3d* closest) const {

@@ -33,6 +33,8 @@ class MeshDistance {
   int Build(int first, int count, const std::vector<Eigen::Vector3d>& centroid);
   // Box of the facets order_[first .. first + count), mm.
   void RangeBox(int first, int count, Eigen::Vector3d* lo, Eigen::Vector3d* hi) const;
+  // The facets that have vertex `v`, ascending, into `facets`: found through the tree (their boxes hold v).
+  void FacetsAt(int v, std::vector<int>* facets) const;
   // Unit normal of facet `f`; the angle-weighted pseudonormal of vertex `v`; the sum of the normals of the facets
   // along edge (a, b). Recomputed when a query needs them rather than stored (a voxel part's surface has ~10^7
   // facets), in the same order of summation as a precomputed table would be, so the values are the same.
@@ -43,8 +45,6 @@ class MeshDistance {
   const planner::TriangleMesh& mesh_;
   std::vector<Node> nodes_;
   std::vector<int> order_;           // facet indices, grouped by leaf
-  std::vector<int> vertex_start_;    // facets of vertex v: vertex_facets_[vertex_start_[v] .. vertex_start_[v + 1])
-  std::vector<int> vertex_facets_;   // ascending facet indices per vertex
 };
 
 }  // namespace waam::twin
