@@ -30,7 +30,7 @@ class MeshDistance {
     Eigen::Vector3d lo, hi;
     int right = -1;    // index of the right child, -1 for a leaf
   };
-  int Build(int first, int count, const std::vector<Eigen::Vector3d>& centroid);
+  int Build(int first, int count);
   // Box of the facets order_[first .. first + count), mm.
   void RangeBox(int first, int count, Eigen::Vector3d* lo, Eigen::Vector3d* hi) const;
   // The facets that have vertex `v`, ascending, into `facets`: found through the tree (their boxes hold v).
