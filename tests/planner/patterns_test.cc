@@ -381,6 +381,17 @@ TEST(ContinuousPattern, CurvedWallIsOnePassAndCovered) {
   }
 }
 
+// The same wall with contours: one ring two beads wide fills it. The next offset reaches the medial axis and leaves
+// crumbs along it; each used to be a pass of its own (an arc start and stop on the spot).
+TEST(ContourPattern, WallTwoBeadsWideIsOneRing) {
+  const PolygonWithHoles band = testing::ArcBand(60.0, 60.0 + 2.0 * kW, 70.0, 35);
+  const std::vector<Move2D> moves = Plan(band, "contour");
+  EXPECT_EQ(CountPasses(moves), 1);
+  EXPECT_LT(UncoveredFraction(band, moves), 0.02);
+  const PolygonWithHoles island{testing::Rect(0, 0, 1.2 * kW, 1.2 * kW), {}};
+  EXPECT_EQ(CountPasses(Plan(island, "contour")), 1) << "an island about a bead wide still gets its (short) ring";
+}
+
 TEST(PlanLayerPattern, HasWeldOrNoRoom) {
   const std::vector<PolygonWithHoles> square{{testing::Rect(0, 0, 30, 30), {}}};
   const std::vector<PolygonWithHoles> sliver{{testing::Rect(0, 0, 30, 0.8 * kW), {}}};
