@@ -149,6 +149,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
     LayerPath layer;
     layer.index = static_cast<int>(result.plan.layers.size());
     layer.slice = flat.regions;
+    layer.slice_in_plane = false;  // the development plane
     options.layer_index = layer.index;
     const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, options);
     WAAM_THROW_UNLESS(HasWeldOrNoRoom(flat.regions, moves, width),
