@@ -67,6 +67,11 @@ TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
   EXPECT_EQ(plan["retract"]["travels"].get<std::size_t>(), result.plan.layers.empty() ? 0u : result.stats.passes)
       << "one approach per pass: the first from outside, the others from the previous pass's lift";
   EXPECT_TRUE(plan["mesh"]["watertight"].get<bool>());
+  const double uncovered_pct = plan["uncovered"]["pct"].get<double>();
+  EXPECT_GE(uncovered_pct, 0.0);
+  EXPECT_LT(uncovered_pct, 5.0) << "the scenario's pattern fits its part";
+  EXPECT_GE(plan["uncovered"]["worst_layer_pct"].get<double>(), uncovered_pct);
+  EXPECT_TRUE(plan["layer_details"][0].contains("uncovered_pct"));
   for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
