@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <string>
@@ -16,6 +17,9 @@
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
+
+// `waam plan` warns when the beads leave more than this share of the sliced area uncovered, per cent.
+constexpr double kUncoveredWarningPct = 5.0;
 
 nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::PlanResult& result) {
   const planner::MeshReport& mesh = result.mesh_report;
@@ -157,8 +161,20 @@ planner::PlanResult RunPlan(const PlanOptions& options) {
     progress.Finish();
   }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(options.out_dir / "plan.json", PlanToJson(scenario, result).dump(2) + "\n");
+  const nlohmann::json summary = PlanToJson(scenario, result);
+  WriteFileAtomic(options.out_dir / "plan.json", summary.dump(2) + "\n");
   outputs.Complete();
+  // A pattern that does not suit the part is not an error (the plan is written) but worth a line even when quiet.
+  // Over the whole part, so a last sliver of a slice (a handle's tip) does not raise it.
+  const nlohmann::json& uncovered = summary["uncovered"];
+  if (uncovered["pct"].is_number() && uncovered["pct"].get<double>() > kUncoveredWarningPct) {
+    std::cerr << "waam: warning: path.pattern '" << scenario.path.pattern << "' leaves "
+              << std::lround(uncovered["pct"].get<double>()) << " % of the sliced area without a bead (layer "
+              << uncovered["worst_layer"].get<int>() << ": " << std::lround(uncovered["worst_layer_pct"].get<double>())
+              << " %; plan.json uncovered); "
+              << (scenario.path.pattern == "contour" ? "a hybrid or continuous" : "a contour")
+              << " pattern may cover it\n";
+  }
   return result;
 }
 
