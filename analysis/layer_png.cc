@@ -1,4 +1,5 @@
-// Picture of one planned layer: slice filled grey, weld moves coloured by sequence, travel dashed, starts and stops.
+// Picture of one planned layer in its slice plane: slice filled grey, weld moves coloured by sequence, travel dashed,
+// starts and stops.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -57,16 +58,26 @@ void DashedLine(cv::Mat& image, cv::Point a, cv::Point b, const cv::Scalar& colo
 }  // namespace
 
 void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path& path) {
+  // Draw in the slice plane, seen along the build direction, so the slice and the path overlay; a cone or cylinder
+  // layer (slice in the development plane) shows its path seen from +z and no slice.
+  const std::vector<planner::PolygonWithHoles> no_slice;
+  const std::vector<planner::PolygonWithHoles>& slice = layer.slice_in_plane ? layer.slice : no_slice;
+  const Eigen::Matrix<double, 3, 2> axes =
+      layer.slice_in_plane ? layer.slice_axes_P : Eigen::Matrix<double, 3, 2>::Identity();
+  const Eigen::Vector3d origin = layer.slice_in_plane ? layer.slice_origin_P : Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector2d> at(layer.points.size());  // the points in the picture's plane
+  for (std::size_t i = 0; i < at.size(); ++i) at[i] = axes.transpose() * (layer.points[i].p_P - origin);
+
   Eigen::Vector2d lo(1e300, 1e300);
   Eigen::Vector2d hi(-1e300, -1e300);
   auto grow = [&](const Eigen::Vector2d& p) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   };
-  for (const planner::PolygonWithHoles& region : layer.slice) {
+  for (const planner::PolygonWithHoles& region : slice) {
     for (const Eigen::Vector2d& p : region.outer) grow(p);
   }
-  for (const planner::PathPoint& point : layer.points) grow(point.p_P.head<2>());
+  for (const Eigen::Vector2d& p : at) grow(p);
   if (lo.x() > hi.x()) lo = hi = Eigen::Vector2d::Zero();
 
   const Eigen::Vector2d extent = (hi - lo).cwiseMax(1e-6);
@@ -78,7 +89,7 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
   cv::Mat image(view.height, width, CV_8UC3, cv::Scalar(255, 255, 255));
 
   // Slice: outer boundaries grey, holes back to white.
-  for (const planner::PolygonWithHoles& region : layer.slice) {
+  for (const planner::PolygonWithHoles& region : slice) {
     std::vector<std::vector<cv::Point>> outer = {ToPixels(region.outer, view)};
     cv::fillPoly(image, outer, cv::Scalar(225, 225, 225), cv::LINE_AA);
     for (const planner::Ring& hole : region.holes) {
@@ -94,8 +105,8 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
     for (std::size_t i = 1; i < n; ++i) {
       if (!layer.points[i].weld) continue;
       const int thickness = std::max(1, static_cast<int>(std::lround(layer.points[i].bead_width_mm * view.scale)));
-      cv::line(beads, view.ToPixel(layer.points[i - 1].p_P.head<2>()), view.ToPixel(layer.points[i].p_P.head<2>()),
-               cv::Scalar(150, 200, 245), thickness, cv::LINE_AA);
+      cv::line(beads, view.ToPixel(at[i - 1]), view.ToPixel(at[i]), cv::Scalar(150, 200, 245), thickness,
+               cv::LINE_AA);
     }
     cv::addWeighted(beads, 0.6, image, 0.4, 0.0, image);
   }
@@ -106,8 +117,8 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
   for (std::size_t i = 1; i < n; ++i) along[i] = along[i - 1] + (layer.points[i].p_P - layer.points[i - 1].p_P).norm();
   const double total = n > 0 ? std::max(along.back(), 1e-9) : 1.0;
   for (std::size_t i = 1; i < n; ++i) {
-    const cv::Point a = view.ToPixel(layer.points[i - 1].p_P.head<2>());
-    const cv::Point b = view.ToPixel(layer.points[i].p_P.head<2>());
+    const cv::Point a = view.ToPixel(at[i - 1]);
+    const cv::Point b = view.ToPixel(at[i]);
     if (layer.points[i].weld) {
       cv::line(image, a, b, SequenceColour(along[i] / total), 2, cv::LINE_AA);
     } else {
@@ -117,17 +128,28 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
   for (std::size_t i = 1; i < n; ++i) {
     const bool starts = layer.points[i].weld && !layer.points[i - 1].weld;
     const bool stops = layer.points[i].weld && (i + 1 == n || !layer.points[i + 1].weld);
-    if (starts) cv::circle(image, view.ToPixel(layer.points[i - 1].p_P.head<2>()), 6, cv::Scalar(0, 160, 0), -1);
+    if (starts) cv::circle(image, view.ToPixel(at[i - 1]), 6, cv::Scalar(0, 160, 0), -1);
     if (stops) {
-      cv::drawMarker(image, view.ToPixel(layer.points[i].p_P.head<2>()), cv::Scalar(0, 0, 220), cv::MARKER_TILTED_CROSS,
-                     14, 2);
+      cv::drawMarker(image, view.ToPixel(at[i]), cv::Scalar(0, 0, 220), cv::MARKER_TILTED_CROSS, 14, 2);
     }
   }
 
   char caption[128];
-  std::snprintf(caption, sizeof(caption), "layer %d  z = %.2f mm  beads at planned width; green: arc start, red: arc stop", layer.index,
-                layer.z_mm);
+  std::snprintf(caption, sizeof(caption), "layer %d  z = %.2f mm  beads at planned width; green: arc start, red: arc stop",
+                layer.index, layer.z_mm);
   cv::putText(image, caption, cv::Point(10, 24), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  const Eigen::Vector3d& dir = layer.build_dir_P;
+  if (!layer.slice_in_plane) {
+    std::snprintf(caption, sizeof(caption), "curved layer seen from +z; its slice (development plane) not drawn");
+  } else if ((dir - Eigen::Vector3d::UnitZ()).norm() > 1e-9) {
+    std::snprintf(caption, sizeof(caption), "seen along the build direction (%.2f, %.2f, %.2f)", dir.x(), dir.y(),
+                  dir.z());
+  } else {
+    caption[0] = '\0';
+  }
+  if (caption[0] != '\0') {
+    cv::putText(image, caption, cv::Point(10, 44), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  }
 
   std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 3};
   // OpenCV picks the encoder from the extension, so encode in memory and write the bytes ourselves.

@@ -2,6 +2,9 @@
 #include "analysis/plan_command.h"
 
 #include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -9,14 +12,19 @@
 #include "models/core/files.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
+#include "planner/path/coverage.h"
 #include "planner/scenario/scenario.h"
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
 
+// `waam plan` warns when the beads leave more than this share of the sliced area uncovered, per cent.
+constexpr double kUncoveredWarningPct = 5.0;
+
 nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::PlanResult& result) {
   const planner::MeshReport& mesh = result.mesh_report;
   const planner::PathStats& stats = result.stats;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   nlohmann::json mesh_json = {
       {"source", mesh.source},
       {"binary_stl", mesh.binary},
@@ -30,12 +38,23 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       {"bbox_max_mm", {mesh.bbox_max.x(), mesh.bbox_max.y(), mesh.bbox_max.z()}},
   };
   nlohmann::json layers = nlohmann::json::array();
+  double uncovered_sum = 0.0, area_sum = 0.0, uncovered_worst = 0.0;  // over the layers whose coverage is measured
+  int worst_layer = -1;
   for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
     const planner::LayerPath& layer = result.plan.layers[i];
+    const double area = planner::Area(layer.slice);
+    const double uncovered = planner::UncoveredArea(layer);
+    const double uncovered_pct = area > 0.0 ? 100.0 * uncovered / area : 0.0;  // NaN stays NaN (JSON null)
+    if (!std::isnan(uncovered)) {
+      uncovered_sum += uncovered;
+      area_sum += area;
+      if (worst_layer < 0 || uncovered_pct > uncovered_worst) uncovered_worst = uncovered_pct, worst_layer = layer.index;
+    }
     layers.push_back({{"index", layer.index},
                       {"z_mm", layer.z_mm},
                       {"regions", layer.slice.size()},
-                      {"area_mm2", planner::Area(layer.slice)},
+                      {"area_mm2", area},
+                      {"uncovered_pct", uncovered_pct},
                       {"passes", stats.passes_per_layer[i]},
                       {"path_elements", stats.path_elements_per_layer[i]},
                       {"points", layer.points.size()}});
@@ -105,6 +124,10 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       {"weld_length_mm", stats.weld_length_mm},
       {"travel_length_mm", stats.travel_length_mm},
       {"estimated_time_s", stats.estimated_time_s},
+      // Slice area the planned beads leave uncovered (planner/path/coverage.h); null when no layer is measured.
+      {"uncovered", {{"pct", area_sum > 0.0 ? 100.0 * uncovered_sum / area_sum : kNaN},
+                     {"worst_layer_pct", worst_layer >= 0 ? uncovered_worst : kNaN},
+                     {"worst_layer", worst_layer}}},
       {"retract", {{"retract_mm", scenario.path.retract_mm},
                    {"travels", result.retract.travels},
                    {"over_the_part", result.retract.via_top}}},
@@ -138,8 +161,20 @@ planner::PlanResult RunPlan(const PlanOptions& options) {
     progress.Finish();
   }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(options.out_dir / "plan.json", PlanToJson(scenario, result).dump(2) + "\n");
+  const nlohmann::json summary = PlanToJson(scenario, result);
+  WriteFileAtomic(options.out_dir / "plan.json", summary.dump(2) + "\n");
   outputs.Complete();
+  // A pattern that does not suit the part is not an error (the plan is written) but worth a line even when quiet.
+  // Over the whole part, so a last sliver of a slice (a handle's tip) does not raise it.
+  const nlohmann::json& uncovered = summary["uncovered"];
+  if (uncovered["pct"].is_number() && uncovered["pct"].get<double>() > kUncoveredWarningPct) {
+    std::cerr << "waam: warning: path.pattern '" << scenario.path.pattern << "' leaves "
+              << std::lround(uncovered["pct"].get<double>()) << " % of the sliced area without a bead (layer "
+              << uncovered["worst_layer"].get<int>() << ": " << std::lround(uncovered["worst_layer_pct"].get<double>())
+              << " %; plan.json uncovered); "
+              << (scenario.path.pattern == "contour" ? "a hybrid or continuous" : "a contour")
+              << " pattern may cover it\n";
+  }
   return result;
 }
 

@@ -55,6 +55,7 @@ nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::T
         {"max_length_mm", voids.valley_max_length_mm}}},
       {"waviness_mm", m.waviness_mm},
       {"ra_mm", m.ra_mm},
+      {"top_height", {{"mean_mm", m.top_mean_mm}, {"min_mm", m.top_min_mm}, {"max_mm", m.top_max_mm}}},
       {"boundary_lag_mm", m.boundary_lag.lag_mm},
       {"boundary_lag",
        {{"interior_mean_mm", m.boundary_lag.interior_mean_mm},

@@ -17,10 +17,12 @@ void AddPlanCommand(CLI::App& app, CommandRunner* runner) {
       "slicing.type skeleton for bent thin-walled tubes: planes along the central axis, layers of 1-2 mm thickness,\n"
       "speed and width per point, path pattern spiral|contour) and writes to the output directory:\n"
       "  plan.json       layers, passes (arc starts), passes_per_layer, path_elements, weld_length_mm,\n"
-      "                  travel_length_mm, estimated_time_s, the mesh report\n"
+      "                  travel_length_mm, estimated_time_s, uncovered (share of the slice no bead covers),\n"
+      "                  the mesh report\n"
       "  plan.h5         /layers/layer_NNNN: one row per path point (x, y, z mm, tool direction, bead width and\n"
       "                  height mm, travel speed mm/min, weld 0/1, layer)\n"
-      "  layers/*.png    the slice, the path in sequence colours, arc starts and stops\n"
+      "  layers/*.png    the slice, the path in sequence colours, arc starts and stops, seen along the layer's\n"
+      "                  build direction (a cone or cylinder layer: its path from +z, no slice)\n"
       "plan.json is written last: its presence marks a complete run.");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();

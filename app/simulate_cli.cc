@@ -25,6 +25,7 @@ void AddSimulateCommand(CLI::App& app, CommandRunner* runner) {
       "                     mesh (+ = excess material), voids {count, volume_mm3, max_length_mm} (enclosed, capped),\n"
       "                     valleys {...} (enclosed in their horizontal cut but open to the top), waviness_mm (largest\n"
       "                     peak-to-valley along the x and y section lines of the top layer), ra_mm (Ding eq. 7),\n"
+      "                     top_height {mean_mm, min_mm, max_mm} (Ding Fig. 13, the same columns as ra_mm),\n"
       "                     boundary_lag_mm (interior minus outer-bead mean height), performance, settings\n"
       "  part.stl           surface of the simulated part (binary STL, mm; from a coarser grid past 5 M facets,\n"
       "                     see stl_voxel_mm)\n"

@@ -149,16 +149,13 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
     LayerPath layer;
     layer.index = static_cast<int>(result.plan.layers.size());
     layer.slice = flat.regions;
+    layer.slice_in_plane = false;  // the development plane
     options.layer_index = layer.index;
     const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, options);
-    // A slice wide enough for a bead but without a weld move would silently drop a layer from the part, the cell
-    // check and the twin (a sliver narrower than a bead, as at a blade's tip, has no path with any pattern).
-    const double slice_area = Area(flat.regions);
-    WAAM_THROW_UNLESS(std::any_of(moves.begin(), moves.end(), [](const Move2D& m) { return m.weld; }) ||
-                          Area(internal::Offset(flat.regions, -0.5 * width)) <= 0.0,
+    WAAM_THROW_UNLESS(HasWeldOrNoRoom(flat.regions, moves, width),
                       where << ": layer " << i << " (surface R = " << middle.R << " mm): path.pattern '"
                             << scenario.path.pattern << "' found no weld path in the flattened slice of "
-                            << slice_area << " mm^2; try path.pattern: contour");
+                            << Area(flat.regions) << " mm^2; try path.pattern: contour");
 
     // Densify every move on the plane, so that the mapped path follows the surface. A weld move stays inside its
     // region; a travel move between regions of a cone is interpolated in the polar coordinates of the development,

@@ -158,6 +158,7 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
       LayerPath layer;
       layer.index = static_cast<int>(result.plan.layers.size());
       layer.slice = kept[i];
+      layer.slice_axes_P = R_PS.leftCols<2>();
       layer.build_dir_P = n;
       options.layer_index = layer.index;
       const double top = lo + (i + 1) * h;

@@ -126,6 +126,10 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
     options.layer_index = i;
     const std::vector<Move2D> moves =
         void_filler.Apply(layer.slice, PlanLayerPattern(layer.slice, options), i, &result.void_corrections);
+    WAAM_THROW_UNLESS(HasWeldOrNoRoom(layer.slice, moves, result.bead_width_mm),
+                      scenario.part.where << ": layer " << i << " (z = " << layer.z_mm << " mm): path.pattern '"
+                                          << scenario.path.pattern << "' found no weld path in the slice of "
+                                          << Area(layer.slice) << " mm^2; try path.pattern: contour");
     for (const Move2D& move : moves) {
       PathPoint point;
       point.p_P = Eigen::Vector3d(move.p.x(), move.p.y(), layer.z_mm);

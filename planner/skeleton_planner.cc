@@ -144,6 +144,8 @@ Plan BuildSkeletonPlan(const SkeletonSlicing& slicing, const models::SpeedHeight
         if (k < count) ring.push_back(path.points.back().p_P), widths.push_back(path.points.back().bead_width_mm);
       }
       path.slice = {Walls(layer, ring, widths)};
+      path.slice_axes_P << layer.e1_P, layer.e2_P;
+      path.slice_origin_P = layer.origin_P;
       plan.layers.push_back(std::move(path));
     }
     return plan;
@@ -174,6 +176,8 @@ Plan BuildSkeletonPlan(const SkeletonSlicing& slicing, const models::SpeedHeight
     }
     if (ring.size() > 3 && (ring.front() - ring.back()).norm() < 1e-9) ring.pop_back(), widths.pop_back();
     path.slice = {Walls(layer, ring, widths)};
+    path.slice_axes_P << layer.e1_P, layer.e2_P;
+    path.slice_origin_P = layer.origin_P;
     plan.layers.push_back(std::move(path));
   }
   return plan;

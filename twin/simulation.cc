@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "models/core/error.h"
 #include "twin/scanner/target_volume.h"
@@ -78,7 +79,15 @@ TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh*
   if (!plan.layers.empty()) {
     const std::vector<planner::PolygonWithHoles>& top_region = plan.layers.back().slice;
     m.waviness_mm = SectionWaviness(result.top, top_region, 0.5 * bead_width_mm);
-    m.ra_mm = ArithmeticRoughness(RegionHeights(result.top, top_region, 0.5 * bead_width_mm));
+    const std::vector<double> heights = RegionHeights(result.top, top_region, 0.5 * bead_width_mm);
+    m.ra_mm = ArithmeticRoughness(heights);
+    m.top_mean_mm = m.top_min_mm = m.top_max_mm = std::numeric_limits<double>::quiet_NaN();
+    if (!heights.empty()) {
+      const auto [lo_h, hi_h] = std::minmax_element(heights.begin(), heights.end());
+      m.top_min_mm = *lo_h;
+      m.top_max_mm = *hi_h;
+      m.top_mean_mm = std::accumulate(heights.begin(), heights.end(), 0.0) / heights.size();
+    }
     // Like the profilometer of 003 Fig. 24: along the x and y section lines through the middle of the top layer.
     Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
     Eigen::Vector2d hi = -lo;

@@ -26,6 +26,11 @@ struct TwinMeasures {
   double expected_volume_mm3 = 0.0;      // sum of bead section area x length (start/stop shapes included)
   double waviness_mm = 0.0;              // largest peak-to-valley along the x and y section lines of the top layer
   double ra_mm = 0.0;                    // Ding eq. 7 over the top layer region (w/2 in from its outline)
+  // Ding Fig. 13 (surface variation): mean, lowest and highest top height over the same columns as ra_mm, mm; NaN
+  // when the region has no column w/2 in from its outline.
+  double top_mean_mm = 0.0;
+  double top_min_mm = 0.0;
+  double top_max_mm = 0.0;
   BoundaryLag boundary_lag;              // 003 Fig. 24 measure along the x and y section lines of the top layer
   std::size_t grid_memory_bytes = 0;
   double deposition_s = 0.0;             // wall-clock time of the deposition alone, s

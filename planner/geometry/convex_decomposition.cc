@@ -228,8 +228,10 @@ std::vector<WorkRegion> Regroup(const std::vector<Ring>& cycles) {
 // Cleans a ring: drops repeated points (closer than `tol`) and vertices where the ring goes straight on, and
 // orients it as asked. A vertex is dropped when it, and every point dropped before between its two neighbours, lies
 // within `straight_mm` of the chord between those neighbours (so the dropped points never drift further than that
-// from the ring, however many are dropped in a row).
-Ring CleanRing(const Ring& in, bool ccw, double tol, double straight_mm) {
+// from the ring, however many are dropped in a row). With `grow_only`, the dropped points must also lie on the
+// left of the chord (the region's side when the region lies left of the ring): only notches are cut off, and the
+// region can only grow.
+Ring CleanRing(const Ring& in, bool ccw, double tol, double straight_mm, bool grow_only = false) {
   Ring r;
   for (const Vec& p : in) {
     if (r.empty() || (p - r.back()).norm() > tol) r.push_back(p);
@@ -246,7 +248,8 @@ Ring CleanRing(const Ring& in, bool ccw, double tol, double straight_mm) {
       // On the chord a-c (within straight_mm of it, between its ends): a spike that turns back is never straight.
       auto on_chord = [&](const Vec& p) {
         const double t = (p - a).dot(c - a) / len;
-        return t > 0.0 && t < len && std::abs(Cross(c - a, p - a)) / len <= straight_mm;
+        const double side = Cross(c - a, p - a) / len;  // > 0: left of the chord
+        return t > 0.0 && t < len && std::abs(side) <= straight_mm && (!grow_only || side >= -tol);
       };
       bool straight = len > tol && on_chord(r[i]);
       for (const Vec& p : dropped[before]) straight = straight && on_chord(p);
@@ -414,6 +417,13 @@ void MergeConvexNeighbours(std::vector<Ring>* pieces, double tol) {
 }
 
 }  // namespace
+
+Ring FillShallowNotches(const Ring& ring, double depth_mm) {
+  WAAM_THROW_UNLESS(depth_mm >= 0.0, "notch filling: depth " << depth_mm << " mm: must be >= 0");
+  if (ring.size() < 4) return ring;
+  const double tol = 1e-9 * std::max(1.0, BoundingDiagonal(PolygonWithHoles{ring, {}}));
+  return CleanRing(ring, SignedArea(ring) > 0.0, tol, std::max(depth_mm, tol), /*grow_only=*/true);
+}
 
 std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region) {
   const double scale = std::max(1.0, BoundingDiagonal(region));

@@ -30,6 +30,12 @@ std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region);
 // The lines along which pieces of a decomposition of `region` touch, longest first (pieces from DecomposeConvex).
 std::vector<SharedEdge> FindSharedEdges(const std::vector<Ring>& pieces, const PolygonWithHoles& region);
 
+// `ring` (the region on its left: an outline CCW, a hole CW) with its shallow notches cut off: notch vertices are
+// dropped while every dropped point lies within `depth_mm` (>= 0) of the chord that replaces it, so a tessellated
+// concave curve becomes chords at most `depth_mm` outside it. Convex vertices are kept: the region only grows, by at
+// most `depth_mm`. Keeps the ring's orientation and at least 3 vertices.
+Ring FillShallowNotches(const Ring& ring, double depth_mm);
+
 // True if `ring` is convex: no turn against its orientation larger than `tolerance_rad` (radians).
 bool IsConvex(const Ring& ring, double tolerance_rad = 1e-9);
 

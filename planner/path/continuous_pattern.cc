@@ -17,6 +17,14 @@
 // scenarios this took Ra of the continuous path from 0.610 / 0.788 / 0.876 / 0.351 mm to 0.588 / 0.763 / 0.866 /
 // 0.332 mm (ding_a-d) and W_t down on all four.
 //
+// Curved outlines (not in the paper): Ding decomposes the tessellated slice as it is, so every facet of a curved
+// side is a notch, and a curved wall is cut into slivers narrower than a bead that get no path (a 70 deg arc band
+// two beads wide, or the thruster's blade sections: 29 pieces from 68 vertices and not one weld move). The
+// region decomposed here has its notches shallower than w/10 (kCurveToleranceFraction) cut off by chords
+// (FillShallowNotches; convex sides are kept as they are), so a concave curve is cut a few times, not at every
+// facet; the pieces' paths then lie at most w/10 further out than the true concave side (0.9 mm for 9 mm beads,
+// about the height of the bead ripple): a little excess metal there instead of slivers with no path.
+//
 // Odd layers (not in the paper): each piece's loop is laid the other way round (BetterCoveringLoop), so the
 // turnarounds and the contour change sides and their piles and gaps do not stack: 0.588 / 0.763 / 0.866 / 0.332 ->
 // 0.561 / 0.717 / 0.848 / 0.343 mm.
@@ -40,6 +48,8 @@ namespace {
 
 using Vec = Eigen::Vector2d;
 
+// Depth of the notches that are cut off before the decomposition, in bead widths (see the file comment).
+constexpr double kCurveToleranceFraction = 0.1;
 // A hole with more vertices than this is treated as round (a bore): see SeparateRoundHoles.
 constexpr int kRoundHoleVertices = 8;
 // Sides of the coarse polygon that replaces a round hole in the decomposition.
@@ -302,7 +312,11 @@ void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& option
   std::vector<std::vector<bool>> piece_shared;  // per piece edge: a line shared with another piece
   std::vector<SharedEdge> shared;
   try {
-    for (const PolygonWithHoles& part : prepared.regions) {
+    for (const PolygonWithHoles& exact : prepared.regions) {
+      PolygonWithHoles part{FillShallowNotches(exact.outer, kCurveToleranceFraction * options.bead_width_mm), {}};
+      for (const Ring& hole : exact.holes) {
+        part.holes.push_back(FillShallowNotches(hole, kCurveToleranceFraction * options.bead_width_mm));
+      }
       const std::vector<Ring> part_pieces = DecomposeConvex(part);
       for (SharedEdge edge : FindSharedEdges(part_pieces, part)) {
         edge.piece_a += static_cast<int>(pieces.size());

@@ -22,6 +22,11 @@ void PlanContour(const PolygonWithHoles& region, const PatternOptions& options, 
     const std::vector<PolygonWithHoles> rings = Offset({region}, -inset);
     if (rings.empty()) break;
     for (const PolygonWithHoles& ring_region : rings) {
+      // Where the offset reaches the medial axis of a wall an exact number of rings wide, it leaves crumbs along it:
+      // inner rings shorter than a bead width, each of which would be an arc start and stop on the spot laying a
+      // blob on metal the ring before already covers (a 70 deg arc band two beads wide got 10-14 of them per
+      // layer). The first ring is always laid: on an island about a bead wide, the spot is the whole path.
+      if (k > 0 && Perimeter(ring_region.outer) < options.bead_width_mm) continue;
       AppendLoop(ring_region.outer, start_near(ring_region.outer), reverse, moves);
       for (const Ring& hole : ring_region.holes) AppendLoop(hole, start_near(hole), reverse, moves);
     }

@@ -1,6 +1,7 @@
 // Overlap spacings of the dissertation's bead model and the dispatch of a slice to its fill pattern.
 #include "planner/path/layer_pattern.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "models/core/error.h"
@@ -60,6 +61,12 @@ std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice,
   // Round joins and faceted meshes leave runs of tiny, nearly collinear moves: one straight move each is what the
   // robot should get (Ding Table 2 counts such lines as path elements).
   return internal::SimplifyMoves(moves, internal::kStraightPathToleranceMm);
+}
+
+bool HasWeldOrNoRoom(const std::vector<PolygonWithHoles>& slice, const std::vector<Move2D>& moves,
+                     double bead_width_mm) {
+  return std::any_of(moves.begin(), moves.end(), [](const Move2D& m) { return m.weld; }) ||
+         Area(internal::Offset(slice, -0.5 * bead_width_mm)) <= 0.0;
 }
 
 }  // namespace waam::planner

@@ -45,4 +45,10 @@ struct PatternOptions {
 // the best path it can or none, and the region is reported by the caller through uncovered area).
 std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options);
 
+// True when `moves` hold a weld move, or when `slice` has no room for a bead `bead_width_mm` wide (nothing of it
+// lies w/2 inside its outline, as at a blade's tip). A slice with room and no weld move would drop a layer from
+// the part, the cell check and the twin without a word: the planners refuse it.
+bool HasWeldOrNoRoom(const std::vector<PolygonWithHoles>& slice, const std::vector<Move2D>& moves,
+                     double bead_width_mm);
+
 }  // namespace waam::planner

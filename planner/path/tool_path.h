@@ -30,6 +30,12 @@ struct LayerPath {
   double z_mm = 0.0;                              // slicing height (planar) or mean height (curved), mm
   Eigen::Vector3d build_dir_P = Eigen::Vector3d::UnitZ();  // slice normal: the direction the layer grows
   std::vector<PolygonWithHoles> slice;            // the region the layer fills, in the slice plane (2D, mm)
+  // Where the slice plane lies in P: a slice point (x, y) is slice_origin_P + slice_axes_P (x, y) (orthonormal
+  // columns; the part's XY for a horizontal planar layer). Cone and cylinder layers keep their slice in the
+  // development plane, which no such map reaches: slice_in_plane is false for them.
+  Eigen::Matrix<double, 3, 2> slice_axes_P = Eigen::Matrix<double, 3, 2>::Identity();
+  Eigen::Vector3d slice_origin_P = Eigen::Vector3d::Zero();
+  bool slice_in_plane = true;
   std::vector<PathPoint> points;
 };
 

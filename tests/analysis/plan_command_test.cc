@@ -4,6 +4,7 @@
 #include <hdf5.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -67,6 +68,11 @@ TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
   EXPECT_EQ(plan["retract"]["travels"].get<std::size_t>(), result.plan.layers.empty() ? 0u : result.stats.passes)
       << "one approach per pass: the first from outside, the others from the previous pass's lift";
   EXPECT_TRUE(plan["mesh"]["watertight"].get<bool>());
+  const double uncovered_pct = plan["uncovered"]["pct"].get<double>();
+  EXPECT_GE(uncovered_pct, 0.0);
+  EXPECT_LT(uncovered_pct, 5.0) << "the scenario's pattern fits its part";
+  EXPECT_GE(plan["uncovered"]["worst_layer_pct"].get<double>(), uncovered_pct);
+  EXPECT_TRUE(plan["layer_details"][0].contains("uncovered_pct"));
   for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
@@ -130,6 +136,30 @@ TEST(PlanCliTest, BadScenarioExitsTwoWithOneLineAndNoOutput) {
   EXPECT_THAT(err, HasSubstr("slicing.layer_height_mm = -1: must be in"));
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "one line on stderr, got: " << err;
   EXPECT_FALSE(fs::exists(dir / "out" / "plan.json"));
+}
+
+// A zigzag on a torus's ring-shaped slices leaves 12 % of the sliced area without a bead (up to 18 % of a layer): the
+// plan is written (exit 0) and one warning line names the pattern; the contour pattern covers it and says nothing.
+TEST(PlanCliTest, WarnsWhenThePatternLeavesMuchOfALayerUncovered) {
+  const fs::path dir = TempDir("uncovered");
+  auto scenario = [&](const std::string& pattern) {
+    const fs::path file = dir / (pattern + ".yaml");
+    std::ofstream(file) << "name: torus\n"
+                           "part:\n  generator: {type: torus, major_radius_mm: 60, minor_radius_mm: 9}\n"
+                           "slicing:\n  type: planar\n  layer_height_mm: 3.0\n"
+                           "path:\n  pattern: " << pattern << "\n  bead_width_mm: 6\n"
+                           "process:\n  travel_speed_mm_min: 600\n  wire_feed_mm_min: 6000\n";
+    return file.string();
+  };
+  std::string err;
+  EXPECT_EQ(RunWaam("plan " + scenario("zigzag") + " -q --no-images -o " + (dir / "zigzag").string(), &err), 0);
+  EXPECT_THAT(err, HasSubstr("warning: path.pattern 'zigzag' leaves"));
+  EXPECT_THAT(err, HasSubstr("without a bead"));
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  const nlohmann::json plan = ReadJson(dir / "zigzag" / "plan.json");
+  EXPECT_GT(plan["uncovered"]["pct"].get<double>(), 5.0);
+  EXPECT_EQ(RunWaam("plan " + scenario("contour") + " -q --no-images -o " + (dir / "contour").string(), &err), 0);
+  EXPECT_EQ(err, "") << "contours cover the rings";
 }
 
 TEST(PlanCliTest, MissingScenarioFileExitsTwo) {

@@ -57,6 +57,8 @@ TEST(SimulateCommand, WritesTheContract) {
   }
   for (const char* key : {"min_mm", "max_mm", "rms_mm"}) EXPECT_TRUE(j["deviation"].contains(key)) << key;
   for (const char* key : {"count", "volume_mm3", "max_length_mm"}) EXPECT_TRUE(j["voids"].contains(key)) << key;
+  for (const char* key : {"mean_mm", "min_mm", "max_mm"}) EXPECT_TRUE(j["top_height"].contains(key)) << key;
+  EXPECT_LE(j["top_height"]["min_mm"].get<double>(), j["top_height"]["mean_mm"].get<double>());
   EXPECT_EQ(j["layers"].get<int>(), 3);
   const double deposited = j["deposited_volume_mm3"].get<double>();
   const double expected = j["expected_volume_mm3"].get<double>();

@@ -1,6 +1,7 @@
 // Tests of the notch-elimination convex decomposition and the rotating-calipers minimum width.
 #include "planner/geometry/convex_decomposition.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -94,6 +95,32 @@ TEST(DecomposeConvex, RejectsDegenerateOutline) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("need >= 3"));
   }
+}
+
+// Cutting off the shallow notches of a curved wall: the inner arc's 35 facets become a few chords, the convex outer
+// arc stays as it is, the region only grows, and by no more than the depth.
+TEST(FillShallowNotches, CurvedWallLosesItsFacetNotchesOnly) {
+  const PolygonWithHoles band = testing::ArcBand(60.0, 72.0, 70.0, 35);
+  const double depth = 0.6;
+  const Ring filled = FillShallowNotches(band.outer, depth);
+  EXPECT_LT(filled.size(), band.outer.size() - 25) << "most of the inner arc's notches are cut off";
+  EXPECT_GT(SignedArea(filled), 0.0) << "orientation kept";
+  for (const Eigen::Vector2d& p : band.outer) {
+    if (p.norm() > 66.0) {  // every vertex of the convex outer arc is kept
+      const bool kept = std::any_of(filled.begin(), filled.end(),
+                                    [&](const Eigen::Vector2d& q) { return (q - p).norm() < 1e-9; });
+      EXPECT_TRUE(kept) << "outer arc vertex (" << p.x() << ", " << p.y() << ")";
+    }
+  }
+  const PolygonWithHoles grown{filled, {}};
+  EXPECT_LT(Area(internal::Difference({band}, {grown})), 1e-3) << "the region only grows";
+  EXPECT_LT(Area(internal::Difference({grown}, internal::Offset({band}, depth + 0.01))), 1e-3)
+      << "by no more than the depth";
+  EXPECT_GT(DecomposeConvex(band).size(), 3 * DecomposeConvex(grown).size()) << "fewer pieces to decompose";
+  const Ring square = testing::Rect(0, 0, 10, 10);
+  EXPECT_EQ(FillShallowNotches(square, 5.0), square) << "a convex ring has no notch to cut off";
+  EXPECT_THAT([] { FillShallowNotches(testing::Rect(0, 0, 1, 1), -1.0); },
+              ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("must be >= 0")));
 }
 
 TEST(FindSharedEdges, LShapeSharesItsCut) {

@@ -10,6 +10,7 @@
 
 #include "models/core/error.h"
 #include "planner/geometry/clipper_adapter.h"
+#include "planner/geometry/convex_decomposition.h"
 #include "planner/path/convex_fill.h"
 #include "planner/path/pattern_common.h"
 #include "pattern_checks.h"
@@ -362,6 +363,42 @@ TEST(ContinuousPattern, TurnaroundsChangeSidesOnOddLayers) {
   for (int layer : {0, 1}) {
     EXPECT_LT(UncoveredFraction(region, Plan(region, "continuous", layer)), 0.01) << "layer " << layer;
   }
+}
+
+// A curved wall two beads wide: Ding's decomposition of the tessellated band cuts at every facet of its inner arc
+// (2 deg apart, each a notch) into slivers narrower than a bead, and the pattern used to find no path at all. With
+// the shallow notches cut off first it is one pass covering all but the cusps; the chords on the inner arc put the
+// beads at most w/10 beyond it.
+TEST(ContinuousPattern, CurvedWallIsOnePassAndCovered) {
+  const PolygonWithHoles band = testing::ArcBand(60.0, 60.0 + 2.0 * kW, 70.0, 35);
+  for (int layer = 0; layer < 2; ++layer) {
+    const std::vector<Move2D> moves = Plan(band, "continuous", layer);
+    EXPECT_EQ(CountPasses(moves), 1) << "layer " << layer;
+    EXPECT_LT(UncoveredFraction(band, moves), 0.05) << "layer " << layer;
+    // Weld moves keep (w/2 - w/10) inside the band's outline: the path may lie w/10 beyond the true inner arc.
+    const std::vector<PolygonWithHoles> inner = internal::Offset({band}, -(0.5 * kW - 0.1 * kW - 0.05));
+    EXPECT_LT(WeldLengthOutside(moves, inner), 1e-3) << "layer " << layer;
+  }
+}
+
+// The same wall with contours: one ring two beads wide fills it. The next offset reaches the medial axis and leaves
+// crumbs along it; each used to be a pass of its own (an arc start and stop on the spot).
+TEST(ContourPattern, WallTwoBeadsWideIsOneRing) {
+  const PolygonWithHoles band = testing::ArcBand(60.0, 60.0 + 2.0 * kW, 70.0, 35);
+  const std::vector<Move2D> moves = Plan(band, "contour");
+  EXPECT_EQ(CountPasses(moves), 1);
+  EXPECT_LT(UncoveredFraction(band, moves), 0.02);
+  const PolygonWithHoles island{testing::Rect(0, 0, 1.2 * kW, 1.2 * kW), {}};
+  EXPECT_EQ(CountPasses(Plan(island, "contour")), 1) << "an island about a bead wide still gets its (short) ring";
+}
+
+TEST(PlanLayerPattern, HasWeldOrNoRoom) {
+  const std::vector<PolygonWithHoles> square{{testing::Rect(0, 0, 30, 30), {}}};
+  const std::vector<PolygonWithHoles> sliver{{testing::Rect(0, 0, 30, 0.8 * kW), {}}};
+  EXPECT_FALSE(HasWeldOrNoRoom(square, {}, kW)) << "room for beads and no weld move: a layer would go missing";
+  EXPECT_FALSE(HasWeldOrNoRoom(square, {{{5, 5}, false}, {{25, 5}, false}}, kW)) << "travel only";
+  EXPECT_TRUE(HasWeldOrNoRoom(square, {{{5, 5}, false}, {{25, 5}, true}}, kW));
+  EXPECT_TRUE(HasWeldOrNoRoom(sliver, {}, kW)) << "narrower than a bead: no path is the right answer";
 }
 
 TEST(PlanLayerPattern, EmptySliceGivesNoMoves) { EXPECT_TRUE(PlanLayerPattern({}, PatternOptions{}).empty()); }

@@ -82,6 +82,20 @@ inline Ring SlicedCylinder(std::mt19937_64& rng, double r, int n, double jitter_
   return ring;
 }
 
+// A curved wall section: the band between radii r0 < r1 over `sweep_deg` (centred on +x), each arc tessellated
+// into n chords, CCW: every vertex of the inner arc is a shallow notch.
+inline PolygonWithHoles ArcBand(double r0, double r1, double sweep_deg, int n) {
+  Ring ring;
+  const double half = 0.5 * sweep_deg * std::numbers::pi / 180.0;
+  auto at = [&](double r, int k) {
+    const double a = -half + 2.0 * half * k / n;
+    return Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
+  };
+  for (int k = 0; k <= n; ++k) ring.push_back(at(r1, k));
+  for (int k = n; k >= 0; --k) ring.push_back(at(r0, k));
+  return {ring, {}};
+}
+
 inline PolygonWithHoles LShape() { return {Poly({{0, 0}, {100, 0}, {100, 40}, {40, 40}, {40, 100}, {0, 100}}), {}}; }
 
 inline PolygonWithHoles TShape() {

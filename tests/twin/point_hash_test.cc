@@ -1,4 +1,4 @@
-// Radius queries over a point cloud and the radius outlier removal of the twin's scan.
+// Radius and nearest-point queries over a point cloud, its cell keys, and the radius outlier removal of the scan.
 #include "twin/scanner/point_hash.h"
 
 #include <algorithm>
@@ -65,6 +65,60 @@ TEST(PointHashTest, ForEachNearStopsWhenTheVisitorReturnsFalse) {
   int visited = 0;
   EXPECT_FALSE(hash.ForEachNear(q, 1.3, [&](int) { return ++visited < 3; })) << "the search reports that it stopped";
   EXPECT_EQ(visited, 3) << "no point is visited after the visitor returned false";
+}
+
+TEST(PointHashTest, NearestAgreesWithABruteForceSearch) {
+  const std::vector<Eigen::Vector3d> points = BlockAndSpeck();
+  const PointHash hash(points, 0.7);
+  auto brute = [&](const Eigen::Vector3d& q, double max_mm) {
+    int best = -1;
+    double best2 = max_mm * max_mm;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double d2 = (points[i] - q).squaredNorm();
+      if (d2 <= best2 && (best < 0 || d2 < (points[best] - q).squaredNorm())) {
+        best = static_cast<int>(i);
+        best2 = d2;
+      }
+    }
+    return best;
+  };
+  // Inside the block, beside it, between the block and the speck, and far from everything.
+  for (const Eigen::Vector3d& q : {Eigen::Vector3d(2.6, 3.1, 0.2), Eigen::Vector3d(-1.3, 2.0, 1.1),
+                                   Eigen::Vector3d(3.1, 2.9, 4.4), Eigen::Vector3d(40.0, 0.0, 0.0)}) {
+    for (double max_mm : {0.4, 3.0, 10.0}) {
+      const int found = hash.Nearest(q, max_mm);
+      const int expected = brute(q, max_mm);
+      ASSERT_EQ(found < 0, expected < 0) << "query " << q.transpose() << " within " << max_mm << " mm";
+      if (expected >= 0) {
+        EXPECT_DOUBLE_EQ((points[found] - q).norm(), (points[expected] - q).norm())
+            << "query " << q.transpose() << " within " << max_mm << " mm: not the nearest point";
+      }
+    }
+  }
+}
+
+TEST(PointHashTest, AddedPointsAreNumberedAndFoundLikeGivenOnes) {
+  const std::vector<Eigen::Vector3d> points = BlockAndSpeck();
+  const PointHash given(points, 0.7);
+  PointHash added(0.7);
+  for (std::size_t i = 0; i < points.size(); ++i) ASSERT_EQ(added.Add(points[i]), static_cast<int>(i));
+  ASSERT_EQ(added.size(), points.size());
+  const Eigen::Vector3d q(2.6, 3.1, 0.2);
+  std::vector<int> a, b;
+  given.ForEachNear(q, 1.3, [&](int i) { a.push_back(i); });
+  added.ForEachNear(q, 1.3, [&](int i) { b.push_back(i); });
+  EXPECT_EQ(a, b) << "same points, same visiting order";
+  EXPECT_EQ(added.point(5), points[5]);
+}
+
+TEST(PointHashTest, CellKeysAreOneToOneAroundTheOrigin) {
+  for (const Eigen::Vector3i& c : {Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(-1, 2, -3),
+                                   Eigen::Vector3i((1 << 20) - 1, -(1 << 20), 7)}) {
+    EXPECT_EQ(CellOfKey(CellKey(c)), c) << "cell " << c.transpose();
+  }
+  EXPECT_NE(CellKey(Eigen::Vector3i(1, 0, 0)), CellKey(Eigen::Vector3i(0, 1, 0)));
+  EXPECT_NE(CellKey(Eigen::Vector3i(0, 1, 0)), CellKey(Eigen::Vector3i(0, 0, 1)));
+  EXPECT_EQ(CellOf(Eigen::Vector3d(-0.1, 1.0, 2.9), 1.0), Eigen::Vector3i(-1, 1, 2)) << "floor, not truncation";
 }
 
 TEST(PointHashTest, OutlierRemovalDropsALoneVoxelAndKeepsTheSurface) {

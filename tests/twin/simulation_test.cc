@@ -30,6 +30,14 @@ TEST(Simulation, BlockAgainstItsBoxTarget) {
   EXPECT_GT(r.deviation.max_mm, r.deviation.min_mm);
   EXPECT_GT(m.ra_mm, 0.0);
   EXPECT_GE(m.waviness_mm, m.ra_mm) << "the peak-to-valley bounds the mean deviation";
+  // Ding Fig. 13's surface variation, over the same columns as Ra: the mean lies between the lowest and the highest
+  // column, Ra is at most half their spread, and three layers stand within a bead height of the plan's top slice
+  // (the denser boundary beads, the start humps and the voxel tops put the mean about 1 mm above it here).
+  EXPECT_LE(m.top_min_mm, m.top_mean_mm);
+  EXPECT_LE(m.top_mean_mm, m.top_max_mm);
+  EXPECT_LE(m.ra_mm, 0.5 * (m.top_max_mm - m.top_min_mm) + 1e-9);
+  EXPECT_NEAR(m.top_mean_mm, plan.layers.back().z_mm, h)
+      << "top min " << m.top_min_mm << " max " << m.top_max_mm << " mm";
   EXPECT_GT(m.build_time_s, 0.0);
 }
 

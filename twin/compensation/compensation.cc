@@ -112,9 +112,7 @@ Waviness WallWaviness(const ScanDeviation& scan, double cell_mm) {
     if (std::abs(scan.normal[i].z()) > 0.5) continue;  // top and bottom faces
     const Eigen::Vector3d closest = scan.points[i] - scan.deviation_mm[i] * scan.normal[i];
     if (closest.z() < z_lo + cell_mm || closest.z() > z_hi - cell_mm) continue;
-    const Eigen::Vector3i c(static_cast<int>(std::floor(closest.x() / cell_mm)),
-                            static_cast<int>(std::floor(closest.y() / cell_mm)),
-                            static_cast<int>(std::floor(closest.z() / cell_mm)));
+    const Eigen::Vector3i c = CellOf(closest, cell_mm);
     // Separate the faces of a thin wall by the side they look to.
     const int side = (scan.normal[i].x() > 0 ? 1 : 0) + (scan.normal[i].y() > 0 ? 2 : 0);
     const std::uint64_t key = (static_cast<std::uint64_t>(c.x() + (1 << 19)) & 0xFFFFF) |

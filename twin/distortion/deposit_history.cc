@@ -8,17 +8,12 @@
 
 #include "models/core/error.h"
 #include "twin/deposition/executed_path.h"
+#include "twin/scanner/point_hash.h"
 
 namespace waam::twin {
 namespace {
 
 constexpr double kCellMm = 4.0;  // cell of the segment hash, mm
-
-std::uint64_t CellKey(const Eigen::Vector3i& c) {
-  return (static_cast<std::uint64_t>(c.x() + (1 << 20)) & 0x1FFFFF) |
-         ((static_cast<std::uint64_t>(c.y() + (1 << 20)) & 0x1FFFFF) << 21) |
-         ((static_cast<std::uint64_t>(c.z() + (1 << 20)) & 0x1FFFFF) << 42);
-}
 
 }  // namespace
 
@@ -71,8 +66,8 @@ DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depos
       const double reach = e.bead_width_mm * std::max(1.0, e.width_factor) + 2.0 * e.bead_height_mm + 1.0;
       const Eigen::Vector3d lo = a.p_P.cwiseMin(e.p_P).array() - reach;
       const Eigen::Vector3d hi = a.p_P.cwiseMax(e.p_P).array() + reach;
-      const Eigen::Vector3i clo = (lo / kCellMm).array().floor().cast<int>();
-      const Eigen::Vector3i chi = (hi / kCellMm).array().floor().cast<int>();
+      const Eigen::Vector3i clo = CellOf(lo, kCellMm);
+      const Eigen::Vector3i chi = CellOf(hi, kCellMm);
       for (int z = clo.z(); z <= chi.z(); ++z) {
         for (int y = clo.y(); y <= chi.y(); ++y) {
           for (int x = clo.x(); x <= chi.x(); ++x) {
@@ -97,7 +92,7 @@ VoxelDeposit DepositHistory::At(std::uint32_t bead, double time_s, const Eigen::
   // per voxel on part I, and at most a few share the window); only if none does, the nearest of all. Same result as
   // ranking every candidate by distance with the out-of-window ones last, without their distances.
   std::uint32_t k = 0;
-  auto it = cells_.find(CellKey((p_P / kCellMm).array().floor().cast<int>()));
+  auto it = cells_.find(CellKey(CellOf(p_P, kCellMm)));
   if (it != cells_.end()) {
     auto distance = [&](const Segment& seg) {
       const Eigen::Vector3d ab = seg.b - seg.a;

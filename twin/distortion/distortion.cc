@@ -10,6 +10,7 @@
 #include "models/core/error.h"
 #include "twin/distortion/hex_mesh.h"
 #include "twin/distortion/inherent_strain.h"
+#include "twin/scanner/point_hash.h"
 
 namespace waam::twin {
 
@@ -23,39 +24,31 @@ void ValidateDistortionOptions(const DistortionOptions& o) {
                     "distortion.solver = '" << o.solver << "': must be ldlt or cg");
 }
 
-std::uint64_t DistortionField::Key(int i, int j, int k) {
-  constexpr std::int64_t kOffset = 1 << 20;
-  return (static_cast<std::uint64_t>(i + kOffset) & 0x1FFFFF) |
-         ((static_cast<std::uint64_t>(j + kOffset) & 0x1FFFFF) << 21) |
-         ((static_cast<std::uint64_t>(k + kOffset) & 0x1FFFFF) << 42);
-}
-
 DistortionField::DistortionField(double element_mm, std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes,
                                  std::unordered_map<std::uint64_t, std::uint8_t> elements)
     : element_mm_(element_mm), nodes_(std::move(nodes)), elements_(std::move(elements)) {}
 
 const Eigen::Vector3d* DistortionField::Node(int i, int j, int k) const {
-  auto it = nodes_.find(Key(i, j, k));
+  auto it = nodes_.find(CellKey(Eigen::Vector3i(i, j, k)));
   return it == nodes_.end() ? nullptr : &it->second;
 }
 
 Eigen::Vector3d DistortionField::Displacement(const Eigen::Vector3d& p_P) const {
   const Eigen::Vector3d s = p_P / element_mm_;
-  const Eigen::Vector3i cell(static_cast<int>(std::floor(s.x())), static_cast<int>(std::floor(s.y())),
-                             static_cast<int>(std::floor(s.z())));
+  const Eigen::Vector3i cell = CellOf(p_P, element_mm_);
   // The element containing the point, else the active element whose centre is nearest, within one cell and then
   // within two: a voxel of metal sticking out of the wall (a cell with too few voxels to be an element, next to
   // another such cell) must move with the wall, not stay behind as a speck at its undistorted place (part I after
   // compensation: a voxel 4.5 mm off the distorted surface).
   Eigen::Vector3i best = cell;
-  if (!elements_.count(Key(cell.x(), cell.y(), cell.z()))) {
+  if (!elements_.count(CellKey(cell))) {
     double best_d = std::numeric_limits<double>::infinity();
     for (int reach = 1; reach <= 2 && !std::isfinite(best_d); ++reach) {
       for (int dz = -reach; dz <= reach; ++dz) {
         for (int dy = -reach; dy <= reach; ++dy) {
           for (int dx = -reach; dx <= reach; ++dx) {
             const Eigen::Vector3i c = cell + Eigen::Vector3i(dx, dy, dz);
-            if (!elements_.count(Key(c.x(), c.y(), c.z()))) continue;
+            if (!elements_.count(CellKey(c))) continue;
             const double d = (c.cast<double>() + Eigen::Vector3d::Constant(0.5) - s).squaredNorm();
             if (d < best_d) {
               best_d = d;
@@ -102,13 +95,12 @@ DistortionField ComputeDistortion(const VoxelGrid& grid, const DepositHistory& h
   std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes;
   nodes.reserve(u.size());
   for (std::size_t n = 0; n < u.size(); ++n) {
-    const Eigen::Vector3i& ijk = mesh.node_ijk[n];
-    nodes.emplace(DistortionField::Key(ijk.x(), ijk.y(), ijk.z()), u[n]);
+    nodes.emplace(CellKey(mesh.node_ijk[n]), u[n]);
     s.max_displacement_mm = std::max(s.max_displacement_mm, u[n].norm());
   }
   std::unordered_map<std::uint64_t, std::uint8_t> elements;
   elements.reserve(mesh.elements.size());
-  for (const internal::HexElement& e : mesh.elements) elements.emplace(DistortionField::Key(e.ijk.x(), e.ijk.y(), e.ijk.z()), 1);
+  for (const internal::HexElement& e : mesh.elements) elements.emplace(CellKey(e.ijk), 1);
   s.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return DistortionField(mesh.h_mm, std::move(nodes), std::move(elements));
 }

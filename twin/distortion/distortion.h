@@ -42,6 +42,9 @@ struct DistortionStats {
 class DistortionField {
  public:
   DistortionField() = default;
+  // Node displacements (mm) and active elements of a mesh of `element_mm` cubes, each keyed by the CellKey of its
+  // (i, j, k): node (i, j, k) lies at (i, j, k) * element_mm; element (i, j, k) spans nodes (i, j, k) to
+  // (i+1, j+1, k+1).
   DistortionField(double element_mm, std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes,
                   std::unordered_map<std::uint64_t, std::uint8_t> elements);
 
@@ -51,13 +54,11 @@ class DistortionField {
   double element_mm() const { return element_mm_; }
   std::size_t nodes() const { return nodes_.size(); }
 
-  static std::uint64_t Key(int i, int j, int k);
-
  private:
   const Eigen::Vector3d* Node(int i, int j, int k) const;
   double element_mm_ = 1.0;
-  std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes_;
-  std::unordered_map<std::uint64_t, std::uint8_t> elements_;  // active elements (value unused)
+  std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes_;  // by CellKey of the node (i, j, k)
+  std::unordered_map<std::uint64_t, std::uint8_t> elements_;  // CellKeys of the active elements (value unused)
 };
 
 // Computes the distortion of the part in `grid` whose voxels were deposited as `history` records, with the

@@ -7,6 +7,7 @@
 #include <queue>
 
 #include "twin/distortion/distortion.h"
+#include "twin/scanner/point_hash.h"
 
 namespace waam::twin::internal {
 namespace {
@@ -33,7 +34,7 @@ HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const
   std::size_t n = 0;
   grid.ForEach([&](const VoxelIndex& v, const VoxelData&) {
     const int I = FloorDiv(v.x(), factor), J = FloorDiv(v.y(), factor), K = FloorDiv(v.z(), factor);
-    const std::uint64_t key = DistortionField::Key(I, J, K);
+    const std::uint64_t key = CellKey(Eigen::Vector3i(I, J, K));
     auto [it, inserted] = bins.try_emplace(key);
     if (inserted) {
       it->second.order = order.size();
@@ -53,7 +54,7 @@ HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const
   for (int l = 0; l < history.layers(); ++l) max_layer = l;
   mesh.groups = std::max(1, groups);
   auto node = [&](int I, int J, int K) {
-    const std::uint64_t key = DistortionField::Key(I, J, K);
+    const std::uint64_t key = CellKey(Eigen::Vector3i(I, J, K));
     auto [it, inserted] = mesh.node_id.try_emplace(key, static_cast<int>(mesh.node_ijk.size()));
     if (inserted) mesh.node_ijk.emplace_back(I, J, K);
     return it->second;
@@ -62,10 +63,7 @@ HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const
     const Accum& a = bins[key];
     if (2 * a.count < full) continue;
     HexElement e;
-    // Decode the key back to (I, J, K) (21 bits each, offset by 2^20).
-    e.ijk = Eigen::Vector3i(static_cast<int>(key & 0x1FFFFF) - (1 << 20),
-                            static_cast<int>((key >> 21) & 0x1FFFFF) - (1 << 20),
-                            static_cast<int>((key >> 42) & 0x1FFFFF) - (1 << 20));
+    e.ijk = CellOfKey(key);
     e.layer = a.layer / a.count;
     e.strain = a.strain / a.count;
     e.dir = a.dir.norm() > 0 ? Eigen::Vector3d(a.dir.normalized()) : Eigen::Vector3d::UnitZ();

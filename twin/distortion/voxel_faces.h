@@ -1,14 +1,13 @@
 // Internal to the distortion fit: the exposed faces of the deposited voxels, for signed point-to-face distances.
 #pragma once
 
-#include <cstdint>
 #include <functional>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "twin/deposition/voxel_grid.h"
+#include "twin/scanner/point_hash.h"
 
 namespace waam::twin::internal {
 
@@ -20,25 +19,21 @@ class VoxelFaces {
  public:
   explicit VoxelFaces(const VoxelGrid& grid);
 
-  std::size_t size() const { return centre_.size(); }
+  std::size_t size() const { return centres_.size(); }
   // The same faces (same indices and normals) with every centre c moved to c + u(c) by `u` (mm).
   VoxelFaces Moved(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& u) const;
   // Index of the face whose centre is nearest to `p` (mm), searching at most `max_mm` (> 0) away; -1 if none.
-  int Nearest(const Eigen::Vector3d& p, double max_mm) const;
+  int Nearest(const Eigen::Vector3d& p, double max_mm) const { return centres_.Nearest(p, max_mm); }
   // Signed distance (mm) of `p` to the plane of face `face` (+ on the air side).
   double PlaneDistance(int face, const Eigen::Vector3d& p) const {
-    return (p - centre_[face]).dot(normal_[face]);
+    return (p - centres_.point(face)).dot(normal_[face]);
   }
-  const Eigen::Vector3d& centre(int face) const { return centre_[face]; }
+  const Eigen::Vector3d& centre(int face) const { return centres_.point(face); }
 
  private:
-  VoxelFaces() = default;
-  Eigen::Vector3i Cell(const Eigen::Vector3d& p) const;
-  static std::uint64_t Key(const Eigen::Vector3i& c);
-  double cell_mm_ = 1.0;
-  std::vector<Eigen::Vector3d> centre_;
+  explicit VoxelFaces(double cell_mm) : centres_(cell_mm) {}
+  PointHash centres_;  // face centres in cells of two voxels
   std::vector<Eigen::Vector3d> normal_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
 
 }  // namespace waam::twin::internal

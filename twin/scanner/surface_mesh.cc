@@ -12,18 +12,13 @@
 
 #include "models/core/error.h"
 #include "models/core/progress.h"
+#include "twin/scanner/point_hash.h"
 
 namespace waam::twin {
 namespace {
 
 // Corner c of a cell is at offset (c & 1, c >> 1 & 1, c >> 2 & 1).
 constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
-
-std::uint64_t Pack(const Eigen::Vector3i& p) {
-  constexpr std::int64_t kOffset = 1 << 20;
-  return (static_cast<std::uint64_t>(p.x() + kOffset) << 42) | (static_cast<std::uint64_t>(p.y() + kOffset) << 21) |
-         static_cast<std::uint64_t>(p.z() + kOffset);
-}
 
 }  // namespace
 
@@ -38,7 +33,7 @@ planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
     const Eigen::Vector3i b(idx.x() >> 3, idx.y() >> 3, idx.z() >> 3);
     for (int d = 0; d < 8; ++d) {
       const Eigen::Vector3i c = b - Eigen::Vector3i(d & 1, d >> 1 & 1, d >> 2 & 1);
-      if (seen.insert(Pack(c)).second) cell_blocks.push_back(c);
+      if (seen.insert(CellKey(c)).second) cell_blocks.push_back(c);
     }
   });
   std::sort(cell_blocks.begin(), cell_blocks.end(), [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
@@ -47,7 +42,7 @@ planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
   std::unordered_map<std::uint64_t, int> vertex_of;  // edge midpoint in half-voxel units -> vertex
   auto vertex = [&](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
     const Eigen::Vector3i key = a + b + Eigen::Vector3i::Ones();  // 2 x midpoint / v
-    auto [it, inserted] = vertex_of.emplace(Pack(key), static_cast<int>(mesh.vertices.size()));
+    auto [it, inserted] = vertex_of.emplace(CellKey(key), static_cast<int>(mesh.vertices.size()));
     if (inserted) mesh.vertices.push_back(key.cast<double>() * (0.5 * v));
     return it->second;
   };
@@ -139,19 +134,14 @@ VoxelGrid Coarsen(const VoxelGrid& grid, int factor) {
   std::vector<std::uint64_t> order;  // first-seen order, for a deterministic result
   grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) {
     const Eigen::Vector3i c(floor_div(v.x()), floor_div(v.y()), floor_div(v.z()));
-    auto [it, inserted] = counts.try_emplace(Pack(c), 0, d);
+    auto [it, inserted] = counts.try_emplace(CellKey(c), 0, d);
     if (inserted) order.push_back(it->first);
     ++it->second.first;
   });
   const int half = (factor * factor * factor + 1) / 2;
-  constexpr std::int64_t kOffset = 1 << 20;
   for (std::uint64_t key : order) {
     const auto& [n, data] = counts[key];
-    if (n < half) continue;
-    const VoxelIndex c(static_cast<int>(static_cast<std::int64_t>(key >> 42) - kOffset),
-                       static_cast<int>(static_cast<std::int64_t>((key >> 21) & 0x1FFFFF) - kOffset),
-                       static_cast<int>(static_cast<std::int64_t>(key & 0x1FFFFF) - kOffset));
-    coarse.Set(c, data);
+    if (n >= half) coarse.Set(CellOfKey(key), data);
   }
   return coarse;
 }
