@@ -137,7 +137,7 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
   };
 }
 
-planner::PlanResult RunPlan(const PlanOptions& options) {
+planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_out) {
   const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
   EnsureOutputDirectory(options.out_dir);
 
@@ -175,6 +175,7 @@ planner::PlanResult RunPlan(const PlanOptions& options) {
               << (scenario.path.pattern == "contour" ? "a hybrid or continuous" : "a contour")
               << " pattern may cover it\n";
   }
+  if (summary_out != nullptr) *summary_out = summary;
   return result;
 }
 

@@ -20,8 +20,9 @@ struct PlanOptions {
 };
 
 // Runs the planner and writes every output atomically; plan.json is written last, so its presence marks a complete
-// run. Returns the planning result. Throws InputError for bad scenarios and meshes.
-planner::PlanResult RunPlan(const PlanOptions& options);
+// run. Returns the planning result, and the plan.json document in `summary` when not null. Throws InputError for bad
+// scenarios and meshes.
+planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary = nullptr);
 
 // The plan.json document (the public contract: field names are documented in the README).
 nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::PlanResult& result);

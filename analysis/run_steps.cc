@@ -44,8 +44,8 @@ nlohmann::json PickMetrics(const nlohmann::json& document, const std::vector<std
 StepOutcome RunPlanStep(RunContext& context, const fs::path& step_dir) {
   auto options = StepOptions<PlanOptions>(context, step_dir);
   options.layer_images = context.options.images;
-  context.planned = RunPlan(options);
-  nlohmann::json document = PlanToJson(context.scenario, *context.planned);
+  nlohmann::json document;
+  context.planned = RunPlan(options, &document);
   StepOutcome outcome;
   outcome.metrics = PickMetrics(document, {"/layers", "/passes", "/path_elements", "/weld_length_mm",
                                            "/travel_length_mm", "/estimated_time_s", "/bead_width_mm",

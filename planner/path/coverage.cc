@@ -2,6 +2,7 @@
 #include "planner/path/coverage.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <vector>
 

@@ -1,9 +1,6 @@
 // How much of a layer's slice its planned beads leave uncovered.
 #pragma once
 
-#include <cmath>
-#include <limits>
-
 #include "planner/path/tool_path.h"
 
 namespace waam::planner {
