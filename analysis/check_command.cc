@@ -5,6 +5,7 @@
 
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
 #include "planner/program/fanuc_ls.h"
@@ -44,10 +45,10 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
     if (!s.weld || s.layer == last_layer) continue;
     last_layer = s.layer;
     layers.push_back({{"layer", s.layer},
-                      {"tilt_deg", s.q[6] * 180.0 / M_PI},
-                      {"rotation_deg", s.q[7] * 180.0 / M_PI},
+                      {"tilt_deg", s.q[6] * 180.0 / kPi},
+                      {"rotation_deg", s.q[7] * 180.0 / kPi},
                       {"positioner_at_limit", s.positioner_at_limit},
-                      {"torch_tilt_deg", s.torch_tilt_rad * 180.0 / M_PI}});
+                      {"torch_tilt_deg", s.torch_tilt_rad * 180.0 / kPi}});
   }
   nlohmann::json accel = nlohmann::json::object();
   for (int a = 0; a < 8; ++a) accel[twin::AxisName(a)] = Finite(report.max_accel_deg_s2[a]);

@@ -12,14 +12,13 @@
 
 #include "analysis/check_command.h"
 #include "models/core/files.h"
+#include "models/core/numbers.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kDeg = 180.0 / M_PI;
 
 void WritePng(const cv::Mat& image, const fs::path& path) {
   std::vector<unsigned char> bytes;
@@ -33,9 +32,9 @@ std::vector<Eigen::Vector3d> SurfacePoints(const twin::CellShape& s) {
   const Eigen::Vector3d& z = s.size_mm;
   auto sphere = [&](double r, double dz) {
     for (int i = 0; i <= 8; ++i) {
-      const double th = M_PI * i / 8;
+      const double th = kPi * i / 8;
       for (int k = 0; k < 16; ++k) {
-        const double ph = 2 * M_PI * k / 16;
+        const double ph = 2 * kPi * k / 16;
         local.emplace_back(r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), dz + r * std::cos(th));
       }
     }
@@ -45,7 +44,7 @@ std::vector<Eigen::Vector3d> SurfacePoints(const twin::CellShape& s) {
     case twin::CellShape::Type::kCapsule: sphere(z[0], z[1]); sphere(z[0], -z[1]); break;
     case twin::CellShape::Type::kCylinder:
       for (int k = 0; k < 24; ++k) {
-        const double ph = 2 * M_PI * k / 24;
+        const double ph = 2 * kPi * k / 24;
         local.emplace_back(z[0] * std::cos(ph), z[0] * std::sin(ph), z[1]);
         local.emplace_back(z[0] * std::cos(ph), z[0] * std::sin(ph), -z[1]);
       }

@@ -12,6 +12,7 @@
 #include "analysis/tune_voids_internal.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "planner/path/junctions.h"
 #include "planner/planar_planner.h"
@@ -19,8 +20,6 @@
 
 namespace waam::analysis {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void Validate(const TuneVoidsOptions& o) {
   WAAM_THROW_UNLESS(o.layers >= 2 && o.layers <= 100, "tune-voids --layers = " << o.layers << ": must be in [2, 100]");

@@ -10,6 +10,7 @@
 #include "models/bead/csw_model.h"
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/geometry/clipper_adapter.h"
@@ -24,7 +25,6 @@ namespace waam::planner {
 namespace {
 
 constexpr double kWeldToleranceMm = 1e-4;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Longest step between path points after mapping back: a straight flat line is a geodesic, curved in space.
 constexpr double kPointStepMm = 2.0;

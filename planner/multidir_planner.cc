@@ -12,6 +12,7 @@
 
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/mesh/generators.h"
@@ -25,7 +26,6 @@ namespace waam::planner {
 namespace {
 
 constexpr double kWeldToleranceMm = 1e-4;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kFarMm = 1e5;          // half-planes are clipped as squares this large
 constexpr double kMinRegionMm2 = 1.0;   // slivers along a split plane are dropped
 

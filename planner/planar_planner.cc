@@ -7,6 +7,7 @@
 #include "models/bead/parabolic_bead.h"
 #include "models/bead/speed_height_model.h"
 #include "models/bead/width_height_model.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/cone_planner.h"
@@ -23,7 +24,6 @@ namespace waam::planner {
 namespace {
 
 constexpr double kWeldToleranceMm = 1e-4;
-constexpr double kPi = 3.14159265358979323846;
 
 // Puts the part on the substrate: its lowest point at z = 0 (the part frame's origin plane).
 void PlaceOnSubstrate(TriangleMesh* mesh, MeshReport* report) {

@@ -10,6 +10,7 @@
 
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/mesh/generators.h"
@@ -21,7 +22,6 @@ namespace waam::planner {
 namespace {
 
 constexpr double kWeldToleranceMm = 1e-4;
-constexpr double kPi = 3.14159265358979323846;
 
 // A layer's closed mid curve in the part frame, parametrised by arc-length fraction f in [0, 1] from a start point.
 class ClosedCurve {

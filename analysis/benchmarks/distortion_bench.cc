@@ -9,6 +9,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "models/core/numbers.h"
 #include "planner/path/tool_path.h"
 #include "planner/planar_planner.h"
 #include "planner/scenario/scenario.h"
@@ -21,13 +22,13 @@ namespace {
 // A round tube: one circular pass (2 mm chords) per layer of height h, radius r, bead w, `layers` layers.
 waam::planner::Plan Tube(double r, int layers, double w, double h, double speed) {
   waam::planner::Plan plan;
-  const int n = static_cast<int>(std::ceil(2.0 * M_PI * r / 2.0));
+  const int n = static_cast<int>(std::ceil(2.0 * waam::kPi * r / 2.0));
   for (int k = 0; k < layers; ++k) {
     waam::planner::LayerPath layer;
     layer.index = k;
     layer.z_mm = (k + 1) * h;
     for (int i = 0; i <= n; ++i) {
-      const double a = 2.0 * M_PI * i / n + 0.3 * k;  // the start moves round, as a continuous path's seam would
+      const double a = 2.0 * waam::kPi * i / n + 0.3 * k;  // the start moves round, as a continuous path's seam would
       waam::planner::PathPoint p;
       p.p_P = Eigen::Vector3d(r * std::cos(a), r * std::sin(a), layer.z_mm);
       p.bead_width_mm = w;

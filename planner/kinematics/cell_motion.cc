@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/numbers.h"
+
 namespace waam::planner {
 namespace {
 
@@ -56,7 +58,7 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
 
   // Home posture of the arm: upper arm up, forearm forward, flange pointing down (j5 = -90 deg).
   Joints6 seed;
-  seed << 0.0, 0.0, 0.0, 0.0, -M_PI_2, 0.0;
+  seed << 0.0, 0.0, 0.0, 0.0, -(kPi / 2), 0.0;
   PositionerAngles angles;
   angles.rotation = options.rotation_rad;
   PositionerAngles previous_layer_angles = angles;

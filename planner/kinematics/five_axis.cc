@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/numbers.h"
+
 namespace waam::planner {
 namespace {
 
@@ -21,7 +23,7 @@ AxisAngles ToVz(const Eigen::Vector3d& v) {
   const double horizontal = std::hypot(v.x(), v.y());
   // gamma = atan2(Y_v, X_v) is the azimuth; the turn that brings it onto +y is pi/2 - gamma. When v is vertical
   // any turn about z will do; 0 keeps the table still.
-  g.c = horizontal < 1e-12 ? 0.0 : M_PI_2 - std::atan2(v.y(), v.x());
+  g.c = horizontal < 1e-12 ? 0.0 : (kPi / 2) - std::atan2(v.y(), v.x());
   g.a = std::acos(std::clamp(v.z(), -1.0, 1.0));
   g.b = 0.0;
   return g;

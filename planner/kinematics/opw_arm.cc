@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "models/core/numbers.h"
 #include "planner/kinematics/angles.h"
 
 namespace waam::planner {
@@ -12,7 +13,7 @@ namespace {
 
 constexpr double kWristSingularSin = 1e-9;  // |sin j5| below this: j4 and j6 are coupled
 
-double Deg(double d) { return d * M_PI / 180.0; }
+double Deg(double d) { return d * kPi / 180.0; }
 
 Eigen::Matrix3d Rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).toRotationMatrix(); }
 Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix(); }
@@ -77,9 +78,9 @@ IkSolutions SolveIk(const OpwArm& arm, const Eigen::Isometry3d& X_RF, const Join
     // Shoulder: j1 towards the wrist centre (front) or away from it (back, reaching over).
     double q1;
     if (rho < 1e-9) {
-      q1 = seed_q1 + (shoulder ? M_PI : 0.0);  // shoulder singularity: j1 is free
+      q1 = seed_q1 + (shoulder ? kPi : 0.0);  // shoulder singularity: j1 is free
     } else {
-      q1 = std::atan2(w.y(), w.x()) + (shoulder ? M_PI : 0.0);
+      q1 = std::atan2(w.y(), w.x()) + (shoulder ? kPi : 0.0);
     }
     const double r = (shoulder ? -rho : rho) - arm.a1;  // horizontal distance j2 -> wrist centre in the arm plane
     const double s2 = r * r + h * h;
@@ -111,7 +112,7 @@ IkSolutions SolveIk(const OpwArm& arm, const Eigen::Isometry3d& X_RF, const Join
             b = 0.0;
             c = std::atan2(M(2, 1), M(1, 1)) - a;
           } else {
-            b = M_PI;
+            b = kPi;
             c = std::atan2(-M(2, 1), M(1, 1)) + a;
           }
           if (flip) continue;  // both wrist branches coincide

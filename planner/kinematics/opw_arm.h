@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "models/core/numbers.h"
+
 namespace waam::planner {
 
 using Joints6 = Eigen::Matrix<double, 6, 1>;  // arm joint angles j1..j6, rad
@@ -25,8 +27,8 @@ struct OpwArm {
   double c2 = 0.0;  // upper arm length j2 -> j3, mm
   double c3 = 0.0;  // forearm length j3 -> wrist centre, mm
   double c4 = 0.0;  // wrist centre -> flange, mm
-  Joints6 lower = Joints6::Constant(-M_PI);      // joint limits, rad
-  Joints6 upper = Joints6::Constant(M_PI);       // rad
+  Joints6 lower = Joints6::Constant(-kPi);      // joint limits, rad
+  Joints6 upper = Joints6::Constant(kPi);       // rad
   Joints6 max_speed = Joints6::Constant(1.0);    // rad/s
 
   // The FANUC ARC Mate 100iC/12 (= M-10iA arm): reach 1420 mm, limits and speeds of its data sheet.

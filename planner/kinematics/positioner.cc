@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "models/core/numbers.h"
 #include "planner/kinematics/angles.h"
 
 namespace waam::planner {
@@ -32,7 +33,7 @@ PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen
   const double horizontal = std::hypot(m.x(), m.y());
   PositionerAngles out;
   if (horizontal < 1e-12) {
-    out.tilt = m.z() > 0.0 ? 0.0 : M_PI;  // upside down needs a half turn of the tilt axis
+    out.tilt = m.z() > 0.0 ? 0.0 : kPi;  // upside down needs a half turn of the tilt axis
     out.rotation = previous.rotation;
   } else {
     const double t = std::acos(std::clamp(m.z(), -1.0, 1.0));  // > 0
@@ -41,7 +42,7 @@ PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen
     double best_cost = std::numeric_limits<double>::infinity();
     for (int s = 0; s < 2; ++s) {
       const double tilt = s ? -t : t;
-      const double rot = NearestAngleCopy((s ? -M_PI_2 : M_PI_2) - phi, positioner.rotation_lower,
+      const double rot = NearestAngleCopy((s ? -(kPi / 2) : (kPi / 2)) - phi, positioner.rotation_lower,
                                      positioner.rotation_upper, previous.rotation);
       const double tilt_clamped = std::clamp(tilt, positioner.tilt_lower, positioner.tilt_upper);
       const bool rot_inside = rot >= positioner.rotation_lower && rot <= positioner.rotation_upper;

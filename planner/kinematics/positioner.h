@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "models/core/numbers.h"
+
 namespace waam::planner {
 
 // Kinematic chain of the positioner, from its base frame B (on the floor, z up) to the part frame P:
@@ -16,12 +18,12 @@ struct Positioner {
   Eigen::Vector3d p_BA = Eigen::Vector3d(0.0, 0.0, 700.0);   // tilt axis in B, mm
   Eigen::Vector3d p_AC = Eigen::Vector3d(0.0, 0.0, 60.0);    // table (rotation) frame in A at tilt 0, mm
   Eigen::Isometry3d X_CP = Eigen::Isometry3d::Identity();   // part frame on the table, mm
-  double tilt_lower = -70.0 * M_PI / 180.0;                 // rad (140 deg range, Table 3)
-  double tilt_upper = 70.0 * M_PI / 180.0;
-  double rotation_lower = -240.0 * M_PI / 180.0;            // rad (480 deg range, Table 3)
-  double rotation_upper = 240.0 * M_PI / 180.0;
-  double tilt_max_speed = 120.0 * M_PI / 180.0;             // rad/s (Table 3)
-  double rotation_max_speed = 190.0 * M_PI / 180.0;         // rad/s (Table 3)
+  double tilt_lower = -70.0 * kPi / 180.0;                 // rad (140 deg range, Table 3)
+  double tilt_upper = 70.0 * kPi / 180.0;
+  double rotation_lower = -240.0 * kPi / 180.0;            // rad (480 deg range, Table 3)
+  double rotation_upper = 240.0 * kPi / 180.0;
+  double tilt_max_speed = 120.0 * kPi / 180.0;             // rad/s (Table 3)
+  double rotation_max_speed = 190.0 * kPi / 180.0;         // rad/s (Table 3)
 };
 
 // Part pose in the positioner base frame for the two axis angles (rad), mm.

@@ -4,13 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "models/core/numbers.h"
 #include "planner/mesh/extrude.h"
 #include "planner/mesh/mesh_ops.h"
 
 namespace waam::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 

@@ -9,13 +9,12 @@
 #include <Eigen/Geometry>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "planner/mesh/extrude.h"
 #include "planner/mesh/mesh_ops.h"
 
 namespace waam::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Welds a triangle soup into one shell and turns its facets outward.
 TriangleMesh Shell(const std::vector<Eigen::Vector3d>& corners) {

@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "planner/geometry/triangulate.h"
 
 namespace waam::planner {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 Ring CircleRing(const Eigen::Vector2d& center_mm, double radius_mm, int segments) {

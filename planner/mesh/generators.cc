@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/mesh/blade_generators.h"
 #include "planner/mesh/cup_generator.h"
@@ -28,7 +29,6 @@
 namespace waam::planner {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 using Vec2 = Eigen::Vector2d;
 
 struct ParamSpec {

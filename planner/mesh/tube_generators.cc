@@ -6,11 +6,10 @@
 #include <cmath>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 
 namespace waam::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The axis frame at arc length s: point a, tangent t, e1 towards the bend centre (in the x-z plane), e2 = +y.
 struct AxisFrame {

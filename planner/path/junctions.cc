@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 
 namespace waam::planner {
 namespace {
 
 using Vec = Eigen::Vector2d;
-constexpr double kPi = 3.14159265358979323846;
 // A vertex turns the path when APB is sharper than this (a straighter vertex is a facet of a curve, not a corner).
 constexpr double kMaxTurnAngleRad = 170.0 * kPi / 180.0;
 // Cell corners of one junction add up to 360 degrees; a shortfall above this is one more rib's sector.

@@ -10,13 +10,13 @@
 #include <nlohmann/json.hpp>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/fit/model_file.h"
 
 namespace waam::planner {
 namespace {
 
 using Vec = Eigen::Vector2d;
-constexpr double kPi = 3.14159265358979323846;
 // Below this angle 1/sin(theta/2) explodes (eq. 4.3: 15 degrees already shifts P by 6.7 l) and the corner's legs
 // rarely hold E and F; the dissertation's junctions go down to 18 degrees (Appendix A1, F8).
 constexpr double kMinCorrectableDeg = 15.0;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "models/core/numbers.h"
+
 namespace waam::planner {
 namespace {
 
@@ -12,7 +14,7 @@ namespace {
 double Clean(double v) { return std::abs(v) < 5e-4 ? 0.0 : v; }
 
 int Turn(double q_rad) {
-  const double deg = q_rad * 180.0 / M_PI;
+  const double deg = q_rad * 180.0 / kPi;
   return deg > 180.0 ? 1 : (deg < -180.0 ? -1 : 0);
 }
 

@@ -5,9 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "models/core/numbers.h"
+
 namespace waam::planner {
 namespace {
-constexpr double kDeg = 180.0 / M_PI;
 // Rounds away the sign of values that print as zero ("-0.000").
 double Clean(double v) { return std::abs(v) < 5e-4 ? 0.0 : v; }
 }  // namespace

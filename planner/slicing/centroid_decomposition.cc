@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/mesh/mesh_ops.h"
@@ -21,7 +22,6 @@
 namespace waam::planner {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSliverMm2 = 1e-3;      // smaller pieces are numerical leftovers of the booleans
 constexpr double kContactStepMm = 0.05;  // split-line points are taken along the contact outline this densely
 using Regions = std::vector<PolygonWithHoles>;

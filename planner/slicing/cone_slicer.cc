@@ -7,12 +7,12 @@
 #include <map>
 #include <utility>
 
+#include "models/core/numbers.h"
 #include "planner/geometry/clipper_adapter.h"
 
 namespace waam::planner {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // A vertex closer than this to the surface counts as "on" it (step 0): the surface radius is nudged instead.
 constexpr double kOnSurfaceMm = 1e-7;
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
+#include "models/core/numbers.h"
+
 namespace waam::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double WrapPi(double a) {
   a = std::remainder(a, 2.0 * kPi);  // [-pi, pi]

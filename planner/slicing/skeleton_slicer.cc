@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/slicing/planar_slicer.h"
@@ -137,7 +138,7 @@ void MeasureThickness(const SkeletonLayer& below, SkeletonLayer* top) {
   }
 }
 
-constexpr double kMaxTurnRad = 10.0 * 3.14159265358979323846 / 180.0;
+constexpr double kMaxTurnRad = 10.0 * kPi / 180.0;
 
 double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
@@ -151,7 +152,7 @@ void SkeletonSliceOptions::Validate(const std::string& where) const {
   WAAM_THROW_UNLESS(h_max_mm >= h_min_mm && std::isfinite(h_max_mm),
                     where << ".h_max_mm = " << h_max_mm << ": must be >= h_min_mm = " << h_min_mm);
   WAAM_THROW_UNLESS(first_step_mm >= 0.0, where << ".first_step_mm = " << first_step_mm << ": must be >= 0");
-  WAAM_THROW_UNLESS(beta_rad > 0.0, where << ".beta_deg = " << beta_rad * 180.0 / M_PI << ": must be > 0");
+  WAAM_THROW_UNLESS(beta_rad > 0.0, where << ".beta_deg = " << beta_rad * 180.0 / kPi << ": must be > 0");
   WAAM_THROW_UNLESS(wall_mm >= 0.0, where << ".wall_mm = " << wall_mm << ": must be >= 0");
 }
 
@@ -193,7 +194,7 @@ SkeletonSlicing SliceAlongSkeleton(const TriangleMesh& mesh, const SkeletonSlice
   while (true) {
     const SkeletonLayer& below = out.layers.empty() ? out.base : out.layers.back();
     // Reach: the next centroid lies within about half a section of the guess G.
-    const double reach = std::max(5.0, 0.5 * Perimeter(below.section.outer) / M_PI + 2.0 * options.h_max_mm);
+    const double reach = std::max(5.0, 0.5 * Perimeter(below.section.outer) / kPi + 2.0 * options.h_max_mm);
     std::optional<SkeletonLayer> accepted;
     for (int round = 0; round < options.max_iterations; ++round) {
       const Eigen::Vector3d G = below.centroid_P + step * direction;

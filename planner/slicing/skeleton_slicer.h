@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "models/core/numbers.h"
 #include "planner/geometry/polygon.h"
 #include "planner/mesh/triangle_mesh.h"
 
@@ -21,7 +22,7 @@ struct SkeletonSliceOptions {
   double h_min_mm = 1.0;        // smallest layer thickness the process can deposit, mm (Table 16)
   double h_max_mm = 2.0;        // largest, mm (Table 16)
   double first_step_mm = 0.0;   // initial moving distance h' along the normal, mm; 0 = (h_min + h_max) / 2
-  double beta_rad = 0.1 * 3.14159265358979323846 / 180.0;  // re-orient the plane when gamma > beta (eq. 5.26), rad
+  double beta_rad = 0.1 * kPi / 180.0;  // re-orient the plane when gamma > beta (eq. 5.26), rad
   double wall_mm = 0.0;         // wall thickness for the mid-wall curve, mm; 0 = area / mean perimeter of the cut
   double tolerance = 0.01;      // relative slack on [h_min, h_max] before a layer counts as out of range
   int max_iterations = 12;      // Fig. 56 rescaling and eq. 5.26 re-orientation rounds per layer

@@ -7,6 +7,7 @@
 
 #include "models/core/csv.h"
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/voids/void_length_baseline.h"
 #include "models/voids/void_length_network.h"
 #include "test_util.h"
@@ -47,9 +48,9 @@ TEST(VoidLengthBaselineTest, FitRecoversKnownParameters) {
 
 TEST(VoidLengthBaselineTest, SharpnessTermFollowsEquation43) {
   const Junction straight{2, {180, 90, 90, 0}};
-  EXPECT_NEAR(SharpnessTerm(straight), 1.0 / std::sin(M_PI / 4) - 1.0, 1e-12) << "theta_min = 90 deg";
+  EXPECT_NEAR(SharpnessTerm(straight), 1.0 / std::sin(kPi / 4) - 1.0, 1e-12) << "theta_min = 90 deg";
   const Junction sharp{4, {165, 15, 165, 15}};
-  EXPECT_NEAR(SharpnessTerm(sharp), 1.0 / std::sin(7.5 * M_PI / 180) - 1.0, 1e-12);
+  EXPECT_NEAR(SharpnessTerm(sharp), 1.0 / std::sin(7.5 * kPi / 180) - 1.0, 1e-12);
 }
 
 VoidNetworkOptions SmallNetwork() {

@@ -1,5 +1,6 @@
 // Tests of the coordinated motion: the TCP follows the path at the planned speed relative to the part, every
 // sample's joints reproduce its torch pose, and the positioner reorients between layers during the travel move.
+#include "models/core/numbers.h"
 #include "planner/kinematics/cell_motion.h"
 
 #include <cmath>
@@ -91,7 +92,7 @@ TEST(CellMotionTest, PositionerReorientsDuringTheTravelMoveIntoALayer) {
     }
   }
   EXPECT_NEAR(first_layer_tilt, 0.0, 1e-12);
-  EXPECT_NEAR(second_layer_tilt, M_PI / 4, 1e-9);
+  EXPECT_NEAR(second_layer_tilt, kPi / 4, 1e-9);
 }
 
 TEST(CellMotionTest, PositionerTurnsAlongTheWholeLayerWhenTheLayerIsEnteredWelding) {
@@ -110,8 +111,8 @@ TEST(CellMotionTest, PositionerTurnsAlongTheWholeLayerWhenTheLayerIsEnteredWeldi
     last = std::abs(s.q[6]);
   }
   const double entry = (plan.layers[1].points.front().p_P - plan.layers[0].points.back().p_P).norm();
-  EXPECT_NEAR(at_entry_end, M_PI / 4 * entry / (entry + 60.0), 1e-9) << "about half way along the turning path";
-  EXPECT_NEAR(last, M_PI / 4, 1e-9);
+  EXPECT_NEAR(at_entry_end, kPi / 4 * entry / (entry + 60.0), 1e-9) << "about half way along the turning path";
+  EXPECT_NEAR(last, kPi / 4, 1e-9);
 }
 
 TEST(CellMotionTest, PerPointPositionerKeepsTheTorchVerticalOnACurvedLayer) {
@@ -119,9 +120,9 @@ TEST(CellMotionTest, PerPointPositionerKeepsTheTorchVerticalOnACurvedLayer) {
   const CellKinematics cell = DefaultCell();
   Plan plan;
   LayerPath layer;
-  const double lean = 25.0 * M_PI / 180.0;
+  const double lean = 25.0 * kPi / 180.0;
   for (int i = 0; i <= 72; ++i) {
-    const double a = 2.0 * M_PI * i / 72;
+    const double a = 2.0 * kPi * i / 72;
     PathPoint p;
     p.p_P = Eigen::Vector3d(40.0 * std::cos(a), 40.0 * std::sin(a), 10.0);
     p.tool_dir_P = Eigen::Vector3d(std::sin(lean) * std::cos(a), std::sin(lean) * std::sin(a), std::cos(lean));
@@ -146,7 +147,7 @@ TEST(CellMotionTest, PerPointPositionerKeepsTheTorchVerticalOnACurvedLayer) {
   // switch to the other solution (tilt sign flipped, rotation shifted by 180 deg) but never leaves the range.
   EXPECT_GE(rotation_min, cell.positioner.rotation_lower);
   EXPECT_LE(rotation_max, cell.positioner.rotation_upper);
-  EXPECT_GT(rotation_max - rotation_min, M_PI) << "the table follows the normal around";
+  EXPECT_GT(rotation_max - rotation_min, kPi) << "the table follows the normal around";
   options.positioner_per_point = false;
   const std::vector<CellSample> per_layer = PlanCellMotion(cell, plan, options, {});
   EXPECT_NEAR(per_layer.back().torch_tilt_rad, lean, 1e-9) << "per layer, the torch follows the leaning normal";

@@ -1,4 +1,5 @@
 // Tests of cone/cylinder slicing, flattening and planning (Dai et al. 2020 sec. 2 and 5).
+#include "models/core/numbers.h"
 #include "planner/slicing/cone_slicer.h"
 
 #include <algorithm>
@@ -17,7 +18,6 @@
 namespace waam::planner {
 namespace {
 using ::testing::HasSubstr;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 ConeSurface Cone(double R, double H) {

@@ -1,4 +1,5 @@
 // Tests of the cup with two handles and its centroid-shift overhang decomposition (dissertation 003 sec. 5.4).
+#include "models/core/numbers.h"
 #include "planner/slicing/centroid_decomposition.h"
 
 #include <unistd.h>
@@ -21,8 +22,6 @@ namespace waam::planner {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(CupGeneratorTest, ClosedManifoldAndTheAnalyticVolume) {
   const CupParams p;

@@ -1,4 +1,5 @@
 // Tests of Dai et al.'s five-axis transform (sec. 3) against the positioner's closed form.
+#include "models/core/numbers.h"
 #include "planner/kinematics/five_axis.h"
 
 #include <cmath>
@@ -51,8 +52,8 @@ TEST(FiveAxisTest, TransformKeepsTheCentreAndMatchesThePositionerAngles) {
   // closed-form solutions of SolvePositionerAngles; both put the tool vector along -gravity (torch along gravity).
   std::mt19937_64 rng(5);
   Positioner positioner;
-  positioner.tilt_lower = -M_PI;
-  positioner.tilt_upper = M_PI;
+  positioner.tilt_lower = -kPi;
+  positioner.tilt_upper = kPi;
   for (int i = 0; i < 200; ++i) {
     const Eigen::Vector3d n = RandomUnit(rng);
     AxisAngles g;

@@ -1,4 +1,5 @@
 // Tests of the procedural parts: closed and outward-oriented, volumes against analytic values, every bad parameter.
+#include "models/core/numbers.h"
 #include "planner/mesh/generators.h"
 
 #include <cmath>
@@ -16,7 +17,6 @@ namespace waam::planner {
 namespace {
 
 using ::testing::HasSubstr;
-constexpr double kPi = 3.14159265358979323846;
 
 // Area of a regular n-gon inscribed in a circle of radius r.
 double PolygonArea(double r, int n) { return 0.5 * n * r * r * std::sin(2 * kPi / n); }

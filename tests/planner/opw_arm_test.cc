@@ -1,4 +1,5 @@
 // Tests of the closed-form OPW kinematics: IK then FK returns the pose on every branch, unreachable poses say so.
+#include "models/core/numbers.h"
 #include "planner/kinematics/opw_arm.h"
 
 #include <cmath>
@@ -53,7 +54,7 @@ TEST(OpwArmTest, IkThenFkReturnsThePoseOnEveryBranch) {
       worst = std::max(worst, err);
       EXPECT_LT(err, 1e-6) << "branch " << ik.solutions[i].branch << " of trial " << trial << " misses the pose";
       Eigen::Matrix<double, 6, 1> d = ik.solutions[i].q - q;
-      for (int j = 0; j < 6; ++j) d[j] = std::remainder(d[j], 2.0 * M_PI);
+      for (int j = 0; j < 6; ++j) d[j] = std::remainder(d[j], 2.0 * kPi);
       if (d.norm() < 1e-6) found_original = true;
       branches_seen |= 1 << ik.solutions[i].branch;
       ++checked;

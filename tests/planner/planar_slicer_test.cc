@@ -1,4 +1,5 @@
 // Tests of the planar slicer: areas against analytic values, closed and oriented rings, hole nesting, open chains.
+#include "models/core/numbers.h"
 #include "planner/slicing/planar_slicer.h"
 
 #include <cmath>
@@ -15,7 +16,6 @@ namespace waam::planner {
 namespace {
 
 using ::testing::HasSubstr;
-constexpr double kPi = 3.14159265358979323846;
 
 // Every ring has >= 3 distinct consecutive points, outer rings are CCW and holes CW, holes lie inside their outer.
 void ExpectWellFormed(const std::vector<PolygonWithHoles>& slice, double z) {

@@ -1,4 +1,5 @@
 // Tests of the positioner angles: known build directions are turned to vertical, or held at the tilt limit.
+#include "models/core/numbers.h"
 #include "planner/kinematics/positioner.h"
 
 #include <cmath>
@@ -71,12 +72,12 @@ TEST(PositionerTest, VerticalNormalKeepsTheRotation) {
 
 TEST(PositionerTest, PastTheTiltRangeHoldsTheLimitAndReportsTheTorchTilt) {
   const Positioner pos;  // +-70 deg
-  const double angle = 85.0 * M_PI / 180.0;
+  const double angle = 85.0 * kPi / 180.0;
   const Eigen::Vector3d n(std::sin(angle), 0.0, std::cos(angle));
   const PositionerAngles a = SolvePositionerAngles(pos, n, PositionerAngles{});
   EXPECT_TRUE(a.at_limit);
-  EXPECT_NEAR(std::abs(a.tilt), 70.0 * M_PI / 180.0, 1e-12) << "the tilt stays at its limit";
-  EXPECT_NEAR(a.residual_rad, 15.0 * M_PI / 180.0, 1e-9) << "the torch makes up the remaining 15 deg";
+  EXPECT_NEAR(std::abs(a.tilt), 70.0 * kPi / 180.0, 1e-12) << "the tilt stays at its limit";
+  EXPECT_NEAR(a.residual_rad, 15.0 * kPi / 180.0, 1e-9) << "the torch makes up the remaining 15 deg";
   EXPECT_NEAR(Turned(pos, a, n).z(), std::cos(a.residual_rad), 1e-12);
 }
 

@@ -1,4 +1,5 @@
 // Tests of the arc-off retract / travel / approach between passes (planner/path/retract.h).
+#include "models/core/numbers.h"
 #include "planner/path/retract.h"
 
 #include <cmath>
@@ -32,7 +33,7 @@ PathPoint Point(const Vector3d& p, const Vector3d& tool, bool weld) {
 // One layer of a part tilted by 30 deg about y (its build direction leans towards +x): three parallel passes along
 // y, each ending where the planner sends the torch straight to the next start.
 Plan TiltedLayer() {
-  const Vector3d n(std::sin(M_PI / 6), 0.0, std::cos(M_PI / 6));  // build direction = torch axis
+  const Vector3d n(std::sin(kPi / 6), 0.0, std::cos(kPi / 6));  // build direction = torch axis
   const Vector3d u = Vector3d::UnitY(), v = n.cross(u);              // in-plane directions
   Plan plan;
   plan.layers.resize(1);

@@ -1,5 +1,6 @@
 // Tests of the bent-tube generator, the skeleton slicing (Fig. 56 limits, planes perpendicular to the axis), the
 // positioner turning every layer normal up, the eq. 6.4 design rule and the one-pass spiral.
+#include "models/core/numbers.h"
 #include "planner/slicing/skeleton_slicer.h"
 
 #include <cmath>
@@ -19,7 +20,6 @@ namespace waam::planner {
 namespace {
 
 using ::testing::HasSubstr;
-constexpr double kPi = 3.14159265358979323846;
 
 // A torus segment with a straight foot: 60 mm section on a 200 mm bend, coarse so the tests stay fast.
 BentTubeSpec TorusSegment(double bend_deg) {

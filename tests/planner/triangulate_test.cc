@@ -1,4 +1,5 @@
 // Tests of ear-clipping triangulation with hole bridging: area, orientation and triangle count invariants.
+#include "models/core/numbers.h"
 #include "planner/geometry/triangulate.h"
 
 #include <cmath>
@@ -12,8 +13,6 @@
 
 namespace waam::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Sum of the triangle areas; every triangle must be counter-clockwise (positive area).
 double TriangleAreaSum(const PolygonWithHoles& region, const std::vector<std::array<int, 3>>& triangles) {

@@ -1,4 +1,5 @@
 // Junction detection and void filling (003 sec. 4.4.1, eq. 4.3-4.6): corner geometry, junction classes, bad input.
+#include "models/core/numbers.h"
 #include "planner/path/void_filling.h"
 
 #include <cmath>
@@ -22,7 +23,6 @@ namespace {
 
 using ::testing::HasSubstr;
 using Vec = Eigen::Vector2d;
-constexpr double kPi = 3.14159265358979323846;
 
 PolygonWithHoles Grid2x2() {
   PolygonWithHoles region{testing::Rect(-4.5, -4.5, 124.5, 124.5), {}};

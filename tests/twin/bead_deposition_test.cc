@@ -1,4 +1,5 @@
 // Tests of the deposition twin: volume balance, bead shape, blending, start/stop and settings validation.
+#include "models/core/numbers.h"
 #include "twin/deposition/bead_deposition.h"
 
 #include <gmock/gmock.h>
@@ -201,7 +202,7 @@ TEST(ExecutedPath, CornerIsBlendedAndShorter) {
   s.blend_radius_mm = 4.0;
   const ExecutedPass pass = BlendPass(raw, s, 0.5);
   // The arc of radius 4 replaces 2 x 4 mm of the corner by a quarter circle (2 pi / 4 x 4 = 6.28 mm).
-  EXPECT_NEAR(pass.length_mm(), 40.0 - 8.0 + 2.0 * M_PI, 0.05);
+  EXPECT_NEAR(pass.length_mm(), 40.0 - 8.0 + 2.0 * kPi, 0.05);
   double closest = 1e9;
   for (const auto& p : pass.points) closest = std::min(closest, (p.p_P - raw[1].p_P).norm());
   EXPECT_NEAR(closest, 4.0 * (std::sqrt(2.0) - 1.0), 0.05) << "the TCP must not reach the vertex";

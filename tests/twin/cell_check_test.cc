@@ -1,5 +1,6 @@
 // Tests of the MuJoCo cell: the closed-form IK agrees with MuJoCo's forward kinematics, bad model files give clear
 // errors, and the three planted faults (out of reach, joint past its limit, torch into the plate) are caught.
+#include "models/core/numbers.h"
 #include "twin/cell/cell_check.h"
 
 #include <filesystem>
@@ -85,8 +86,8 @@ TEST(MujocoCellTest, ModelKinematicsMatchThePublishedArm) {
   EXPECT_NEAR(kin.arm.c4, ref.c4, 1e-9);
   EXPECT_LT((kin.arm.lower - ref.lower).norm(), 1e-9);
   EXPECT_LT((kin.arm.max_speed - ref.max_speed).norm(), 1e-9);
-  EXPECT_NEAR(kin.positioner.tilt_upper - kin.positioner.tilt_lower, 140.0 * M_PI / 180.0, 1e-9);
-  EXPECT_NEAR(kin.positioner.rotation_upper - kin.positioner.rotation_lower, 480.0 * M_PI / 180.0, 1e-9);
+  EXPECT_NEAR(kin.positioner.tilt_upper - kin.positioner.tilt_lower, 140.0 * kPi / 180.0, 1e-9);
+  EXPECT_NEAR(kin.positioner.rotation_upper - kin.positioner.rotation_lower, 480.0 * kPi / 180.0, 1e-9);
 }
 
 class BadModelTest : public ::testing::Test {
@@ -329,7 +330,7 @@ TEST_F(PlantedFaultTest, TiltedBuildDirectionIsTurnedUpByThePositioner) {
   // A wall whose layers grow along a direction 30 deg from the plate normal: the positioner tilts by 30 deg and the
   // torch stays vertical (neutral welding position).
   planner::Plan plan = testing::RectangleWall(5, 60.0, 40.0, 1.5, 400.0 / 60.0);
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(30.0 * kPi / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
   for (planner::LayerPath& layer : plan.layers) {
     layer.build_dir_P = R * Eigen::Vector3d::UnitZ();
     for (planner::PathPoint& p : layer.points) {
@@ -340,7 +341,7 @@ TEST_F(PlantedFaultTest, TiltedBuildDirectionIsTurnedUpByThePositioner) {
   MujocoCell cell({});
   const CheckReport r = CheckPlan(cell, plan, Settings("cell_ok"), 100.0, nullptr);
   EXPECT_TRUE(r.ok) << Describe(r);
-  EXPECT_NEAR(std::abs(r.motion.back().q[6]) * 180.0 / M_PI, 30.0, 1e-6) << "positioner tilt";
+  EXPECT_NEAR(std::abs(r.motion.back().q[6]) * 180.0 / kPi, 30.0, 1e-6) << "positioner tilt";
   EXPECT_LT(r.max_torch_tilt_deg, 1e-6) << "the torch stays vertical";
   EXPECT_EQ(r.positioner_limit_layers, 0);
 }

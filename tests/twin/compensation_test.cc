@@ -1,6 +1,7 @@
 // Tests of the compensation loop on a short tube that bends towards its hot side (reduced distortion mode): the
 // loop converges from the scan alone, the axis correction sees the bend, and a loop that cannot converge says so;
 // the default tolerance is the maximum side-wall waviness.
+#include "models/core/numbers.h"
 #include "twin/compensation/compensation.h"
 
 #include <algorithm>
@@ -28,13 +29,13 @@ const Eigen::Vector3d kCentre(40.0, 30.0, 0.0);
 
 planner::Plan HotSideTube(double r, int layers) {
   planner::Plan plan;
-  const int n = static_cast<int>(std::ceil(2.0 * M_PI * r / 2.0));
+  const int n = static_cast<int>(std::ceil(2.0 * kPi * r / 2.0));
   for (int k = 0; k < layers; ++k) {
     planner::LayerPath layer;
     layer.index = k;
     layer.z_mm = 0.75 * (k + 1);  // the twin's 6 x 1.5 mm bead spreads to about 8 mm: 0.75 mm per layer
     for (int i = 0; i <= n; ++i) {
-      const double a = 2.0 * M_PI * i / n;
+      const double a = 2.0 * kPi * i / n;
       planner::PathPoint p;
       p.p_P = kCentre + Eigen::Vector3d(r * std::cos(a), r * std::sin(a), layer.z_mm);
       p.bead_width_mm = 6.0;
@@ -132,7 +133,7 @@ TEST(Compensation, PartialRingAtTheTopIsNotMeasuredAsAnOutlineMove) {
   for (const Eigen::Vector3d& p : reference) {
     const Eigen::Vector2d r(p.x() - kCentre.x(), p.y() - kCentre.y());
     const Eigen::Vector2d q = r - 1.0 * r.normalized();
-    const bool gap = p.z() > top - 8.0 && std::atan2(q.y(), q.x()) > M_PI / 4 && std::atan2(q.y(), q.x()) < 3 * M_PI / 4;
+    const bool gap = p.z() > top - 8.0 && std::atan2(q.y(), q.x()) > kPi / 4 && std::atan2(q.y(), q.x()) < 3 * kPi / 4;
     if (!gap) scan.emplace_back(kCentre.x() + q.x(), kCentre.y() + q.y(), p.z());
   }
   const internal::SectionShift a = internal::MeasureSectionShift(reference, scan, 2.0);

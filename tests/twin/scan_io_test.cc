@@ -1,4 +1,5 @@
 // Tests of the scan readers (PLY ascii/binary, XYZ), the ovality of eq. 6.5 and the central axis of a point cloud.
+#include "models/core/numbers.h"
 #include "twin/scanner/point_cloud_io.h"
 
 #include <cmath>
@@ -67,7 +68,7 @@ std::vector<Eigen::Vector3d> EllipticTube(double a, double b, double h, const Ei
   std::vector<Eigen::Vector3d> pts;
   for (double s = 0.0; s <= h; s += 0.25) {
     for (int k = 0; k < 360; ++k) {
-      const double q = k * M_PI / 180.0;
+      const double q = k * kPi / 180.0;
       pts.push_back(s * dir + a * std::cos(q) * t1 + b * std::sin(q) * t2);
     }
   }
@@ -93,7 +94,7 @@ TEST(ScanDeviation, CentralAxisFollowsALeaningTubeAndSeesAShift) {
   std::vector<Eigen::Vector3d> tube;
   for (double z = 0.0; z <= 60.0; z += 0.25) {
     for (int k = 0; k < 360; ++k) {
-      const double q = k * M_PI / 180.0;
+      const double q = k * kPi / 180.0;
       tube.emplace_back(0.3 * z + 20.0 * std::cos(q), 20.0 * std::sin(q), z);
     }
   }

@@ -1,4 +1,5 @@
 // Surface measures and the reproductions of the block experiment (003 Table 9, Fig. 24) and Ding's Ra comparison.
+#include "models/core/numbers.h"
 #include "twin/scanner/surface_metrics.h"
 
 #include <cmath>
@@ -81,7 +82,7 @@ struct BlockResult {
 BlockResult SimulateBlock(const Table9Row& row, double d2, double d1, double l) {
   const double w = row.w;
   const double vt = row.travel / 60.0;
-  const double h = 3.0 * M_PI * row.wire_feed * 1.0 / (8.0 * w * row.travel);  // eq. 3.4
+  const double h = 3.0 * kPi * row.wire_feed * 1.0 / (8.0 * w * row.travel);  // eq. 3.4
   const double length = 60.0;
   const std::vector<double> xs = testing::BlockPositions(d2, d1, l, 6);
   const planner::Plan plan = testing::ParallelBlock(xs, length, 7, 2.0 / 3.0 * w * h / l, w, h, vt);

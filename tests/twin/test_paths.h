@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "models/core/numbers.h"
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
 
@@ -105,7 +106,7 @@ inline planner::Plan SquareLayers(double a, int layers, double w, double h, doub
 // Outline (CCW) of two straight strips of half-width `a` crossing at the origin at angle `theta` (radians), each arm
 // `arm` long from the centre: the X junction of 003 Appendix A1 groups D/F. Reflex corners lie on the bisectors.
 inline std::vector<Eigen::Vector2d> CrossOutline(double a, double theta, double arm) {
-  const double phi[5] = {0.0, theta, M_PI, M_PI + theta, 2.0 * M_PI};
+  const double phi[5] = {0.0, theta, kPi, kPi + theta, 2.0 * kPi};
   std::vector<Eigen::Vector2d> ring;
   for (int k = 0; k < 4; ++k) {
     const Eigen::Vector2d d(std::cos(phi[k]), std::sin(phi[k]));

@@ -10,13 +10,13 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "models/core/numbers.h"
 #include "tests/twin/test_paths.h"
 #include "twin/deposition/bead_deposition.h"
 
 namespace waam::twin {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kVoxel = 0.5;     // mm
 constexpr int kLayers = 16;
 constexpr double kDz = 1.3;        // layer step along b, mm (a 6 x 2 mm bead, 8 mm^2, on a 6-8 mm wall grows ~1.1 mm)

@@ -1,4 +1,5 @@
 // Voids: a known cavity, and the junction voids of double-bead X junctions against 003 Appendix A1.
+#include "models/core/numbers.h"
 #include "twin/scanner/voids.h"
 
 #include <cmath>
@@ -92,9 +93,9 @@ std::map<int, double> MeasuredXJunctionVoids() {
 double JunctionVoidLength(double theta_deg) {
   const double w = 5.2;           // double-bead ribs 9 mm wide (003 sec. 4.5): w + l = 9 with l = 0.738 w
   const double l = 0.738 * w;
-  const double h = 3.0 * M_PI * 5200.0 * 1.0 / (8.0 * w * 400.0);  // eq. 3.4, Appendix A1 parameters
+  const double h = 3.0 * kPi * 5200.0 * 1.0 / (8.0 * w * 400.0);  // eq. 3.4, Appendix A1 parameters
   const double dz = 2.0 / 3.0 * w * h / l;
-  const planner::Plan plan = testing::CrossJunction(theta_deg * M_PI / 180.0, 40.0, 5, w, h, l, dz, 400.0 / 60.0);
+  const planner::Plan plan = testing::CrossJunction(theta_deg * kPi / 180.0, 40.0, 5, w, h, l, dz, 400.0 / 60.0);
   planner::SimulationSettings s;
   s.voxel_mm = 0.5;
   const Depositor d = DepositPlan(plan, s, 100.0, nullptr);
@@ -103,7 +104,7 @@ double JunctionVoidLength(double theta_deg) {
   // four layers: the longest enclosed region near the junction centre.
   const TargetVolume target = TargetVolume::FromLayers(plan, s.voxel_mm, s.max_voxels);
   // Near the junction: within 2 w beyond the reflex corners of the sharp gaps, which lie l / (2 sin(theta/2)) out.
-  const double reach = l / (2.0 * std::sin(theta_deg * M_PI / 360.0)) + 2.0 * w;
+  const double reach = l / (2.0 * std::sin(theta_deg * kPi / 360.0)) + 2.0 * w;
   double longest = 0.0;
   for (double f = 0.3; f <= 0.7 + 1e-9; f += 0.1) {
     for (const EmptyRegion& r : SectionVoids(d.grid(), target, f * 4.0 * dz)) {

@@ -7,14 +7,13 @@
 #include <map>
 #include <tuple>
 
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "twin/cell/deposit_map.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
 namespace {
-
-constexpr double kDeg = 180.0 / M_PI;
 
 Eigen::Isometry3d PlacementPose(const std::array<double, 3>& p_mm, double yaw_deg) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();

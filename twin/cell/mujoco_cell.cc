@@ -10,6 +10,7 @@
 #include <mujoco/mujoco.h>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 
 #ifndef WAAM_CELL_DATA_DIR
 #error "WAAM_CELL_DATA_DIR must point at twin/data"
@@ -267,7 +268,7 @@ planner::CellKinematics MujocoCell::Kinematics() const {
   for (int j = 0; j < 6; ++j) {
     arm.lower[j] = m->jnt_range[2 * impl_->jnt[j]];
     arm.upper[j] = m->jnt_range[2 * impl_->jnt[j] + 1];
-    arm.max_speed[j] = speed[j] * M_PI / 180.0;
+    arm.max_speed[j] = speed[j] * kPi / 180.0;
   }
 
   // Tool: the tcp site in the flange frame.
@@ -299,8 +300,8 @@ planner::CellKinematics MujocoCell::Kinematics() const {
   cell.positioner.tilt_upper = m->jnt_range[2 * impl_->jnt[6] + 1];
   cell.positioner.rotation_lower = m->jnt_range[2 * impl_->jnt[7]];
   cell.positioner.rotation_upper = m->jnt_range[2 * impl_->jnt[7] + 1];
-  cell.positioner.tilt_max_speed = speed[6] * M_PI / 180.0;
-  cell.positioner.rotation_max_speed = speed[7] * M_PI / 180.0;
+  cell.positioner.tilt_max_speed = speed[6] * kPi / 180.0;
+  cell.positioner.rotation_max_speed = speed[7] * kPi / 180.0;
 
   // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
   std::mt19937_64 rng(2024);

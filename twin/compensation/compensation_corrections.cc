@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include "models/core/numbers.h"
 #include "twin/compensation/compensation_internal.h"
 #include "twin/scanner/point_hash.h"
 
@@ -88,7 +89,7 @@ bool PlaneDirection(const AxisStation& station, const Eigen::Vector3d& t1, const
 
 double OutlineAt(const std::array<double, SectionShift::kDirections>& outline, double angle) {
   constexpr int n = SectionShift::kDirections;
-  double x = angle / (2.0 * M_PI) * n;
+  double x = angle / (2.0 * kPi) * n;
   x -= n * std::floor(x / n);
   const int i = static_cast<int>(std::floor(x)) % n;
   const double t = x - std::floor(x);
@@ -102,7 +103,7 @@ std::array<double, SectionShift::kDirections> Support(const std::vector<Eigen::V
   std::array<double, SectionShift::kDirections> h;
   const Eigen::Vector3d t2 = station.normal.cross(t1);
   for (int k = 0; k < SectionShift::kDirections; ++k) {
-    const double a = 2.0 * M_PI * k / SectionShift::kDirections;
+    const double a = 2.0 * kPi * k / SectionShift::kDirections;
     const Eigen::Vector3d e = std::cos(a) * t1 + std::sin(a) * t2;
     double hi = -std::numeric_limits<double>::infinity();
     for (const Eigen::Vector3d& p : in) hi = std::max(hi, (p - centre).dot(e));
@@ -122,7 +123,7 @@ bool Surrounds(const std::vector<Eigen::Vector3d>& in, const AxisStation& statio
   for (const Eigen::Vector3d& p : in) {
     const Eigen::Vector3d r = p - centre;
     const double a = std::atan2(r.dot(t2), r.dot(t1));
-    const int k = std::clamp(static_cast<int>(std::floor((a + M_PI) / (2.0 * M_PI) * kSectors)), 0, kSectors - 1);
+    const int k = std::clamp(static_cast<int>(std::floor((a + kPi) / (2.0 * kPi) * kSectors)), 0, kSectors - 1);
     seen[k] = true;
   }
   return std::all_of(seen.begin(), seen.end(), [](bool b) { return b; });

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/core/progress.h"
 
 namespace waam::twin {
@@ -17,7 +18,7 @@ constexpr double kNoGround = -std::numeric_limits<double>::infinity();
 // Free voxels less than this many voxels below the top of the ground in a tilted column are pinholes (see below).
 constexpr double kPinholeDepth = 1.5;
 // A segment keeps the torch frame of the metal laid before it while its torch axis is within this angle of it, rad.
-constexpr double kFrameHoldRad = 2.0 * 3.14159265358979323846 / 180.0;
+constexpr double kFrameHoldRad = 2.0 * kPi / 180.0;
 
 // Where the torch axis turned since the metal below was laid, a column of this segment's lattice cuts across the old
 // columns and sees their top jagged at voxel scale: free voxels can lie just below the highest solid one (j). Molten

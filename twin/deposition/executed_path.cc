@@ -9,13 +9,12 @@
 
 #include "models/bead/csw_model.h"
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 #include "models/fit/model_file.h"
 #include "twin/deposition/curvature_width.h"
 
 namespace waam::twin {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 ExecutedPoint FromPathPoint(const planner::PathPoint& p) {
   ExecutedPoint e;

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 
 namespace waam::twin {
 
@@ -92,7 +93,7 @@ SectionMeasure MeasureSection(const std::vector<Eigen::Vector3d>& cloud, const A
   Eigen::Matrix2d ata = Eigen::Matrix2d::Zero();
   Eigen::Vector2d atb = Eigen::Vector2d::Zero();
   for (int k = 0; k < 36; ++k) {
-    const double a = k * M_PI / 36.0;
+    const double a = k * kPi / 36.0;
     const Eigen::Vector3d e = std::cos(a) * t1 + std::sin(a) * t2;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const Eigen::Vector3d& p : in) {
