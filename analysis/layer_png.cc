@@ -19,7 +19,7 @@ constexpr int kImageSize = 800;  // px, longest side
 constexpr int kMargin = 40;      // px
 
 // Maps part coordinates (mm) to pixels, y up.
-struct View {
+struct LayerView {
   Eigen::Vector2d min;
   double scale = 1.0;  // px per mm
   int height = kImageSize;
@@ -29,7 +29,7 @@ struct View {
   }
 };
 
-std::vector<cv::Point> ToPixels(const planner::Ring& ring, const View& view) {
+std::vector<cv::Point> ToPixels(const planner::Ring& ring, const LayerView& view) {
   std::vector<cv::Point> pixels;
   pixels.reserve(ring.size());
   for (const Eigen::Vector2d& p : ring) pixels.push_back(view.ToPixel(p));
@@ -81,7 +81,7 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
   if (lo.x() > hi.x()) lo = hi = Eigen::Vector2d::Zero();
 
   const Eigen::Vector2d extent = (hi - lo).cwiseMax(1e-6);
-  View view;
+  LayerView view;
   view.min = lo;
   view.scale = (kImageSize - 2 * kMargin) / std::max(extent.x(), extent.y());
   const int width = 2 * kMargin + static_cast<int>(std::ceil(extent.x() * view.scale));

@@ -19,7 +19,7 @@ constexpr std::array<const char*, 11> kColumns = {
     "x_mm", "y_mm", "z_mm", "tool_x", "tool_y", "tool_z", "bead_width_mm", "bead_height_mm",
     "travel_speed_mm_min", "weld", "layer"};
 
-void Check(bool ok, const std::filesystem::path& path, const char* what) {
+void CheckPlanH5(bool ok, const std::filesystem::path& path, const char* what) {
   if (!ok) throw std::runtime_error("HDF5 output " + path.string() + ": " + what + " failed");
 }
 
@@ -29,8 +29,8 @@ void WriteStringAttribute(hid_t object, const char* name, const std::string& val
   H5Tset_size(type.get(), value.size() + 1);
   H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   H5Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  Check(attribute.get() >= 0, path, "attribute create");
-  Check(H5Awrite(attribute.get(), type.get(), value.c_str()) >= 0, path, "attribute write");
+  CheckPlanH5(attribute.get() >= 0, path, "attribute create");
+  CheckPlanH5(H5Awrite(attribute.get(), type.get(), value.c_str()) >= 0, path, "attribute write");
 }
 
 }  // namespace
@@ -39,14 +39,14 @@ void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path) {
   AtomicOutput out(path);
   {
     H5Handle file(H5Fcreate(out.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-    Check(file.get() >= 0, path, "file create");
+    CheckPlanH5(file.get() >= 0, path, "file create");
     std::string columns;
     for (const char* column : kColumns) columns += std::string(columns.empty() ? "" : ",") + column;
     WriteStringAttribute(file.get(), "columns", columns, path);
     WriteStringAttribute(file.get(), "scenario", plan.name, path);
     WriteStringAttribute(file.get(), "frame", "part frame P: z = 0 is the substrate top, mm", path);
     H5Handle group(H5Gcreate2(file.get(), "layers", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    Check(group.get() >= 0, path, "group create");
+    CheckPlanH5(group.get() >= 0, path, "group create");
 
     std::vector<double> table;
     for (const planner::LayerPath& layer : plan.layers) {
@@ -65,9 +65,9 @@ void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path) {
       H5Handle dataset(H5Dcreate2(group.get(), name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
                                   H5P_DEFAULT),
                        H5Dclose);
-      Check(dataset.get() >= 0, path, "dataset create");
+      CheckPlanH5(dataset.get() >= 0, path, "dataset create");
       if (!table.empty()) {
-        Check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, table.data()) >= 0, path,
+        CheckPlanH5(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, table.data()) >= 0, path,
               "dataset write");
       }
     }

@@ -11,7 +11,7 @@
 namespace waam::models {
 namespace {
 
-constexpr char kModelName[] = "speed_height";
+constexpr char kSpeedHeightModelName[] = "speed_height";
 
 // v_i - a h_i^b (eq. 6.6 with h-bar = h / 1 mm).
 struct SpeedResidual {
@@ -61,7 +61,7 @@ SpeedChoice SpeedHeightModel::SpeedForHeight(double height_mm) const {
 
 nlohmann::json SpeedHeightModel::ToJson() const {
   nlohmann::json j;
-  j["model"] = kModelName;
+  j["model"] = kSpeedHeightModelName;
   j["format_version"] = kModelFormatVersion;
   j["formula"] = "v = a * h^b";
   j["source"] = "Nguyen 2022 dissertation, sec. 6.3.2.1, eq. 6.6 and Table 18";
@@ -86,7 +86,7 @@ SpeedHeightModel SpeedHeightModel::FromJson(const nlohmann::json& j, const std::
 }
 
 SpeedHeightModel SpeedHeightModel::Load(const std::filesystem::path& path) {
-  return FromJson(ReadModelJson(path, kModelName), path.string());
+  return FromJson(ReadModelJson(path, kSpeedHeightModelName), path.string());
 }
 
 SpeedHeightFit FitSpeedHeight(const SpeedHeightSamples& s, const DataSource& data, PowerLawSpace space,

@@ -12,7 +12,7 @@
 namespace waam::models {
 namespace {
 
-constexpr char kModelName[] = "width_height";
+constexpr char kWidthHeightModelName[] = "width_height";
 constexpr int kMaxDegree = 8;
 
 // w_i - sum_k c_k h_i^k, Horner form (eq. 6.7 with h-bar = h / 1 mm).
@@ -47,7 +47,7 @@ double WidthHeightModel::Width(double height_mm) const {
 
 nlohmann::json WidthHeightModel::ToJson() const {
   nlohmann::json j;
-  j["model"] = kModelName;
+  j["model"] = kWidthHeightModelName;
   j["format_version"] = kModelFormatVersion;
   j["formula"] = "w = sum_k c[k] * h^k";
   j["source"] = "Nguyen 2022 dissertation, sec. 6.3.2.1, eq. 6.7 and Table 18";
@@ -72,7 +72,7 @@ WidthHeightModel WidthHeightModel::FromJson(const nlohmann::json& j, const std::
 }
 
 WidthHeightModel WidthHeightModel::Load(const std::filesystem::path& path) {
-  return FromJson(ReadModelJson(path, kModelName), path.string());
+  return FromJson(ReadModelJson(path, kWidthHeightModelName), path.string());
 }
 
 WidthHeightFit FitWidthHeight(const WidthHeightSamples& s, const DataSource& data, int degree) {

@@ -14,8 +14,8 @@ namespace {
 
 using Vec = Eigen::Vector2d;
 
-double Cross(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }
-double Orient(const Vec& a, const Vec& b, const Vec& c) { return Cross(b - a, c - a); }
+double Cross2d(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }
+double Orient(const Vec& a, const Vec& b, const Vec& c) { return Cross2d(b - a, c - a); }
 
 // True if segments pq and rs share any point (touching or overlapping counts).
 bool SegmentsTouch(const Vec& p, const Vec& q, const Vec& r, const Vec& s) {
@@ -36,10 +36,10 @@ bool SegmentsTouch(const Vec& p, const Vec& q, const Vec& r, const Vec& s) {
 bool InSector(const Vec& prev, const Vec& v, const Vec& next, const Vec& d) {
   const Vec e1 = next - v;
   const Vec e0 = prev - v;
-  const double turn = Cross(e1, e0);
-  if (turn > 0) return Cross(e1, d) > 0 && Cross(d, e0) > 0;
-  if (turn < 0) return !(Cross(e0, d) >= 0 && Cross(d, e1) >= 0);
-  return Cross(e1, d) > 0;
+  const double turn = Cross2d(e1, e0);
+  if (turn > 0) return Cross2d(e1, d) > 0 && Cross2d(d, e0) > 0;
+  if (turn < 0) return !(Cross2d(e0, d) >= 0 && Cross2d(d, e1) >= 0);
+  return Cross2d(e1, d) > 0;
 }
 
 // Joins `hole` (vertex ids, interior of the region on the left) into `ring` by a bridge from the hole's largest-x

@@ -35,7 +35,7 @@ struct SharedStretch {
 };
 
 // One pair of connector lines: the stretch [c - g/2, c + g/2] is cut out of both curves.
-struct Cut {
+struct RibCut {
   SharedStretch where;
   Vec a_lo, a_hi, b_lo, b_hi;    // cut ends on curve a (in a's direction) and their projections on curve b
   double u_lo = 0.0, u_hi = 0.0;  // the same ends in mm along seg_b from its first point
@@ -106,7 +106,7 @@ JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector
   UnionFind groups(curves.size());
   std::vector<std::vector<std::vector<std::pair<double, double>>>> taken(curves.size());
   for (std::size_t k = 0; k < curves.size(); ++k) taken[k].resize(curves[k].size());
-  std::vector<Cut> cuts;
+  std::vector<RibCut> cuts;
   for (const SharedStretch& s : stretches) {
     if (groups.Find(s.a) == groups.Find(s.b)) continue;
     const Ring& ra = curves[s.a];
@@ -119,7 +119,7 @@ JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector
     // where the curves run side by side. The cut is one gap long, so the two connectors weld as much as they remove.
     const double third = (s.s1 - s.s0) / 3.0;
     const double c = std::uniform_real_distribution<double>(s.s0 + third, s.s0 + 2.0 * third)(rng);
-    Cut cut{s, {}, {}, {}, {}, 0.0, 0.0, c - 0.5 * s.gap, c + 0.5 * s.gap};
+    RibCut cut{s, {}, {}, {}, {}, 0.0, 0.0, c - 0.5 * s.gap, c + 0.5 * s.gap};
     cut.a_lo = a0 + cut.c_lo * da;
     cut.a_hi = a0 + cut.c_hi * da;
     cut.u_lo = (cut.a_lo - b0).dot(db);
@@ -154,7 +154,7 @@ JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector
       const std::size_t r = todo.front();
       todo.pop();
       for (std::size_t k : cuts_of[r]) {
-        const Cut& cut = cuts[k];
+        const RibCut& cut = cuts[k];
         const std::size_t other = cut.where.a == r ? cut.where.b : cut.where.a;
         if (orient[other] != 0) continue;
         const bool same_direction = (cut.u_hi > cut.u_lo);  // b's segment runs the same way as a's
@@ -174,10 +174,10 @@ JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector
     for (std::size_t i = 0; i < curves[r].size(); ++i) {
       order.push_back(pos.size());
       pos.push_back(curves[r][i]);
-      // Cut ends on this segment, sorted along it.
+      // RibCut ends on this segment, sorted along it.
       std::vector<std::pair<double, std::size_t*>> ends;
       for (std::size_t k : cuts_of[r]) {
-        Cut& cut = cuts[k];
+        RibCut& cut = cuts[k];
         if (cut.where.a == r && cut.where.seg_a == i) {
           ends.push_back({cut.c_lo, &node_a_lo[k]});
           ends.push_back({cut.c_hi, &node_a_hi[k]});

@@ -10,9 +10,6 @@
 namespace waam::planner {
 namespace {
 
-// Rounds away the sign of values that print as zero ("-0.000").
-double Clean(double v) { return std::abs(v) < 5e-4 ? 0.0 : v; }
-
 int Turn(double q_rad) {
   const double deg = q_rad * 180.0 / kPi;
   return deg > 180.0 ? 1 : (deg < -180.0 ? -1 : 0);
@@ -75,11 +72,12 @@ std::string ProgramToFanucLs(const RobotProgram& program, const FanucLsOptions& 
                   "P[%zu]{\n   GP1:\n\tUF : %d, UT : %d,\t\tCONFIG : '%s',\n"
                   "\tX = %10.3f  mm,\tY = %10.3f  mm,\tZ = %10.3f  mm,\n"
                   "\tW = %10.3f deg,\tP = %10.3f deg,\tR = %10.3f deg\n",
-                  i + 1, options.user_frame, options.tool_frame, FanucConfig(p).c_str(), Clean(p.tcp_mm.x()),
-                  Clean(p.tcp_mm.y()), Clean(p.tcp_mm.z()), Clean(p.c_deg), Clean(p.b_deg), Clean(p.a_deg));
+                  i + 1, options.user_frame, options.tool_frame, FanucConfig(p).c_str(),
+                  ProgramValue(p.tcp_mm.x()), ProgramValue(p.tcp_mm.y()), ProgramValue(p.tcp_mm.z()),
+                  ProgramValue(p.c_deg), ProgramValue(p.b_deg), ProgramValue(p.a_deg));
     pos += buf;
     std::snprintf(buf, sizeof(buf), "   GP2:\n\tUF : %d, UT : %d,\n\tJ1 = %10.3f deg,\tJ2 = %10.3f deg\n};\n",
-                  options.user_frame, options.tool_frame, Clean(p.tilt_deg), Clean(p.rotation_deg));
+                  options.user_frame, options.tool_frame, ProgramValue(p.tilt_deg), ProgramValue(p.rotation_deg));
     pos += buf;
   }
 

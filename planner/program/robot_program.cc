@@ -8,10 +8,6 @@
 #include "models/core/numbers.h"
 
 namespace waam::planner {
-namespace {
-// Rounds away the sign of values that print as zero ("-0.000").
-double Clean(double v) { return std::abs(v) < 5e-4 ? 0.0 : v; }
-}  // namespace
 
 Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R) {
   // eq. 5.20: A = atan(R21 / R11); eq. 5.21: B = atan(-R31 / sqrt(R32^2 + R33^2)); eq. 5.22: C = atan(R32 / R33),
@@ -66,8 +62,9 @@ std::string ProgramToCsv(const RobotProgram& program) {
   char line[320];
   for (const ProgramPoint& p : program.points) {
     std::snprintf(line, sizeof(line), "%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%.3f,%d\n", p.point, p.layer,
-                  Clean(p.tcp_mm.x()), Clean(p.tcp_mm.y()), Clean(p.tcp_mm.z()), Clean(p.a_deg), Clean(p.b_deg),
-                  Clean(p.c_deg), Clean(p.tilt_deg), Clean(p.rotation_deg),
+                  ProgramValue(p.tcp_mm.x()), ProgramValue(p.tcp_mm.y()), ProgramValue(p.tcp_mm.z()),
+                  ProgramValue(p.a_deg), ProgramValue(p.b_deg), ProgramValue(p.c_deg), ProgramValue(p.tilt_deg),
+                  ProgramValue(p.rotation_deg),
                   p.speed_mm_s * 60.0, p.bead_height_mm, p.weld ? 1 : 0);
     out += line;
   }

@@ -44,4 +44,7 @@ Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R);
 // speed_mm_min,bead_height_mm,weld.
 std::string ProgramToCsv(const RobotProgram& program);
 
+// A value as a program prints it with three decimals: magnitudes below 5e-4 become 0, so no "-0.000" appears.
+inline double ProgramValue(double v) { return (v < 5e-4 && v > -5e-4) ? 0.0 : v; }
+
 }  // namespace waam::planner
