@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libceres-dev
   libmujoco-dev libqhull-dev
   libopencv-dev

@@ -6,12 +6,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${WAAM_ASAN_BUILD_DIR:-build-asan}
 jobs=${WAAM_JOBS:-$(nproc)}
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-fi
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DCMAKE_C_FLAGS_DEBUG="-O1 -g" \
-  -DWAAM_SANITIZE=ON -DWAAM_BUILD_BENCHMARKS=OFF "${launcher[@]}"
+# -g1: line tables only, enough for the sanitizers' stack traces (file:line) at a fraction of -g's compile and link.
+generator=(-G Ninja)
+[ -f "$build/CMakeCache.txt" ] && generator=()  # an existing build keeps the generator it was made with
+cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
+  -DCMAKE_C_FLAGS_DEBUG="-O1 -g1" -DWAAM_SANITIZE=ON -DWAAM_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$build" -j"$jobs"
 
 # Debian's libraries (MuJoCo, OpenCV, HDF5, yaml-cpp, Ceres) are not instrumented: ASan still checks every access

@@ -19,10 +19,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/analysis/cli_test_util.h"
+
 namespace waam::analysis {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using cli_test::FilesUnder;
 
 using Facet = std::array<std::array<float, 3>, 3>;
 
@@ -172,16 +175,6 @@ CliRun Waam(const std::string& args, const fs::path& err_file) {
   std::stringstream ss;
   ss << in.rdbuf();
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
-
-std::vector<std::string> FilesUnder(const fs::path& dir) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  if (!fs::exists(dir, ec)) return files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (!entry.is_directory()) files.push_back(entry.path().string());
-  }
-  return files;
 }
 
 fs::path CaseDir(const std::string& id) {

@@ -14,24 +14,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/analysis/cli_test_util.h"
+
 namespace waam::analysis {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("waam_check_cli_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using cli_test::TempDir;
+using cli_test::Slurp;
 
 // Runs `waam check` on `scenario` into `out`, returning the exit code; stderr goes to *err.
 int RunCheckCli(const fs::path& scenario, const fs::path& out, std::string* err) {

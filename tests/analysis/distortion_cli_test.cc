@@ -13,26 +13,16 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/analysis/cli_test_util.h"
+
 namespace waam::analysis {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using cli_test::TempDir;
+using cli_test::Slurp;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("waam_distortion_cli_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-int RunWaam(const std::string& args, const fs::path& err_file) {
+int RunWaamErr(const std::string& args, const fs::path& err_file) {
   const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -41,7 +31,7 @@ int RunWaam(const std::string& args, const fs::path& err_file) {
 // A 40 x 40 x 30 mm box target and a scan of its four side faces moved by `dy` along y, every 1 mm.
 void WriteBoxAndScan(const fs::path& dir, double dy) {
   const std::string gen = "generate box --param size_mm=40,40,30 -o " + (dir / "box.stl").string();
-  ASSERT_EQ(RunWaam(gen, dir / "gen.err"), 0) << Slurp(dir / "gen.err");
+  ASSERT_EQ(RunWaamErr(gen, dir / "gen.err"), 0) << Slurp(dir / "gen.err");
   std::ofstream xyz(dir / "scan.xyz");
   xyz << "# side faces of the box, shifted\n";
   for (double z = 0.5; z < 30.0; z += 1.0) {
@@ -55,7 +45,7 @@ void WriteBoxAndScan(const fs::path& dir, double dy) {
 TEST(DeviationCli, ShiftedScanShowsTheShiftOnFacesAndAxis) {
   const fs::path dir = TempDir("shift");
   WriteBoxAndScan(dir, 0.8);
-  ASSERT_EQ(RunWaam("deviation " + (dir / "box.stl").string() + " " + (dir / "scan.xyz").string() + " -o " +
+  ASSERT_EQ(RunWaamErr("deviation " + (dir / "box.stl").string() + " " + (dir / "scan.xyz").string() + " -o " +
                     (dir / "out").string(),
                 dir / "dev.err"),
             0)
@@ -72,7 +62,7 @@ TEST(DeviationCli, BadScanIsOneLineWithExitCode2) {
   const fs::path dir = TempDir("bad");
   WriteBoxAndScan(dir, 0.0);
   std::ofstream(dir / "bad.xyz") << "1 2 3\n4 5\n";
-  EXPECT_EQ(RunWaam("deviation " + (dir / "box.stl").string() + " " + (dir / "bad.xyz").string() + " -o " +
+  EXPECT_EQ(RunWaamErr("deviation " + (dir / "box.stl").string() + " " + (dir / "bad.xyz").string() + " -o " +
                     (dir / "out").string(),
                 dir / "bad.err"),
             2);

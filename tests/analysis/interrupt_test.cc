@@ -16,24 +16,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/analysis/cli_test_util.h"
+
 namespace waam::analysis {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("waam_interrupt_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using cli_test::TempDir;
+using cli_test::Slurp;
+using cli_test::FilesUnder;
 
 struct Interrupted {
   bool signalled = false;  // the marker appeared and SIGINT was sent while the run was still going
@@ -78,15 +69,6 @@ Interrupted RunAndInterrupt(const std::vector<std::string>& args, const std::str
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   result.err = Slurp(err_file);
   return result;
-}
-
-std::vector<std::string> FilesUnder(const fs::path& dir) {
-  std::vector<std::string> files;
-  if (!fs::exists(dir)) return files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (!entry.is_directory()) files.push_back(entry.path().filename().string());
-  }
-  return files;
 }
 
 const std::string kLargeBlock = std::string(WAAM_SOURCE_DIR) + "/scenarios/twin/large_block.yaml";

@@ -15,20 +15,17 @@
 #include <nlohmann/json.hpp>
 
 #include "models/core/files.h"
+#include "tests/analysis/cli_test_util.h"
 
 namespace waam::analysis {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using cli_test::TempDir;
+using cli_test::ReadJson;
+using cli_test::RunWaam;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("waam_plan_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-fs::path WriteScenario(const fs::path& dir, const std::string& pattern, const std::string& extra_part = "") {
+fs::path WritePlateScenario(const fs::path& dir, const std::string& pattern, const std::string& extra_part = "") {
   const fs::path file = dir / "scenario.yaml";
   std::ofstream(file) << "name: plate\n"
                          "part:\n  generator: {type: plate_with_holes" << extra_part << "}\n"
@@ -38,21 +35,10 @@ fs::path WriteScenario(const fs::path& dir, const std::string& pattern, const st
   return file;
 }
 
-nlohmann::json ReadJson(const fs::path& path) { return nlohmann::json::parse(ReadFile(path)); }
-
-// Runs the built executable with `args`, returning the exit code and capturing stderr.
-int RunWaam(const std::string& args, std::string* err) {
-  const fs::path err_file = TempDir("cli") / "stderr.txt";
-  const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
-  const int status = std::system(command.c_str());
-  *err = ReadFile(err_file);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
   const fs::path dir = TempDir("contract");
   PlanOptions options;
-  options.scenario = WriteScenario(dir, "continuous");
+  options.scenario = WritePlateScenario(dir, "continuous");
   options.out_dir = dir / "out";
   options.quiet = true;
   const planner::PlanResult result = RunPlan(options);
@@ -102,7 +88,7 @@ TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
 TEST(PlanCommandTest, IdenticalInputsGiveIdenticalPlans) {
   const fs::path dir = TempDir("determinism");
   PlanOptions options;
-  options.scenario = WriteScenario(dir, "continuous");
+  options.scenario = WritePlateScenario(dir, "continuous");
   options.quiet = true;
   options.layer_images = false;
   options.out_dir = dir / "a";
@@ -117,10 +103,10 @@ TEST(PlanCommandTest, ContinuousNeedsFewerPassesThanHybrid) {
   PlanOptions options;
   options.quiet = true;
   options.layer_images = false;
-  options.scenario = WriteScenario(dir, "hybrid");
+  options.scenario = WritePlateScenario(dir, "hybrid");
   options.out_dir = dir / "hybrid";
   const auto hybrid = RunPlan(options);
-  options.scenario = WriteScenario(dir, "continuous");
+  options.scenario = WritePlateScenario(dir, "continuous");
   options.out_dir = dir / "continuous";
   const auto continuous = RunPlan(options);
   EXPECT_EQ(continuous.stats.passes, continuous.stats.layers) << "continuous: one pass per layer";

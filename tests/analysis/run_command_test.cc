@@ -16,12 +16,14 @@
 #include "analysis/bench_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "tests/analysis/cli_test_util.h"
 
 namespace waam::analysis {
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using cli_test::ReadJson;
 
 // A 30 x 20 x 3 mm block, two layers, 1 mm voxels: the whole run takes well under a second of compute.
 constexpr char kTinyScenario[] = R"(name: tiny_block
@@ -48,8 +50,6 @@ fs::path WriteScenario(const std::string& name, const std::string& text) {
   std::ofstream(file) << text;
   return file;
 }
-
-nlohmann::json ReadJson(const fs::path& path) { return nlohmann::json::parse(ReadFile(path)); }
 
 RunOptions TinyRun(const std::string& out_name) {
   RunOptions options;

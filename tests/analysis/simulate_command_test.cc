@@ -15,6 +15,7 @@
 
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "tests/analysis/cli_test_util.h"
 #include "tests/twin/test_paths.h"
 
 namespace waam::analysis {
@@ -22,6 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using cli_test::RunWaam;
 
 struct Fixture {
   planner::Scenario scenario;
@@ -136,14 +138,6 @@ fs::path ScenarioFile(const std::string& name, const std::string& simulation) {
                                           "process:\n  travel_speed_mm_min: 400\n  wire_feed_mm_min: 3200\n"
                                        << simulation;
   return dir / "scenario.yaml";
-}
-
-int RunWaam(const std::string& args, std::string* err) {
-  const fs::path err_file = fs::path(::testing::TempDir()) / ("waam_simulate_err_" + std::to_string(::getpid()));
-  const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
-  const int status = std::system(command.c_str());
-  *err = ReadFile(err_file);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // The whole pipeline through the real planner: the plan's layers are deposited and the volume balances.

@@ -16,7 +16,7 @@ namespace waam::models {
 namespace {
 using ::testing::HasSubstr;
 
-DataSource Source(const std::string& file) { return DataSource{file, {}, {}, 0, ""}; }
+DataSource VoidSource(const std::string& file) { return DataSource{file, {}, {}, 0, ""}; }
 
 // The 63 junction geometries of Appendix A1 with their measured void lengths.
 std::vector<JunctionSample> AppendixA1() {
@@ -40,7 +40,7 @@ std::vector<JunctionSample> Synthetic(double a, double b) {
 }
 
 TEST(VoidLengthBaselineTest, FitRecoversKnownParameters) {
-  const VoidBaselineFit fit = FitVoidLengthBaseline(Synthetic(1.5, 3.0), Source("synthetic"));
+  const VoidBaselineFit fit = FitVoidLengthBaseline(Synthetic(1.5, 3.0), VoidSource("synthetic"));
   ASSERT_TRUE(fit.ok) << fit.message;
   EXPECT_NEAR(fit.model->a_mm(), 1.5, 1e-8);
   EXPECT_NEAR(fit.model->b_mm(), 3.0, 1e-8);
@@ -63,7 +63,7 @@ VoidNetworkOptions SmallNetwork() {
 
 TEST(VoidLengthNetworkTest, LearnsASmoothSyntheticFunction) {
   const std::vector<JunctionSample> data = Synthetic(1.0, 2.0);
-  const VoidNetworkFit fit = TrainVoidLengthNetwork(data, Source("synthetic"), SmallNetwork());
+  const VoidNetworkFit fit = TrainVoidLengthNetwork(data, VoidSource("synthetic"), SmallNetwork());
   ASSERT_TRUE(fit.ok) << fit.message;
   EXPECT_GT(fit.model->fit().stats.r2, 0.97) << "a 5-neuron network should fit L = 1 + 2 (1/sin(theta_min/2) - 1)";
   EXPECT_EQ(fit.usable_restarts, 2);
@@ -71,8 +71,8 @@ TEST(VoidLengthNetworkTest, LearnsASmoothSyntheticFunction) {
 
 TEST(VoidLengthNetworkTest, TrainingIsDeterministicForASeed) {
   const std::vector<JunctionSample> data = AppendixA1();
-  const VoidNetworkFit a = TrainVoidLengthNetwork(data, Source("a1"), SmallNetwork());
-  const VoidNetworkFit b = TrainVoidLengthNetwork(data, Source("a1"), SmallNetwork());
+  const VoidNetworkFit a = TrainVoidLengthNetwork(data, VoidSource("a1"), SmallNetwork());
+  const VoidNetworkFit b = TrainVoidLengthNetwork(data, VoidSource("a1"), SmallNetwork());
   ASSERT_TRUE(a.ok && b.ok);
   EXPECT_EQ(a.model->ToJson()["params"]["members"], b.model->ToJson()["params"]["members"]);
 }
@@ -80,8 +80,8 @@ TEST(VoidLengthNetworkTest, TrainingIsDeterministicForASeed) {
 TEST(VoidLengthModelTest, BothKindsRoundTripThroughFiles) {
   const auto dir = waam::testing::TestDir();
   const std::vector<JunctionSample> data = AppendixA1();
-  const VoidNetworkFit net = TrainVoidLengthNetwork(data, Source("a1"), SmallNetwork());
-  const VoidBaselineFit base = FitVoidLengthBaseline(data, Source("a1"));
+  const VoidNetworkFit net = TrainVoidLengthNetwork(data, VoidSource("a1"), SmallNetwork());
+  const VoidBaselineFit base = FitVoidLengthBaseline(data, VoidSource("a1"));
   ASSERT_TRUE(net.ok && base.ok);
   const std::vector<const VoidLengthModel*> models = {net.model.get(), base.model.get()};
   for (const VoidLengthModel* m : models) {
@@ -106,7 +106,7 @@ TEST(VoidLengthNetworkTest, EnsemblePredictsTheMeanOfItsMembers) {
   const std::vector<JunctionSample> data = AppendixA1();
   VoidNetworkOptions o = SmallNetwork();
   o.ensemble = true;
-  const VoidNetworkFit fit = TrainVoidLengthNetwork(data, Source("a1"), o);
+  const VoidNetworkFit fit = TrainVoidLengthNetwork(data, VoidSource("a1"), o);
   ASSERT_TRUE(fit.ok) << fit.message;
   const nlohmann::json j = fit.model->ToJson();
   ASSERT_EQ(j["params"]["members"].size(), 2u);
@@ -166,7 +166,7 @@ TEST(CrossValidationTest, FoldsAreSeededAndEveryRowIsHeldOutOnce) {
   o.folds = 5;
   o.seed = 7;
   const auto trainer = [&](const std::vector<JunctionSample>& t) {
-    return std::unique_ptr<VoidLengthModel>(FitVoidLengthBaseline(t, Source("a1")).model.release());
+    return std::unique_ptr<VoidLengthModel>(FitVoidLengthBaseline(t, VoidSource("a1")).model.release());
   };
   const CrossValidationResult a = CrossValidate(data, trainer, o), b = CrossValidate(data, trainer, o);
   EXPECT_EQ(a.predicted_mm, b.predicted_mm) << "same seed, same folds";

@@ -118,7 +118,7 @@ TEST(Generators, CommittedScenarioMeshesAreCurrentAndSliceable) {
   EXPECT_GE(checked, 10) << "expected the committed meshes in " << dir;
 }
 
-std::string ErrorOf(const std::string& type, const GeneratorParams& params) {
+std::string GeneratorErrorOf(const std::string& type, const GeneratorParams& params) {
   try {
     GeneratePart(type, params, "s.yaml:7: part.generator");
   } catch (const InputError& e) {
@@ -128,22 +128,22 @@ std::string ErrorOf(const std::string& type, const GeneratorParams& params) {
 }
 
 TEST(GeneratorErrors, NameTheTypeParameterAndRule) {
-  EXPECT_THAT(ErrorOf("blob", {}), HasSubstr("s.yaml:7: part.generator: unknown generator type 'blob' (known: bent_tube, box"));
-  EXPECT_THAT(ErrorOf("box", {{"radius_mm", {1}}}),
+  EXPECT_THAT(GeneratorErrorOf("blob", {}), HasSubstr("s.yaml:7: part.generator: unknown generator type 'blob' (known: bent_tube, box"));
+  EXPECT_THAT(GeneratorErrorOf("box", {{"radius_mm", {1}}}),
               HasSubstr("s.yaml:7: part.generator: unknown parameter 'radius_mm' for generator box (known: size_mm)"));
-  EXPECT_THAT(ErrorOf("box", {{"size_mm", {1, 2}}}), HasSubstr("box.size_mm = [1, 2]: needs 3 values"));
-  EXPECT_THAT(ErrorOf("cylinder", {{"radius_mm", {-1}}}), HasSubstr("cylinder.radius_mm = [-1]: each value must be in"));
-  EXPECT_THAT(ErrorOf("cylinder", {{"segments", {10.5}}}), HasSubstr("cylinder.segments = [10.5]: must be whole"));
-  EXPECT_THAT(ErrorOf("cylinder", {{"height_mm", {NAN}}}), HasSubstr("cylinder.height_mm"));
-  EXPECT_THAT(ErrorOf("torus", {{"minor_radius_mm", {60}}}), HasSubstr("minor_radius_mm = 60: must be smaller"));
-  EXPECT_THAT(ErrorOf("l_shape", {{"leg_mm", {200, 10}}}), HasSubstr("l_shape.leg_mm = [200, 10]: must be smaller"));
-  EXPECT_THAT(ErrorOf("t_shape", {{"web_mm", {500}}}), HasSubstr("t_shape flange_mm = 25 and web_mm = 500"));
-  EXPECT_THAT(ErrorOf("rib_web", {{"wall_mm", {70}}}), HasSubstr("rib_web.wall_mm = 70: must be smaller than the rib"));
-  EXPECT_THAT(ErrorOf("plate_with_holes", {{"hole_diameters_mm", {10}}}),
+  EXPECT_THAT(GeneratorErrorOf("box", {{"size_mm", {1, 2}}}), HasSubstr("box.size_mm = [1, 2]: needs 3 values"));
+  EXPECT_THAT(GeneratorErrorOf("cylinder", {{"radius_mm", {-1}}}), HasSubstr("cylinder.radius_mm = [-1]: each value must be in"));
+  EXPECT_THAT(GeneratorErrorOf("cylinder", {{"segments", {10.5}}}), HasSubstr("cylinder.segments = [10.5]: must be whole"));
+  EXPECT_THAT(GeneratorErrorOf("cylinder", {{"height_mm", {NAN}}}), HasSubstr("cylinder.height_mm"));
+  EXPECT_THAT(GeneratorErrorOf("torus", {{"minor_radius_mm", {60}}}), HasSubstr("minor_radius_mm = 60: must be smaller"));
+  EXPECT_THAT(GeneratorErrorOf("l_shape", {{"leg_mm", {200, 10}}}), HasSubstr("l_shape.leg_mm = [200, 10]: must be smaller"));
+  EXPECT_THAT(GeneratorErrorOf("t_shape", {{"web_mm", {500}}}), HasSubstr("t_shape flange_mm = 25 and web_mm = 500"));
+  EXPECT_THAT(GeneratorErrorOf("rib_web", {{"wall_mm", {70}}}), HasSubstr("rib_web.wall_mm = 70: must be smaller than the rib"));
+  EXPECT_THAT(GeneratorErrorOf("plate_with_holes", {{"hole_diameters_mm", {10}}}),
               HasSubstr("hole_centers_mm has 6 values: needs 2 (x, y) per hole"));
-  EXPECT_THAT(ErrorOf("plate_with_holes", {{"hole_diameters_mm", {10}}, {"hole_centers_mm", {78, 0}}}),
+  EXPECT_THAT(GeneratorErrorOf("plate_with_holes", {{"hole_diameters_mm", {10}}, {"hole_centers_mm", {78, 0}}}),
               HasSubstr("hole 1 (diameter 10 mm at 78, 0 mm from the plate centre) must lie inside"));
-  EXPECT_THAT(ErrorOf("plate_with_holes", {{"hole_diameters_mm", {20, 20}}, {"hole_centers_mm", {0, 0, 10, 0}}}),
+  EXPECT_THAT(GeneratorErrorOf("plate_with_holes", {{"hole_diameters_mm", {20, 20}}, {"hole_centers_mm", {0, 0, 10, 0}}}),
               HasSubstr("holes 1 and 2 are -10 mm apart"));
 }
 

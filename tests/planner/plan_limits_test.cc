@@ -15,7 +15,7 @@ namespace waam::planner {
 namespace {
 using ::testing::HasSubstr;
 
-Scenario Box(double x, double y, double z, double layer_height_mm) {
+Scenario LimitsBox(double x, double y, double z, double layer_height_mm) {
   Scenario s;
   s.name = "limits";
   s.part.generator = "box";
@@ -27,7 +27,7 @@ Scenario Box(double x, double y, double z, double layer_height_mm) {
   return s;
 }
 
-std::string ErrorOf(const Scenario& s) {
+std::string LimitsErrorOf(const Scenario& s) {
   try {
     PlanScenario(s, nullptr);
   } catch (const InputError& e) {
@@ -42,11 +42,11 @@ TEST(PlanLimitsTest, TooManyLayersIsRefusedBeforeSlicing) {
   for (Eigen::Vector3d& v : column.vertices) v.z() *= 2.0;
   const std::filesystem::path stl = std::filesystem::temp_directory_path() / "waam_plan_limits_column.stl";
   WriteStlBinary(column, stl);
-  Scenario s = Box(10, 10, 10, 0.05);
+  Scenario s = LimitsBox(10, 10, 10, 0.05);
   s.part.generator.clear();
   s.part.params.clear();
   s.part.mesh_path = stl;
-  EXPECT_THAT(ErrorOf(s), HasSubstr("s.yaml:3: part: the part is 10000 mm tall: 200000 layers at "
+  EXPECT_THAT(LimitsErrorOf(s), HasSubstr("s.yaml:3: part: the part is 10000 mm tall: 200000 layers at "
                                     "slicing.layer_height_mm = 0.05 mm, more than the limit of 100000"));
   EXPECT_NO_THROW(CheckLayerCount(5000.0, 0.05, "x")) << "exactly the limit is accepted";
   std::filesystem::remove(stl);
@@ -54,7 +54,7 @@ TEST(PlanLimitsTest, TooManyLayersIsRefusedBeforeSlicing) {
 
 TEST(PlanLimitsTest, TooLongAWeldPathIsRefusedBeforePlanning) {
   // 5 m x 5 m x 1.5 m block at 1.5 mm layers: 1000 layers of 25 m^2 at a ~4.4 mm spacing, about 5600 km.
-  const std::string message = ErrorOf(Box(5000, 5000, 1500, 1.5));
+  const std::string message = LimitsErrorOf(LimitsBox(5000, 5000, 1500, 1.5));
   EXPECT_THAT(message, HasSubstr("s.yaml:3: part: the plan needs about "));
   EXPECT_THAT(message, HasSubstr("km of weld path"));
   EXPECT_THAT(message, HasSubstr("more than the limit of 100 km"));

@@ -16,7 +16,7 @@
 namespace waam::planner {
 namespace {
 
-constexpr double kW = 6.0;      // bead width, mm
+constexpr double kRoundW = 6.0;      // bead width, mm
 constexpr int kLayers = 41;     // layer_index 0..40: the start point and direction change every layer
 constexpr double kJitterMm = 1e-4;  // a sliced mesh's edge points sit up to this far off the edge
 
@@ -54,11 +54,11 @@ void ExpectOnePassCovered(const std::string& name, const PolygonWithHoles& regio
   const auto inside = internal::Offset({region}, 0.01);
   for (int layer : layers) {
     PatternOptions options;
-    options.bead_width_mm = kW;
+    options.bead_width_mm = kRoundW;
     options.layer_index = layer;
     const std::vector<Move2D> moves = PlanLayerPattern({region}, options);
     EXPECT_EQ(testing::CountPasses(moves), 1) << name << " layer " << layer << ": a convex part is one loop, one pass";
-    const double uncovered = testing::UncoveredFraction(region, moves, kW);
+    const double uncovered = testing::UncoveredFraction(region, moves, kRoundW);
     EXPECT_LT(uncovered, max_uncovered) << name << " layer " << layer << ": uncovered fraction " << uncovered;
     // Staying inside is checked move by move with Clipper: on every eighth layer only, to keep the test fast.
     if (layer % 8 == 0) {

@@ -14,7 +14,7 @@
 namespace waam::planner {
 namespace {
 
-constexpr double kW = 6.0;  // bead width, mm
+constexpr double kSlicedW = 6.0;  // bead width, mm
 
 struct Part {
   std::string mesh;     // scenarios/meshes/<mesh>.stl
@@ -44,12 +44,12 @@ TEST(SlicedParts, ContinuousOnePassAndCovered) {
     double mean = 0.0, worst = 0.0;
     for (int i = 0; i < 6; ++i) {
       PatternOptions options;
-      options.bead_width_mm = kW;
+      options.bead_width_mm = kSlicedW;
       options.layer_index = i;
       const std::vector<Move2D> moves = PlanLayerPattern(slices[i], options);
       double uncovered = 0.0, area = 0.0;
       for (const PolygonWithHoles& region : slices[i]) {
-        uncovered += testing::UncoveredFraction(region, moves, kW) * Area(region);
+        uncovered += testing::UncoveredFraction(region, moves, kSlicedW) * Area(region);
         area += Area(region);
       }
       const int passes = testing::CountPasses(moves);

@@ -43,7 +43,7 @@ std::string BinaryStl(const std::vector<std::array<float, 9>>& facets, std::uint
 
 const std::array<float, 9> kFacet = {0, 0, 0, 1, 0, 0, 0, 1, 0};
 
-std::string ErrorOf(const std::filesystem::path& path, double weld_tol_mm = 1e-4) {
+std::string StlErrorOf(const std::filesystem::path& path, double weld_tol_mm = 1e-4) {
   try {
     ReadStl(path, weld_tol_mm, nullptr);
   } catch (const InputError& e) {
@@ -158,13 +158,13 @@ TEST(StlIo, CheckSliceableRefusesOpenNonManifoldAndEmptyMeshes) {
 TEST(StlIoErrors, EmptyFile) {
   const std::filesystem::path file = TestDir() / "empty.stl";
   WriteBytes(file, "");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("empty.stl: the file is empty"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("empty.stl: the file is empty"));
 }
 
 TEST(StlIoErrors, TooShortForBinaryAndNotAscii) {
   const std::filesystem::path file = TestDir() / "short.stl";
   WriteBytes(file, "hello");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("shorter than the 84-byte binary STL header"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("shorter than the 84-byte binary STL header"));
 }
 
 TEST(StlIoErrors, TruncatedBinaryNamesTheFacet) {
@@ -172,7 +172,7 @@ TEST(StlIoErrors, TruncatedBinaryNamesTheFacet) {
   std::string bytes = BinaryStl({kFacet, kFacet, kFacet}, 3, "binary");
   bytes.resize(84 + 50 + 20);  // ends 20 bytes into facet 2
   WriteBytes(file, bytes);
-  const std::string message = ErrorOf(file);
+  const std::string message = StlErrorOf(file);
   EXPECT_THAT(message, HasSubstr("truncated.stl: truncated binary STL"));
   EXPECT_THAT(message, HasSubstr("ends inside facet 2"));
 }
@@ -181,7 +181,7 @@ TEST(StlIoErrors, TruncatedBinaryAtAFacetBoundary) {
   const std::filesystem::path file = TestDir() / "short_count.stl";
   std::string bytes = BinaryStl({kFacet, kFacet}, 5, "binary");
   WriteBytes(file, bytes);
-  EXPECT_THAT(ErrorOf(file), HasSubstr("header says 5 facets (334 bytes) but the file has 184 bytes; it ends after "
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("header says 5 facets (334 bytes) but the file has 184 bytes; it ends after "
                                        "facet 2"));
 }
 
@@ -189,13 +189,13 @@ TEST(StlIoErrors, HeaderCountDisagreesWithFileSize) {
   const std::filesystem::path file = TestDir() / "long.stl";
   std::string bytes = BinaryStl({kFacet, kFacet}, 1, "binary");  // 2 facets present, header says 1
   WriteBytes(file, bytes);
-  EXPECT_THAT(ErrorOf(file), HasSubstr("header facet count 1 disagrees with the file size 184 bytes"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("header facet count 1 disagrees with the file size 184 bytes"));
 }
 
 TEST(StlIoErrors, AbsurdHeaderCountIsRefusedWithoutAllocating) {
   const std::filesystem::path file = TestDir() / "huge.stl";
   WriteBytes(file, BinaryStl({kFacet}, 2'000'000'000u, "binary"));
-  EXPECT_THAT(ErrorOf(file), HasSubstr("header claims 2000000000 facets, more than the limit of 20000000"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("header claims 2000000000 facets, more than the limit of 20000000"));
 }
 
 TEST(StlIoErrors, NonFiniteBinaryCoordinateNamesTheFacet) {
@@ -203,12 +203,12 @@ TEST(StlIoErrors, NonFiniteBinaryCoordinateNamesTheFacet) {
   std::array<float, 9> bad = kFacet;
   bad[4] = std::numeric_limits<float>::quiet_NaN();
   WriteBytes(file, BinaryStl({kFacet, bad}, 2, "binary"));
-  const std::string message = ErrorOf(file);
+  const std::string message = StlErrorOf(file);
   EXPECT_THAT(message, HasSubstr("nan.stl: binary STL facet 2 of 2: vertex 2 has a non-finite coordinate"));
   std::array<float, 9> inf = kFacet;
   inf[0] = std::numeric_limits<float>::infinity();
   WriteBytes(file, BinaryStl({inf}, 1, "binary"));
-  EXPECT_THAT(ErrorOf(file), HasSubstr("facet 1 of 1: vertex 1 has a non-finite coordinate"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("facet 1 of 1: vertex 1 has a non-finite coordinate"));
 }
 
 TEST(StlIoErrors, AbsurdCoordinatesAreRefused) {
@@ -216,45 +216,45 @@ TEST(StlIoErrors, AbsurdCoordinatesAreRefused) {
   std::array<float, 9> far = kFacet;
   far[8] = 3e20f;
   WriteBytes(file, BinaryStl({far}, 1, "binary"));
-  EXPECT_THAT(ErrorOf(file), HasSubstr("far.stl: binary STL facet 1 of 1: vertex 3 coordinate 3e+20 mm is beyond"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("far.stl: binary STL facet 1 of 1: vertex 3 coordinate 3e+20 mm is beyond"));
   WriteBytes(file, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 -2e7\n");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("far.stl: ASCII STL line 6: vertex z -2e+07 mm is beyond"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("far.stl: ASCII STL line 6: vertex z -2e+07 mm is beyond"));
 }
 
 TEST(StlIoErrors, NonFiniteAsciiCoordinateNamesTheLine) {
   const std::filesystem::path file = TestDir() / "nan_ascii.stl";
   WriteBytes(file, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 nan 0\nvertex 0 1 0\nendloop\n"
                    "endfacet\nendsolid s\n");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("nan_ascii.stl: ASCII STL line 5: vertex y 'nan' is not finite"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("nan_ascii.stl: ASCII STL line 5: vertex y 'nan' is not finite"));
 }
 
 TEST(StlIoErrors, AsciiSyntaxErrorsNameTheLine) {
   const std::filesystem::path file = TestDir() / "syntax.stl";
   WriteBytes(file, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("syntax.stl: ASCII STL line 6: expected 'vertex'"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("syntax.stl: ASCII STL line 6: expected 'vertex'"));
   WriteBytes(file, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 zero 0\n");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("line 5: expected a number for vertex y, found 'zero'"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("line 5: expected a number for vertex y, found 'zero'"));
   WriteBytes(file, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("expected 'endfacet' after 'endloop', found the end of file"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("expected 'endfacet' after 'endloop', found the end of file"));
   WriteBytes(file, "solid s\n  facett normal 0 0 1\n");
-  EXPECT_THAT(ErrorOf(file), HasSubstr("line 2: expected 'facet' or 'endsolid', found 'facett'"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("line 2: expected 'facet' or 'endsolid', found 'facett'"));
 }
 
 TEST(StlIoErrors, NoUsableFacet) {
   const std::filesystem::path file = TestDir() / "degenerate.stl";
   const std::array<float, 9> line = {0, 0, 0, 1, 1, 1, 2, 2, 2};
   WriteBytes(file, BinaryStl({line, line}, 2, "binary"));
-  EXPECT_THAT(ErrorOf(file), HasSubstr("degenerate.stl: no usable facet: 2 facets read, 2 degenerate"));
+  EXPECT_THAT(StlErrorOf(file), HasSubstr("degenerate.stl: no usable facet: 2 facets read, 2 degenerate"));
 }
 
 TEST(StlIoErrors, WeldToleranceOutOfRange) {
   const std::filesystem::path file = TestDir() / "any.stl";
   WriteBytes(file, BinaryStl({kFacet}, 1, "binary"));
-  EXPECT_THAT(ErrorOf(file, -1.0), HasSubstr("weld tolerance -1 mm: must be between 0 and 10 mm"));
+  EXPECT_THAT(StlErrorOf(file, -1.0), HasSubstr("weld tolerance -1 mm: must be between 0 and 10 mm"));
 }
 
 TEST(StlIoErrors, MissingFile) {
-  EXPECT_THAT(ErrorOf(TestDir() / "missing.stl"), HasSubstr("missing.stl"));
+  EXPECT_THAT(StlErrorOf(TestDir() / "missing.stl"), HasSubstr("missing.stl"));
 }
 
 TEST(StlIoErrors, CorruptedFilesGiveAMeshOrAnInputErrorNeverACrash) {

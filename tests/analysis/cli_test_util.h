@@ -1,0 +1,63 @@
+// Helpers shared by the analysis tests that run the `waam` executable and read what it writes.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "models/core/files.h"
+
+namespace waam::analysis::cli_test {
+
+// An empty folder for one test: <tmp>/waam_analysis_test_<pid>/<name> (per process, since ctest runs tests in
+// parallel processes).
+inline std::filesystem::path TempDir(const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("waam_analysis_test_" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The whole file, or "" when it cannot be read.
+inline std::string Slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline nlohmann::json ReadJson(const std::filesystem::path& path) { return nlohmann::json::parse(ReadFile(path)); }
+
+// Runs the built executable with `args` (stdout discarded), returns its exit code (-1 if it did not exit) and its
+// stderr in `*err`.
+inline int RunWaam(const std::string& args, std::string* err) {
+  const std::filesystem::path err_file = TempDir("run_waam") / "stderr.txt";
+  const std::string command = std::string(WAAM_BINARY) + " " + args + " >/dev/null 2>" + err_file.string();
+  const int status = std::system(command.c_str());
+  *err = Slurp(err_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Every file below `dir` (none when it does not exist).
+inline std::vector<std::string> FilesUnder(const std::filesystem::path& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  if (!std::filesystem::exists(dir, ec)) return files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!entry.is_directory()) files.push_back(entry.path().string());
+  }
+  return files;
+}
+
+}  // namespace waam::analysis::cli_test
