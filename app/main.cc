@@ -5,6 +5,7 @@
 
 #include "app/commands.h"
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 
 int main(int argc, char** argv) {
@@ -31,6 +32,13 @@ int main(int argc, char** argv) {
   AddDeviationCommand(app, &runner);
   AddCompensateCommand(app, &runner);
 
+  // Every command takes --threads; the outputs are the same for any number of threads.
+  int threads = 0;
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    command->add_option("--threads", threads, "Threads for the parallel steps (default 0 = all hardware threads)")
+        ->check(CLI::Range(0, 4096));
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -46,6 +54,7 @@ int main(int argc, char** argv) {
 
   waam::InstallInterruptHandler();
   try {
+    waam::SetThreadCount(threads);
     return runner ? runner() : kExitBadInput;
   } catch (const waam::InputError& e) {
     std::cerr << "waam: error: " << e.what() << "\n";

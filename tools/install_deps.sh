@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build ccache pkg-config
-  libeigen3-dev libceres-dev
+  libeigen3-dev libceres-dev libtbb-dev
   libmujoco-dev libqhull-dev
   libopencv-dev
   libhdf5-dev
