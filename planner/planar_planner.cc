@@ -2,12 +2,14 @@
 #include "planner/planar_planner.h"
 
 #include <cmath>
+#include <mutex>
 
 #include "models/core/error.h"
 #include "models/bead/parabolic_bead.h"
 #include "models/bead/speed_height_model.h"
 #include "models/bead/width_height_model.h"
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/cone_planner.h"
@@ -115,6 +117,24 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
   const double l_mm = OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).contour_to_contour_mm;
   const VoidFiller void_filler(scenario.path.void_filling, result.bead_width_mm, l_mm);
 
+  // A layer's pattern depends only on its slice and its index (the start shift and any random choice are seeded by
+  // the index): the layers are planned in parallel, each into its own slot, so the plan is the same on any number of
+  // threads.
+  std::vector<std::vector<Move2D>> layer_moves(layer_count);
+  std::vector<std::vector<CornerCorrection>> layer_corrections(layer_count);
+  std::mutex progress_mutex;
+  int layers_done = 0;
+  ParallelFor(layer_count, [&](std::size_t i) {
+    PatternOptions layer_options = options;
+    layer_options.layer_index = static_cast<int>(i);
+    layer_moves[i] = void_filler.Apply(slices[i], PlanLayerPattern(slices[i], layer_options), static_cast<int>(i),
+                                       &layer_corrections[i]);
+    if (progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress->Update(++layers_done);
+    }
+  });
+
   result.plan.name = scenario.name;
   result.plan.layers.reserve(layer_count);
   std::size_t points = 0;
@@ -123,9 +143,9 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
     layer.index = i;
     layer.z_mm = (i + 1) * layer_height;
     layer.slice = slices[i];
-    options.layer_index = i;
-    const std::vector<Move2D> moves =
-        void_filler.Apply(layer.slice, PlanLayerPattern(layer.slice, options), i, &result.void_corrections);
+    const std::vector<Move2D>& moves = layer_moves[i];
+    result.void_corrections.insert(result.void_corrections.end(), layer_corrections[i].begin(),
+                                   layer_corrections[i].end());
     WAAM_THROW_UNLESS(HasWeldOrNoRoom(layer.slice, moves, result.bead_width_mm),
                       scenario.part.where << ": layer " << i << " (z = " << layer.z_mm << " mm): path.pattern '"
                                           << scenario.path.pattern << "' found no weld path in the slice of "
@@ -143,7 +163,6 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
     points += layer.points.size();
     CheckPathPoints(points, i, scenario.part.where);
     result.plan.layers.push_back(std::move(layer));
-    if (progress) progress->Update(i + 1);
   }
   if (progress) progress->Finish();
   result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/core/files.h"
+#include "models/core/parallel.h"
 #include "tests/analysis/cli_test_util.h"
 
 namespace waam::analysis {
@@ -96,6 +97,30 @@ TEST(PlanCommandTest, IdenticalInputsGiveIdenticalPlans) {
   options.out_dir = dir / "b";
   RunPlan(options);
   EXPECT_EQ(ReadFile(dir / "a" / "plan.json"), ReadFile(dir / "b" / "plan.json"));
+}
+
+TEST(PlanCommandTest, SamePlanOnOneAndFourThreads) {
+  const fs::path dir = TempDir("threads");
+  PlanOptions options;
+  options.quiet = true;
+  options.layer_images = false;
+  std::vector<fs::path> scenarios;
+  for (const char* pattern : {"contour", "hybrid", "continuous"}) {
+    fs::create_directories(dir / pattern);
+    scenarios.push_back(WritePlateScenario(dir / pattern, pattern));
+  }
+  scenarios.push_back(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "ribweb" / "cross_junction.yaml");
+  for (const fs::path& scenario : scenarios) {
+    options.scenario = scenario;
+    SetThreadCount(1);
+    options.out_dir = dir / "one";
+    RunPlan(options);
+    SetThreadCount(4);
+    options.out_dir = dir / "four";
+    RunPlan(options);
+    SetThreadCount(0);
+    EXPECT_EQ(ReadFile(dir / "one" / "plan.json"), ReadFile(dir / "four" / "plan.json")) << scenario;
+  }
 }
 
 TEST(PlanCommandTest, ContinuousNeedsFewerPassesThanHybrid) {
