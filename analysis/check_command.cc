@@ -92,7 +92,7 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
 twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planner::Plan& plan,
                                  const CheckOptions& options) {
   EnsureOutputDirectory(options.out_dir);
-  twin::MujocoCell cell(scenario.cell.mjcf);
+  const twin::CellModel cell = twin::LoadCell(scenario.cell);
   RunOutputs outputs(options.out_dir / "check.json");
   twin::CheckReport report;
   {
@@ -100,7 +100,7 @@ twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planne
     report = twin::CheckPlan(cell, plan, scenario.cell, scenario.process.rapid_speed_mm_min / 60.0, &progress);
     progress.Finish();
   }
-  const planner::CellKinematics kin = twin::PlaceCell(cell, scenario.cell);
+  const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
   if (options.program) {
     const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
     WriteFileAtomic(outputs.Add(options.out_dir / "program.csv"), planner::ProgramToCsv(program));

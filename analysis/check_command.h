@@ -35,8 +35,8 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const std::filesys
                            const twin::CheckReport& report);
 
 // Draws the cell's collision shapes at the report's worst sample (side and top views) with the path and the
-// violation marked. `cell` is left at that sample's joints.
-void WriteCellPng(twin::MujocoCell& cell, const planner::CellKinematics& kin, const planner::Plan& plan,
+// violation marked.
+void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& kin, const planner::Plan& plan,
                   const twin::CheckReport& report, const std::filesystem::path& path);
 
 // Plots the eight axis angles (deg) against time (s) with their limits, and the joint speed ratios.

@@ -113,11 +113,12 @@ void DrawView(cv::Mat& img, const View& view, const std::vector<twin::CellShape>
 
 }  // namespace
 
-void WriteCellPng(twin::MujocoCell& cell, const planner::CellKinematics& kin, const planner::Plan& plan,
+void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& kin, const planner::Plan& plan,
                   const twin::CheckReport& report, const fs::path& path) {
   const planner::CellSample& s = report.motion[report.worst_sample];
-  cell.SetJoints(s.q);
-  const std::vector<twin::CellShape> shapes = cell.Shapes();
+  twin::CellState state(cell);
+  state.SetJoints(s.q);
+  const std::vector<twin::CellShape> shapes = state.Shapes();
   std::vector<std::vector<Eigen::Vector3d>> surfaces;
   std::vector<Eigen::Vector3d> all;
   for (const twin::CellShape& shape : shapes) {

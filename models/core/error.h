@@ -1,4 +1,5 @@
-// Error types shared by every module: InputError for anything a user can cause.
+// The two kinds of failure (as in Drake): InputError for anything a user can cause, InternalError (WAAM_DEMAND)
+// for the code's own mistakes.
 #pragma once
 
 #include <sstream>
@@ -14,6 +15,21 @@ class InputError : public std::runtime_error {
  public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
+
+// Thrown by WAAM_DEMAND when an invariant of the code itself fails: a bug, not bad input. The message names the
+// file, line and condition; the CLI prints it as an internal error and exits with code 1.
+class InternalError : public std::logic_error {
+ public:
+  explicit InternalError(const std::string& message) : std::logic_error(message) {}
+};
+
+namespace internal {
+[[noreturn]] inline void DemandFailed(const char* condition, const char* file, int line) {
+  std::ostringstream message;
+  message << file << ":" << line << ": internal check failed: " << condition << " (please report this)";
+  throw InternalError(message.str());
+}
+}  // namespace internal
 
 // Thrown when a long run is interrupted (SIGINT); the CLI removes partial outputs and exits with code 130.
 class Interrupted : public std::runtime_error {
@@ -41,3 +57,10 @@ class Interrupted : public std::runtime_error {
     waam_throw_stream_ << message; \
     return waam_throw_stream_.str(); \
   }())
+
+// Checks an invariant of the code itself (Drake's DRAKE_DEMAND), never a user's input (use WAAM_THROW_UNLESS for
+// that): throws waam::InternalError naming the file, line and condition unless `condition` holds.
+#define WAAM_DEMAND(condition)                                                        \
+  do {                                                                                \
+    if (!(condition)) ::waam::internal::DemandFailed(#condition, __FILE__, __LINE__); \
+  } while (false)

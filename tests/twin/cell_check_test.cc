@@ -7,6 +7,7 @@
 #include <fstream>
 #include <random>
 #include <set>
+#include <thread>
 
 #include <unistd.h>
 
@@ -45,10 +46,11 @@ std::string Describe(const CheckReport& r) {
   return text;
 }
 
-TEST(MujocoCellTest, ClosedFormIkReachesTheTcpInMujoco) {
-  MujocoCell cell({});
+TEST(CellModelTest, ClosedFormIkReachesTheTcpInMujoco) {
   const planner::CellSettings settings;
-  const planner::CellKinematics kin = PlaceCell(cell, settings);
+  const CellModel model = LoadCell(settings);
+  const planner::CellKinematics kin = PartKinematics(model, settings);
+  CellState cell(model);
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int checked = 0;
@@ -74,9 +76,9 @@ TEST(MujocoCellTest, ClosedFormIkReachesTheTcpInMujoco) {
   EXPECT_LT(worst, 1e-6) << "every IK branch must put MuJoCo's TCP site on the target pose (mm)";
 }
 
-TEST(MujocoCellTest, ModelKinematicsMatchThePublishedArm) {
-  MujocoCell cell({});
-  const planner::CellKinematics kin = cell.Kinematics();
+TEST(CellModelTest, ModelKinematicsMatchThePublishedArm) {
+  const CellModel cell({});
+  const planner::CellKinematics kin = cell.kinematics();
   const planner::OpwArm ref = planner::OpwArm::ArcMate100iC12();
   EXPECT_NEAR(kin.arm.a1, ref.a1, 1e-9);
   EXPECT_NEAR(kin.arm.a2, ref.a2, 1e-9);
@@ -101,8 +103,9 @@ class BadModelTest : public ::testing::Test {
     const fs::path file = dir_ / "cell.xml";
     std::ofstream(file) << xml;
     try {
-      MujocoCell cell(file);
-      PlaceCell(cell, planner::CellSettings{});
+      planner::CellSettings settings;
+      settings.mjcf = file;
+      LoadCell(settings);
     } catch (const InputError& e) {
       return e.what();
     }
@@ -119,7 +122,7 @@ TEST_F(BadModelTest, BrokenXmlIsAnErrorNotAnExit) {
 }
 
 TEST_F(BadModelTest, MissingJointIsNamed) {
-  std::string xml = ReadFileForTest(MujocoCell::BuiltinModelPath());
+  std::string xml = ReadFileForTest(CellModel::BuiltinModelPath());
   xml.replace(xml.find("name=\"j3\""), 9, "name=\"jx\"");
   EXPECT_THAT(ErrorOf(xml), HasSubstr("no joint named 'j3'"));
 }
@@ -128,7 +131,7 @@ TEST_F(BadModelTest, MissingJointIsNamed) {
 class NumericIkTest : public BadModelTest {
  protected:
   fs::path WristOffsetModel() {
-    std::string xml = ReadFileForTest(MujocoCell::BuiltinModelPath());
+    std::string xml = ReadFileForTest(CellModel::BuiltinModelPath());
     xml.replace(xml.find("<body name=\"link6\" pos=\"0.1 0 0\">"), 33, "<body name=\"link6\" pos=\"0.1 0.02 0\">");
     const fs::path file = dir_ / "offset_wrist.xml";
     std::ofstream(file) << xml;
@@ -137,9 +140,12 @@ class NumericIkTest : public BadModelTest {
 };
 
 TEST_F(NumericIkTest, NonOpwArmFallsBackToNumericalIk) {
-  MujocoCell cell(WristOffsetModel());
-  const planner::CellKinematics kin = PlaceCell(cell, planner::CellSettings{});
-  EXPECT_FALSE(cell.closed_form());
+  planner::CellSettings settings;
+  settings.mjcf = WristOffsetModel();
+  const CellModel model = LoadCell(settings);
+  const planner::CellKinematics kin = PartKinematics(model, settings);
+  EXPECT_FALSE(model.closed_form());
+  CellState cell(model);
   ASSERT_TRUE(static_cast<bool>(kin.numeric_ik));
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -163,25 +169,65 @@ TEST_F(NumericIkTest, NonOpwArmFallsBackToNumericalIk) {
   EXPECT_EQ(converged, 50) << "from a seed 0.1 rad away the numerical IK must converge";
 }
 
+TEST_F(NumericIkTest, OneModelServesTwoThreadsAtOnce) {
+  // The model is shared; each thread has its own CellState and the IK has its own data per call: two threads
+  // solving and checking different poses at once get exactly what one thread gets.
+  planner::CellSettings settings;
+  settings.mjcf = WristOffsetModel();
+  const CellModel model = LoadCell(settings);
+  const planner::CellKinematics kin = PartKinematics(model, settings);
+  ASSERT_TRUE(static_cast<bool>(kin.numeric_ik));
+  auto solve_all = [&](int first, std::vector<double>* out) {
+    CellState state(model);
+    std::mt19937_64 rng(first);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int trial = 0; trial < 40; ++trial) {
+      planner::Joints8 q = planner::Joints8::Zero();
+      q << 0.5 * u(rng), 0.3 + 0.3 * u(rng), 0.2 * u(rng), 0.5 * u(rng), -1.3 + 0.4 * u(rng), 0.5 * u(rng), 0, 0;
+      state.SetJoints(q);
+      const Eigen::Isometry3d X_RF = kin.X_WR.inverse() * state.TcpPose() * kin.X_FT.inverse();
+      planner::Joints6 sol;
+      double residual = 0.0;
+      kin.numeric_ik(X_RF, q.head<6>() + planner::Joints6::Constant(0.1), &sol, &residual);
+      for (int j = 0; j < 6; ++j) out->push_back(sol[j]);
+      std::vector<CellContact> contacts;
+      double clearance = 0.0;
+      state.Collide(0.0, &contacts, &clearance);
+      out->push_back(clearance);
+    }
+  };
+  std::vector<double> serial_a, serial_b, threaded_a, threaded_b;
+  solve_all(1, &serial_a);
+  solve_all(2, &serial_b);
+  std::thread a(solve_all, 1, &threaded_a);
+  std::thread b(solve_all, 2, &threaded_b);
+  a.join();
+  b.join();
+  EXPECT_EQ(threaded_a, serial_a);
+  EXPECT_EQ(threaded_b, serial_b);
+}
+
 TEST_F(NumericIkTest, WellPlacedWallPassesWithNumericalIk) {
-  MujocoCell cell(WristOffsetModel());
+  planner::CellSettings settings;
+  settings.mjcf = WristOffsetModel();
   const CheckReport r =
-      CheckPlan(cell, testing::RectangleWall(4, 80.0, 40.0, 2.0, 400.0 / 60.0), planner::CellSettings{}, 100.0, nullptr);
+      CheckPlan(LoadCell(settings), testing::RectangleWall(4, 80.0, 40.0, 2.0, 400.0 / 60.0), settings, 100.0, nullptr);
   EXPECT_EQ(r.ik, "numerical");
   EXPECT_TRUE(r.ok) << Describe(r);
 }
 
 TEST_F(NumericIkTest, NumericalIkFailureIsReportedAsUnreachable) {
-  MujocoCell cell(WristOffsetModel());
   planner::CellSettings far;
+  far.mjcf = WristOffsetModel();
   far.robot_base_mm = {-1500.0, 0.0, 0.0};
-  const CheckReport r = CheckPlan(cell, testing::RectangleWall(1, 80.0, 40.0, 2.0, 400.0 / 60.0), far, 100.0, nullptr);
+  const CheckReport r =
+      CheckPlan(LoadCell(far), testing::RectangleWall(1, 80.0, 40.0, 2.0, 400.0 / 60.0), far, 100.0, nullptr);
   EXPECT_EQ(Kinds(r), std::set<std::string>{"unreachable"}) << Describe(r);
   EXPECT_EQ(r.violations.front().unit, "ik_residual_mm");
 }
 
 TEST_F(BadModelTest, MujocoRuntimeErrorThrowsInsteadOfExiting) {
-  MujocoCell cell({});  // installs the handlers
+  const CellModel cell({});  // installs the handlers
   try {
     mju_error("simulated engine failure");
     ADD_FAILURE() << "mju_error must throw, not return or exit";
@@ -192,7 +238,7 @@ TEST_F(BadModelTest, MujocoRuntimeErrorThrowsInsteadOfExiting) {
 
 TEST_F(BadModelTest, MissingFileIsNamed) {
   try {
-    MujocoCell cell(dir_ / "nothere.xml");
+    const CellModel cell(dir_ / "nothere.xml");
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("nothere.xml"));
@@ -206,8 +252,7 @@ class PlantedFaultTest : public ::testing::Test {
     return planner::LoadScenario(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (name + ".yaml")).cell;
   }
   CheckReport Check(const planner::CellSettings& settings) {
-    MujocoCell cell(settings.mjcf);
-    return CheckPlan(cell, testing::RectangleWall(10, 100.0, 60.0, 1.5, 400.0 / 60.0), settings, 100.0, nullptr);
+    return CheckPlan(LoadCell(settings), testing::RectangleWall(10, 100.0, 60.0, 1.5, 400.0 / 60.0), settings, 100.0, nullptr);
   }
 };
 
@@ -271,9 +316,9 @@ TEST_F(PlantedFaultTest, WristNearItsSingularityIsReported) {
 
 TEST_F(PlantedFaultTest, TravelSpeedBeyondTheAxesIsAJointSpeedViolation) {
   // Welding a small square at 3 m/s: the arm cannot follow; travel moves are slowed, weld moves are not.
-  MujocoCell cell({});
+  const planner::CellSettings settings = Settings("cell_ok");
   const CheckReport r =
-      CheckPlan(cell, testing::RectangleWall(2, 20.0, 20.0, 1.5, 3000.0), Settings("cell_ok"), 100.0, nullptr);
+      CheckPlan(LoadCell(settings), testing::RectangleWall(2, 20.0, 20.0, 1.5, 3000.0), settings, 100.0, nullptr);
   EXPECT_EQ(Kinds(r), std::set<std::string>{"joint_speed"}) << Describe(r);
   EXPECT_GT(r.max_joint_speed_ratio, 1.0);
 }
@@ -285,8 +330,7 @@ TEST_F(PlantedFaultTest, TorchAgainstTheDepositedWallIsACollisionWithThePart) {
   for (planner::LayerPath& layer : plan.layers) {
     for (planner::PathPoint& p : layer.points) p.tool_dir_P = Eigen::Vector3d(std::sin(1.3), 0.0, std::cos(1.3));
   }
-  MujocoCell cell({});
-  const CheckReport r = CheckPlan(cell, plan, Settings("cell_ok"), 100.0, nullptr);
+  const CheckReport r = CheckPlan(LoadCell(Settings("cell_ok")), plan, Settings("cell_ok"), 100.0, nullptr);
   bool part_hit = false;
   for (const CheckViolation& v : r.violations) part_hit |= (v.kind == "collision" && v.body1 == "part");
   EXPECT_TRUE(part_hit) << "a torch leaning 75 deg must hit the wall it just built\n" << Describe(r);
@@ -309,14 +353,15 @@ TEST_F(PlantedFaultTest, SkippedCollisionChecksMissNothing) {
   plan.layers.push_back(layer);
   planner::CellSettings settings = Settings("cell_ok");
   settings.part_collision = false;
-  MujocoCell cell({});
-  const CheckReport r = CheckPlan(cell, plan, settings, 100.0, nullptr);
+  const CellModel model = LoadCell(settings);
+  const CheckReport r = CheckPlan(model, plan, settings, 100.0, nullptr);
   int flagged = 0;
   for (const CheckViolation& v : r.violations) {
     if (v.kind == "collision") flagged += v.samples;
   }
   int brute = 0;
   std::vector<CellContact> contacts;
+  CellState cell(model);
   for (const planner::CellSample& s : r.motion) {
     cell.SetJoints(s.q);
     contacts.clear();
@@ -338,8 +383,7 @@ TEST_F(PlantedFaultTest, TiltedBuildDirectionIsTurnedUpByThePositioner) {
       p.tool_dir_P = layer.build_dir_P;
     }
   }
-  MujocoCell cell({});
-  const CheckReport r = CheckPlan(cell, plan, Settings("cell_ok"), 100.0, nullptr);
+  const CheckReport r = CheckPlan(LoadCell(Settings("cell_ok")), plan, Settings("cell_ok"), 100.0, nullptr);
   EXPECT_TRUE(r.ok) << Describe(r);
   EXPECT_NEAR(std::abs(r.motion.back().q[6]) * 180.0 / kPi, 30.0, 1e-6) << "positioner tilt";
   EXPECT_LT(r.max_torch_tilt_deg, 1e-6) << "the torch stays vertical";

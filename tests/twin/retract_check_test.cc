@@ -24,8 +24,7 @@ PartHits CheckPart(double retract_mm) {
   const planner::PlanResult planned =
       planner::PlanScenario(planner::testing::SmallPropellerWithRetract(retract_mm), nullptr);
   planner::CellSettings settings;  // the built-in cell, part_collision on
-  MujocoCell cell(settings.mjcf);
-  const CheckReport r = CheckPlan(cell, planned.plan, settings, 100.0, nullptr);
+  const CheckReport r = CheckPlan(LoadCell(settings), planned.plan, settings, 100.0, nullptr);
   PartHits hits;
   for (const CheckViolation& v : r.violations) {
     if (v.kind != "collision" || v.body1 != "part") continue;

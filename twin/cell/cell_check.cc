@@ -82,18 +82,21 @@ const char* AxisName(int axis) {
   return (axis >= 0 && axis < 8) ? kNames[axis] : "?";
 }
 
-planner::CellKinematics PlaceCell(MujocoCell& cell, const planner::CellSettings& settings) {
-  cell.Place(PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
-             PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
-  planner::CellKinematics kin = cell.Kinematics();
+CellModel LoadCell(const planner::CellSettings& settings) {
+  return CellModel(settings.mjcf, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
+                   PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
+}
+
+planner::CellKinematics PartKinematics(const CellModel& cell, const planner::CellSettings& settings) {
+  planner::CellKinematics kin = cell.kinematics();
   // The part frame P sits on the plate top (part_origin) with the scenario's offset and turn.
   kin.positioner.X_CP = kin.positioner.X_CP * PlacementPose(settings.part_offset_mm, settings.part_yaw_deg);
   return kin;
 }
 
-CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner::CellSettings& settings,
+CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const planner::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress) {
-  const planner::CellKinematics kin = PlaceCell(cell, settings);
+  const planner::CellKinematics kin = PartKinematics(cell, settings);
   const double margin_rad = settings.joint_margin_deg / kDeg;
 
   // The positioner solution keeps the joint margin: where it must hold a limit, it holds it `margin` inside.
@@ -145,6 +148,7 @@ CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner
   report.min_joint_margin_deg = std::numeric_limits<double>::infinity();
   report.min_j5_deg = std::numeric_limits<double>::infinity();
   int min_margin_sample = 0;
+  CellState state(cell);
   std::vector<CellContact> contacts;
   double clearance = -1.0;  // from the last collision detection, mm; <= 0 forces a detection
   Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
@@ -207,10 +211,10 @@ CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner
 
     // Cell bodies: MuJoCo collision detection at this configuration, skipped while no geom has moved by half the
     // clearance found at the last detection (conservative advancement: no contact can have appeared).
-    cell.SetJoints(s.q);
+    state.SetJoints(s.q);
     contacts.clear();
-    if (!(clearance > 0.0 && 2.0 * cell.MotionSinceCollide() < clearance)) {
-      cell.Collide(settings.collision_tolerance_mm, &contacts, &clearance);
+    if (!(clearance > 0.0 && 2.0 * state.MotionSinceCollide() < clearance)) {
+      state.Collide(settings.collision_tolerance_mm, &contacts, &clearance);
     }
     for (const CellContact& c : contacts) {
       const bool ordered = c.body1 < c.body2;

@@ -17,7 +17,7 @@ class Progress;
 
 namespace waam::twin {
 
-class MujocoCell;
+class CellModel;
 
 // One violation: all samples of one layer with the same kind and joint (or body pair), merged.
 struct CheckViolation {
@@ -58,12 +58,16 @@ struct CheckReport {
 // Names of the eight axes: j1..j6, pos_tilt, pos_rot.
 const char* AxisName(int axis);
 
-// Checks `plan` (part frame P) on `cell`, placed by `settings` (arm, positioner, part on the plate). Arc-off moves
-// run at `rapid_speed_mm_s`. `progress` may be null. Throws InputError for a cell model that cannot be used.
-CheckReport CheckPlan(MujocoCell& cell, const planner::Plan& plan, const planner::CellSettings& settings,
-                      double rapid_speed_mm_s, Progress* progress);
+// The cell model of `settings` (its `mjcf`, or the built-in cell) with the arm base and the positioner placed as
+// it says. Throws InputError for a model file that cannot be used.
+CellModel LoadCell(const planner::CellSettings& settings);
 
-// The cell kinematics of `cell` with the placements of `settings` applied (and pushed into the MuJoCo model).
-planner::CellKinematics PlaceCell(MujocoCell& cell, const planner::CellSettings& settings);
+// The kinematics of `cell` (made by LoadCell(settings)) with the part placed on the plate as `settings` says.
+planner::CellKinematics PartKinematics(const CellModel& cell, const planner::CellSettings& settings);
+
+// Checks `plan` (part frame P) on `cell`, which LoadCell(settings) made. Arc-off moves run at `rapid_speed_mm_s`.
+// `progress` may be null.
+CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const planner::CellSettings& settings,
+                      double rapid_speed_mm_s, Progress* progress);
 
 }  // namespace waam::twin

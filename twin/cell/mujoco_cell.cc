@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <random>
 #include <string>
@@ -46,33 +47,55 @@ Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
 
 }  // namespace
 
-struct MujocoCell::Impl {
+// The MuJoCo side of a CellModel: immutable once the constructor has returned.
+struct CellModel::Impl {
   mjModel* m = nullptr;
-  mjData* d = nullptr;
-  mjData* ik = nullptr;  // scratch data of the numerical IK
-  std::vector<mjtNum> collide_xpos;  // geom poses at the last Collide()
-  std::vector<mjtNum> collide_xmat;
+  fs::path file;
   int qadr[8] = {};
   int jnt[8] = {};
   int robot_base = -1, positioner_base = -1, flange = -1;
   int tcp = -1, part_origin = -1, nozzle = -1, speeds = -1;
+  planner::CellKinematics kinematics;
+  bool closed_form = true;
+  Eigen::Vector3d nozzle_a_T = Eigen::Vector3d::Zero(), nozzle_b_T = Eigen::Vector3d::Zero();
+  double nozzle_radius_mm = 0.0;
   ~Impl() {
-    if (ik) mj_deleteData(ik);
-    if (d) mj_deleteData(d);
     if (m) mj_deleteModel(m);
   }
 };
 
-fs::path MujocoCell::BuiltinModelPath() { return fs::path(WAAM_CELL_DATA_DIR) / "cell_arcmate100ic.xml"; }
+// One mjData over a model (deleted with it).
+class ScratchData {
+ public:
+  explicit ScratchData(const mjModel* m) : d_(mj_makeData(m)) {}
+  ~ScratchData() { mj_deleteData(d_); }
+  ScratchData(const ScratchData&) = delete;
+  ScratchData& operator=(const ScratchData&) = delete;
+  mjData* get() const { return d_; }
 
-MujocoCell::MujocoCell(const fs::path& mjcf) : impl_(std::make_unique<Impl>()) {
+ private:
+  mjData* d_;
+};
+
+struct CellState::Data {
+  explicit Data(const mjModel* m) : d(m) {}
+  ScratchData d;
+  std::vector<mjtNum> collide_xpos;  // geom poses at the last Collide()
+  std::vector<mjtNum> collide_xmat;
+};
+
+namespace {
+
+// Loads and checks the model file and places the bases (the constructor's first half; the kinematics follow).
+void LoadModel(const fs::path& mjcf, CellModel::Impl* impl) {
   InstallMujocoHandlers();
-  file_ = mjcf.empty() ? BuiltinModelPath() : mjcf;
+  impl->file = mjcf.empty() ? CellModel::BuiltinModelPath() : mjcf;
+  const fs::path& file = impl->file;
   std::error_code ec;
-  WAAM_THROW_UNLESS(fs::is_regular_file(file_, ec), file_.string() << ": MJCF cell model not found");
+  WAAM_THROW_UNLESS(fs::is_regular_file(file, ec), file.string() << ": MJCF cell model not found");
   char error[1024] = "";
-  impl_->m = mj_loadXML(file_.string().c_str(), nullptr, error, sizeof(error));
-  if (impl_->m == nullptr) {
+  impl->m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
+  if (impl->m == nullptr) {
     // MuJoCo's XML errors span several lines ("XML parse error 14:\nError=... Line number=1: ..."): join them so
     // the CLI prints the one line the bad-input contract promises, with the line number MuJoCo reports.
     std::string message;
@@ -85,81 +108,271 @@ MujocoCell::MujocoCell(const fs::path& mjcf) : impl_(std::make_unique<Impl>()) {
       }
     }
     while (!message.empty() && message.back() == ' ') message.pop_back();
-    WAAM_THROW(file_.string() << ": MuJoCo cannot load the cell model: " << message);
+    WAAM_THROW(file.string() << ": MuJoCo cannot load the cell model: " << message);
   }
-  impl_->d = mj_makeData(impl_->m);
-  impl_->ik = mj_makeData(impl_->m);
-  const mjModel* m = impl_->m;
+  mjModel* m = impl->m;
 
   auto require = [&](int type, const char* name, const char* what) {
     const int id = mj_name2id(m, type, name);
-    WAAM_THROW_UNLESS(id >= 0, file_.string() << ": the cell model has no " << what << " named '" << name
-                                              << "' (see README, 'Describing your own cell')");
+    WAAM_THROW_UNLESS(id >= 0, file.string() << ": the cell model has no " << what << " named '" << name
+                                             << "' (see README, 'Describing your own cell')");
     return id;
   };
   const char* const names[8] = {"j1", "j2", "j3", "j4", "j5", "j6", "pos_tilt", "pos_rot"};
   for (int j = 0; j < 8; ++j) {
     const int id = require(mjOBJ_JOINT, names[j], "joint");
     WAAM_THROW_UNLESS(m->jnt_type[id] == mjJNT_HINGE && m->jnt_limited[id],
-                      file_.string() << ": joint '" << names[j] << "' must be a limited hinge");
-    impl_->jnt[j] = id;
-    impl_->qadr[j] = m->jnt_qposadr[id];
+                      file.string() << ": joint '" << names[j] << "' must be a limited hinge");
+    impl->jnt[j] = id;
+    impl->qadr[j] = m->jnt_qposadr[id];
   }
-  impl_->robot_base = require(mjOBJ_BODY, "robot_base", "body");
-  impl_->positioner_base = require(mjOBJ_BODY, "positioner_base", "body");
-  impl_->flange = require(mjOBJ_BODY, "link6", "body");
-  impl_->tcp = require(mjOBJ_SITE, "tcp", "site");
-  impl_->part_origin = require(mjOBJ_SITE, "part_origin", "site");
-  impl_->nozzle = require(mjOBJ_GEOM, "nozzle", "geom");
-  impl_->speeds = require(mjOBJ_NUMERIC, "max_speed_deg_s", "custom numeric");
-  WAAM_THROW_UNLESS(m->numeric_size[impl_->speeds] == 8,
-                    file_.string() << ": custom numeric 'max_speed_deg_s' must have 8 values (j1..j6, pos_tilt, "
-                                      "pos_rot), has " << m->numeric_size[impl_->speeds]);
-  WAAM_THROW_UNLESS(m->geom_type[impl_->nozzle] == mjGEOM_CAPSULE,
-                    file_.string() << ": geom 'nozzle' must be a capsule");
-  WAAM_THROW_UNLESS(m->body_parentid[impl_->robot_base] == 0 && m->body_parentid[impl_->positioner_base] == 0,
-                    file_.string() << ": bodies 'robot_base' and 'positioner_base' must be children of the world");
+  impl->robot_base = require(mjOBJ_BODY, "robot_base", "body");
+  impl->positioner_base = require(mjOBJ_BODY, "positioner_base", "body");
+  impl->flange = require(mjOBJ_BODY, "link6", "body");
+  impl->tcp = require(mjOBJ_SITE, "tcp", "site");
+  impl->part_origin = require(mjOBJ_SITE, "part_origin", "site");
+  impl->nozzle = require(mjOBJ_GEOM, "nozzle", "geom");
+  impl->speeds = require(mjOBJ_NUMERIC, "max_speed_deg_s", "custom numeric");
+  WAAM_THROW_UNLESS(m->numeric_size[impl->speeds] == 8,
+                    file.string() << ": custom numeric 'max_speed_deg_s' must have 8 values (j1..j6, pos_tilt, "
+                                     "pos_rot), has " << m->numeric_size[impl->speeds]);
+  WAAM_THROW_UNLESS(m->geom_type[impl->nozzle] == mjGEOM_CAPSULE, file.string() << ": geom 'nozzle' must be a capsule");
+  WAAM_THROW_UNLESS(m->body_parentid[impl->robot_base] == 0 && m->body_parentid[impl->positioner_base] == 0,
+                    file.string() << ": bodies 'robot_base' and 'positioner_base' must be children of the world");
   // Contacts are reported up to kClearanceMarginMm apart, which gives the clearance used to skip checks.
-  for (int g = 0; g < impl_->m->ngeom; ++g) impl_->m->geom_margin[g] = kClearanceMarginMm / kMm;
-  mj_kinematics(m, impl_->d);
+  for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = CellModel::kClearanceMarginMm / kMm;
 }
 
-MujocoCell::~MujocoCell() = default;
+void PlaceBody(mjModel* m, int body, const Eigen::Isometry3d& X) {
+  const Eigen::Vector3d p = X.translation() / kMm;
+  const Eigen::Quaterniond q(X.linear());
+  for (int i = 0; i < 3; ++i) m->body_pos[3 * body + i] = p[i];
+  m->body_quat[4 * body + 0] = q.w();
+  m->body_quat[4 * body + 1] = q.x();
+  m->body_quat[4 * body + 2] = q.y();
+  m->body_quat[4 * body + 3] = q.z();
+}
 
-void MujocoCell::Place(const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB) {
-  mjModel* m = impl_->m;
-  auto set = [&](int body, const Eigen::Isometry3d& X) {
-    const Eigen::Vector3d p = X.translation() / kMm;
-    const Eigen::Quaterniond q(X.linear());
-    for (int i = 0; i < 3; ++i) m->body_pos[3 * body + i] = p[i];
-    m->body_quat[4 * body + 0] = q.w();
-    m->body_quat[4 * body + 1] = q.x();
-    m->body_quat[4 * body + 2] = q.y();
-    m->body_quat[4 * body + 3] = q.z();
+// Reads the kinematics, the closed-form test and the nozzle from the model at the zero pose.
+void ReadKinematics(CellModel::Impl* impl) {
+  const mjModel* m = impl->m;
+  ScratchData scratch(m);
+  mjData* d = scratch.get();
+  mj_kinematics(m, d);
+
+  planner::CellKinematics& cell = impl->kinematics;
+  const int rb = impl->robot_base;
+  cell.X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
+  const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
+  auto anchor_R = [&](int j) {
+    const int id = impl->jnt[j];
+    return Eigen::Vector3d(X_RW * (Eigen::Vector3d(d->xanchor[3 * id], d->xanchor[3 * id + 1],
+                                                   d->xanchor[3 * id + 2]) * kMm));
   };
-  set(impl_->robot_base, X_WR);
-  set(impl_->positioner_base, X_WB);
-  mj_kinematics(m, impl_->d);
+  // OPW parameters from the zero pose: j2 anchor (a1, 0, c1), j3 anchor c2 above it, wrist centre (j5 anchor)
+  // c3 ahead of and -a2 above j3, flange c4 ahead of the wrist centre.
+  const Eigen::Vector3d p2 = anchor_R(1), p3 = anchor_R(2), p5 = anchor_R(4);
+  const int fl = impl->flange;
+  const Eigen::Isometry3d X_RF0 = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+  planner::OpwArm& arm = cell.arm;
+  arm.name = "arm of " + impl->file.filename().string();
+  arm.a1 = p2.x();
+  arm.c1 = p2.z();
+  arm.c2 = p3.z() - p2.z();
+  arm.c3 = p5.x() - p3.x();
+  arm.a2 = -(p5.z() - p3.z());
+  arm.c4 = X_RF0.translation().x() - p5.x();
+  const mjtNum* speed = m->numeric_data + m->numeric_adr[impl->speeds];
+  for (int j = 0; j < 6; ++j) {
+    arm.lower[j] = m->jnt_range[2 * impl->jnt[j]];
+    arm.upper[j] = m->jnt_range[2 * impl->jnt[j] + 1];
+    arm.max_speed[j] = speed[j] * kPi / 180.0;
+  }
+
+  // Tool: the tcp site in the flange frame.
+  const int ts = impl->tcp;
+  cell.X_FT = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl).inverse() * Pose(d->site_xpos + 3 * ts, d->site_xmat + 9 * ts);
+
+  // Nozzle capsule in the TCP frame (rigid on the flange, so any pose gives it).
+  const int g = impl->nozzle;
+  const Eigen::Isometry3d X_TG =
+      Pose(d->site_xpos + 3 * ts, d->site_xmat + 9 * ts).inverse() * Pose(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
+  const double half = m->geom_size[3 * g + 1] * kMm;
+  impl->nozzle_a_T = X_TG * Eigen::Vector3d(0.0, 0.0, -half);
+  impl->nozzle_b_T = X_TG * Eigen::Vector3d(0.0, 0.0, half);
+  impl->nozzle_radius_mm = m->geom_size[3 * g] * kMm;
+
+  // Positioner chain: B -> tilt axis frame A -> table frame C -> plate top (part_origin).
+  const int pb = impl->positioner_base;
+  const int tilt_body = m->jnt_bodyid[impl->jnt[6]];
+  const int rot_body = m->jnt_bodyid[impl->jnt[7]];
+  cell.X_WB = Pose(d->xpos + 3 * pb, d->xmat + 9 * pb);
+  const Eigen::Isometry3d X_WA = Pose(d->xpos + 3 * tilt_body, d->xmat + 9 * tilt_body);
+  const Eigen::Isometry3d X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
+  const Eigen::Isometry3d X_BA = cell.X_WB.inverse() * X_WA;
+  const Eigen::Isometry3d X_AC = X_WA.inverse() * X_WC;
+  const Eigen::Vector3d tilt_axis(m->jnt_axis + 3 * impl->jnt[6]);
+  const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
+  WAAM_THROW_UNLESS(X_BA.linear().isIdentity(1e-9) && X_AC.linear().isIdentity(1e-9) &&
+                        (tilt_axis - Eigen::Vector3d::UnitX()).norm() < 1e-9 &&
+                        (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 && tilt_body == m->body_parentid[rot_body] &&
+                        m->body_parentid[tilt_body] == pb,
+                    impl->file.string() << ": the positioner must be positioner_base -> body with pos_tilt (axis 1 0 0) "
+                                           "-> body with pos_rot (axis 0 0 1), without rotated body frames");
+  cell.positioner.p_BA = X_BA.translation();
+  cell.positioner.p_AC = X_AC.translation();
+  const int po = impl->part_origin;
+  cell.positioner.X_CP = X_WC.inverse() * Pose(d->site_xpos + 3 * po, d->site_xmat + 9 * po);
+  cell.positioner.tilt_lower = m->jnt_range[2 * impl->jnt[6]];
+  cell.positioner.tilt_upper = m->jnt_range[2 * impl->jnt[6] + 1];
+  cell.positioner.rotation_lower = m->jnt_range[2 * impl->jnt[7]];
+  cell.positioner.rotation_upper = m->jnt_range[2 * impl->jnt[7] + 1];
+  cell.positioner.tilt_max_speed = speed[6] * kPi / 180.0;
+  cell.positioner.rotation_max_speed = speed[7] * kPi / 180.0;
+
+  // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
+  std::mt19937_64 rng(2024);
+  double worst = 0.0;
+  for (int trial = 0; trial < 50; ++trial) {
+    planner::Joints6 q;
+    for (int j = 0; j < 6; ++j) q[j] = std::uniform_real_distribution<double>(arm.lower[j], arm.upper[j])(rng);
+    for (int j = 0; j < 6; ++j) d->qpos[impl->qadr[j]] = q[j];
+    mj_kinematics(m, d);
+    const Eigen::Isometry3d X_RF = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+    const Eigen::Isometry3d X_fk = planner::ForwardKinematics(arm, q);
+    worst = std::max(worst, (X_RF.translation() - X_fk.translation()).norm() +
+                                1000.0 * (X_RF.linear() - X_fk.linear()).norm());
+  }
+  impl->closed_form = worst < 1e-6;
+  if (!impl->closed_form) cell.arm.name += " (numerical IK)";
 }
 
-void MujocoCell::SetJoints(const Joints8& q) {
-  for (int j = 0; j < 8; ++j) impl_->d->qpos[impl_->qadr[j]] = q[j];
-  mj_kinematics(impl_->m, impl_->d);
+// Damped least-squares IK on the model with its own data (see CellModel::SolveNumericIk).
+bool SolveIkOnModel(const CellModel::Impl& impl, const Eigen::Isometry3d& X_RF, const planner::Joints6& seed,
+                    planner::Joints6* q_out, double* residual_mm) {
+  const mjModel* m = impl.m;
+  ScratchData scratch(m);
+  mjData* d = scratch.get();  // every axis at 0 but the arm's: the flange pose in R does not depend on the others
+  const int rb = impl.robot_base;
+  const int fl = impl.flange;
+  planner::Joints6 q;
+  for (int j = 0; j < 6; ++j) {
+    const int id = impl.jnt[j];
+    q[j] = std::clamp(seed[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
+  }
+  constexpr double kLever = 1000.0;  // rotation errors count at 1 m, like the IK tests
+  std::vector<mjtNum> jacp(3 * m->nv), jacr(3 * m->nv);
+  double residual = 0.0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    for (int j = 0; j < 6; ++j) d->qpos[impl.qadr[j]] = q[j];
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    const Eigen::Isometry3d X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
+    const Eigen::Isometry3d X_WF = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+    const Eigen::Isometry3d X_WF_goal = X_WR * X_RF;
+    Eigen::Matrix<double, 6, 1> e;
+    e.head<3>() = X_WF_goal.translation() - X_WF.translation();
+    const Eigen::AngleAxisd rot(X_WF_goal.linear() * X_WF.linear().transpose());
+    e.tail<3>() = rot.angle() * rot.axis() * kLever;
+    residual = e.head<3>().norm() + e.tail<3>().norm();
+    if (residual < 1e-6) {
+      *q_out = q;
+      *residual_mm = residual;
+      return true;
+    }
+    mj_jacBody(m, d, jacp.data(), jacr.data(), fl);
+    Eigen::Matrix<double, 6, 6> J;
+    for (int j = 0; j < 6; ++j) {
+      const int dof = m->jnt_dofadr[impl.jnt[j]];
+      for (int r = 0; r < 3; ++r) {
+        J(r, j) = jacp[r * m->nv + dof] * kMm;
+        J(3 + r, j) = jacr[r * m->nv + dof] * kLever;
+      }
+    }
+    // Damped least squares (Levenberg-Marquardt step), at most 0.2 rad per joint and iteration.
+    const Eigen::Matrix<double, 6, 6> A = J * J.transpose() + 1e-4 * Eigen::Matrix<double, 6, 6>::Identity();
+    planner::Joints6 dq = J.transpose() * A.ldlt().solve(e);
+    const double largest = dq.cwiseAbs().maxCoeff();
+    if (largest > 0.2) dq *= 0.2 / largest;
+    for (int j = 0; j < 6; ++j) {
+      const int id = impl.jnt[j];
+      q[j] = std::clamp(q[j] + dq[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
+    }
+  }
+  *q_out = q;
+  *residual_mm = residual;
+  return false;
 }
 
-Eigen::Isometry3d MujocoCell::TcpPose() const {
-  const int s = impl_->tcp;
-  return Pose(impl_->d->site_xpos + 3 * s, impl_->d->site_xmat + 9 * s);
+std::shared_ptr<const CellModel::Impl> BuildModel(const fs::path& mjcf, const Eigen::Isometry3d* X_WR,
+                                                  const Eigen::Isometry3d* X_WB) {
+  auto impl = std::make_shared<CellModel::Impl>();
+  LoadModel(mjcf, impl.get());
+  if (X_WR) PlaceBody(impl->m, impl->robot_base, *X_WR);
+  if (X_WB) PlaceBody(impl->m, impl->positioner_base, *X_WB);
+  ReadKinematics(impl.get());
+  return impl;
 }
 
-int MujocoCell::Collide(double tolerance_mm, std::vector<CellContact>* out, double* clearance_mm) {
-  const mjModel* m = impl_->m;
-  mjData* d = impl_->d;
+}  // namespace
+
+fs::path CellModel::BuiltinModelPath() { return fs::path(WAAM_CELL_DATA_DIR) / "cell_arcmate100ic.xml"; }
+
+CellModel::CellModel(const fs::path& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB)
+    : impl_(BuildModel(mjcf, &X_WR, &X_WB)) {}
+
+CellModel::CellModel(const fs::path& mjcf) : impl_(BuildModel(mjcf, nullptr, nullptr)) {}
+
+planner::CellKinematics CellModel::kinematics() const {
+  planner::CellKinematics kin = impl_->kinematics;
+  if (!impl_->closed_form) {
+    // Not an OPW arm in the FANUC convention: the numerical IK on this model takes over, holding the model.
+    kin.numeric_ik = [model = impl_](const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
+                                     double* residual) { return SolveIkOnModel(*model, X_RF, seed, q, residual); };
+  }
+  return kin;
+}
+bool CellModel::closed_form() const { return impl_->closed_form; }
+const fs::path& CellModel::file() const { return impl_->file; }
+
+bool CellModel::SolveNumericIk(const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
+                               double* residual_mm) const {
+  return SolveIkOnModel(*impl_, X_RF, seed, q, residual_mm);
+}
+
+void CellModel::NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const {
+  *a_T = impl_->nozzle_a_T;
+  *b_T = impl_->nozzle_b_T;
+  *radius_mm = impl_->nozzle_radius_mm;
+}
+
+CellState::CellState(const CellModel& model)
+    : model_(model.impl_), data_(std::make_unique<Data>(model.impl_->m)) {
+  mj_kinematics(model_->m, data_->d.get());
+}
+
+CellState::~CellState() = default;
+
+void CellState::SetJoints(const Joints8& q) {
+  mjData* d = data_->d.get();
+  for (int j = 0; j < 8; ++j) d->qpos[model_->qadr[j]] = q[j];
+  mj_kinematics(model_->m, d);
+}
+
+Eigen::Isometry3d CellState::TcpPose() const {
+  const mjData* d = data_->d.get();
+  const int s = model_->tcp;
+  return Pose(d->site_xpos + 3 * s, d->site_xmat + 9 * s);
+}
+
+int CellState::Collide(double tolerance_mm, std::vector<CellContact>* out, double* clearance_mm) {
+  const mjModel* m = model_->m;
+  mjData* d = data_->d.get();
   mj_collision(m, d);
-  impl_->collide_xpos.assign(d->geom_xpos, d->geom_xpos + 3 * m->ngeom);
-  impl_->collide_xmat.assign(d->geom_xmat, d->geom_xmat + 9 * m->ngeom);
+  data_->collide_xpos.assign(d->geom_xpos, d->geom_xpos + 3 * m->ngeom);
+  data_->collide_xmat.assign(d->geom_xmat, d->geom_xmat + 9 * m->ngeom);
   int n = 0;
-  double clearance = kClearanceMarginMm;
+  double clearance = CellModel::kClearanceMarginMm;
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& c = d->contact[i];
     clearance = std::min(clearance, c.dist * kMm);
@@ -177,18 +390,18 @@ int MujocoCell::Collide(double tolerance_mm, std::vector<CellContact>* out, doub
   return n;
 }
 
-double MujocoCell::MotionSinceCollide() const {
-  const mjModel* m = impl_->m;
-  const mjData* d = impl_->d;
-  if (impl_->collide_xpos.size() != static_cast<std::size_t>(3 * m->ngeom)) return 1e300;
+double CellState::MotionSinceCollide() const {
+  const mjModel* m = model_->m;
+  const mjData* d = data_->d.get();
+  if (data_->collide_xpos.size() != static_cast<std::size_t>(3 * m->ngeom)) return 1e300;
   double largest = 0.0;
   for (int g = 0; g < m->ngeom; ++g) {
-    const mjtNum* p0 = impl_->collide_xpos.data() + 3 * g;
+    const mjtNum* p0 = data_->collide_xpos.data() + 3 * g;
     const mjtNum* p1 = d->geom_xpos + 3 * g;
     const double move = std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
                                    (p1[2] - p0[2]) * (p1[2] - p0[2]));
     // Rotation angle between the two orientations: trace(R0^T R1) = 1 + 2 cos(angle).
-    const mjtNum* r0 = impl_->collide_xmat.data() + 9 * g;
+    const mjtNum* r0 = data_->collide_xmat.data() + 9 * g;
     const mjtNum* r1 = d->geom_xmat + 9 * g;
     double trace = 0.0;
     for (int k = 0; k < 9; ++k) trace += r0[k] * r1[k];
@@ -199,21 +412,9 @@ double MujocoCell::MotionSinceCollide() const {
   return largest;
 }
 
-void MujocoCell::NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const {
-  const mjModel* m = impl_->m;
-  const mjData* d = impl_->d;
-  const int g = impl_->nozzle;
-  const Eigen::Isometry3d X_WG = Pose(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
-  const Eigen::Isometry3d X_TG = TcpPose().inverse() * X_WG;
-  const double half = m->geom_size[3 * g + 1] * kMm;
-  *a_T = X_TG * Eigen::Vector3d(0.0, 0.0, -half);
-  *b_T = X_TG * Eigen::Vector3d(0.0, 0.0, half);
-  *radius_mm = m->geom_size[3 * g] * kMm;
-}
-
-std::vector<CellShape> MujocoCell::Shapes() const {
-  const mjModel* m = impl_->m;
-  const mjData* d = impl_->d;
+std::vector<CellShape> CellState::Shapes() const {
+  const mjModel* m = model_->m;
+  const mjData* d = data_->d.get();
   std::vector<CellShape> shapes;
   for (int g = 0; g < m->ngeom; ++g) {
     CellShape s;
@@ -233,155 +434,6 @@ std::vector<CellShape> MujocoCell::Shapes() const {
     shapes.push_back(s);
   }
   return shapes;
-}
-
-planner::CellKinematics MujocoCell::Kinematics() const {
-  const mjModel* m = impl_->m;
-  mjData* d = impl_->d;
-  std::vector<double> saved(d->qpos, d->qpos + m->nq);
-  for (int j = 0; j < 8; ++j) d->qpos[impl_->qadr[j]] = 0.0;
-  mj_kinematics(m, d);
-
-  planner::CellKinematics cell;
-  const int rb = impl_->robot_base;
-  cell.X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
-  const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
-  auto anchor_R = [&](int j) {
-    const int id = impl_->jnt[j];
-    return Eigen::Vector3d(X_RW * (Eigen::Vector3d(d->xanchor[3 * id], d->xanchor[3 * id + 1],
-                                                   d->xanchor[3 * id + 2]) * kMm));
-  };
-  // OPW parameters from the zero pose: j2 anchor (a1, 0, c1), j3 anchor c2 above it, wrist centre (j5 anchor)
-  // c3 ahead of and -a2 above j3, flange c4 ahead of the wrist centre.
-  const Eigen::Vector3d p2 = anchor_R(1), p3 = anchor_R(2), p5 = anchor_R(4);
-  const int fl = impl_->flange;
-  const Eigen::Isometry3d X_RF0 = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
-  planner::OpwArm& arm = cell.arm;
-  arm.name = "arm of " + file_.filename().string();
-  arm.a1 = p2.x();
-  arm.c1 = p2.z();
-  arm.c2 = p3.z() - p2.z();
-  arm.c3 = p5.x() - p3.x();
-  arm.a2 = -(p5.z() - p3.z());
-  arm.c4 = X_RF0.translation().x() - p5.x();
-  const mjtNum* speed = m->numeric_data + m->numeric_adr[impl_->speeds];
-  for (int j = 0; j < 6; ++j) {
-    arm.lower[j] = m->jnt_range[2 * impl_->jnt[j]];
-    arm.upper[j] = m->jnt_range[2 * impl_->jnt[j] + 1];
-    arm.max_speed[j] = speed[j] * kPi / 180.0;
-  }
-
-  // Tool: the tcp site in the flange frame.
-  const int ts = impl_->tcp;
-  cell.X_FT = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl).inverse() * Pose(d->site_xpos + 3 * ts, d->site_xmat + 9 * ts);
-
-  // Positioner chain: B -> tilt axis frame A -> table frame C -> plate top (part_origin).
-  const int pb = impl_->positioner_base;
-  const int tilt_body = m->jnt_bodyid[impl_->jnt[6]];
-  const int rot_body = m->jnt_bodyid[impl_->jnt[7]];
-  cell.X_WB = Pose(d->xpos + 3 * pb, d->xmat + 9 * pb);
-  const Eigen::Isometry3d X_WA = Pose(d->xpos + 3 * tilt_body, d->xmat + 9 * tilt_body);
-  const Eigen::Isometry3d X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
-  const Eigen::Isometry3d X_BA = cell.X_WB.inverse() * X_WA;
-  const Eigen::Isometry3d X_AC = X_WA.inverse() * X_WC;
-  const Eigen::Vector3d tilt_axis(m->jnt_axis + 3 * impl_->jnt[6]);
-  const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl_->jnt[7]);
-  WAAM_THROW_UNLESS(X_BA.linear().isIdentity(1e-9) && X_AC.linear().isIdentity(1e-9) &&
-                        (tilt_axis - Eigen::Vector3d::UnitX()).norm() < 1e-9 &&
-                        (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 && tilt_body == m->body_parentid[rot_body] &&
-                        m->body_parentid[tilt_body] == pb,
-                    file_.string() << ": the positioner must be positioner_base -> body with pos_tilt (axis 1 0 0) -> "
-                                      "body with pos_rot (axis 0 0 1), without rotated body frames");
-  cell.positioner.p_BA = X_BA.translation();
-  cell.positioner.p_AC = X_AC.translation();
-  const int po = impl_->part_origin;
-  cell.positioner.X_CP = X_WC.inverse() * Pose(d->site_xpos + 3 * po, d->site_xmat + 9 * po);
-  cell.positioner.tilt_lower = m->jnt_range[2 * impl_->jnt[6]];
-  cell.positioner.tilt_upper = m->jnt_range[2 * impl_->jnt[6] + 1];
-  cell.positioner.rotation_lower = m->jnt_range[2 * impl_->jnt[7]];
-  cell.positioner.rotation_upper = m->jnt_range[2 * impl_->jnt[7] + 1];
-  cell.positioner.tilt_max_speed = speed[6] * kPi / 180.0;
-  cell.positioner.rotation_max_speed = speed[7] * kPi / 180.0;
-
-  // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
-  std::mt19937_64 rng(2024);
-  double worst = 0.0;
-  for (int trial = 0; trial < 50; ++trial) {
-    planner::Joints6 q;
-    for (int j = 0; j < 6; ++j) q[j] = std::uniform_real_distribution<double>(arm.lower[j], arm.upper[j])(rng);
-    for (int j = 0; j < 6; ++j) d->qpos[impl_->qadr[j]] = q[j];
-    mj_kinematics(m, d);
-    const Eigen::Isometry3d X_RF = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
-    const Eigen::Isometry3d X_fk = planner::ForwardKinematics(arm, q);
-    worst = std::max(worst, (X_RF.translation() - X_fk.translation()).norm() +
-                                1000.0 * (X_RF.linear() - X_fk.linear()).norm());
-  }
-  for (int i = 0; i < m->nq; ++i) d->qpos[i] = saved[i];
-  mj_kinematics(m, d);
-  closed_form_ = worst < 1e-6;
-  if (!closed_form_) {
-    // Not an OPW arm in the FANUC convention: the numerical IK on this model takes over.
-    cell.arm.name += " (numerical IK)";
-    cell.numeric_ik = [this](const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
-                             double* residual) { return SolveNumericIk(X_RF, seed, q, residual); };
-  }
-  return cell;
-}
-
-bool MujocoCell::SolveNumericIk(const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q_out,
-                                double* residual_mm) const {
-  const mjModel* m = impl_->m;
-  mjData* d = impl_->ik;
-  mju_copy(d->qpos, impl_->d->qpos, m->nq);  // positioner and placement as in the main data
-  const int rb = impl_->robot_base;
-  const int fl = impl_->flange;
-  planner::Joints6 q;
-  for (int j = 0; j < 6; ++j) {
-    const int id = impl_->jnt[j];
-    q[j] = std::clamp(seed[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
-  }
-  constexpr double kLever = 1000.0;  // rotation errors count at 1 m, like the IK tests
-  std::vector<mjtNum> jacp(3 * m->nv), jacr(3 * m->nv);
-  double residual = 0.0;
-  for (int iteration = 0; iteration < 200; ++iteration) {
-    for (int j = 0; j < 6; ++j) d->qpos[impl_->qadr[j]] = q[j];
-    mj_kinematics(m, d);
-    mj_comPos(m, d);
-    const Eigen::Isometry3d X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
-    const Eigen::Isometry3d X_WF = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
-    const Eigen::Isometry3d X_WF_goal = X_WR * X_RF;
-    Eigen::Matrix<double, 6, 1> e;
-    e.head<3>() = X_WF_goal.translation() - X_WF.translation();
-    const Eigen::AngleAxisd rot(X_WF_goal.linear() * X_WF.linear().transpose());
-    e.tail<3>() = rot.angle() * rot.axis() * kLever;
-    residual = e.head<3>().norm() + e.tail<3>().norm();
-    if (residual < 1e-6) {
-      *q_out = q;
-      *residual_mm = residual;
-      return true;
-    }
-    mj_jacBody(m, d, jacp.data(), jacr.data(), fl);
-    Eigen::Matrix<double, 6, 6> J;
-    for (int j = 0; j < 6; ++j) {
-      const int dof = m->jnt_dofadr[impl_->jnt[j]];
-      for (int r = 0; r < 3; ++r) {
-        J(r, j) = jacp[r * m->nv + dof] * kMm;
-        J(3 + r, j) = jacr[r * m->nv + dof] * kLever;
-      }
-    }
-    // Damped least squares (Levenberg-Marquardt step), at most 0.2 rad per joint and iteration.
-    const Eigen::Matrix<double, 6, 6> A = J * J.transpose() + 1e-4 * Eigen::Matrix<double, 6, 6>::Identity();
-    planner::Joints6 dq = J.transpose() * A.ldlt().solve(e);
-    const double largest = dq.cwiseAbs().maxCoeff();
-    if (largest > 0.2) dq *= 0.2 / largest;
-    for (int j = 0; j < 6; ++j) {
-      const int id = impl_->jnt[j];
-      q[j] = std::clamp(q[j] + dq[j], m->jnt_range[2 * id], m->jnt_range[2 * id + 1]);
-    }
-  }
-  *q_out = q;
-  *residual_mm = residual;
-  return false;
 }
 
 }  // namespace waam::twin

@@ -1,5 +1,5 @@
-// The MuJoCo model of the welding cell behind a MuJoCo-free interface: load, place, set the eight axes, run forward
-// kinematics and collision detection, and read the geometry the planner's kinematics needs.
+// The MuJoCo model of the welding cell behind a MuJoCo-free interface: a const CellModel (load and place once, read
+// the kinematics) and a per-thread CellState (set the eight axes, forward kinematics, collision detection, shapes).
 #pragma once
 
 #include <filesystem>
@@ -32,65 +32,79 @@ struct CellShape {
   Eigen::Vector4f rgba = Eigen::Vector4f::Ones();
 };
 
-// Owns the mjModel (const after placement) and one mjData.
-class MujocoCell {
+// The cell model, after MuJoCo's model/data split: the MJCF loaded and placed once, then immutable. It owns the
+// mjModel and what is read from it (the kinematics, the nozzle); it is shared by reference (copies share the same
+// model) and may be used from several threads at once. What changes with the joints lives in a CellState.
+class CellModel {
  public:
   // The built-in model, twin/data/cell_arcmate100ic.xml.
   static std::filesystem::path BuiltinModelPath();
 
-  // Loads an MJCF file (the built-in one when `mjcf` is empty). Throws InputError naming the file and MuJoCo's
-  // message for a file that does not parse or compile, or that lacks a required joint, body, site or field.
-  explicit MujocoCell(const std::filesystem::path& mjcf);
-  ~MujocoCell();
-  MujocoCell(const MujocoCell&) = delete;
-  MujocoCell& operator=(const MujocoCell&) = delete;
+  // Loads an MJCF file (the built-in one when `mjcf` is empty) with the arm base frame R at X_WR and the positioner
+  // base frame B at X_WB in the world (mm), and reads its kinematics: the arm's OPW parameters, limits and speeds,
+  // the tool (tcp site in the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. An
+  // arm that is not of the OPW kind in the FANUC joint convention (its MuJoCo forward kinematics differ from the
+  // closed form) gets the numerical IK on this model. Throws InputError naming the file and MuJoCo's message for a
+  // file that does not parse or compile, that lacks a required joint, body, site or field, or whose positioner chain
+  // is not tilt-about-x then rotate-about-z.
+  CellModel(const std::filesystem::path& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
+  // The same with the bases where the file puts them.
+  explicit CellModel(const std::filesystem::path& mjcf);
 
-  // Moves the arm base and the positioner base to the given world poses (mm).
-  void Place(const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
-
-  // The cell's kinematics read from the model: the arm's OPW parameters, limits and speeds, the tool (tcp site in
-  // the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. If the arm is not of the
-  // OPW kind in the FANUC joint convention (its MuJoCo forward kinematics differ from the closed form), the result
-  // carries a numerical IK on this model instead (valid while this object lives). Throws InputError for a
-  // positioner chain that is not tilt-about-x then rotate-about-z.
-  planner::CellKinematics Kinematics() const;
-
-  // True when the arm has the closed-form (OPW) kinematics; known after Kinematics().
-  bool closed_form() const { return closed_form_; }
+  // The cell's kinematics (a copy; the numerical IK it may carry holds this model, safe to call from any thread).
+  planner::CellKinematics kinematics() const;
+  // True when the arm has the closed-form (OPW) kinematics.
+  bool closed_form() const;
 
   // Damped least-squares IK of the flange pose X_RF (arm base frame, mm) on the model, from `seed` (rad), joints
   // kept inside their limits. Returns false with the remaining error (mm, rotation counted at 1 m) if it does not
-  // converge to 1e-6 mm within 200 iterations.
+  // converge to 1e-6 mm within 200 iterations. Safe to call from several threads: each call has its own mjData.
   bool SolveNumericIk(const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
                       double* residual_mm) const;
+
+  // The gas nozzle capsule in the TCP frame: end points (mm) and radius (mm).
+  void NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const;
+  const std::filesystem::path& file() const;
+
+  // Every geom is reported in contact up to this distance apart, which gives CellState::Collide its clearance.
+  static constexpr double kClearanceMarginMm = 10.0;
+
+  struct Impl;  // the MuJoCo side, in mujoco_cell.cc
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+  friend class CellState;
+};
+
+// The state of one use of a CellModel (one mjData): the eight axes set last, forward kinematics and collisions at
+// them. One per thread; the model must outlive it.
+class CellState {
+ public:
+  explicit CellState(const CellModel& model);
+  ~CellState();
+  CellState(const CellState&) = delete;
+  CellState& operator=(const CellState&) = delete;
 
   // Sets the eight axes (rad) and runs forward kinematics.
   void SetJoints(const planner::Joints8& q);
   // TCP pose in the world after SetJoints, mm.
   Eigen::Isometry3d TcpPose() const;
   // Runs collision detection for the joints set last; appends contacts deeper than `tolerance_mm` to `out` and
-  // returns their number. Every geom carries a margin of kClearanceMarginMm, so `*clearance_mm` (may be null) is the
-  // smallest distance between any two bodies that may collide, capped at that margin (negative when penetrating).
+  // returns their number. Every geom carries a margin of CellModel::kClearanceMarginMm, so `*clearance_mm` (may be
+  // null) is the smallest distance between any two bodies that may collide, capped at that margin (negative when
+  // penetrating).
   int Collide(double tolerance_mm, std::vector<CellContact>* out, double* clearance_mm);
-
   // Upper bound (mm) on how far any point of any geom has moved since the last Collide(): per geom, the move of
   // its centre plus its rotation angle times its bounding radius. While twice this stays below the clearance of
   // the last Collide(), no new contact can have appeared.
   double MotionSinceCollide() const;
-
-  static constexpr double kClearanceMarginMm = 10.0;
-
-  // The gas nozzle capsule in the TCP frame: end points (mm) and radius (mm).
-  void NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const;
   // All collision shapes at the joints set last.
   std::vector<CellShape> Shapes() const;
-  const std::filesystem::path& file() const { return file_; }
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  std::filesystem::path file_;
-  mutable bool closed_form_ = true;
+  struct Data;
+  std::shared_ptr<const CellModel::Impl> model_;
+  std::unique_ptr<Data> data_;
 };
 
 }  // namespace waam::twin
