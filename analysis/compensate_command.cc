@@ -56,6 +56,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   loop.distortion.element_mm = options.element_mm;
   loop.distortion.groups = options.groups;
   loop.correction = options.correction;
+  loop.debug_level = options.debug_level;
   twin::ValidateDistortionOptions(loop.distortion);
   if (!options.first_scan.empty()) loop.first_scan = twin::ReadPointCloud(options.first_scan, 0.5);
   planner::PlanResult planned;

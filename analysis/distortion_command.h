@@ -45,6 +45,7 @@ struct CompensateOptions {
   double element_mm = 2.0;
   int groups = 4;
   std::string correction = "axis";       // axis (central axis + cross sections) | points (per point only)
+  int debug_level = 0;                   // diagnostics on stderr: 0 none, 1 every tenth layer, 2 every layer
   bool quiet = false;
   bool images = true;
   bool program = true;                    // write the compensated robot program (needs the scenario's cell)

@@ -124,6 +124,9 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
       {"weld_length_mm", stats.weld_length_mm},
       {"travel_length_mm", stats.travel_length_mm},
       {"estimated_time_s", stats.estimated_time_s},
+      // What was planned otherwise than asked, one line each (e.g. a region the continuous pattern's decomposition
+      // could not split, planned with the hybrid pattern); empty when everything went as asked.
+      {"warnings", result.warnings},
       // Slice area the planned beads leave uncovered (planner/path/coverage.h); null when no layer is measured.
       {"uncovered", {{"pct", area_sum > 0.0 ? 100.0 * uncovered_sum / area_sum : kNaN},
                      {"worst_layer_pct", worst_layer >= 0 ? uncovered_worst : kNaN},
@@ -175,6 +178,7 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_
               << (scenario.path.pattern == "contour" ? "a hybrid or continuous" : "a contour")
               << " pattern may cover it\n";
   }
+  for (const std::string& warning : result.warnings) std::cerr << "waam: warning: " << warning << "\n";
   if (summary_out != nullptr) *summary_out = summary;
   return result;
 }

@@ -62,8 +62,10 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
       "Exit code 0 also when the loop did not converge (see `converged`).");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
-  command->add_option("--max-iter", options->max_iterations, "Compensated builds after the first, 0-20 (default 3)");
-  command->add_option("--tol-mm", options->tolerance_mm, "Tolerance on max |deviation|, mm (default: maximum waviness)");
+  command->add_option("--max-iter", options->max_iterations, "Compensated builds after the first, 0-20 (default 3)")
+      ->check(CLI::Range(0, 20));
+  command->add_option("--tol-mm", options->tolerance_mm, "Tolerance on max |deviation|, mm (default: maximum waviness)")
+      ->check(CLI::Range(0.0, 1000.0));
   command->add_option("--scan", options->first_scan, "Real scan of the first part (.ply, .xyz or .stl, mm)");
   command->add_option("--model", options->model, "Distortion model JSON (default models/data/distortion.json)");
   command->add_option("--mode", options->mode, "fe (inherent-strain FE) or reduced (layer shrinkage + axis bending)");
@@ -71,8 +73,13 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("--groups", options->groups, "Layer groups activated in turn (default 4)");
   command->add_option("--correction", options->correction,
                       "axis (default: bend the central axis back by the scan's section-centre offset, then correct the\n"
-                      "cross sections point by point) or points (per-point closest-point deviation only)");
+                      "cross sections point by point) or points (per-point closest-point deviation only)")
+      ->check(CLI::IsMember({"axis", "points"}));
   command->add_option("--set", options->overrides, "Override a scenario setting, key.path=value (repeatable)");
+  command->add_option("--debug-level", options->debug_level,
+                      "Diagnostics on stderr: 0 none (default), 1 waviness, top band and the twin's correction error "
+                      "every tenth layer, 2 every layer")
+      ->check(CLI::Range(0, 2));
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw the PNGs");
   command->add_flag("!--no-program", options->program, "Do not write the robot program (no cell check)");

@@ -151,7 +151,9 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
     layer.slice = flat.regions;
     layer.slice_in_plane = false;  // the development plane
     options.layer_index = layer.index;
-    const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, options);
+    std::vector<std::string> notes;
+    const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, options, &notes);
+    for (const std::string& note : notes) result.warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
     WAAM_THROW_UNLESS(HasWeldOrNoRoom(flat.regions, moves, width),
                       where << ": layer " << i << " (surface R = " << middle.R << " mm): path.pattern '"
                             << scenario.path.pattern << "' found no weld path in the flattened slice of "

@@ -162,7 +162,12 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
       layer.build_dir_P = n;
       options.layer_index = layer.index;
       const double top = lo + (i + 1) * h;
-      for (const Move2D& move : PlanLayerPattern(kept[i], options)) {
+      std::vector<std::string> notes;
+      const std::vector<Move2D> moves = PlanLayerPattern(kept[i], options, &notes);
+      for (const std::string& note : notes) {
+        result.warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
+      }
+      for (const Move2D& move : moves) {
         PathPoint point;
         point.p_P = R_PS * Eigen::Vector3d(move.p.x(), move.p.y(), top);
         point.tool_dir_P = n;

@@ -122,13 +122,14 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
   // threads.
   std::vector<std::vector<Move2D>> layer_moves(layer_count);
   std::vector<std::vector<CornerCorrection>> layer_corrections(layer_count);
+  std::vector<std::vector<std::string>> layer_notes(layer_count);
   std::mutex progress_mutex;
   int layers_done = 0;
   ParallelFor(layer_count, [&](std::size_t i) {
     PatternOptions layer_options = options;
     layer_options.layer_index = static_cast<int>(i);
-    layer_moves[i] = void_filler.Apply(slices[i], PlanLayerPattern(slices[i], layer_options), static_cast<int>(i),
-                                       &layer_corrections[i]);
+    layer_moves[i] = void_filler.Apply(slices[i], PlanLayerPattern(slices[i], layer_options, &layer_notes[i]),
+                                       static_cast<int>(i), &layer_corrections[i]);
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       progress->Update(++layers_done);
@@ -144,6 +145,7 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
     layer.z_mm = (i + 1) * layer_height;
     layer.slice = slices[i];
     const std::vector<Move2D>& moves = layer_moves[i];
+    for (const std::string& note : layer_notes[i]) result.warnings.push_back("layer " + std::to_string(i) + ": " + note);
     result.void_corrections.insert(result.void_corrections.end(), layer_corrections[i].begin(),
                                    layer_corrections[i].end());
     WAAM_THROW_UNLESS(HasWeldOrNoRoom(layer.slice, moves, result.bead_width_mm),

@@ -36,6 +36,7 @@ struct SubVolumeReport {
 // Everything `waam plan` produces in memory; the analysis module writes it to plan.json, plan.h5 and PNGs.
 struct PlanResult {
   TriangleMesh mesh;       // the part, welded, in the part frame (mm); the substrate top is z = 0
+  std::vector<std::string> warnings;  // what was planned otherwise than asked, one line each ("layer 3: ...")
   MeshReport mesh_report;
   Plan plan;
   PathStats stats;

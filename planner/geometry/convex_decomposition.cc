@@ -219,7 +219,7 @@ std::vector<WorkRegion> Regroup(const std::vector<Ring>& cycles) {
     for (int r = 0; r < static_cast<int>(regions.size()) && owner < 0; ++r) {
       if (regions.size() == 1 || PointInRing(hole->front(), regions[r].cycles[0])) owner = r;
     }
-    if (owner < 0) throw std::logic_error("convex decomposition: a hole lost its outline");
+    if (owner < 0) throw DecompositionFailed("convex decomposition: a hole lost its outline");
     regions[owner].cycles.push_back(*hole);
   }
   return regions;
@@ -353,7 +353,7 @@ bool EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* 
                                     : ApplyCut(region, ref, best_line.target, nullptr);
     return true;
   }
-  throw std::logic_error("convex decomposition: no cut found for a notch");
+  throw DecompositionFailed("convex decomposition: no cut found for a notch");
 }
 
 // Inserts into each piece the vertices of other pieces that lie inside its edges, so that neighbours share edges
@@ -450,7 +450,7 @@ std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region) {
       pieces.push_back(CleanRing(current.cycles[0], true, tol, tol));
       continue;
     }
-    if (--budget == 0) throw std::logic_error("convex decomposition: too many cuts");
+    if (--budget == 0) throw DecompositionFailed("convex decomposition: too many cuts");
     for (WorkRegion& r : Regroup(cycles)) stack.push_back(std::move(r));
   }
   MergeConvexNeighbours(&pieces, tol);

@@ -1,6 +1,8 @@
 // Convex decomposition of slice regions by notch elimination and minimum-width directions (Ding et al. 2014, 3.1-3.2).
 #pragma once
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,9 +25,16 @@ struct SharedEdge {
 // eliminating notches (vertices with an interior angle > pi) one at a time, the largest angle first: notch-notch,
 // notch-vertex and notch-line cuts (Ding et al. 2014, 3.1). Holes are merged into the outline by the same cuts.
 // The pieces tile the region: no overlaps, areas sum to Area(region). Throws InputError for a region with fewer
-// than 3 distinct outer vertices, and std::logic_error if degenerate geometry leaves a notch without a usable cut
-// (an internal limit; PlanLayerPattern then falls back to the hybrid pattern for that region).
+// than 3 distinct outer vertices, and DecompositionFailed if degenerate geometry leaves a notch without a usable cut
+// (a limit of the method on such input, not a bug: the continuous pattern then plans that region with the hybrid
+// pattern and reports it).
 std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region);
+
+// Thrown by DecomposeConvex when degenerate geometry defeats the notch elimination.
+class DecompositionFailed : public std::runtime_error {
+ public:
+  explicit DecompositionFailed(const std::string& what) : std::runtime_error(what) {}
+};
 
 // The lines along which pieces of a decomposition of `region` touch, longest first (pieces from DecomposeConvex).
 std::vector<SharedEdge> FindSharedEdges(const std::vector<Ring>& pieces, const PolygonWithHoles& region);

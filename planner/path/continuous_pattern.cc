@@ -35,6 +35,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 #include "planner/geometry/clipper_adapter.h"
@@ -306,7 +307,7 @@ Prepared SeparateRoundHoles(const PolygonWithHoles& region, const OverlapSpacing
 }  // namespace
 
 void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& options, const OverlapSpacing& spacing,
-                    std::vector<Move2D>* moves) {
+                    std::vector<Move2D>* moves, std::vector<std::string>* notes) {
   const Prepared prepared = SeparateRoundHoles(region, spacing);
   std::vector<Ring> pieces;
   std::vector<std::vector<bool>> piece_shared;  // per piece edge: a line shared with another piece
@@ -328,8 +329,14 @@ void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& option
         piece_shared.push_back(SharedEdgeFlags(piece, part));
       }
     }
-  } catch (const std::logic_error&) {
-    // A decomposition that fails on degenerate geometry falls back to the hybrid baseline for this region.
+  } catch (const DecompositionFailed& e) {
+    // A decomposition that fails on degenerate geometry falls back to the hybrid baseline for this region, said.
+    if (notes) {
+      const Eigen::Vector2d c = region.outer.empty() ? Eigen::Vector2d::Zero() : region.outer.front();
+      std::ostringstream note;
+      note << "the region at (" << c.x() << ", " << c.y() << ") mm was planned with the hybrid pattern: " << e.what();
+      notes->push_back(note.str());
+    }
     PlanHybrid(region, options, spacing, moves);
     return;
   }

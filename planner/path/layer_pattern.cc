@@ -39,7 +39,8 @@ OverlapSpacing OverlapSpacingFor(const std::string& model, double bead_width_mm)
   return s;
 }
 
-std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options) {
+std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options,
+                                     std::vector<std::string>* notes) {
   internal::ValidatePatternOptions(options);
   const OverlapSpacing spacing = OverlapSpacingFor(options.overlap_model, options.bead_width_mm);
   // Clean the slice through Clipper first: consistent orientation, no self-touching rings, no duplicate points.
@@ -55,7 +56,7 @@ std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice,
     } else if (options.pattern == "hybrid") {
       internal::PlanHybrid(region, options, spacing, &moves);
     } else {
-      internal::PlanContinuous(region, options, spacing, &moves);
+      internal::PlanContinuous(region, options, spacing, &moves, notes);
     }
   }
   // Round joins and faceted meshes leave runs of tiny, nearly collinear moves: one straight move each is what the

@@ -43,7 +43,9 @@ struct PatternOptions {
 // Plans the path of one slice (all its regions). Returns the moves in order. Throws InputError for options that
 // cannot be planned (unknown pattern, bead wider than anything it could fill is NOT an error: such a region gets
 // the best path it can or none, and the region is reported by the caller through uncovered area).
-std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options);
+// A region the pattern could not plan as asked and planned otherwise adds a line to `notes` (may be null).
+std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options,
+                                     std::vector<std::string>* notes = nullptr);
 
 // True when `moves` hold a weld move, or when `slice` has no room for a bead `bead_width_mm` wide (nothing of it
 // lies w/2 inside its outline, as at a blade's tip). A slice with room and no weld move would drop a layer from

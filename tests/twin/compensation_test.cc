@@ -202,7 +202,7 @@ TEST(Compensation, BadCorrectionMethodNamesTheOption) {
   CompensationOptions o = Reduced(0.04);
   o.correction = "magic";
   EXPECT_THAT([&] { Compensate(tube.plan, tube.target, Coarse(), o); },
-              ::testing::ThrowsMessage<InputError>(HasSubstr("--correction = 'magic'")));
+              ::testing::ThrowsMessage<InputError>(HasSubstr("correction = 'magic'")));
 }
 
 }  // namespace

@@ -100,7 +100,7 @@ double PathTop(const planner::Plan& plan, const Eigen::Vector3d& dir) {
 namespace internal {
 
 // W_t of each bin: the peak-to-valley of the deviation (DIN EN ISO 4287, as 003 sec. 6.4.1).
-Waviness WallWaviness(const ScanDeviation& scan, double cell_mm) {
+Waviness WallWaviness(const ScanDeviation& scan, double cell_mm, int debug_level) {
   std::unordered_map<std::uint64_t, std::pair<double, double>> bins;
   std::unordered_map<std::uint64_t, int> counts;
   double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
@@ -131,7 +131,7 @@ Waviness WallWaviness(const ScanDeviation& scan, double cell_mm) {
   if (p2v.empty()) return {};
   std::sort(p2v.begin(), p2v.end());
   auto at = [&](double q) { return p2v[std::min(p2v.size() - 1, static_cast<std::size_t>(q * p2v.size()))]; };
-  if (DebugLevel() >= 1) {
+  if (debug_level >= 1) {
     std::fprintf(stderr, "waviness: %zu cells, p2v median %.3f p90 %.3f p95 %.3f p99 %.3f p99.9 %.3f max %.3f mm\n",
                  p2v.size(), at(0.5), at(0.9), at(0.95), at(0.99), at(0.999), p2v.back());
   }
@@ -248,13 +248,13 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
                               const planner::SimulationSettings& settings, const CompensationOptions& options,
                               const std::function<void(int, const CompensationIteration&)>& on_iteration) {
   WAAM_THROW_UNLESS(options.max_iterations >= 0 && options.max_iterations <= 20,
-                    "compensate --max-iter = " << options.max_iterations << ": must be in [0, 20]");
-  WAAM_THROW_UNLESS(options.tolerance_mm >= 0.0, "compensate --tol-mm = " << options.tolerance_mm << ": must be >= 0");
+                    "compensation max_iterations = " << options.max_iterations << ": must be in [0, 20]");
+  WAAM_THROW_UNLESS(options.tolerance_mm >= 0.0, "compensation tolerance_mm = " << options.tolerance_mm << ": must be >= 0");
   WAAM_THROW_UNLESS(!target.facets.empty(), "compensate: the target part has no facets");
   WAAM_THROW_UNLESS(options.reference == "twin" || options.reference == "target",
-                    "compensate --reference = '" << options.reference << "': must be twin or target");
+                    "compensation reference = '" << options.reference << "': must be twin or target");
   WAAM_THROW_UNLESS(options.correction == "axis" || options.correction == "points",
-                    "compensate --correction = '" << options.correction << "': must be axis or points");
+                    "compensation correction = '" << options.correction << "': must be axis or points");
   ValidateDistortionOptions(options.distortion);
   models::ValidateDistortionParams(options.params, "distortion model");
   const planner::Plan nominal = ResamplePlan(plan, options.reference_spacing_mm);
@@ -288,7 +288,8 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     if (iter == 0) {
       const ScanDeviation undistorted =
           MeasureScanDeviation(ScanDistortedPart(depositor.grid(), DistortionField()), distance);
-      const internal::Waviness waviness = internal::WallWaviness(undistorted, 2.0 * options.reference_spacing_mm);
+      const internal::Waviness waviness = internal::WallWaviness(undistorted, 2.0 * options.reference_spacing_mm,
+                                                                               options.debug_level);
       result.waviness_mm = waviness.max_mm;
       result.waviness_median_mm = waviness.median_mm;
       result.tolerance_mm = internal::StopTolerance(options.tolerance_mm, waviness);
@@ -318,7 +319,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     const double shortening =
         std::max(0.0, TopOf(twin_reference ? reference_points : target_surface, top_dir) - TopOf(points, top_dir));
     it.top_band_mm = result.top_band_mm + shortening;
-    if (internal::DebugLevel() >= 1) {
+    if (options.debug_level >= 1) {
       std::fprintf(stderr, "top: dir (%.3f %.3f %.3f), path top %.2f mm, band %.2f mm (shortening %.2f mm)\n",
                    top_dir.x(), top_dir.y(), top_dir.z(), path_top, it.top_band_mm, shortening);
     }
@@ -333,7 +334,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     Summarize(scan, reference_points, options.axis_step_mm, &it);
     if (iter == 0) {
       WAAM_THROW_UNLESS(result.tolerance_mm > 0.0,
-                        "compensate: the simulated part has no measurable waviness (first scan given?); pass --tol-mm");
+                        "compensation: the simulated part has no measurable waviness (first scan given?); give a tolerance");
       result.first_scan = scan;
     }
     const bool done = it.max_abs_deviation_mm < result.tolerance_mm;
@@ -344,8 +345,11 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
       // r*_i = r_i - S_i on the current path; S from the scan around the nominal point.
       const std::vector<std::vector<Eigen::Vector3d>> s =
           internal::EstimateCorrections(nominal, scan, points, reference_distance, reference_points,
-                                        options.bead_width_mm, options.axis_step_mm, options.correction);
-      if (simulated) it.twin_correction_error_mm = internal::CorrectionError(nominal, current, field, s);
+                                        options.bead_width_mm, options.axis_step_mm, options.correction,
+                                        options.debug_level);
+      if (simulated) {
+        it.twin_correction_error_mm = internal::CorrectionError(nominal, current, field, s, options.debug_level);
+      }
       for (std::size_t l = 0; l < current.layers.size(); ++l) {
         for (std::size_t i = 0; i < current.layers[l].points.size(); ++i) {
           current.layers[l].points[i].p_P -= s[l][i];

@@ -30,6 +30,8 @@ struct CompensationOptions {
   std::string reference = "twin";    // twin: the undistorted deposit of the nominal path | target: the mesh
   std::string correction = "axis";   // axis: central-axis offset + per-point cross section | points: per point only
   std::vector<Eigen::Vector3d> first_scan;  // a real scan of the first part (part frame, mm); empty = simulate it
+  // Diagnostics on stderr: 0 none, 1 the waviness, top band and correction error every tenth layer, 2 every layer.
+  int debug_level = 0;
 };
 
 // One build of the loop and what the scan of it showed.

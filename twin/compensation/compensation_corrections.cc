@@ -265,18 +265,12 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
   return a;
 }
 
-int DebugLevel() {
-  const char* value = std::getenv("WAAM_COMPENSATE_DEBUG");
-  if (value == nullptr) return 0;
-  return std::string(value) == "2" ? 2 : 1;
-}
-
 std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
                                                               const std::vector<Eigen::Vector3d>& scan_points,
                                                               const MeshDistance& reference_distance,
                                                               const std::vector<Eigen::Vector3d>& reference_points,
                                                               double bead_width_mm, double axis_step_mm,
-                                                              const std::string& method) {
+                                                              const std::string& method, int debug_level) {
   if (method == "points") return LocalCorrections(nominal, scan, bead_width_mm);
   const SectionShift sections = MeasureSectionShift(reference_points, scan_points, axis_step_mm);
   // The scan moved back by the axis offset and the outline move of its section, measured again against the reference.
@@ -287,7 +281,7 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
   }
   const ScanDeviation local_scan = MeasureScanDeviation(recentred, reference_distance);
   std::vector<std::vector<Eigen::Vector3d>> s = LocalCorrections(nominal, local_scan, bead_width_mm);
-  const int debug = DebugLevel();
+  const int debug = debug_level;
   const bool print = debug >= 1, every_layer = debug >= 2;
   if (print) {
     std::fprintf(stderr, "sections: %zu stations, %zu measured, max measured axis shift %.3f mm, recentred max |d| %.3f\n",
@@ -328,8 +322,8 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
 }
 
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
-                       const std::vector<std::vector<Eigen::Vector3d>>& s) {
-  const int debug = DebugLevel();
+                       const std::vector<std::vector<Eigen::Vector3d>>& s, int debug_level) {
+  const int debug = debug_level;
   const bool print = debug >= 1, every_layer = debug >= 2;
   double worst = 0.0;
   for (std::size_t l = 0; l < nominal.layers.size(); ++l) {

@@ -63,7 +63,7 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
                                                               const MeshDistance& reference_distance,
                                                               const std::vector<Eigen::Vector3d>& reference_points,
                                                               double bead_width_mm, double axis_step_mm,
-                                                              const std::string& method);
+                                                              const std::string& method, int debug_level);
 
 // Side-wall waviness of the undistorted twin part: scan points off the top and bottom faces are binned by their
 // closest target point in cubes of `cell_mm` (about three layers) and each bin's peak-to-valley of the deviation is
@@ -79,20 +79,16 @@ struct Waviness {
 
 // W_t over the bins of `cell_mm` (> 0; the loop uses 2 reference spacings, 4 mm) that hold at least 8 side-wall
 // points of `scan`, mm; zero when no bin does.
-Waviness WallWaviness(const ScanDeviation& scan, double cell_mm);
+Waviness WallWaviness(const ScanDeviation& scan, double cell_mm, int debug_level = 0);
 
-// The loop's stop tolerance on max |deviation| (mm): `requested_mm` when > 0 (--tol-mm), else the maximum waviness.
+// The loop's stop tolerance on max |deviation| (mm): `requested_mm` when > 0 (the user's tolerance), else the maximum waviness.
 double StopTolerance(double requested_mm, const Waviness& waviness);
-
-// The level of the diagnostics printed on stderr, from the environment variable WAAM_COMPENSATE_DEBUG: 0 when it is
-// not set, 2 when it is "2" (every layer), 1 otherwise (every tenth layer and the last).
-int DebugLevel();
 
 // Diagnostic only, never an input of the loop: the largest in-plane difference (mm) between the corrections `s` and
 // the error the twin's hidden displacement `field` gives at each point of `current`, (r_i + u(r_i) - r0_i)_perp with
 // r0_i the point of `nominal`, over the welded points where the field is defined. Printed per layer on stderr when
-// DebugLevel() >= 1.
+// debug_level >= 1 (every layer at 2).
 double CorrectionError(const planner::Plan& nominal, const planner::Plan& current, const DistortionField& field,
-                       const std::vector<std::vector<Eigen::Vector3d>>& s);
+                       const std::vector<std::vector<Eigen::Vector3d>>& s, int debug_level);
 
 }  // namespace waam::twin::internal
