@@ -171,11 +171,11 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_
   // Over the whole part, so a last sliver of a slice (a handle's tip) does not raise it.
   const nlohmann::json& uncovered = summary["uncovered"];
   if (uncovered["pct"].is_number() && uncovered["pct"].get<double>() > kUncoveredWarningPct) {
-    std::cerr << "waam: warning: path.pattern '" << scenario.path.pattern << "' leaves "
+    std::cerr << "waam: warning: path.pattern '" << NameOf(scenario.path.pattern) << "' leaves "
               << std::lround(uncovered["pct"].get<double>()) << " % of the sliced area without a bead (layer "
               << uncovered["worst_layer"].get<int>() << ": " << std::lround(uncovered["worst_layer_pct"].get<double>())
               << " %; plan.json uncovered); "
-              << (scenario.path.pattern == "contour" ? "a hybrid or continuous" : "a contour")
+              << (scenario.path.pattern == planner::Pattern::kContour ? "a hybrid or continuous" : "a contour")
               << " pattern may cover it\n";
   }
   for (const std::string& warning : result.warnings) std::cerr << "waam: warning: " << warning << "\n";

@@ -132,7 +132,7 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
     auto run = [&](double shift, const std::string& picture) {
       CheckInterrupt();
       planner::VoidFillingSettings settings = scenario.path.void_filling;
-      settings.mode = "tuned";
+      settings.mode = planner::VoidFillingMode::kTuned;
       settings.spacing_mm = l;
       for (const std::string& c : all_classes) settings.shift_by_class_mm[c] = 0.0;
       settings.shift_by_class_mm[name] = shift;

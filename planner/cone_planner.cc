@@ -78,7 +78,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
   ConeSurface base;
   base.axis_P = Eigen::Vector3d(slicing.cone_axis_mm[0], slicing.cone_axis_mm[1], slicing.cone_axis_mm[2]);
   base.R = slicing.cone_R_mm;
-  base.H = slicing.type == "cylinder" ? kInf : slicing.cone_H_mm;
+  base.H = slicing.type == SlicingType::kCylinder ? kInf : slicing.cone_H_mm;
   const double d = slicing.layer_height_mm;
 
   // The layers grow away from the axis; the part must lie on the nappe's side of the apex and outside the surface.
@@ -102,7 +102,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
   // nominal one), or the scenario's speed; height from the wire-feed volume balance (003 eq. 3.4, 3.3).
   const ProcessSettings& process = scenario.process;
   const double width = scenario.path.bead_width_mm;
-  const bool csw = process.bead_model == "csw";
+  const bool csw = process.bead_model == BeadModel::kCsw;
   std::optional<models::CswModel> csw_model;
   if (csw) {
     csw_model = models::CswModel::Load(process.csw_model.empty() ? models::DefaultModelPath("csw")
@@ -156,7 +156,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
     for (const std::string& note : notes) result.warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
     WAAM_THROW_UNLESS(HasWeldOrNoRoom(flat.regions, moves, width),
                       where << ": layer " << i << " (surface R = " << middle.R << " mm): path.pattern '"
-                            << scenario.path.pattern << "' found no weld path in the flattened slice of "
+                            << NameOf(scenario.path.pattern) << "' found no weld path in the flattened slice of "
                             << Area(flat.regions) << " mm^2; try path.pattern: contour");
 
     // Densify every move on the plane, so that the mapped path follows the surface. A weld move stays inside its

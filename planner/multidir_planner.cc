@@ -56,8 +56,8 @@ PolygonWithHoles HalfPlane(const Eigen::Vector2d& ab, double c) {
 PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* progress) {
   const std::string where = scenario.file.filename().string() + ": slicing";
   const ProcessSettings& process = scenario.process;
-  WAAM_THROW_UNLESS(process.bead_model == "volume_balance",
-                    scenario.file.filename().string() << ": process.bead_model = " << process.bead_model
+  WAAM_THROW_UNLESS(process.bead_model == BeadModel::kVolumeBalance,
+                    scenario.file.filename().string() << ": process.bead_model = " << NameOf(process.bead_model)
                                                       << ": multi_directional plans with volume_balance only");
   PlanResult result;
   if (!scenario.part.mesh_path.empty()) {
@@ -71,7 +71,7 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
   // The sub-volumes: the user's split planes, or those of the centroid-shift decomposition (003 sec. 5.4).
   std::vector<SubVolumeSpec> specs = scenario.slicing.sub_volumes;
   std::map<std::string, double> lean_deg;
-  if (scenario.slicing.split == "centroid_shift") {
+  if (scenario.slicing.split == SplitMethod::kCentroidShift) {
     CentroidSplitOptions split;
     split.step_mm = scenario.slicing.layer_height_mm;
     split.overhang_deg = scenario.slicing.overhang_deg;

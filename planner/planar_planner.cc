@@ -56,9 +56,13 @@ namespace {
 
 // The plan with the planners' own arc-off moves (straight, on the layer).
 PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
-  if (scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder") return PlanConeScenario(scenario, progress);
-  if (scenario.slicing.type == "multi_directional") return PlanMultiDirectionalScenario(scenario, progress);
-  if (scenario.slicing.type == "skeleton") return PlanSkeletonScenario(scenario, progress);
+  switch (scenario.slicing.type) {
+    case SlicingType::kCone:
+    case SlicingType::kCylinder: return PlanConeScenario(scenario, progress);
+    case SlicingType::kMultiDirectional: return PlanMultiDirectionalScenario(scenario, progress);
+    case SlicingType::kSkeleton: return PlanSkeletonScenario(scenario, progress);
+    case SlicingType::kPlanar: break;
+  }
   PlanResult result;
   if (!scenario.part.mesh_path.empty()) {
     result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);
@@ -88,7 +92,7 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
   result.layer_height_mm = layer_height;
   result.travel_speed_mm_min = process.travel_speed_mm_min;
   result.bead_width_mm = scenario.path.bead_width_mm;
-  if (process.bead_model == "speed_height") {
+  if (process.bead_model == BeadModel::kSpeedHeight) {
     const auto speed_height = models::SpeedHeightModel::Load(
         process.speed_height_model.empty() ? models::DefaultModelPath("speed_height") : process.speed_height_model);
     const auto width_height = models::WidthHeightModel::Load(
@@ -150,7 +154,7 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
                                    layer_corrections[i].end());
     WAAM_THROW_UNLESS(HasWeldOrNoRoom(layer.slice, moves, result.bead_width_mm),
                       scenario.part.where << ": layer " << i << " (z = " << layer.z_mm << " mm): path.pattern '"
-                                          << scenario.path.pattern << "' found no weld path in the slice of "
+                                          << NameOf(scenario.path.pattern) << "' found no weld path in the slice of "
                                           << Area(layer.slice) << " mm^2; try path.pattern: contour");
     for (const Move2D& move : moves) {
       PathPoint point;

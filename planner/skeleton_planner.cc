@@ -233,7 +233,7 @@ PlanResult PlanSkeletonScenario(const Scenario& scenario, Progress* progress) {
                                                                : scenario.process.width_height_model);
   SkeletonPathOptions path_options;
   path_options.point_spacing_mm = s.point_spacing_mm;
-  path_options.spiral = scenario.path.pattern == "spiral";
+  path_options.spiral = scenario.path.pattern == Pattern::kSpiral;
   result.plan = BuildSkeletonPlan(slicing, speed_height, width_height, path_options, scenario.name);
   result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
   result.axis_P = CentroidChain(slicing);

@@ -31,7 +31,7 @@ PolygonWithHoles Plate() {
 void PlanPlate(benchmark::State& state, const std::string& pattern) {
   const PolygonWithHoles plate = Plate();
   waam::planner::PatternOptions options;
-  options.pattern = pattern;
+  options.pattern = waam::ParseEnum<waam::planner::Pattern>(pattern).value();
   options.bead_width_mm = 6.0;
   std::size_t moves = 0;
   for (auto _ : state) {

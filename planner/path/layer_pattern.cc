@@ -15,7 +15,7 @@
 
 namespace waam::planner {
 
-OverlapSpacing OverlapSpacingFor(const std::string& model, double bead_width_mm) {
+OverlapSpacing OverlapSpacingFor(OverlapModel model, double bead_width_mm) {
   WAAM_THROW_UNLESS(std::isfinite(bead_width_mm) && bead_width_mm > 0.0,
                     "overlap spacing: bead width = " << bead_width_mm << " mm: must be > 0");
   const double w = bead_width_mm;
@@ -24,17 +24,18 @@ OverlapSpacing OverlapSpacingFor(const std::string& model, double bead_width_mm)
   s.boundary_offset_mm = 0.5 * w;
   // l = 0.738 w between zigzag beads (Ding et al.'s step-over, dissertation 003 Fig. 20 and Table 9).
   s.zigzag_mm = 0.738 * w;
-  if (model == "proposed") {
-    // eq. 3.13-3.15: equal empty and overlapping volume between a contour and the zigzag ends gives d1 = 0.47 w.
-    s.contour_to_zigzag_mm = 0.47 * w;
-    // eq. 3.16-3.17: one-sided overlap of boundary beads is compensated with d2 = 0.5 w.
-    s.contour_to_contour_mm = 0.5 * w;
-  } else if (model == "existing") {
-    // The existing model uses the zigzag step-over everywhere: d1 = d2 = l = 0.738 w (Table 9, right columns).
-    s.contour_to_zigzag_mm = 0.738 * w;
-    s.contour_to_contour_mm = 0.738 * w;
-  } else {
-    WAAM_THROW("overlap model '" << model << "': must be proposed or existing");
+  switch (model) {
+    case OverlapModel::kProposed:
+      // eq. 3.13-3.15: equal empty and overlapping volume between a contour and the zigzag ends gives d1 = 0.47 w.
+      s.contour_to_zigzag_mm = 0.47 * w;
+      // eq. 3.16-3.17: one-sided overlap of boundary beads is compensated with d2 = 0.5 w.
+      s.contour_to_contour_mm = 0.5 * w;
+      break;
+    case OverlapModel::kExisting:
+      // The existing model uses the zigzag step-over everywhere: d1 = d2 = l = 0.738 w (Table 9, right columns).
+      s.contour_to_zigzag_mm = 0.738 * w;
+      s.contour_to_contour_mm = 0.738 * w;
+      break;
   }
   return s;
 }
@@ -47,16 +48,13 @@ std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice,
   const std::vector<PolygonWithHoles> regions = internal::Union(slice);
   std::vector<Move2D> moves;
   for (const PolygonWithHoles& region : regions) {
-    if (options.pattern == "contour") {
-      internal::PlanContour(region, options, spacing, &moves);
-    } else if (options.pattern == "zigzag") {
-      internal::PlanZigzag(region, options, spacing, &moves);
-    } else if (options.pattern == "eulerian") {
-      internal::PlanEulerian(region, options, spacing, &moves);
-    } else if (options.pattern == "hybrid") {
-      internal::PlanHybrid(region, options, spacing, &moves);
-    } else {
-      internal::PlanContinuous(region, options, spacing, &moves, notes);
+    switch (options.pattern) {
+      case Pattern::kContour: internal::PlanContour(region, options, spacing, &moves); break;
+      case Pattern::kZigzag: internal::PlanZigzag(region, options, spacing, &moves); break;
+      case Pattern::kEulerian: internal::PlanEulerian(region, options, spacing, &moves); break;
+      case Pattern::kHybrid: internal::PlanHybrid(region, options, spacing, &moves); break;
+      case Pattern::kContinuous: internal::PlanContinuous(region, options, spacing, &moves, notes); break;
+      case Pattern::kSpiral: WAAM_DEMAND(options.pattern != Pattern::kSpiral);  // skeleton slicing plans spirals
     }
   }
   // Round joins and faceted meshes leave runs of tiny, nearly collinear moves: one straight move each is what the

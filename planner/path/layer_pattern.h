@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "planner/geometry/polygon.h"
+#include "planner/path/pattern_names.h"
 
 namespace waam::planner {
 
@@ -27,12 +28,12 @@ struct OverlapSpacing {
 };
 
 // Spacing for `model` ("proposed" or "existing") and bead width `bead_width_mm` (> 0). Throws InputError otherwise.
-OverlapSpacing OverlapSpacingFor(const std::string& model, double bead_width_mm);
+OverlapSpacing OverlapSpacingFor(OverlapModel model, double bead_width_mm);
 
 struct PatternOptions {
-  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous | eulerian
+  Pattern pattern = Pattern::kContinuous;  // not kSpiral (skeleton slicing plans its spirals itself)
   double bead_width_mm = 6.0;
-  std::string overlap_model = "proposed";
+  OverlapModel overlap_model = OverlapModel::kProposed;
   bool zigzag_auto = true;             // minimum-width direction per region/piece (Ding Lemma 1)
   double zigzag_angle_rad = 0.0;       // raster direction when not auto, radians from +x
   int layer_index = 0;                 // used to alternate start points layer to layer

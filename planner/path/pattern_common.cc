@@ -23,13 +23,9 @@ constexpr double kRasterInsetMm = 1e-3;
 }  // namespace
 
 void ValidatePatternOptions(const PatternOptions& options) {
-  static const char* const kPatterns[] = {"contour", "zigzag", "hybrid", "continuous", "eulerian"};
-  WAAM_THROW_UNLESS(std::find(std::begin(kPatterns), std::end(kPatterns), options.pattern) != std::end(kPatterns),
-                    "path pattern '" << options.pattern << "': must be one of contour, zigzag, hybrid, continuous, eulerian");
+  WAAM_THROW_UNLESS(options.pattern != Pattern::kSpiral, "path pattern 'spiral': needs slicing.type skeleton");
   WAAM_THROW_UNLESS(std::isfinite(options.bead_width_mm) && options.bead_width_mm > 0.0,
                     "path bead_width_mm = " << options.bead_width_mm << ": must be > 0");
-  WAAM_THROW_UNLESS(options.overlap_model == "proposed" || options.overlap_model == "existing",
-                    "path overlap_model '" << options.overlap_model << "': must be proposed or existing");
   WAAM_THROW_UNLESS(std::isfinite(options.zigzag_angle_rad),
                     "path zigzag_angle = " << options.zigzag_angle_rad << " rad: must be finite");
   WAAM_THROW_UNLESS(options.layer_index >= 0, "path layer_index = " << options.layer_index << ": must be >= 0");

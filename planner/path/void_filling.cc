@@ -77,10 +77,10 @@ VoidFiller::VoidFiller(const VoidFillingSettings& settings, double bead_width_mm
       l_mm_(settings.spacing_mm > 0.0 ? settings.spacing_mm : l_mm) {
   const std::string& where = settings_.where;
   WAAM_THROW_UNLESS(std::isfinite(l_mm_) && l_mm_ > 0.0, where << ": bead spacing l = " << l_mm_ << " mm: must be > 0");
-  if (settings_.mode == "model") {
+  if (settings_.mode == VoidFillingMode::kModel) {
     model_ = models::LoadVoidLengthModel(settings_.model.empty() ? models::DefaultModelPath("void_length")
                                                                  : settings_.model);
-  } else if (settings_.mode == "tuned" && settings_.shift_by_class_mm.empty()) {
+  } else if (settings_.mode == VoidFillingMode::kTuned && settings_.shift_by_class_mm.empty()) {
     std::ifstream in(settings_.tune_file);
     WAAM_THROW_UNLESS(in.good(), where << ".tune_file: cannot read " << settings_.tune_file.string());
     nlohmann::json doc;
@@ -100,7 +100,7 @@ double VoidFiller::ShiftFor(const Junction& junction, double* lambda) const {
   const double theta_min = junction.turning_points[junction.SharpestTurn()].theta_rad;
   const double unit_shift = l_mm_ * (1.0 / std::sin(0.5 * theta_min) - 1.0);  // eq. 4.3
   double lam = settings_.lambda;
-  if (settings_.mode == "model") {
+  if (settings_.mode == VoidFillingMode::kModel) {
     WAAM_THROW_UNLESS(junction.ribs >= 3 && junction.ribs <= 4,
                       settings_.where << ": junction " << junction.ClassName() << " at " << Point(junction.centre)
                                       << ": the void-length model covers 3 or 4 ribs (Appendix A1)");
@@ -108,7 +108,7 @@ double VoidFiller::ShiftFor(const Junction& junction, double* lambda) const {
     j.turning_points = static_cast<int>(junction.turning_points.size());
     for (std::size_t k = 0; k < junction.angles_deg.size(); ++k) j.angles_deg[k] = junction.angles_deg[k];
     lam = LambdaForVoidLength(std::max(0.0, model_->PredictMm(j)), theta_min, l_mm_);
-  } else if (settings_.mode == "tuned") {
+  } else if (settings_.mode == VoidFillingMode::kTuned) {
     const auto it = settings_.shift_by_class_mm.find(junction.ClassName());
     WAAM_THROW_UNLESS(it != settings_.shift_by_class_mm.end(),
                       settings_.where << ".tune_file: no tuned shift for junction class '" << junction.ClassName()

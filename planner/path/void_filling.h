@@ -45,7 +45,7 @@ class VoidFiller {
   // is set. Throws InputError (naming settings.where) for an unreadable model or tune file.
   VoidFiller(const VoidFillingSettings& settings, double bead_width_mm, double l_mm);
 
-  bool enabled() const { return settings_.mode != "none"; }
+  bool enabled() const { return settings_.mode != VoidFillingMode::kNone; }
   double l_mm() const { return l_mm_; }
 
   // Per junction of the layer (FindJunctions) the sharpest turning point is corrected (of equally sharp ones, the

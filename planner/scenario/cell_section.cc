@@ -42,7 +42,7 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
     cell.positioner_base_mm = Xyz(pos, "base_mm", cell.positioner_base_mm);
     cell.positioner_yaw_deg = pos.Number("yaw_deg", -360.0, 360.0, cell.positioner_yaw_deg);
     cell.positioner_rotation_deg = pos.Number("rotation_deg", -240.0, 240.0, cell.positioner_rotation_deg);
-    cell.positioner_follow = pos.Choice("follow", {"layer", "point"}, cell.positioner_follow);
+    cell.positioner_follow = pos.Enum("follow", cell.positioner_follow);
     pos.CheckNoUnknownKeys();
   }
   if (map.Has("part")) {

@@ -6,7 +6,16 @@
 #include <filesystem>
 #include <string>
 
+#include "models/core/enum_names.h"
+
 namespace waam::planner {
+
+// cell.positioner.follow
+enum class PositionerFollow { kLayer, kPoint };
+constexpr std::array<EnumName<PositionerFollow>, 2> EnumNames(PositionerFollow) {
+  return {{{PositionerFollow::kLayer, "layer"}, {PositionerFollow::kPoint, "point"}}};
+}
+WAAM_ENUM_JSON(PositionerFollow)
 
 struct CellSettings {
   // The MuJoCo cell model; empty = the built-in twin/data/cell_arcmate100ic.xml. A user's file must have the
@@ -17,8 +26,8 @@ struct CellSettings {
   std::array<double, 3> positioner_base_mm = {1050.0, 0.0, 0.0};  // positioner base frame B in the world, mm
   double positioner_yaw_deg = 90.0;                                // turn of B about world z, deg
   double positioner_rotation_deg = 0.0;  // table rotation used while the build direction is vertical, deg
-  std::string positioner_follow = "layer";  // layer: angles per layer from its build direction; point: per point
-                                            // from the tool direction (curved layers)
+  // layer: angles per layer from its build direction; point: per point from the tool direction (curved layers)
+  PositionerFollow positioner_follow = PositionerFollow::kLayer;
   std::array<double, 3> part_offset_mm = {0.0, 0.0, 0.0};  // part frame P relative to the plate's top centre, mm
   double part_yaw_deg = 0.0;                               // turn of the part on the plate, deg
   double joint_margin_deg = 2.0;         // a joint closer than this to its limit is a violation, deg

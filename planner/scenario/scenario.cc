@@ -99,8 +99,8 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   {
     YamlMap slicing = top.Map("slicing");
     SlicingSettings& sl = scenario.slicing;
-    sl.type = slicing.Choice("type", {"planar", "cone", "cylinder", "multi_directional", "skeleton"}, "planar");
-    if (sl.type == "skeleton") {
+    sl.type = slicing.Enum("type", SlicingType::kPlanar);
+    if (sl.type == SlicingType::kSkeleton) {
       sl.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0, 1.5);
       sl.h_min_mm = slicing.Number("h_min_mm", 0.05, 20.0, 1.0);
       sl.h_max_mm = slicing.Number("h_max_mm", 0.05, 20.0, 2.0);
@@ -113,10 +113,10 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     } else {
       sl.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0);
     }
-    if (scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder") {
+    if (sl.type == SlicingType::kCone || sl.type == SlicingType::kCylinder) {
       SlicingSettings& s = scenario.slicing;
       s.cone_R_mm = slicing.Number("R_mm", 0.1, 1e5);
-      if (s.type == "cone") {
+      if (s.type == SlicingType::kCone) {
         s.cone_H_mm = slicing.Number("H_mm", -1e6, 1e6);
         WAAM_THROW_UNLESS(std::abs(s.cone_H_mm) >= 1.0, slicing.Where("H_mm") << " = " << s.cone_H_mm
                               << ": |H| must be >= 1 mm (a cylinder is slicing.type: cylinder)");
@@ -125,15 +125,15 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
       std::copy(axis.begin(), axis.end(), s.cone_axis_mm.begin());
       s.cone_rotation_step_deg = slicing.Number("rotation_step_deg", 1.0, 180.0, 11.0);
     }
-    if (scenario.slicing.type == "multi_directional") {
-      sl.split = slicing.Choice("split", {"planes", "centroid_shift"}, "planes");
-      if (sl.split == "centroid_shift") {
+    if (sl.type == SlicingType::kMultiDirectional) {
+      sl.split = slicing.Enum("split", SplitMethod::kPlanes);
+      if (sl.split == SplitMethod::kCentroidShift) {
         sl.overhang_deg = slicing.Number("overhang_deg", 1.0, 80.0, 15.0);
         WAAM_THROW_UNLESS(!slicing.Has("sub_volumes"), slicing.Where("sub_volumes")
                               << ": split = centroid_shift finds the sub-volumes itself: remove sub_volumes");
       }
     }
-    if (scenario.slicing.type == "multi_directional" && sl.split == "planes") {
+    if (sl.type == SlicingType::kMultiDirectional && sl.split == SplitMethod::kPlanes) {
       for (YamlMap sub : slicing.Maps("sub_volumes")) {
         SubVolumeSpec spec;
         spec.name = sub.String("name");
@@ -160,17 +160,18 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
   {
     YamlMap path = top.Map("path");
     PathSettings& s = scenario.path;
-    s.pattern = path.Choice("pattern", {"contour", "zigzag", "hybrid", "continuous", "eulerian", "spiral"}, "");
-    WAAM_THROW_UNLESS(scenario.slicing.type == "skeleton" || s.pattern != "spiral",
+    const bool skeleton = scenario.slicing.type == SlicingType::kSkeleton;
+    s.pattern = path.Enum<Pattern>("pattern");
+    WAAM_THROW_UNLESS(skeleton || s.pattern != Pattern::kSpiral,
                       path.Where("pattern") << " = spiral: needs slicing.type = skeleton");
-    WAAM_THROW_UNLESS(scenario.slicing.type != "skeleton" || s.pattern == "spiral" || s.pattern == "contour",
-                      path.Where("pattern") << " = " << s.pattern
+    WAAM_THROW_UNLESS(!skeleton || s.pattern == Pattern::kSpiral || s.pattern == Pattern::kContour,
+                      path.Where("pattern") << " = " << NameOf(s.pattern)
                                             << ": slicing.type = skeleton plans a single-bead wall: use spiral "
                                                "(one pass) or contour (one closed pass per layer)");
     // Skeleton slicing takes the width at every point from the width-height model (eq. 6.7).
-    s.bead_width_mm = scenario.slicing.type == "skeleton" ? path.Number("bead_width_mm", 0.5, 50.0, s.bead_width_mm)
+    s.bead_width_mm = skeleton ? path.Number("bead_width_mm", 0.5, 50.0, s.bead_width_mm)
                                                           : path.Number("bead_width_mm", 0.5, 50.0);
-    s.overlap_model = path.Choice("overlap_model", {"proposed", "existing"}, "proposed");
+    s.overlap_model = path.Enum("overlap_model", OverlapModel::kProposed);
     if (path.Has("zigzag_angle_deg")) {
       const std::string raw = path.String("zigzag_angle_deg");
       if (raw == "auto") {
@@ -192,18 +193,18 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     YamlMap process = top.Map("process");
     ProcessSettings& p = scenario.process;
     // Skeleton slicing takes the speed at every point from the speed-height model (eq. 6.6).
-    p.travel_speed_mm_min = scenario.slicing.type == "skeleton"
+    p.travel_speed_mm_min = scenario.slicing.type == SlicingType::kSkeleton
                                 ? process.Number("travel_speed_mm_min", 10.0, 10000.0, p.travel_speed_mm_min)
                                 : process.Number("travel_speed_mm_min", 10.0, 10000.0);
     p.wire_feed_mm_min = process.Number("wire_feed_mm_min", 100.0, 30000.0);
     p.wire_diameter_mm = process.Number("wire_diameter_mm", 0.6, 2.4, 1.0);
     p.deposition_efficiency = process.Number("deposition_efficiency", 0.05, 1.0, 1.0);
-    p.bead_model = process.Choice("bead_model", {"volume_balance", "speed_height", "csw"}, "volume_balance");
-    const bool curved = scenario.slicing.type == "cone" || scenario.slicing.type == "cylinder";
-    WAAM_THROW_UNLESS(curved || p.bead_model != "csw", process.Where("bead_model")
+    p.bead_model = process.Enum("bead_model", BeadModel::kVolumeBalance);
+    const bool curved = scenario.slicing.type == SlicingType::kCone || scenario.slicing.type == SlicingType::kCylinder;
+    WAAM_THROW_UNLESS(curved || p.bead_model != BeadModel::kCsw, process.Where("bead_model")
                           << " = csw: needs slicing.type cone or cylinder (planar planning has no csw mode)");
-    WAAM_THROW_UNLESS(!curved || p.bead_model != "speed_height", process.Where("bead_model")
-                          << " = speed_height: not available with slicing.type " << scenario.slicing.type
+    WAAM_THROW_UNLESS(!curved || p.bead_model != BeadModel::kSpeedHeight, process.Where("bead_model")
+                          << " = speed_height: not available with slicing.type " << NameOf(scenario.slicing.type)
                           << " (use csw or volume_balance)");
     for (auto [key, target] : {std::pair{"csw_model", &p.csw_model},
                                std::pair{"speed_height_model", &p.speed_height_model},

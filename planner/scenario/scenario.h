@@ -8,12 +8,36 @@
 #include <string>
 #include <vector>
 
+#include "models/core/enum_names.h"
+#include "planner/path/pattern_names.h"
 #include "planner/scenario/cell_settings.h"
 #include "planner/scenario/run_settings.h"
 #include "planner/scenario/simulation_settings.h"
 #include "planner/scenario/void_filling_settings.h"
 
 namespace waam::planner {
+
+// The closed sets of names of the scenario's slicing and process sections (models/core/enum_names.h).
+// slicing.type
+enum class SlicingType { kPlanar, kCone, kCylinder, kMultiDirectional, kSkeleton };
+constexpr std::array<EnumName<SlicingType>, 5> EnumNames(SlicingType) {
+  return {{{SlicingType::kPlanar, "planar"}, {SlicingType::kCone, "cone"}, {SlicingType::kCylinder, "cylinder"},
+           {SlicingType::kMultiDirectional, "multi_directional"}, {SlicingType::kSkeleton, "skeleton"}}};
+}
+WAAM_ENUM_JSON(SlicingType)
+// slicing.split (multi_directional)
+enum class SplitMethod { kPlanes, kCentroidShift };
+constexpr std::array<EnumName<SplitMethod>, 2> EnumNames(SplitMethod) {
+  return {{{SplitMethod::kPlanes, "planes"}, {SplitMethod::kCentroidShift, "centroid_shift"}}};
+}
+WAAM_ENUM_JSON(SplitMethod)
+// process.bead_model
+enum class BeadModel { kVolumeBalance, kSpeedHeight, kCsw };
+constexpr std::array<EnumName<BeadModel>, 3> EnumNames(BeadModel) {
+  return {{{BeadModel::kVolumeBalance, "volume_balance"}, {BeadModel::kSpeedHeight, "speed_height"},
+           {BeadModel::kCsw, "csw"}}};
+}
+WAAM_ENUM_JSON(BeadModel)
 
 // Where the part comes from: an STL file or a procedural generator with parameters.
 struct PartSpec {
@@ -32,7 +56,7 @@ struct SubVolumeSpec {
 };
 
 struct SlicingSettings {
-  std::string type = "planar";       // planar | cone | cylinder | multi_directional | skeleton
+  SlicingType type = SlicingType::kPlanar;
   double layer_height_mm = 1.5;      // > 0 (cone, cylinder: normal distance d between equidistant surfaces)
   // cone | cylinder (Dai et al. 2020, planner/cone_planner.h): the first surface x^2 + y^2 = R^2 (z/H - 1)^2
   // about a vertical axis through axis_mm; layer i is its equidistant surface at (i + 1/2) d.
@@ -43,7 +67,7 @@ struct SlicingSettings {
   std::vector<SubVolumeSpec> sub_volumes;           // multi_directional: built in this order
   // multi_directional: "planes" (the user's sub_volumes) or "centroid_shift" (found by the overhang decomposition of
   // the dissertation, sec. 5.4: planner/slicing/centroid_decomposition.h)
-  std::string split = "planes";
+  SplitMethod split = SplitMethod::kPlanes;
   double overhang_deg = 15.0;        // centroid_shift: self-supporting overhang from +z, deg
   // skeleton: adaptive slicing along the central axis (dissertation 6.3.1, Fig. 56; Table 16 limits)
   double h_min_mm = 1.0;             // thinnest depositable layer, mm
@@ -55,9 +79,9 @@ struct SlicingSettings {
 };
 
 struct PathSettings {
-  std::string pattern = "continuous";  // contour | zigzag | hybrid | continuous | eulerian (003 sec. 4.3) | spiral (skeleton slicing only)
+  Pattern pattern = Pattern::kContinuous;  // eulerian: 003 sec. 4.3; spiral: skeleton slicing only
   double bead_width_mm = 6.0;          // > 0
-  std::string overlap_model = "proposed";  // proposed (0.738 w / 0.47 w / 0.5 w) | existing (0.738 w everywhere)
+  OverlapModel overlap_model = OverlapModel::kProposed;  // proposed: 0.738 w / 0.47 w / 0.5 w; existing: 0.738 w
   bool zigzag_angle_auto = true;       // minimum-width direction (Ding Lemma 1)
   double zigzag_angle_deg = 0.0;       // used when not auto
   bool alternate_start = true;         // shift the start point layer to layer so starts do not stack
@@ -77,7 +101,7 @@ struct ProcessSettings {
   // width-height models, dissertation sec. 6.3.2.1; path.bead_width_mm and travel_speed_mm_min are then ignored).
   // "csw" (cone/cylinder slicing only): speed per point from the path curvature with the CSW model of Dai et al.
   // for the bead width path.bead_width_mm, height from eq. 3.4.
-  std::string bead_model = "volume_balance";
+  BeadModel bead_model = BeadModel::kVolumeBalance;
   std::filesystem::path csw_model;           // model JSON (waam fit csw); empty = models/data default
   std::filesystem::path speed_height_model;  // model JSON (waam fit speed-height); empty = models/data default
   std::filesystem::path width_height_model;  // model JSON (waam fit width-height); empty = models/data default

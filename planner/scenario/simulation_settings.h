@@ -1,11 +1,39 @@
 // Settings of the voxel deposition twin (scenario section `simulation`): voxel size, corner blending, arc start/stop.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <string>
 
+#include "models/core/enum_names.h"
+
 namespace waam::planner {
+
+// simulation.blend
+enum class Blend { kNone, kFixed, kSpeed };
+constexpr std::array<EnumName<Blend>, 3> EnumNames(Blend) {
+  return {{{Blend::kNone, "none"}, {Blend::kFixed, "fixed"}, {Blend::kSpeed, "speed"}}};
+}
+WAAM_ENUM_JSON(Blend)
+// simulation.stop_crater
+enum class StopCrater { kLip, kLost };
+constexpr std::array<EnumName<StopCrater>, 2> EnumNames(StopCrater) {
+  return {{{StopCrater::kLip, "lip"}, {StopCrater::kLost, "lost"}}};
+}
+WAAM_ENUM_JSON(StopCrater)
+// simulation.start_wetting
+enum class StartWetting { kCold, kHot };
+constexpr std::array<EnumName<StartWetting>, 2> EnumNames(StartWetting) {
+  return {{{StartWetting::kCold, "cold"}, {StartWetting::kHot, "hot"}}};
+}
+WAAM_ENUM_JSON(StartWetting)
+// simulation.curvature_width
+enum class CurvatureWidth { kCsw, kNone };
+constexpr std::array<EnumName<CurvatureWidth>, 2> EnumNames(CurvatureWidth) {
+  return {{{CurvatureWidth::kCsw, "csw"}, {CurvatureWidth::kNone, "none"}}};
+}
+WAAM_ENUM_JSON(CurvatureWidth)
 
 struct SimulationSettings {
   double voxel_mm = 0.5;                 // voxel edge, mm, in [0.1, 2]
@@ -14,7 +42,7 @@ struct SimulationSettings {
   // Corner blending of the executed path, like a robot's continuous-motion mode (FANUC CNT100, 003 sec. 4.4.1):
   // none = the TCP reaches every vertex (FINE); fixed = blend radius blend_radius_mm;
   // speed = blend radius travel speed x blend_time_s (a faster torch cuts corners more).
-  std::string blend = "speed";
+  Blend blend = Blend::kSpeed;
   double blend_radius_mm = 2.0;          // mm, for blend = fixed
   double blend_time_s = 0.3;             // s, for blend = speed
 
@@ -29,11 +57,11 @@ struct SimulationSettings {
   // Where the crater's missing metal goes (the wire feeds until the arc stops): lip = it froze in the pool's tail,
   // the stop_length_mm of bead before the crater (volume per pass = what the wire brought); lost = nowhere (the
   // twin before: the pass deposits less than its wire brings).
-  std::string stop_crater = "lip";
+  StopCrater stop_crater = StopCrater::kLip;
   // hot = the start's metal levels into the valleys under its footprint like the steady pool; cold = it wets the
   // cold base poorly and sets on the ground under it as a draped hump, fading to the levelled pool over
   // start_length_mm (an option: it moved Ding's Ra by at most 0.006 mm, see docs/deposition_twin.md).
-  std::string start_wetting = "hot";
+  StartWetting start_wetting = StartWetting::kHot;
 
   // Molten metal hanging past a free edge flows down at most (1 + edge_sag_factor) x bead height below its crown.
   double edge_sag_factor = 2.0;
@@ -44,7 +72,7 @@ struct SimulationSettings {
   // none = the planned width everywhere. csw_model: a model file from `waam fit csw` (empty = models/data/csw.json);
   // radii below csw_min_radius_mm (the smallest radius the model was fitted to) are clamped to it, here and in the
   // cone planner's CSW speed choice (process.bead_model: csw).
-  std::string curvature_width = "csw";
+  CurvatureWidth curvature_width = CurvatureWidth::kCsw;
   std::filesystem::path csw_model;
   double csw_min_radius_mm = 30.0;
   // Deposition step along the path, mm (0 = one voxel).

@@ -12,7 +12,7 @@ void ParseVoidFillingSection(YamlMap& path, const fs::path& scenario_dir, VoidFi
   if (!path.Has("void_filling")) return;
   YamlMap map = path.Map("void_filling");
   out->where = map.Where("");
-  out->mode = map.Choice("mode", {"none", "fixed", "model", "tuned"}, "none");
+  out->mode = map.Enum("mode", VoidFillingMode::kNone);
   out->lambda = map.Number("lambda", 0.0, 100.0, 1.0);
   out->spacing_mm = map.Number("spacing_mm", 0.0, 100.0, 0.0);
   out->min_ribs = map.Integer("min_ribs", 2, 12, 3);
@@ -25,7 +25,7 @@ void ParseVoidFillingSection(YamlMap& path, const fs::path& scenario_dir, VoidFi
   };
   if (map.Has("model")) out->model = file("model");
   if (map.Has("tune_file")) out->tune_file = file("tune_file");
-  WAAM_THROW_UNLESS(out->mode != "tuned" || !out->tune_file.empty(),
+  WAAM_THROW_UNLESS(out->mode != VoidFillingMode::kTuned || !out->tune_file.empty(),
                     map.Where("mode") << ": mode tuned needs tune_file (the tune.json of waam tune-voids)");
   map.CheckNoUnknownKeys();
 }

@@ -1,14 +1,25 @@
 // Settings of junction void filling (scenario key `path.void_filling`, dissertation 003 sec. 4.4).
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <string>
 
+#include "models/core/enum_names.h"
+
 namespace waam::planner {
 
+// path.void_filling.mode
+enum class VoidFillingMode { kNone, kFixed, kModel, kTuned };
+constexpr std::array<EnumName<VoidFillingMode>, 4> EnumNames(VoidFillingMode) {
+  return {{{VoidFillingMode::kNone, "none"}, {VoidFillingMode::kFixed, "fixed"}, {VoidFillingMode::kModel, "model"},
+           {VoidFillingMode::kTuned, "tuned"}}};
+}
+WAAM_ENUM_JSON(VoidFillingMode)
+
 struct VoidFillingSettings {
-  std::string mode = "none";     // none | fixed (lambda) | model (void-length model, eq. 4.6) | tuned (tune.json)
+  VoidFillingMode mode = VoidFillingMode::kNone;  // fixed: lambda; model: void-length model, eq. 4.6; tuned: tune.json
   double lambda = 1.0;           // empirical weight of eq. 4.5 for mode fixed; 1 = the geometric correction
   double spacing_mm = 0.0;       // l: centre distance of the two beads of a wall, mm; 0 = the overlap model's d2
   int min_ribs = 3;              // correct junctions of at least this many ribs (2-rib corners are left as they are)

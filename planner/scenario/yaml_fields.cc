@@ -90,15 +90,8 @@ std::string YamlMap::String(const std::string& key, const std::string& fallback)
   return Has(key) ? String(key) : fallback;
 }
 
-std::string YamlMap::Choice(const std::string& key, const std::vector<std::string>& choices,
-                            const std::string& fallback) {
-  const std::string value = fallback.empty() ? String(key) : String(key, fallback);
-  for (const std::string& choice : choices) {
-    if (value == choice) return value;
-  }
-  std::ostringstream list;
-  for (std::size_t i = 0; i < choices.size(); ++i) list << (i ? ", " : "") << choices[i];
-  WAAM_THROW(Where(key) << " = '" << value << "': unknown value, expected one of " << list.str());
+void YamlMap::ThrowUnknownName(const std::string& key, const std::string& name, const std::string& names) const {
+  WAAM_THROW(Where(key) << " = '" << name << "': unknown value, expected one of " << names);
 }
 
 std::vector<double> YamlMap::Numbers(const std::string& key, int size, double min, double max) {

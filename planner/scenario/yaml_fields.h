@@ -2,11 +2,14 @@
 // Internal to the planner (and only included from .cc files): it exposes yaml-cpp.
 #pragma once
 
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
+
+#include "models/core/enum_names.h"
 
 namespace waam::planner::internal {
 
@@ -26,8 +29,16 @@ class YamlMap {
   bool Bool(const std::string& key, bool fallback);
   std::string String(const std::string& key);
   std::string String(const std::string& key, const std::string& fallback);
-  // A string that must be one of `choices`.
-  std::string Choice(const std::string& key, const std::vector<std::string>& choices, const std::string& fallback);
+  // A name from the table of E (models/core/enum_names.h): required, or `fallback` when the key is absent. An unknown
+  // name is an InputError listing the table's names.
+  template <typename E>
+  E Enum(const std::string& key) {
+    return NamedValue<E>(key, String(key));
+  }
+  template <typename E>
+  E Enum(const std::string& key, E fallback) {
+    return Has(key) ? NamedValue<E>(key, String(key)) : fallback;
+  }
   // A list of numbers of length `size` (any length if size < 0), each within [min, max].
   std::vector<double> Numbers(const std::string& key, int size, double min, double max);
   std::vector<double> Numbers(const std::string& key, int size, double min, double max,
@@ -48,6 +59,13 @@ class YamlMap {
   const std::string& key_path() const { return key_path_; }
 
  private:
+  template <typename E>
+  E NamedValue(const std::string& key, const std::string& name) const {
+    const std::optional<E> value = ParseEnum<E>(name);
+    if (!value) ThrowUnknownName(key, name, EnumNameList<E>());
+    return *value;
+  }
+  [[noreturn]] void ThrowUnknownName(const std::string& key, const std::string& name, const std::string& names) const;
   YAML::Node Get(const std::string& key);
   std::string Child(const std::string& key) const;
   YAML::Node node_;

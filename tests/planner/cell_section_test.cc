@@ -64,7 +64,7 @@ TEST_F(CellSectionTest, ValuesAreRead) {
   EXPECT_DOUBLE_EQ(s.cell.robot_yaw_deg, 15.0);
   EXPECT_DOUBLE_EQ(s.cell.positioner_base_mm[0], 900.0);
   EXPECT_DOUBLE_EQ(s.cell.positioner_rotation_deg, 45.0);
-  EXPECT_EQ(s.cell.positioner_follow, "point");
+  EXPECT_EQ(NameOf(s.cell.positioner_follow), "point");
   EXPECT_DOUBLE_EQ(s.cell.part_offset_mm[1], 2.0);
   EXPECT_DOUBLE_EQ(s.cell.part_yaw_deg, 30.0);
   EXPECT_DOUBLE_EQ(s.cell.joint_margin_deg, 3.0);

@@ -127,13 +127,13 @@ Scenario BladeScenario() {
   s.part.generator = "thruster_blades";
   s.part.params = {{"blades", {3.0}}, {"span_mm", {12.0}}, {"chord_mm", {30.0}}, {"thickness_mm", {14.0, 10.0}}};
   s.part.where = "test: part.generator";
-  s.slicing.type = "cone";
+  s.slicing.type = SlicingType::kCone;
   s.slicing.cone_R_mm = 60;
   s.slicing.cone_H_mm = 200;
   s.slicing.layer_height_mm = 2.5;
-  s.path.pattern = "contour";
+  s.path.pattern = Pattern::kContour;
   s.path.bead_width_mm = 9.0;
-  s.process.bead_model = "csw";
+  s.process.bead_model = BeadModel::kCsw;
   s.process.wire_diameter_mm = 1.2;
   s.process.wire_feed_mm_min = 6500;
   return s;
@@ -247,7 +247,7 @@ TEST(ConePlannerTest, ALayerRoundTheAxisIsRefusedWithItsIndex) {
   Scenario s = BladeScenario();
   s.part.generator = "cylinder";
   s.part.params = {{"radius_mm", {50.0}}, {"height_mm", {20.0}}};
-  s.slicing.type = "cylinder";
+  s.slicing.type = SlicingType::kCylinder;
   s.slicing.cone_R_mm = 40;
   try {
     PlanScenario(s, nullptr);
@@ -263,7 +263,7 @@ TEST(ConePlannerTest, NoLayerIsDroppedSilentlyWhateverThePattern) {
   // wider than a bead that ends without a weld path must never vanish from the plan, the cell check and the twin.
   for (const char* pattern : {"contour", "zigzag", "hybrid", "continuous"}) {
     Scenario s = BladeScenario();
-    s.path.pattern = pattern;
+    s.path.pattern = ParseEnum<Pattern>(pattern).value();
     try {
       const PlanResult result = PlanScenario(s, nullptr);
       EXPECT_EQ(result.plan.layers.size(), 5u) << pattern << ": 12 mm span at 2.5 mm layers";

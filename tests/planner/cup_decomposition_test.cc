@@ -131,10 +131,10 @@ Scenario CupScenario() {
   s.name = "cup";
   s.part.generator = "cup_two_handles";
   s.part.where = "test: part.generator";
-  s.slicing.type = "multi_directional";
-  s.slicing.split = "centroid_shift";
+  s.slicing.type = SlicingType::kMultiDirectional;
+  s.slicing.split = SplitMethod::kCentroidShift;
   s.slicing.layer_height_mm = 2.5;  // divides the 5 mm bottom: the slices count it exactly
-  s.path.pattern = "contour";
+  s.path.pattern = Pattern::kContour;
   s.path.bead_width_mm = 4.0;
   return s;
 }

@@ -32,9 +32,9 @@ TEST(DingTable, HybridVersusContinuous) {
   for (const auto& [name, region] : testing::DingLikeShapes()) {
     PatternOptions options;
     options.bead_width_mm = 6.0;
-    options.pattern = "hybrid";
+    options.pattern = Pattern::kHybrid;
     const Counts hybrid = Count(PlanLayerPattern({region}, options));
-    options.pattern = "continuous";
+    options.pattern = Pattern::kContinuous;
     const Counts continuous = Count(PlanLayerPattern({region}, options));
     std::printf("| %c | %s | %.0f | %d | %d | %d | %d |\n", name[0], name.substr(2).c_str(), Area(region),
                 hybrid.passes, hybrid.elements, continuous.passes, continuous.elements);
@@ -59,9 +59,9 @@ TEST(DingTable, ContinuousLaysAboutTheHybridBeadLength) {
   for (const auto& [name, region] : testing::DingLikeShapes()) {
     PatternOptions options;
     options.bead_width_mm = 6.0;
-    options.pattern = "hybrid";
+    options.pattern = Pattern::kHybrid;
     const std::vector<Move2D> hybrid = PlanLayerPattern({region}, options);
-    options.pattern = "continuous";
+    options.pattern = Pattern::kContinuous;
     const std::vector<Move2D> continuous = PlanLayerPattern({region}, options);
     const double ratio = WeldLength(continuous) / WeldLength(hybrid);
     std::printf("%s: continuous / hybrid bead length %.3f, elements %d / %d\n", name.c_str(), ratio,

@@ -67,10 +67,10 @@ TEST(Eulerian, OneClosedPassPerLayerEachEdgeOnce) {
   ASSERT_EQ(RibWebShapes().size(), 6u) << "expected five grids and the triangular frame";
   for (const auto& [name, region] : RibWebShapes()) {
     PatternOptions options;
-    options.pattern = "eulerian";
+    options.pattern = Pattern::kEulerian;
     options.bead_width_mm = 6.0;
     options.seed = 7;
-    const OverlapSpacing spacing = OverlapSpacingFor("proposed", 6.0);
+    const OverlapSpacing spacing = OverlapSpacingFor(OverlapModel::kProposed, 6.0);
     const std::vector<Ring> curves = internal::SharpOffsetCurves(region, spacing);
     double curve_length = 0.0;
     for (const Ring& c : curves) curve_length += Perimeter(c);
@@ -104,7 +104,7 @@ TEST(Eulerian, OneClosedPassPerLayerEachEdgeOnce) {
 TEST(Eulerian, SeededConnectorsRepeatAndMove) {
   const PolygonWithHoles region = Grid(2, 2, 60, 60, 9);
   PatternOptions options;
-  options.pattern = "eulerian";
+  options.pattern = Pattern::kEulerian;
   options.seed = 11;
   const std::vector<Move2D> a = PlanLayerPattern({region}, options);
   const std::vector<Move2D> b = PlanLayerPattern({region}, options);
@@ -119,10 +119,10 @@ TEST(Eulerian, SeededConnectorsRepeatAndMove) {
 
 TEST(Eulerian, ContoursNeedOnePassPerCurve) {
   PatternOptions options;
-  options.pattern = "contour";
+  options.pattern = Pattern::kContour;
   // 5.3 mm beads on 9 mm walls, 3.7 mm apart (sec. 4.6.5): the existing model's 0.738 w spacing.
   options.bead_width_mm = 5.3;
-  options.overlap_model = "existing";
+  options.overlap_model = OverlapModel::kExisting;
   EXPECT_EQ(CountPasses(PlanLayerPattern({Grid(2, 2, 60, 60, 9)}, options)), 5)
       << "the 2x2 grid of Fig. 47: outer wall and four cells, five contours (003 Table 13)";
 }
@@ -135,7 +135,7 @@ TEST(Eulerian, RibWebScenariosPlan) {
     const Scenario scenario = LoadScenario(entry.path());
     const PlanResult result = PlanScenario(scenario, nullptr);
     ASSERT_FALSE(result.plan.layers.empty()) << entry.path();
-    if (scenario.path.pattern != "eulerian") continue;
+    if (scenario.path.pattern != Pattern::kEulerian) continue;
     ++eulerian;
     for (std::size_t n : result.stats.passes_per_layer) EXPECT_EQ(n, 1u) << entry.path();
   }
@@ -146,7 +146,7 @@ TEST(Eulerian, RegionThatIsNotARibWebIsRefused) {
   // A plate with a small round hole: the hole's curve has no straight stretch to put connectors on.
   PolygonWithHoles plate{Rect(0, 0, 80, 80), {testing::Circle(40, 40, 3, 12, true)}};
   PatternOptions options;
-  options.pattern = "eulerian";
+  options.pattern = Pattern::kEulerian;
   options.layer_index = 3;
   try {
     PlanLayerPattern({plate}, options);

@@ -25,7 +25,7 @@ constexpr double kW = 6.0;  // bead width, mm
 
 std::vector<Move2D> Plan(const PolygonWithHoles& region, const std::string& pattern, int layer = 0) {
   PatternOptions options;
-  options.pattern = pattern;
+  options.pattern = ParseEnum<Pattern>(pattern).value();
   options.bead_width_mm = kW;
   options.layer_index = layer;
   return PlanLayerPattern({region}, options);
@@ -132,7 +132,7 @@ TEST(ContourPattern, RingsFillTheRegion) {
 
 TEST(ZigzagPattern, FixedAngleRunsAlongIt) {
   PatternOptions options;
-  options.pattern = "zigzag";
+  options.pattern = Pattern::kZigzag;
   options.zigzag_auto = false;
   options.zigzag_angle_rad = 0.0;
   const std::vector<Move2D> moves = PlanLayerPattern({{testing::Rect(0, 0, 100, 60), {}}}, options);
@@ -152,10 +152,10 @@ TEST(PatternSpacing, FollowsTheOverlapModel) {
   for (const auto& [pattern, model] : std::vector<std::pair<std::string, std::string>>{
            {"hybrid", "proposed"}, {"hybrid", "existing"}, {"continuous", "proposed"}, {"continuous", "existing"}}) {
     PatternOptions options;
-    options.pattern = pattern;
-    options.overlap_model = model;
+    options.pattern = ParseEnum<Pattern>(pattern).value();
+    options.overlap_model = ParseEnum<OverlapModel>(model).value();
     options.zigzag_auto = pattern == "continuous";
-    const OverlapSpacing s = OverlapSpacingFor(model, options.bead_width_mm);
+    const OverlapSpacing s = OverlapSpacingFor(options.overlap_model, options.bead_width_mm);
     const std::vector<Move2D> moves = PlanLayerPattern({{testing::Rect(0, 0, 100, 60), {}}}, options);
     std::vector<double> raster_y;
     for (std::size_t k = 1; k < moves.size(); ++k) {
@@ -263,7 +263,7 @@ TEST(ContinuousPattern, ContourGoesOnTheObliqueWall) {
   for (const Ring& trapezoid : {testing::Poly({{0, 0}, {120, 0}, {120 - run, 40}, {0, 40}}),
                                 testing::Poly({{0, 0}, {120, 0}, {120, 40}, {run, 40}})}) {
     const PolygonWithHoles region{trapezoid, {}};
-    const OverlapSpacing spacing = OverlapSpacingFor("proposed", kW);
+    const OverlapSpacing spacing = OverlapSpacingFor(OverlapModel::kProposed, kW);
     auto loop_moves = [&](double angle) {
       std::vector<Move2D> moves;
       internal::AppendLoop(internal::ConvexPieceLoop(trapezoid, angle, spacing), Eigen::Vector2d::Zero(), false,
@@ -282,7 +282,7 @@ TEST(ContinuousPattern, ContourGoesOnTheObliqueWall) {
 // apart in pieces a little taller than one step, nearly tripling the metal there on every layer; the count is now
 // the even one whose pitch is nearest l, so the pitch stays between 0.55 l and 1.8 l once a piece holds more than two rasters.
 TEST(ContinuousPattern, RasterPitchStaysNearTheStepOver) {
-  const OverlapSpacing spacing = OverlapSpacingFor("proposed", kW);
+  const OverlapSpacing spacing = OverlapSpacingFor(OverlapModel::kProposed, kW);
   const double l = spacing.zigzag_mm;
   for (double height = 16.0; height <= 40.0; height += 0.37) {
     const Ring piece = testing::Poly({{0, 0}, {60, 0}, {60, height}, {0, height}});
@@ -306,7 +306,7 @@ TEST(ContinuousPattern, RasterPitchStaysNearTheStepOver) {
 // A side a piece shares with its neighbour is not a wall: its bead goes l/2 inside (the neighbour's l/2 beyond), the
 // rasters l from it; the walls keep w/2 and d1. Square 40 x 40, rasters along x, the top side shared.
 TEST(ContinuousPattern, SharedSideKeepsTheZigzagSpacing) {
-  const OverlapSpacing spacing = OverlapSpacingFor("proposed", kW);
+  const OverlapSpacing spacing = OverlapSpacingFor(OverlapModel::kProposed, kW);
   const double l = spacing.zigzag_mm;
   const Ring square = testing::Poly({{0, 0}, {40, 0}, {40, 40}, {0, 40}});
   const std::vector<bool> top_shared{false, false, true, false};  // edge 2: (40,40) -> (0,40)
@@ -413,14 +413,11 @@ TEST(PlanLayerPattern, RejectsBadOptions) {
     }
   };
   PatternOptions unknown;
-  unknown.pattern = "spiral";
+  unknown.pattern = Pattern::kSpiral;
   expect_error(unknown, "path pattern 'spiral'");
   PatternOptions width;
   width.bead_width_mm = -2.0;
   expect_error(width, "bead_width_mm = -2");
-  PatternOptions model;
-  model.overlap_model = "old";
-  expect_error(model, "overlap_model 'old'");
   PatternOptions layer;
   layer.layer_index = -1;
   expect_error(layer, "layer_index = -1");

@@ -22,7 +22,7 @@ Scenario LimitsBox(double x, double y, double z, double layer_height_mm) {
   s.part.params["size_mm"] = {x, y, z};
   s.part.where = "s.yaml:3: part";
   s.slicing.layer_height_mm = layer_height_mm;
-  s.path.pattern = "zigzag";
+  s.path.pattern = Pattern::kZigzag;
   s.path.bead_width_mm = 6.0;
   return s;
 }

@@ -23,7 +23,7 @@ Scenario BoxScenario() {
   s.part.params["size_mm"] = {60, 40, 12};
   s.part.where = "test: part.generator";
   s.slicing.layer_height_mm = 1.5;
-  s.path.pattern = "continuous";
+  s.path.pattern = Pattern::kContinuous;
   s.path.bead_width_mm = 6.0;
   return s;
 }
@@ -61,7 +61,7 @@ TEST(PlanScenarioTest, BeadComesFromTheWireFeedVolumeBalance) {
 
 TEST(PlanScenarioTest, SpeedHeightModeTakesSpeedAndWidthFromTheFittedModels) {
   Scenario s = BoxScenario();
-  s.process.bead_model = "speed_height";
+  s.process.bead_model = BeadModel::kSpeedHeight;
   s.slicing.layer_height_mm = 1.5;
   const PlanResult result = PlanScenario(s, nullptr);
   // The default fits (models/data, dissertation Table 18 rows 2-17): v = 673.8 h^-2.069, w(1.5 mm) about 5.1 mm.
@@ -76,7 +76,7 @@ TEST(PlanScenarioTest, SpeedHeightModeTakesSpeedAndWidthFromTheFittedModels) {
 
 TEST(PlanScenarioTest, SpeedHeightModeClampsAHeightOutsideTheWindow) {
   Scenario s = BoxScenario();
-  s.process.bead_model = "speed_height";
+  s.process.bead_model = BeadModel::kSpeedHeight;
   s.slicing.layer_height_mm = 3.0;  // would need ~70 mm/min, below the 150 mm/min feasible minimum
   const PlanResult result = PlanScenario(s, nullptr);
   EXPECT_EQ(result.speed_clamp, "at_minimum");

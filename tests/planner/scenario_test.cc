@@ -60,7 +60,7 @@ TEST_F(ScenarioTest, ValidScenarioLoads) {
   ASSERT_EQ(s.part.params.at("size_mm").size(), 3u);
   EXPECT_DOUBLE_EQ(s.part.params.at("size_mm")[1], 30.0);
   EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 1.5);
-  EXPECT_EQ(s.path.pattern, "continuous");
+  EXPECT_EQ(NameOf(s.path.pattern), "continuous");
   EXPECT_TRUE(s.path.zigzag_angle_auto);
   EXPECT_DOUBLE_EQ(s.process.travel_speed_mm_min, 400.0);
 }
@@ -145,12 +145,12 @@ TEST_F(ScenarioTest, OverridesReplaceAndAddKeys) {
   const Scenario s =
       LoadScenario(Write(Valid()), {"path.pattern=hybrid", "slicing.layer_height_mm=2.5", "path.seed=7",
                                     "simulation.voxel_mm=1", "simulation.curvature_width=none"});
-  EXPECT_EQ(s.path.pattern, "hybrid");
+  EXPECT_EQ(NameOf(s.path.pattern), "hybrid");
   EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 2.5);
   EXPECT_EQ(s.path.seed, 7u);
   // An optional section the file does not have is created by the override.
   EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 1.0);
-  EXPECT_EQ(s.simulation.curvature_width, "none");
+  EXPECT_EQ(NameOf(s.simulation.curvature_width), "none");
   const Scenario t = LoadScenario(Write(Valid()), {"run.steps=[plan, check]"});
   EXPECT_EQ(t.run.steps, (std::vector<std::string>{"plan", "check"}));
 }
@@ -179,9 +179,9 @@ TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {
 TEST_F(ScenarioTest, ArcStartAndStopChoicesAreChecked) {
   const Scenario s =
       LoadScenario(Write(Valid()), {"simulation.stop_crater=lost", "simulation.start_wetting=cold"});
-  EXPECT_EQ(s.simulation.stop_crater, "lost");
-  EXPECT_EQ(s.simulation.start_wetting, "cold");
-  EXPECT_EQ(LoadScenario(Write(Valid())).simulation.stop_crater, "lip") << "the crater's metal freezes in its lip";
+  EXPECT_EQ(NameOf(s.simulation.stop_crater), "lost");
+  EXPECT_EQ(NameOf(s.simulation.start_wetting), "cold");
+  EXPECT_EQ(NameOf(LoadScenario(Write(Valid())).simulation.stop_crater), "lip") << "the crater's metal freezes in its lip";
   try {
     LoadScenario(Write(Valid()), {"simulation.stop_crater=fill"});
     FAIL() << "expected InputError";

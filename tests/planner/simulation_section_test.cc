@@ -28,7 +28,7 @@ std::filesystem::path WriteScenario(const std::string& name, const std::string& 
 TEST(SimulationSection, DefaultsWhenAbsent) {
   const Scenario s = LoadScenario(WriteScenario("sim_default", ""));
   EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 0.5);
-  EXPECT_EQ(s.simulation.blend, "speed");
+  EXPECT_EQ(NameOf(s.simulation.blend), "speed");
 }
 
 TEST(SimulationSection, ReadsValues) {
@@ -36,7 +36,7 @@ TEST(SimulationSection, ReadsValues) {
       "sim_values", "simulation: {voxel_mm: 0.25, blend: fixed, blend_radius_mm: 3, start_length_mm: 12,\n"
                     "             max_voxels: 5000000}\n"));
   EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 0.25);
-  EXPECT_EQ(s.simulation.blend, "fixed");
+  EXPECT_EQ(NameOf(s.simulation.blend), "fixed");
   EXPECT_DOUBLE_EQ(s.simulation.blend_radius_mm, 3.0);
   EXPECT_DOUBLE_EQ(s.simulation.start_length_mm, 12.0);
   EXPECT_EQ(s.simulation.max_voxels, 5000000u);

@@ -19,14 +19,14 @@ inline Scenario SmallPropeller(double pitch_root_deg = 30.0, double pitch_tip_de
                    {"thickness_mm", {16.0, 10.0}},
                    {"pitch_deg", {pitch_root_deg, pitch_tip_deg}}};
   s.part.where = "test: part.generator";
-  s.slicing.type = "multi_directional";
+  s.slicing.type = SlicingType::kMultiDirectional;
   s.slicing.layer_height_mm = 2.5;
   s.slicing.sub_volumes.push_back({"hub", {0, 0, 1}, {{1, 0, 0, 30}, {-1, 0, 0, 30}, {0, 1, 0, 30}, {0, -1, 0, 30}}});
   s.slicing.sub_volumes.push_back({"blade_0", {1, 0, 0}, {{-1, 0, 0, -30}}});
   s.slicing.sub_volumes.push_back({"blade_90", {0, 1, 0}, {{0, -1, 0, -30}}});
   s.slicing.sub_volumes.push_back({"blade_180", {-1, 0, 0}, {{1, 0, 0, -30}}});
   s.slicing.sub_volumes.push_back({"blade_270", {0, -1, 0}, {{0, 1, 0, -30}}});
-  s.path.pattern = "contour";
+  s.path.pattern = Pattern::kContour;
   s.path.bead_width_mm = 6.0;
   return s;
 }

@@ -91,7 +91,7 @@ TEST(VoidFilling, TooSharpOrShortCornersAreRefused) {
 
 TEST(Junctions, GridJunctionClasses) {
   PatternOptions options;
-  options.pattern = "eulerian";
+  options.pattern = Pattern::kEulerian;
   const PolygonWithHoles grid = Grid2x2();
   const std::vector<Move2D> moves = PlanLayerPattern({grid}, options);
   std::map<std::string, int> classes;
@@ -110,10 +110,10 @@ TEST(Junctions, GridJunctionClasses) {
 
 TEST(VoidFilling, FixedLambdaCorrectsOneCornerPerJunctionAndKeepsOnePass) {
   PatternOptions options;
-  options.pattern = "eulerian";
+  options.pattern = Pattern::kEulerian;
   const PolygonWithHoles grid = Grid2x2();
   VoidFillingSettings settings;
-  settings.mode = "fixed";
+  settings.mode = VoidFillingMode::kFixed;
   settings.lambda = 1.0;
   const VoidFiller filler(settings, 6.0, 3.0);
   for (int layer = 0; layer < 4; ++layer) {

@@ -18,8 +18,8 @@ constexpr double kVoxel = 0.25; // mm
 planner::SimulationSettings Settings(const std::string& stop_crater, const std::string& start_wetting) {
   planner::SimulationSettings s;
   s.voxel_mm = kVoxel;
-  s.stop_crater = stop_crater;
-  s.start_wetting = start_wetting;
+  s.stop_crater = ParseEnum<planner::StopCrater>(stop_crater).value();
+  s.start_wetting = ParseEnum<planner::StartWetting>(start_wetting).value();
   return s;
 }
 

@@ -54,7 +54,7 @@ planner::SimulationSettings Coarse() {
   s.voxel_mm = 0.5;
   s.start_length_mm = 0.0;
   s.stop_length_mm = 0.0;
-  s.curvature_width = "none";  // the planned width on the small circle, whatever the speed
+  s.curvature_width = planner::CurvatureWidth::kNone;  // the planned width on the small circle, whatever the speed
   return s;
 }
 

@@ -113,7 +113,7 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const pl
   options.step_mm = settings.step_mm;
   options.rapid_speed_mm_s = rapid_speed_mm_s;
   options.rotation_rad = settings.positioner_rotation_deg / kDeg;
-  options.positioner_per_point = settings.positioner_follow == "point";
+  options.positioner_per_point = settings.positioner_follow == planner::PositionerFollow::kPoint;
 
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";

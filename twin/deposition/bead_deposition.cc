@@ -63,8 +63,6 @@ void ValidateSimulationSettings(const planner::SimulationSettings& s) {
   WAAM_THROW_UNLESS(s.voxel_mm >= 0.1 && s.voxel_mm <= 2.0,
                     "simulation.voxel_mm = " << s.voxel_mm << ": must be in [0.1, 2] mm");
   WAAM_THROW_UNLESS(s.max_voxels >= 1, "simulation.max_voxels = 0: must be >= 1");
-  WAAM_THROW_UNLESS(s.blend == "none" || s.blend == "fixed" || s.blend == "speed",
-                    "simulation.blend = '" << s.blend << "': must be one of none, fixed, speed");
   WAAM_THROW_UNLESS(s.blend_radius_mm >= 0.0 && s.blend_radius_mm <= 100.0,
                     "simulation.blend_radius_mm = " << s.blend_radius_mm << ": must be in [0, 100] mm");
   WAAM_THROW_UNLESS(s.blend_time_s >= 0.0 && s.blend_time_s <= 10.0,
@@ -401,7 +399,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       // first metal meets a cold base, wets it poorly and sets where it lands, a hump draped over the ground under
       // it; it does not run into the valleys under its footprint as the steady hot pool does. Fades linearly to
       // the levelled pool over start_length_mm.
-      const double drape = settings_.start_wetting == "cold" && settings_.start_length_mm > 0.0
+      const double drape = settings_.start_wetting == planner::StartWetting::kCold && settings_.start_length_mm > 0.0
                                ? std::clamp(1.0 - s / settings_.start_length_mm, 0.0, 1.0)
                                : 0.0;
       const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, frame, data, last_step, drape);
