@@ -12,10 +12,10 @@ void AddPlanCommand(CLI::App& app, CommandRunner* runner) {
   CLI::App* command = app.add_subcommand(
       "plan",
       "Slice a part and plan its weld path layer by layer.\n"
-      "Reads a scenario YAML (part mesh or generator, layer height, path pattern\n"
-      "contour|zigzag|hybrid|continuous|eulerian, bead width, overlap model, void filling, process speeds; or\n"
-      "slicing.type skeleton for bent thin-walled tubes: planes along the central axis, layers of 1-2 mm thickness,\n"
-      "speed and width per point, path pattern spiral|contour) and writes to the output directory:\n"
+      "Reads a scenario YAML (part mesh or generator, layer height, path pattern " +
+          EnumNameList<planner::Pattern>("|") +
+          ",\nbead width, overlap model, void filling, process speeds; slicing.type skeleton for bent thin-walled\n"
+          "tubes plans spiral or contour only) and writes to the output directory:\n"
       "  plan.json       layers, passes (arc starts), passes_per_layer, path_elements, weld_length_mm,\n"
       "                  travel_length_mm, estimated_time_s, uncovered (share of the slice no bead covers),\n"
       "                  the mesh report\n"

@@ -232,3 +232,41 @@ TEST_F(ScenarioTest, MissingFileIsNamed) {
 
 }  // namespace
 }  // namespace waam::planner
+
+namespace waam::planner {
+namespace {
+
+// The README's table of setting names lists exactly the names of each setting's table in the code.
+template <typename E>
+void ExpectReadmeRow(const std::string& readme, const std::string& key) {
+  const std::string row = "| `" + key + "` | " + EnumNameList<E>() + " |";
+  EXPECT_NE(readme.find(row), std::string::npos) << "README.md should have the row\n" << row;
+}
+
+TEST(SettingNames, ReadmeListsEveryTable) {
+  std::ifstream in(std::filesystem::path(WAAM_SOURCE_DIR) / "README.md");
+  const std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(readme.empty());
+  ExpectReadmeRow<SlicingType>(readme, "slicing.type");
+  ExpectReadmeRow<SplitMethod>(readme, "slicing.split");
+  ExpectReadmeRow<Pattern>(readme, "path.pattern");
+  ExpectReadmeRow<OverlapModel>(readme, "path.overlap_model");
+  ExpectReadmeRow<VoidFillingMode>(readme, "path.void_filling.mode");
+  ExpectReadmeRow<BeadModel>(readme, "process.bead_model");
+  ExpectReadmeRow<Blend>(readme, "simulation.blend");
+  ExpectReadmeRow<StopCrater>(readme, "simulation.stop_crater");
+  ExpectReadmeRow<StartWetting>(readme, "simulation.start_wetting");
+  ExpectReadmeRow<CurvatureWidth>(readme, "simulation.curvature_width");
+  ExpectReadmeRow<PositionerFollow>(readme, "cell.positioner.follow");
+}
+
+TEST(SettingNames, EveryNameParsesBackToItsValue) {
+  for (const EnumName<Pattern>& entry : EnumNames(Pattern{})) {
+    EXPECT_EQ(ParseEnum<Pattern>(entry.name), entry.value);
+    EXPECT_EQ(NameOf(entry.value), entry.name);
+  }
+  EXPECT_FALSE(ParseEnum<Pattern>("zigzg").has_value());
+}
+
+}  // namespace
+}  // namespace waam::planner
