@@ -52,10 +52,14 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   loop.rapid_speed_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
   loop.wire_feed_mm_s = scenario.process.wire_feed_mm_min / 60.0;
   loop.bead_width_mm = scenario.path.bead_width_mm;
-  loop.distortion.mode = options.mode.empty() ? loop.params.mode : options.mode;
+  loop.distortion.mode =
+      options.mode.empty() ? loop.params.mode : models::ParseDistortionMode(options.mode, "distortion.mode");
   loop.distortion.element_mm = options.element_mm;
   loop.distortion.groups = options.groups;
-  loop.correction = options.correction;
+  const std::optional<twin::CorrectionMethod> correction = ParseEnum<twin::CorrectionMethod>(options.correction);
+  WAAM_THROW_UNLESS(correction.has_value(), "--correction = '" << options.correction << "': must be one of "
+                                                               << EnumNameList<twin::CorrectionMethod>());
+  loop.correction = *correction;
   loop.debug_level = options.debug_level;
   twin::ValidateDistortionOptions(loop.distortion);
   if (!options.first_scan.empty()) loop.first_scan = twin::ReadPointCloud(options.first_scan, 0.5);

@@ -54,7 +54,8 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
       options.start.empty() ? models::DefaultModelPath("distortion") : options.start;
   models::DistortionParams start = models::ReadDistortionParams(start_path);
   twin::DistortionOptions distortion;
-  distortion.mode = options.mode.empty() ? start.mode : options.mode;
+  distortion.mode =
+      options.mode.empty() ? start.mode : models::ParseDistortionMode(options.mode, "distortion.mode");
   distortion.element_mm = options.element_mm;
   distortion.groups = options.groups;
   twin::ValidateDistortionOptions(distortion);
@@ -70,7 +71,7 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
 
   out << "waam fit distortion: " << options.data.string() << " (" << scan.size() << " points) against scenario "
-      << scenario.name << ", mode " << distortion.mode << ", free " << Join(fit.free) << "\n";
+      << scenario.name << ", mode " << NameOf(distortion.mode) << ", free " << Join(fit.free) << "\n";
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);

@@ -48,8 +48,8 @@ void SolveAndReport(benchmark::State& state, const waam::twin::Depositor& deposi
                     const waam::twin::DepositHistory& history) {
   waam::models::DistortionParams params;
   waam::twin::DistortionOptions options;  // fe, 2 mm elements, 4 groups
-  options.mode = state.range(0) == 1 ? "reduced" : "fe";
-  options.solver = state.range(0) == 0 ? "ldlt" : "cg";
+  options.mode = state.range(0) == 1 ? waam::models::DistortionMode::kReduced : waam::models::DistortionMode::kFe;
+  options.solver = state.range(0) == 0 ? waam::twin::FeSolver::kLdlt : waam::twin::FeSolver::kCg;
   waam::twin::DistortionStats stats;
   for (auto _ : state) {
     const waam::twin::DistortionField field =

@@ -1,6 +1,8 @@
 // Distortion parameters: heat input per length, inherent strain law, validation and the model file.
 #include "models/distortion/distortion_params.h"
 
+#include <optional>
+
 #include <cmath>
 
 #include "models/core/error.h"
@@ -34,8 +36,13 @@ void ValidateDistortionParams(const DistortionParams& p, const std::string& wher
   range("substrate_stiffness_n_mm3", p.substrate_stiffness_n_mm3, 1e-3, 1e9);
   range("youngs_modulus_mpa", p.youngs_modulus_mpa, 1.0, 1e7);
   range("poisson", p.poisson, 0.0, 0.49);
-  WAAM_THROW_UNLESS(p.mode == "fe" || p.mode == "reduced",
-                    where << ": mode = '" << p.mode << "': must be fe or reduced");
+}
+
+DistortionMode ParseDistortionMode(const std::string& name, const std::string& where) {
+  const std::optional<DistortionMode> mode = ParseEnum<DistortionMode>(name);
+  WAAM_THROW_UNLESS(mode.has_value(),
+                    where << " = '" << name << "': must be one of " << EnumNameList<DistortionMode>());
+  return *mode;
 }
 
 nlohmann::json DistortionParamsToJson(const DistortionParams& p, const nlohmann::json* fit) {
@@ -81,7 +88,7 @@ DistortionParams ReadDistortionParams(const std::filesystem::path& path) {
   p.youngs_modulus_mpa = JsonNumber(j, "/params/youngs_modulus_mpa", where);
   p.poisson = JsonNumber(j, "/params/poisson", where);
   WAAM_THROW_UNLESS(j.contains("mode") && j["mode"].is_string(), where << ": mode is missing or not a string");
-  p.mode = j["mode"].get<std::string>();
+  p.mode = ParseDistortionMode(j["mode"].get<std::string>(), where + ": mode");
   ValidateDistortionParams(p, where);
   return p;
 }

@@ -1,12 +1,25 @@
 // Parameters of the inherent-strain distortion model: shrinkage strains, their heat-input dependence, the substrate.
 #pragma once
 
+#include <array>
+
 #include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "models/core/enum_names.h"
+
 namespace waam::models {
+
+// What the parameters drive: fe (inherent strain, linear elastic FE) or reduced (layer shrinkage + axis bending).
+enum class DistortionMode { kFe, kReduced };
+constexpr std::array<EnumName<DistortionMode>, 2> EnumNames(DistortionMode) {
+  return {{{DistortionMode::kFe, "fe"}, {DistortionMode::kReduced, "reduced"}}};
+}
+WAAM_ENUM_JSON(DistortionMode)
+// The mode named `name`; throws InputError "<where> = 'name': must be one of fe, reduced" for another name.
+DistortionMode ParseDistortionMode(const std::string& name, const std::string& where);
 
 // The fitted distortion parameters (model file models/data/distortion.json). The inherent strain of a deposited
 // voxel is eps(q) = strain x (q / reference_heat_input)^heat_exponent, q = heat input per length of its bead.
@@ -19,7 +32,7 @@ struct DistortionParams {
   double substrate_stiffness_n_mm3 = 2000.0; // Winkler modulus of the clamped substrate under the part, N/mm^3
   double youngs_modulus_mpa = 200000.0;  // E of the deposited metal at room temperature, MPa
   double poisson = 0.3;                  // nu, 1
-  std::string mode = "fe";               // model the parameters were fitted for: fe | reduced
+  DistortionMode mode = DistortionMode::kFe;  // model the parameters were fitted for
 
   // Heat input per length of a bead laid at `speed_mm_s` with wire feed `wire_feed_mm_s` (both > 0), J/mm.
   double HeatInput(double wire_feed_mm_s, double speed_mm_s) const;

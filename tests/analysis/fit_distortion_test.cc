@@ -84,7 +84,7 @@ TEST_F(FitDistortionTest, RecoversKnownParametersFromATwinScan) {
   EXPECT_NEAR(fitted.vertical_ratio, truth_->vertical_ratio, 0.02 * truth_->vertical_ratio)
       << "vertical_ratio within 2 % from a start at x1.5";
   EXPECT_EQ(fitted.heat_exponent, truth_->heat_exponent) << "a parameter not in --free keeps its start value";
-  EXPECT_EQ(fitted.mode, "reduced") << "the mode of the start file";
+  EXPECT_EQ(NameOf(fitted.mode), "reduced") << "the mode of the start file";
   const nlohmann::json j = nlohmann::json::parse(ReadFile(options.output));
   const nlohmann::json& fit = j.at("fit");
   EXPECT_EQ(fit.at("scenario"), "small_bent_tube");

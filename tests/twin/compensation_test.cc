@@ -62,8 +62,8 @@ CompensationOptions Reduced(double strain) {
   CompensationOptions o;
   o.params.strain = strain;
   o.params.heat_exponent = 1.0;
-  o.params.mode = "reduced";
-  o.distortion.mode = "reduced";
+  o.params.mode = models::DistortionMode::kReduced;
+  o.distortion.mode = models::DistortionMode::kReduced;
   o.distortion.element_mm = 1.0;
   o.max_iterations = 2;
   return o;
@@ -195,14 +195,6 @@ TEST(Compensation, DefaultToleranceIsTheNinetyNinthPercentileOfTheWallWaviness) 
   EXPECT_DOUBLE_EQ(internal::StopTolerance(0.0, w), w.max_mm)
       << "the default tolerance is the maximum waviness (003 sec. 6.5.2), not the median " << w.median_mm << " mm";
   EXPECT_DOUBLE_EQ(internal::StopTolerance(0.5, w), 0.5) << "a tolerance the user gives (--tol-mm) is kept";
-}
-
-TEST(Compensation, BadCorrectionMethodNamesTheOption) {
-  const Tube tube;
-  CompensationOptions o = Reduced(0.04);
-  o.correction = "magic";
-  EXPECT_THAT([&] { Compensate(tube.plan, tube.target, Coarse(), o); },
-              ::testing::ThrowsMessage<InputError>(HasSubstr("correction = 'magic'")));
 }
 
 }  // namespace

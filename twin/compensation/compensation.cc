@@ -251,10 +251,6 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
                     "compensation max_iterations = " << options.max_iterations << ": must be in [0, 20]");
   WAAM_THROW_UNLESS(options.tolerance_mm >= 0.0, "compensation tolerance_mm = " << options.tolerance_mm << ": must be >= 0");
   WAAM_THROW_UNLESS(!target.facets.empty(), "compensate: the target part has no facets");
-  WAAM_THROW_UNLESS(options.reference == "twin" || options.reference == "target",
-                    "compensation reference = '" << options.reference << "': must be twin or target");
-  WAAM_THROW_UNLESS(options.correction == "axis" || options.correction == "points",
-                    "compensation correction = '" << options.correction << "': must be axis or points");
   ValidateDistortionOptions(options.distortion);
   models::ValidateDistortionParams(options.params, "distortion model");
   const planner::Plan nominal = ResamplePlan(plan, options.reference_spacing_mm);
@@ -266,11 +262,11 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
   // The reference the loop drives the part to. "twin": the nominal path deposited without distortion (what the
   // process makes of the target; bead-shape errors no path shift can fix, such as arc starts and corners, are left
   // out). "target": the target mesh itself, as 003 compares scans with the CAD model (always so with a real scan).
-  const bool twin_reference = options.reference == "twin" && options.first_scan.empty();
+  const bool twin_reference = options.reference == CompensationReference::kTwin && options.first_scan.empty();
   planner::TriangleMesh reference_mesh;
   std::unique_ptr<MeshDistance> reference;
   std::vector<Eigen::Vector3d> reference_points = target_surface;
-  result.reference = twin_reference ? "twin" : "target";
+  result.reference = twin_reference ? CompensationReference::kTwin : CompensationReference::kTarget;
   // The top rim left out of the measures: two bead heights of the last layer (plus each scan's shortening).
   if (!nominal.layers.empty()) {
     double sum = 0.0;

@@ -15,7 +15,22 @@
 #include "twin/distortion/distortion.h"
 #include "twin/scanner/scan_deviation.h"
 
+#include "models/core/enum_names.h"
+
 namespace waam::twin {
+
+// What the scans are compared with: twin (the undistorted deposit of the nominal path) or target (the mesh).
+enum class CompensationReference { kTwin, kTarget };
+constexpr std::array<EnumName<CompensationReference>, 2> EnumNames(CompensationReference) {
+  return {{{CompensationReference::kTwin, "twin"}, {CompensationReference::kTarget, "target"}}};
+}
+WAAM_ENUM_JSON(CompensationReference)
+// How S_i is estimated: axis (central-axis offset + per-point cross section) or points (per point only).
+enum class CorrectionMethod { kAxis, kPoints };
+constexpr std::array<EnumName<CorrectionMethod>, 2> EnumNames(CorrectionMethod) {
+  return {{{CorrectionMethod::kAxis, "axis"}, {CorrectionMethod::kPoints, "points"}}};
+}
+WAAM_ENUM_JSON(CorrectionMethod)
 
 struct CompensationOptions {
   int max_iterations = 3;            // compensated builds after the first (uncompensated) one, >= 0
@@ -27,8 +42,8 @@ struct CompensationOptions {
   double bead_width_mm = 6.0;        // planned bead width, mm (scan neighbourhood and waviness margin)
   models::DistortionParams params;
   DistortionOptions distortion;
-  std::string reference = "twin";    // twin: the undistorted deposit of the nominal path | target: the mesh
-  std::string correction = "axis";   // axis: central-axis offset + per-point cross section | points: per point only
+  CompensationReference reference = CompensationReference::kTwin;
+  CorrectionMethod correction = CorrectionMethod::kAxis;
   std::vector<Eigen::Vector3d> first_scan;  // a real scan of the first part (part frame, mm); empty = simulate it
   // Diagnostics on stderr: 0 none, 1 the waviness, top band and correction error every tenth layer, 2 every layer.
   int debug_level = 0;
@@ -60,7 +75,7 @@ struct CompensationResult {
   std::string status;                // converged | max_iterations | diverging
   std::string message;               // one line for the user
   double tolerance_mm = 0.0;
-  std::string reference;             // what the deviations are measured against: twin | target
+  CompensationReference reference = CompensationReference::kTwin;  // what the deviations are measured against
   double waviness_mm = 0.0;          // maximum side-wall W_t of the undistorted twin part (99th pct. of 4 mm cells), mm
   double waviness_median_mm = 0.0;   // its typical W_t (median of the cells), mm
   double top_band_mm = 0.0;          // two bead heights of the last layer: the least top rim left out, mm

@@ -270,8 +270,8 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
                                                               const MeshDistance& reference_distance,
                                                               const std::vector<Eigen::Vector3d>& reference_points,
                                                               double bead_width_mm, double axis_step_mm,
-                                                              const std::string& method, int debug_level) {
-  if (method == "points") return LocalCorrections(nominal, scan, bead_width_mm);
+                                                              CorrectionMethod method, int debug_level) {
+  if (method == CorrectionMethod::kPoints) return LocalCorrections(nominal, scan, bead_width_mm);
   const SectionShift sections = MeasureSectionShift(reference_points, scan_points, axis_step_mm);
   // The scan moved back by the axis offset and the outline move of its section, measured again against the reference.
   std::vector<Eigen::Vector3d> recentred(scan.points.size());

@@ -56,14 +56,14 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
 // The corrections S_i (mm, in each layer's plane) of every point of `nominal` from `scan` (deviations against
 // `reference_distance`, the reference surface whose points are `reference_points`; the top rim left out) and
 // `scan_points` (the whole scan, rim included, for the cross sections: a station through the rim is a whole ring).
-//   method "points": S_i = mean of d_j n_j over the scan points near r_i in its layer band (closest-point only).
-//   method "axis":   S_i = axis offset + outline move at r_i + the same mean measured on the scan moved back by both.
+//   method kPoints: S_i = mean of d_j n_j over the scan points near r_i in its layer band (closest-point only).
+//   method kAxis:   S_i = axis offset + outline move at r_i + the same mean measured on the scan moved back by both.
 std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Plan& nominal, const ScanDeviation& scan,
                                                               const std::vector<Eigen::Vector3d>& scan_points,
                                                               const MeshDistance& reference_distance,
                                                               const std::vector<Eigen::Vector3d>& reference_points,
                                                               double bead_width_mm, double axis_step_mm,
-                                                              const std::string& method, int debug_level);
+                                                              CorrectionMethod method, int debug_level);
 
 // Side-wall waviness of the undistorted twin part: scan points off the top and bottom faces are binned by their
 // closest target point in cubes of `cell_mm` (about three layers) and each bin's peak-to-valley of the deviation is

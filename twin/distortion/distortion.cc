@@ -15,13 +15,9 @@
 namespace waam::twin {
 
 void ValidateDistortionOptions(const DistortionOptions& o) {
-  WAAM_THROW_UNLESS(o.mode == "fe" || o.mode == "reduced",
-                    "distortion.mode = '" << o.mode << "': must be fe or reduced");
   WAAM_THROW_UNLESS(o.element_mm > 0.0 && o.element_mm <= 50.0,
                     "distortion.element_mm = " << o.element_mm << ": must be in (0, 50] mm");
   WAAM_THROW_UNLESS(o.groups >= 1 && o.groups <= 1000, "distortion.groups = " << o.groups << ": must be in [1, 1000]");
-  WAAM_THROW_UNLESS(o.solver == "ldlt" || o.solver == "cg",
-                    "distortion.solver = '" << o.solver << "': must be ldlt or cg");
 }
 
 DistortionField::DistortionField(double element_mm, std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes,
@@ -89,7 +85,7 @@ DistortionField ComputeDistortion(const VoxelGrid& grid, const DepositHistory& h
   s = DistortionStats{};
   s.elements = mesh.elements.size();
   s.nodes = mesh.node_ijk.size();
-  const std::vector<Eigen::Vector3d> u = options.mode == "reduced"
+  const std::vector<Eigen::Vector3d> u = options.mode == models::DistortionMode::kReduced
                                              ? internal::SolveReduced(mesh, history, params)
                                              : internal::SolveInherentStrain(mesh, params, options, &s);
   std::unordered_map<std::uint64_t, Eigen::Vector3d> nodes;

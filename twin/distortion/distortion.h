@@ -16,11 +16,18 @@
 
 namespace waam::twin {
 
+// The FE system's solver: cg (ConjugateGradient, incomplete Cholesky; half the time and memory) or ldlt.
+enum class FeSolver { kCg, kLdlt };
+constexpr std::array<EnumName<FeSolver>, 2> EnumNames(FeSolver) {
+  return {{{FeSolver::kCg, "cg"}, {FeSolver::kLdlt, "ldlt"}}};
+}
+WAAM_ENUM_JSON(FeSolver)
+
 struct DistortionOptions {
-  std::string mode = "fe";      // fe: inherent strain, linear elastic FE; reduced: layer shrinkage + axis bending
+  models::DistortionMode mode = models::DistortionMode::kFe;
   double element_mm = 2.0;      // edge of the hexahedral elements, mm (rounded to a whole number of voxels)
   int groups = 4;               // layer groups activated one after the other (fe), >= 1
-  std::string solver = "cg";    // cg (ConjugateGradient, incomplete Cholesky; half the time and memory) | ldlt
+  FeSolver solver = FeSolver::kCg;
 };
 
 // Throws InputError "distortion.<field> = value: must be ..." for an option out of range.

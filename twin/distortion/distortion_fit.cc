@@ -104,7 +104,7 @@ class IterationReporter : public ceres::IterationCallback {
 
 }  // namespace
 
-void ValidateDistortionFitOptions(const DistortionFitOptions& fit, const std::string& mode) {
+void ValidateDistortionFitOptions(const DistortionFitOptions& fit, models::DistortionMode mode) {
   WAAM_THROW_UNLESS(!fit.free.empty(), "distortion fit: no free parameter");
   for (std::size_t k = 0; k < fit.free.size(); ++k) {
     const std::string& name = fit.free[k];
@@ -116,7 +116,7 @@ void ValidateDistortionFitOptions(const DistortionFitOptions& fit, const std::st
       WAAM_THROW_UNLESS(fit.free[j] != name, "distortion fit: free parameter '" << name << "' is given twice");
     }
     // The reduced model has no substrate: its stiffness would be a free parameter with a zero Jacobian column.
-    WAAM_THROW_UNLESS(!(mode == "reduced" && name == "substrate_stiffness_n_mm3"),
+    WAAM_THROW_UNLESS(!(mode == models::DistortionMode::kReduced && name == "substrate_stiffness_n_mm3"),
                       "distortion fit: free parameter 'substrate_stiffness_n_mm3' has no effect in mode reduced "
                       "(no substrate compliance): fit it in mode fe");
   }

@@ -24,7 +24,7 @@ struct DistortionFitOptions {
 
 // Throws InputError naming the option for an unknown or repeated free parameter, one that has no effect in distortion
 // mode `mode` (substrate_stiffness_n_mm3 in reduced mode), max_points < 10 or max_iterations outside [1, 1000].
-void ValidateDistortionFitOptions(const DistortionFitOptions& fit, const std::string& mode);
+void ValidateDistortionFitOptions(const DistortionFitOptions& fit, models::DistortionMode mode);
 
 struct DistortionFitResult {
   models::DistortionParams params;   // the start with the free parameters replaced by the fit

@@ -188,7 +188,7 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
       }
     }
     Eigen::VectorXd du;
-    if (options.solver == "cg") {
+    if (options.solver == FeSolver::kCg) {
       Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::IncompleteCholesky<double>> cg;
       cg.setTolerance(1e-8);
       cg.setMaxIterations(20000);
