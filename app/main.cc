@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
@@ -17,7 +18,9 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 1 internal error, 2 bad input, 3 check found violations, 130 interrupted.",
       "waam"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "waam 0.1.0");
+  app.set_version_flag("--version", [] {
+    return "waam " + waam::VersionString() + "\ndata: " + waam::DataDir().string();
+  });
 
   CommandRunner runner;
   AddPlanCommand(app, &runner);

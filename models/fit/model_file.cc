@@ -1,17 +1,15 @@
 // Model JSON files: checked reading, atomic writing, the default model folder.
 #include "models/fit/model_file.h"
 
+#include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 
-#ifndef WAAM_MODELS_DATA_DIR
-#error "WAAM_MODELS_DATA_DIR must be defined by models/CMakeLists.txt"
-#endif
 
 namespace waam::models {
 
 std::filesystem::path DefaultModelPath(const std::string& name) {
-  return std::filesystem::path(WAAM_MODELS_DATA_DIR) / (name + ".json");
+  return DataDir() / "models" / "data" / (name + ".json");
 }
 
 nlohmann::json ReadModelJson(const std::filesystem::path& path, std::string_view expected_model) {

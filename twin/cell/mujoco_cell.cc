@@ -10,12 +10,10 @@
 
 #include <mujoco/mujoco.h>
 
+#include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
 
-#ifndef WAAM_CELL_DATA_DIR
-#error "WAAM_CELL_DATA_DIR must point at twin/data"
-#endif
 
 namespace waam::twin {
 namespace fs = std::filesystem;
@@ -316,7 +314,7 @@ std::shared_ptr<const CellModel::Impl> BuildModel(const fs::path& mjcf, const Ei
 
 }  // namespace
 
-fs::path CellModel::BuiltinModelPath() { return fs::path(WAAM_CELL_DATA_DIR) / "cell_arcmate100ic.xml"; }
+fs::path CellModel::BuiltinModelPath() { return DataDir() / "twin" / "data" / "cell_arcmate100ic.xml"; }
 
 CellModel::CellModel(const fs::path& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB)
     : impl_(BuildModel(mjcf, &X_WR, &X_WB)) {}

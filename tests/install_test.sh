@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the build in $1 to a temporary prefix, moves the prefix, and checks from another folder that the installed
+# waam says its version, finds its data under the moved prefix (not the source tree) and plans and checks a scenario.
+set -euo pipefail
+build=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/first" >/dev/null
+mv "$work/first" "$work/moved"
+mkdir -p "$work/elsewhere"
+cd "$work/elsewhere"
+unset WAAM_DATA_DIR
+version=$("$work/moved/bin/waam" --version)
+echo "$version"
+grep -q "^waam [0-9][0-9.]* (commit " <<<"$version" || { echo "FAIL: --version says '$version'"; exit 1; }
+grep -qx "data: $work/moved/share/waam-twin" <<<"$version" || { echo "FAIL: data not under the moved prefix"; exit 1; }
+"$work/moved/bin/waam" check "$work/moved/share/waam-twin/scenarios/cell/cell_ok.yaml" -o out -q --no-images \
+  || { echo "FAIL: the installed waam could not check an installed scenario"; exit 1; }
+test -s out/check.json || { echo "FAIL: no check.json"; exit 1; }
+echo "installed, moved and ran from $work/elsewhere"
