@@ -15,6 +15,7 @@
 #include <cstring>
 #include <thread>
 
+#include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"
@@ -122,7 +123,7 @@ nlohmann::json BenchOne(const fs::path& file, const std::string& id, const Bench
   // The scenario is read here first so that a bad file is reported without starting a child.
   int expected = 0;
   try {
-    const planner::Scenario scenario = planner::LoadScenario(file, options.overrides);
+    const Scenario scenario = LoadScenario(file, options.overrides);
     entry["scenario"] = scenario.name;
     expected = scenario.run.expected_exit_code;
   } catch (const InputError& e) {

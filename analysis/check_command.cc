@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/numbers.h"
@@ -24,7 +25,7 @@ constexpr std::size_t kMaxViolationsListed = 1000;
 
 }  // namespace
 
-nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mjcf, const twin::CheckReport& report) {
+nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const twin::CheckReport& report) {
   nlohmann::json violations = nlohmann::json::array();
   for (std::size_t i = 0; i < report.violations.size() && i < kMaxViolationsListed; ++i) {
     const twin::CheckViolation& v = report.violations[i];
@@ -52,7 +53,7 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
   }
   nlohmann::json accel = nlohmann::json::object();
   for (int a = 0; a < 8; ++a) accel[twin::AxisName(a)] = Finite(report.max_accel_deg_s2[a]);
-  const planner::CellSettings& c = scenario.cell;
+  const twin::CellSettings& c = scenario.cell;
   const int worst_point = report.motion.empty() ? 0 : report.motion[report.worst_sample].point;
   return {
       {"scenario", scenario.name},
@@ -89,7 +90,7 @@ nlohmann::json CheckToJson(const planner::Scenario& scenario, const fs::path& mj
   };
 }
 
-twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planner::Plan& plan,
+twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& plan,
                                  const CheckOptions& options) {
   EnsureOutputDirectory(options.out_dir);
   const twin::CellModel cell = twin::LoadCell(scenario.cell);

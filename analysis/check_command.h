@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/scenario.h"
 #include "planner/path/tool_path.h"
 #include "planner/scenario/scenario.h"
 #include "twin/cell/cell_check.h"
@@ -27,11 +28,11 @@ struct CheckOptions {
 twin::CheckReport RunCheck(const CheckOptions& options);
 
 // Checks an already planned `plan` of `scenario` and writes the outputs (check.json last).
-twin::CheckReport RunCheckOnPlan(const planner::Scenario& scenario, const planner::Plan& plan,
+twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& plan,
                                  const CheckOptions& options);
 
 // The check.json document (field names are the public contract documented in the README).
-nlohmann::json CheckToJson(const planner::Scenario& scenario, const std::filesystem::path& mjcf,
+nlohmann::json CheckToJson(const Scenario& scenario, const std::filesystem::path& mjcf,
                            const twin::CheckReport& report);
 
 // Draws the cell's collision shapes at the report's worst sample (side and top views) with the path and the

@@ -1,13 +1,14 @@
 // `waam check` from a scenario file: plan the part, then check the plan on the cell.
 #include "analysis/check_command.h"
 
+#include "analysis/scenario.h"
 #include "models/core/progress.h"
 #include "planner/planar_planner.h"
 
 namespace waam::analysis {
 
 twin::CheckReport RunCheck(const CheckOptions& options) {
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);

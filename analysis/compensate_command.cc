@@ -4,6 +4,7 @@
 #include "analysis/check_command.h"
 #include "analysis/distortion_command.h"
 #include "analysis/plan_command.h"
+#include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"
@@ -42,7 +43,7 @@ nlohmann::json IterationJson(const twin::CompensationIteration& it) {
 }  // namespace
 
 twin::CompensationResult RunCompensate(const CompensateOptions& options) {
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   const std::filesystem::path model_path =
       options.model.empty() ? models::DefaultModelPath("distortion") : options.model;
   twin::CompensationOptions loop;

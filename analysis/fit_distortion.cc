@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "analysis/fit_internal.h"
+#include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/progress.h"
 #include "models/distortion/distortion_params.h"
@@ -68,7 +69,7 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   const std::vector<Eigen::Vector3d> scan = twin::ReadPointCloud(options.data, kStlSpacingMm);
   WAAM_THROW_UNLESS(scan.size() >= 10, options.data.string() << ": the scan has " << scan.size()
                                                              << " points: the fit needs at least 10");
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
 
   out << "waam fit distortion: " << options.data.string() << " (" << scan.size() << " points) against scenario "
       << scenario.name << ", mode " << NameOf(distortion.mode) << ", free " << Join(fit.free) << "\n";

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"
@@ -21,7 +22,7 @@ namespace fs = std::filesystem;
 // `waam plan` warns when the beads leave more than this share of the sliced area uncovered, per cent.
 constexpr double kUncoveredWarningPct = 5.0;
 
-nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::PlanResult& result) {
+nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& result) {
   const planner::MeshReport& mesh = result.mesh_report;
   const planner::PathStats& stats = result.stats;
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -141,7 +142,7 @@ nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::Plan
 }
 
 planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_out) {
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   EnsureOutputDirectory(options.out_dir);
 
   planner::PlanResult result;

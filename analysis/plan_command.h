@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/scenario.h"
 #include "planner/planar_planner.h"
 
 namespace waam::analysis {
@@ -25,7 +26,7 @@ struct PlanOptions {
 planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary = nullptr);
 
 // The plan.json document (the public contract: field names are documented in the README).
-nlohmann::json PlanToJson(const planner::Scenario& scenario, const planner::PlanResult& result);
+nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& result);
 
 // Writes every layer's path points to an HDF5 file (see the README for the layout).
 void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "analysis/run_steps.h"
+#include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "planner/scenario/scenario.h"
@@ -33,7 +34,7 @@ const internal::RunStep* FindStep(const std::string& name) {
 
 // The steps to run: the options' list, else the scenario's run.steps, else the default chain. Unknown names,
 // repeats and a step listed before the step it needs are refused naming where the list came from.
-std::vector<const internal::RunStep*> ResolveSteps(const planner::Scenario& scenario, const RunOptions& options) {
+std::vector<const internal::RunStep*> ResolveSteps(const Scenario& scenario, const RunOptions& options) {
   std::vector<std::string> names = options.steps;
   std::string where = "--steps";
   if (names.empty() && !scenario.run.steps.empty()) {
@@ -80,7 +81,7 @@ std::vector<std::string> RunStepNames() {
 RunSummary RunScenario(const RunOptions& options) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   const std::vector<const internal::RunStep*> steps = ResolveSteps(scenario, options);
   EnsureOutputDirectory(options.out_dir);
   // A summary.json from an earlier run must not describe this one while it is being replaced.

@@ -5,6 +5,7 @@
 
 #include "analysis/check_command.h"
 #include "analysis/plan_command.h"
+#include "analysis/scenario.h"
 #include "analysis/simulate_command.h"
 #include "models/core/files.h"
 
@@ -13,8 +14,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool Always(const planner::Scenario&) { return true; }
-bool WhenListed(const planner::Scenario&) { return false; }  // only when run.steps or --steps names it
+bool Always(const Scenario&) { return true; }
+bool WhenListed(const Scenario&) { return false; }  // only when run.steps or --steps names it
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/run_command.h"
+#include "analysis/scenario.h"
 #include "planner/planar_planner.h"
 #include "planner/scenario/scenario.h"
 
@@ -16,7 +17,7 @@ namespace waam::analysis::internal {
 
 // What the steps of one run share: the scenario, the options, and what earlier steps produced.
 struct RunContext {
-  const planner::Scenario& scenario;
+  const Scenario& scenario;
   const RunOptions& options;
   std::optional<planner::PlanResult> planned;  // set by the plan step
   nlohmann::json results = nlohmann::json::object();  // each finished step's full JSON document, by step name
@@ -34,7 +35,7 @@ using StepFunction = StepOutcome (*)(RunContext& context, const std::filesystem:
 struct RunStep {
   const char* name;                              // the step's name in run.steps and its output folder
   const char* needs;                             // a step that must have run before (nullptr: none)
-  bool (*in_default_chain)(const planner::Scenario&);  // true: run when the scenario lists no steps
+  bool (*in_default_chain)(const Scenario&);  // true: run when the scenario lists no steps
   StepFunction run;
   const char* main_output;                       // the file marking the step complete, relative to its folder
 };

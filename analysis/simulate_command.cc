@@ -1,6 +1,7 @@
 // `waam simulate` without the planning step: deposit, scan, and write the outputs.
 #include "analysis/simulate_command.h"
 
+#include "analysis/scenario.h"
 #include "planner/mesh/stl_io.h"
 
 #include <sys/resource.h>
@@ -17,10 +18,10 @@
 
 namespace waam::analysis {
 
-nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::TwinResult& result) {
+nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult& result) {
   const twin::TwinMeasures& m = result.measures;
   const twin::VoidReport& voids = result.voids;
-  const planner::SimulationSettings& s = scenario.simulation;
+  const twin::SimulationSettings& s = scenario.simulation;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double seconds = std::max(m.deposition_s, 1e-9);
@@ -84,11 +85,11 @@ nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::T
   };
 }
 
-twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planner::PlanResult& planned,
+twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanResult& planned,
                                  const SimulateOptions& options) {
   EnsureOutputDirectory(options.out_dir);
   RunOutputs outputs(options.out_dir / "simulate.json");
-  const planner::SimulationSettings& settings = scenario.simulation;
+  const twin::SimulationSettings& settings = scenario.simulation;
   // Refuse up front what cannot fit: the expected bead volume in voxels against the limit.
   double weld_mm3 = 0.0;
   for (const planner::LayerPath& layer : planned.plan.layers) {

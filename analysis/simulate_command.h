@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/scenario.h"
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/planar_planner.h"
 #include "planner/scenario/scenario.h"
@@ -30,11 +31,11 @@ twin::TwinMeasures RunSimulate(const SimulateOptions& options);
 // Deposits and measures an already planned scenario and writes every output atomically: part.stl, part.h5,
 // top_height.png, section_xz.png, section_yz.png, deviation_map.png, and simulate.json last (its presence marks a
 // complete run). The target of the deviation and voids is `planned.mesh` when it has facets.
-twin::TwinResult SimulatePlanned(const planner::Scenario& scenario, const planner::PlanResult& planned,
+twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanResult& planned,
                                  const SimulateOptions& options);
 
 // The simulate.json document (the public contract; fields documented in `waam simulate --help`).
-nlohmann::json SimulationToJson(const planner::Scenario& scenario, const twin::TwinResult& result);
+nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult& result);
 
 // Writes the voxel grid and the top height map to HDF5: /voxels/{ijk (N x 3 int32), bead (N uint32),
 // layer (N int32), time_s (N float32)}, /top_height_mm (ny x nx float32, NaN where empty), /beads table,

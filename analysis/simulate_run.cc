@@ -1,12 +1,13 @@
 // RunSimulate: the planning step of `waam simulate` (kept apart so the twin's outputs can be tested on hand-made
 // plans).
+#include "analysis/scenario.h"
 #include "analysis/simulate_command.h"
 #include "models/core/progress.h"
 
 namespace waam::analysis {
 
 twin::TwinMeasures RunSimulate(const SimulateOptions& options) {
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario, options.overrides);
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "analysis/scenario.h"
 #include "analysis/tune_voids_internal.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -71,7 +72,7 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
   Validate(options);
   std::vector<std::string> overrides = options.overrides;
   overrides.push_back("path.void_filling.mode=none");
-  const planner::Scenario scenario = planner::LoadScenario(options.scenario, overrides);
+  const Scenario scenario = LoadScenario(options.scenario, overrides);
   const planner::PlanResult planned = planner::PlanScenario(scenario, nullptr);
   WAAM_THROW_UNLESS(static_cast<int>(planned.plan.layers.size()) >= options.layers,
                     "tune-voids --layers = " << options.layers << ": the part has only " << planned.plan.layers.size()

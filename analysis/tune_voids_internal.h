@@ -9,7 +9,7 @@
 #include "analysis/tune_voids_command.h"
 #include "planner/path/tool_path.h"
 #include "planner/path/void_filling.h"
-#include "planner/scenario/simulation_settings.h"
+#include "twin/simulation_settings.h"
 
 namespace waam::analysis::internal {
 
@@ -27,7 +27,7 @@ planner::Plan TrialPlan(const planner::Plan& base, int layers, const planner::Vo
 
 // Deposits `plan` and measures the junction (see TuneTrial); writes a PNG section at mid-height to `picture` when
 // it is not empty. Throws InputError for invalid simulation settings.
-TuneTrial SimulateTrial(const planner::Plan& plan, const planner::SimulationSettings& settings,
+TuneTrial SimulateTrial(const planner::Plan& plan, const twin::SimulationSettings& settings,
                         double rapid_speed_mm_s, const JunctionCrop& crop, const std::filesystem::path& picture);
 
 }  // namespace waam::analysis::internal

@@ -111,7 +111,7 @@ planner::Plan TrialPlan(const planner::Plan& base, int layers, const planner::Vo
   return plan;
 }
 
-TuneTrial SimulateTrial(const planner::Plan& plan, const planner::SimulationSettings& settings,
+TuneTrial SimulateTrial(const planner::Plan& plan, const twin::SimulationSettings& settings,
                         double rapid_speed_mm_s, const JunctionCrop& crop, const std::filesystem::path& picture) {
   const twin::Depositor deposit = twin::DepositPlan(plan, settings, rapid_speed_mm_s, nullptr);
   const double v = settings.voxel_mm;

@@ -4,14 +4,14 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "analysis/scenario.h"
 #include "fuzz/fuzz_input.h"
 #include "models/core/error.h"
-#include "planner/scenario/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = waam::fuzz::WriteScratchFile("scenario.yaml", data, size);
   try {
-    (void)waam::planner::LoadScenario(path);
+    (void)waam::analysis::LoadScenario(path);
   } catch (const waam::InputError&) {
   }
   return 0;

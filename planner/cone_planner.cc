@@ -111,7 +111,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
   // The model is used only where it describes the bead: corners count as straight and tight curves as the
   // smallest radius of its data (CswModel::ApplicableRadius, the twin's rule too).
   auto model_radius = [&](double radius_mm) {
-    return models::CswModel::ApplicableRadius(radius_mm, width, scenario.simulation.csw_min_radius_mm);
+    return models::CswModel::ApplicableRadius(radius_mm, width, scenario.process.csw_min_radius_mm);
   };
   auto speed_for = [&](double radius_mm, models::SpeedClamp* clamp) {
     if (!csw) return process.travel_speed_mm_min;

@@ -5,7 +5,7 @@
 # the growing corpus stays in build-fuzz/corpus/<target>, crashing inputs go to build-fuzz/artifacts/<target>/.
 # The 60 s timeout is for a shared, loaded machine (a unit normally takes milliseconds); a real hang still trips it.
 # Keep every crashing input in fuzz/regressions/<target>/ once fixed: the normal build replays them
-# (tests/planner/fuzz_regressions_test.cc).
+# (tests/analysis/fuzz_regressions_test.cc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)

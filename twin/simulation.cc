@@ -45,7 +45,7 @@ double SectionWaviness(const HeightMap& map, const std::vector<planner::PolygonW
 }  // namespace
 
 TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh* target,
-                         const planner::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
+                         const twin::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
                          const PassCallback& on_pass) {
   WAAM_THROW_UNLESS(bead_width_mm > 0.0, "simulate: bead width = " << bead_width_mm << " mm: must be > 0");
   const auto start = std::chrono::steady_clock::now();

@@ -6,7 +6,7 @@
 
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
-#include "planner/scenario/simulation_settings.h"
+#include "twin/simulation_settings.h"
 #include "twin/deposition/bead_deposition.h"
 #include "twin/scanner/deviation.h"
 #include "twin/scanner/surface_metrics.h"
@@ -51,7 +51,7 @@ struct TwinResult {
 // pass. Throws InputError for invalid settings or past the voxel limit.
 using PassCallback = std::function<void(std::size_t done, std::size_t total)>;
 TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh* target,
-                         const planner::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
+                         const twin::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
                          const PassCallback& on_pass);
 
 }  // namespace waam::twin

@@ -17,7 +17,7 @@ planner::Plan BuildHour() { return twin::testing::RectangleWall(73, 200.0, 150.0
 // Full check: motion (positioner angles, IK, time stamps) and every check.
 void BM_CheckBuildHour(benchmark::State& state) {
   const planner::Plan plan = BuildHour();
-  const planner::CellSettings settings;
+  const twin::CellSettings settings;
   const twin::CellModel cell = twin::LoadCell(settings);
   std::size_t samples = 0;
   bool ok = true;
@@ -37,8 +37,8 @@ BENCHMARK(BM_CheckBuildHour)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 // The kinematics alone: positioner angles and closed-form IK with branch continuity for every sample.
 void BM_MotionBuildHour(benchmark::State& state) {
   const planner::Plan plan = BuildHour();
-  const twin::CellModel cell = twin::LoadCell(planner::CellSettings{});
-  const planner::CellKinematics kin = twin::PartKinematics(cell, planner::CellSettings{});
+  const twin::CellModel cell = twin::LoadCell(twin::CellSettings{});
+  const planner::CellKinematics kin = twin::PartKinematics(cell, twin::CellSettings{});
   planner::MotionOptions options;
   std::size_t samples = 0;
   for (auto _ : state) {

@@ -66,7 +66,7 @@ void Report(benchmark::State& state, const waam::twin::Depositor& d, double seco
 // About one build hour: a 100 x 100 mm block of 24 layers, 6 mm beads at 8 mm/s: 51 m of bead, 106 min of arc
 // time. Argument: voxel size in 1/100 mm.
 void BM_DepositBuildHour(benchmark::State& state) {
-  waam::planner::SimulationSettings settings;
+  waam::twin::SimulationSettings settings;
   settings.voxel_mm = state.range(0) / 100.0;
   const Plan plan = SerpentineBlock(100.0, 24, 6.0, 2.0, 8.0);
   for (auto _ : state) {
@@ -82,7 +82,7 @@ BENCHMARK(BM_DepositBuildHour)->Arg(100)->Arg(50)->Arg(25)->UseManualTime()->Ite
 // The largest part of the brief: a 200 x 200 mm block 100 mm high (56 layers, about 500 m of bead) at 0.5 mm, for
 // the peak memory.
 void BM_DepositLargePart(benchmark::State& state) {
-  waam::planner::SimulationSettings settings;
+  waam::twin::SimulationSettings settings;
   settings.voxel_mm = 0.5;
   const Plan plan = SerpentineBlock(200.0, 56, 6.0, 2.0, 8.0);
   for (auto _ : state) {

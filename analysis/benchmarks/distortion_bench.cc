@@ -9,6 +9,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "analysis/scenario.h"
 #include "models/core/numbers.h"
 #include "planner/path/tool_path.h"
 #include "planner/planar_planner.h"
@@ -71,7 +72,7 @@ void SolveAndReport(benchmark::State& state, const waam::twin::Depositor& deposi
 void BM_DistortionSolvePartI(benchmark::State& state) {
   // Part I: 100 mm tube; bent axis of radius 150 mm over 90 degrees is about 235 mm long; layers 1-2 mm (Table 16).
   const waam::planner::Plan plan = Tube(50.0, 157, 5.0, 1.5, 8.0);
-  waam::planner::SimulationSettings settings;  // default voxel_mm 0.5
+  waam::twin::SimulationSettings settings;  // default voxel_mm 0.5
   const waam::twin::Depositor depositor = waam::twin::DepositPlan(plan, settings, 100.0, nullptr);
   const waam::twin::DepositHistory history(plan, depositor, settings, 100.0, 53.3);
   SolveAndReport(state, depositor, history);
@@ -79,8 +80,8 @@ void BM_DistortionSolvePartI(benchmark::State& state) {
 BENCHMARK(BM_DistortionSolvePartI)->Arg(0)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond);
 
 void BM_DistortionSolveBentPartI(benchmark::State& state) {
-  const waam::planner::Scenario scenario =
-      waam::planner::LoadScenario(std::filesystem::path(WAAM_SOURCE_DIR) / "scenarios/tubes/part_1.yaml");
+  const waam::analysis::Scenario scenario =
+      waam::analysis::LoadScenario(std::filesystem::path(WAAM_SOURCE_DIR) / "scenarios/tubes/part_1.yaml");
   const waam::planner::Plan plan = waam::planner::PlanScenario(scenario, nullptr).plan;
   const double rapid = scenario.process.rapid_speed_mm_min / 60.0;
   const waam::twin::Depositor depositor = waam::twin::DepositPlan(plan, scenario.simulation, rapid, nullptr);

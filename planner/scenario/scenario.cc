@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "models/core/error.h"
-#include "planner/scenario/cell_section.h"
 #include "planner/scenario/yaml_fields.h"
 
 namespace waam::planner {
@@ -82,13 +81,19 @@ void ApplyOverride(YAML::Node root, const std::string& override_text) {
 
 }  // namespace
 
-Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& overrides) {
+namespace internal {
+
+YamlMap LoadScenarioTop(const fs::path& file, const std::vector<std::string>& overrides) {
+  YAML::Node root = LoadYamlFile(file.string());
+  for (const std::string& override_text : overrides) ApplyOverride(root, override_text);
+  return YamlMap(root, "", file.string());
+}
+
+Scenario ParsePlannerSections(YamlMap& top) {
   Scenario scenario;
   std::error_code ec;
-  scenario.file = fs::absolute(file, ec).lexically_normal();
-  YAML::Node root = internal::LoadYamlFile(file.string());
-  for (const std::string& override_text : overrides) ApplyOverride(root, override_text);
-  YamlMap top(root, "", file.string());
+  scenario.file = fs::absolute(top.file(), ec).lexically_normal();
+  const YAML::Node root = top.node();
 
   scenario.name = top.String("name");
   WAAM_THROW_UNLESS(!scenario.name.empty(), top.Where("name") << ": must not be empty");
@@ -221,11 +226,14 @@ Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& over
     process.CheckNoUnknownKeys();
   }
 
-  scenario.cell = internal::ParseCellSection(top, scenario.file.parent_path());
-  internal::ParseSimulationSection(top, &scenario.simulation, scenario.file.parent_path());
-  internal::ParseRunSection(top, &scenario.run);
-  top.CheckNoUnknownKeys();
   return scenario;
+}
+
+}  // namespace internal
+
+Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& overrides) {
+  YamlMap top = internal::LoadScenarioTop(file, overrides);
+  return internal::ParsePlannerSections(top);
 }
 
 }  // namespace waam::planner

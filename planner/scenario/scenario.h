@@ -10,9 +10,6 @@
 
 #include "models/core/enum_names.h"
 #include "planner/path/pattern_names.h"
-#include "planner/scenario/cell_settings.h"
-#include "planner/scenario/run_settings.h"
-#include "planner/scenario/simulation_settings.h"
 #include "planner/scenario/void_filling_settings.h"
 
 namespace waam::planner {
@@ -106,6 +103,10 @@ struct ProcessSettings {
   std::filesystem::path speed_height_model;  // model JSON (waam fit speed-height); empty = models/data default
   std::filesystem::path width_height_model;  // model JSON (waam fit width-height); empty = models/data default
   double rapid_speed_mm_min = 6000.0;  // arc-off travel moves
+  // Curvature radii below this count as this in the CSW speed choice (bead_model csw): the smallest radius the CSW
+  // model was fitted to. Its key is the twin's simulation.csw_min_radius_mm (the twin widens beads by the same rule);
+  // the full scenario loader (analysis/scenario.h) copies it here.
+  double csw_min_radius_mm = 30.0;
 };
 
 struct Scenario {
@@ -115,13 +116,12 @@ struct Scenario {
   SlicingSettings slicing;
   PathSettings path;
   ProcessSettings process;
-  CellSettings cell;                 // optional `cell:` section (planner/scenario/cell_settings.h)
-  SimulationSettings simulation;     // optional section `simulation` (voxel twin)
-  RunSettings run;                   // optional section `run` (the steps of `waam run`, planner/scenario/run_settings.h)
 };
 
-// Loads and validates a scenario file. Unknown keys, wrong types and out-of-range values throw InputError naming
-// the file, line and key path (e.g. "s.yaml:7: slicing.layer_height_mm = -1: must be in [0.05, 20]").
+// Loads and validates the planner's sections of a scenario file (name, part, slicing, path, process). Unknown keys,
+// wrong types and out-of-range values in them throw InputError naming the file, line and key path (e.g.
+// "s.yaml:7: slicing.layer_height_mm = -1: must be in [0.05, 20]"). The sections other modules own (cell,
+// simulation, run) are left to them: analysis::LoadScenario reads the whole file and refuses unknown top-level keys.
 // `overrides` are "key.path=value" strings (the CLI's --set) applied to the YAML before validation, so a sweep can
 // vary one setting without editing the file; a malformed override throws InputError naming it.
 Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});

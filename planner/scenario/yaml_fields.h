@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "models/core/enum_names.h"
+#include "planner/scenario/scenario.h"
 
 namespace waam::planner::internal {
 
@@ -50,6 +52,8 @@ class YamlMap {
   // A list of mappings.
   std::vector<YamlMap> Maps(const std::string& key);
 
+  // The mapping itself.
+  const YAML::Node& node() const { return node_; }
   // Throws InputError naming the first key that no accessor asked for.
   void CheckNoUnknownKeys() const;
 
@@ -76,5 +80,10 @@ class YamlMap {
 
 // Parses a YAML document from a file, throwing InputError with file:line for syntax errors.
 YAML::Node LoadYamlFile(const std::string& path);
+
+// A scenario file read once, with the `--set` overrides applied (planner/scenario/scenario.h), as its top-level map.
+YamlMap LoadScenarioTop(const std::filesystem::path& file, const std::vector<std::string>& overrides);
+// The planner's sections of a scenario file's top-level map (the sections every module reads from the same map).
+Scenario ParsePlannerSections(YamlMap& top);
 
 }  // namespace waam::planner::internal

@@ -53,7 +53,7 @@ std::string BinaryStl(const std::vector<Facet>& facets, long long header_count =
 // A scenario with the part from `mesh` (relative to the scenario) and every other value valid; `edit` replaces
 // one line ("key: value" as written below) to break it. Lines: 3 part.mesh, 5 layer_height_mm, 7 pattern,
 // 8 bead_width_mm, 10 travel_speed_mm_min.
-std::string Scenario(const std::string& mesh = "part.stl", const std::string& from = "", const std::string& to = "") {
+std::string ScenarioText(const std::string& mesh = "part.stl", const std::string& from = "", const std::string& to = "") {
   std::string text =
       "name: bad_input\n"
       "part:\n"
@@ -99,7 +99,7 @@ struct BadInput {
 };
 
 std::vector<BadInput> Catalogue() {
-  const std::string ok = Scenario();
+  const std::string ok = ScenarioText();
   std::vector<Facet> tetra = Tetrahedron();
   std::vector<Facet> nan_facets = tetra;
   nan_facets[1][1][2] = std::numeric_limits<float>::quiet_NaN();
@@ -133,21 +133,21 @@ std::vector<BadInput> Catalogue() {
       {"stl-non-manifold-edges", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(two)}},
        {"part.stl: the mesh has 1 non-manifold edges (used by more than two facets)"}},
       {"scenario-wrong-type", "plan", "s.yaml",
-       {{"s.yaml", Scenario("part.stl", "travel_speed_mm_min: 400", "travel_speed_mm_min: fast")}, {"part.stl", full}},
+       {{"s.yaml", ScenarioText("part.stl", "travel_speed_mm_min: 400", "travel_speed_mm_min: fast")}, {"part.stl", full}},
        {"s.yaml:10: process.travel_speed_mm_min = 'fast': must be a number"}},
       {"scenario-negative-length", "plan", "s.yaml",
-       {{"s.yaml", Scenario("part.stl", "layer_height_mm: 1.5", "layer_height_mm: -1")}, {"part.stl", full}},
+       {{"s.yaml", ScenarioText("part.stl", "layer_height_mm: 1.5", "layer_height_mm: -1")}, {"part.stl", full}},
        {"s.yaml:5: slicing.layer_height_mm = -1: must be in [0.05, 20]"}},
       {"scenario-zero-length", "plan", "s.yaml",
-       {{"s.yaml", Scenario("part.stl", "bead_width_mm: 6", "bead_width_mm: 0")}, {"part.stl", full}},
+       {{"s.yaml", ScenarioText("part.stl", "bead_width_mm: 6", "bead_width_mm: 0")}, {"part.stl", full}},
        {"s.yaml:8: path.bead_width_mm = 0: must be in [0.5, 50]"}},
       {"scenario-unknown-pattern", "plan", "s.yaml",
-       {{"s.yaml", Scenario("part.stl", "pattern: contour", "pattern: wobble")}, {"part.stl", full}},
+       {{"s.yaml", ScenarioText("part.stl", "pattern: contour", "pattern: wobble")}, {"part.stl", full}},
        {"s.yaml:7: path.pattern = 'wobble': unknown value, expected one of contour, zigzag, hybrid, continuous, "
         "eulerian, spiral"}},
-      {"scenario-missing-mesh", "plan", "s.yaml", {{"s.yaml", Scenario("nothere.stl")}},
+      {"scenario-missing-mesh", "plan", "s.yaml", {{"s.yaml", ScenarioText("nothere.stl")}},
        {"s.yaml:3: part.mesh: mesh file ", "nothere.stl not found"}},
-      {"scenario-mesh-is-a-directory", "plan", "s.yaml", {{"s.yaml", Scenario("adir")}},
+      {"scenario-mesh-is-a-directory", "plan", "s.yaml", {{"s.yaml", ScenarioText("adir")}},
        {"s.yaml:3: part.mesh: ", "adir is a directory, expected an STL file"}, {"adir"}},
       {"csv-missing-column", "fit csw", "bad.csv",
        {{"bad.csv", "travel_speed_mm_per_min,curvature_radius_mm\n300,30\n600,40\n900,50\n"}},

@@ -39,7 +39,7 @@ class CheckCommandTest : public ::testing::Test {
     return ss.str();
   }
   fs::path dir_;
-  planner::Scenario scenario_;
+  Scenario scenario_;
 };
 
 TEST_F(CheckCommandTest, WellPlacedWallWritesEveryOutput) {

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "analysis/scenario.h"
 #include "models/core/files.h"
 #include "tests/analysis/cli_test_util.h"
 #include "tests/twin/test_paths.h"
@@ -26,7 +27,7 @@ using ::testing::HasSubstr;
 using cli_test::RunWaam;
 
 struct Fixture {
-  planner::Scenario scenario;
+  Scenario scenario;
   planner::PlanResult planned;
 };
 

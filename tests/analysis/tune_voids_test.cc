@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/plan_command.h"
+#include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "planner/planar_planner.h"
 #include "planner/scenario/scenario.h"
@@ -64,8 +65,8 @@ TEST(TuneVoids, CrossJunctionVoidFallsAsTheShiftGrows) {
 
   // The planner takes the tuned shift back from tune.json (mode tuned).
   const std::string tune_file = (options.out_dir / "tune.json").string();
-  const planner::Scenario scenario =
-      planner::LoadScenario(kCross, {"path.void_filling.mode=tuned", "path.void_filling.tune_file=" + tune_file});
+  const Scenario scenario =
+      LoadScenario(kCross, {"path.void_filling.mode=tuned", "path.void_filling.tune_file=" + tune_file});
   const planner::PlanResult plan = planner::PlanScenario(scenario, nullptr);
   ASSERT_EQ(plan.void_corrections.size(), plan.plan.layers.size()) << "one corrected corner per layer";
   for (const planner::CornerCorrection& c : plan.void_corrections) EXPECT_NEAR(c.shift_mm, j.tuned.shift_mm, 1e-9);

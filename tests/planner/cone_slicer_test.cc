@@ -183,7 +183,7 @@ TEST(ConePlannerTest, CswIsNotUsedBeyondItsData) {
   const Scenario scenario = BladeScenario();
   const PlanResult result = PlanScenario(scenario, nullptr);
   const models::CswModel csw = models::CswModel::Load(models::DefaultModelPath("csw"));
-  const double widest = csw.Width(csw.feasible().min_mm_per_min, scenario.simulation.csw_min_radius_mm);
+  const double widest = csw.Width(csw.feasible().min_mm_per_min, scenario.process.csw_min_radius_mm);
   std::size_t weld_points = 0;
   for (const LayerPath& layer : result.plan.layers) {
     for (const PathPoint& p : layer.points) {

@@ -14,8 +14,8 @@ namespace {
 using ::testing::HasSubstr;
 using testing::AddPass;
 
-planner::SimulationSettings Settings(double voxel) {
-  planner::SimulationSettings s;
+twin::SimulationSettings Settings(double voxel) {
+  twin::SimulationSettings s;
   s.voxel_mm = voxel;
   return s;
 }
@@ -38,7 +38,7 @@ TEST(BeadDeposition, FlatBeadHasParabolicWidthAndHeight) {
   planner::LayerPath layer;
   AddPass(&layer, {{0, 0}, {60, 0}}, 2.0, 6.0, 2.0, 8.0);
   plan.layers.push_back(layer);
-  planner::SimulationSettings s = Settings(0.25);
+  twin::SimulationSettings s = Settings(0.25);
   const Depositor d = DepositPlan(plan, s, 100.0, nullptr);
   // Cross-section at x = 30: count the column heights.
   double area = 0.0, max_h = 0.0, min_y = 1e9, max_y = -1e9;
@@ -58,7 +58,7 @@ TEST(BeadDeposition, FlatBeadHasParabolicWidthAndHeight) {
 }
 
 TEST(BeadDeposition, InvalidSettingsAreRefused) {
-  planner::SimulationSettings s = Settings(0.05);
+  twin::SimulationSettings s = Settings(0.05);
   try {
     Depositor d(s);
     FAIL() << "expected InputError for voxel_mm = 0.05";
@@ -72,7 +72,7 @@ TEST(BeadDeposition, VoxelLimitGivesClearError) {
   planner::LayerPath layer;
   AddPass(&layer, {{0, 0}, {50, 0}}, 2.0, 6.0, 2.0, 8.0);
   plan.layers.push_back(layer);
-  planner::SimulationSettings s = Settings(0.5);
+  twin::SimulationSettings s = Settings(0.5);
   s.max_voxels = 1000;
   try {
     DepositPlan(plan, s, 100.0, nullptr);
@@ -98,7 +98,7 @@ TEST(BeadDeposition, WeldMoveWithoutSpeedIsRefused) {
 // Multi-axis: a bead laid with the torch horizontal (tool along +x) against the +x side of a block grows along +x,
 // its section swept in the torch frame; the volume still balances.
 TEST(BeadDeposition, HorizontalTorchBuildsSideways) {
-  planner::SimulationSettings s = Settings(0.5);
+  twin::SimulationSettings s = Settings(0.5);
   Depositor d(s);
   // A block 0 <= x < 10, 0 <= y < 40, 0 <= z < 20 deposited as vertical beads first.
   planner::Plan block;
@@ -152,7 +152,7 @@ TEST(BeadDeposition, HorizontalTorchBuildsSideways) {
 // A bead laid on the edge of a wall, half of it over air: the hanging half runs down the side at most
 // edge_sag_factor x h below the supported ground and never fills the air down to the substrate.
 TEST(BeadDeposition, BeadOverAFreeEdgeDoesNotFillTheAirBelow) {
-  planner::SimulationSettings s = Settings(0.5);
+  twin::SimulationSettings s = Settings(0.5);
   Depositor d(s);
   planner::Plan wall;
   for (int k = 0; k < 16; ++k) {
@@ -194,8 +194,8 @@ TEST(ExecutedPath, CornerIsBlendedAndShorter) {
   raw[1].p_P = {20, 0, 0};
   raw[2].p_P = {20, 20, 0};
   for (auto& p : raw) p.speed_mm_s = 10.0, p.bead_width_mm = 6, p.bead_height_mm = 2;
-  planner::SimulationSettings s = Settings(0.5);
-  s.blend = planner::Blend::kFixed;
+  twin::SimulationSettings s = Settings(0.5);
+  s.blend = twin::Blend::kFixed;
   s.blend_radius_mm = 4.0;
   const ExecutedPass pass = BlendPass(raw, s, 0.5);
   // The arc of radius 4 replaces 2 x 4 mm of the corner by a quarter circle (2 pi / 4 x 4 = 6.28 mm).
@@ -203,7 +203,7 @@ TEST(ExecutedPath, CornerIsBlendedAndShorter) {
   double closest = 1e9;
   for (const auto& p : pass.points) closest = std::min(closest, (p.p_P - raw[1].p_P).norm());
   EXPECT_NEAR(closest, 4.0 * (std::sqrt(2.0) - 1.0), 0.05) << "the TCP must not reach the vertex";
-  s.blend = planner::Blend::kNone;
+  s.blend = twin::Blend::kNone;
   EXPECT_NEAR(BlendPass(raw, s, 0.5).length_mm(), 40.0, 1e-9);
 }
 
@@ -214,7 +214,7 @@ TEST(ExecutedPath, StartIsTallerAndStopShrinks) {
   pass.points[1].s_mm = 100;
   pass.points[1].bead_width_mm = 6;
   pass.points[1].bead_height_mm = 2;
-  const planner::SimulationSettings s = Settings(0.5);
+  const twin::SimulationSettings s = Settings(0.5);
   EXPECT_NEAR(SectionAt(pass, 1, 0.0, s).height_mm, 2.0 * s.start_height_factor, 1e-9);
   EXPECT_NEAR(SectionAt(pass, 1, 50.0, s).height_mm, 2.0, 1e-9);
   EXPECT_NEAR(SectionAt(pass, 1, 100.0, s).height_mm, 2.0 * s.stop_height_factor, 1e-9);

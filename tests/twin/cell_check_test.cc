@@ -19,6 +19,7 @@
 #include "models/core/error.h"
 #include "planner/scenario/scenario.h"
 #include "tests/twin/test_plans.h"
+#include "twin/cell/cell_section.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
@@ -47,7 +48,7 @@ std::string Describe(const CheckReport& r) {
 }
 
 TEST(CellModelTest, ClosedFormIkReachesTheTcpInMujoco) {
-  const planner::CellSettings settings;
+  const twin::CellSettings settings;
   const CellModel model = LoadCell(settings);
   const planner::CellKinematics kin = PartKinematics(model, settings);
   CellState cell(model);
@@ -103,7 +104,7 @@ class BadModelTest : public ::testing::Test {
     const fs::path file = dir_ / "cell.xml";
     std::ofstream(file) << xml;
     try {
-      planner::CellSettings settings;
+      twin::CellSettings settings;
       settings.mjcf = file;
       LoadCell(settings);
     } catch (const InputError& e) {
@@ -140,7 +141,7 @@ class NumericIkTest : public BadModelTest {
 };
 
 TEST_F(NumericIkTest, NonOpwArmFallsBackToNumericalIk) {
-  planner::CellSettings settings;
+  twin::CellSettings settings;
   settings.mjcf = WristOffsetModel();
   const CellModel model = LoadCell(settings);
   const planner::CellKinematics kin = PartKinematics(model, settings);
@@ -172,7 +173,7 @@ TEST_F(NumericIkTest, NonOpwArmFallsBackToNumericalIk) {
 TEST_F(NumericIkTest, OneModelServesTwoThreadsAtOnce) {
   // The model is shared; each thread has its own CellState and the IK has its own data per call: two threads
   // solving and checking different poses at once get exactly what one thread gets.
-  planner::CellSettings settings;
+  twin::CellSettings settings;
   settings.mjcf = WristOffsetModel();
   const CellModel model = LoadCell(settings);
   const planner::CellKinematics kin = PartKinematics(model, settings);
@@ -208,7 +209,7 @@ TEST_F(NumericIkTest, OneModelServesTwoThreadsAtOnce) {
 }
 
 TEST_F(NumericIkTest, WellPlacedWallPassesWithNumericalIk) {
-  planner::CellSettings settings;
+  twin::CellSettings settings;
   settings.mjcf = WristOffsetModel();
   const CheckReport r =
       CheckPlan(LoadCell(settings), testing::RectangleWall(4, 80.0, 40.0, 2.0, 400.0 / 60.0), settings, 100.0, nullptr);
@@ -217,7 +218,7 @@ TEST_F(NumericIkTest, WellPlacedWallPassesWithNumericalIk) {
 }
 
 TEST_F(NumericIkTest, NumericalIkFailureIsReportedAsUnreachable) {
-  planner::CellSettings far;
+  twin::CellSettings far;
   far.mjcf = WristOffsetModel();
   far.robot_base_mm = {-1500.0, 0.0, 0.0};
   const CheckReport r =
@@ -248,10 +249,12 @@ TEST_F(BadModelTest, MissingFileIsNamed) {
 // The planted-fault scenarios of scenarios/cell/, checked on a hand-built wall of their part's footprint.
 class PlantedFaultTest : public ::testing::Test {
  protected:
-  static planner::CellSettings Settings(const std::string& name) {
-    return planner::LoadScenario(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (name + ".yaml")).cell;
+  static twin::CellSettings Settings(const std::string& name) {
+    const fs::path file = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (name + ".yaml");
+    planner::internal::YamlMap top = planner::internal::LoadScenarioTop(file, {});
+    return internal::ParseCellSection(top, file.parent_path());
   }
-  CheckReport Check(const planner::CellSettings& settings) {
+  CheckReport Check(const twin::CellSettings& settings) {
     return CheckPlan(LoadCell(settings), testing::RectangleWall(10, 100.0, 60.0, 1.5, 400.0 / 60.0), settings, 100.0, nullptr);
   }
 };
@@ -294,7 +297,7 @@ TEST_F(PlantedFaultTest, PartBelowThePlateDrivesTheTorchIntoTheSubstrate) {
 
 TEST_F(PlantedFaultTest, JointMarginIsAViolationBeforeTheLimit) {
   // Arm turned so that j1 works at 167 +- 3 deg: inside its +-170 deg range but closer than the 2 deg margin.
-  planner::CellSettings s = Settings("cell_ok");
+  twin::CellSettings s = Settings("cell_ok");
   s.robot_yaw_deg = -167.0;
   const CheckReport r = Check(s);
   EXPECT_FALSE(r.ok);
@@ -306,7 +309,7 @@ TEST_F(PlantedFaultTest, JointMarginIsAViolationBeforeTheLimit) {
 
 TEST_F(PlantedFaultTest, WristNearItsSingularityIsReported) {
   // The welding posture keeps |j5| near 80 deg; demanding 85 deg of distance flags it, and nothing else.
-  planner::CellSettings s = Settings("cell_ok");
+  twin::CellSettings s = Settings("cell_ok");
   s.singularity_deg = 85.0;
   const CheckReport r = Check(s);
   EXPECT_EQ(Kinds(r), std::set<std::string>{"singularity"}) << Describe(r);
@@ -316,7 +319,7 @@ TEST_F(PlantedFaultTest, WristNearItsSingularityIsReported) {
 
 TEST_F(PlantedFaultTest, TravelSpeedBeyondTheAxesIsAJointSpeedViolation) {
   // Welding a small square at 3 m/s: the arm cannot follow; travel moves are slowed, weld moves are not.
-  const planner::CellSettings settings = Settings("cell_ok");
+  const twin::CellSettings settings = Settings("cell_ok");
   const CheckReport r =
       CheckPlan(LoadCell(settings), testing::RectangleWall(2, 20.0, 20.0, 1.5, 3000.0), settings, 100.0, nullptr);
   EXPECT_EQ(Kinds(r), std::set<std::string>{"joint_speed"}) << Describe(r);
@@ -351,7 +354,7 @@ TEST_F(PlantedFaultTest, SkippedCollisionChecksMissNothing) {
     layer.points.push_back(p);
   }
   plan.layers.push_back(layer);
-  planner::CellSettings settings = Settings("cell_ok");
+  twin::CellSettings settings = Settings("cell_ok");
   settings.part_collision = false;
   const CellModel model = LoadCell(settings);
   const CheckReport r = CheckPlan(model, plan, settings, 100.0, nullptr);

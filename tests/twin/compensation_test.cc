@@ -49,12 +49,12 @@ planner::Plan HotSideTube(double r, int layers) {
   return plan;
 }
 
-planner::SimulationSettings Coarse() {
-  planner::SimulationSettings s;
+twin::SimulationSettings Coarse() {
+  twin::SimulationSettings s;
   s.voxel_mm = 0.5;
   s.start_length_mm = 0.0;
   s.stop_length_mm = 0.0;
-  s.curvature_width = planner::CurvatureWidth::kNone;  // the planned width on the small circle, whatever the speed
+  s.curvature_width = twin::CurvatureWidth::kNone;  // the planned width on the small circle, whatever the speed
   return s;
 }
 

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "models/fit/model_file.h"
-#include "planner/scenario/simulation_settings.h"
+#include "twin/simulation_settings.h"
 
 namespace waam::twin {
 namespace {
@@ -59,7 +59,7 @@ TEST(CurvatureWidth, CircleWidensByTheModelsRatioAndKeepsTheArea) {
   ASSERT_GT(expected, 1.01) << "the default CSW model should widen beads on a 50 mm radius";
   const std::size_t mid = pass.points.size() / 2;
   EXPECT_NEAR(pass.points[mid].width_factor, expected, 0.01 * expected);
-  planner::SimulationSettings settings;
+  twin::SimulationSettings settings;
   settings.start_length_mm = 0.0;
   settings.stop_length_mm = 0.0;
   const BeadSection section = SectionAt(pass, mid, pass.points[mid].s_mm, settings);

@@ -64,13 +64,13 @@ planner::Plan SpiralTube(int layers, double hot_speed) {
 }
 
 struct Build {
-  planner::SimulationSettings settings;
+  twin::SimulationSettings settings;
   planner::Plan plan;
   Depositor depositor;
   DepositHistory history;
   Build(planner::Plan p, double voxel)
       : settings([&] {
-          planner::SimulationSettings s;
+          twin::SimulationSettings s;
           s.voxel_mm = voxel;
           s.start_length_mm = 0.0;
           s.stop_length_mm = 0.0;

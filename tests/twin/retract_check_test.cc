@@ -23,7 +23,7 @@ struct PartHits {
 PartHits CheckPart(double retract_mm) {
   const planner::PlanResult planned =
       planner::PlanScenario(planner::testing::SmallPropellerWithRetract(retract_mm), nullptr);
-  planner::CellSettings settings;  // the built-in cell, part_collision on
+  twin::CellSettings settings;  // the built-in cell, part_collision on
   const CheckReport r = CheckPlan(LoadCell(settings), planned.plan, settings, 100.0, nullptr);
   PartHits hits;
   for (const CheckViolation& v : r.violations) {
@@ -36,7 +36,7 @@ PartHits CheckPart(double retract_mm) {
 }
 
 TEST(RetractCheckTest, StraightRapidsIntoTheBladesCutTheHubAndRetractsDoNot) {
-  ASSERT_TRUE(planner::CellSettings{}.part_collision);
+  ASSERT_TRUE(twin::CellSettings{}.part_collision);
   const PartHits rapids = CheckPart(0.0);
   EXPECT_GT(rapids.travel, 0)
       << "a straight rapid from the hub's top to a blade's root must cut the hub (measured: the four rapids into the "

@@ -15,7 +15,7 @@ TEST(Simulation, BlockAgainstItsBoxTarget) {
   const auto& region = plan.layers.back().slice.front().outer;
   const planner::TriangleMesh box = testing::BoxMesh({region[0].x(), 0, 0}, {region[1].x(), 40.0, plan.layers.back().z_mm});
   std::size_t calls = 0;
-  const TwinResult r = SimulateBuild(plan, &box, planner::SimulationSettings{}, 100.0, w,
+  const TwinResult r = SimulateBuild(plan, &box, twin::SimulationSettings{}, 100.0, w,
                                      [&](std::size_t done, std::size_t total) {
                                        ++calls;
                                        EXPECT_LE(done, total);

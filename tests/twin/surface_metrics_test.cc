@@ -86,7 +86,7 @@ BlockResult SimulateBlock(const Table9Row& row, double d2, double d1, double l) 
   const double length = 60.0;
   const std::vector<double> xs = testing::BlockPositions(d2, d1, l, 6);
   const planner::Plan plan = testing::ParallelBlock(xs, length, 7, 2.0 / 3.0 * w * h / l, w, h, vt);
-  planner::SimulationSettings s;
+  twin::SimulationSettings s;
   s.voxel_mm = 0.5;
   const Depositor d = DepositPlan(plan, s, 100.0, nullptr);
   const HeightMap map = TopHeightMap(d.grid());
@@ -120,7 +120,7 @@ TEST(SurfaceMetrics, BlockExperimentBoundaryLag) {
 // path with its many starts and stops. Same square, same beads, same spacings; only the number of passes differs.
 TEST(SurfaceMetrics, ContinuousPathIsSmootherThanManyStarts) {
   const double w = 6.0, h = 2.0, a = 50.0;
-  planner::SimulationSettings s;
+  twin::SimulationSettings s;
   s.voxel_mm = 0.25;
   double ra[2] = {0, 0};
   std::size_t passes[2] = {0, 0};

@@ -68,8 +68,8 @@ int CountPinholes(const VoxelGrid& grid) {
   return count;
 }
 
-planner::SimulationSettings Settings() {
-  planner::SimulationSettings s;
+twin::SimulationSettings Settings() {
+  twin::SimulationSettings s;
   s.voxel_mm = kVoxel;
   return s;
 }

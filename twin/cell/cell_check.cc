@@ -82,19 +82,19 @@ const char* AxisName(int axis) {
   return (axis >= 0 && axis < 8) ? kNames[axis] : "?";
 }
 
-CellModel LoadCell(const planner::CellSettings& settings) {
+CellModel LoadCell(const twin::CellSettings& settings) {
   return CellModel(settings.mjcf, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
                    PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
 }
 
-planner::CellKinematics PartKinematics(const CellModel& cell, const planner::CellSettings& settings) {
+planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings) {
   planner::CellKinematics kin = cell.kinematics();
   // The part frame P sits on the plate top (part_origin) with the scenario's offset and turn.
   kin.positioner.X_CP = kin.positioner.X_CP * PlacementPose(settings.part_offset_mm, settings.part_yaw_deg);
   return kin;
 }
 
-CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const planner::CellSettings& settings,
+CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress) {
   const planner::CellKinematics kin = PartKinematics(cell, settings);
   const double margin_rad = settings.joint_margin_deg / kDeg;
@@ -113,7 +113,7 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const pl
   options.step_mm = settings.step_mm;
   options.rapid_speed_mm_s = rapid_speed_mm_s;
   options.rotation_rad = settings.positioner_rotation_deg / kDeg;
-  options.positioner_per_point = settings.positioner_follow == planner::PositionerFollow::kPoint;
+  options.positioner_per_point = settings.positioner_follow == twin::PositionerFollow::kPoint;
 
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";

@@ -9,7 +9,7 @@
 
 #include "planner/kinematics/cell_motion.h"
 #include "planner/path/tool_path.h"
-#include "planner/scenario/cell_settings.h"
+#include "twin/cell/cell_settings.h"
 
 namespace waam {
 class Progress;
@@ -60,14 +60,14 @@ const char* AxisName(int axis);
 
 // The cell model of `settings` (its `mjcf`, or the built-in cell) with the arm base and the positioner placed as
 // it says. Throws InputError for a model file that cannot be used.
-CellModel LoadCell(const planner::CellSettings& settings);
+CellModel LoadCell(const twin::CellSettings& settings);
 
 // The kinematics of `cell` (made by LoadCell(settings)) with the part placed on the plate as `settings` says.
-planner::CellKinematics PartKinematics(const CellModel& cell, const planner::CellSettings& settings);
+planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings);
 
 // Checks `plan` (part frame P) on `cell`, which LoadCell(settings) made. Arc-off moves run at `rapid_speed_mm_s`.
 // `progress` may be null.
-CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const planner::CellSettings& settings,
+CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress);
 
 }  // namespace waam::twin

@@ -245,7 +245,7 @@ std::vector<Eigen::Vector3d> ScanDistortedPart(const VoxelGrid& grid, const Dist
 }
 
 CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
-                              const planner::SimulationSettings& settings, const CompensationOptions& options,
+                              const twin::SimulationSettings& settings, const CompensationOptions& options,
                               const std::function<void(int, const CompensationIteration&)>& on_iteration) {
   WAAM_THROW_UNLESS(options.max_iterations >= 0 && options.max_iterations <= 20,
                     "compensation max_iterations = " << options.max_iterations << ": must be in [0, 20]");

@@ -11,7 +11,7 @@
 #include "models/distortion/distortion_params.h"
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
-#include "planner/scenario/simulation_settings.h"
+#include "twin/simulation_settings.h"
 #include "twin/distortion/distortion.h"
 #include "twin/scanner/scan_deviation.h"
 
@@ -90,7 +90,7 @@ planner::Plan ResamplePlan(const planner::Plan& plan, double spacing_mm);
 // Runs the loop on `plan` (already planned) against `target`. `on_iteration(i, iteration)` may be empty.
 // Throws InputError for invalid options or parameters.
 CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
-                              const planner::SimulationSettings& settings, const CompensationOptions& options,
+                              const twin::SimulationSettings& settings, const CompensationOptions& options,
                               const std::function<void(int, const CompensationIteration&)>& on_iteration = {});
 
 // The twin's scan of a distorted part: every exposed voxel face centre moved by the displacement field, mm.

@@ -59,28 +59,7 @@ struct Depositor::Column {
   std::size_t hi = 0;
 };
 
-void ValidateSimulationSettings(const planner::SimulationSettings& s) {
-  WAAM_THROW_UNLESS(s.voxel_mm >= 0.1 && s.voxel_mm <= 2.0,
-                    "simulation.voxel_mm = " << s.voxel_mm << ": must be in [0.1, 2] mm");
-  WAAM_THROW_UNLESS(s.max_voxels >= 1, "simulation.max_voxels = 0: must be >= 1");
-  WAAM_THROW_UNLESS(s.blend_radius_mm >= 0.0 && s.blend_radius_mm <= 100.0,
-                    "simulation.blend_radius_mm = " << s.blend_radius_mm << ": must be in [0, 100] mm");
-  WAAM_THROW_UNLESS(s.blend_time_s >= 0.0 && s.blend_time_s <= 10.0,
-                    "simulation.blend_time_s = " << s.blend_time_s << ": must be in [0, 10] s");
-  WAAM_THROW_UNLESS(s.start_length_mm >= 0.0 && s.stop_length_mm >= 0.0,
-                    "simulation.start_length_mm / stop_length_mm: must be >= 0 mm");
-  for (double f : {s.start_height_factor, s.start_width_factor, s.stop_height_factor, s.stop_width_factor}) {
-    WAAM_THROW_UNLESS(f >= 0.2 && f <= 3.0, "simulation start/stop factor = " << f << ": must be in [0.2, 3]");
-  }
-  WAAM_THROW_UNLESS(s.edge_sag_factor >= 0.0 && s.edge_sag_factor <= 10.0,
-                    "simulation.edge_sag_factor = " << s.edge_sag_factor << ": must be in [0, 10]");
-  WAAM_THROW_UNLESS(s.edge_spread_factor >= 0.0 && s.edge_spread_factor <= 1.0,
-                    "simulation.edge_spread_factor = " << s.edge_spread_factor << ": must be in [0, 1]");
-  WAAM_THROW_UNLESS(s.step_mm >= 0.0 && s.step_mm <= 10.0,
-                    "simulation.step_mm = " << s.step_mm << ": must be in [0, 10] mm");
-}
-
-Depositor::Depositor(const planner::SimulationSettings& settings)
+Depositor::Depositor(const twin::SimulationSettings& settings)
     : settings_(settings), grid_((ValidateSimulationSettings(settings), settings.voxel_mm), settings.max_voxels) {}
 
 // Fills one step. The molten metal settles under a cap z = L - 4h/w^2 y^2 (eq. 3.2 shifted to the water level L, z
@@ -399,7 +378,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
       // first metal meets a cold base, wets it poorly and sets where it lands, a hump draped over the ground under
       // it; it does not run into the valleys under its footprint as the steady hot pool does. Fades linearly to
       // the levelled pool over start_length_mm.
-      const double drape = settings_.start_wetting == planner::StartWetting::kCold && settings_.start_length_mm > 0.0
+      const double drape = settings_.start_wetting == twin::StartWetting::kCold && settings_.start_length_mm > 0.0
                                ? std::clamp(1.0 - s / settings_.start_length_mm, 0.0, 1.0)
                                : 0.0;
       const double placed = FillStep(chunk, section, volume + debt, zeta_tcp, frame, data, last_step, drape);
@@ -416,7 +395,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
   return bead;
 }
 
-Depositor DepositPlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+Depositor DepositPlan(const planner::Plan& plan, const twin::SimulationSettings& settings,
                       double rapid_speed_mm_s, Progress* progress) {
   Depositor depositor(settings);
   const std::vector<ExecutedPass> passes = ExecutePlan(plan, settings, rapid_speed_mm_s);

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "planner/path/tool_path.h"
-#include "planner/scenario/simulation_settings.h"
+#include "twin/simulation_settings.h"
 #include "twin/deposition/executed_path.h"
 #include "twin/deposition/torch_columns.h"
 #include "twin/deposition/voxel_grid.h"
@@ -32,20 +32,20 @@ struct BeadRecord {
 };
 
 // Checks the settings; throws InputError naming the `simulation.<key>` that is out of range.
-void ValidateSimulationSettings(const planner::SimulationSettings& settings);
+void ValidateSimulationSettings(const twin::SimulationSettings& settings);
 
 // The deposition twin: a const model (settings) and the growing part (grid and bead table).
 class Depositor {
  public:
   // Throws InputError for invalid settings (see ValidateSimulationSettings).
-  explicit Depositor(const planner::SimulationSettings& settings);
+  explicit Depositor(const twin::SimulationSettings& settings);
 
   // Deposits one executed pass and returns its bead index. Throws InputError when the grid's voxel limit is passed.
   std::uint32_t DepositPass(const ExecutedPass& pass);
 
   const VoxelGrid& grid() const { return grid_; }
   const std::vector<BeadRecord>& beads() const { return beads_; }
-  const planner::SimulationSettings& settings() const { return settings_; }
+  const twin::SimulationSettings& settings() const { return settings_; }
   double expected_volume_mm3() const { return expected_volume_mm3_; }
   double weld_length_mm() const { return weld_length_mm_; }
   // Layer of an occupied voxel: its bead's, or for a pass through several layers the layer it was laid in
@@ -57,7 +57,7 @@ class Depositor {
   double FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3, double zeta_tcp_mm,
                   const internal::TorchFrame& frame, const VoxelData& data, bool last_step, double drape);
 
-  planner::SimulationSettings settings_;
+  twin::SimulationSettings settings_;
   VoxelGrid grid_;
   std::vector<BeadRecord> beads_;
   double expected_volume_mm3_ = 0.0;
@@ -67,7 +67,7 @@ class Depositor {
 };
 
 // Executes and deposits a whole plan (travel timed at `rapid_speed_mm_s`); `progress` (may be null) counts passes.
-Depositor DepositPlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+Depositor DepositPlan(const planner::Plan& plan, const twin::SimulationSettings& settings,
                       double rapid_speed_mm_s, Progress* progress);
 
 }  // namespace waam::twin

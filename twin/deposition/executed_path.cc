@@ -44,7 +44,7 @@ std::vector<double> PassTimes(const ExecutedPass& pass) {
   return t;
 }
 
-ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::SimulationSettings& settings,
+ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const twin::SimulationSettings& settings,
                        double voxel_mm) {
   ExecutedPass pass;
   // Drop repeated points: they carry no direction.
@@ -52,7 +52,7 @@ ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::Sim
   for (const ExecutedPoint& p : raw) {
     if (pts.empty() || (p.p_P - pts.back().p_P).norm() > 1e-9) pts.push_back(p);
   }
-  if (pts.size() < 3 || settings.blend == planner::Blend::kNone) {
+  if (pts.size() < 3 || settings.blend == twin::Blend::kNone) {
     pass.points = pts;
     AccumulateArcLength(&pass);
     return pass;
@@ -69,7 +69,7 @@ ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::Sim
     const Eigen::Vector3d a = (vertex - prev) / len_in;
     const Eigen::Vector3d b = (next - vertex) / len_out;
     const double turn = std::acos(std::clamp(a.dot(b), -1.0, 1.0));  // deflection angle, rad
-    double radius = settings.blend == planner::Blend::kFixed ? settings.blend_radius_mm : pts[i].speed_mm_s * settings.blend_time_s;
+    double radius = settings.blend == twin::Blend::kFixed ? settings.blend_radius_mm : pts[i].speed_mm_s * settings.blend_time_s;
     if (turn < 1e-3 || turn > kPi - 1e-3 || radius <= 0.0) {
       pass.points.push_back(pts[i]);
       continue;
@@ -102,11 +102,11 @@ ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::Sim
   return pass;
 }
 
-std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const twin::SimulationSettings& settings,
                                       double rapid_speed_mm_s) {
   WAAM_THROW_UNLESS(rapid_speed_mm_s > 0.0, "simulate: rapid speed = " << rapid_speed_mm_s << " mm/s: must be > 0");
   std::optional<models::CswModel> csw;
-  if (settings.curvature_width == planner::CurvatureWidth::kCsw) {
+  if (settings.curvature_width == twin::CurvatureWidth::kCsw) {
     csw = models::CswModel::Load(settings.csw_model.empty() ? models::DefaultModelPath("csw") : settings.csw_model);
   }
   std::vector<ExecutedPass> passes;
@@ -161,7 +161,7 @@ std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::
 }
 
 BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm,
-                      const planner::SimulationSettings& settings) {
+                      const twin::SimulationSettings& settings) {
   const ExecutedPoint& p = pass.points[std::min(segment, pass.points.size() - 1)];
   BeadSection section{p.bead_width_mm, p.bead_height_mm};
   const double length = pass.length_mm();
@@ -190,7 +190,7 @@ BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm
   // with stop_crater: lost).
   const double lip_mm = std::min(lp, length - lp);
   // Stop factors above 1 (a stop blob, no crater) get no lip.
-  if (settings.stop_crater == planner::StopCrater::kLip && lp > 0.0 && lip_mm >= 0.25 * lp && to_end >= lp && to_end < lp + lip_mm) {
+  if (settings.stop_crater == twin::StopCrater::kLip && lp > 0.0 && lip_mm >= 0.25 * lp && to_end >= lp && to_end < lp + lip_mm) {
     const double a = settings.stop_height_factor - 1.0;
     const double b = settings.stop_width_factor - 1.0;
     const double deficit = -(a + b) / 2.0 - a * b / 3.0;

@@ -7,7 +7,7 @@
 
 #include "models/bead/parabolic_bead.h"
 #include "planner/path/tool_path.h"
-#include "planner/scenario/simulation_settings.h"
+#include "twin/simulation_settings.h"
 
 namespace waam::twin {
 
@@ -46,16 +46,16 @@ using BeadSection = models::ParabolicBead;
 // `rapid_speed_mm_s` (> 0). With settings.curvature_width = "csw" the beads widen on curves as the CSW model says
 // (curvature_width.h). Throws InputError for a weld move with a non-positive speed, width or height, or a CSW model
 // file that cannot be read.
-std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const planner::SimulationSettings& settings,
+std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const twin::SimulationSettings& settings,
                                       double rapid_speed_mm_s);
 
 // Blends the corners of one pass polyline (used by ExecutePlan; exposed for tests).
-ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const planner::SimulationSettings& settings,
+ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const twin::SimulationSettings& settings,
                        double voxel_mm);
 
 // The bead section at arc length `s_mm` of `pass`, with the start and stop shapes of `settings` applied (and, with
 // settings.stop_crater = lip, the crater's metal in the stop_length_mm of bead before it).
 BeadSection SectionAt(const ExecutedPass& pass, std::size_t segment, double s_mm,
-                      const planner::SimulationSettings& settings);
+                      const twin::SimulationSettings& settings);
 
 }  // namespace waam::twin

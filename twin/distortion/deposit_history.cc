@@ -18,7 +18,7 @@ constexpr double kCellMm = 4.0;  // cell of the segment hash, mm
 }  // namespace
 
 DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depositor,
-                               const planner::SimulationSettings& settings, double rapid_speed_mm_s,
+                               const twin::SimulationSettings& settings, double rapid_speed_mm_s,
                                double wire_feed_mm_s)
     : wire_feed_mm_s_(wire_feed_mm_s) {
   WAAM_THROW_UNLESS(wire_feed_mm_s > 0.0, "distortion: wire feed " << wire_feed_mm_s << " mm/s: must be > 0");

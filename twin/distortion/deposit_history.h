@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "planner/path/tool_path.h"
-#include "planner/scenario/simulation_settings.h"
+#include "twin/simulation_settings.h"
 #include "twin/deposition/bead_deposition.h"
 #include "twin/deposition/voxel_grid.h"
 
@@ -25,7 +25,7 @@ class DepositHistory {
  public:
   // From the plan the depositor executed (same `settings` and `rapid_speed_mm_s` > 0, so pass i is bead i) and the
   // wire feed of the process (`wire_feed_mm_s` > 0). Throws InputError if the plan and the bead table disagree.
-  DepositHistory(const planner::Plan& plan, const Depositor& depositor, const planner::SimulationSettings& settings,
+  DepositHistory(const planner::Plan& plan, const Depositor& depositor, const twin::SimulationSettings& settings,
                  double rapid_speed_mm_s, double wire_feed_mm_s);
 
   int layers() const { return static_cast<int>(layer_dir_.size()); }

@@ -1,4 +1,5 @@
-// Settings of the voxel deposition twin (scenario section `simulation`): voxel size, corner blending, arc start/stop.
+// Settings of the voxel deposition twin (scenario section `simulation`), owned by the twin: voxel size, corner
+// blending, arc start/stop, their names and ranges, and the section's parser.
 #pragma once
 
 #include <array>
@@ -8,7 +9,7 @@
 
 #include "models/core/enum_names.h"
 
-namespace waam::planner {
+namespace waam::twin {
 
 // simulation.blend
 enum class Blend { kNone, kFixed, kSpeed };
@@ -82,12 +83,44 @@ struct SimulationSettings {
   double min_void_volume_mm3 = 1.0;
 };
 
-namespace internal {
+// The range of every numeric setting, written once: the scenario parser reads each key within it and
+// ValidateSimulationSettings checks settings made in code against it.
+struct SimulationNumber {
+  const char* key;                      // key in the `simulation:` section
+  double SimulationSettings::*field;
+  double min, max;                      // inclusive
+};
+inline constexpr std::array<SimulationNumber, 14> kSimulationNumbers = {{
+    {"voxel_mm", &SimulationSettings::voxel_mm, 0.1, 2.0},
+    {"blend_radius_mm", &SimulationSettings::blend_radius_mm, 0.0, 100.0},
+    {"blend_time_s", &SimulationSettings::blend_time_s, 0.0, 10.0},
+    {"start_length_mm", &SimulationSettings::start_length_mm, 0.0, 200.0},
+    {"start_height_factor", &SimulationSettings::start_height_factor, 0.2, 3.0},
+    {"start_width_factor", &SimulationSettings::start_width_factor, 0.2, 3.0},
+    {"stop_length_mm", &SimulationSettings::stop_length_mm, 0.0, 200.0},
+    {"stop_height_factor", &SimulationSettings::stop_height_factor, 0.2, 3.0},
+    {"stop_width_factor", &SimulationSettings::stop_width_factor, 0.2, 3.0},
+    {"edge_sag_factor", &SimulationSettings::edge_sag_factor, 0.0, 10.0},
+    {"edge_spread_factor", &SimulationSettings::edge_spread_factor, 0.0, 1.0},
+    {"step_mm", &SimulationSettings::step_mm, 0.0, 10.0},
+    {"min_void_volume_mm3", &SimulationSettings::min_void_volume_mm3, 0.0, 1.0e6},
+    {"csw_min_radius_mm", &SimulationSettings::csw_min_radius_mm, 1.0, 10000.0},
+}};
+inline constexpr double kMaxVoxelsMin = 1000.0, kMaxVoxelsMax = 2.0e9;
+
+// Throws InputError "simulation.<key> = value: must be in [min, max]" for a setting outside its range.
+void ValidateSimulationSettings(const SimulationSettings& settings);
+
+}  // namespace waam::twin
+
+namespace waam::planner::internal {
 class YamlMap;
+}  // namespace waam::planner::internal
+
+namespace waam::twin::internal {
+using planner::internal::YamlMap;
 // Reads the optional `simulation:` mapping of the scenario's top level into `out` (defaults where a key is absent);
 // a relative csw_model path is taken from `base_dir` (the scenario's folder). Throws InputError naming file, line and
 // key for unknown keys, out-of-range values and a model file that does not exist.
 void ParseSimulationSection(YamlMap& top, SimulationSettings* out, const std::filesystem::path& base_dir = {});
-}  // namespace internal
-
-}  // namespace waam::planner
+}  // namespace waam::twin::internal

@@ -9,10 +9,18 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
-#include "planner/scenario/scenario.h"
+#include "analysis/scenario.h"
 
 namespace waam::planner {
 namespace {
+// These tests read every section of a scenario file: the whole-file loader, with the twin's settings types.
+using twin::Blend;
+using twin::CellSettings;
+using twin::CurvatureWidth;
+using twin::PositionerFollow;
+using twin::SimulationSettings;
+using twin::StartWetting;
+using twin::StopCrater;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -35,7 +43,7 @@ class CellSectionTest : public ::testing::Test {
   }
   std::string ErrorOf(const std::string& cell) {
     try {
-      LoadScenario(Write(cell));
+      analysis::LoadScenario(Write(cell));
     } catch (const InputError& e) {
       return e.what();
     }
@@ -46,14 +54,14 @@ class CellSectionTest : public ::testing::Test {
 };
 
 TEST_F(CellSectionTest, AbsentSectionGivesDefaults) {
-  const Scenario s = LoadScenario(Write(""));
+  const analysis::Scenario s = analysis::LoadScenario(Write(""));
   EXPECT_TRUE(s.cell.mjcf.empty());
   EXPECT_DOUBLE_EQ(s.cell.positioner_base_mm[0], CellSettings{}.positioner_base_mm[0]);
   EXPECT_DOUBLE_EQ(s.cell.joint_margin_deg, 2.0);
 }
 
 TEST_F(CellSectionTest, ValuesAreRead) {
-  const Scenario s = LoadScenario(Write(
+  const analysis::Scenario s = analysis::LoadScenario(Write(
       "cell:\n  mjcf: my_cell.xml\n  robot: {base_mm: [10, 20, 30], yaw_deg: 15}\n"
       "  positioner: {base_mm: [900, 5, 0], yaw_deg: 0, rotation_deg: 45, follow: point}\n"
       "  part: {offset_mm: [1, 2, 3], yaw_deg: 30}\n"

@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/scenario.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "planner/mesh/stl_io.h"
-#include "planner/scenario/scenario.h"
 
 namespace waam::planner {
 namespace {
@@ -53,7 +53,7 @@ TEST(FuzzRegressions, StlInputsGiveAMeshOrAnInputError) {
 }
 
 TEST(FuzzRegressions, ScenarioInputsGiveAScenarioOrAnInputError) {
-  Replay("scenario", [](const fs::path& input) { (void)LoadScenario(input); });
+  Replay("scenario", [](const fs::path& input) { (void)analysis::LoadScenario(input); });
 }
 
 TEST(FuzzRegressions, CsvInputsGiveATableOrAnInputError) {

@@ -8,7 +8,7 @@
 
 #include "models/core/enum_names.h"
 
-namespace waam::planner {
+namespace waam::twin {
 
 // cell.positioner.follow
 enum class PositionerFollow { kLayer, kPoint };
@@ -38,4 +38,4 @@ struct CellSettings {
   std::string where;                     // "file:line: cell" for messages about the section
 };
 
-}  // namespace waam::planner
+}  // namespace waam::twin

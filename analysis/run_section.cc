@@ -1,9 +1,10 @@
 // The scenario's optional `run` section: the steps of `waam run` and the exit code a benchmark expects.
+#include "analysis/run_settings.h"
+
 #include "models/core/error.h"
-#include "planner/scenario/run_settings.h"
 #include "planner/scenario/yaml_fields.h"
 
-namespace waam::planner::internal {
+namespace waam::analysis::internal {
 
 void ParseRunSection(YamlMap& top, RunSettings* out) {
   if (!top.Has("run")) return;
@@ -20,4 +21,4 @@ void ParseRunSection(YamlMap& top, RunSettings* out) {
   run.CheckNoUnknownKeys();
 }
 
-}  // namespace waam::planner::internal
+}  // namespace waam::analysis::internal

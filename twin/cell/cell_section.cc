@@ -1,11 +1,11 @@
 // The `cell:` scenario section: placement of arm, positioner and part, and the margins of `waam check`.
-#include "planner/scenario/cell_section.h"
+#include "twin/cell/cell_section.h"
 
 #include <system_error>
 
 #include "models/core/error.h"
 
-namespace waam::planner::internal {
+namespace waam::twin::internal {
 namespace fs = std::filesystem;
 
 namespace {
@@ -64,4 +64,4 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
   return cell;
 }
 
-}  // namespace waam::planner::internal
+}  // namespace waam::twin::internal

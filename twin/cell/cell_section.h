@@ -3,14 +3,15 @@
 
 #include <filesystem>
 
-#include "planner/scenario/cell_settings.h"
 #include "planner/scenario/yaml_fields.h"
+#include "twin/cell/cell_settings.h"
 
-namespace waam::planner::internal {
+namespace waam::twin::internal {
+using planner::internal::YamlMap;
 
 // Reads `cell:` from the scenario's top-level map (defaults when absent); relative `mjcf` paths are resolved against
 // `scenario_dir`. Throws InputError naming file:line and the key for a wrong type, range or unknown key, or a
 // missing MJCF file.
 CellSettings ParseCellSection(YamlMap& top, const std::filesystem::path& scenario_dir);
 
-}  // namespace waam::planner::internal
+}  // namespace waam::twin::internal

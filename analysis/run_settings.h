@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace waam::planner {
+namespace waam::analysis {
 
 struct RunSettings {
   // Steps in order (names registered by analysis/run_steps.cc: plan, check, simulate, ...). Empty = the default
@@ -16,11 +16,15 @@ struct RunSettings {
   std::string where;                 // "file:line: run.steps" for messages about the steps (empty if absent)
 };
 
-namespace internal {
+}  // namespace waam::analysis
+
+namespace waam::planner::internal {
 class YamlMap;
+}  // namespace waam::planner::internal
+
+namespace waam::analysis::internal {
+using planner::internal::YamlMap;
 // Reads the optional `run:` mapping of the scenario's top level into `out`. Step names are checked by the analysis
 // layer (which knows the registered steps); here only types and the exit code range (0 or 3). Throws InputError.
 void ParseRunSection(YamlMap& top, RunSettings* out);
-}  // namespace internal
-
-}  // namespace waam::planner
+}  // namespace waam::analysis::internal

@@ -1,5 +1,5 @@
 // Tests of scenario loading: valid files load, every malformed one is refused with the key and line named.
-#include "planner/scenario/scenario.h"
+#include "analysis/scenario.h"
 
 #include <filesystem>
 #include <fstream>
@@ -12,6 +12,14 @@
 
 namespace waam::planner {
 namespace {
+// These tests read every section of a scenario file: the whole-file loader, with the twin's settings types.
+using twin::Blend;
+using twin::CellSettings;
+using twin::CurvatureWidth;
+using twin::PositionerFollow;
+using twin::SimulationSettings;
+using twin::StartWetting;
+using twin::StopCrater;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -33,7 +41,7 @@ class ScenarioTest : public ::testing::Test {
   // Loads `text` and returns the InputError message, or fails if it loads.
   std::string ErrorOf(const std::string& text) {
     try {
-      LoadScenario(Write(text));
+      analysis::LoadScenario(Write(text));
     } catch (const InputError& e) {
       return e.what();
     }
@@ -54,7 +62,7 @@ class ScenarioTest : public ::testing::Test {
 };
 
 TEST_F(ScenarioTest, ValidScenarioLoads) {
-  const Scenario s = LoadScenario(Write(Valid()));
+  const analysis::Scenario s = analysis::LoadScenario(Write(Valid()));
   EXPECT_EQ(s.name, "demo");
   EXPECT_EQ(s.part.generator, "box");
   ASSERT_EQ(s.part.params.at("size_mm").size(), 3u);
@@ -66,14 +74,14 @@ TEST_F(ScenarioTest, ValidScenarioLoads) {
 }
 
 TEST_F(ScenarioTest, MeshPathIsResolvedAgainstTheScenarioFolder) {
-  const Scenario s = LoadScenario(Write(Valid("  mesh: meshes/part.stl\n")));
+  const analysis::Scenario s = analysis::LoadScenario(Write(Valid("  mesh: meshes/part.stl\n")));
   EXPECT_EQ(s.part.mesh_path, (dir_ / "meshes" / "part.stl").lexically_normal());
 }
 
 TEST_F(ScenarioTest, ExplicitZigzagAngle) {
   std::string text = Valid();
   text.replace(text.find("zigzag_angle_deg: auto"), 22, "zigzag_angle_deg: 30");
-  const Scenario s = LoadScenario(Write(text));
+  const analysis::Scenario s = analysis::LoadScenario(Write(text));
   EXPECT_FALSE(s.path.zigzag_angle_auto);
   EXPECT_DOUBLE_EQ(s.path.zigzag_angle_deg, 30.0);
 }
@@ -92,10 +100,10 @@ TEST_F(ScenarioTest, ZeroBeadWidthIsRefused) {
 }
 
 TEST_F(ScenarioTest, RetractDefaultsTo15MmAndANegativeOneIsRefused) {
-  EXPECT_DOUBLE_EQ(LoadScenario(Write(Valid())).path.retract_mm, 15.0);
+  EXPECT_DOUBLE_EQ(analysis::LoadScenario(Write(Valid())).path.retract_mm, 15.0);
   std::string text = Valid();
   text.replace(text.find("bead_width_mm: 6"), 16, "bead_width_mm: 6\n  retract_mm: 0");
-  EXPECT_DOUBLE_EQ(LoadScenario(Write(text)).path.retract_mm, 0.0) << "0 = the planners' straight rapids";
+  EXPECT_DOUBLE_EQ(analysis::LoadScenario(Write(text)).path.retract_mm, 0.0) << "0 = the planners' straight rapids";
   text.replace(text.find("retract_mm: 0"), 13, "retract_mm: -5");
   EXPECT_THAT(ErrorOf(text), HasSubstr("path.retract_mm = -5: must be in"));
 }
@@ -142,8 +150,8 @@ TEST_F(ScenarioTest, YamlSyntaxErrorGivesLine) {
 }
 
 TEST_F(ScenarioTest, OverridesReplaceAndAddKeys) {
-  const Scenario s =
-      LoadScenario(Write(Valid()), {"path.pattern=hybrid", "slicing.layer_height_mm=2.5", "path.seed=7",
+  const analysis::Scenario s =
+      analysis::LoadScenario(Write(Valid()), {"path.pattern=hybrid", "slicing.layer_height_mm=2.5", "path.seed=7",
                                     "simulation.voxel_mm=1", "simulation.curvature_width=none"});
   EXPECT_EQ(NameOf(s.path.pattern), "hybrid");
   EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 2.5);
@@ -151,25 +159,25 @@ TEST_F(ScenarioTest, OverridesReplaceAndAddKeys) {
   // An optional section the file does not have is created by the override.
   EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 1.0);
   EXPECT_EQ(NameOf(s.simulation.curvature_width), "none");
-  const Scenario t = LoadScenario(Write(Valid()), {"run.steps=[plan, check]"});
+  const analysis::Scenario t = analysis::LoadScenario(Write(Valid()), {"run.steps=[plan, check]"});
   EXPECT_EQ(t.run.steps, (std::vector<std::string>{"plan", "check"}));
 }
 
 TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {
   try {
-    LoadScenario(Write(Valid()), {"path.pattern=wobble"});
+    analysis::LoadScenario(Write(Valid()), {"path.pattern=wobble"});
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("path.pattern = 'wobble': unknown value"));
   }
   try {
-    LoadScenario(Write(Valid()), {"no_equals_sign"});
+    analysis::LoadScenario(Write(Valid()), {"no_equals_sign"});
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("--set 'no_equals_sign': expected key.path=value"));
   }
   try {
-    LoadScenario(Write(Valid()), {"name.sub=1"});
+    analysis::LoadScenario(Write(Valid()), {"name.sub=1"});
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("is not a section"));
@@ -177,13 +185,13 @@ TEST_F(ScenarioTest, OverridesAreValidatedLikeTheFile) {
 }
 
 TEST_F(ScenarioTest, ArcStartAndStopChoicesAreChecked) {
-  const Scenario s =
-      LoadScenario(Write(Valid()), {"simulation.stop_crater=lost", "simulation.start_wetting=cold"});
+  const analysis::Scenario s =
+      analysis::LoadScenario(Write(Valid()), {"simulation.stop_crater=lost", "simulation.start_wetting=cold"});
   EXPECT_EQ(NameOf(s.simulation.stop_crater), "lost");
   EXPECT_EQ(NameOf(s.simulation.start_wetting), "cold");
-  EXPECT_EQ(NameOf(LoadScenario(Write(Valid())).simulation.stop_crater), "lip") << "the crater's metal freezes in its lip";
+  EXPECT_EQ(NameOf(analysis::LoadScenario(Write(Valid())).simulation.stop_crater), "lip") << "the crater's metal freezes in its lip";
   try {
-    LoadScenario(Write(Valid()), {"simulation.stop_crater=fill"});
+    analysis::LoadScenario(Write(Valid()), {"simulation.stop_crater=fill"});
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("simulation.stop_crater = 'fill': unknown value"));
@@ -223,7 +231,7 @@ TEST_F(ScenarioTest, ConeSlicingKeys) {
 
 TEST_F(ScenarioTest, MissingFileIsNamed) {
   try {
-    LoadScenario(dir_ / "nope.yaml");
+    analysis::LoadScenario(dir_ / "nope.yaml");
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("nope.yaml: file not found"));

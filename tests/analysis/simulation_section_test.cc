@@ -6,10 +6,18 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
-#include "planner/scenario/scenario.h"
+#include "analysis/scenario.h"
 
 namespace waam::planner {
 namespace {
+// These tests read every section of a scenario file: the whole-file loader, with the twin's settings types.
+using twin::Blend;
+using twin::CellSettings;
+using twin::CurvatureWidth;
+using twin::PositionerFollow;
+using twin::SimulationSettings;
+using twin::StartWetting;
+using twin::StopCrater;
 
 using ::testing::HasSubstr;
 
@@ -26,13 +34,13 @@ std::filesystem::path WriteScenario(const std::string& name, const std::string& 
 }
 
 TEST(SimulationSection, DefaultsWhenAbsent) {
-  const Scenario s = LoadScenario(WriteScenario("sim_default", ""));
+  const analysis::Scenario s = analysis::LoadScenario(WriteScenario("sim_default", ""));
   EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 0.5);
   EXPECT_EQ(NameOf(s.simulation.blend), "speed");
 }
 
 TEST(SimulationSection, ReadsValues) {
-  const Scenario s = LoadScenario(WriteScenario(
+  const analysis::Scenario s = analysis::LoadScenario(WriteScenario(
       "sim_values", "simulation: {voxel_mm: 0.25, blend: fixed, blend_radius_mm: 3, start_length_mm: 12,\n"
                     "             max_voxels: 5000000}\n"));
   EXPECT_DOUBLE_EQ(s.simulation.voxel_mm, 0.25);
@@ -44,13 +52,13 @@ TEST(SimulationSection, ReadsValues) {
 
 TEST(SimulationSection, ErrorsNameTheKey) {
   try {
-    LoadScenario(WriteScenario("sim_bad", "simulation: {voxel_mm: 5}\n"));
+    analysis::LoadScenario(WriteScenario("sim_bad", "simulation: {voxel_mm: 5}\n"));
     FAIL() << "expected InputError for voxel_mm = 5";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("simulation.voxel_mm"));
   }
   try {
-    LoadScenario(WriteScenario("sim_unknown", "simulation: {voxel_size: 0.5}\n"));
+    analysis::LoadScenario(WriteScenario("sim_unknown", "simulation: {voxel_size: 0.5}\n"));
     FAIL() << "expected InputError for an unknown key";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("voxel_size"));

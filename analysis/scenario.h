@@ -1,0 +1,26 @@
+// A whole scenario file: the planner's sections and those the twin and the analysis own, read from one document.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "analysis/run_settings.h"
+#include "planner/scenario/scenario.h"
+#include "twin/cell/cell_settings.h"
+#include "twin/simulation_settings.h"
+
+namespace waam::analysis {
+
+struct Scenario : planner::Scenario {
+  twin::CellSettings cell;              // optional `cell:` section (docs/CELL.md)
+  twin::SimulationSettings simulation;  // optional `simulation:` section (the voxel twin)
+  RunSettings run;                      // optional `run:` section (the steps of `waam run`)
+};
+
+// Loads and validates a whole scenario file: the document is read once (with the `--set` overrides) and each module
+// parses its own sections from it; a top-level key that no module reads is refused. Throws InputError naming the
+// file, line and key path, as planner::LoadScenario does.
+Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+
+}  // namespace waam::analysis
