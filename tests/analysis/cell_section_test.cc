@@ -13,14 +13,8 @@
 
 namespace waam::planner {
 namespace {
-// These tests read every section of a scenario file: the whole-file loader, with the twin's settings types.
-using twin::Blend;
+// The twin's settings types (these tests read whole scenario files, analysis::LoadScenario).
 using twin::CellSettings;
-using twin::CurvatureWidth;
-using twin::PositionerFollow;
-using twin::SimulationSettings;
-using twin::StartWetting;
-using twin::StopCrater;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 

@@ -12,12 +12,10 @@
 
 namespace waam::planner {
 namespace {
-// These tests read every section of a scenario file: the whole-file loader, with the twin's settings types.
+// The twin's settings types (these tests read whole scenario files, analysis::LoadScenario).
 using twin::Blend;
-using twin::CellSettings;
 using twin::CurvatureWidth;
 using twin::PositionerFollow;
-using twin::SimulationSettings;
 using twin::StartWetting;
 using twin::StopCrater;
 namespace fs = std::filesystem;

@@ -10,14 +10,6 @@
 
 namespace waam::planner {
 namespace {
-// These tests read every section of a scenario file: the whole-file loader, with the twin's settings types.
-using twin::Blend;
-using twin::CellSettings;
-using twin::CurvatureWidth;
-using twin::PositionerFollow;
-using twin::SimulationSettings;
-using twin::StartWetting;
-using twin::StopCrater;
 
 using ::testing::HasSubstr;
 
