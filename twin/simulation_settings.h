@@ -57,11 +57,11 @@ struct SimulationSettings {
   double stop_width_factor = 0.9;        // x planned bead width at the very end
   // Where the crater's missing metal goes (the wire feeds until the arc stops): lip = it froze in the pool's tail,
   // the stop_length_mm of bead before the crater (volume per pass = what the wire brought); lost = nowhere (the
-  // twin before: the pass deposits less than its wire brings).
+  // pass deposits less than its wire brings).
   StopCrater stop_crater = StopCrater::kLip;
   // hot = the start's metal levels into the valleys under its footprint like the steady pool; cold = it wets the
   // cold base poorly and sets on the ground under it as a draped hump, fading to the levelled pool over
-  // start_length_mm (an option: it moved Ding's Ra by at most 0.006 mm, see docs/deposition_twin.md).
+  // start_length_mm (an option, not the default: see docs/deposition_twin.md, "Start and stop").
   StartWetting start_wetting = StartWetting::kHot;
 
   // Molten metal hanging past a free edge flows down at most (1 + edge_sag_factor) x bead height below its crown.
