@@ -15,7 +15,7 @@
 #include "models/core/error.h"
 #include "models/fit/model_file.h"
 #include "models/voids/void_length_model.h"
-#include "test_util.h"
+#include "tests/models/test_util.h"
 
 namespace waam::models {
 namespace {
