@@ -8,7 +8,7 @@
 #   compensation   waam compensate on the four bent tubes (several minutes)
 #   twin_tests     the twin's reproductions inside its tests: Table 9 block, 30 passes vs one, X-junction voids (a minute)
 #   deposition_bench  waam_deposition_bench: build hour at three voxel sizes, the largest part (a minute)
-#   distortion_fit    waam fit distortion from twin scans at known parameters (about 10 minutes, 6 GB)
+#   distortion_fit    waam fit distortion from twin scans at known parameters (several minutes)
 #   published      the papers' figures next to ours: waam bench on the scenarios models/data/reference_figures.csv names
 # Needs a built ./build/waam (bash tools/test.sh --quick builds it).
 set -euo pipefail
