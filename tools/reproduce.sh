@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the tables of measured figures that the docs print, from the build, and writes each into the docs
 # between its markers <!-- reproduce:NAME --> and <!-- /reproduce:NAME -->, so the docs cannot drift from the code.
-#   tools/reproduce.sh [--only TABLE] [--list] [--out DIR]     (default: every table; outputs under out/reproduce)
+#   tools/reproduce.sh [--only TABLE] [--list] [--check] [--out DIR]   (default: every table; outputs under
+#   out/reproduce; --check only checks that every table has its markers in the docs and every marker its table)
 # Tables, the markers each one writes (when they differ from its name), where, and their cost on a 2-core machine:
 #   ding_table        Ding Table 2: passes and elements per layer, hybrid vs continuous; deposition_twin.md (seconds)
 #   twin_table        the deposition twin on Table 9's block and Ding's four shapes; deposition_twin.md (a few minutes)
@@ -34,9 +35,11 @@ tables=(ding_table twin_table compensation twin_tests deposition_bench distortio
         void_length_fit fit_bench check_bench cup_support readme_figures)
 only=""
 out="out/reproduce"
+check=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --list) printf '%s\n' "${tables[@]}"; exit 0 ;;
+    --check) check=1 ;;
     --only) only="$2"; shift ;;
     --out) out="$2"; shift ;;
     -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
@@ -44,6 +47,26 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
+# --check: every marker pair in the docs is written by some `put NAME` here, and every `put NAME` has its markers.
+if [ "$check" = 1 ]; then
+  python3 - "$0" README.md docs/*.md models/MODELS.md <<'PY'
+import re, sys
+script, docs = open(sys.argv[1]).read(), sys.argv[2:]
+puts = set(re.findall(r"\| put (\w+)", script))
+marked = {}
+for doc in docs:
+    text = open(doc).read()
+    for name in re.findall(r"<!-- reproduce:(\w+) -->", text):
+        if f"<!-- /reproduce:{name} -->" not in text:
+            print(f"{doc}: <!-- reproduce:{name} --> has no closing marker")
+        marked.setdefault(name, []).append(doc)
+bad = [f"{', '.join(marked[n])}: markers of {n}, which no table writes" for n in sorted(set(marked) - puts)]
+bad += [f"table {n} has no markers in any doc" for n in sorted(puts - set(marked))]
+print("\n".join(bad) if bad else f"reproduce.sh: {len(puts)} tables, each with its markers")
+sys.exit(1 if bad else 0)
+PY
+  exit $?
+fi
 if [ -n "$only" ] && ! printf '%s\n' "${tables[@]}" | grep -qx "$only"; then
   echo "reproduce.sh: unknown table '$only' (see --list)" >&2; exit 2
 fi
