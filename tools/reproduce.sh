@@ -248,7 +248,8 @@ for r in rows:
         ours = "%.4g" % ours
     elif ours is None:
         ours = "-"
-    print(f"| {r['source']} | {r['quantity']} | {r['published']} | {ours} {r['unit']} | `{r['scenario']}` |")
+    unit = "" if r["unit"] == "1" else " " + r["unit"]
+    print(f"| {r['source']} | {r['quantity']} | {r['published']} | {ours}{unit} | `{r['scenario']}` |")
 PY
 }
 
