@@ -1,31 +1,72 @@
 #!/usr/bin/env bash
 # Regenerates the tables of measured figures that the docs print, from the build, and writes each into the docs
 # between its markers <!-- reproduce:NAME --> and <!-- /reproduce:NAME -->, so the docs cannot drift from the code.
-#   tools/reproduce.sh [--only NAME] [--list] [--out DIR]     (default: every table; outputs under out/reproduce)
-# Tables (and what they cost on a 2-core machine):
-#   ding_table     Ding Table 2: passes and elements per layer, hybrid vs continuous (seconds)
-#   twin_table     the deposition twin on Table 9's block and Ding's four shapes (a few minutes)
-#   compensation   waam compensate on the four bent tubes (several minutes)
-#   twin_tests     the twin's reproductions inside its tests: Table 9 block, 30 passes vs one, X-junction voids (a minute)
-#   deposition_bench  waam_deposition_bench: build hour at three voxel sizes, the largest part (a minute)
-#   distortion_fit    waam fit distortion from twin scans at known parameters (several minutes)
-#   published      the papers' figures next to ours: waam bench on the scenarios models/data/reference_figures.csv names
-# Needs a built ./build/waam (bash tools/test.sh --quick builds it).
+#   tools/reproduce.sh [--only TABLE] [--list] [--check] [--out DIR]   (default: every table; outputs under
+#   out/reproduce; --check only checks that every table has its markers in the docs and every marker its table)
+# Tables, the markers each one writes (when they differ from its name), where, and their cost on a 2-core machine:
+#   ding_table        Ding Table 2: passes and elements per layer, hybrid vs continuous; deposition_twin.md (seconds)
+#   twin_table        the deposition twin on Table 9's block and Ding's four shapes; deposition_twin.md (a few minutes)
+#   compensation      waam compensate on the four bent tubes; also compensation_memory; compensation.md (several
+#                     minutes)
+#   twin_tests        the twin's reproductions inside its tests: Table 9 block, 30 passes vs one, X-junction voids;
+#                     deposition_twin.md (a minute; needs build/tests/waam_twin_tests)
+#   deposition_bench  waam_deposition_bench: build hour at three voxel sizes, the largest part;
+#                     deposition_twin.md (a minute)
+#   distortion_fit    waam fit distortion from twin scans at known parameters;
+#                     deposition_twin.md (several minutes)
+#   published         the papers' figures next to ours: waam bench on the scenarios models/data/reference_figures.csv
+#                     names; README.md (several minutes)
+#   rib_web           waam plan of the rib web (contour, Eulerian with and without void filling): rib_web_passes;
+#                     waam tune-voids on the three junctions: rib_web_junctions; waam simulate of the 12-layer cross:
+#                     rib_web_cross; rib_web.md (under a minute)
+#   model_fits        waam fit csw / speed-height / width-height next to the papers' values: model_fits, and the
+#                     printed laws checked on their tables: model_fit_checks; MODELS.md (seconds)
+#   void_length_fit   waam fit void-length and nine variants of it: void_length_variants; MODELS.md (several
+#                     minutes, the --loo run most of it)
+#   fit_bench         waam_fit_bench: CPU time of each fit; MODELS.md (a minute)
+#   check_bench       waam_check_bench: a build hour of path through waam check's checks; CELL.md (seconds)
+#   cup_support       waam plan of cup_two_handles.yaml split and in one piece: support metal; README.md (a minute)
+#   readme_figures    waam simulate of the planar demo and the thruster blades: deviation, voids; README.md (a minute)
+# Needs a built ./build/waam (bash tools/test.sh --quick builds it); the *_bench tables and twin_tests need their
+# executables (cmake --build build --target NAME).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-tables=(ding_table twin_table compensation twin_tests deposition_bench distortion_fit published)
+tables=(ding_table twin_table compensation twin_tests deposition_bench distortion_fit published rib_web model_fits
+        void_length_fit fit_bench check_bench cup_support readme_figures)
 only=""
 out="out/reproduce"
+check=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --list) printf '%s\n' "${tables[@]}"; exit 0 ;;
+    --check) check=1 ;;
     --only) only="$2"; shift ;;
     --out) out="$2"; shift ;;
-    -h|--help) sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     *) echo "reproduce.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
 done
+# --check: every marker pair in the docs is written by some `put NAME` here, and every `put NAME` has its markers.
+if [ "$check" = 1 ]; then
+  python3 - "$0" README.md docs/*.md models/MODELS.md <<'PY'
+import re, sys
+script, docs = open(sys.argv[1]).read(), sys.argv[2:]
+puts = set(re.findall(r"\| put (\w+)", script))
+marked = {}
+for doc in docs:
+    text = open(doc).read()
+    for name in re.findall(r"<!-- reproduce:(\w+) -->", text):
+        if f"<!-- /reproduce:{name} -->" not in text:
+            print(f"{doc}: <!-- reproduce:{name} --> has no closing marker")
+        marked.setdefault(name, []).append(doc)
+bad = [f"{', '.join(marked[n])}: markers of {n}, which no table writes" for n in sorted(set(marked) - puts)]
+bad += [f"table {n} has no markers in any doc" for n in sorted(puts - set(marked))]
+print("\n".join(bad) if bad else f"reproduce.sh: {len(puts)} tables, each with its markers")
+sys.exit(1 if bad else 0)
+PY
+  exit $?
+fi
 if [ -n "$only" ] && ! printf '%s\n' "${tables[@]}" | grep -qx "$only"; then
   echo "reproduce.sh: unknown table '$only' (see --list)" >&2; exit 2
 fi
@@ -209,6 +250,286 @@ for r in rows:
         ours = "-"
     unit = "" if r["unit"] == "1" else " " + r["unit"]
     print(f"| {r['source']} | {r['quantity']} | {r['published']} | {ours}{unit} | `{r['scenario']}` |")
+PY
+}
+
+rib_web() {
+  local d="$out/rib_web" r=scenarios/ribweb
+  mkdir -p "$d"
+  ./build/waam plan "$r/rib_web_contour.yaml" -o "$d/contour" -q >/dev/null
+  ./build/waam plan "$r/rib_web_eulerian.yaml" -o "$d/eulerian_none" -q --set path.void_filling.mode=none >/dev/null
+  ./build/waam plan "$r/rib_web_eulerian.yaml" -o "$d/eulerian" -q >/dev/null
+  python3 - "$d" <<'PY' | put rib_web_passes
+import json, sys
+d = sys.argv[1]
+rows = [("contour (`rib_web_contour.yaml`)", "contour"),
+        ("eulerian, no void filling (`rib_web_eulerian.yaml --set path.void_filling.mode=none`)", "eulerian_none"),
+        ("eulerian, lambda = 1 at the junctions of 3-4 ribs (`rib_web_eulerian.yaml`)", "eulerian")]
+print("| path | passes per layer | estimated layer time | weld / travel per layer | corrected turning points |")
+print("| --- | --- | --- | --- | --- |")
+for label, name in rows:
+    p = json.load(open(f"{d}/{name}/plan.json"))
+    n = p["layers"]
+    passes = sorted(set(p["passes_per_layer"]))
+    print(f"| {label} | {' - '.join(map(str, passes))} | {p['estimated_time_s'] / n:.1f} s | "
+          f"{p['weld_length_mm'] / n:.0f} / {p['travel_length_mm'] / n:.0f} mm | "
+          f"{p['void_filling']['corrected_corners'] / n:g} |")
+# The paper's row, as printed in Nguyen 2022 Table 13 (not computed).
+print("| paper, Table 13 (contour vs Eulerian) | 5 vs 1 | 230 s vs 190 s | | |")
+PY
+  # Junction classes tuned in the twin; the cross also at a ten times lower threshold.
+  local j
+  for j in cross_junction k_junction three_rib_junction; do
+    ./build/waam tune-voids "$r/$j.yaml" -o "$d/tune_$j" -q >/dev/null
+  done
+  ./build/waam tune-voids "$r/cross_junction.yaml" -o "$d/tune_cross_fine" --threshold-mm3 0.1 -q >/dev/null
+  python3 - "$d" <<'PY' | put rib_web_junctions
+import json, sys
+d = sys.argv[1]
+# Appendix A1 of Nguyen 2022: the measured void length of the same junction class after 5 layers (constants).
+a1 = {"cross_junction": "D1: 3.0 mm", "k_junction": "E1: 5.0 mm", "three_rib_junction": "A1: 0.8 mm"}
+rows = [("cross_junction", "tune_cross_junction"), ("k_junction", "tune_k_junction"),
+        ("three_rib_junction", "tune_three_rib_junction"), ("cross_junction", "tune_cross_fine")]
+print("| scenario | junction | threshold | plain: void, L | lambda = 1: shift, void | tuned: shift, void (trials) "
+      "| peak: plain / tuned | Appendix A1 L (5 layers) |")
+print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+for scenario, name in rows:
+    t = json.load(open(f"{d}/{name}/tune.json"))
+    for j in t["junctions"]:
+        p, g, u = j["plain"], j["geometric"], j["tuned"]
+        tuned = f"{u['shift_mm']:.2f} mm, {u['void_volume_mm3']:.2f} mm^3 ({j['trials']})"
+        if not j["converged"]:
+            tuned += ", not converged"
+        print(f"| `{scenario}` | {j['class']} | {t['threshold_mm3']:g} mm^3 | {p['void_volume_mm3']:.2f} mm^3, "
+              f"{p['void_length_mm']:.1f} mm | {g['shift_mm']:.2f} mm, {g['void_volume_mm3']:.2f} mm^3 | {tuned} | "
+              f"{p['peak_height_mm']:.1f} / {u['peak_height_mm']:.1f} mm | {a1[scenario]} |")
+PY
+  # The whole 12-layer cross with plain contours, lambda = 1 and the shift tuned at the lower threshold.
+  local m
+  for m in none fixed tuned; do
+    ./build/waam simulate "$r/cross_junction.yaml" -o "$d/cross_$m" -q --set path.void_filling.mode=$m \
+      --set path.void_filling.tune_file="$PWD/$d/tune_cross_fine/tune.json" >/dev/null
+  done
+  python3 - "$d" <<'PY' | put rib_web_cross
+import json, sys
+d = sys.argv[1]
+shift = json.load(open(f"{d}/tune_cross_fine/tune.json"))["junctions"][0]["shift_mm"]
+rows = [("plain (`mode=none`)", "none"), ("lambda = 1 (`mode=fixed`)", "fixed"),
+        (f"tuned, shift {shift:.2f} mm (`mode=tuned`)", "tuned")]
+print("| void filling | valleys: count, volume | enclosed voids: count, volume | smaller voids: count, volume |")
+print("| --- | --- | --- | --- |")
+for label, name in rows:
+    s = json.load(open(f"{d}/cross_{name}/simulate.json"))
+    v, w = s["valleys"], s["voids"]
+    print(f"| {label} | {v['count']}, {v['volume_mm3']:.2f} mm^3 | {w['count']}, {w['volume_mm3']:.2f} mm^3 | "
+          f"{w['smaller']['count']}, {w['smaller']['volume_mm3']:.2f} mm^3 |")
+PY
+}
+
+model_fits() {
+  local d="$out/model_fits" D=models/data
+  mkdir -p "$d"
+  local t18="$D/nguyen2022_table18_bead_vs_speed.csv"
+  ./build/waam fit csw "$D/dai2020_csw_table1.csv" -q -o "$d/csw.json" >/dev/null
+  ./build/waam fit speed-height "$t18" --speed-range 150 900 -q -o "$d/speed_height.json" >/dev/null
+  ./build/waam fit speed-height "$t18" --speed-range 150 900 --space log -q -o "$d/speed_height_log.json" >/dev/null
+  ./build/waam fit width-height "$t18" --speed-range 150 900 --degree 4 -q -o "$d/width_height.json" >/dev/null
+  ./build/waam fit width-height "$t18" --degree 4 -q -o "$d/width_height_all_rows.json" >/dev/null
+  # Table 18 with row 6 at its printed 300 mm/min (our copy has 350: models/data/nguyen2022_table18_bead_vs_speed.csv).
+  awk -F, 'BEGIN { OFS = "," } !/^#/ && $1 == "6" { $2 = 300 } { print }' "$t18" >"$d/table18_printed.csv"
+  ./build/waam fit speed-height "$d/table18_printed.csv" --speed-range 150 900 -q -o "$d/speed_height_300.json" \
+    >/dev/null
+  python3 - "$d" <<'PY' | put model_fits
+import json, sys
+d = sys.argv[1]
+csw, sh, wh = (json.load(open(f"{d}/{n}.json")) for n in ("csw", "speed_height", "width_height"))
+# The papers' printed values (Dai et al. 2020 sec. 4; Nguyen 2022 eq. 6.6-6.7, Table 18-19), constants.
+print("| model (command) | parameter / statistic | this fit | paper |")
+print("| --- | --- | --- | --- |")
+p, s = csw["params"], csw["fit"]["stats"]
+print(f"| CSW `waam fit csw models/data/dai2020_csw_table1.csv` | m | {p['m']:.6g} | 84.65 |")
+print(f"| | p [mm^2] | {p['p']:.6g} | 52.74 |")
+print(f"| | t [mm] | {p['t']:.6g} | -1.862 |")
+print(f"| | R^2 (\"confidence coefficient\") | {s['r2']:.6g} | 98.02 % |")
+print(f"| | rmse_dof [mm] (the paper's \"RMSE\") | {s['rmse_dof']:.5g} | 0.2777 |")
+print(f"| | rmse [mm] | {s['rmse']:.6g} | - |")
+p, s, sl = sh["params"], sh["fit"]["stats"], sh["fit"]["stats_log_v"]
+print(f"| speed-height `--speed-range 150 900` (v residuals) | a [mm/min] | {p['a']:.6g} | 686.4 |")
+print(f"| | b | {p['b']:.6g} | -2.069 |")
+print(f"| | R^2 of ln v | {sl['r2']:.6g} | 0.9923 |")
+print(f"| | R^2 of v | {s['r2']:.6g} | - |")
+print(f"| | rmse / rmse_dof [mm/min] | {s['rmse']:.2f} / {s['rmse_dof']:.2f} | - |")
+c, s = wh["params"]["c"], wh["fit"]["stats"]
+w = lambda h: sum(ck * h ** k for k, ck in enumerate(c))
+print(f"| width-height quartic `--speed-range 150 900` | c0..c4 [mm] | {', '.join('%.6g' % x for x in c)} | "
+      "4.3077, -11.823, 18.132, -8.8702, 1.5093 |")
+print(f"| | R^2 | {s['r2']:.6g} | 0.9886 |")
+print(f"| | rmse / rmse_dof [mm] | {s['rmse']:.4f} / {s['rmse_dof']:.4f} | - |")
+print(f"| | w at h = 1.01 / 1.49 / 1.84 mm (Table 19) | {w(1.01):.3f} / {w(1.49):.3f} / {w(1.84):.3f} | "
+      "3.29 / 5.04 / 5.98 |")
+PY
+  python3 - "$d" "$D" <<'PY' | put model_fit_checks
+import csv, json, math, sys
+d, data = sys.argv[1], sys.argv[2]
+def table(name):
+    return list(csv.DictReader(l for l in open(f"{data}/{name}") if not l.startswith("#")))
+def stats(y, f, k):  # R^2, rmse_dof of predictions f against y with k parameters
+    mean = sum(y) / len(y)
+    sse = sum((a - b) ** 2 for a, b in zip(y, f))
+    return 1 - sse / sum((a - mean) ** 2 for a in y), math.sqrt(sse / (len(y) - k))
+print("| check | R^2 | rmse_dof | parameters |")
+print("| --- | --- | --- | --- |")
+# The printed laws evaluated on the tables they were fitted to.
+t1 = table("dai2020_csw_table1.csv")
+y = [float(r["width_mm"]) for r in t1]
+f = [84.65 * float(r["travel_speed_mm_per_min"]) ** (-1 / 3) + 52.74 / float(r["curvature_radius_mm"]) - 1.862
+     for r in t1]
+r2, rd = stats(y, f, 3)
+print(f"| Dai's printed CSW law on Table 1 ({len(y)} rows) | {r2:.4f} | {rd:.4f} mm | 84.65, 52.74, -1.862 |")
+t18 = [r for r in table("nguyen2022_table18_bead_vs_speed.csv") if 150 <= float(r["travel_speed_mm_per_min"]) <= 900]
+y = [float(r["travel_speed_mm_per_min"]) for r in t18]
+f = [686.4 * float(r["height_mm"]) ** -2.069 for r in t18]
+r2, rd = stats(y, f, 2)
+print(f"| Nguyen's printed speed-height law on Table 18 rows 2-17 (R^2 of v) | {r2:.4f} | {rd:.2f} mm/min | "
+      "a = 686.4, b = -2.069 |")
+j = json.load(open(f"{d}/speed_height_log.json"))
+p = j["params"]
+print(f"| speed-height fitted in ln v (`--space log`), R^2 of ln v | {j['fit']['stats_log_v']['r2']:.6g} | - | "
+      f"a = {p['a']:.6g}, b = {p['b']:.5g} |")
+j = json.load(open(f"{d}/speed_height_300.json"))
+print(f"| speed-height with Table 18 row 6 at its printed 300 mm/min, R^2 of ln v | "
+      f"{j['fit']['stats_log_v']['r2']:.4f} | - | a = {j['params']['a']:.6g}, b = {j['params']['b']:.5g} |")
+j = json.load(open(f"{d}/width_height_all_rows.json"))
+print(f"| width-height quartic on all {j['fit']['stats']['n']} rows of Table 18 (no `--speed-range`) | "
+      f"{j['fit']['stats']['r2']:.4f} | {j['fit']['stats']['rmse_dof']:.4f} mm | "
+      f"c = {', '.join('%.3f' % x for x in j['params']['c'])} |")
+PY
+}
+
+void_length_fit() {
+  local d="$out/void_length_fit" csv=models/data/nguyen2022_appendixA1_junction_voids.csv
+  mkdir -p "$d"
+  # name and extra options of each variant of `waam fit void-length`
+  local variants=("default:" "seed2:--seed 2" "seed3:--seed 3" "loo:--loo" "best1:--best-only --seed 1"
+                  "best2:--best-only --seed 2" "best3:--best-only --seed 3" "fixed_l2:--no-bayesian --l2 0.1"
+                  "sorted:--angle-order sorted" "baseline:--kind baseline")
+  local v
+  for v in "${variants[@]}"; do
+    # shellcheck disable=SC2086  # the options are words
+    /usr/bin/time -f '%e %U' -o "$d/${v%%:*}.time" \
+      ./build/waam fit void-length "$csv" -q -o "$d/${v%%:*}.json" ${v#*:} >/dev/null
+  done
+  python3 - "$d" <<'PY' | put void_length_variants
+import json, sys
+d = sys.argv[1]
+rows = [("default (ensemble of 5), 5-fold, seed 1", "default"), ("default, `--seed 2` (restarts and folds)", "seed2"),
+        ("default, `--seed 3`", "seed3"), ("default, `--loo`", "loo"),
+        ("`--best-only` (seed 1)", "best1"), ("`--best-only --seed 2`", "best2"), ("`--best-only --seed 3`", "best3"),
+        ("`--no-bayesian --l2 0.1`", "fixed_l2"), ("`--angle-order sorted`", "sorted")]
+def held(j, key):
+    return " / ".join("%.2f" % h[key] for h in j["holdout"])
+def cpu(name):  # user CPU seconds of the whole `waam fit void-length` run
+    return "%.1f s" % float(open(f"{d}/{name}.time").read().split()[-1])
+print("| variant (extra options) | in-sample R^2, rmse / rmse_dof [mm] | CV MAE / RMSE / max [mm] | under by > 1.3 mm "
+      "| F7 / H3 / H15 from the other 60 [mm] | CPU of the run |")
+print("| --- | --- | --- | --- | --- | --- |")
+def row(label, j, cv, key, time, fit=None):
+    s = (fit or j)["fit"]["stats"]
+    print(f"| {label} | {s['r2']:.4f}, {s['rmse']:.2f} / {s['rmse_dof']:.2f} | {cv['cv_mae_mm']:.2f} / "
+          f"{cv['cv_rmse_mm']:.2f} / {cv['cv_max_abs_mm']:.2f} | {100 * cv['cv_share_under_tolerance']:.1f} % | "
+          f"{held(j, key)} | {time} |")
+for label, name in rows:
+    j = json.load(open(f"{d}/{name}.json"))
+    if "effective_params" in j.get("training", {}) and name == "default":
+        label += f"; gamma = {j['training']['effective_params']:.1f} effective parameters"
+    row(label, j, j["cross_validation"]["network"], "network_mm", cpu(name))
+b = json.load(open(f"{d}/baseline.json"))
+p = b["params"]
+row(f"baseline (`--kind baseline`; a = {p['a']:.3f} mm, b = {p['b']:.3f} mm), 5-fold", b,
+    b["cross_validation"]["baseline"], "baseline_mm", cpu("baseline"))
+loo = json.load(open(f"{d}/loo.json"))
+row("baseline, `--loo`", loo, loo["cross_validation"]["baseline"], "baseline_mm", "(in the `--loo` run)", fit=b)
+# Nguyen 2022 Table 11 and Appendix A2, constants.
+print("| dissertation (Table 11, Appendix A2) | - | - | - | 24.42 / 6.3 / 7.93 (measured 24.5 / 5.5 / 7.0) | - |")
+PY
+}
+
+fit_bench() {
+  local bench=build/analysis/benchmarks/waam_fit_bench
+  [ -x "$bench" ] || { echo "reproduce.sh: $bench is missing" >&2; exit 2; }
+  "$bench" --benchmark_format=json --benchmark_out="$out/fit_bench.json" >/dev/null
+  python3 - "$out/fit_bench.json" <<'PY' | put fit_bench
+import json, sys
+what = {"BM_FitCsw": "CSW fit (Dai Table 1, 12 rows)",
+        "BM_FitSpeedHeightPowerLaw": "speed-height power law (Table 18)",
+        "BM_FitWidthHeightQuartic": "width-height quartic (Table 18)",
+        "BM_TrainVoidNetwork/1": "void-length network, one restart (63 junctions)",
+        "BM_TrainVoidNetwork/5": "void-length network, five restarts (the default)",
+        "BM_VoidNetworkCrossValidation5Fold/iterations:1": "5-fold CV of the network (5 trainings of 5 restarts)",
+        "BM_VoidBaselineCrossValidation5Fold": "5-fold CV of the baseline"}
+print("| benchmark | what | CPU time |")
+print("| --- | --- | --- |")
+def duration(t, unit):  # a CPU time in the unit that keeps it between 1 and 1000
+    t *= {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[unit]
+    for scale, name in ((1.0, "s"), (1e-3, "ms"), (1e-6, "us")):
+        if t >= scale:
+            return "%.3g %s" % (t / scale, name)
+    return "%.3g us" % (t / 1e-6)
+for r in json.load(open(sys.argv[1]))["benchmarks"]:
+    print("| `%s` | %s | %s |" % (r["name"], what.get(r["name"], ""), duration(r["cpu_time"], r["time_unit"])))
+PY
+}
+
+check_bench() {
+  local bench=build/analysis/benchmarks/waam_check_bench
+  [ -x "$bench" ] || { echo "reproduce.sh: $bench is missing" >&2; exit 2; }
+  "$bench" --benchmark_format=json --benchmark_out="$out/check_bench.json" >/dev/null
+  python3 - "$out/check_bench.json" <<'PY' | put check_bench
+import json, sys
+what = {"BM_CheckBuildHour": "every check (motion, limits, speeds, MuJoCo collisions, torch against the deposit)",
+        "BM_MotionBuildHour": "the kinematics alone (positioner angles, closed-form IK, time stamps)"}
+print("| benchmark | what | samples | CPU time per run | samples/s |")
+print("| --- | --- | --- | --- | --- |")
+for r in json.load(open(sys.argv[1]))["benchmarks"]:
+    name = r["name"].split("/")[0]
+    print("| `%s` | %s | %s | %.0f %s | %s |" % (name, what.get(name, ""), format(r["samples"], ",.0f"),
+                                              r["cpu_time"], r["time_unit"], format(r["samples_per_s"], ",.0f")))
+PY
+}
+
+cup_support() {
+  local d="$out/cup_support" s=scenarios/multiaxis/cup_two_handles.yaml
+  ./build/waam plan "$s" -o "$d/one_piece" -q --set slicing.overhang_deg=80 >/dev/null
+  ./build/waam plan "$s" -o "$d/split" -q >/dev/null
+  python3 - "$d" <<'PY' | put cup_support
+import json, sys
+d = sys.argv[1]
+rows = [("built along +z in one piece (`--set slicing.overhang_deg=80`: no split)", "one_piece"),
+        ("centroid-shift decomposition (body +z, handles along the split-plane normals)", "split")]
+print("| cup_two_handles.yaml (1.1 mm layers) | sub-volumes | support added (Lim & Soh Table 1) |")
+print("| --- | --- | --- |")
+for label, name in rows:
+    subs = json.load(open(f"{d}/{name}/plan.json"))["sub_volumes"]
+    total = sum(s["support_mm3"] for s in subs)
+    parts = ", ".join("%s %s" % (s["name"], format(s["support_mm3"], ",.0f")) for s in subs)
+    print("| %s | %d | %s mm^3%s |" % (label, len(subs), format(total, ",.0f"), " (%s)" % parts if len(subs) > 1 else ""))
+PY
+}
+
+readme_figures() {
+  local d="$out/readme_figures"
+  ./build/waam simulate scenarios/planar_demo.yaml -o "$d/planar_demo" -q >/dev/null
+  ./build/waam simulate scenarios/multiaxis/thruster_cone.yaml -o "$d/thruster_cone" -q >/dev/null
+  python3 - "$d" <<'PY' | put readme_figures
+import json, sys
+d = sys.argv[1]
+print("| `waam simulate` | layers | deviation from the target: min / max (+ = metal outside it) | voids, valleys |")
+print("| --- | --- | --- | --- |")
+for name, path in (("planar_demo", "scenarios/planar_demo.yaml"), ("thruster_cone", "scenarios/multiaxis/thruster_cone.yaml")):
+    s = json.load(open(f"{d}/{name}/simulate.json"))
+    dev = s["deviation"]
+    print("| `%s` | %d | %.1f / %.1f mm | %.0f mm^3, %.0f mm^3 |" % (
+        path, s["layers"], dev["min_mm"], dev["max_mm"], s["voids"]["volume_mm3"], s["valleys"]["volume_mm3"]))
 PY
 }
 

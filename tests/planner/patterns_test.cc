@@ -278,9 +278,10 @@ TEST(ContinuousPattern, ContourGoesOnTheObliqueWall) {
   }
 }
 
-// The loop needs an even number of rasters. Spreading them evenly over every piece (Ding) put rasters a third of l
-// apart in pieces a little taller than one step, nearly tripling the metal there on every layer; the count is now
-// the even one whose pitch is nearest l, so the pitch stays between 0.55 l and 1.8 l once a piece holds more than two rasters.
+// The loop needs an even number of rasters. Spreading a fixed count evenly over every piece (Ding) would put rasters
+// a third of l apart in pieces a little taller than one step, nearly tripling the metal there on every layer; the
+// count is the even one whose pitch is nearest l, so the pitch stays between 0.55 l and 1.8 l once a piece holds more
+// than two rasters.
 TEST(ContinuousPattern, RasterPitchStaysNearTheStepOver) {
   const OverlapSpacing spacing = OverlapSpacingFor(OverlapModel::kProposed, kW);
   const double l = spacing.zigzag_mm;
@@ -382,7 +383,7 @@ TEST(ContinuousPattern, CurvedWallIsOnePassAndCovered) {
 }
 
 // The same wall with contours: one ring two beads wide fills it. The next offset reaches the medial axis and leaves
-// crumbs along it; each used to be a pass of its own (an arc start and stop on the spot).
+// crumbs along it, which must not become passes of their own (an arc start and stop on the spot).
 TEST(ContourPattern, WallTwoBeadsWideIsOneRing) {
   const PolygonWithHoles band = testing::ArcBand(60.0, 60.0 + 2.0 * kW, 70.0, 35);
   const std::vector<Move2D> moves = Plan(band, "contour");

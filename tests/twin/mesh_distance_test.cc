@@ -96,7 +96,7 @@ TEST(MeshDistance, VoxelSurfaceAgreesWithBruteForce) {
     ++signed_checked;
   }
   // What the structure keeps: the tree order (4 bytes a facet) and at most one inner node (56 bytes) per 2 facets
-  // (leaves hold 2-4); the per-facet normal tables it replaced took 120 bytes a facet.
+  // (leaves hold 2-4), well under the 120 bytes a facet that per-facet normal tables would take.
   EXPECT_LE(distance.MemoryBytes(), 32 * mesh.facets.size()) << mesh.facets.size() << " facets";
   // The face centres of flat faces lie on the surface; the random and the jittered points do not.
   EXPECT_GT(signed_checked, static_cast<int>(points.size()) / 2) << "of " << points.size() << " points";

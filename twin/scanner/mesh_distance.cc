@@ -54,10 +54,10 @@ std::size_t InnerNodes(std::size_t count) {
 
 }  // namespace
 
-// Memory: a voxel part's surface has ~10^7 facets (part III of the tubes: 13.1 M), so per facet only the facet order
-// of the tree is kept, and the boxes of the inner nodes; the normals of the one closest feature of a query are
-// recomputed, the facets around its vertex found through the tree. This replaced a map of edges (19.7 M entries,
-// 1.3 GB on part III), per-facet normal tables and a node per leaf (3.3 GB with the tree); 0.29 GB are left.
+// Memory: a voxel part's surface has ~10^7 facets (part III of the tubes), so per facet only the facet order of the
+// tree is kept, and the boxes of the inner nodes; the normals of the one closest feature of a query are recomputed,
+// the facets around its vertex found through the tree, rather than held in a map of edges and per-facet normal
+// tables, which on a part of that size would take gigabytes.
 MeshDistance::MeshDistance(const planner::TriangleMesh& mesh) : mesh_(mesh) {
   WAAM_THROW_UNLESS(!mesh.facets.empty(), "mesh distance: the target mesh has no facets");
   const int nv = static_cast<int>(mesh.vertices.size());
