@@ -62,6 +62,7 @@ StepOutcome RunPlanStep(RunContext& context, const fs::path& step_dir) {
 StepOutcome RunCheckStep(RunContext& context, const fs::path& step_dir) {
   auto options = StepOptions<CheckOptions>(context, step_dir);
   options.images = context.options.images;
+  options.target = &context.planned->mesh;
   const twin::CheckReport report = RunCheckOnPlan(context.scenario, context.planned->plan, options);
   nlohmann::json document = nlohmann::json::parse(ReadFile(step_dir / "check.json"));
   StepOutcome outcome;

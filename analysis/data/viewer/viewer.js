@@ -1,0 +1,352 @@
+// viewer.js: the 3D view of viewer.html (three.js r111). Reads the JSON of #waam-data (arrays as base64 typed
+// arrays, mm and s), draws the cell's bodies, the part frame's path, beads, target and violation markers, and plays
+// the frames. Once loaded, <body> carries data-viewer-ready, data-frames, data-bodies, data-violations, data-errors.
+(function () {
+  'use strict';
+  var body = document.body;
+  var errors = window.waamErrors || [];
+  var counts = { frames: 0, bodies: 0, violations: 0 };
+
+  function showMessage(text, isError) {
+    var box = document.getElementById('message');
+    box.textContent = text;
+    box.className = isError ? 'error' : '';
+    box.style.display = 'block';
+  }
+
+  function finish() {
+    body.setAttribute('data-frames', String(counts.frames));
+    body.setAttribute('data-bodies', String(counts.bodies));
+    body.setAttribute('data-violations', String(counts.violations));
+    body.setAttribute('data-errors', String(errors.length));
+    body.setAttribute('data-viewer-ready', '1');
+    if (errors.length) showMessage('The viewer met errors while loading: ' + errors.join('; '), true);
+  }
+
+  function decode(b64, Type) {
+    var raw = atob(b64 || '');
+    var bytes = new Uint8Array(raw.length);
+    for (var i = 0; i < raw.length; ++i) bytes[i] = raw.charCodeAt(i);
+    return new Type(bytes.buffer);
+  }
+
+  function colour(rgba) { return new THREE.Color(rgba[0], rgba[1], rgba[2]); }
+
+  // One three.js object for a MuJoCo geom (its frame: z is the axis of capsules and cylinders).
+  function geomObject(g, material) {
+    var s = g.size, obj;
+    if (g.type === 'box') {
+      obj = new THREE.Mesh(new THREE.BoxBufferGeometry(2 * s[0], 2 * s[1], 2 * s[2]), material);
+    } else if (g.type === 'sphere') {
+      obj = new THREE.Mesh(new THREE.SphereBufferGeometry(s[0], 24, 16), material);
+    } else if (g.type === 'cylinder' || g.type === 'capsule') {
+      var cyl = new THREE.CylinderBufferGeometry(s[0], s[0], 2 * s[1], 24);
+      cyl.rotateX(Math.PI / 2);
+      obj = new THREE.Group();
+      obj.add(new THREE.Mesh(cyl, material));
+      if (g.type === 'capsule') {
+        [-1, 1].forEach(function (side) {
+          var cap = new THREE.Mesh(new THREE.SphereBufferGeometry(s[0], 24, 12), material);
+          cap.position.set(0, 0, side * s[1]);
+          obj.add(cap);
+        });
+      }
+    } else if (g.type === 'plane') {
+      var w = s[0] > 0 ? 2 * s[0] : 4000, h = s[1] > 0 ? 2 * s[1] : 4000;
+      obj = new THREE.Mesh(new THREE.PlaneBufferGeometry(w, h), material);
+      var grid = new THREE.GridHelper(Math.max(w, h), 20, 0x999999, 0xbbbbbb);
+      grid.rotation.x = Math.PI / 2;
+      grid.position.z = 0.5;
+      obj.add(grid);
+    } else if (g.type === 'mesh' && g.vertices) {
+      var geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.BufferAttribute(decode(g.vertices, Float32Array), 3));
+      geometry.setIndex(new THREE.BufferAttribute(decode(g.triangles, Uint32Array), 1));
+      geometry.computeVertexNormals();
+      obj = new THREE.Mesh(geometry, material);
+    } else {
+      return null;
+    }
+    var p = g.pose;
+    obj.position.set(p[0], p[1], p[2]);
+    obj.quaternion.set(p[3], p[4], p[5], p[6]);
+    return obj;
+  }
+
+  function layerColour(layer, layers) {
+    return new THREE.Color().setHSL(0.66 * (1 - layer / Math.max(1, layers - 1)), 0.75, 0.5);
+  }
+
+  // Largest index i with values[i] <= x (-1 when none).
+  function upperIndex(values, x) {
+    var lo = 0, hi = values.length;
+    while (lo < hi) {
+      var mid = (lo + hi) >> 1;
+      if (values[mid] <= x) lo = mid + 1; else hi = mid;
+    }
+    return lo - 1;
+  }
+
+  function start() {
+    var data = JSON.parse(document.getElementById('waam-data').textContent);
+    document.title = 'waam viewer: ' + data.scenario;
+    document.getElementById('title').textContent = data.scenario;
+    document.getElementById('sampling').textContent = 'Sampled: ' + data.sampling + '.';
+    var nFrames = data.frames.count;
+    if (nFrames === 0) {
+      showMessage('The checked motion of "' + data.scenario + '" is empty (' + data.samples +
+                  ' samples): there is nothing to show.', false);
+      return;
+    }
+    if (typeof THREE === 'undefined') throw new Error('three.js did not load');
+
+    var view = document.getElementById('view');
+    var renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    renderer.setPixelRatio(window.devicePixelRatio || 1);
+    renderer.setSize(view.clientWidth, view.clientHeight);
+    renderer.setClearColor(0xf4f4f2);
+    view.appendChild(renderer.domElement);
+    var scene = new THREE.Scene();
+    scene.add(new THREE.AmbientLight(0xffffff, 0.55));
+    var sun = new THREE.DirectionalLight(0xffffff, 0.6);
+    sun.position.set(1500, -2500, 4000);
+    scene.add(sun);
+
+    // The cell's bodies, each a group posed per frame.
+    var bodies = [], bodyByName = {};
+    data.bodies.forEach(function (b) {
+      var group = new THREE.Group();
+      group.userData.materials = [];
+      b.geoms.forEach(function (g) {
+        var material = new THREE.MeshPhongMaterial({ color: colour(g.rgba), transparent: g.rgba[3] < 1,
+                                                     opacity: g.rgba[3], side: THREE.DoubleSide });
+        var obj = geomObject(g, material);
+        if (obj) { group.add(obj); group.userData.materials.push(material); }
+      });
+      scene.add(group);
+      bodies.push(group);
+      bodyByName[b.name] = group;
+    });
+    counts.bodies = bodies.length;
+
+    var frameT = decode(data.frames.t, Float32Array);
+    var bodyPoses = decode(data.frames.body_poses, Float32Array);
+    var partPoses = decode(data.frames.part_poses, Float32Array);
+    var frameLayer = decode(data.frames.layer, Int32Array);
+    var frameWeld = decode(data.frames.weld, Uint8Array);
+    counts.frames = nFrames;
+
+    // The part frame: path, beads, target and markers move with the positioner.
+    var part = new THREE.Group();
+    scene.add(part);
+    var n = data.path.count, layers = Math.max(1, data.layers);
+    var pP = decode(data.path.p_P, Float32Array), up = decode(data.path.up_P, Float32Array);
+    var width = decode(data.path.width, Float32Array), height = decode(data.path.height, Float32Array);
+    var pathT = decode(data.path.t, Float32Array), pathLayer = decode(data.path.layer, Int32Array);
+    var weld = decode(data.path.weld, Uint8Array);
+
+    var segments = new Float32Array(6 * Math.max(0, n - 1));
+    var byWeld = new Float32Array(segments.length), byLayer = new Float32Array(segments.length);
+    var travel = new THREE.Color(0x9aa4b0), welding = new THREE.Color(0xff7f0e);
+    for (var i = 1; i < n; ++i) {
+      var c = weld[i] ? welding : travel, cl = weld[i] ? layerColour(pathLayer[i], layers) : travel;
+      for (var e = 0; e < 2; ++e) {
+        var k = i - 1 + e, o = 6 * (i - 1) + 3 * e;
+        segments[o] = pP[3 * k]; segments[o + 1] = pP[3 * k + 1]; segments[o + 2] = pP[3 * k + 2];
+        byWeld[o] = c.r; byWeld[o + 1] = c.g; byWeld[o + 2] = c.b;
+        byLayer[o] = cl.r; byLayer[o + 1] = cl.g; byLayer[o + 2] = cl.b;
+      }
+    }
+    var pathGeometry = new THREE.BufferGeometry();
+    pathGeometry.setAttribute('position', new THREE.BufferAttribute(segments, 3));
+    pathGeometry.setAttribute('color', new THREE.BufferAttribute(byWeld, 3));
+    var path = new THREE.LineSegments(pathGeometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+    part.add(path);
+
+    // Planned beads: one box per weld move, one instanced mesh per layer, shown once the torch has laid them.
+    var beadLayers = {}, box = new THREE.BoxBufferGeometry(1, 1, 1);
+    box.translate(0.5, 0, 0.5);
+    for (i = 1; i < n; ++i) {
+      if (!weld[i] || pathLayer[i] !== pathLayer[i - 1]) continue;
+      (beadLayers[pathLayer[i]] = beadLayers[pathLayer[i]] || []).push(i);
+    }
+    var beadMeshes = [], beads = new THREE.Group();
+    var a = new THREE.Vector3(), b = new THREE.Vector3(), x = new THREE.Vector3(), y = new THREE.Vector3(),
+        z = new THREE.Vector3(), m = new THREE.Matrix4();
+    Object.keys(beadLayers).forEach(function (layer) {
+      var list = beadLayers[layer];
+      var mesh = new THREE.InstancedMesh(box, new THREE.MeshLambertMaterial({ color: layerColour(+layer, layers) }),
+                                         list.length);
+      var times = new Float32Array(list.length);
+      list.forEach(function (j, slot) {
+        a.fromArray(pP, 3 * (j - 1)); b.fromArray(pP, 3 * j);
+        x.subVectors(b, a);
+        var length = x.length();
+        if (length < 1e-6) x.set(1, 0, 0); else x.divideScalar(length);
+        z.fromArray(up, 3 * j);
+        z.addScaledVector(x, -z.dot(x));
+        if (z.lengthSq() < 1e-12) z.set(0, 0, 1).addScaledVector(x, -x.z);
+        z.normalize();
+        y.crossVectors(z, x);
+        // The bead lies below the TCP: from a to b along x, its width along y, its height down from the TCP.
+        m.makeBasis(x.clone().multiplyScalar(length), y.clone().multiplyScalar(width[j]),
+                    z.clone().multiplyScalar(height[j]));
+        m.setPosition(a.clone().addScaledVector(z, -height[j]));
+        mesh.setMatrixAt(slot, m);
+        times[slot] = pathT[j];
+      });
+      mesh.instanceMatrix.needsUpdate = true;
+      mesh.userData.times = times;
+      mesh.count = 0;
+      beads.add(mesh);
+      beadMeshes.push(mesh);
+    });
+    part.add(beads);
+
+    var target = null;
+    if (data.target) {
+      var tg = new THREE.BufferGeometry();
+      tg.setAttribute('position', new THREE.BufferAttribute(decode(data.target.vertices, Float32Array), 3));
+      tg.setIndex(new THREE.BufferAttribute(decode(data.target.triangles, Uint32Array), 1));
+      tg.computeVertexNormals();
+      target = new THREE.Mesh(tg, new THREE.MeshLambertMaterial({ color: 0x4a90d9, transparent: true, opacity: 0.18,
+                                                                  depthWrite: false, side: THREE.DoubleSide }));
+      part.add(target);
+    }
+
+    // Violation markers and their list.
+    var list = document.getElementById('violations'), markers = [], items = [];
+    var markerGeometry = new THREE.SphereBufferGeometry(8, 16, 12);
+    data.violations.forEach(function (v, index) {
+      var marker = new THREE.Mesh(markerGeometry, new THREE.MeshBasicMaterial({ color: 0xd62728 }));
+      marker.position.set(v.p_P[0], v.p_P[1], v.p_P[2]);
+      part.add(marker);
+      markers.push(marker);
+      var li = document.createElement('li');
+      var what = v.kind === 'collision' ? v.bodies.join(' / ') : v.joint;
+      li.textContent = v.kind + (what ? ' ' + what : '') + ', layer ' + v.layer + ', point ' + v.point + ', ' +
+                       v.unit + ' ' + Number(v.value).toFixed(2) + ', t = ' + Number(v.t_s).toFixed(1) + ' s';
+      li.addEventListener('click', function () { jumpTo(index); });
+      list.appendChild(li);
+      items.push(li);
+    });
+    counts.violations = markers.length;
+    document.getElementById('violation-count').textContent = '(' + markers.length + ')';
+    if (!markers.length) list.innerHTML = '<li style="border:0;background:none">none</li>';
+
+    var legend = document.getElementById('legend');
+    legend.innerHTML = '<span style="background:#ff7f0e"></span>weld <span style="background:#9aa4b0"></span>' +
+                       'travel <span style="background:#d62728"></span>violation' +
+                       (target ? ' <span style="background:#4a90d9;opacity:.4"></span>target' : '');
+
+    // The view: z up, looking at the cell's bodies from the front right.
+    var camera = new THREE.PerspectiveCamera(40, view.clientWidth / view.clientHeight, 5, 200000);
+    camera.up.set(0, 0, 1);
+    var controls = new THREE.OrbitControls(camera, renderer.domElement);
+    var duration = frameT[nFrames - 1];
+    var time = 0, playing = false, speed = 100, highlighted = [];
+    var qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
+
+    function pose(obj, array, offset, offset2, alpha) {
+      obj.position.set(array[offset], array[offset + 1], array[offset + 2]);
+      qa.set(array[offset + 3], array[offset + 4], array[offset + 5], array[offset + 6]);
+      if (offset2 !== offset) {
+        obj.position.lerp(b.set(array[offset2], array[offset2 + 1], array[offset2 + 2]), alpha);
+        qb.set(array[offset2 + 3], array[offset2 + 4], array[offset2 + 5], array[offset2 + 6]);
+        qa.slerp(qb, alpha);
+      }
+      obj.quaternion.copy(qa);
+    }
+
+    function setTime(t) {
+      time = Math.min(Math.max(t, 0), duration);
+      var f = Math.max(0, upperIndex(frameT, time)), f2 = Math.min(f + 1, nFrames - 1);
+      var span = frameT[f2] - frameT[f], alpha = span > 0 ? (time - frameT[f]) / span : 0;
+      var nb = bodies.length;
+      for (var j = 0; j < nb; ++j) pose(bodies[j], bodyPoses, 7 * (f * nb + j), 7 * (f2 * nb + j), alpha);
+      pose(part, partPoses, 7 * f, 7 * f2, alpha);
+      beadMeshes.forEach(function (mesh) { mesh.count = upperIndex(mesh.userData.times, time) + 1; });
+      document.getElementById('time').value = String(Math.round(1000 * time / Math.max(duration, 1e-9)));
+      document.getElementById('clock').textContent = 't = ' + time.toFixed(1) + ' s of ' + duration.toFixed(1) +
+          ' s, layer ' + frameLayer[f] + ', ' + (frameWeld[f] ? 'welding' : 'travel');
+    }
+
+    function setHighlight(names) {
+      highlighted.forEach(function (g) { g.userData.materials.forEach(function (mt) { mt.emissive.setHex(0); }); });
+      highlighted = names.map(function (nm) { return bodyByName[nm]; }).filter(Boolean);
+      highlighted.forEach(function (g) {
+        g.userData.materials.forEach(function (mt) { mt.emissive.setHex(0xcc0000); });
+      });
+    }
+
+    function jumpTo(index) {
+      var v = data.violations[index];
+      playing = false;
+      document.getElementById('play').textContent = 'Play';
+      items.forEach(function (li, j) { li.className = j === index ? 'active' : ''; });
+      markers.forEach(function (mk, j) { mk.scale.setScalar(j === index ? 2.5 : 1); });
+      setHighlight(v.highlight);
+      setTime(v.t_s);
+    }
+
+    document.getElementById('play').addEventListener('click', function (ev) {
+      playing = !playing;
+      if (playing && time >= duration) setTime(0);
+      ev.target.textContent = playing ? 'Pause' : 'Play';
+    });
+    document.getElementById('speed').addEventListener('change', function (ev) { speed = +ev.target.value; });
+    document.getElementById('time').addEventListener('input', function (ev) {
+      setTime(duration * ev.target.value / 1000);
+    });
+    document.getElementById('colour').addEventListener('change', function (ev) {
+      pathGeometry.setAttribute('color', new THREE.BufferAttribute(ev.target.value === 'layer' ? byLayer : byWeld, 3));
+    });
+    document.getElementById('show-path').addEventListener('change', function (ev) { path.visible = ev.target.checked; });
+    document.getElementById('show-beads').addEventListener('change', function (ev) {
+      beads.visible = ev.target.checked;
+    });
+    document.getElementById('show-target').addEventListener('change', function (ev) {
+      if (target) target.visible = ev.target.checked;
+    });
+    window.addEventListener('resize', function () {
+      camera.aspect = view.clientWidth / view.clientHeight;
+      camera.updateProjectionMatrix();
+      renderer.setSize(view.clientWidth, view.clientHeight);
+    });
+
+    // Start where the URL says (viewer.html#t=0.6: at 60 % of the build time), else at the start.
+    var match = /t=([0-9.]+)/.exec(window.location.hash);
+    setTime(match ? duration * Math.min(1, +match[1]) : 0);
+
+    // Frame the cell (the floor left out): its bounding box from the front right.
+    var bounds = new THREE.Box3();
+    bodies.forEach(function (g, j) { if (data.bodies[j].name !== 'world') bounds.expandByObject(g); });
+    bounds.expandByObject(part);
+    if (bounds.isEmpty()) bounds.set(new THREE.Vector3(-1000, -1000, 0), new THREE.Vector3(1000, 1000, 1500));
+    var centre = bounds.getCenter(new THREE.Vector3()), size = bounds.getSize(new THREE.Vector3()).length();
+    camera.position.copy(centre).add(new THREE.Vector3(0.75, -1.05, 0.6).multiplyScalar(size));
+    controls.target.copy(centre);
+    controls.update();
+
+    var last = null;
+    function frame(now) {
+      if (playing && last !== null) {
+        setTime(time + speed * (now - last) / 1000);
+        if (time >= duration) { playing = false; document.getElementById('play').textContent = 'Play'; }
+      }
+      last = now;
+      controls.update();
+      renderer.render(scene, camera);
+      requestAnimationFrame(frame);
+    }
+    renderer.render(scene, camera);
+    requestAnimationFrame(frame);
+  }
+
+  try {
+    start();
+  } catch (e) {
+    errors.push(String(e && e.message ? e.message : e));
+  }
+  finish();
+})();
