@@ -245,6 +245,7 @@
     var controls = new THREE.OrbitControls(camera, renderer.domElement);
     var duration = frameT[nFrames - 1];
     var time = 0, playing = false, speed = 100, highlighted = [];
+    var requestRender = function () {};
     var qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
 
     function pose(obj, array, offset, offset2, alpha) {
@@ -267,6 +268,7 @@
       pose(part, partPoses, 7 * f, 7 * f2, alpha);
       beadMeshes.forEach(function (mesh) { mesh.count = upperIndex(mesh.userData.times, time) + 1; });
       document.getElementById('time').value = String(Math.round(1000 * time / Math.max(duration, 1e-9)));
+      requestRender();
       document.getElementById('clock').textContent = 't = ' + time.toFixed(1) + ' s of ' + duration.toFixed(1) +
           ' s, layer ' + frameLayer[f] + ', ' + (frameWeld[f] ? 'welding' : 'travel');
     }
@@ -314,33 +316,56 @@
       renderer.setSize(view.clientWidth, view.clientHeight);
     });
 
-    // Start where the URL says (viewer.html#t=0.6: at 60 % of the build time), else at the start.
+    // Start where the URL says (viewer.html#t=0.6&view=part: at 60 % of the build time, the part framed), else at
+    // the start with the whole cell in view.
     var match = /t=([0-9.]+)/.exec(window.location.hash);
     setTime(match ? duration * Math.min(1, +match[1]) : 0);
 
-    // Frame the cell (the floor left out): its bounding box from the front right.
-    var bounds = new THREE.Box3();
-    bodies.forEach(function (g, j) { if (data.bodies[j].name !== 'world') bounds.expandByObject(g); });
-    bounds.expandByObject(part);
-    if (bounds.isEmpty()) bounds.set(new THREE.Vector3(-1000, -1000, 0), new THREE.Vector3(1000, 1000, 1500));
-    var centre = bounds.getCenter(new THREE.Vector3()), size = bounds.getSize(new THREE.Vector3()).length();
-    camera.position.copy(centre).add(new THREE.Vector3(0.75, -1.05, 0.6).multiplyScalar(size));
-    controls.target.copy(centre);
-    controls.update();
+    // Frame the cell (the floor left out) or the part (its path and target), from the front right.
+    function frameOn(what) {
+      scene.updateMatrixWorld(true);
+      var bounds = new THREE.Box3();
+      if (what === 'part') {
+        bounds.expandByObject(path);
+        if (target) bounds.expandByObject(target);
+      } else {
+        bodies.forEach(function (g, j) { if (data.bodies[j].name !== 'world') bounds.expandByObject(g); });
+        bounds.expandByObject(part);
+      }
+      if (bounds.isEmpty()) bounds.set(new THREE.Vector3(-1000, -1000, 0), new THREE.Vector3(1000, 1000, 1500));
+      var centre = bounds.getCenter(new THREE.Vector3());
+      var size = Math.max(bounds.getSize(new THREE.Vector3()).length(), 50) * (what === 'part' ? 1.6 : 1);
+      camera.position.copy(centre).add(new THREE.Vector3(0.75, -1.05, 0.6).multiplyScalar(size));
+      controls.target.copy(centre);
+      controls.update();
+    }
+    document.getElementById('frame-cell').addEventListener('click', function () { frameOn('cell'); });
+    document.getElementById('frame-part').addEventListener('click', function () { frameOn('part'); });
+    frameOn(/view=part/.test(window.location.hash) ? 'part' : 'cell');
 
-    var last = null;
+    // Draw on demand (a change of time, view or settings; every frame while playing), so an idle page costs nothing.
+    var last = null, pending = false;
     function frame(now) {
-      if (playing && last !== null) {
-        setTime(time + speed * (now - last) / 1000);
+      pending = false;
+      if (playing) {
+        if (last !== null) setTime(time + speed * (now - last) / 1000);
+        last = now;
         if (time >= duration) { playing = false; document.getElementById('play').textContent = 'Play'; }
       }
-      last = now;
-      controls.update();
+      if (playing) requestRender(); else last = null;
       renderer.render(scene, camera);
-      requestAnimationFrame(frame);
     }
+    requestRender = function () {
+      if (!pending) { pending = true; requestAnimationFrame(frame); }
+    };
+    controls.addEventListener('change', requestRender);
+    ['play', 'speed', 'time', 'colour', 'show-path', 'show-beads', 'show-target', 'frame-cell', 'frame-part']
+        .forEach(function (id) {
+          document.getElementById(id).addEventListener(id === 'time' ? 'input' : 'change', requestRender);
+          document.getElementById(id).addEventListener('click', requestRender);
+        });
+    window.addEventListener('resize', requestRender);
     renderer.render(scene, camera);
-    requestAnimationFrame(frame);
   }
 
   try {
