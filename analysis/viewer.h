@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -52,5 +53,10 @@ ViewerSummary WriteViewer(const std::string& scenario_name, const twin::CellMode
                           const planner::CellKinematics& kin, const planner::Plan& plan,
                           const planner::TriangleMesh* target, const twin::CheckReport& report,
                           const std::filesystem::path& path, const ViewerBudget& budget = {});
+
+namespace internal {
+// Standard base64 (RFC 4648 alphabet, '=' padding) of `bytes`.
+std::string Base64(std::string_view bytes);
+}  // namespace internal
 
 }  // namespace waam::analysis

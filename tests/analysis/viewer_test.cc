@@ -18,6 +18,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "analysis/bench_command.h"
 #include "analysis/check_command.h"
 #include "analysis/scenario.h"
 #include "planner/planar_planner.h"
@@ -25,9 +26,6 @@
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
-namespace internal {
-std::string Base64(std::string_view bytes);
-}  // namespace internal
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -174,6 +172,35 @@ TEST(ViewerTest, PageCountsMatchTheRunAndTheBudget) {
     EXPECT_FALSE(violation["highlight"].empty()) << "a joint-limit violation highlights the joint's body";
   }
   EXPECT_THAT(data["sampling"].get<std::string>(), HasSubstr(std::to_string(summary.frames) + " frames of"));
+}
+
+TEST(ViewerTest, BenchReportLinksEachScenarioViewer) {
+  const fs::path dir = cli_test::TempDir("viewer_bench");
+  fs::create_directories(dir / "scenarios");
+  std::ofstream(dir / "scenarios" / "small.yaml") << R"(name: small_block
+part:
+  generator: {type: box, size_mm: [30, 20, 3]}
+slicing:
+  type: planar
+  layer_height_mm: 1.5
+path:
+  pattern: continuous
+  bead_width_mm: 6
+process:
+  travel_speed_mm_min: 400
+  wire_feed_mm_min: 3200
+run:
+  steps: [plan, check]
+)";
+  BenchOptions options;
+  options.scenarios = {dir / "scenarios"};
+  options.out_dir = dir / "bench";
+  options.waam_binary = WAAM_BINARY;
+  options.quiet = true;
+  RunBench(options);
+  EXPECT_TRUE(fs::is_regular_file(dir / "bench" / "small" / "check" / "viewer.html")) << "waam run writes the viewer";
+  const std::string report = ReadFile(dir / "bench" / "report.html");
+  EXPECT_NE(report.find("<a href=\"small/check/viewer.html\">"), std::string::npos) << "the report links the viewer";
 }
 
 // --- In the browser ---
