@@ -12,6 +12,7 @@
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
 #include "twin/cell/cell_check.h"
+#include "twin/deposition/bead_deposition.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
@@ -53,6 +54,16 @@ ViewerSummary WriteViewer(const std::string& scenario_name, const twin::CellMode
                           const planner::CellKinematics& kin, const planner::Plan& plan,
                           const planner::TriangleMesh* target, const twin::CheckReport& report,
                           const std::filesystem::path& path, const ViewerBudget& budget = {});
+
+// Where a written viewer.html keeps room for the deposited part (AddDepositToViewer).
+inline constexpr std::string_view kViewerDepositMarker = "<!--WAAM_DEPOSIT-->";
+
+// Adds the twin's deposit to the viewer.html at `page` (written by WriteViewer for the same plan): the occupied
+// voxels merged into cubes of k^3 voxels, k the smallest that keeps at most `max_cells` cubes, each with its layer and
+// the time metal first reached it; the page grows them as the torch goes. Rewrites the page atomically; returns the
+// number of cubes. Throws InputError when the page has no room for a deposit (not a viewer, or added already).
+std::size_t AddDepositToViewer(const std::filesystem::path& page, const twin::Depositor& depositor,
+                               std::size_t max_cells = 150000);
 
 namespace internal {
 // Standard base64 (RFC 4648 alphabet, '=' padding) of `bytes`.

@@ -24,6 +24,7 @@
 #include "planner/planar_planner.h"
 #include "tests/analysis/cli_test_util.h"
 #include "twin/cell/mujoco_cell.h"
+#include "twin/deposition/bead_deposition.h"
 
 namespace waam::analysis {
 namespace {
@@ -174,6 +175,32 @@ TEST(ViewerTest, PageCountsMatchTheRunAndTheBudget) {
   EXPECT_THAT(data["sampling"].get<std::string>(), HasSubstr(std::to_string(summary.frames) + " frames of"));
 }
 
+TEST(ViewerTest, DepositIsCoarsenedToItsBudgetAndAddedOnce) {
+  const fs::path dir = cli_test::TempDir("viewer_deposit");
+  const Checked c = CheckScenario("cell/cell_joint_limit.yaml", dir);
+  const twin::Depositor depositor = twin::DepositPlan(c.planned.plan, c.scenario.simulation,
+                                                      c.scenario.process.rapid_speed_mm_min / 60.0, nullptr);
+  ASSERT_GT(depositor.grid().occupied(), 1000u);
+  // Every voxel its own cell when the budget allows.
+  fs::copy_file(dir / "viewer.html", dir / "full.html");
+  EXPECT_EQ(AddDepositToViewer(dir / "full.html", depositor, depositor.grid().occupied()),
+            depositor.grid().occupied());
+  // A budget of a tenth of the voxels: merged cubes, within the budget.
+  const std::size_t budget = depositor.grid().occupied() / 10;
+  const std::size_t cells = AddDepositToViewer(dir / "viewer.html", depositor, budget);
+  EXPECT_LE(cells, budget);
+  EXPECT_GT(cells, 0u);
+  const std::string page = cli_test::Slurp(dir / "viewer.html");
+  EXPECT_THAT(page, HasSubstr("id=\"waam-deposit\""));
+  EXPECT_EQ(page.find(std::string(kViewerDepositMarker)), std::string::npos) << "the room for the deposit is used";
+  try {
+    AddDepositToViewer(dir / "viewer.html", depositor);
+    FAIL() << "a second deposit must be refused";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("viewer.html: not a viewer.html of this waam, or its deposit was added already"));
+  }
+}
+
 TEST(ViewerTest, BenchReportLinksEachScenarioViewer) {
   const fs::path dir = cli_test::TempDir("viewer_bench");
   fs::create_directories(dir / "scenarios");
@@ -280,6 +307,24 @@ TEST(ViewerBrowserTest, PageOfAMultiAxisRunWithoutSimulateLoads) {
   ASSERT_EQ(code, 0) << err;
   ASSERT_FALSE(fs::exists(dir / "out" / "simulate"));
   ExpectPageLoads(dir / "out" / "check", "WAAM_VIEWER_SCREENSHOT");
+}
+
+// With the simulate step after check, the page grows the deposited part.
+TEST(ViewerBrowserTest, PageOfARunWithSimulateShowsTheDeposit) {
+  const fs::path dir = cli_test::TempDir("viewer_browser_simulate");
+  std::string err;
+  ASSERT_EQ(cli_test::RunWaam("run " + kScenarios + "cell/cell_ok.yaml -o " + (dir / "out").string() +
+                                  " -q --steps plan check simulate",
+                              &err),
+            0)
+      << err;
+  const std::string page = cli_test::Slurp(dir / "out" / "check" / "viewer.html");
+  EXPECT_NE(page.find("id=\"waam-deposit\""), std::string::npos) << "the simulate step adds the deposit";
+  if (!HaveChromium()) GTEST_SKIP() << "chromium is not installed (tools/install_deps.sh installs it)";
+  const std::string dom = Chromium(dir / "out" / "check" / "viewer.html", "--dump-dom");
+  EXPECT_EQ(BodyAttribute(dom, "data-viewer-ready"), "1");
+  EXPECT_EQ(BodyAttribute(dom, "data-errors"), "0");
+  EXPECT_NE(dom.find("deposited part:"), std::string::npos) << "the page says what it holds of the deposit";
 }
 
 TEST(ViewerBrowserTest, EmptyMotionGivesAPageThatSaysSo) {

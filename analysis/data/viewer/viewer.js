@@ -214,6 +214,54 @@
       part.add(target);
     }
 
+    // The deposited part of `waam simulate` (when the run had it): cubes grown on the check's clock. The twin has
+    // its own clock: each layer's span of deposition times is mapped onto that layer's welding span here.
+    var depositNode = document.getElementById('waam-deposit'), depositMeshes = [], deposit = new THREE.Group();
+    if (depositNode) {
+      var dep = JSON.parse(depositNode.textContent);
+      var centres = decode(dep.centres, Float32Array), simT = decode(dep.time_s, Float32Array);
+      var depLayer = decode(dep.layer, Int32Array);
+      var weldSpan = {}, simSpan = {};
+      for (i = 1; i < n; ++i) {
+        if (!weld[i]) continue;
+        var ws = weldSpan[pathLayer[i]] = weldSpan[pathLayer[i]] || [pathT[i - 1], pathT[i]];
+        ws[0] = Math.min(ws[0], pathT[i - 1]); ws[1] = Math.max(ws[1], pathT[i]);
+      }
+      var byLayerCells = {};
+      for (i = 0; i < dep.count; ++i) {
+        var ss = simSpan[depLayer[i]] = simSpan[depLayer[i]] || [simT[i], simT[i]];
+        ss[0] = Math.min(ss[0], simT[i]); ss[1] = Math.max(ss[1], simT[i]);
+        (byLayerCells[depLayer[i]] = byLayerCells[depLayer[i]] || []).push(i);
+      }
+      var cube = new THREE.BoxBufferGeometry(dep.cell_mm, dep.cell_mm, dep.cell_mm);
+      Object.keys(byLayerCells).forEach(function (layer) {
+        var cells = byLayerCells[layer], span = simSpan[layer], to = weldSpan[layer] || [0, duration];
+        var mesh = new THREE.InstancedMesh(cube, new THREE.MeshLambertMaterial({ color: layerColour(+layer, layers) }),
+                                           cells.length);
+        var times = new Float32Array(cells.length);
+        cells.forEach(function (c, slot) {
+          m.makeTranslation(centres[3 * c], centres[3 * c + 1], centres[3 * c + 2]);
+          mesh.setMatrixAt(slot, m);
+          var f = span[1] > span[0] ? (simT[c] - span[0]) / (span[1] - span[0]) : 1;
+          times[slot] = to[0] + f * (to[1] - to[0]);
+        });
+        mesh.instanceMatrix.needsUpdate = true;
+        mesh.userData.times = times;
+        mesh.count = 0;
+        deposit.add(mesh);
+        depositMeshes.push(mesh);
+        beadMeshes.push(mesh);
+      });
+      part.add(deposit);
+      beads.visible = false;
+      document.getElementById('show-beads').checked = false;
+      document.getElementById('deposit-toggle').style.display = '';
+      document.getElementById('show-deposit').addEventListener('change', function (ev) {
+        deposit.visible = ev.target.checked;
+      });
+      document.getElementById('sampling').textContent += ' ' + dep.note + '.';
+    }
+
     // Violation markers and their list.
     var list = document.getElementById('violations'), markers = [], items = [];
     var markerGeometry = new THREE.SphereBufferGeometry(8, 16, 12);
@@ -359,7 +407,8 @@
       if (!pending) { pending = true; requestAnimationFrame(frame); }
     };
     controls.addEventListener('change', requestRender);
-    ['play', 'speed', 'time', 'colour', 'show-path', 'show-beads', 'show-target', 'frame-cell', 'frame-part']
+    ['play', 'speed', 'time', 'colour', 'show-path', 'show-beads', 'show-deposit', 'show-target', 'frame-cell',
+     'frame-part']
         .forEach(function (id) {
           document.getElementById(id).addEventListener(id === 'time' ? 'input' : 'change', requestRender);
           document.getElementById(id).addEventListener('click', requestRender);
