@@ -293,6 +293,15 @@ TEST(ViewerBrowserTest, PageOfAScenarioWithViolationsLoads) {
   const fs::path dir = cli_test::TempDir("viewer_browser_violations");
   CheckScenario("cell/cell_joint_limit.yaml", dir);
   ExpectPageLoads(dir);
+  // Played (viewer.html#play), the build clock moves on from 0.
+  const std::string dom = Chromium(dir / "viewer.html", "--dump-dom", "#play&speed=100");
+  const std::size_t at = dom.find("id=\"clock\"");
+  ASSERT_NE(at, std::string::npos) << "no clock in the page";
+  const std::string text = dom.substr(at, 200);
+  std::smatch clock;
+  ASSERT_TRUE(std::regex_search(text, clock, std::regex("t = ([0-9.]+) s")))
+      << "no clock in the page";
+  EXPECT_GT(std::stod(clock[1].str()), 0.0) << "playing did not advance the time";
 }
 
 // `waam run` without the simulate step: the page has the planned path and beads only. With

@@ -390,6 +390,11 @@
     document.getElementById('frame-cell').addEventListener('click', function () { frameOn('cell'); });
     document.getElementById('frame-part').addEventListener('click', function () { frameOn('part'); });
     frameOn(/view=part/.test(window.location.hash) ? 'part' : 'cell');
+    // viewer.html#play: start playing (at the speed of #speed=<x>, default 100x).
+    var speedMatch = /speed=([0-9.]+)/.exec(window.location.hash);
+    if (speedMatch) speed = +speedMatch[1];
+    playing = /play/.test(window.location.hash);
+    if (playing) document.getElementById('play').textContent = 'Pause';
 
     // Draw on demand (a change of time, view or settings; every frame while playing), so an idle page costs nothing.
     var last = null, pending = false;
@@ -415,6 +420,7 @@
         });
     window.addEventListener('resize', requestRender);
     renderer.render(scene, camera);
+    if (playing) requestRender();
   }
 
   try {
