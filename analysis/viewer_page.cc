@@ -58,6 +58,7 @@ std::string ViewerPage(const nlohmann::json& data) {
   const std::string script = ReadFile(dir / "viewer.js");
   Fill(&page, "/*WAAM_THREE_JS*/", ScriptSafe(three));
   Fill(&page, "/*WAAM_ORBIT_CONTROLS*/", ScriptSafe(orbit));
+  Fill(&page, "/*WAAM_VIEWER_SHAPES_JS*/", ScriptSafe(ReadFile(dir / "viewer_shapes.js")));
   Fill(&page, "/*WAAM_VIEWER_JS*/", ScriptSafe(script));
   // JSON inside <script type="application/json">: "<\/" is the same JSON string, and no element ends early.
   Fill(&page, "/*WAAM_DATA*/", ScriptSafe(data.dump()));

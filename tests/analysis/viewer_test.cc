@@ -302,6 +302,17 @@ TEST(ViewerBrowserTest, PageOfAScenarioWithViolationsLoads) {
   ASSERT_TRUE(std::regex_search(text, clock, std::regex("t = ([0-9.]+) s")))
       << "no clock in the page";
   EXPECT_GT(std::stod(clock[1].str()), 0.0) << "playing did not advance the time";
+
+  // Opened at the first violation (as a click on it does): its body is lit, its row is the active one.
+  const nlohmann::json check = cli_test::ReadJson(dir / "check.json");
+  const std::string at_violation = Chromium(dir / "viewer.html", "--dump-dom", "#violation=0");
+  EXPECT_EQ(BodyAttribute(at_violation, "data-errors"), "0");
+  const std::string joint = check["violations"][0].value("joint", "");
+  ASSERT_EQ(joint, "j1") << "the scenario plants a J1 limit violation";
+  EXPECT_EQ(BodyAttribute(at_violation, "data-highlighted"), "link1") << "J1 turns link1";
+  EXPECT_NE(at_violation.find("<li class=\"active\">joint_limit j1, layer " +
+                              std::to_string(check["violations"][0]["layer"].get<int>())),
+            std::string::npos);
 }
 
 // `waam run` without the simulate step: the page has the planned path and beads only. With
