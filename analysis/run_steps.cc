@@ -85,7 +85,9 @@ StepOutcome RunSimulateStep(RunContext& context, const fs::path& step_dir) {
   const twin::TwinResult result = SimulatePlanned(context.scenario, *context.planned, options);
   // The check step's viewer, when it ran before, grows the deposited part.
   const fs::path viewer = step_dir.parent_path() / "check" / "viewer.html";
-  if (context.results.contains("check") && fs::is_regular_file(viewer)) AddDepositToViewer(viewer, result.depositor);
+  if (context.results.contains("check") && fs::is_regular_file(viewer)) {
+    AddDepositToViewer(viewer, result.depositor, &result.deviation);
+  }
   nlohmann::json document = SimulationToJson(context.scenario, result);
   document.erase("performance");  // timings and memory: summary.json keeps them under `timing`
   StepOutcome outcome;

@@ -13,6 +13,7 @@
 #include "planner/path/tool_path.h"
 #include "twin/cell/cell_check.h"
 #include "twin/deposition/bead_deposition.h"
+#include "twin/scanner/deviation.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
@@ -60,10 +61,12 @@ inline constexpr std::string_view kViewerDepositMarker = "<!--WAAM_DEPOSIT-->";
 
 // Adds the twin's deposit to the viewer.html at `page` (written by WriteViewer for the same plan): the occupied
 // voxels merged into cubes of k^3 voxels, k the smallest that keeps at most `max_cells` cubes, each with its layer and
-// the time metal first reached it; the page grows them as the torch goes. Rewrites the page atomically; returns the
-// number of cubes. Throws InputError when the page has no room for a deposit (not a viewer, or added already).
+// the time metal first reached it; the page grows them as the torch goes. With `deviation` (may be null) each cube
+// holding exposed faces gets the deviation of largest magnitude among them (mm) for the page's deviation colours.
+// Rewrites the page atomically; returns the number of cubes. Throws InputError when the page has no room for a
+// deposit (not a viewer, or added already).
 std::size_t AddDepositToViewer(const std::filesystem::path& page, const twin::Depositor& depositor,
-                               std::size_t max_cells = 150000);
+                               const twin::DeviationReport* deviation = nullptr, std::size_t max_cells = 150000);
 
 namespace internal {
 // Standard base64 (RFC 4648 alphabet, '=' padding) of `bytes`.

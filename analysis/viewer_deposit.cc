@@ -1,6 +1,8 @@
 // The deposited part of `waam simulate` added to a written viewer.html: the twin's voxels coarsened to a budget of
 // cells, each with its layer and the time metal first reached it, so the page grows the part as the torch goes.
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstdint>
 #include <sstream>
 #include <unordered_map>
@@ -39,7 +41,8 @@ std::unordered_map<std::uint64_t, Cell> Coarsen(const twin::Depositor& depositor
 
 }  // namespace
 
-std::size_t AddDepositToViewer(const fs::path& page_path, const twin::Depositor& depositor, std::size_t max_cells) {
+std::size_t AddDepositToViewer(const fs::path& page_path, const twin::Depositor& depositor,
+                               const twin::DeviationReport* deviation, std::size_t max_cells) {
   std::string page = ReadFile(page_path);
   const std::string marker = std::string(kViewerDepositMarker);
   const std::size_t at = page.rfind(marker);  // after the inlined data and libraries, before viewer.js
@@ -67,6 +70,22 @@ std::size_t AddDepositToViewer(const fs::path& page_path, const twin::Depositor&
     times.push_back(cell.time_s);
     layers.push_back(cell.layer);
   }
+  // Each cube's deviation: the exposed face of largest |deviation| among its voxels (NaN: no exposed face).
+  std::vector<float> cube_deviation;
+  if (deviation && !deviation->points.empty()) {
+    std::unordered_map<std::uint64_t, float> worst;
+    const double voxel = depositor.grid().voxel_mm();
+    for (const twin::SurfaceSample& s : deviation->points) {
+      const twin::VoxelIndex v = depositor.grid().IndexOf(s.p_P - 0.5 * voxel * s.face.cast<double>());
+      const std::uint64_t key = Key(FloorDiv(v.x(), merge), FloorDiv(v.y(), merge), FloorDiv(v.z(), merge));
+      auto [it, added] = worst.try_emplace(key, float(s.deviation_mm));
+      if (!added && std::abs(s.deviation_mm) > std::abs(it->second)) it->second = float(s.deviation_mm);
+    }
+    for (const auto& [key, cell] : sorted) {
+      const auto it = worst.find(key);
+      cube_deviation.push_back(it == worst.end() ? std::numeric_limits<float>::quiet_NaN() : it->second);
+    }
+  }
   std::ostringstream note;
   note << "deposited part: " << sorted.size() << " cells of " << size_mm << " mm (" << depositor.grid().occupied()
        << " voxels of " << depositor.grid().voxel_mm() << " mm merged " << merge << "^3)";
@@ -79,9 +98,15 @@ std::size_t AddDepositToViewer(const fs::path& page_path, const twin::Depositor&
                                {"layer", internal::Base64(std::string_view(
                                              reinterpret_cast<const char*>(layers.data()), layers.size() * 4))},
                                {"note", note.str()}};
+  nlohmann::json document = data;
+  if (!cube_deviation.empty()) {
+    document["deviation_mm"] = internal::Base64(std::string_view(reinterpret_cast<const char*>(cube_deviation.data()),
+                                                                 cube_deviation.size() * 4));
+    document["deviation_rms_mm"] = deviation->rms_mm;
+  }
   // (Numbers, base64 and the note: no "</" that could end the script early.)
   page.replace(at, marker.size(),
-               "<script type=\"application/json\" id=\"waam-deposit\">" + data.dump() + "</script>");
+               "<script type=\"application/json\" id=\"waam-deposit\">" + document.dump() + "</script>");
   WriteFileAtomic(page_path, page);
   return sorted.size();
 }

@@ -183,11 +183,11 @@ TEST(ViewerTest, DepositIsCoarsenedToItsBudgetAndAddedOnce) {
   ASSERT_GT(depositor.grid().occupied(), 1000u);
   // Every voxel its own cell when the budget allows.
   fs::copy_file(dir / "viewer.html", dir / "full.html");
-  EXPECT_EQ(AddDepositToViewer(dir / "full.html", depositor, depositor.grid().occupied()),
+  EXPECT_EQ(AddDepositToViewer(dir / "full.html", depositor, nullptr, depositor.grid().occupied()),
             depositor.grid().occupied());
   // A budget of a tenth of the voxels: merged cubes, within the budget.
   const std::size_t budget = depositor.grid().occupied() / 10;
-  const std::size_t cells = AddDepositToViewer(dir / "viewer.html", depositor, budget);
+  const std::size_t cells = AddDepositToViewer(dir / "viewer.html", depositor, nullptr, budget);
   EXPECT_LE(cells, budget);
   EXPECT_GT(cells, 0u);
   const std::string page = cli_test::Slurp(dir / "viewer.html");
@@ -340,11 +340,13 @@ TEST(ViewerBrowserTest, PageOfARunWithSimulateShowsTheDeposit) {
       << err;
   const std::string page = cli_test::Slurp(dir / "out" / "check" / "viewer.html");
   EXPECT_NE(page.find("id=\"waam-deposit\""), std::string::npos) << "the simulate step adds the deposit";
+  EXPECT_NE(page.find("\"deviation_mm\""), std::string::npos) << "and its deviation from the target";
   if (!HaveChromium()) GTEST_SKIP() << "chromium is not installed (tools/install_deps.sh installs it)";
-  const std::string dom = Chromium(dir / "out" / "check" / "viewer.html", "--dump-dom");
+  const std::string dom = Chromium(dir / "out" / "check" / "viewer.html", "--dump-dom", "#t=0.5&deviation");
   EXPECT_EQ(BodyAttribute(dom, "data-viewer-ready"), "1");
   EXPECT_EQ(BodyAttribute(dom, "data-errors"), "0");
   EXPECT_NE(dom.find("deposited part:"), std::string::npos) << "the page says what it holds of the deposit";
+  EXPECT_NE(dom.find("(rms "), std::string::npos) << "the deviation colour scale is shown";
 }
 
 TEST(ViewerBrowserTest, EmptyMotionGivesAPageThatSaysSo) {

@@ -157,6 +157,7 @@
     // The deposited part of `waam simulate` (when the run had it): cubes grown on the check's clock. The twin has
     // its own clock: each layer's span of deposition times is mapped onto that layer's welding span here.
     var depositNode = document.getElementById('waam-deposit'), depositMeshes = [], deposit = new THREE.Group();
+    var deviationGroup = null;
     if (depositNode) {
       var dep = JSON.parse(depositNode.textContent);
       var centres = decode(dep.centres, Float32Array), simT = decode(dep.time_s, Float32Array);
@@ -193,6 +194,43 @@
         beadMeshes.push(mesh);
       });
       part.add(deposit);
+      // The deviation from the target on the finished part: cubes binned by their surface deviation, blue
+      // (shortfall) through white to red (excess), clipped at the 95th percentile of |deviation|.
+      if (dep.deviation_mm) {
+        var dev = decode(dep.deviation_mm, Float32Array), magnitudes = [];
+        for (i = 0; i < dev.length; ++i) if (!isNaN(dev[i])) magnitudes.push(Math.abs(dev[i]));
+        magnitudes.sort(function (p, q) { return p - q; });
+        var range = Math.max(0.1, magnitudes.length ? magnitudes[Math.floor(0.95 * (magnitudes.length - 1))] : 0);
+        var bins = 11, binned = [];
+        for (i = 0; i <= bins; ++i) binned.push([]);
+        for (i = 0; i < dep.count; ++i) {
+          if (isNaN(dev[i])) { binned[bins].push(i); continue; }
+          var u = Math.min(1, Math.max(0, 0.5 + 0.5 * dev[i] / range));
+          binned[Math.min(bins - 1, Math.floor(u * bins))].push(i);
+        }
+        deviationGroup = new THREE.Group();
+        binned.forEach(function (cells, bin) {
+          if (!cells.length) return;
+          var u = (bin + 0.5) / bins, c = bin === bins ? new THREE.Color(0xbbbbbb)
+              : u < 0.5 ? new THREE.Color(1, 1, 1).lerp(new THREE.Color(0x2166ac), 1 - 2 * u)
+                        : new THREE.Color(1, 1, 1).lerp(new THREE.Color(0xb2182b), 2 * u - 1);
+          var mesh = new THREE.InstancedMesh(cube, new THREE.MeshLambertMaterial({ color: c }), cells.length);
+          cells.forEach(function (cell, slot) {
+            mesh.setMatrixAt(slot, m.makeTranslation(centres[3 * cell], centres[3 * cell + 1], centres[3 * cell + 2]));
+          });
+          mesh.instanceMatrix.needsUpdate = true;
+          deviationGroup.add(mesh);
+        });
+        deviationGroup.visible = false;
+        part.add(deviationGroup);
+        document.getElementById('deviation-toggle').style.display = '';
+        document.getElementById('deviation-scale').textContent = 'blue -' + range.toFixed(2) + ' mm, white 0, red +' +
+            range.toFixed(2) + ' mm (rms ' + Number(dep.deviation_rms_mm).toFixed(2) + ' mm; the finished part)';
+        document.getElementById('show-deviation').addEventListener('change', function (ev) {
+          deviationGroup.visible = ev.target.checked;
+          deposit.visible = !ev.target.checked && document.getElementById('show-deposit').checked;
+        });
+      }
       beads.visible = false;
       document.getElementById('show-beads').checked = false;
       document.getElementById('deposit-toggle').style.display = '';
@@ -336,6 +374,12 @@
     if (speedMatch) speed = +speedMatch[1];
     playing = /play/.test(window.location.hash);
     if (playing) document.getElementById('play').textContent = 'Pause';
+    // viewer.html#deviation: the deviation colours on (when the run has them).
+    if (deviationGroup && /deviation/.test(window.location.hash)) {
+      document.getElementById('show-deviation').checked = true;
+      deviationGroup.visible = true;
+      deposit.visible = false;
+    }
     // viewer.html#violation=<i>: open at the i-th violation (from 0), as a click on it in the list does.
     var violationMatch = /violation=([0-9]+)/.exec(window.location.hash);
     if (violationMatch && +violationMatch[1] < markers.length) jumpTo(+violationMatch[1]);
@@ -356,8 +400,8 @@
       if (!pending) { pending = true; requestAnimationFrame(frame); }
     };
     controls.addEventListener('change', requestRender);
-    ['play', 'speed', 'time', 'colour', 'show-path', 'show-beads', 'show-deposit', 'show-target', 'frame-cell',
-     'frame-part']
+    ['play', 'speed', 'time', 'colour', 'show-path', 'show-beads', 'show-deposit', 'show-deviation', 'show-target',
+     'frame-cell', 'frame-part']
         .forEach(function (id) {
           document.getElementById(id).addEventListener(id === 'time' ? 'input' : 'change', requestRender);
           document.getElementById(id).addEventListener('click', requestRender);
