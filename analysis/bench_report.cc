@@ -10,6 +10,7 @@
 
 #include "analysis/bench_command.h"
 #include "analysis/svg_plot.h"
+#include "analysis/viewer.h"
 #include "models/bead/csw_model.h"
 #include "models/bead/speed_height_model.h"
 #include "models/bead/width_height_model.h"
@@ -27,18 +28,7 @@ namespace {
 const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
 
 std::string Base64(const std::vector<unsigned char>& bytes) {
-  static const char* kTable = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const unsigned v = bytes[i] << 16 | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += kTable[v >> 18 & 63];
-    out += kTable[v >> 12 & 63];
-    out += i + 1 < bytes.size() ? kTable[v >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? kTable[v & 63] : '=';
-  }
-  return out;
+  return internal::Base64(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 // An <img> with the PNG at `path` scaled down to at most `max_width` px, or "" if the file is absent.
@@ -211,6 +201,11 @@ std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir) {
        << Cell(e.value("scenario", nlohmann::json())) << ", " << Cell(e["file"]) << ", "
        << e.value("outcome", "fail") << ")</small></h3>\n";
   if (e.contains("error")) html << "<p class=\"fail\">" << Cell(e["error"]) << "</p>\n";
+  std::error_code ec;
+  if (fs::is_regular_file(dir / "check" / "viewer.html", ec)) {
+    // The 3D viewer of the check step, relative to report.html (both stay in the bench folder).
+    html << "<p><a href=\"" << HtmlEscape(id) << "/check/viewer.html\">3D viewer of the checked motion</a></p>\n";
+  }
   html << "<table><tr><th>step</th><th>status</th><th>exit</th><th>wall s</th><th>peak MiB</th><th>metrics</th></tr>\n";
   const nlohmann::json timing = e.value("timing", nlohmann::json::object()).value("steps", nlohmann::json::object());
   for (const nlohmann::json& s : e.value("steps", nlohmann::json::array())) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "analysis/scenario.h"
+#include "analysis/viewer.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/numbers.h"
@@ -112,8 +113,17 @@ twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& 
     WriteCellPng(cell, kin, plan, report, outputs.Add(options.out_dir / "cell_worst.png"));
     WriteJointPlots(kin, report, outputs.Add(options.out_dir / "joints.png"));
   }
+  nlohmann::json document = CheckToJson(scenario, cell.file(), report);
+  if (options.images && options.viewer) {
+    const ViewerSummary viewer = WriteViewer(scenario.name, cell, kin, plan, options.target, report,
+                                             outputs.Add(options.out_dir / "viewer.html"));
+    document["viewer"] = {{"file", "viewer.html"},       {"frames", viewer.frames},
+                          {"bodies", viewer.bodies},     {"violations", viewer.violations},
+                          {"path_points", viewer.path_points}, {"beads", viewer.beads},
+                          {"bytes", viewer.bytes}};
+  }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(options.out_dir / "check.json", CheckToJson(scenario, cell.file(), report).dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "check.json", document.dump(2) + "\n");
   outputs.Complete();
   return report;
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/scenario.h"
+#include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
 #include "planner/scenario/scenario.h"
 #include "twin/cell/cell_check.h"
@@ -21,6 +22,8 @@ struct CheckOptions {
   bool quiet = false;              // no progress bar
   bool images = true;              // cell_worst.png, joints.png
   bool program = true;             // program.csv, program.ls
+  bool viewer = true;              // viewer.html (with images only)
+  const planner::TriangleMesh* target = nullptr;  // the part, drawn as a ghost in viewer.html (may be null)
 };
 
 // Plans the scenario (planner::PlanScenario), checks the path on the cell and writes the outputs (check.json last).

@@ -15,7 +15,9 @@ twin::CheckReport RunCheck(const CheckOptions& options) {
     planned = planner::PlanScenario(scenario, &progress);
     progress.Finish();
   }
-  return RunCheckOnPlan(scenario, planned.plan, options);
+  CheckOptions with_target = options;
+  with_target.target = &planned.mesh;
+  return RunCheckOnPlan(scenario, planned.plan, with_target);
 }
 
 }  // namespace waam::analysis

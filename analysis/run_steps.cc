@@ -7,6 +7,7 @@
 #include "analysis/plan_command.h"
 #include "analysis/scenario.h"
 #include "analysis/simulate_command.h"
+#include "analysis/viewer.h"
 #include "models/core/files.h"
 
 namespace waam::analysis::internal {
@@ -62,6 +63,7 @@ StepOutcome RunPlanStep(RunContext& context, const fs::path& step_dir) {
 StepOutcome RunCheckStep(RunContext& context, const fs::path& step_dir) {
   auto options = StepOptions<CheckOptions>(context, step_dir);
   options.images = context.options.images;
+  options.target = &context.planned->mesh;
   const twin::CheckReport report = RunCheckOnPlan(context.scenario, context.planned->plan, options);
   nlohmann::json document = nlohmann::json::parse(ReadFile(step_dir / "check.json"));
   StepOutcome outcome;
@@ -81,6 +83,11 @@ StepOutcome RunSimulateStep(RunContext& context, const fs::path& step_dir) {
   auto options = StepOptions<SimulateOptions>(context, step_dir);
   options.images = context.options.images;
   const twin::TwinResult result = SimulatePlanned(context.scenario, *context.planned, options);
+  // The check step's viewer, when it ran before, grows the deposited part.
+  const fs::path viewer = step_dir.parent_path() / "check" / "viewer.html";
+  if (context.results.contains("check") && fs::is_regular_file(viewer)) {
+    AddDepositToViewer(viewer, result.depositor, &result.deviation);
+  }
   nlohmann::json document = SimulationToJson(context.scenario, result);
   document.erase("performance");  // timings and memory: summary.json keeps them under `timing`
   StepOutcome outcome;

@@ -26,6 +26,7 @@ void AddCheckCommand(CLI::App& app, CommandRunner* runner) {
       "                  j5_deg | penetration_mm | reach_excess_mm), min_joint_margin_deg, max_joint_speed_ratio\n"
       "  cell_worst.png  the cell at the worst point (side and top views)\n"
       "  joints.png      the eight axis angles (deg) against time (s) with their limits\n"
+      "  viewer.html     the 3D viewer: the cell moving along the path, the beads laid down, the violations\n"
       "  program.csv     the eight-axis program table (TCP mm, torch Euler angles deg, positioner deg, speed)\n"
       "  program.ls      FANUC LS program, positioner as motion group 2\n"
       "check.json is written last. Exit code 0 when the path passes, 3 when there are violations.");
@@ -34,7 +35,7 @@ void AddCheckCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("--set", options->overrides,
                       "Override a scenario setting, key.path=value (repeatable), e.g. --set cell.robot.yaw_deg=30");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
-  command->add_flag("!--no-images", options->images, "Do not draw cell_worst.png and joints.png");
+  command->add_flag("!--no-images", options->images, "Do not draw cell_worst.png, joints.png and viewer.html");
   command->add_flag("!--no-program", options->program, "Do not write program.csv and program.ls");
   command->callback([options, runner] {
     *runner = [options] {

@@ -29,7 +29,7 @@ void AddRunCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("--steps", options->steps,
                       "Steps to run instead of the scenario's (space separated), e.g. --steps plan simulate");
   command->add_flag("-q,--quiet", options->quiet, "No progress on stderr");
-  command->add_flag("!--no-images", options->images, "Do not draw the steps' PNGs");
+  command->add_flag("!--no-images", options->images, "Do not draw the steps' PNGs (nor the check step's viewer.html)");
   command->callback([options, runner] {
     *runner = [options] {
       const analysis::RunSummary summary = analysis::RunScenario(*options);

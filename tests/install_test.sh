@@ -17,4 +17,10 @@ grep -qx "data: $work/moved/share/waam-twin" <<<"$version" || { echo "FAIL: data
 "$work/moved/bin/waam" check "$work/moved/share/waam-twin/scenarios/cell/cell_ok.yaml" -o out -q --no-images \
   || { echo "FAIL: the installed waam could not check an installed scenario"; exit 1; }
 test -s out/check.json || { echo "FAIL: no check.json"; exit 1; }
+if [ -f /usr/share/javascript/three/three.min.js ]; then
+  # The viewer's template is installed data too.
+  "$work/moved/bin/waam" check "$work/moved/share/waam-twin/scenarios/cell/cell_ok.yaml" -o viewer -q --no-program \
+    || { echo "FAIL: the installed waam could not write the viewer"; exit 1; }
+  test -s viewer/viewer.html || { echo "FAIL: no viewer.html"; exit 1; }
+fi
 echo "installed, moved and ran from $work/elsewhere"

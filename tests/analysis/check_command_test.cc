@@ -52,7 +52,7 @@ TEST_F(CheckCommandTest, WellPlacedWallWritesEveryOutput) {
   EXPECT_LT(j.at("max_joint_speed_ratio").get<double>(), 1.0);
   ASSERT_EQ(j.at("layers").size(), 4u);
   EXPECT_DOUBLE_EQ(j.at("layers")[0].at("tilt_deg").get<double>(), 0.0) << "planar layers: the positioner stays level";
-  for (const char* f : {"cell_worst.png", "joints.png", "program.csv", "program.ls"}) {
+  for (const char* f : {"cell_worst.png", "joints.png", "program.csv", "program.ls", "viewer.html"}) {
     EXPECT_TRUE(fs::exists(dir_ / f)) << f;
     EXPECT_GT(fs::file_size(dir_ / f), 100u) << f;
   }

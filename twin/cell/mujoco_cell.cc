@@ -434,4 +434,75 @@ std::vector<CellShape> CellState::Shapes() const {
   return shapes;
 }
 
+namespace {
+
+// A geom's type as a CellShape type.
+CellShape::Type ShapeType(int mj_type) {
+  switch (mj_type) {
+    case mjGEOM_PLANE: return CellShape::Type::kPlane;
+    case mjGEOM_SPHERE: return CellShape::Type::kSphere;
+    case mjGEOM_CAPSULE: return CellShape::Type::kCapsule;
+    case mjGEOM_CYLINDER: return CellShape::Type::kCylinder;
+    case mjGEOM_BOX: return CellShape::Type::kBox;
+    case mjGEOM_MESH: return CellShape::Type::kMesh;
+    default: return CellShape::Type::kOther;
+  }
+}
+
+}  // namespace
+
+std::vector<CellBody> CellModel::Bodies() const {
+  const mjModel* m = impl_->m;
+  std::vector<CellBody> bodies;
+  for (int b = 0; b < m->nbody; ++b) {
+    if (m->body_geomnum[b] == 0) continue;
+    CellBody body;
+    const char* name = mj_id2name(m, mjOBJ_BODY, b);
+    body.name = name ? name : "world";
+    if (m->body_jntnum[b] > 0) {
+      const char* joint = mj_id2name(m, mjOBJ_JOINT, m->body_jntadr[b]);
+      body.joint = joint ? joint : "";
+    }
+    for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
+      CellShape s;
+      s.type = ShapeType(m->geom_type[g]);
+      s.body = body.name;
+      s.size_mm = Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]) * kMm;
+      const mjtNum* q = m->geom_quat + 4 * g;
+      s.X_WG = Eigen::Isometry3d::Identity();
+      s.X_WG.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+      s.X_WG.translation() = Eigen::Vector3d(m->geom_pos[3 * g], m->geom_pos[3 * g + 1], m->geom_pos[3 * g + 2]) * kMm;
+      s.rgba = Eigen::Vector4f(m->geom_rgba[4 * g], m->geom_rgba[4 * g + 1], m->geom_rgba[4 * g + 2],
+                               m->geom_rgba[4 * g + 3]);
+      std::vector<Eigen::Vector3f> vertices;
+      std::vector<Eigen::Vector3i> triangles;
+      const int mesh = m->geom_dataid[g];
+      if (m->geom_type[g] == mjGEOM_MESH && mesh >= 0) {
+        // MuJoCo keeps mesh vertices in the geom frame (it moved the geom to the mesh's inertial frame on load).
+        const float* v = m->mesh_vert + 3 * m->mesh_vertadr[mesh];
+        for (int i = 0; i < m->mesh_vertnum[mesh]; ++i) {
+          vertices.emplace_back(v[3 * i] * kMm, v[3 * i + 1] * kMm, v[3 * i + 2] * kMm);
+        }
+        const int* f = m->mesh_face + 3 * m->mesh_faceadr[mesh];
+        for (int i = 0; i < m->mesh_facenum[mesh]; ++i) triangles.emplace_back(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+      }
+      body.geoms.push_back(s);
+      body.mesh_vertices_mm.push_back(std::move(vertices));
+      body.mesh_triangles.push_back(std::move(triangles));
+    }
+    bodies.push_back(std::move(body));
+  }
+  return bodies;
+}
+
+std::vector<Eigen::Isometry3d> CellState::BodyPoses() const {
+  const mjModel* m = model_->m;
+  const mjData* d = data_->d.get();
+  std::vector<Eigen::Isometry3d> poses;
+  for (int b = 0; b < m->nbody; ++b) {
+    if (m->body_geomnum[b] > 0) poses.push_back(Pose(d->xpos + 3 * b, d->xmat + 9 * b));
+  }
+  return poses;
+}
+
 }  // namespace waam::twin

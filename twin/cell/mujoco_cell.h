@@ -24,12 +24,23 @@ struct CellContact {
 
 // A collision shape in the world, for pictures.
 struct CellShape {
-  enum class Type { kPlane, kSphere, kCapsule, kCylinder, kBox, kOther };
+  enum class Type { kPlane, kSphere, kCapsule, kCylinder, kBox, kOther, kMesh };  // kMesh: CellModel::Bodies() only
   Type type = Type::kOther;
   std::string body;
   Eigen::Vector3d size_mm = Eigen::Vector3d::Zero();     // MuJoCo geom_size in mm (radius, half-length, ...)
   Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();  // geom frame in the world, mm
   Eigen::Vector4f rgba = Eigen::Vector4f::Ones();
+};
+
+// A body of the cell with its collision geoms in the body frame, for viewers (the geometry once, then the body
+// poses per frame from CellState::BodyPoses()).
+struct CellBody {
+  std::string name;
+  std::string joint;              // the joint that moves it relative to its parent ("" when welded to it)
+  std::vector<CellShape> geoms;   // each X_WG holds X_BG here: the geom in the body frame, mm
+  // For each geom (same index): a mesh geom's vertices in the geom frame (mm) and its triangles; empty otherwise.
+  std::vector<std::vector<Eigen::Vector3f>> mesh_vertices_mm;
+  std::vector<std::vector<Eigen::Vector3i>> mesh_triangles;
 };
 
 // The cell model, after MuJoCo's model/data split: the MJCF loaded and placed once, then immutable. It owns the
@@ -65,6 +76,8 @@ class CellModel {
   // The gas nozzle capsule in the TCP frame: end points (mm) and radius (mm).
   void NozzleInTcp(Eigen::Vector3d* a_T, Eigen::Vector3d* b_T, double* radius_mm) const;
   const std::filesystem::path& file() const;
+  // Every body that has collision geoms (the world body with the floor included), in the model's order.
+  std::vector<CellBody> Bodies() const;
 
   // Every geom is reported in contact up to this distance apart, which gives CellState::Collide its clearance.
   static constexpr double kClearanceMarginMm = 10.0;
@@ -100,6 +113,8 @@ class CellState {
   double MotionSinceCollide() const;
   // All collision shapes at the joints set last.
   std::vector<CellShape> Shapes() const;
+  // Pose in the world (mm) of each body of CellModel::Bodies(), same order, at the joints set last.
+  std::vector<Eigen::Isometry3d> BodyPoses() const;
 
  private:
   struct Data;
