@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -50,6 +51,7 @@ Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
 struct CellModel::Impl {
   mjModel* m = nullptr;
   fs::path file;
+  CellModel::RobotInfo robot;
   int qadr[8] = {};
   int jnt[8] = {};
   int robot_base = -1, positioner_base = -1, flange = -1;
@@ -87,14 +89,26 @@ struct CellState::Data {
 namespace {
 
 // Loads and checks the model file and places the bases (the constructor's first half; the kinematics follow).
-void LoadModel(const fs::path& mjcf, CellModel::Impl* impl) {
+void LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* impl) {
   InstallMujocoHandlers();
   impl->file = mjcf.empty() ? CellModel::BuiltinModelPath() : mjcf;
   const fs::path& file = impl->file;
-  std::error_code ec;
-  WAAM_THROW_UNLESS(fs::is_regular_file(file, ec), file.string() << ": MJCF cell model not found");
   char error[1024] = "";
-  impl->m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
+  if (xml) {
+    // Composed text: handed to MuJoCo in a virtual file system; the meshes it names come from disk.
+    auto vfs = std::make_unique<mjVFS>();
+    mj_defaultVFS(vfs.get());
+    const char* const name = "waam_cell.xml";
+    WAAM_DEMAND(mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml->size())) == 0);
+    const int index = mj_findFileVFS(vfs.get(), name);
+    std::memcpy(vfs->filedata[index], xml->data(), xml->size());
+    impl->m = mj_loadXML(name, vfs.get(), error, sizeof(error));
+    mj_deleteVFS(vfs.get());
+  } else {
+    std::error_code ec;
+    WAAM_THROW_UNLESS(fs::is_regular_file(file, ec), file.string() << ": MJCF cell model not found");
+    impl->m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
+  }
   if (impl->m == nullptr) {
     // MuJoCo's XML errors span several lines ("XML parse error 14:\nError=... Line number=1: ..."): join them so
     // the CLI prints the one line the bad-input contract promises, with the line number MuJoCo reports.
@@ -240,7 +254,6 @@ void ReadKinematics(CellModel::Impl* impl) {
   }
   impl->closed_form = opw.has_value() && worst < 1e-6;
   if (opw && !impl->closed_form) impl->not_opw_reason = "the OPW model differs from MuJoCo's forward kinematics";
-  if (!impl->closed_form) cell.arm.name += " (numerical IK)";
 }
 
 // Damped least-squares IK on the model with its own data (see CellModel::SolveNumericIk).
@@ -301,12 +314,23 @@ bool SolveIkOnModel(const CellModel::Impl& impl, const Eigen::Isometry3d& X_RF, 
 }
 
 std::shared_ptr<const CellModel::Impl> BuildModel(const fs::path& mjcf, const Eigen::Isometry3d* X_WR,
-                                                  const Eigen::Isometry3d* X_WB) {
+                                                  const Eigen::Isometry3d* X_WB, const std::string* xml = nullptr,
+                                                  const CellModel::RobotInfo* info = nullptr) {
   auto impl = std::make_shared<CellModel::Impl>();
-  LoadModel(mjcf, impl.get());
+  LoadModel(mjcf, xml, impl.get());
   if (X_WR) PlaceBody(impl->m, impl->robot_base, *X_WR);
   if (X_WB) PlaceBody(impl->m, impl->positioner_base, *X_WB);
   ReadKinematics(impl.get());
+  if (info) {
+    impl->robot = *info;
+  } else if (mjcf.empty()) {
+    impl->robot.name = "FANUC ARC Mate 100iC/12";
+    impl->robot.source = "builtin";
+  } else {
+    impl->robot.name = impl->kinematics.arm.name;
+    impl->robot.source = mjcf.string();
+  }
+  impl->kinematics.arm.name = impl->robot.name;
   return impl;
 }
 
@@ -318,6 +342,13 @@ CellModel::CellModel(const fs::path& mjcf, const Eigen::Isometry3d& X_WR, const 
     : impl_(BuildModel(mjcf, &X_WR, &X_WB)) {}
 
 CellModel::CellModel(const fs::path& mjcf) : impl_(BuildModel(mjcf, nullptr, nullptr)) {}
+
+CellModel CellModel::FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                             const Eigen::Isometry3d& X_WB) {
+  return CellModel(FromImplTag{}, BuildModel(fs::path(info.source), &X_WR, &X_WB, &xml, &info));
+}
+
+const CellModel::RobotInfo& CellModel::robot() const { return impl_->robot; }
 
 planner::CellKinematics CellModel::kinematics() const {
   planner::CellKinematics kin = impl_->kinematics;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,6 +53,19 @@ class CellModel {
   // The same with the bases where the file puts them.
   explicit CellModel(const std::filesystem::path& mjcf);
 
+  // What the arm is, for reports: name (vendor first), source (builtin, a preset name or the model's path) and the
+  // model's names of j1..j6.
+  struct RobotInfo {
+    std::string name;
+    std::string source;
+    std::array<std::string, 6> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
+  };
+  // A cell model from MJCF text (a composed cell, e.g. around a URDF arm), placed like the constructor above;
+  // `info.source` names it in messages. Mesh files are read from the absolute paths the text gives.
+  static CellModel FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                           const Eigen::Isometry3d& X_WB);
+  const RobotInfo& robot() const;
+
   // The cell's kinematics (a copy; the numerical IK it may carry holds this model, safe to call from any thread).
   planner::CellKinematics kinematics() const;
   // True when the arm has the closed-form (OPW) kinematics.
@@ -75,6 +89,8 @@ class CellModel {
   struct Impl;  // the MuJoCo side, in mujoco_cell.cc
 
  private:
+  struct FromImplTag {};
+  CellModel(FromImplTag, std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
   std::shared_ptr<const Impl> impl_;
   friend class CellState;
 };
