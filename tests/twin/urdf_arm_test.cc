@@ -313,6 +313,10 @@ TEST_F(UrdfArmTest, BadUrdfsAreOneLineNamingTheFileAndElement) {
     std::ofstream(xacro) << good;
     EXPECT_THAT(ErrorOf(Settings(xacro)), HasSubstr("run `xacro"));
   }
+  // A cycle of joints: link_1 hung below link_6 instead of base_link.
+  EXPECT_THAT(ErrorOf(with("<parent link=\"base_link\"/>\n    <child link=\"link_1\"/>",
+                           "<parent link=\"link_6\"/>\n    <child link=\"link_1\"/>")),
+              HasSubstr("a cycle of joints"));
   // Every message is one line.
   EXPECT_EQ(ErrorOf(with("velocity=", "speed=")).find('\n'), std::string::npos);
 }

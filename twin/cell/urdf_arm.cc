@@ -30,6 +30,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr std::size_t kMaxLinks = 1000;  // more links than any arm has; bounds the recursion depth
+
 struct UrdfJoint {
   std::string name, type, parent, child;
   int line = 0;
@@ -191,6 +193,21 @@ class UrdfReader {
     WAAM_THROW_UNLESS(roots.size() == 1, Where(robot) << "the URDF must be one tree of links with one root, has "
                                                       << roots.size() << " roots");
     root_ = roots[0];
+    // Every link must hang below the root (no cycles), and the tree stays small enough to recurse through.
+    WAAM_THROW_UNLESS(links_.size() <= kMaxLinks, Where(robot) << "the URDF has " << links_.size()
+                                                               << " links, more than the limit of " << kMaxLinks);
+    std::vector<std::string> stack = {root_};
+    std::size_t reached = 0;
+    while (!stack.empty()) {
+      const std::string link = stack.back();
+      stack.pop_back();
+      ++reached;
+      if (children_of_.count(link)) {
+        for (std::size_t ji : children_of_.at(link)) stack.push_back(joints_[ji].child);
+      }
+    }
+    WAAM_THROW_UNLESS(reached == links_.size(), Where(robot) << "the links do not form one tree below '" << root_
+                                                             << "' (a cycle of joints)");
 
     auto path_to = [&](const std::string& link) {
       std::vector<std::size_t> path;  // joints from the root down to `link`
