@@ -60,6 +60,8 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
       {"scenario", scenario.name},
       {"ok", report.ok},
       {"ik", report.ik},
+      {"robot", {{"name", report.robot.name}, {"source", report.robot.source}, {"ik", report.ik},
+                 {"joints", report.robot.joints}}},
       {"points", report.points},
       {"samples", report.samples},
       {"step_mm", c.step_mm},

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libceres-dev libtbb-dev
-  libmujoco-dev libqhull-dev
+  libmujoco-dev libqhull-dev libtinyxml2-dev
   libopencv-dev
   libhdf5-dev
   libpolyclipping-dev

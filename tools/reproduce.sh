@@ -487,7 +487,8 @@ check_bench() {
   python3 - "$out/check_bench.json" <<'PY' | put check_bench
 import json, sys
 what = {"BM_CheckBuildHour": "every check (motion, limits, speeds, MuJoCo collisions, torch against the deposit)",
-        "BM_MotionBuildHour": "the kinematics alone (positioner angles, closed-form IK, time stamps)"}
+        "BM_MotionBuildHour": "the kinematics alone (positioner angles, closed-form IK, time stamps)",
+        "BM_CheckBuildHourUrdfArm": "every check, on the URDF arm of scenarios/cell/robots/waam_kr16_support"}
 print("| benchmark | what | samples | CPU time per run | samples/s |")
 print("| --- | --- | --- | --- | --- |")
 for r in json.load(open(sys.argv[1]))["benchmarks"]:

@@ -1,6 +1,8 @@
 // Benchmark of `waam check`: samples checked per second (IK + limits + speeds + MuJoCo collisions + torch against
 // the deposit) on a build hour of path: 73 layers of a 200 x 150 mm wall = 51,100 mm at 1 mm spacing, about one
 // hour of welding at 850 mm/min.
+#include <filesystem>
+
 #include <benchmark/benchmark.h>
 
 #include "planner/kinematics/cell_motion.h"
@@ -33,6 +35,32 @@ void BM_CheckBuildHour(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(samples) * state.iterations(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_CheckBuildHour)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+// The same build hour on an arm read from URDF with mesh collision geometry: the KUKA KR 16-2 class arm of
+// scenarios/cell/robots/waam_kr16_support (binary STL meshes on three links, primitives on the others).
+void BM_CheckBuildHourUrdfArm(benchmark::State& state) {
+  const planner::Plan plan = BuildHour();
+  twin::CellSettings settings;
+  const std::filesystem::path robots = std::filesystem::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "robots";
+  settings.robot_urdf = robots / "waam_kr16_support" / "urdf" / "kr16_2.urdf";
+  settings.robot_package_paths = {robots};
+  settings.positioner_base_mm = {1150.0, 0.0, 0.0};
+  const twin::CellModel cell = twin::LoadCell(settings);
+  std::size_t samples = 0;
+  bool ok = true;
+  for (auto _ : state) {
+    const twin::CheckReport report = twin::CheckPlan(cell, plan, settings, 100.0, nullptr);
+    samples = report.samples;
+    ok = report.ok;
+    benchmark::DoNotOptimize(report.violations.data());
+  }
+  state.counters["samples"] = static_cast<double>(samples);
+  state.counters["ok"] = ok ? 1.0 : 0.0;
+  state.counters["closed_form"] = cell.closed_form() ? 1.0 : 0.0;
+  state.counters["samples_per_s"] =
+      benchmark::Counter(static_cast<double>(samples) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_CheckBuildHourUrdfArm)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 // The kinematics alone: positioner angles and closed-form IK with branch continuity for every sample.
 void BM_MotionBuildHour(benchmark::State& state) {

@@ -1,9 +1,11 @@
-// OPW forward and inverse kinematics: shoulder x elbow x wrist = 8 closed-form branches.
+// OPW forward and inverse kinematics (Brandstoetter, Angerer, Hofbaur 2014): shoulder x elbow x wrist = 8 closed-form
+// branches, in the OPW model's own joints, mapped to the vendor's by offsets and sign corrections.
 #include "planner/kinematics/opw_arm.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "models/core/numbers.h"
 #include "planner/kinematics/angles.h"
@@ -15,28 +17,52 @@ constexpr double kWristSingularSin = 1e-9;  // |sin j5| below this: j4 and j6 ar
 
 double Deg(double d) { return d * kPi / 180.0; }
 
-Eigen::Matrix3d Rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).toRotationMatrix(); }
 Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix(); }
 Eigen::Matrix3d Rz(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix(); }
 
+// The OPW model's joints for the arm's joints q.
+Joints6 ToOpw(const OpwArm& arm, const Joints6& q) {
+  Joints6 t;
+  for (int j = 0; j < 6; ++j) t[j] = arm.sign_corrections[j] * q[j] - arm.offsets[j];
+  return t;
+}
+
+// Orientation of the OPW end frame E for OPW joints t (paper eq. for R_0c * R_ce: Rz Ry(t2 + t3) * Rz Ry Rz).
+Eigen::Matrix3d EndRotation(const Joints6& t) {
+  return Rz(t[0]) * Ry(t[1] + t[2]) * Rz(t[3]) * Ry(t[4]) * Rz(t[5]);
+}
+
 }  // namespace
+
+OpwArm OpwArm::FromParameters(std::string name, double a1, double a2, double b, double c1, double c2, double c3,
+                              double c4, const std::array<double, 6>& offsets,
+                              const std::array<int, 6>& sign_corrections, const Eigen::Matrix3d& R_RF0) {
+  OpwArm arm;
+  arm.name = std::move(name);
+  arm.a1 = a1;
+  arm.a2 = a2;
+  arm.b = b;
+  arm.c1 = c1;
+  arm.c2 = c2;
+  arm.c3 = c3;
+  arm.c4 = c4;
+  arm.offsets = offsets;
+  arm.sign_corrections = sign_corrections;
+  arm.R_EF = EndRotation(ToOpw(arm, Joints6::Zero())).transpose() * R_RF0;
+  return arm;
+}
 
 OpwArm OpwArm::ArcMate100iC12() {
   // Geometry: OPW parameters of the FANUC M-10iA (the ARC Mate 100iC/12 is its arc-welding version), from
-  // ROS-Industrial fanuc_m10ia_support/config/opw_parameters_m10ia.yaml: a1 = 150, a2 = -200, b = 0, c1 = 450,
-  // c2 = 600, c3 = 640, c4 = 100 mm; joint frames as in fanuc_m10ia_support/urdf/m10ia_macro.xacro.
-  // Reach = a1 + c3 + c4 + ... : the wrist centre reaches a1 + c2 + hypot(a2, c3) = 1420.5 mm from the j1 axis,
-  // matching the 1420 mm of the dissertation's Table 2.
+  // ROS-Industrial fanuc_m10ia_support/config/opw_parameters_m10ia.yaml: a1 = 0.15, a2 = -0.20, b = 0, c1 = 0.45,
+  // c2 = 0.60, c3 = 0.64, c4 = 0.10 m, offsets [0, 0, -pi/2, 0, 0, pi], sign corrections [1, 1, -1, -1, -1, -1].
+  // The j6 offset of pi only turns the end frame to ROS-Industrial's tool0; our flange frame F is parallel to R at
+  // q = 0 (x along the flange normal), which R_EF absorbs. The wrist centre reaches a1 + c2 + hypot(a2, c3) =
+  // 1420.5 mm from the j1 axis, matching the 1420 mm of the dissertation's Table 2.
   // Limits: J1 +-170 deg (340 deg data-sheet range); J2 -90..160, J3 -180..264, J4 +-190, J5 +-190, J6 +-360 deg
   // (the URDF's limits, serial j3 convention). Speeds 210, 190, 210, 400, 400, 600 deg/s (data sheet = URDF).
-  OpwArm arm;
-  arm.name = "FANUC ARC Mate 100iC/12";
-  arm.a1 = 150.0;
-  arm.a2 = -200.0;
-  arm.c1 = 450.0;
-  arm.c2 = 600.0;
-  arm.c3 = 640.0;
-  arm.c4 = 100.0;
+  OpwArm arm = FromParameters("FANUC ARC Mate 100iC/12", 150.0, -200.0, 0.0, 450.0, 600.0, 640.0, 100.0,
+                              {0.0, 0.0, -kPi / 2, 0.0, 0.0, kPi}, {1, 1, -1, -1, -1, -1});
   arm.lower << Deg(-170), Deg(-90), Deg(-180), Deg(-190), Deg(-190), Deg(-360);
   arm.upper << Deg(170), Deg(160), Deg(264), Deg(190), Deg(190), Deg(360);
   arm.max_speed << Deg(210), Deg(190), Deg(210), Deg(400), Deg(400), Deg(600);
@@ -44,47 +70,56 @@ OpwArm OpwArm::ArcMate100iC12() {
 }
 
 Eigen::Vector3d WristCentre(const OpwArm& arm, const Joints6& q) {
-  // R -> j2 axis -> j3 axis -> wrist centre, with the forearm rotated by j2 - j3 about +y.
-  const Eigen::Matrix3d R1 = Rz(q[0]);
-  const Eigen::Vector3d p2 = R1 * Eigen::Vector3d(arm.a1, 0.0, arm.c1);
-  const Eigen::Vector3d p3 = p2 + R1 * Ry(q[1]) * Eigen::Vector3d(0.0, 0.0, arm.c2);
-  return p3 + R1 * Ry(q[1] - q[2]) * Eigen::Vector3d(arm.c3, 0.0, -arm.a2);
+  // Forward position of the wrist centre C (Brandstoetter et al. 2014, eq. for c_x1, c_y1, c_z1 and c_0):
+  // psi3 = atan2(a2, c3), k = hypot(a2, c3).
+  const Joints6 t = ToOpw(arm, q);
+  const double psi3 = std::atan2(arm.a2, arm.c3);
+  const double k = std::hypot(arm.a2, arm.c3);
+  const double cx1 = arm.c2 * std::sin(t[1]) + k * std::sin(t[1] + t[2] + psi3) + arm.a1;
+  const double cz1 = arm.c2 * std::cos(t[1]) + k * std::cos(t[1] + t[2] + psi3);
+  return Rz(t[0]) * Eigen::Vector3d(cx1, arm.b, cz1) + Eigen::Vector3d(0.0, 0.0, arm.c1);
 }
 
 Eigen::Isometry3d ForwardKinematics(const OpwArm& arm, const Joints6& q) {
-  const Eigen::Matrix3d R03 = Rz(q[0]) * Ry(q[1] - q[2]);
-  const Eigen::Matrix3d R06 = R03 * Rx(-q[3]) * Ry(-q[4]) * Rx(-q[5]);
+  const Eigen::Matrix3d R_E = EndRotation(ToOpw(arm, q));
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R06;
-  X.translation() = WristCentre(arm, q) + R06 * Eigen::Vector3d(arm.c4, 0.0, 0.0);
+  X.linear() = R_E * arm.R_EF;
+  X.translation() = WristCentre(arm, q) + arm.c4 * R_E.col(2);
   return X;
 }
 
 IkSolutions SolveIk(const OpwArm& arm, const Eigen::Isometry3d& X_RF, const Joints6* seed) {
   IkSolutions out;
-  const Eigen::Matrix3d& R = X_RF.linear();
-  // Wrist centre: back from the flange along its normal (x of F) by c4.
-  const Eigen::Vector3d w = X_RF.translation() - arm.c4 * R.col(0);
-  const double rho = std::hypot(w.x(), w.y());
+  const Eigen::Matrix3d R_E = X_RF.linear() * arm.R_EF.transpose();
+  // Wrist centre: back from the flange along the end frame's z by c4.
+  const Eigen::Vector3d w = X_RF.translation() - arm.c4 * R_E.col(2);
+  const double rho2 = w.x() * w.x() + w.y() * w.y();
   const double h = w.z() - arm.c1;
-  // Forearm as one rigid vector from j3 to the wrist centre: length k, angle alpha0 from the upper arm at j3 = 0.
+  // Forearm as one rigid vector from j3 to the wrist centre: length k at angle psi3 from the forearm axis.
   const double k = std::hypot(arm.c3, arm.a2);
-  const double alpha0 = std::atan2(arm.c3, -arm.a2);
-  const double seed_q1 = seed ? (*seed)[0] : 0.0;
-  const double seed_q4 = seed ? (*seed)[3] : 0.0;
+  const double psi3 = std::atan2(arm.a2, arm.c3);
+  Joints6 seed_t = Joints6::Zero();
+  if (seed) seed_t = ToOpw(arm, *seed);
 
   double best_excess = std::numeric_limits<double>::infinity();
+  if (rho2 < arm.b * arm.b - 1e-12) {
+    // The wrist centre lies inside the cylinder of radius |b| about j1 that the arm plane cannot enter.
+    out.reach_excess_mm = std::max(1e-9, std::abs(arm.b) - std::sqrt(rho2));
+    return out;
+  }
+  const double planar = std::sqrt(std::max(0.0, rho2 - arm.b * arm.b));  // |c_x1| in the arm plane
   for (int shoulder = 0; shoulder < 2; ++shoulder) {
-    // Shoulder: j1 towards the wrist centre (front) or away from it (back, reaching over).
-    double q1;
-    if (rho < 1e-9) {
-      q1 = seed_q1 + (shoulder ? kPi : 0.0);  // shoulder singularity: j1 is free
+    // Shoulder: the arm plane faces the wrist centre (front) or turns away from it (back, reaching over).
+    const double cx1 = shoulder ? -planar : planar;
+    double t1;
+    if (rho2 < 1e-18) {
+      t1 = seed_t[0] + (shoulder ? kPi : 0.0);  // shoulder singularity: j1 is free
     } else {
-      q1 = std::atan2(w.y(), w.x()) + (shoulder ? kPi : 0.0);
+      t1 = std::atan2(w.y(), w.x()) - std::atan2(arm.b, cx1);  // paper: theta1 = atan2(c_y0, c_x0) - atan2(b, n_x1 + a1)
     }
-    const double r = (shoulder ? -rho : rho) - arm.a1;  // horizontal distance j2 -> wrist centre in the arm plane
+    const double r = cx1 - arm.a1;  // horizontal distance j2 -> wrist centre in the arm plane
     const double s2 = r * r + h * h;
-    // Law of cosines in the triangle j2 - j3 - wrist centre: cos(alpha0 - q3) = D.
+    // Law of cosines in the triangle j2 - j3 - wrist centre: the forearm vector turns by delta from the upper arm.
     double D = (s2 - arm.c2 * arm.c2 - k * k) / (2.0 * arm.c2 * k);
     if (std::abs(D) > 1.0) {
       const double s = std::sqrt(s2);
@@ -97,34 +132,37 @@ IkSolutions SolveIk(const OpwArm& arm, const Eigen::Isometry3d& X_RF, const Join
     }
     const double gamma = std::atan2(r, h);  // direction of the wrist centre from j2, from vertical towards +x
     for (int elbow = 0; elbow < 2; ++elbow) {
-      const double beta = (elbow ? -1.0 : 1.0) * std::acos(D);  // angle of the forearm vector from the upper arm
-      const double q3 = alpha0 - beta;
-      const double q2 = gamma - std::atan2(k * std::sin(beta), arm.c2 + k * std::cos(beta));
-      // Wrist: R36 = Rx(-q4) Ry(-q5) Rx(-q6) = Rx(a) Ry(b) Rx(c), an X-Y-X Euler decomposition.
-      const Eigen::Matrix3d M = (Rz(q1) * Ry(q2 - q3)).transpose() * R;
-      const double sb_abs = std::hypot(M(0, 1), M(0, 2));
+      const double delta = (elbow ? -1.0 : 1.0) * std::acos(D);
+      const double t2 = gamma - std::atan2(k * std::sin(delta), arm.c2 + k * std::cos(delta));
+      const double t3 = delta - psi3;
+      // Wrist: R_c^T R_E = Rz(t4) Ry(t5) Rz(t6), a Z-Y-Z Euler decomposition.
+      const Eigen::Matrix3d M = (Rz(t1) * Ry(t2 + t3)).transpose() * R_E;
+      const double s5 = std::hypot(M(0, 2), M(1, 2));
       for (int flip = 0; flip < 2; ++flip) {
-        double a, b, c;
-        if (sb_abs < kWristSingularSin) {
-          // j5 = 0 (or pi): only q4 + q6 (or q6 - q4) is defined; j4 keeps the seed.
-          a = -seed_q4;
-          if (M(0, 0) > 0.0) {
-            b = 0.0;
-            c = std::atan2(M(2, 1), M(1, 1)) - a;
-          } else {
-            b = kPi;
-            c = std::atan2(-M(2, 1), M(1, 1)) + a;
-          }
+        double t4, t5, t6;
+        if (s5 < kWristSingularSin) {
+          // t5 = 0 (or pi): only t4 + t6 (or t4 - t6) is defined; j4 keeps the seed.
           if (flip) continue;  // both wrist branches coincide
+          t4 = seed_t[3];
+          if (M(2, 2) > 0.0) {
+            t5 = 0.0;
+            t6 = std::atan2(M(1, 0), M(0, 0)) - t4;
+          } else {
+            t5 = kPi;
+            t6 = t4 - std::atan2(-M(1, 0), M(1, 1));
+          }
         } else {
-          const double sgn = flip ? 1.0 : -1.0;  // flip = j5 > 0 = b < 0
-          b = std::atan2(-sgn * sb_abs, M(0, 0));
-          a = std::atan2(-sgn * M(1, 0), sgn * M(2, 0));
-          c = std::atan2(-sgn * M(0, 1), -sgn * M(0, 2));
+          const double sg = flip ? -1.0 : 1.0;
+          t5 = std::atan2(sg * s5, M(2, 2));
+          t4 = std::atan2(sg * M(1, 2), sg * M(0, 2));
+          t6 = std::atan2(sg * M(2, 1), -sg * M(2, 0));
         }
+        Joints6 t;
+        t << t1, t2, t3, t4, t5, t6;
         IkSolution& sol = out.solutions[out.count++];
-        sol.q << q1, q2, q3, -a, -b, -c;
-        sol.branch = shoulder | (elbow << 1) | (flip << 2);
+        for (int j = 0; j < 6; ++j) sol.q[j] = arm.sign_corrections[j] * (t[j] + arm.offsets[j]);
+        const bool j5_positive = std::remainder(sol.q[4], 2.0 * kPi) > 0.0;
+        sol.branch = shoulder | (elbow << 1) | (j5_positive ? 4 : 0);
         sol.within_limits = true;
         for (int j = 0; j < 6; ++j) {
           const double target = seed ? (*seed)[j] : 0.0;

@@ -1,7 +1,9 @@
-// Closed-form kinematics of six-axis arms with an ortho-parallel base and a spherical wrist (OPW family).
+// Closed-form kinematics of six-axis arms with an ortho-parallel base and a spherical wrist (OPW family), in any
+// vendor's joint zero and sign convention.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -13,26 +15,38 @@ namespace waam::planner {
 
 using Joints6 = Eigen::Matrix<double, 6, 1>;  // arm joint angles j1..j6, rad
 
-// Geometry, limits and speeds of an OPW arm (Brandstoetter, Angerer, Hofbaur 2014 parameters, lateral offset b = 0).
-// Joint convention (the FANUC serial one of the ROS-Industrial models): at q = 0 the upper arm is vertical, the
-// forearm horizontal along +x of the base frame R, and the flange normal is +x of the flange frame F, whose axes are
-// then parallel to R. j1 turns about +z of R, j2 about +y (positive leans the upper arm forward), j3 about -y
-// (positive raises the forearm), j4 about -x, j5 about -y, j6 about -x of the frames before them.
-// Frame R: on the j1 axis at the mounting surface. All lengths in mm.
+// Geometry, joint convention, limits and speeds of an OPW arm: the parameter set of Brandstoetter, Angerer and
+// Hofbaur 2014 as the ROS-Industrial `opw_parameters_*.yaml` files give it (a1, a2, b, c1, c2, c3, c4, offsets,
+// sign_corrections; lengths here in mm). The OPW model's own joints are q_opw[i] = sign_corrections[i] * q[i] -
+// offsets[i]; at q_opw = 0 the arm stands straight up in the x-z plane of R, j1 turns about +z, j2 and j3 about +y,
+// j4 about the forearm axis (+z of the wrist frame), j5 about its +y, j6 about the flange normal. The flange frame F
+// that FK returns is the OPW end frame E (z along the flange normal) turned by R_EF, so F can be the vendor's
+// (ROS-Industrial `tool0`) or ours (x along the flange normal). Frame R: on the j1 axis at the mounting surface.
 struct OpwArm {
   std::string name;
   double a1 = 0.0;  // j2 axis offset from the j1 axis, mm
-  double a2 = 0.0;  // forearm offset at j3 (negative: the forearm axis lies above j3 in the zero pose), mm
+  double a2 = 0.0;  // forearm offset at j3 (negative: the forearm axis lies above j3 in the FANUC zero pose), mm
+  double b = 0.0;   // lateral offset of the arm plane from the j1 axis, mm
   double c1 = 0.0;  // j2 axis height above the mounting surface, mm
   double c2 = 0.0;  // upper arm length j2 -> j3, mm
   double c3 = 0.0;  // forearm length j3 -> wrist centre, mm
   double c4 = 0.0;  // wrist centre -> flange, mm
+  std::array<double, 6> offsets = {0, 0, 0, 0, 0, 0};           // rad
+  std::array<int, 6> sign_corrections = {1, 1, 1, 1, 1, 1};     // +1 or -1
+  Eigen::Matrix3d R_EF = Eigen::Matrix3d::Identity();            // flange frame F in the OPW end frame E
   Joints6 lower = Joints6::Constant(-kPi);      // joint limits, rad
   Joints6 upper = Joints6::Constant(kPi);       // rad
   Joints6 max_speed = Joints6::Constant(1.0);    // rad/s
 
-  // The FANUC ARC Mate 100iC/12 (= M-10iA arm): reach 1420 mm, limits and speeds of its data sheet.
+  // The FANUC ARC Mate 100iC/12 (= M-10iA arm) in FANUC's joint convention (serial j3), flange frame F with x
+  // along the flange normal and F parallel to R at q = 0: reach 1420 mm, limits and speeds of its data sheet.
   static OpwArm ArcMate100iC12();
+  // An arm from a ROS-Industrial OPW parameter set (lengths in mm, offsets in rad), flange frame = the OPW end frame
+  // turned so that F has orientation R_RF0 in R at q = 0. Limits +-pi and speeds 1 rad/s until set.
+  static OpwArm FromParameters(std::string name, double a1, double a2, double b, double c1, double c2, double c3,
+                               double c4, const std::array<double, 6>& offsets,
+                               const std::array<int, 6>& sign_corrections,
+                               const Eigen::Matrix3d& R_RF0 = Eigen::Matrix3d::Identity());
 };
 
 // Flange pose X_RF (mm) for joint angles q (rad).
@@ -42,7 +56,8 @@ Eigen::Isometry3d ForwardKinematics(const OpwArm& arm, const Joints6& q);
 Eigen::Vector3d WristCentre(const OpwArm& arm, const Joints6& q);
 
 // One closed-form solution. `branch` bit 0: shoulder back (j1 turned away from the wrist centre), bit 1: elbow
-// down, bit 2: wrist flipped (j5 > 0). `within_limits` after wrapping every joint by 2 pi towards the seed.
+// down, bit 2: wrist flipped (j5 > 0 in the arm's own convention). `within_limits` after wrapping every joint by
+// 2 pi towards the seed.
 struct IkSolution {
   Joints6 q = Joints6::Zero();
   int branch = 0;
@@ -68,5 +83,19 @@ int PickNearest(const OpwArm& arm, const IkSolutions& solutions, const Joints6* 
 
 // Smallest distance of q to any joint limit, rad (negative when a joint is past its limit), and which joint.
 double LimitMargin(const OpwArm& arm, const Joints6& q, int* joint);
+
+// The six joint axes of an arm at q = 0 as a model draws them, in R: a point on each axis (mm) and its direction
+// (unit; positive joint angles turn right-handed about it), and the flange pose.
+struct ArmAxes {
+  std::array<Eigen::Vector3d, 6> point_R;
+  std::array<Eigen::Vector3d, 6> axis_R;
+  Eigen::Isometry3d X_RF0 = Eigen::Isometry3d::Identity();
+};
+
+// The OPW parameters (with offsets, sign corrections and R_EF) of an arm drawn with the axes `axes`, whatever its
+// joint zero and signs; nullopt with the reason in `why` (may be null) when the axes are not of the OPW kind (j1
+// not along z of R through its origin, j2 and j3 not parallel and orthogonal to j1, j4-j6 not meeting in one point,
+// the flange off the j6 axis). Limits and speeds are left at their defaults.
+std::optional<OpwArm> OpwFromAxes(const ArmAxes& axes, std::string* why);
 
 }  // namespace waam::planner

@@ -88,6 +88,45 @@ std::string CellScenario(const std::string& extra_cell_line) {
          "  positioner: {base_mm: [1050, 0, 0], yaw_deg: 90, rotation_deg: 0}\n";
 }
 
+// A six-joint arm in URDF (geometry irrelevant: every case fails before MuJoCo loads it); `mesh` is the filename of
+// link_2's collision mesh, `velocity` the attribute text of every <limit>, `revolute` how many joints are revolute.
+std::string MiniUrdf(const std::string& mesh, const std::string& velocity = "velocity=\"3\"", int revolute = 6) {
+  std::string s = "<?xml version=\"1.0\"?>\n<robot name=\"mini\">\n  <link name=\"base_link\"/>\n";
+  for (int i = 1; i <= 6; ++i) {
+    s += "  <link name=\"link_" + std::to_string(i) + "\">";
+    if (i == 2) s += "<collision><geometry><mesh filename=\"" + mesh + "\"/></geometry></collision>";
+    s += "</link>\n";
+  }
+  s += "  <link name=\"tool0\"/>\n";
+  for (int i = 1; i <= 6; ++i) {
+    s += "  <joint name=\"joint_" + std::to_string(i) + "\" type=\"" + (i <= revolute ? "revolute" : "fixed") +
+         "\">\n    <parent link=\"" + (i == 1 ? std::string("base_link") : "link_" + std::to_string(i - 1)) +
+         "\"/><child link=\"link_" + std::to_string(i) + "\"/><origin xyz=\"0 0 0.3\"/><axis xyz=\"0 1 0\"/>\n"
+         "    <limit lower=\"-3\" upper=\"3\" effort=\"0\" " + velocity + "/>\n  </joint>\n";
+  }
+  s += "  <joint name=\"flange\" type=\"fixed\"><parent link=\"link_6\"/><child link=\"tool0\"/></joint>\n";
+  return s + "</robot>\n";
+}
+
+// A scenario whose arm is `urdf`, packages looked up in pkgs/; `extra` more lines of cell.robot.
+std::string UrdfScenario(const std::string& urdf, const std::string& extra = "") {
+  return "name: bad_urdf\n"
+         "part:\n"
+         "  generator: {type: box, size_mm: [100, 60, 15]}\n"
+         "slicing:\n"
+         "  layer_height_mm: 1.5\n"
+         "path:\n"
+         "  pattern: contour\n"
+         "  bead_width_mm: 6\n"
+         "process:\n"
+         "  travel_speed_mm_min: 400\n"
+         "  wire_feed_mm_min: 3200\n"
+         "cell:\n"
+         "  robot:\n"
+         "    urdf: " + urdf + "\n"
+         "    package_paths: [pkgs]\n" + extra;
+}
+
 // One row of the catalogue (docs/BAD_INPUTS.md has the same rows, by id).
 struct BadInput {
   std::string id;
@@ -160,6 +199,29 @@ std::vector<BadInput> Catalogue() {
       {"robot-model-does-not-parse", "check", "s.yaml",
        {{"s.yaml", CellScenario("  mjcf: broken.xml\n")}, {"broken.xml", "<mujoco><worldbody><body></mujoco>\n"}},
        {"broken.xml: MuJoCo cannot load the cell model: XML parse error", "Line number=1"}},
+      {"urdf-not-six-revolute-joints", "check", "s.yaml",
+       {{"s.yaml", UrdfScenario("arm.urdf")}, {"arm.urdf", MiniUrdf("m.stl", "velocity=\"3\"", 5)}},
+       {"arm.urdf:2: the chain from 'base_link' to 'tool0' has 5 revolute joints: the arm must be a serial chain of "
+        "six"}},
+      {"urdf-joint-not-in-urdf", "check", "s.yaml",
+       {{"s.yaml", UrdfScenario("arm.urdf", "    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_9]\n")},
+        {"arm.urdf", MiniUrdf("m.stl")}},
+       {"arm.urdf:2: cell.robot.joints names joint 'joint_9', which the URDF lacks"}},
+      {"urdf-unknown-package", "check", "s.yaml",
+       {{"s.yaml", UrdfScenario("arm.urdf")}, {"arm.urdf", MiniUrdf("package://acme_support/meshes/l2.stl")}},
+       {"arm.urdf:5: unknown package 'acme_support' of mesh 'package://acme_support/meshes/l2.stl': searched ",
+        "/pkgs (cell.robot.package_paths, then ROS_PACKAGE_PATH)"},
+       {"pkgs"}},
+      {"urdf-missing-mesh", "check", "s.yaml",
+       {{"s.yaml", UrdfScenario("arm.urdf")}, {"arm.urdf", MiniUrdf("package://acme_support/meshes/l2.stl")}},
+       {"arm.urdf:5: mesh ", "/pkgs/acme_support/meshes/l2.stl not found"},
+       {"pkgs", "pkgs/acme_support"}},
+      {"urdf-limit-without-velocity", "check", "s.yaml",
+       {{"s.yaml", UrdfScenario("arm.urdf")}, {"arm.urdf", MiniUrdf("m.stl", "")}},
+       {"arm.urdf:", ": joint 'joint_1': <limit> without velocity (rad/s; waam checks joint speeds)"}},
+      {"urdf-xacro", "check", "s.yaml",
+       {{"s.yaml", UrdfScenario("arm.urdf.xacro")}, {"arm.urdf.xacro", MiniUrdf("m.stl")}},
+       {"arm.urdf.xacro: a .xacro file is not read; run `xacro arm.urdf.xacro > arm.urdf` once and name the .urdf"}},
   };
 }
 

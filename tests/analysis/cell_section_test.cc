@@ -86,5 +86,34 @@ TEST_F(CellSectionTest, BadInputNamesTheKey) {
   EXPECT_THAT(ErrorOf("cell:\n  positioner: {tilt_deg: 3}\n"), HasSubstr("tilt_deg"));
 }
 
+TEST_F(CellSectionTest, UrdfArmKeysAreRead) {
+  std::ofstream(dir_ / "arm.urdf") << "<robot name=\"a\"/>\n";
+  const analysis::Scenario s = analysis::LoadScenario(Write(
+      "cell:\n  robot:\n    urdf: arm.urdf\n    package_paths: [pkgs, /opt/ros]\n"
+      "    joints: [a1, a2, a3, a4, a5, a6]\n    flange: flange\n    base_mm: [0, 0, 100]\n"
+      "  torch: {tcp_mm: [0, 30, 380], nozzle_radius_mm: 9, nozzle_length_mm: 50}\n"));
+  EXPECT_EQ(s.cell.robot_urdf, (dir_ / "arm.urdf").lexically_normal());
+  ASSERT_EQ(s.cell.robot_package_paths.size(), 2u);
+  EXPECT_EQ(s.cell.robot_package_paths[0], (dir_ / "pkgs").lexically_normal());
+  EXPECT_EQ(s.cell.robot_package_paths[1], fs::path("/opt/ros"));
+  EXPECT_EQ(s.cell.robot_joints.size(), 6u);
+  EXPECT_EQ(s.cell.robot_flange, "flange");
+  EXPECT_DOUBLE_EQ(s.cell.torch.tcp_mm[1], 30.0);
+  EXPECT_DOUBLE_EQ(s.cell.torch.nozzle_radius_mm, 9.0);
+  EXPECT_DOUBLE_EQ(s.cell.robot_base_mm[2], 100.0);
+}
+
+TEST_F(CellSectionTest, UrdfArmKeysAreChecked) {
+  std::ofstream(dir_ / "arm.urdf") << "<robot name=\"a\"/>\n";
+  EXPECT_THAT(ErrorOf("cell:\n  robot: {urdf: none.urdf}\n"), HasSubstr("cell.robot.urdf: URDF file"));
+  EXPECT_THAT(ErrorOf("cell:\n  mjcf: my_cell.xml\n  robot: {urdf: arm.urdf}\n"),
+              HasSubstr("give cell.mjcf or cell.robot.urdf, not both"));
+  EXPECT_THAT(ErrorOf("cell:\n  robot: {urdf: arm.urdf, joints: [a, b]}\n"), HasSubstr("name the six arm joints"));
+  EXPECT_THAT(ErrorOf("cell:\n  torch: {tcp_mm: [0, 0, 10]}\n"), HasSubstr("at least 50 mm"));
+  EXPECT_THAT(ErrorOf("cell:\n  torch: {tcp_mm: [0, 0, 100], nozzle_length_mm: 90}\n"),
+              HasSubstr("shorter than the torch"));
+  EXPECT_THAT(ErrorOf("cell:\n  torch: {tcp: 3}\n"), HasSubstr("tcp"));
+}
+
 }  // namespace
 }  // namespace waam::planner

@@ -51,6 +51,8 @@ TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
       {"cell_out_of_reach", 3, {"unreachable"}},
       {"cell_joint_limit", 3, {"joint_limit"}},
       {"cell_torch_into_plate", 3, {"collision"}},
+      {"urdf_kr16", 0, {}},
+      {"urdf_kr16_out_of_reach", 3, {"unreachable"}},
   };
   for (const Case& c : cases) {
     const fs::path out = TempDir(c.scenario);

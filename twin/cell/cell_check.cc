@@ -9,6 +9,7 @@
 
 #include "models/core/numbers.h"
 #include "models/core/progress.h"
+#include "twin/cell/cell_compose.h"
 #include "twin/cell/deposit_map.h"
 #include "twin/cell/mujoco_cell.h"
 
@@ -83,6 +84,10 @@ const char* AxisName(int axis) {
 }
 
 CellModel LoadCell(const twin::CellSettings& settings) {
+  if (!settings.robot_urdf.empty()) {
+    return LoadUrdfCell(settings, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
+                        PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
+  }
   return CellModel(settings.mjcf, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
                    PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
 }
@@ -117,6 +122,7 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
 
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";
+  report.robot = cell.robot();
   for (const planner::LayerPath& layer : plan.layers) report.points += layer.points.size();
   const std::size_t total = planner::CountCellSamples(plan, settings.step_mm);
   if (progress) progress->SetTotal(2 * total);

@@ -10,6 +10,7 @@
 #include "planner/kinematics/cell_motion.h"
 #include "planner/path/tool_path.h"
 #include "twin/cell/cell_settings.h"
+#include "twin/cell/mujoco_cell.h"
 
 namespace waam {
 class Progress;
@@ -17,7 +18,7 @@ class Progress;
 
 namespace waam::twin {
 
-class CellModel;
+class CellModel;  // twin/cell/mujoco_cell.h
 
 // One violation: all samples of one layer with the same kind and joint (or body pair), merged.
 struct CheckViolation {
@@ -39,6 +40,7 @@ struct CheckViolation {
 struct CheckReport {
   bool ok = true;
   std::string ik = "closed_form";  // closed_form (OPW arm) | numerical (a user's arm; failures are unreachable)
+  CellModel::RobotInfo robot;      // the arm: name, source (builtin, preset, file) and its joint names
   std::size_t points = 0;    // path points
   std::size_t samples = 0;   // checked samples (path points and the points inserted every step_mm)
   std::vector<CheckViolation> violations;

@@ -1,6 +1,7 @@
 // The `cell:` scenario section: placement of arm, positioner and part, and the margins of `waam check`.
 #include "twin/cell/cell_section.h"
 
+#include <cmath>
 #include <system_error>
 
 #include "models/core/error.h"
@@ -33,6 +34,24 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
   }
   if (map.Has("robot")) {
     YamlMap robot = map.Map("robot");
+    if (robot.Has("urdf")) {
+      WAAM_THROW_UNLESS(!map.Has("mjcf"), robot.Where("urdf") << ": give cell.mjcf or cell.robot.urdf, not both");
+      cell.robot_urdf = fs::path(robot.String("urdf"));
+      if (cell.robot_urdf.is_relative()) cell.robot_urdf = scenario_dir / cell.robot_urdf;
+      cell.robot_urdf = cell.robot_urdf.lexically_normal();
+      std::error_code ec;
+      WAAM_THROW_UNLESS(fs::is_regular_file(cell.robot_urdf, ec),
+                        robot.Where("urdf") << ": URDF file " << cell.robot_urdf.string() << " not found");
+      for (const std::string& dir : robot.Strings("package_paths", {})) {
+        fs::path d(dir);
+        if (d.is_relative()) d = scenario_dir / d;
+        cell.robot_package_paths.push_back(d.lexically_normal());
+      }
+      cell.robot_joints = robot.Strings("joints", {});
+      WAAM_THROW_UNLESS(cell.robot_joints.empty() || cell.robot_joints.size() == 6,
+                        robot.Where("joints") << ": name the six arm joints, got " << cell.robot_joints.size());
+      cell.robot_flange = robot.String("flange", "");
+    }
     cell.robot_base_mm = Xyz(robot, "base_mm", cell.robot_base_mm);
     cell.robot_yaw_deg = robot.Number("yaw_deg", -360.0, 360.0, cell.robot_yaw_deg);
     robot.CheckNoUnknownKeys();
@@ -44,6 +63,20 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
     cell.positioner_rotation_deg = pos.Number("rotation_deg", -240.0, 240.0, cell.positioner_rotation_deg);
     cell.positioner_follow = pos.Enum("follow", cell.positioner_follow);
     pos.CheckNoUnknownKeys();
+  }
+  if (map.Has("torch")) {
+    YamlMap torch = map.Map("torch");
+    const std::vector<double> tcp = torch.Numbers("tcp_mm", 3, -2000.0, 2000.0,
+                                                  {cell.torch.tcp_mm[0], cell.torch.tcp_mm[1], cell.torch.tcp_mm[2]});
+    cell.torch.tcp_mm = {tcp[0], tcp[1], tcp[2]};
+    const double length = std::sqrt(tcp[0] * tcp[0] + tcp[1] * tcp[1] + tcp[2] * tcp[2]);
+    WAAM_THROW_UNLESS(length >= 50.0, torch.Where("tcp_mm") << ": the TCP must lie at least 50 mm from the flange");
+    cell.torch.nozzle_radius_mm = torch.Number("nozzle_radius_mm", 1.0, 50.0, cell.torch.nozzle_radius_mm);
+    cell.torch.nozzle_length_mm = torch.Number("nozzle_length_mm", 1.0, 500.0, cell.torch.nozzle_length_mm);
+    WAAM_THROW_UNLESS(cell.torch.nozzle_length_mm + cell.torch.nozzle_radius_mm + 15.0 < length,
+                      torch.Where("nozzle_length_mm") << ": the nozzle (plus its radius and 15 mm above the TCP) "
+                                                         "must be shorter than the torch");
+    torch.CheckNoUnknownKeys();
   }
   if (map.Has("part")) {
     YamlMap part = map.Map("part");

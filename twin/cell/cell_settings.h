@@ -5,6 +5,7 @@
 #include <array>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "models/core/enum_names.h"
 
@@ -17,10 +18,23 @@ constexpr std::array<EnumName<PositionerFollow>, 2> EnumNames(PositionerFollow) 
 }
 WAAM_ENUM_JSON(PositionerFollow)
 
+// cell.torch: the torch on the flange of a URDF arm (the built-in cell has its own).
+struct TorchSettings {
+  std::array<double, 3> tcp_mm = {0.0, 0.0, 400.0};  // TCP in the flange frame (ROS-Industrial tool0: z out), mm
+  double nozzle_radius_mm = 11.0;                     // gas nozzle radius, mm
+  double nozzle_length_mm = 74.0;                     // nozzle length (its end 15 mm above the TCP), mm
+};
+
 struct CellSettings {
   // The MuJoCo cell model; empty = the built-in twin/data/cell_arcmate100ic.xml. A user's file must have the
   // joints, bodies and sites listed in the README ("Describing your own cell").
   std::filesystem::path mjcf;
+  // cell.robot.urdf: the arm from a URDF file instead (with the built-in positioner); see twin/cell/urdf_arm.h.
+  std::filesystem::path robot_urdf;
+  std::vector<std::filesystem::path> robot_package_paths;  // package://NAME/... is DIR/NAME/... in each DIR
+  std::vector<std::string> robot_joints;                   // the six arm joints; empty: root -> flange
+  std::string robot_flange;                                // the flange link; empty: tool0 or the chain's end
+  TorchSettings torch;                                     // cell.torch (URDF arms)
   std::array<double, 3> robot_base_mm = {0.0, 0.0, 0.0};          // arm base frame R in the world, mm
   double robot_yaw_deg = 0.0;                                      // turn of R about world z, deg
   std::array<double, 3> positioner_base_mm = {1050.0, 0.0, 0.0};  // positioner base frame B in the world, mm

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -49,12 +51,14 @@ Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
 struct CellModel::Impl {
   mjModel* m = nullptr;
   fs::path file;
+  CellModel::RobotInfo robot;
   int qadr[8] = {};
   int jnt[8] = {};
   int robot_base = -1, positioner_base = -1, flange = -1;
   int tcp = -1, part_origin = -1, nozzle = -1, speeds = -1;
   planner::CellKinematics kinematics;
   bool closed_form = true;
+  std::string not_opw_reason;  // why the closed form does not apply (empty when it does)
   Eigen::Vector3d nozzle_a_T = Eigen::Vector3d::Zero(), nozzle_b_T = Eigen::Vector3d::Zero();
   double nozzle_radius_mm = 0.0;
   ~Impl() {
@@ -85,14 +89,26 @@ struct CellState::Data {
 namespace {
 
 // Loads and checks the model file and places the bases (the constructor's first half; the kinematics follow).
-void LoadModel(const fs::path& mjcf, CellModel::Impl* impl) {
+void LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* impl) {
   InstallMujocoHandlers();
   impl->file = mjcf.empty() ? CellModel::BuiltinModelPath() : mjcf;
   const fs::path& file = impl->file;
-  std::error_code ec;
-  WAAM_THROW_UNLESS(fs::is_regular_file(file, ec), file.string() << ": MJCF cell model not found");
   char error[1024] = "";
-  impl->m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
+  if (xml) {
+    // Composed text: handed to MuJoCo in a virtual file system; the meshes it names come from disk.
+    auto vfs = std::make_unique<mjVFS>();
+    mj_defaultVFS(vfs.get());
+    const char* const name = "waam_cell.xml";
+    WAAM_DEMAND(mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml->size())) == 0);
+    const int index = mj_findFileVFS(vfs.get(), name);
+    std::memcpy(vfs->filedata[index], xml->data(), xml->size());
+    impl->m = mj_loadXML(name, vfs.get(), error, sizeof(error));
+    mj_deleteVFS(vfs.get());
+  } else {
+    std::error_code ec;
+    WAAM_THROW_UNLESS(fs::is_regular_file(file, ec), file.string() << ": MJCF cell model not found");
+    impl->m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
+  }
   if (impl->m == nullptr) {
     // MuJoCo's XML errors span several lines ("XML parse error 14:\nError=... Line number=1: ..."): join them so
     // the CLI prints the one line the bad-input contract promises, with the line number MuJoCo reports.
@@ -162,24 +178,19 @@ void ReadKinematics(CellModel::Impl* impl) {
   const int rb = impl->robot_base;
   cell.X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
   const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
-  auto anchor_R = [&](int j) {
-    const int id = impl->jnt[j];
-    return Eigen::Vector3d(X_RW * (Eigen::Vector3d(d->xanchor[3 * id], d->xanchor[3 * id + 1],
-                                                   d->xanchor[3 * id + 2]) * kMm));
-  };
-  // OPW parameters from the zero pose: j2 anchor (a1, 0, c1), j3 anchor c2 above it, wrist centre (j5 anchor)
-  // c3 ahead of and -a2 above j3, flange c4 ahead of the wrist centre.
-  const Eigen::Vector3d p2 = anchor_R(1), p3 = anchor_R(2), p5 = anchor_R(4);
+  // OPW parameters, offsets and sign corrections from the joint axes at the zero pose, whatever the convention.
   const int fl = impl->flange;
-  const Eigen::Isometry3d X_RF0 = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+  planner::ArmAxes axes;
+  for (int j = 0; j < 6; ++j) {
+    const int id = impl->jnt[j];
+    axes.point_R[j] = X_RW * (Eigen::Vector3d(d->xanchor[3 * id], d->xanchor[3 * id + 1], d->xanchor[3 * id + 2]) * kMm);
+    axes.axis_R[j] = X_RW.linear() * Eigen::Vector3d(d->xaxis[3 * id], d->xaxis[3 * id + 1], d->xaxis[3 * id + 2]);
+  }
+  axes.X_RF0 = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
+  const std::optional<planner::OpwArm> opw = planner::OpwFromAxes(axes, &impl->not_opw_reason);
   planner::OpwArm& arm = cell.arm;
+  if (opw) arm = *opw;
   arm.name = "arm of " + impl->file.filename().string();
-  arm.a1 = p2.x();
-  arm.c1 = p2.z();
-  arm.c2 = p3.z() - p2.z();
-  arm.c3 = p5.x() - p3.x();
-  arm.a2 = -(p5.z() - p3.z());
-  arm.c4 = X_RF0.translation().x() - p5.x();
   const mjtNum* speed = m->numeric_data + m->numeric_adr[impl->speeds];
   for (int j = 0; j < 6; ++j) {
     arm.lower[j] = m->jnt_range[2 * impl->jnt[j]];
@@ -231,7 +242,7 @@ void ReadKinematics(CellModel::Impl* impl) {
   // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
   std::mt19937_64 rng(2024);
   double worst = 0.0;
-  for (int trial = 0; trial < 50; ++trial) {
+  for (int trial = 0; opw && trial < 50; ++trial) {
     planner::Joints6 q;
     for (int j = 0; j < 6; ++j) q[j] = std::uniform_real_distribution<double>(arm.lower[j], arm.upper[j])(rng);
     for (int j = 0; j < 6; ++j) d->qpos[impl->qadr[j]] = q[j];
@@ -241,8 +252,8 @@ void ReadKinematics(CellModel::Impl* impl) {
     worst = std::max(worst, (X_RF.translation() - X_fk.translation()).norm() +
                                 1000.0 * (X_RF.linear() - X_fk.linear()).norm());
   }
-  impl->closed_form = worst < 1e-6;
-  if (!impl->closed_form) cell.arm.name += " (numerical IK)";
+  impl->closed_form = opw.has_value() && worst < 1e-6;
+  if (opw && !impl->closed_form) impl->not_opw_reason = "the OPW model differs from MuJoCo's forward kinematics";
 }
 
 // Damped least-squares IK on the model with its own data (see CellModel::SolveNumericIk).
@@ -303,12 +314,23 @@ bool SolveIkOnModel(const CellModel::Impl& impl, const Eigen::Isometry3d& X_RF, 
 }
 
 std::shared_ptr<const CellModel::Impl> BuildModel(const fs::path& mjcf, const Eigen::Isometry3d* X_WR,
-                                                  const Eigen::Isometry3d* X_WB) {
+                                                  const Eigen::Isometry3d* X_WB, const std::string* xml = nullptr,
+                                                  const CellModel::RobotInfo* info = nullptr) {
   auto impl = std::make_shared<CellModel::Impl>();
-  LoadModel(mjcf, impl.get());
+  LoadModel(mjcf, xml, impl.get());
   if (X_WR) PlaceBody(impl->m, impl->robot_base, *X_WR);
   if (X_WB) PlaceBody(impl->m, impl->positioner_base, *X_WB);
   ReadKinematics(impl.get());
+  if (info) {
+    impl->robot = *info;
+  } else if (mjcf.empty()) {
+    impl->robot.name = "FANUC ARC Mate 100iC/12";
+    impl->robot.source = "builtin";
+  } else {
+    impl->robot.name = impl->kinematics.arm.name;
+    impl->robot.source = mjcf.string();
+  }
+  impl->kinematics.arm.name = impl->robot.name;
   return impl;
 }
 
@@ -321,16 +343,24 @@ CellModel::CellModel(const fs::path& mjcf, const Eigen::Isometry3d& X_WR, const 
 
 CellModel::CellModel(const fs::path& mjcf) : impl_(BuildModel(mjcf, nullptr, nullptr)) {}
 
+CellModel CellModel::FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                             const Eigen::Isometry3d& X_WB) {
+  return CellModel(FromImplTag{}, BuildModel(fs::path(info.source), &X_WR, &X_WB, &xml, &info));
+}
+
+const CellModel::RobotInfo& CellModel::robot() const { return impl_->robot; }
+
 planner::CellKinematics CellModel::kinematics() const {
   planner::CellKinematics kin = impl_->kinematics;
   if (!impl_->closed_form) {
-    // Not an OPW arm in the FANUC convention: the numerical IK on this model takes over, holding the model.
+    // Not an OPW arm: the numerical IK on this model takes over, holding the model.
     kin.numeric_ik = [model = impl_](const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,
                                      double* residual) { return SolveIkOnModel(*model, X_RF, seed, q, residual); };
   }
   return kin;
 }
 bool CellModel::closed_form() const { return impl_->closed_form; }
+const std::string& CellModel::not_closed_form_reason() const { return impl_->not_opw_reason; }
 const fs::path& CellModel::file() const { return impl_->file; }
 
 bool CellModel::SolveNumericIk(const Eigen::Isometry3d& X_RF, const planner::Joints6& seed, planner::Joints6* q,

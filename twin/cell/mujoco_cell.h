@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,19 +54,35 @@ class CellModel {
 
   // Loads an MJCF file (the built-in one when `mjcf` is empty) with the arm base frame R at X_WR and the positioner
   // base frame B at X_WB in the world (mm), and reads its kinematics: the arm's OPW parameters, limits and speeds,
-  // the tool (tcp site in the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. An
-  // arm that is not of the OPW kind in the FANUC joint convention (its MuJoCo forward kinematics differ from the
-  // closed form) gets the numerical IK on this model. Throws InputError naming the file and MuJoCo's message for a
+  // the tool (tcp site in the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. The
+  // OPW parameters, offsets and sign corrections are read off the joint axes at the zero pose (any vendor
+  // convention); an arm whose axes are not of the OPW kind, or whose closed form differs from MuJoCo's forward
+  // kinematics on random poses, gets the numerical IK on this model. Throws InputError naming the file and MuJoCo's message for a
   // file that does not parse or compile, that lacks a required joint, body, site or field, or whose positioner chain
   // is not tilt-about-x then rotate-about-z.
   CellModel(const std::filesystem::path& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
   // The same with the bases where the file puts them.
   explicit CellModel(const std::filesystem::path& mjcf);
 
+  // What the arm is, for reports: name (vendor first), source (builtin, a preset name or the model's path) and the
+  // model's names of j1..j6.
+  struct RobotInfo {
+    std::string name;
+    std::string source;
+    std::array<std::string, 6> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
+  };
+  // A cell model from MJCF text (a composed cell, e.g. around a URDF arm), placed like the constructor above;
+  // `info.source` names it in messages. Mesh files are read from the absolute paths the text gives.
+  static CellModel FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                           const Eigen::Isometry3d& X_WB);
+  const RobotInfo& robot() const;
+
   // The cell's kinematics (a copy; the numerical IK it may carry holds this model, safe to call from any thread).
   planner::CellKinematics kinematics() const;
   // True when the arm has the closed-form (OPW) kinematics.
   bool closed_form() const;
+  // Why the closed form does not apply (empty when it does).
+  const std::string& not_closed_form_reason() const;
 
   // Damped least-squares IK of the flange pose X_RF (arm base frame, mm) on the model, from `seed` (rad), joints
   // kept inside their limits. Returns false with the remaining error (mm, rotation counted at 1 m) if it does not
@@ -85,6 +102,8 @@ class CellModel {
   struct Impl;  // the MuJoCo side, in mujoco_cell.cc
 
  private:
+  struct FromImplTag {};
+  CellModel(FromImplTag, std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
   std::shared_ptr<const Impl> impl_;
   friend class CellState;
 };
