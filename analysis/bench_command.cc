@@ -1,4 +1,5 @@
-// `waam bench`: each scenario in a child `waam run` process (isolation, per-scenario peak memory), resumable.
+// `waam bench`: each scenario in a child `waam run` process (isolation, per-scenario peak memory), several at once
+// within a memory budget, resumable, one shard of many.
 #include "analysis/bench_command.h"
 
 #include <fcntl.h>
@@ -13,11 +14,13 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <thread>
 
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "planner/scenario/scenario.h"
 
@@ -48,8 +51,8 @@ struct ChildResult {
   double sys_s = 0.0;
 };
 
-// Runs `argv` (argv[0] = binary path) with stdout and stderr into `log`; waits for it, forwarding an interrupt.
-ChildResult RunChild(const std::vector<std::string>& args, const fs::path& log) {
+// Starts `args` (args[0] = binary path) with stdout and stderr into `log`; returns its pid.
+pid_t StartChild(const std::vector<std::string>& args, const fs::path& log) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -57,32 +60,25 @@ ChildResult RunChild(const std::vector<std::string>& args, const fs::path& log) 
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
   const int rc = posix_spawn(&pid, args[0].c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   WAAM_THROW_UNLESS(rc == 0, "cannot start " << args[0] << ": " << std::strerror(rc));
+  return pid;
+}
 
+// Whether child `pid` has ended (without blocking); if so, fills its exit code and resource use.
+bool ChildDone(pid_t pid, ChildResult* result) {
   int status = 0;
   rusage usage{};
-  bool forwarded = false;
-  while (true) {
-    const pid_t done = wait4(pid, &status, WNOHANG, &usage);
-    if (done == pid) break;
-    if (done < 0 && errno != EINTR) WAAM_THROW("waiting for " << args[0] << ": " << std::strerror(errno));
-    if (InterruptRequested() && !forwarded) {
-      kill(pid, SIGINT);  // the child removes its partial outputs and exits 130
-      forwarded = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  ChildResult result;
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  result.peak_rss_mb = usage.ru_maxrss / 1024.0;  // KiB on Linux
-  result.user_s = usage.ru_utime.tv_sec + usage.ru_utime.tv_usec * 1e-6;
-  result.sys_s = usage.ru_stime.tv_sec + usage.ru_stime.tv_usec * 1e-6;
-  return result;
+  const pid_t done = wait4(pid, &status, WNOHANG, &usage);
+  if (done == 0 || (done < 0 && errno == EINTR)) return false;
+  WAAM_DEMAND(done == pid);
+  result->exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  result->peak_rss_mb = usage.ru_maxrss / 1024.0;  // KiB on Linux
+  result->user_s = usage.ru_utime.tv_sec + usage.ru_utime.tv_usec * 1e-6;
+  result->sys_s = usage.ru_stime.tv_sec + usage.ru_stime.tv_usec * 1e-6;
+  return true;
 }
 
 // The last non-empty line of a log (the child's one-line error), or "".
@@ -100,66 +96,164 @@ std::string Outcome(int exit_code, int expected) {
   return exit_code == 0 ? "pass" : "expected_fail";
 }
 
-// Runs one scenario (or reuses its completed entry) and returns its bench entry.
-nlohmann::json BenchOne(const fs::path& file, const std::string& id, const BenchOptions& options,
-                        bool* reused) {
-  const fs::path dir = options.out_dir / id;
-  const fs::path entry_path = dir / "bench_entry.json";
-  std::string input = ReadFile(file);
-  for (const std::string& o : options.overrides) input += "\n--set " + o;
+// One scenario of the bench on its way: its entry so far and, until it is done, the child that runs it.
+struct Job {
+  BenchRun run;
+  fs::path dir;
+  nlohmann::json entry;
+  bool done = false;               // entry complete (reused, refused input, or the child finished)
+  bool reused = false;
+  std::vector<std::string> args;   // the child's command line
+  double expected_mb = kFirstMemoryEstimateMb;
+  double expected_s = -1.0;        // wall time of the previous result (-1: unknown)
+  pid_t pid = 0;
+  std::chrono::steady_clock::time_point start;
+};
+
+// Reuses the completed entry of a run, or records a bad scenario file, or prepares the child's command line.
+Job PrepareJob(const BenchRun& run, const BenchOptions& options, int child_threads) {
+  Job job;
+  job.run = run;
+  job.dir = options.out_dir / run.id;
+  const fs::path entry_path = job.dir / "bench_entry.json";
+  std::vector<std::string> overrides = options.overrides;
+  overrides.insert(overrides.end(), run.overrides.begin(), run.overrides.end());
+  std::string input = ReadFile(run.file);
+  for (const std::string& o : overrides) input += "\n--set " + o;
   const std::string fingerprint = Fingerprint(input);
   std::error_code ec;
-  if (!options.fresh && fs::is_regular_file(entry_path, ec)) {
-    nlohmann::json old = nlohmann::json::parse(ReadFile(entry_path), nullptr, false);
-    if (!old.is_discarded() && old.value("input_fingerprint", "") == fingerprint) {
-      *reused = true;
-      return old;
+  if (fs::is_regular_file(entry_path, ec)) {
+    const nlohmann::json old = nlohmann::json::parse(ReadFile(entry_path), nullptr, false);
+    if (!old.is_discarded() && !options.fresh && old.value("input_fingerprint", "") == fingerprint) {
+      job.entry = old;
+      job.done = job.reused = true;
+      return job;
+    }
+    // An older result of this folder is the best guess of the new run's memory and time.
+    if (!old.is_discarded() && old.contains("timing") && old["timing"].is_object()) {
+      job.expected_mb = old["timing"].value("peak_rss_mb", kFirstMemoryEstimateMb);
+      job.expected_s = old["timing"].value("wall_s", -1.0);
     }
   }
-  *reused = false;
   fs::remove(entry_path, ec);
 
-  nlohmann::json entry = {{"id", id}, {"file", file.generic_string()}, {"input_fingerprint", fingerprint}};
+  job.entry = {{"id", run.id}, {"file", run.file.generic_string()}, {"input_fingerprint", fingerprint}};
+  if (!run.overrides.empty()) job.entry["overrides"] = run.overrides;
   // The scenario is read here first so that a bad file is reported without starting a child.
-  int expected = 0;
   try {
-    const Scenario scenario = LoadScenario(file, options.overrides);
-    entry["scenario"] = scenario.name;
-    expected = scenario.run.expected_exit_code;
+    const Scenario scenario = LoadScenario(run.file, overrides);
+    job.entry["scenario"] = scenario.name;
+    job.entry["expected_exit_code"] = scenario.run.expected_exit_code;
   } catch (const InputError& e) {
-    entry["scenario"] = nullptr;
-    entry["exit_code"] = 2;
-    entry["expected_exit_code"] = 0;
-    entry["outcome"] = "fail";
-    entry["error"] = e.what();
-    entry["steps"] = nlohmann::json::array();
-    entry["timing"] = nlohmann::json::object();
-    WriteFileAtomic(entry_path, entry.dump(2) + "\n");
-    return entry;
+    job.entry["scenario"] = nullptr;
+    job.entry["exit_code"] = 2;
+    job.entry["expected_exit_code"] = 0;
+    job.entry["outcome"] = "fail";
+    job.entry["error"] = e.what();
+    job.entry["steps"] = nlohmann::json::array();
+    job.entry["timing"] = nlohmann::json::object();
+    WriteFileAtomic(entry_path, job.entry.dump(2) + "\n");
+    job.done = true;
+    return job;
   }
-  EnsureOutputDirectory(dir);
-  std::vector<std::string> args = {options.waam_binary.string(), "run", file.string(), "-o", dir.string(), "-q"};
-  for (const std::string& o : options.overrides) {
-    args.push_back("--set");
-    args.push_back(o);
+  job.args = {options.waam_binary.string(), "run", run.file.string(), "-o", job.dir.string(), "-q",
+              "--threads", std::to_string(child_threads)};
+  for (const std::string& o : overrides) {
+    job.args.push_back("--set");
+    job.args.push_back(o);
   }
-  const ChildResult child = RunChild(args, dir / "run.log");
-  if (child.exit_code == 130 || InterruptRequested()) throw Interrupted();
+  return job;
+}
 
+// Completes the entry of a job whose child ended and writes its bench_entry.json.
+void FinishJob(Job* job, const ChildResult& child) {
+  std::error_code ec;
   nlohmann::json summary = nlohmann::json::object();
-  if (fs::is_regular_file(dir / "summary.json", ec)) summary = nlohmann::json::parse(ReadFile(dir / "summary.json"));
+  if (fs::is_regular_file(job->dir / "summary.json", ec)) {
+    summary = nlohmann::json::parse(ReadFile(job->dir / "summary.json"));
+  }
+  nlohmann::json& entry = job->entry;
   entry["exit_code"] = child.exit_code;
-  entry["expected_exit_code"] = expected;
-  entry["outcome"] = Outcome(child.exit_code, expected);
+  entry["outcome"] = Outcome(child.exit_code, entry["expected_exit_code"].get<int>());
   entry["steps"] = summary.value("steps", nlohmann::json::array());
-  if (child.exit_code != 0 && child.exit_code != 3) entry["error"] = LastLine(dir / "run.log");
+  if (child.exit_code != 0 && child.exit_code != 3) entry["error"] = LastLine(job->dir / "run.log");
   entry["timing"] = {{"wall_s", child.wall_s},
                      {"peak_rss_mb", child.peak_rss_mb},
                      {"user_s", child.user_s},
                      {"sys_s", child.sys_s},
                      {"steps", summary.contains("timing") ? summary["timing"]["steps"] : nlohmann::json::object()}};
-  WriteFileAtomic(entry_path, entry.dump(2) + "\n");
-  return entry;
+  WriteFileAtomic(job->dir / "bench_entry.json", entry.dump(2) + "\n");
+  job->done = true;
+}
+
+// 80 % of the physical memory, GiB.
+double DefaultMemoryBudgetGb() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page = sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return 8.0;
+  return 0.8 * static_cast<double>(pages) * static_cast<double>(page) / (1024.0 * 1024.0 * 1024.0);
+}
+
+// Runs the children of the pending jobs, up to `jobs` at once with the sum of their expected peak memory within
+// `budget_mb` (a job that alone exceeds it runs when nothing else does). Jobs start longest expected first (unknown
+// first of all: a new scenario may be the longest), ties in list order. `report` is called as each job ends.
+void RunJobs(std::vector<Job>* all, int jobs, double budget_mb, const std::function<void(Job&)>& report) {
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < all->size(); ++i) {
+    if (!(*all)[i].done) queue.push_back(i);
+  }
+  std::stable_sort(queue.begin(), queue.end(), [&](std::size_t a, std::size_t b) {
+    const double ta = (*all)[a].expected_s < 0 ? 1e300 : (*all)[a].expected_s;
+    const double tb = (*all)[b].expected_s < 0 ? 1e300 : (*all)[b].expected_s;
+    return ta > tb;
+  });
+  std::vector<std::size_t> running;
+  double running_mb = 0.0;
+  bool interrupted = false;
+  bool child_interrupted = false;
+  while (!queue.empty() || !running.empty()) {
+    if (!interrupted && (InterruptRequested() || child_interrupted)) {
+      interrupted = true;
+      queue.clear();
+      for (std::size_t r : running) kill((*all)[r].pid, SIGINT);  // each removes its partial outputs, exits 130
+    }
+    // Start what fits.
+    for (auto it = queue.begin(); it != queue.end() && static_cast<int>(running.size()) < jobs;) {
+      Job& job = (*all)[*it];
+      if (!running.empty() && running_mb + job.expected_mb > budget_mb) {
+        ++it;
+        continue;
+      }
+      EnsureOutputDirectory(job.dir);
+      job.start = std::chrono::steady_clock::now();
+      job.pid = StartChild(job.args, job.dir / "run.log");
+      running_mb += job.expected_mb;
+      running.push_back(*it);
+      it = queue.erase(it);
+    }
+    // Reap what ended.
+    bool any = false;
+    for (auto it = running.begin(); it != running.end();) {
+      Job& job = (*all)[*it];
+      ChildResult child;
+      if (!ChildDone(job.pid, &child)) {
+        ++it;
+        continue;
+      }
+      any = true;
+      child.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - job.start).count();
+      running_mb -= job.expected_mb;
+      it = running.erase(it);
+      if (child.exit_code == 130 || interrupted) {
+        child_interrupted = true;
+        continue;
+      }
+      FinishJob(&job, child);
+      report(job);
+    }
+    if (!any) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (interrupted || child_interrupted) throw Interrupted();
 }
 
 // Google Benchmark JSON files of `dir` (tools/perf_bench.sh) as [{file, name, real_time, cpu_time, time_unit,
@@ -236,37 +330,81 @@ std::vector<std::pair<fs::path, std::string>> BenchScenarios(const std::vector<f
   return scenarios;
 }
 
+void ParseShard(const std::string& text, int* index, int* count) {
+  const std::size_t slash = text.find('/');
+  bool ok = slash != std::string::npos && slash > 0 && slash + 1 < text.size() &&
+            text.find_first_not_of("0123456789/") == std::string::npos && slash < 9 && text.size() - slash < 10;
+  if (ok) {
+    *index = std::stoi(text.substr(0, slash));
+    *count = std::stoi(text.substr(slash + 1));
+    ok = *count >= 1 && *index < *count;
+  }
+  WAAM_THROW_UNLESS(ok, "--shard '" << text << "': expected K/N with 0 <= K < N, e.g. 0/4 for the first of 4 shards");
+}
+
 nlohmann::json RunBench(const BenchOptions& options) {
   std::error_code ec;
   WAAM_THROW_UNLESS(fs::is_regular_file(options.waam_binary, ec),
                     "waam executable " << options.waam_binary.string() << " not found");
-  const auto scenarios = BenchScenarios(options.scenarios);
+  WAAM_THROW_UNLESS(options.jobs >= 1, "-j " << options.jobs << ": must be >= 1");
+  WAAM_THROW_UNLESS(options.mem_gb >= 0.0, "--mem-gb " << options.mem_gb << ": must be >= 0 (0 = 80 % of memory)");
+  WAAM_THROW_UNLESS(options.shard_count >= 1 && options.shard_index >= 0 && options.shard_index < options.shard_count,
+                    "shard " << options.shard_index << "/" << options.shard_count << ": must be K/N with 0 <= K < N");
+  std::vector<BenchRun> all = options.runs;
+  if (all.empty()) {
+    for (const auto& [file, id] : BenchScenarios(options.scenarios)) all.push_back({file, id, {}});
+  }
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      WAAM_THROW_UNLESS(all[i].id != all[j].id, "two runs share the result folder '" << all[i].id << "'");
+    }
+  }
+  // The shard: every shard_count-th run, so shards of a sorted folder get a mix of scenarios.
+  std::vector<BenchRun> runs;
+  for (std::size_t i = options.shard_index; i < all.size(); i += options.shard_count) runs.push_back(all[i]);
   EnsureOutputDirectory(options.out_dir);
   const auto start = std::chrono::steady_clock::now();
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(runs.size())));
+  const int child_threads = std::max(1, ThreadCount() / jobs);
+  const double budget_mb = 1024.0 * (options.mem_gb > 0.0 ? options.mem_gb : DefaultMemoryBudgetGb());
+
+  std::vector<Job> work;
+  for (const BenchRun& run : runs) {
+    CheckInterrupt();
+    work.push_back(PrepareJob(run, options, child_threads));
+  }
+  const std::size_t n = work.size();
+  std::size_t finished = 0;
+  auto report = [&](Job& job) {
+    ++finished;
+    if (options.quiet) return;
+    const nlohmann::json& entry = job.entry;
+    std::fprintf(stderr, "bench [%zu/%zu] %s: %s (exit %d) %.1f s, %.0f MiB peak%s%s%s\n", finished, n,
+                 job.run.id.c_str(), entry["outcome"].get<std::string>().c_str(), entry["exit_code"].get<int>(),
+                 entry["timing"].value("wall_s", 0.0), entry["timing"].value("peak_rss_mb", 0.0),
+                 job.reused ? " (result reused)" : "", entry.contains("error") ? ": " : "",
+                 entry.contains("error") ? entry["error"].get<std::string>().c_str() : "");
+  };
+  for (Job& job : work) {
+    if (job.done) report(job);
+  }
+  if (!options.quiet && finished < n) {
+    std::fprintf(stderr, "bench: %zu scenario%s to run, %d at once, %d thread%s each, memory budget %.1f GiB\n",
+                 n - finished, n - finished == 1 ? "" : "s", jobs, child_threads, child_threads == 1 ? "" : "s",
+                 budget_mb / 1024.0);
+  }
+  RunJobs(&work, jobs, budget_mb, report);
 
   nlohmann::json entries = nlohmann::json::array();
-  nlohmann::json counts = {{"pass", 0}, {"expected_fail", 0}, {"fail", 0}, {"total", scenarios.size()}};
+  nlohmann::json counts = {{"pass", 0}, {"expected_fail", 0}, {"fail", 0}, {"total", n}};
   double entries_wall_s = 0.0;
   std::size_t reused_count = 0;
-  for (std::size_t i = 0; i < scenarios.size(); ++i) {
-    const auto& [file, id] = scenarios[i];
-    CheckInterrupt();
-    if (!options.quiet) std::fprintf(stderr, "bench [%zu/%zu] %s ...\n", i + 1, scenarios.size(), id.c_str());
-    bool reused = false;
-    nlohmann::json entry = BenchOne(file, id, options, &reused);
-    const std::string outcome = entry["outcome"];
+  for (Job& job : work) {
+    const std::string outcome = job.entry["outcome"];
     counts[outcome] = counts[outcome].get<int>() + 1;
-    const double wall = entry["timing"].value("wall_s", 0.0);
-    entries_wall_s += wall;
-    reused_count += reused ? 1 : 0;
-    if (!options.quiet) {
-      std::fprintf(stderr, "bench [%zu/%zu] %s: %s (exit %d) %.1f s, %.0f MiB peak%s%s%s\n", i + 1,
-                   scenarios.size(), id.c_str(), outcome.c_str(), entry["exit_code"].get<int>(), wall,
-                   entry["timing"].value("peak_rss_mb", 0.0), reused ? " (result reused)" : "",
-                   entry.contains("error") ? ": " : "",
-                   entry.contains("error") ? entry["error"].get<std::string>().c_str() : "");
-    }
-    entries.push_back(std::move(entry));
+    entries_wall_s += job.entry["timing"].value("wall_s", 0.0);
+    reused_count += job.reused ? 1 : 0;
+    entries.push_back(std::move(job.entry));
   }
   const fs::path perf_dir = options.perf_dir.empty() ? options.out_dir / "perf" : options.perf_dir;
   nlohmann::json bench = {
@@ -278,8 +416,15 @@ nlohmann::json RunBench(const BenchOptions& options) {
         {"scenarios_wall_s", entries_wall_s},
         {"reused_results", reused_count},
         {"hardware_threads", std::thread::hardware_concurrency()},
+        {"jobs", jobs},
+        {"threads_per_job", child_threads},
+        {"memory_budget_mb", budget_mb},
         {"perf", ReadPerf(perf_dir)}}},
   };
+  if (options.shard_count > 1) {
+    bench["shard"] = {{"index", options.shard_index}, {"count", options.shard_count}, {"runs_total", all.size()}};
+  }
+  if (!options.sweep.is_null()) bench["sweep"] = options.sweep;
   WriteFileAtomic(options.out_dir / "bench.json", bench.dump(2) + "\n");
   WriteBenchReport(bench, options.out_dir);
   return bench;

@@ -255,6 +255,44 @@ std::string PerfTable(const nlohmann::json& perf) {
   return html.str();
 }
 
+// The sweep's table: one row per run, its swept values, outcome and the chosen metrics ("step.metric").
+std::string SweepTable(const nlohmann::json& sweep, const nlohmann::json& scenarios) {
+  std::map<std::string, const nlohmann::json*> by_id;
+  for (const nlohmann::json& e : scenarios) by_id[e.value("id", "")] = &e;
+  std::ostringstream html;
+  html << "<p>Sweep <b>" << Cell(sweep["name"]) << "</b> (" << Cell(sweep["file"]) << ") over base scenario "
+       << Cell(sweep["base"]);
+  if (!sweep["set"].empty()) {
+    html << " with";
+    for (const nlohmann::json& s : sweep["set"]) html << " <code>" << Cell(s) << "</code>";
+  }
+  html << ": " << sweep["runs"].size() << " runs.</p>\n<table><tr><th>run</th>";
+  for (const nlohmann::json& key : sweep["keys"]) html << "<th>" << Cell(key) << "</th>";
+  html << "<th>outcome</th>";
+  for (const nlohmann::json& metric : sweep["metrics"]) html << "<th>" << Cell(metric) << "</th>";
+  html << "</tr>\n";
+  for (const nlohmann::json& run : sweep["runs"]) {
+    const std::string id = run.value("id", "");
+    const auto found = by_id.find(id);
+    const nlohmann::json* entry = found == by_id.end() ? nullptr : found->second;
+    html << "<tr><td><a href=\"#" << HtmlEscape(id) << "\">" << HtmlEscape(id) << "</a></td>";
+    for (const nlohmann::json& key : sweep["keys"]) {
+      html << "<td>" << Cell(run["values"].value(key.get<std::string>(), nlohmann::json())) << "</td>";
+    }
+    const std::string outcome = entry ? entry->value("outcome", "fail") : "not run";
+    html << "<td class=\"" << outcome << "\">" << outcome << "</td>";
+    for (const nlohmann::json& metric : sweep["metrics"]) {
+      const std::string name = metric;
+      const std::size_t dot = name.find('.');
+      html << "<td>" << (entry ? Cell(Metric(*entry, name.substr(0, dot), name.substr(dot + 1))) : Cell(nullptr))
+           << "</td>";
+    }
+    html << "</tr>\n";
+  }
+  html << "</table>\n";
+  return html.str();
+}
+
 // A section whose data could not be read says why instead of failing the whole report.
 template <typename F>
 std::string Guarded(F&& make) {
@@ -285,6 +323,7 @@ void WriteBenchReport(const nlohmann::json& bench, const fs::path& out_dir) {
        << Cell(timing["total_s"]) << " s on " << Cell(timing["hardware_threads"])
        << " hardware threads. Each scenario ran as <code>waam run</code> in its own process; peak memory is that "
           "process's maximum resident set.</p>\n";
+  if (bench.contains("sweep")) html << "<h2>Sweep</h2>\n" << SweepTable(bench["sweep"], scenarios);
   html << "<h2>Scenarios</h2>\n" << OverviewTable(scenarios);
   html << "<h2>Published figures and ours</h2>\n" << ReferenceTable(bench["reference"]);
   html << "<h2>Bead models fitted to the papers' data</h2>\n" << Guarded([] { return ModelPlots(); });

@@ -27,6 +27,7 @@ void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_
 void AddTuneVoidsCommand(CLI::App& app, CommandRunner* runner);  // app/tune_voids_cli.cc
 void AddRunCommand(CLI::App& app, CommandRunner* runner);       // app/run_cli.cc
 void AddBenchCommand(CLI::App& app, CommandRunner* runner);     // app/bench_cli.cc
+void AddSweepCommand(CLI::App& app, CommandRunner* runner);     // app/sweep_cli.cc
 void AddDeviationCommand(CLI::App& app, CommandRunner* runner);   // app/distortion_cli.cc
 void AddCompensateCommand(CLI::App& app, CommandRunner* runner);  // app/distortion_cli.cc
 

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   AddTuneVoidsCommand(app, &runner);
   AddRunCommand(app, &runner);
   AddBenchCommand(app, &runner);
+  AddSweepCommand(app, &runner);
   AddDeviationCommand(app, &runner);
   AddCompensateCommand(app, &runner);
 

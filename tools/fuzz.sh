@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds one libFuzzer target (clang, ASan + UBSan, in build-fuzz/) and runs it for a given time.
-#   tools/fuzz.sh <stl|scenario|csv|urdf> <seconds> [more libFuzzer flags]
+#   tools/fuzz.sh <stl|scenario|csv|urdf|sweep> <seconds> [more libFuzzer flags]
 # The seed corpus is the repository's own files (meshes, scenarios, data tables) plus fuzz/regressions/<target>;
 # the growing corpus stays in build-fuzz/corpus/<target>, crashing inputs go to build-fuzz/artifacts/<target>/.
 # The 60 s timeout is for a shared, loaded machine (a unit normally takes milliseconds); a real hang still trips it.
@@ -9,8 +9,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-target=${1:?usage: tools/fuzz.sh <stl|scenario|csv|urdf> <seconds> [libFuzzer flags]}
-seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv|urdf> <seconds> [libFuzzer flags]}
+target=${1:?usage: tools/fuzz.sh <stl|scenario|csv|urdf|sweep> <seconds> [libFuzzer flags]}
+seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv|urdf|sweep> <seconds> [libFuzzer flags]}
 shift 2
 build=${WAAM_FUZZ_BUILD_DIR:-$root/build-fuzz}
 
@@ -19,7 +19,8 @@ case "$target" in
   scenario) seeds=$(find scenarios fuzz/seeds/scenario -name '*.yaml'); max_len=4096 ;;
   csv) seeds=$(find models/data fuzz/seeds/csv -name '*.csv'); max_len=8192 ;;
   urdf) seeds=$(find scenarios/cell/robots -name '*.urdf'); max_len=16384 ;;
-  *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv or urdf)" >&2; exit 2 ;;
+  sweep) seeds=$(find docs fuzz/regressions/sweep -name '*sweep*.yaml'); max_len=4096 ;;
+  *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, urdf or sweep)" >&2; exit 2 ;;
 esac
 
 if [ ! -f "$build/CMakeCache.txt" ]; then

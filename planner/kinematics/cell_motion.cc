@@ -6,9 +6,13 @@
 #include <cmath>
 
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 
 namespace waam::planner {
 namespace {
+
+// Samples per task of the parallel pose pass.
+constexpr std::size_t kPoseChunk = 4096;
 
 // Samples per move: at least one, at most step_mm apart.
 int Subdivisions(double length_mm, double step_mm) {
@@ -52,7 +56,9 @@ std::size_t CountCellSamples(const Plan& plan, double step_mm) {
 std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& plan, const MotionOptions& options,
                                        const std::function<void(std::size_t)>& progress) {
   std::vector<CellSample> samples;
+  std::vector<Eigen::Vector3d> tool_dirs_P;  // per sample: the torch axis in the part frame (unit)
   samples.reserve(CountCellSamples(plan, options.step_mm));
+  tool_dirs_P.reserve(samples.capacity());
   const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
   const Eigen::Isometry3d X_TF = cell.X_FT.inverse();
 
@@ -121,65 +127,79 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
           s.positioner_at_limit = layer_angles.at_limit;
         }
 
-        // eq. 5.14-5.18: TCP point and torch axis from the (turned) part frame into the world, then into R.
-        const Eigen::Isometry3d X_WP = cell.X_WB * PartPose(cell.positioner, angles.tilt, angles.rotation);
-        const Eigen::Vector3d p_W = X_WP * s.p_P;
-        const Eigen::Vector3d tool_dir_W = X_WP.linear() * tool_dir_P;
-        s.torch_tilt_rad = std::acos(std::clamp(tool_dir_W.z(), -1.0, 1.0));
-        s.X_WT = TorchPose(cell, p_W, tool_dir_W);
-        const Eigen::Isometry3d X_RF = X_RW * s.X_WT * X_TF;
-
-        if (cell.numeric_ik) {
-          // A user's arm without a closed form: local solution from the previous joints; failures are reported.
-          Joints6 q = seed;
-          double residual = 0.0;
-          if (cell.numeric_ik(X_RF, seed, &q, &residual)) {
-            seed = q;
-            int joint = 0;
-            s.arm_within_limits = LimitMargin(cell.arm, q, &joint) >= 0.0;
-          } else {
-            s.reachable = false;
-            s.reach_excess_mm = residual;
-            s.arm_within_limits = false;
-          }
-        } else {
-          const IkSolutions ik = SolveIk(cell.arm, X_RF, &seed);
-          const int pick = PickNearest(cell.arm, ik, &seed);
-          if (pick < 0) {
-            s.reachable = false;
-            s.reach_excess_mm = ik.reach_excess_mm;
-            s.arm_within_limits = false;
-          } else {
-            const IkSolution& sol = ik.solutions[pick];
-            seed = sol.q;
-            s.branch = sol.branch;
-            s.arm_within_limits = sol.within_limits;
-          }
-        }
-        s.q.head<6>() = seed;
         s.q[6] = angles.tilt;
         s.q[7] = angles.rotation;
-
-        // Time: weld moves at the planned speed relative to the part; arc-off moves at the rapid speed, slowed
-        // down so that no axis exceeds its speed.
-        if (!samples.empty()) {
-          const CellSample& last = samples.back();
-          const double ds = (s.p_P - last.p_P).norm();
-          double dt = ds / s.speed_mm_s;
-          if (!s.weld) {
-            for (int j = 0; j < 6; ++j) dt = std::max(dt, std::abs(s.q[j] - last.q[j]) / cell.arm.max_speed[j]);
-            dt = std::max(dt, std::abs(s.q[6] - last.q[6]) / cell.positioner.tilt_max_speed);
-            dt = std::max(dt, std::abs(s.q[7] - last.q[7]) / cell.positioner.rotation_max_speed);
-          }
-          s.dt_s = dt;
-          s.t_s = last.t_s + dt;
-        }
+        tool_dirs_P.push_back(tool_dir_P);
         samples.push_back(s);
-        if (progress && (samples.size() & 1023u) == 0) progress(samples.size());
       }
       prev = &cur;
     }
     previous_layer_angles = layer_angles;
+  }
+
+  // eq. 5.14-5.18: TCP point and torch axis from the (turned) part frame into the world, in parallel (each sample
+  // on its own).
+  const std::size_t chunks = (samples.size() + kPoseChunk - 1) / kPoseChunk;
+  ParallelFor(chunks, [&](std::size_t c) {
+    const std::size_t end = std::min(samples.size(), (c + 1) * kPoseChunk);
+    for (std::size_t i = c * kPoseChunk; i < end; ++i) {
+      CellSample& s = samples[i];
+      const Eigen::Isometry3d X_WP = cell.X_WB * PartPose(cell.positioner, s.q[6], s.q[7]);
+      const Eigen::Vector3d p_W = X_WP * s.p_P;
+      const Eigen::Vector3d tool_dir_W = X_WP.linear() * tool_dirs_P[i];
+      s.torch_tilt_rad = std::acos(std::clamp(tool_dir_W.z(), -1.0, 1.0));
+      s.X_WT = TorchPose(cell, p_W, tool_dir_W);
+    }
+  });
+
+  // The arm joints, each from the previous sample's (the branch kept continuous), and the time stamps: in order.
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    CellSample& s = samples[i];
+    const Eigen::Isometry3d X_RF = X_RW * s.X_WT * X_TF;
+    if (cell.numeric_ik) {
+      // A user's arm without a closed form: local solution from the previous joints; failures are reported.
+      Joints6 q = seed;
+      double residual = 0.0;
+      if (cell.numeric_ik(X_RF, seed, &q, &residual)) {
+        seed = q;
+        int joint = 0;
+        s.arm_within_limits = LimitMargin(cell.arm, q, &joint) >= 0.0;
+      } else {
+        s.reachable = false;
+        s.reach_excess_mm = residual;
+        s.arm_within_limits = false;
+      }
+    } else {
+      const IkSolutions ik = SolveIk(cell.arm, X_RF, &seed);
+      const int pick = PickNearest(cell.arm, ik, &seed);
+      if (pick < 0) {
+        s.reachable = false;
+        s.reach_excess_mm = ik.reach_excess_mm;
+        s.arm_within_limits = false;
+      } else {
+        const IkSolution& sol = ik.solutions[pick];
+        seed = sol.q;
+        s.branch = sol.branch;
+        s.arm_within_limits = sol.within_limits;
+      }
+    }
+    s.q.head<6>() = seed;
+
+    // Time: weld moves at the planned speed relative to the part; arc-off moves at the rapid speed, slowed down so
+    // that no axis exceeds its speed.
+    if (i > 0) {
+      const CellSample& last = samples[i - 1];
+      const double ds = (s.p_P - last.p_P).norm();
+      double dt = ds / s.speed_mm_s;
+      if (!s.weld) {
+        for (int j = 0; j < 6; ++j) dt = std::max(dt, std::abs(s.q[j] - last.q[j]) / cell.arm.max_speed[j]);
+        dt = std::max(dt, std::abs(s.q[6] - last.q[6]) / cell.positioner.tilt_max_speed);
+        dt = std::max(dt, std::abs(s.q[7] - last.q[7]) / cell.positioner.rotation_max_speed);
+      }
+      s.dt_s = dt;
+      s.t_s = last.t_s + dt;
+    }
+    if (progress && ((i + 1) & 1023u) == 0) progress(i + 1);
   }
   if (progress) progress(samples.size());
   return samples;

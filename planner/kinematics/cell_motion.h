@@ -70,7 +70,9 @@ struct MotionOptions {
 // Samples the plan's moves, solves positioner angles (per layer, from the layer's build direction, interpolated
 // over the travel move into the layer; or per sample, see MotionOptions) and arm joints (nearest branch to the previous sample) and time-stamps the
 // samples: weld moves at the planned speed, arc-off moves at the rapid speed but never faster than any axis allows.
-// `progress` (may be empty) is called with the number of samples done.
+// The torch poses are computed in parallel, the IK and time stamps in order (each depends on the previous sample);
+// the result does not depend on the thread count. `progress` (may be empty) is called with the number of samples
+// done.
 std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& plan, const MotionOptions& options,
                                        const std::function<void(std::size_t)>& progress);
 

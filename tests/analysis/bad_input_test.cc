@@ -196,6 +196,11 @@ std::vector<BadInput> Catalogue() {
       {"csv-too-few-rows", "fit speed-height", "bad.csv",
        {{"bad.csv", "travel_speed_mm_per_min,height_mm\n300,1.5\n600,1.0\n"}},
        {"bad.csv: 2 rows: the power law has 2 parameters and needs at least 3"}},
+      {"sweep-grid-value-not-a-list", "sweep", "sweep.yaml",
+       {{"sweep.yaml", "base: s.yaml\ngrid:\n  path.bead_width_mm: 5\n"}},
+       {"sweep.yaml:3: grid: path.bead_width_mm: must be a non-empty list of values"}},
+      {"sweep-missing-base", "sweep", "sweep.yaml", {{"sweep.yaml", "base: nothere.yaml\ngrid: {path.pattern: [hybrid]}\n"}},
+       {"sweep.yaml: base: scenario file ", "nothere.yaml not found"}},
       {"robot-model-does-not-parse", "check", "s.yaml",
        {{"s.yaml", CellScenario("  mjcf: broken.xml\n")}, {"broken.xml", "<mujoco><worldbody><body></mujoco>\n"}},
        {"broken.xml: MuJoCo cannot load the cell model: XML parse error", "Line number=1"}},
@@ -255,7 +260,7 @@ TEST(BadInputCatalogue, EveryCaseExitsTwoWithOneLineNamingFileAndPlaceAndNoOutpu
     const bool fit = c.command.rfind("fit", 0) == 0;
     const fs::path out = fit ? dir / "out" / "model.json" : dir / "out";
     const std::string args = c.command + " " + (dir / c.input).string() + " -o " + out.string() +
-                             (fit ? "" : " -q --no-images");
+                             (fit ? "" : c.command == "sweep" ? " -q" : " -q --no-images");
     const CliRun run = Waam(args, dir / "stderr.txt");
     EXPECT_EQ(run.exit_code, 2) << "expected exit code 2 (bad input) for " << c.id << "; stderr: " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "expected one line on stderr: " << run.err;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/scenario.h"
+#include "analysis/sweep.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -65,6 +66,13 @@ TEST(FuzzRegressions, CsvInputsGiveATableOrAnInputError) {
       } catch (const InputError&) {
       }
     }
+  });
+}
+
+TEST(FuzzRegressions, SweepInputsGiveASweepOrAnInputError) {
+  Replay("sweep", [](const fs::path& input) {
+    const analysis::Sweep sweep = analysis::ParseSweep(ReadFile(input), input);
+    (void)analysis::SweepBenchRuns(sweep);
   });
 }
 

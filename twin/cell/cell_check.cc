@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <tuple>
 
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "twin/cell/cell_compose.h"
 #include "twin/cell/deposit_map.h"
@@ -67,6 +69,45 @@ class ViolationLog {
   std::map<std::tuple<std::string, std::string, std::string>, std::size_t> open_;
   std::vector<CheckViolation> violations_;
 };
+
+// A contact between cell bodies at one sample of the motion.
+struct SampleContacts {
+  std::size_t sample = 0;
+  CellContact contact;
+};
+
+// Samples per chunk of the parallel collision pass: a fixed number, so the chunks do not depend on the threads.
+constexpr std::size_t kCollisionChunk = 1024;
+
+// MuJoCo collision detection at every reachable sample of `motion`, in chunks checked in parallel (one CellState
+// each over the shared model): the contacts deeper than `tolerance_mm`, in sample order. Within a chunk a detection
+// is skipped while no geom has moved by half the clearance found at the last one (conservative advancement: no
+// contact can have appeared); each chunk starts with a detection, so the contacts are those a detection at every
+// sample would find, whatever the chunks and the threads.
+std::vector<SampleContacts> CellContacts(const CellModel& cell, const std::vector<planner::CellSample>& motion,
+                                         double tolerance_mm) {
+  const std::size_t chunks = (motion.size() + kCollisionChunk - 1) / kCollisionChunk;
+  std::vector<std::vector<SampleContacts>> found(chunks);
+  ParallelFor(chunks, [&](std::size_t c) {
+    CellState state(cell);
+    std::vector<CellContact> contacts;
+    double clearance = -1.0;  // from the last collision detection, mm; <= 0 forces a detection
+    const std::size_t end = std::min(motion.size(), (c + 1) * kCollisionChunk);
+    for (std::size_t i = c * kCollisionChunk; i < end; ++i) {
+      if (!motion[i].reachable) continue;
+      state.SetJoints(motion[i].q);
+      if (clearance > 0.0 && 2.0 * state.MotionSinceCollide() < clearance) continue;
+      contacts.clear();
+      state.Collide(tolerance_mm, &contacts, &clearance);
+      for (CellContact& contact : contacts) found[c].push_back({i, std::move(contact)});
+    }
+  });
+  std::vector<SampleContacts> all;
+  for (std::vector<SampleContacts>& chunk : found) {
+    all.insert(all.end(), std::make_move_iterator(chunk.begin()), std::make_move_iterator(chunk.end()));
+  }
+  return all;
+}
 
 int KindRank(const std::string& kind) {
   if (kind == "collision") return 0;
@@ -154,9 +195,8 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   report.min_joint_margin_deg = std::numeric_limits<double>::infinity();
   report.min_j5_deg = std::numeric_limits<double>::infinity();
   int min_margin_sample = 0;
-  CellState state(cell);
-  std::vector<CellContact> contacts;
-  double clearance = -1.0;  // from the last collision detection, mm; <= 0 forces a detection
+  const std::vector<SampleContacts> cell_contacts = CellContacts(cell, motion, settings.collision_tolerance_mm);
+  std::size_t next_contact = 0;  // first entry of cell_contacts at or after the current sample
   Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
   bool have_velocity = false;
   int last_layer = std::numeric_limits<int>::min();
@@ -215,14 +255,10 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
       have_velocity = false;
     }
 
-    // Cell bodies: MuJoCo collision detection at this configuration, skipped while no geom has moved by half the
-    // clearance found at the last detection (conservative advancement: no contact can have appeared).
-    state.SetJoints(s.q);
-    contacts.clear();
-    if (!(clearance > 0.0 && 2.0 * state.MotionSinceCollide() < clearance)) {
-      state.Collide(settings.collision_tolerance_mm, &contacts, &clearance);
-    }
-    for (const CellContact& c : contacts) {
+    // Cell bodies: the contacts found at this sample (CellContacts).
+    while (next_contact < cell_contacts.size() && cell_contacts[next_contact].sample < i) ++next_contact;
+    for (; next_contact < cell_contacts.size() && cell_contacts[next_contact].sample == i; ++next_contact) {
+      const CellContact& c = cell_contacts[next_contact].contact;
       const bool ordered = c.body1 < c.body2;
       log.Add("collision", ordered ? c.body1 : c.body2, ordered ? c.body2 : c.body1, s, si, c.penetration_mm,
               "penetration_mm", true);
