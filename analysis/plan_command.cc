@@ -105,6 +105,7 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       {"overlap_model", scenario.path.overlap_model},
       {"bead_model", scenario.process.bead_model},
       {"bead_width_mm", result.bead_width_mm},
+      {"contour_tolerance_mm", result.contour_tolerance_mm},
       {"travel_speed_mm_min", result.travel_speed_mm_min},
       {"speed_clamp", result.speed_clamp},
       {"layer_height_mm", result.layer_height_mm},

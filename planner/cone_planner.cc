@@ -134,6 +134,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
       result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
 
   PatternOptions options = PatternOptionsFor(scenario, width);
+  result.contour_tolerance_mm = options.contour_tolerance_mm;
   const double step_rad = slicing.cone_rotation_step_deg * kPi / 180.0;
   const double window_mm = std::max(0.5 * width, 2.0 * kPointStepMm);
 

@@ -89,6 +89,7 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
   result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
   result.layer_growth_mm = result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
   PatternOptions options = PatternOptionsFor(scenario, width);
+  result.contour_tolerance_mm = options.contour_tolerance_mm;
   const double d = scenario.slicing.layer_height_mm;
   if (progress) progress->SetTotal(static_cast<int>(specs.size()));
 

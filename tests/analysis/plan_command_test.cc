@@ -55,6 +55,8 @@ TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
   EXPECT_EQ(plan["retract"]["travels"].get<std::size_t>(), result.plan.layers.empty() ? 0u : result.stats.passes)
       << "one approach per pass: the first from outside, the others from the previous pass's lift";
   EXPECT_TRUE(plan["mesh"]["watertight"].get<bool>());
+  EXPECT_DOUBLE_EQ(plan["contour_tolerance_mm"].get<double>(), 0.01 * plan["bead_width_mm"].get<double>())
+      << "slices simplified to w/100 before the pattern";
   const double uncovered_pct = plan["uncovered"]["pct"].get<double>();
   EXPECT_GE(uncovered_pct, 0.0);
   EXPECT_LT(uncovered_pct, 5.0) << "the scenario's pattern fits its part";
