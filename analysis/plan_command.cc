@@ -11,6 +11,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
 #include "planner/path/coverage.h"
@@ -41,10 +42,13 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
   nlohmann::json layers = nlohmann::json::array();
   double uncovered_sum = 0.0, area_sum = 0.0, uncovered_worst = 0.0;  // over the layers whose coverage is measured
   int worst_layer = -1;
+  // Each layer's coverage on its own (each into its own slot, so the sums below do not depend on the thread count).
+  std::vector<double> uncovered_of(result.plan.layers.size());
+  ParallelFor(uncovered_of.size(), [&](std::size_t i) { uncovered_of[i] = planner::UncoveredArea(result.plan.layers[i]); });
   for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
     const planner::LayerPath& layer = result.plan.layers[i];
     const double area = planner::Area(layer.slice);
-    const double uncovered = planner::UncoveredArea(layer);
+    const double uncovered = uncovered_of[i];
     const double uncovered_pct = area > 0.0 ? 100.0 * uncovered / area : 0.0;  // NaN stays NaN (JSON null)
     if (!std::isnan(uncovered)) {
       uncovered_sum += uncovered;
@@ -105,6 +109,7 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       {"overlap_model", scenario.path.overlap_model},
       {"bead_model", scenario.process.bead_model},
       {"bead_width_mm", result.bead_width_mm},
+      {"contour_tolerance_mm", result.contour_tolerance_mm},
       {"travel_speed_mm_min", result.travel_speed_mm_min},
       {"speed_clamp", result.speed_clamp},
       {"layer_height_mm", result.layer_height_mm},

@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <optional>
 
 #include "models/bead/csw_model.h"
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/geometry/clipper_adapter.h"
@@ -134,31 +136,49 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
       result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
 
   PatternOptions options = PatternOptionsFor(scenario, width);
+  result.contour_tolerance_mm = options.contour_tolerance_mm;
   const double step_rad = slicing.cone_rotation_step_deg * kPi / 180.0;
   const double window_mm = std::max(0.5 * width, 2.0 * kPointStepMm);
 
   result.plan.name = scenario.name;
-  for (int i = 0; i < layer_count; ++i) {
+  // The layers are independent once each knows its index in the plan (the count of non-empty layers below it, which
+  // seeds its start point): slice and flatten every surface in parallel, number the layers, then plan and map them
+  // back in parallel, each into its own slot. An error is thrown for the lowest layer that has one, as a serial loop
+  // would, so the plan and its errors are the same on any number of threads.
+  std::vector<std::optional<FlatLayer>> flats(layer_count);
+  ParallelFor(layer_count, [&](std::size_t i) {
     CheckInterrupt();
     // Slice at the layer's middle, weld on its top: both are equidistant surfaces of the first one (sec. 5).
     const ConeSurface middle = base.Offset((i + 0.5) * d);
     const std::vector<Contour3d> contours = SliceWithCone(result.mesh, middle, nullptr);
-    if (contours.empty()) continue;
-    const FlatLayer flat = FlattenLayer(contours, middle, step_rad);
+    if (!contours.empty()) flats[i] = FlattenLayer(contours, middle, step_rad);
+  });
+  std::vector<int> plan_index(layer_count, -1);
+  int planned = 0;
+  for (int i = 0; i < layer_count; ++i) {
+    if (flats[i]) plan_index[i] = planned++;
+  }
+  std::vector<LayerPath> layers(layer_count);
+  std::vector<std::vector<std::string>> layer_notes(layer_count);
+  std::mutex progress_mutex;
+  int layers_done = 0;
+  ParallelFor(layer_count, [&](std::size_t i) {
+    CheckInterrupt();
+    if (!flats[i]) return;
+    const ConeSurface middle = base.Offset((i + 0.5) * d);
+    const FlatLayer& flat = *flats[i];
     WAAM_THROW_UNLESS(flat.ok, where << ": layer " << i << " (surface R = " << middle.R << " mm): " << flat.message);
-    LayerPath layer;
-    layer.index = static_cast<int>(result.plan.layers.size());
+    LayerPath& layer = layers[i];
+    layer.index = plan_index[i];
     layer.slice = flat.regions;
     layer.slice_in_plane = false;  // the development plane
-    options.layer_index = layer.index;
-    std::vector<std::string> notes;
-    const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, options, &notes);
-    for (const std::string& note : notes) result.warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
+    PatternOptions layer_options = options;
+    layer_options.layer_index = layer.index;
+    const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, layer_options, &layer_notes[i]);
     WAAM_THROW_UNLESS(HasWeldOrNoRoom(flat.regions, moves, width),
                       where << ": layer " << i << " (surface R = " << middle.R << " mm): path.pattern '"
                             << NameOf(scenario.path.pattern) << "' found no weld path in the flattened slice of "
                             << Area(flat.regions) << " mm^2; try path.pattern: contour");
-
     // Densify every move on the plane, so that the mapped path follows the surface. A weld move stays inside its
     // region; a travel move between regions of a cone is interpolated in the polar coordinates of the development,
     // because a straight line between two points of a sector wider than pi can leave the sector (and cross the
@@ -216,11 +236,25 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
       z_sum += point.p_P.z();
       layer.points.push_back(point);
     }
-    if (layer.points.empty()) continue;
-    layer.build_dir_P = dir_sum.normalized();
-    layer.z_mm = z_sum / static_cast<double>(layer.points.size());
-    result.plan.layers.push_back(std::move(layer));
-    if (progress) progress->Update(i + 1);
+    if (!layer.points.empty()) {
+      layer.build_dir_P = dir_sum.normalized();
+      layer.z_mm = z_sum / static_cast<double>(layer.points.size());
+    }
+    if (progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress->Update(++layers_done);
+    }
+  });
+  // A layer whose pattern found no room for a bead is left out; the plan numbers the others in order.
+  for (int i = 0; i < layer_count; ++i) {
+    if (!flats[i]) continue;
+    const int index = static_cast<int>(result.plan.layers.size());
+    for (const std::string& note : layer_notes[i]) {
+      result.warnings.push_back("layer " + std::to_string(index) + ": " + note);
+    }
+    if (layers[i].points.empty()) continue;
+    layers[i].index = index;
+    result.plan.layers.push_back(std::move(layers[i]));
   }
   if (progress) progress->Finish();
   WAAM_THROW_UNLESS(!result.plan.layers.empty(), where << ": no layer of the part meets the surfaces");

@@ -13,6 +13,7 @@
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/mesh/generators.h"
@@ -88,7 +89,8 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
                                                       process.travel_speed_mm_min, process.deposition_efficiency);
   result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
   result.layer_growth_mm = result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
-  PatternOptions options = PatternOptionsFor(scenario, width);
+  const PatternOptions options = PatternOptionsFor(scenario, width);
+  result.contour_tolerance_mm = options.contour_tolerance_mm;
   const double d = scenario.slicing.layer_height_mm;
   if (progress) progress->SetTotal(static_cast<int>(specs.size()));
 
@@ -131,8 +133,10 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
     report.first_layer = static_cast<int>(result.plan.layers.size());
     report.keep = spec.keep;
     if (lean_deg.count(spec.name)) report.centroid_lean_deg = lean_deg.at(spec.name);
+    // The layers' regions and paths are independent once each knows its index in the plan (the count of non-empty
+    // layers before it, which seeds its start point): both in parallel, each into its own slot.
     std::vector<std::vector<PolygonWithHoles>> kept(count);
-    for (int i = 0; i < count; ++i) {
+    ParallelFor(count, [&](std::size_t i) {
       std::vector<PolygonWithHoles> region = slices[i];
       for (const auto& [m, c] : keeps) {
         if (region.empty()) break;
@@ -140,8 +144,8 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
       }
       std::erase_if(region, [](const PolygonWithHoles& r) { return Area(r) < kMinRegionMm2; });
       kept[i] = std::move(region);
-      report.volume_mm3 += Area(kept[i]) * h;
-    }
+    });
+    for (int i = 0; i < count; ++i) report.volume_mm3 += Area(kept[i]) * h;
     // Support (Lim & Soh Table 1): the metal needed under each layer so that everything above it stands on
     // something when built along the direction: U_i = S_i u U_(i+1), support = sum (|U_i| - |S_i|) h. This
     // counts overhangs of any angle; Lim & Soh do not state the overhang angle their support allowed.
@@ -152,18 +156,29 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
       shadow = internal::Union(both);
       report.support_mm3 += (Area(shadow) - Area(kept[i])) * h;
     }
-    for (int i = 0; i < count; ++i) {
+    std::vector<int> plan_index(count, -1);
+    for (int i = 0, next = static_cast<int>(result.plan.layers.size()); i < count; ++i) {
+      if (!kept[i].empty()) plan_index[i] = next++;
+    }
+    std::vector<std::vector<Move2D>> layer_moves(count);
+    std::vector<std::vector<std::string>> layer_notes(count);
+    ParallelFor(count, [&](std::size_t i) {
       CheckInterrupt();
+      if (kept[i].empty()) return;
+      PatternOptions layer_options = options;
+      layer_options.layer_index = plan_index[i];
+      layer_moves[i] = PlanLayerPattern(kept[i], layer_options, &layer_notes[i]);
+    });
+    for (int i = 0; i < count; ++i) {
       if (kept[i].empty()) continue;
       LayerPath layer;
       layer.index = static_cast<int>(result.plan.layers.size());
       layer.slice = kept[i];
       layer.slice_axes_P = R_PS.leftCols<2>();
       layer.build_dir_P = n;
-      options.layer_index = layer.index;
       const double top = lo + (i + 1) * h;
-      std::vector<std::string> notes;
-      const std::vector<Move2D> moves = PlanLayerPattern(kept[i], options, &notes);
+      const std::vector<std::string>& notes = layer_notes[i];
+      const std::vector<Move2D>& moves = layer_moves[i];
       for (const std::string& note : notes) {
         result.warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
       }

@@ -13,6 +13,7 @@
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/cone_planner.h"
+#include "planner/geometry/simplify.h"
 #include "planner/multidir_planner.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
@@ -49,6 +50,7 @@ PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm)
   options.zigzag_angle_rad = scenario.path.zigzag_angle_deg * kPi / 180.0;
   options.alternate_start = scenario.path.alternate_start;
   options.seed = scenario.path.seed;
+  options.contour_tolerance_mm = kContourToleranceFraction * bead_width_mm;
   return options;
 }
 
@@ -116,6 +118,7 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
                           scenario.part.where);
 
   PatternOptions options = PatternOptionsFor(scenario, result.bead_width_mm);
+  result.contour_tolerance_mm = options.contour_tolerance_mm;
   const double speed_mm_s = result.travel_speed_mm_min / 60.0;
   // Junction void filling on the planned moves; l is the spacing of the two beads of a wall (d2).
   const double l_mm = OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).contour_to_contour_mm;

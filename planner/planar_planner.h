@@ -46,6 +46,7 @@ struct PlanResult {
   double layer_growth_mm = 0.0;     // height a layer of beads at the zigzag spacing l grows: area / l
   double travel_speed_mm_min = 0.0; // the welding speed used
   double bead_width_mm = 0.0;       // the bead width used (from the scenario or the width-height model)
+  double contour_tolerance_mm = 0.0; // slices simplified to this before the patterns (w/100); 0: not simplified
   std::string speed_clamp = "none"; // speed_height mode: none | at_minimum | at_maximum of the feasible window
   std::vector<SubVolumeReport> sub_volumes;  // multi_directional only
   // Non-uniform layers (slicing.type skeleton): ranges over all weld points; equal to the values above otherwise.
@@ -64,8 +65,8 @@ struct PlanResult {
 // `progress` may be null.
 PlanResult PlanScenario(const Scenario& scenario, Progress* progress);
 
-// The layer-pattern options of the scenario's `path` section for beads `bead_width_mm` wide (layer index 0); shared
-// by the planar, cone and multi-directional planners.
+// The layer-pattern options of the scenario's `path` section for beads `bead_width_mm` wide (layer index 0), slices
+// simplified to kContourToleranceFraction of the width; shared by the planar, cone and multi-directional planners.
 PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm);
 
 }  // namespace waam::planner

@@ -11,6 +11,7 @@
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/mesh/generators.h"
@@ -125,10 +126,14 @@ Plan BuildSkeletonPlan(const SkeletonSlicing& slicing, const models::SpeedHeight
     return point;
   };
 
+  // Once the curves are aligned (above, in order), every layer or loop depends only on its curves: they are built
+  // in parallel, each into its own slot.
   Plan plan;
   plan.name = name;
   if (!options.spiral) {
-    for (int i = 0; i < n; ++i) {
+    plan.layers.resize(n);
+    ParallelFor(n, [&](std::size_t layer_index) {
+      const int i = static_cast<int>(layer_index);
       const SkeletonLayer& layer = slicing.layers[i];
       const ClosedCurve& curve = curves[i + 1];
       const int count = std::max(3, static_cast<int>(std::lround(curve.length() / options.point_spacing_mm)));
@@ -146,13 +151,15 @@ Plan BuildSkeletonPlan(const SkeletonSlicing& slicing, const models::SpeedHeight
       path.slice = {Walls(layer, ring, widths)};
       path.slice_axes_P << layer.e1_P, layer.e2_P;
       path.slice_origin_P = layer.origin_P;
-      plan.layers.push_back(std::move(path));
-    }
+      plan.layers[layer_index] = std::move(path);
+    });
     return plan;
   }
   // Spiral: loop j blends C_(j-1) into C_j with thickness (1 - f) H_(j-1) + f H_j (H_-1 = H_n = 0, C_n = C_(n-1)),
   // so every loop lies one local layer thickness above the previous loop and the whole part is one pass.
-  for (int j = 0; j <= n; ++j) {
+  plan.layers.resize(n + 1);
+  ParallelFor(n + 1, [&](std::size_t loop) {
+    const int j = static_cast<int>(loop);
     const int to = std::min(j, n - 1);
     const ClosedCurve& a = curves[j];           // C_(j-1)
     const ClosedCurve& b = curves[to + 1];      // C_j
@@ -178,8 +185,8 @@ Plan BuildSkeletonPlan(const SkeletonSlicing& slicing, const models::SpeedHeight
     path.slice = {Walls(layer, ring, widths)};
     path.slice_axes_P << layer.e1_P, layer.e2_P;
     path.slice_origin_P = layer.origin_P;
-    plan.layers.push_back(std::move(path));
-  }
+    plan.layers[loop] = std::move(path);
+  });
   return plan;
 }
 

@@ -26,13 +26,15 @@
 #   fit_bench         waam_fit_bench: CPU time of each fit; MODELS.md (a minute)
 #   check_bench       waam_check_bench: a build hour of path through waam check's checks; CELL.md (seconds)
 #   cup_support       waam plan of cup_two_handles.yaml split and in one piece: support metal; README.md (a minute)
+#   peers             tools/peers.sh: PrusaSlicer and KDL beside waam plan and the closed-form IK; README.md (installs
+#                     prusa-slicer and liborocos-kdl-dev; several minutes)
 #   readme_figures    waam simulate of the planar demo and the thruster blades: deviation, voids; README.md (a minute)
 # Needs a built ./build/waam (bash tools/test.sh --quick builds it); the *_bench tables and twin_tests need their
 # executables (cmake --build build --target NAME).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tables=(ding_table twin_table compensation twin_tests deposition_bench distortion_fit published rib_web model_fits
-        void_length_fit fit_bench check_bench cup_support readme_figures)
+        void_length_fit fit_bench check_bench cup_support readme_figures peers)
 only=""
 out="out/reproduce"
 check=0
@@ -532,6 +534,10 @@ for name, path in (("planar_demo", "scenarios/planar_demo.yaml"), ("thruster_con
     print("| `%s` | %d | %.1f / %.1f mm | %.0f mm^3, %.0f mm^3 |" % (
         path, s["layers"], dev["min_mm"], dev["max_mm"], s["voids"]["volume_mm3"], s["valleys"]["volume_mm3"]))
 PY
+}
+
+peers() {
+  { echo '```'; bash tools/peers.sh "$out/peers"; echo '```'; } | put peers
 }
 
 for table in "${tables[@]}"; do

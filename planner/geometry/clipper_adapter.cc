@@ -125,8 +125,9 @@ std::vector<Polyline> ClipPolylines(const std::vector<Polyline>& lines, const st
   return out;
 }
 
-std::vector<PolygonWithHoles> BufferPolylines(const std::vector<Polyline>& lines, double radius_mm) {
-  ClipperLib::ClipperOffset offset(2.0, kArcToleranceMm * kClipperUnitsPerMm);
+std::vector<PolygonWithHoles> BufferPolylines(const std::vector<Polyline>& lines, double radius_mm,
+                                              double arc_tolerance_mm) {
+  ClipperLib::ClipperOffset offset(2.0, arc_tolerance_mm * kClipperUnitsPerMm);
   for (const Polyline& line : lines) {
     if (line.size() < 2) continue;
     Path path;

@@ -51,8 +51,10 @@ std::vector<PolygonWithHoles> Difference(const std::vector<PolygonWithHoles>& a,
 // The parts of open polylines that lie inside `regions` (Clipper open-path intersection).
 std::vector<Polyline> ClipPolylines(const std::vector<Polyline>& lines, const std::vector<PolygonWithHoles>& regions);
 
-// The area swept by a disc of radius `radius_mm` moved along each polyline (round caps and joins).
-std::vector<PolygonWithHoles> BufferPolylines(const std::vector<Polyline>& lines, double radius_mm);
+// The area swept by a disc of radius `radius_mm` moved along each polyline (round caps and joins, their chords within
+// `arc_tolerance_mm` of the circle).
+std::vector<PolygonWithHoles> BufferPolylines(const std::vector<Polyline>& lines, double radius_mm,
+                                              double arc_tolerance_mm = kArcToleranceMm);
 
 // Length of a polyline in mm.
 double Length(const Polyline& line);

@@ -22,7 +22,7 @@ void PlanHybrid(const PolygonWithHoles& region, const PatternOptions& options, c
   const double inset = spacing.boundary_offset_mm + spacing.contour_to_zigzag_mm;
   const std::vector<PolygonWithHoles> area = Offset({region}, -inset);
   if (area.empty()) return;
-  const std::vector<PolygonWithHoles> link_area = Offset({region}, -(inset - 0.01));
+  const std::vector<PolygonWithHoles> link_area = Offset({region}, -(inset - LinkSlackMm(options)));
   std::vector<Move2D> zigzag;
   LinkRasters(RasterFill(area, RasterAngle(region, options), spacing.zigzag_mm), link_area, 3.0 * spacing.zigzag_mm,
               &zigzag);

@@ -6,6 +6,7 @@
 
 #include "models/core/error.h"
 #include "planner/geometry/clipper_adapter.h"
+#include "planner/geometry/simplify.h"
 #include "planner/path/continuous_pattern.h"
 #include "planner/path/contour_pattern.h"
 #include "planner/path/eulerian_pattern.h"
@@ -44,8 +45,12 @@ std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice,
                                      std::vector<std::string>* notes) {
   internal::ValidatePatternOptions(options);
   const OverlapSpacing spacing = OverlapSpacingFor(options.overlap_model, options.bead_width_mm);
-  // Clean the slice through Clipper first: consistent orientation, no self-touching rings, no duplicate points.
-  const std::vector<PolygonWithHoles> regions = internal::Union(slice);
+  // Clean the slice through Clipper first: consistent orientation, no self-touching rings, no duplicate points; with
+  // a tolerance, the rings simplified to it first (a facetted slice has a vertex per facet, and every offset and
+  // clip of the pattern pays for each).
+  const std::vector<PolygonWithHoles> regions = options.contour_tolerance_mm > 0.0
+                                                    ? SimplifyRegions(slice, options.contour_tolerance_mm)
+                                                    : internal::Union(slice);
   std::vector<Move2D> moves;
   for (const PolygonWithHoles& region : regions) {
     switch (options.pattern) {

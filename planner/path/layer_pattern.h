@@ -39,6 +39,7 @@ struct PatternOptions {
   int layer_index = 0;                 // used to alternate start points layer to layer
   bool alternate_start = true;
   std::uint64_t seed = 1;              // for any random choice
+  double contour_tolerance_mm = 0.0;   // slice rings simplified to this before filling (SimplifyRegions); 0: as sliced
 };
 
 // Plans the path of one slice (all its regions). Returns the moves in order. Throws InputError for options that

@@ -28,8 +28,12 @@ void ValidatePatternOptions(const PatternOptions& options) {
                     "path bead_width_mm = " << options.bead_width_mm << ": must be > 0");
   WAAM_THROW_UNLESS(std::isfinite(options.zigzag_angle_rad),
                     "path zigzag_angle = " << options.zigzag_angle_rad << " rad: must be finite");
+  WAAM_THROW_UNLESS(std::isfinite(options.contour_tolerance_mm) && options.contour_tolerance_mm >= 0.0,
+                    "path contour_tolerance_mm = " << options.contour_tolerance_mm << ": must be >= 0");
   WAAM_THROW_UNLESS(options.layer_index >= 0, "path layer_index = " << options.layer_index << ": must be >= 0");
 }
+
+double LinkSlackMm(const PatternOptions& options) { return 0.01 + options.contour_tolerance_mm; }
 
 double StartFraction(const PatternOptions& options) {
   if (!options.alternate_start) return 0.0;

@@ -29,6 +29,12 @@ void AppendLoop(const Ring& loop, const Eigen::Vector2d& start_near, bool revers
 // straight on are merged into one (SimplifyMoves).
 inline constexpr double kStraightPathToleranceMm = 0.05;
 
+// How much closer to the wall (mm) than the bead centre lines a link between raster ends may run: 0.01 mm, so links
+// that follow an inset boundary are not rejected for rounding, plus the contour tolerance (a simplified boundary
+// turns by a larger angle at each of its fewer vertices, and a short link across a reflex vertex leaves the inset
+// polygon by up to about that tolerance).
+double LinkSlackMm(const PatternOptions& options);
+
 // Merges consecutive weld moves into one wherever every point dropped between them lies within `tolerance_mm` of
 // the new straight move (and between its ends). Arc-on and arc-off points and travel moves are kept as they are.
 std::vector<Move2D> SimplifyMoves(const std::vector<Move2D>& moves, double tolerance_mm);

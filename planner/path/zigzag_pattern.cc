@@ -6,16 +6,12 @@
 
 namespace waam::planner::internal {
 
-// A link between raster ends may run this much (mm) closer to the wall than the bead centre lines themselves,
-// so links that follow the inset boundary are not rejected for rounding.
-constexpr double kLinkSlackMm = 0.01;
-
 void PlanZigzag(const PolygonWithHoles& region, const PatternOptions& options, const OverlapSpacing& spacing,
                 std::vector<Move2D>* moves) {
   const double inset = spacing.boundary_offset_mm;
   const std::vector<PolygonWithHoles> area = Offset({region}, -inset);
   if (area.empty()) return;
-  const std::vector<PolygonWithHoles> link_area = Offset({region}, -(inset - kLinkSlackMm));
+  const std::vector<PolygonWithHoles> link_area = Offset({region}, -(inset - LinkSlackMm(options)));
   std::vector<Move2D> own;
   // Links longer than a few step-overs would run along the wall like a contour; those become travel moves.
   LinkRasters(RasterFill(area, RasterAngle(region, options), spacing.zigzag_mm), link_area, 3.0 * spacing.zigzag_mm,

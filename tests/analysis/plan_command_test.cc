@@ -55,6 +55,8 @@ TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
   EXPECT_EQ(plan["retract"]["travels"].get<std::size_t>(), result.plan.layers.empty() ? 0u : result.stats.passes)
       << "one approach per pass: the first from outside, the others from the previous pass's lift";
   EXPECT_TRUE(plan["mesh"]["watertight"].get<bool>());
+  EXPECT_DOUBLE_EQ(plan["contour_tolerance_mm"].get<double>(), 0.01 * plan["bead_width_mm"].get<double>())
+      << "slices simplified to w/100 before the pattern";
   const double uncovered_pct = plan["uncovered"]["pct"].get<double>();
   EXPECT_GE(uncovered_pct, 0.0);
   EXPECT_LT(uncovered_pct, 5.0) << "the scenario's pattern fits its part";
@@ -110,6 +112,11 @@ TEST(PlanCommandTest, SamePlanOnOneAndFourThreads) {
     scenarios.push_back(WritePlateScenario(dir / pattern, pattern));
   }
   scenarios.push_back(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "ribweb" / "cross_junction.yaml");
+  // The other planners plan their layers in parallel too: cylinder, cone, multi-directional, skeleton.
+  for (const char* name : {"multiaxis/fins_cylinder.yaml", "multiaxis/vanes_wide_cone.yaml",
+                           "multiaxis/cup_two_handles.yaml", "distortion/small_bent_tube.yaml"}) {
+    scenarios.push_back(fs::path(WAAM_SOURCE_DIR) / "scenarios" / name);
+  }
   for (const fs::path& scenario : scenarios) {
     options.scenario = scenario;
     SetThreadCount(1);
@@ -121,6 +128,17 @@ TEST(PlanCommandTest, SamePlanOnOneAndFourThreads) {
     SetThreadCount(0);
     EXPECT_EQ(ReadFile(dir / "one" / "plan.json"), ReadFile(dir / "four" / "plan.json")) << scenario;
   }
+  // The skeleton planner's per-layer path (the tube above plans one spiral).
+  options.scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "distortion" / "small_bent_tube.yaml";
+  options.overrides = {"path.pattern=contour"};
+  SetThreadCount(1);
+  options.out_dir = dir / "one";
+  RunPlan(options);
+  SetThreadCount(4);
+  options.out_dir = dir / "four";
+  RunPlan(options);
+  SetThreadCount(0);
+  EXPECT_EQ(ReadFile(dir / "one" / "plan.json"), ReadFile(dir / "four" / "plan.json")) << "skeleton, contour";
 }
 
 TEST(PlanCommandTest, ContinuousNeedsFewerPassesThanHybrid) {

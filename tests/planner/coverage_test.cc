@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -46,6 +47,36 @@ TEST(Coverage, OneBeadInARectangle) {
   LayerPath cone = flat;
   cone.slice_in_plane = false;
   EXPECT_TRUE(std::isnan(UncoveredArea(cone))) << "a development-plane slice is not measured";
+}
+
+// Concentric contour rings d2 = w/2 apart filling an annulus 200 mm across, like the contour pattern on a torus slice, with
+// three rings missing: measured column by column the uncovered area is the one a single Clipper difference
+// of all the beads gives.
+TEST(Coverage, ColumnsGiveTheAreaOfOneDifference) {
+  const double w = 2.0;
+  LayerPath layer;
+  layer.slice = {{testing::Circle(0, 0, 100, 720), {testing::Circle(0, 0, 60, 480, true)}}};
+  std::vector<internal::Polyline> rings;
+  for (double r = 100 - 0.5 * w; r > 60 + 0.5 * w; r -= 0.5 * w) {
+    if (std::abs(r - 80.0) < 1.6) continue;  // three missing rings leave a band 2 mm wide bare
+    internal::Polyline ring;
+    for (int k = 0; k <= 180; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / 180;
+      ring.emplace_back(r * std::cos(a), r * std::sin(a));
+    }
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      PathPoint p;
+      p.p_P = Eigen::Vector3d(ring[k].x(), ring[k].y(), 2.0);
+      p.bead_width_mm = w;
+      p.weld = k > 0;
+      layer.points.push_back(p);
+    }
+    rings.push_back(std::move(ring));
+  }
+  const double direct = Area(internal::Difference(layer.slice, internal::BufferPolylines(rings, 0.5 * w)));
+  const double measured = UncoveredArea(layer);
+  EXPECT_GT(direct, 2.0 * std::numbers::pi * 80.0 * 2.0 * 0.95) << "the band between r = 79 and 81 mm is bare";
+  EXPECT_NEAR(measured, direct, 1e-6 * Area(layer.slice));
 }
 
 }  // namespace

@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "tests/twin/test_paths.h"
 #include "twin/scanner/mesh_distance.h"
+#include "twin/scanner/scan_deviation.h"
 #include "twin/scanner/target_volume.h"
 
 namespace waam::twin {
@@ -63,6 +65,41 @@ TEST(Deviation, ExactAndOverbuiltBlocks) {
   // The mesh voxelizes back to the same block.
   const TargetVolume volume = TargetVolume::FromMesh(target, 0.5, 1000000);
   EXPECT_EQ(volume.CountInside(), 10u * 8u * 6u);
+}
+
+// The distances are measured in parallel: the same points, deviations and sums on 1 and 4 threads, on a block
+// whose exposed faces span several of the parallel chunks, and on a seeded point cloud around it.
+TEST(Deviation, SameOnOneAndFourThreads) {
+  const planner::TriangleMesh target = testing::BoxMesh({0, 0, 0}, {20, 15, 10});
+  VoxelGrid grid(0.25, 10000000);
+  for (int k = 0; k < 44; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 76; ++i) grid.Set(VoxelIndex(i, j, k), VoxelData{});
+  std::vector<Eigen::Vector3d> cloud;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-2.0, 22.0);
+  for (int n = 0; n < 20000; ++n) cloud.emplace_back(u(rng), 0.75 * u(rng), 0.5 * u(rng));
+  const MeshDistance distance(target);
+  SetThreadCount(1);
+  const DeviationReport one = MeasureDeviation(grid, target);
+  const ScanDeviation scan_one = MeasureScanDeviation(cloud, distance);
+  SetThreadCount(4);
+  const DeviationReport four = MeasureDeviation(grid, target);
+  const ScanDeviation scan_four = MeasureScanDeviation(cloud, distance);
+  SetThreadCount(0);
+  ASSERT_GT(one.samples, 3u * 4096u) << "several chunks";
+  ASSERT_EQ(one.samples, four.samples);
+  for (std::size_t i = 0; i < one.points.size(); ++i) {
+    ASSERT_EQ(one.points[i].p_P, four.points[i].p_P) << i;
+    ASSERT_EQ(one.points[i].deviation_mm, four.points[i].deviation_mm) << i;
+  }
+  EXPECT_EQ(one.rms_mm, four.rms_mm);
+  EXPECT_EQ(one.mean_mm, four.mean_mm);
+  EXPECT_GT(one.max_mm, 0.0) << "the block stands 1 mm over the target";
+  EXPECT_EQ(scan_one.deviation_mm, scan_four.deviation_mm);
+  EXPECT_EQ(scan_one.normal, scan_four.normal);
+  EXPECT_EQ(scan_one.rms_mm, scan_four.rms_mm);
+  EXPECT_EQ(scan_one.min_mm, scan_four.min_mm);
 }
 
 }  // namespace

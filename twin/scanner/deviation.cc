@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "twin/scanner/mesh_distance.h"
 
@@ -14,16 +15,23 @@ DeviationReport MeasureDeviation(const VoxelGrid& grid, const planner::TriangleM
   DeviationReport report;
   const double v = grid.voxel_mm();
   const Eigen::Vector3i dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::size_t visited = 0;
+  // The exposed faces in the grid's order, then their distances in parallel (each point its own slot, so the
+  // report and its sums below are the same on any number of threads).
   grid.ForEach([&](const VoxelIndex& idx, const VoxelData&) {
-    if (++visited % 4096 == 0) CheckInterrupt();  // Ctrl-C stays responsive on large parts
     for (const Eigen::Vector3i& d : dirs) {
       if (grid.Solid(idx + d)) continue;
       SurfaceSample s;
       s.face = d;
       s.p_P = grid.Center(idx) + 0.5 * v * d.cast<double>();
-      s.deviation_mm = distance.SignedDistance(s.p_P);
       report.points.push_back(s);
+    }
+  });
+  constexpr std::size_t kChunk = 4096;
+  ParallelFor((report.points.size() + kChunk - 1) / kChunk, [&](std::size_t chunk) {
+    CheckInterrupt();  // Ctrl-C stays responsive on large parts
+    const std::size_t end = std::min(report.points.size(), (chunk + 1) * kChunk);
+    for (std::size_t i = chunk * kChunk; i < end; ++i) {
+      report.points[i].deviation_mm = distance.SignedDistance(report.points[i].p_P);
     }
   });
   report.samples = report.points.size();

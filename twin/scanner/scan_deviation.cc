@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/numbers.h"
 
 namespace waam::twin {
@@ -17,17 +18,26 @@ ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, con
   r.points = scan;
   r.deviation_mm.resize(scan.size());
   r.normal.resize(scan.size());
+  // Each point's distance and normal in parallel, into its own slot; the sums below run in the scan's order, so
+  // they are the same on any number of threads.
+  constexpr std::size_t kChunk = 4096;
+  ParallelFor((scan.size() + kChunk - 1) / kChunk, [&](std::size_t chunk) {
+    const std::size_t end = std::min(scan.size(), (chunk + 1) * kChunk);
+    for (std::size_t i = chunk * kChunk; i < end; ++i) {
+      Eigen::Vector3d closest;
+      const double d = target.SignedDistance(scan[i], &closest);
+      r.deviation_mm[i] = d;
+      const Eigen::Vector3d off = scan[i] - closest;
+      // Outward normal at the closest point: along the offset, pointing outside (d > 0) or back out (d < 0).
+      r.normal[i] = off.norm() > 1e-9 ? Eigen::Vector3d((d >= 0 ? 1.0 : -1.0) * off.normalized())
+                                      : Eigen::Vector3d::Zero();
+    }
+  });
   double sum = 0.0, sum2 = 0.0;
   r.min_mm = std::numeric_limits<double>::infinity();
   r.max_mm = -r.min_mm;
   for (std::size_t i = 0; i < scan.size(); ++i) {
-    Eigen::Vector3d closest;
-    const double d = target.SignedDistance(scan[i], &closest);
-    r.deviation_mm[i] = d;
-    const Eigen::Vector3d off = scan[i] - closest;
-    // Outward normal at the closest point: along the offset, pointing outside (d > 0) or back out (d < 0).
-    r.normal[i] = off.norm() > 1e-9 ? Eigen::Vector3d((d >= 0 ? 1.0 : -1.0) * off.normalized())
-                                    : Eigen::Vector3d::Zero();
+    const double d = r.deviation_mm[i];
     sum += d;
     sum2 += d * d;
     r.min_mm = std::min(r.min_mm, d);

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Runs waam's peers beside it on the same inputs in one run and prints the ratios (peer time / waam time):
+#  - PrusaSlicer's CLI (Debian prusa-slicer) against `waam plan --no-images` with the four fill patterns
+#    (continuous, hybrid, contour, zigzag) on the 1 M-facet torus at 1.5 mm layers and 2 mm beads, and on the bunny
+#    and torus PrusaSlicer's package ships (/usr/share/PrusaSlicer/shapes);
+#  - KDL's numerical IK (Debian liborocos-kdl-dev, tools/peers/kdl_vs_opw.cc compiled here, not in the project
+#    build) against waam's closed-form IK on the same arm.
+# Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
+# Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam). Times are wall clock, one run each;
+# a ratio above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo="$PWD"
+out="${1:-out/peers}"
+mkdir -p "$out"
+out="$(cd "$out" && pwd)"
+waam="$repo/build/waam"
+[ -x "$waam" ] || { echo "peers: build waam first (build/waam)" >&2; exit 1; }
+
+# The peers, installed once.
+if ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ]; then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get install -y prusa-slicer liborocos-kdl-dev > "$out/apt.log" 2>&1 ||
+    { $sudo apt-get update > /dev/null && $sudo apt-get install -y prusa-slicer liborocos-kdl-dev > "$out/apt.log" 2>&1; }
+fi
+
+seconds() { date +%s.%N; }
+# Wall seconds of a command; its output goes to "$out/<name>.log".
+timed() {
+  local name="$1"
+  shift
+  local t0 t1
+  t0=$(seconds)
+  "$@" > "$out/$name.log" 2>&1 || { echo "peers: $name failed (see $out/$name.log)" >&2; exit 1; }
+  t1=$(seconds)
+  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }' 
+}
+
+# PrusaSlicer wants a rectilinear fill for 100 % density, a bed the part fits on, and (to slice the same layers as
+# waam) a first layer as high as the others.
+prusa() {
+  prusa-slicer --export-gcode --nozzle-diameter 2 --layer-height 1.5 --first-layer-height 1.5 --perimeters 2 \
+    --fill-density 100% --fill-pattern rectilinear --bed-shape 0x0,400x0,400x400,0x400 --max-print-height 400 \
+    --loglevel 1 -o "$2" "$1"
+}
+
+# The scenario of a mesh: 1.5 mm layers, 2 mm beads (the pattern is set per run).
+scenario() {
+  cat > "$2" << YAML
+# tools/peers.sh: $(basename "$1") at 1.5 mm layers and 2 mm beads.
+name: $(basename "${1%.stl}")
+part:
+  mesh: $1
+slicing:
+  type: planar
+  layer_height_mm: 1.5
+path:
+  pattern: continuous
+  bead_width_mm: 2
+process:
+  travel_speed_mm_min: 400
+  wire_feed_mm_min: 3200
+YAML
+}
+
+"$waam" generate torus --param major_radius_mm=120 --param minor_radius_mm=40 --param major_segments=1224 \
+  --param minor_segments=408 -o "$out/torus_1m.stl" > /dev/null
+models=("$out/torus_1m.stl")
+for shape in bunny torus; do
+  f="/usr/share/PrusaSlicer/shapes/$shape.stl"
+  [ -f "$f" ] && models+=("$f")
+done
+
+echo "peers: $(nproc) hardware threads, load average $(cut -d' ' -f1-3 /proc/loadavg); wall seconds, one run each"
+printf "%-16s %10s" model prusa_s
+for p in continuous hybrid contour zigzag; do printf " %11s %7s" "${p:0:11}_s" ratio; done
+echo
+for model in "${models[@]}"; do
+  name="$(basename "${model%.stl}")"
+  [ "$model" = "$out/torus_1m.stl" ] || name="prusa_$name"
+  scenario "$model" "$out/$name.yaml"
+  t_prusa=$(timed "$name.prusa" prusa "$model" "$out/$name.gcode")
+  printf "%-16s %10.2f" "$name" "$t_prusa"
+  for p in continuous hybrid contour zigzag; do
+    t=$(timed "$name.$p" "$waam" plan "$out/$name.yaml" -o "$out/$name.$p" --set path.pattern=$p --no-images -q)
+    printf " %11.2f %7.2f" "$t" "$(awk -v a="$t_prusa" -v b="$t" 'BEGIN { print a / b }')"
+  done
+  echo
+done
+
+g++ -O2 -std=c++20 -I"$repo" -isystem /usr/include/eigen3 tools/peers/kdl_vs_opw.cc planner/kinematics/opw_arm.cc \
+  planner/kinematics/angles.cc -o "$out/kdl_vs_opw" -lorocos-kdl
+"$out/kdl_vs_opw" 20000
