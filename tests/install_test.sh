@@ -17,6 +17,10 @@ grep -qx "data: $work/moved/share/waam-twin" <<<"$version" || { echo "FAIL: data
 "$work/moved/bin/waam" check "$work/moved/share/waam-twin/scenarios/cell/cell_ok.yaml" -o out -q --no-images \
   || { echo "FAIL: the installed waam could not check an installed scenario"; exit 1; }
 test -s out/check.json || { echo "FAIL: no check.json"; exit 1; }
+# The library of cells is installed data too: a URDF preset found under the moved prefix.
+"$work/moved/bin/waam" check "$work/moved/share/waam-twin/scenarios/cell/preset_yaskawa_mh12.yaml" -o preset -q \
+  --no-images || { echo "FAIL: the installed waam could not check a preset cell"; exit 1; }
+grep -q '"source": *"yaskawa_mh12"' preset/check.json || { echo "FAIL: the preset is not named in check.json"; exit 1; }
 if [ -f /usr/share/javascript/three/three.min.js ]; then
   # The viewer's template is installed data too.
   "$work/moved/bin/waam" check "$work/moved/share/waam-twin/scenarios/cell/cell_ok.yaml" -o viewer -q --no-program \

@@ -224,6 +224,16 @@ std::vector<BadInput> Catalogue() {
       {"urdf-limit-without-velocity", "check", "s.yaml",
        {{"s.yaml", UrdfScenario("arm.urdf")}, {"arm.urdf", MiniUrdf("m.stl", "")}},
        {"arm.urdf:", ": joint 'joint_1': <limit> without velocity (rad/s; waam checks joint speeds)"}},
+      {"cell-unknown-preset", "check", "s.yaml", {{"s.yaml", CellScenario("  preset: fanuc_m20ia\n")}},
+       {"s.yaml:13: cell.preset = 'fanuc_m20ia': unknown value, expected one of fanuc_arcmate100ic, abb_irb1600, "
+        "kuka_kr16, yaskawa_mh12"}},
+      {"cell-preset-and-urdf", "check", "s.yaml",
+       {{"s.yaml", [] {
+          std::string text = UrdfScenario("arm.urdf");
+          text.replace(text.find("cell:\n"), 6, "cell:\n  preset: kuka_kr16\n");
+          return text;
+        }()}},
+       {"s.yaml:13: cell.preset: give cell.preset or cell.robot.urdf, not both"}},
       {"urdf-xacro", "check", "s.yaml",
        {{"s.yaml", UrdfScenario("arm.urdf.xacro")}, {"arm.urdf.xacro", MiniUrdf("m.stl")}},
        {"arm.urdf.xacro: a .xacro file is not read; run `xacro arm.urdf.xacro > arm.urdf` once and name the .urdf"}},

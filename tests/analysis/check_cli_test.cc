@@ -53,6 +53,11 @@ TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
       {"cell_torch_into_plate", 3, {"collision"}},
       {"urdf_kr16", 0, {}},
       {"urdf_kr16_out_of_reach", 3, {"unreachable"}},
+      {"preset_fanuc_arcmate100ic", 0, {}},
+      {"preset_abb_irb1600", 0, {}},
+      {"preset_kuka_kr16", 0, {}},
+      {"preset_yaskawa_mh12", 0, {}},
+      {"preset_abb_irb1600_out_of_reach", 3, {"unreachable"}},
   };
   for (const Case& c : cases) {
     const fs::path out = TempDir(c.scenario);
@@ -67,6 +72,19 @@ TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
     EXPECT_GT(check.at("points").get<int>(), 0) << c.scenario;
     EXPECT_TRUE(fs::exists(out / "program.csv")) << c.scenario;
     EXPECT_TRUE(fs::exists(out / "program.ls")) << c.scenario;
+    const std::string name = c.scenario;
+    if (name.rfind("preset_", 0) == 0) {
+      // A preset names its arm vendor first and itself as the source, with the closed-form IK.
+      const std::string preset = name.substr(7, name.find("_out_of_reach") == std::string::npos
+                                                    ? std::string::npos
+                                                    : name.find("_out_of_reach") - 7);
+      EXPECT_EQ(check.at("robot").at("source").get<std::string>(), preset) << c.scenario;
+      EXPECT_EQ(check.at("robot").at("ik").get<std::string>(), "closed_form") << c.scenario;
+      const std::string robot = check.at("robot").at("name").get<std::string>();
+      EXPECT_TRUE(robot.rfind("FANUC ", 0) == 0 || robot.rfind("ABB ", 0) == 0 || robot.rfind("KUKA ", 0) == 0 ||
+                  robot.rfind("Yaskawa ", 0) == 0)
+          << c.scenario << ": " << robot;
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "twin/cell/cell_compose.h"
+#include "twin/cell/cell_presets.h"
 #include "twin/cell/deposit_map.h"
 #include "twin/cell/mujoco_cell.h"
 
@@ -125,6 +126,13 @@ const char* AxisName(int axis) {
 }
 
 CellModel LoadCell(const twin::CellSettings& settings) {
+  if (settings.preset && PresetUrdf(*settings.preset).empty()) {
+    // The built-in cell under its preset name.
+    const CellModel::RobotInfo info{std::string(PresetInfo(*settings.preset).robot_name),
+                                    std::string(NameOf(*settings.preset))};
+    return CellModel::FromFile({}, info, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
+                               PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
+  }
   if (!settings.robot_urdf.empty()) {
     return LoadUrdfCell(settings, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
                         PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));

@@ -10,11 +10,13 @@
 #include <Eigen/Geometry>
 
 #include "models/core/error.h"
-#include "twin/cell/mujoco_cell.h"
 #include "models/core/numbers.h"
+#include "twin/cell/cell_presets.h"
+#include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
 namespace {
+namespace fs = std::filesystem;
 
 std::string N(double v) {
   std::ostringstream s;
@@ -113,12 +115,13 @@ CellModel LoadUrdfCell(const CellSettings& settings, const Eigen::Isometry3d& X_
   options.flange = settings.robot_flange;
   const UrdfArm arm = ReadUrdfArm(options);
   CellModel::RobotInfo info;
-  info.name = arm.name;
-  info.source = settings.robot_urdf.string();
+  info.name = settings.preset ? std::string(PresetInfo(*settings.preset).robot_name) : arm.name;
+  info.source = settings.preset ? std::string(NameOf(*settings.preset)) : settings.robot_urdf.string();
+  const fs::path file = settings.robot_urdf;
   info.joints = arm.joint_names;
   // Arm links whose collision shapes (convex hulls of the meshes) already touch at the zero pose touch by design:
   // their contacts are excluded, as the built-in cell excludes its base against the first link.
-  const CellModel first = CellModel::FromXml(ComposeUrdfCell(arm, settings.torch, {}), info, X_WR, X_WB);
+  const CellModel first = CellModel::FromXml(ComposeUrdfCell(arm, settings.torch, {}), info, X_WR, X_WB, file);
   CellState state(first);
   state.SetJoints(planner::Joints8::Zero());
   std::vector<CellContact> contacts;
@@ -132,7 +135,7 @@ CellModel LoadUrdfCell(const CellSettings& settings, const Eigen::Isometry3d& X_
   }
   if (excluded.empty()) return first;
   return CellModel::FromXml(ComposeUrdfCell(arm, settings.torch, {excluded.begin(), excluded.end()}), info, X_WR,
-                            X_WB);
+                            X_WB, file);
 }
 
 }  // namespace waam::twin

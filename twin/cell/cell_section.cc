@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "models/core/error.h"
+#include "twin/cell/cell_presets.h"
 
 namespace waam::twin::internal {
 namespace fs = std::filesystem;
@@ -24,6 +25,14 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
   if (!top.Has("cell")) return cell;
   YamlMap map = top.Map("cell");
   cell.where = map.Where("");
+  if (map.Has("preset")) {
+    // A whole cell; a model of one's own is a different cell, so it may not be given too.
+    const CellPreset preset = map.Enum<CellPreset>("preset");
+    const bool urdf = map.Has("robot") && map.Map("robot").Has("urdf");
+    WAAM_THROW_UNLESS(!map.Has("mjcf") && !urdf, map.Where("preset") << ": give cell.preset or cell."
+                                                                     << (urdf ? "robot.urdf" : "mjcf") << ", not both");
+    ApplyPreset(preset, &cell);
+  }
   if (map.Has("mjcf")) {
     cell.mjcf = fs::path(map.String("mjcf"));
     if (cell.mjcf.is_relative()) cell.mjcf = scenario_dir / cell.mjcf;

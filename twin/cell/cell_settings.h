@@ -4,6 +4,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,16 @@ constexpr std::array<EnumName<PositionerFollow>, 2> EnumNames(PositionerFollow) 
 }
 WAAM_ENUM_JSON(PositionerFollow)
 
+// cell.preset: a complete cell (arm, torch, positioner, plate, clamps, placement); see twin/cell/cell_presets.h.
+enum class CellPreset { kFanucArcMate100ic, kAbbIrb1600, kKukaKr16, kYaskawaMh12 };
+constexpr std::array<EnumName<CellPreset>, 4> EnumNames(CellPreset) {
+  return {{{CellPreset::kFanucArcMate100ic, "fanuc_arcmate100ic"},
+           {CellPreset::kAbbIrb1600, "abb_irb1600"},
+           {CellPreset::kKukaKr16, "kuka_kr16"},
+           {CellPreset::kYaskawaMh12, "yaskawa_mh12"}}};
+}
+WAAM_ENUM_JSON(CellPreset)
+
 // cell.torch: the torch on the flange of a URDF arm (the built-in cell has its own).
 struct TorchSettings {
   std::array<double, 3> tcp_mm = {0.0, 0.0, 400.0};  // TCP in the flange frame (ROS-Industrial tool0: z out), mm
@@ -26,6 +37,9 @@ struct TorchSettings {
 };
 
 struct CellSettings {
+  // cell.preset: the cell of a preset (its arm as robot_urdf, or the built-in MJCF for FANUC); the placement and
+  // torch keys of the section then override the preset's.
+  std::optional<CellPreset> preset;
   // The MuJoCo cell model; empty = the built-in twin/data/cell_arcmate100ic.xml. A user's file must have the
   // joints, bodies and sites listed in the README ("Describing your own cell").
   std::filesystem::path mjcf;

@@ -344,8 +344,14 @@ CellModel::CellModel(const fs::path& mjcf, const Eigen::Isometry3d& X_WR, const 
 CellModel::CellModel(const fs::path& mjcf) : impl_(BuildModel(mjcf, nullptr, nullptr)) {}
 
 CellModel CellModel::FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
-                             const Eigen::Isometry3d& X_WB) {
-  return CellModel(FromImplTag{}, BuildModel(fs::path(info.source), &X_WR, &X_WB, &xml, &info));
+                             const Eigen::Isometry3d& X_WB, const fs::path& file) {
+  return CellModel(FromImplTag{},
+                   BuildModel(file.empty() ? fs::path(info.source) : file, &X_WR, &X_WB, &xml, &info));
+}
+
+CellModel CellModel::FromFile(const fs::path& mjcf, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                              const Eigen::Isometry3d& X_WB) {
+  return CellModel(FromImplTag{}, BuildModel(mjcf, &X_WR, &X_WB, nullptr, &info));
 }
 
 const CellModel::RobotInfo& CellModel::robot() const { return impl_->robot; }

@@ -73,8 +73,12 @@ class CellModel {
   };
   // A cell model from MJCF text (a composed cell, e.g. around a URDF arm), placed like the constructor above;
   // `info.source` names it in messages. Mesh files are read from the absolute paths the text gives.
+  // `file` (default: info.source) is the model's file() and names it in MuJoCo's messages.
   static CellModel FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
-                           const Eigen::Isometry3d& X_WB);
+                           const Eigen::Isometry3d& X_WB, const std::filesystem::path& file = {});
+  // An MJCF file (the built-in one when empty) placed like the constructor, reported as `info` (a preset).
+  static CellModel FromFile(const std::filesystem::path& mjcf, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                            const Eigen::Isometry3d& X_WB);
   const RobotInfo& robot() const;
 
   // The cell's kinematics (a copy; the numerical IK it may carry holds this model, safe to call from any thread).

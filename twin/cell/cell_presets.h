@@ -1,0 +1,35 @@
+// The library of cells behind `cell.preset`: one complete cell per name (arm, torch, placement; the two-axis
+// positioner with plate and clamps of the built-in cell). The FANUC preset is the built-in MJCF; the others are arms
+// we wrote as URDF with primitive collision shapes (twin/data/presets/*.urdf, each citing its kinematics, limits and
+// speeds) read through the URDF path (twin/cell/urdf_arm.h, cell_compose.h). The names are the table of CellPreset
+// in cell_settings.h, used by the scenario parser, its error message and the README.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string_view>
+
+#include "twin/cell/cell_settings.h"
+
+namespace waam::twin {
+
+struct CellPresetInfo {
+  CellPreset preset;
+  std::string_view robot_name;  // vendor first, as check.json robot.name
+  std::string_view urdf;        // file in DataDir()/twin/data/presets; empty: the built-in MJCF
+  double reach_mm;              // published reach to the wrist centre, mm
+  std::array<double, 3> positioner_base_mm;  // where the preset puts the positioner (arm base at the origin), mm
+  TorchSettings torch;          // the torch on the flange (URDF presets; the built-in cell has its own)
+};
+
+// The preset's entry in the library (every CellPreset has one).
+const CellPresetInfo& PresetInfo(CellPreset preset);
+
+// The URDF file of a URDF preset (empty path for the built-in one).
+std::filesystem::path PresetUrdf(CellPreset preset);
+
+// Sets `cell` to the preset's cell: its arm (robot_urdf) and torch, the arm at the origin facing +x, the positioner
+// at the preset's place with its tilt axis across the line between them. The scenario's own keys are read after.
+void ApplyPreset(CellPreset preset, CellSettings* cell);
+
+}  // namespace waam::twin
