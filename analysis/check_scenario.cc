@@ -1,6 +1,7 @@
 // `waam check` from a scenario file: plan the part, then check the plan on the cell.
 #include "analysis/check_command.h"
 
+#include "analysis/import_command.h"
 #include "analysis/scenario.h"
 #include "models/core/progress.h"
 #include "planner/planar_planner.h"
@@ -12,7 +13,7 @@ twin::CheckReport RunCheck(const CheckOptions& options) {
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);
-    planned = planner::PlanScenario(scenario, &progress);
+    planned = PlanScenarioOrProgram(scenario, &progress);
     progress.Finish();
   }
   return RunCheckOnPlan(scenario, planned.plan, options);

@@ -1,5 +1,6 @@
 // RunSimulate: the planning step of `waam simulate` (kept apart so the twin's outputs can be tested on hand-made
 // plans).
+#include "analysis/import_command.h"
 #include "analysis/scenario.h"
 #include "analysis/simulate_command.h"
 #include "models/core/progress.h"
@@ -11,7 +12,7 @@ twin::TwinMeasures RunSimulate(const SimulateOptions& options) {
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);
-    planned = planner::PlanScenario(scenario, &progress);
+    planned = PlanScenarioOrProgram(scenario, &progress);
   }
   return SimulatePlanned(scenario, planned, options).measures;
 }
