@@ -1,5 +1,7 @@
-// `waam check` from a scenario file: plan the part, then check the plan on the cell.
+// `waam check` from a scenario file: plan the part (or read its program), then check the plan on the cell.
 #include "analysis/check_command.h"
+
+#include <iostream>
 
 #include "analysis/import_command.h"
 #include "analysis/scenario.h"
@@ -16,6 +18,8 @@ twin::CheckReport RunCheck(const CheckOptions& options) {
     planned = PlanScenarioOrProgram(scenario, &progress);
     progress.Finish();
   }
+  // A program made elsewhere: what the twin did not execute, one line each.
+  for (const std::string& warning : planned.warnings) std::cerr << "waam: warning: " << warning << "\n";
   return RunCheckOnPlan(scenario, planned.plan, options);
 }
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds one libFuzzer target (clang, ASan + UBSan, in build-fuzz/) and runs it for a given time.
-#   tools/fuzz.sh <stl|scenario|csv> <seconds> [more libFuzzer flags]
+#   tools/fuzz.sh <stl|scenario|csv|fanuc_ls|abb_rapid|gcode|program_csv> <seconds> [more libFuzzer flags]
 # The seed corpus is the repository's own files (meshes, scenarios, data tables) plus fuzz/regressions/<target>;
 # the growing corpus stays in build-fuzz/corpus/<target>, crashing inputs go to build-fuzz/artifacts/<target>/.
 # The 60 s timeout is for a shared, loaded machine (a unit normally takes milliseconds); a real hang still trips it.
@@ -9,8 +9,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-target=${1:?usage: tools/fuzz.sh <stl|scenario|csv> <seconds> [libFuzzer flags]}
-seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv> <seconds> [libFuzzer flags]}
+target=${1:?usage: tools/fuzz.sh <stl|scenario|csv|fanuc_ls|abb_rapid|gcode|program_csv> <seconds> [libFuzzer flags]}
+seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv|fanuc_ls|abb_rapid|gcode|program_csv> <seconds> [libFuzzer flags]}
 shift 2
 build=${WAAM_FUZZ_BUILD_DIR:-$root/build-fuzz}
 
@@ -18,7 +18,11 @@ case "$target" in
   stl) seeds=$(find scenarios/meshes fuzz/seeds/stl -name '*.stl' -size -64k); max_len=65536 ;;
   scenario) seeds=$(find scenarios fuzz/seeds/scenario -name '*.yaml'); max_len=4096 ;;
   csv) seeds=$(find models/data fuzz/seeds/csv -name '*.csv'); max_len=8192 ;;
-  *) echo "fuzz.sh: unknown target '$target' (stl, scenario or csv)" >&2; exit 2 ;;
+  fanuc_ls) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.ls' 2>/dev/null); max_len=16384 ;;
+  abb_rapid) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.mod' 2>/dev/null); max_len=16384 ;;
+  gcode) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.nc' 2>/dev/null); max_len=16384 ;;
+  program_csv) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.csv' 2>/dev/null); max_len=16384 ;;
+  *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, fanuc_ls, abb_rapid, gcode, program_csv)" >&2; exit 2 ;;
 esac
 
 if [ ! -f "$build/CMakeCache.txt" ]; then

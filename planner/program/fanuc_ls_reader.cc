@@ -263,6 +263,8 @@ ParsedProgram ReadFanucLs(std::string_view text, const std::string& file) {
         arc_on = false;
       } else if (u.compare(0, 4, "LBL[") == 0) {
         // a label does nothing by itself
+      } else if (u == "END") {
+        break;  // the program ends here
       } else {
         std::size_t end = u.find_first_of(" [=(");
         std::string name = u.substr(0, std::min<std::size_t>(end, 24));

@@ -97,7 +97,9 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
   // Flat point list: one point per target, arcs cut into chords.
   std::vector<PathPoint> points;
   points.reserve(targets.size());
-  auto make_point = [&](const Eigen::Vector3d& p_P, const Eigen::Vector3d& tool_dir_P, const ResolvedTarget& t) {
+  // `target`: the motion's own end point (notes are counted once per motion, not per chord of an arc).
+  auto make_point = [&](const Eigen::Vector3d& p_P, const Eigen::Vector3d& tool_dir_P, const ResolvedTarget& t,
+                        bool target) {
     PathPoint p;
     p.p_P = p_P;
     p.tool_dir_P = tool_dir_P.normalized();
@@ -108,7 +110,7 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
       p.speed_mm_s = t.speed_mm_s;
     } else if (p.weld) {
       p.speed_mm_s = settings.weld_speed_mm_s;
-      notes.Add("weld move without a speed: the scenario's process.travel_speed_mm_min used", t.line);
+      if (target) notes.Add("weld move without a speed: the scenario's process.travel_speed_mm_min used", t.line);
     } else {
       p.speed_mm_s = settings.rapid_speed_mm_s;
     }
@@ -147,16 +149,16 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
           const Eigen::Vector3d dir_W = -R_WT.col(2);
           if (in_part) {
             // Part-frame orientation: interpolate the tool direction in P.
-            make_point(arc[k], (1.0 - f) * prev.tool_dir_P + f * t.tool_dir_P, t);
+            make_point(arc[k], (1.0 - f) * prev.tool_dir_P + f * t.tool_dir_P, t, false);
           } else {
-            make_point(X_PW * arc[k], X_PW.linear() * dir_W, t);
+            make_point(X_PW * arc[k], X_PW.linear() * dir_W, t, false);
           }
         }
       }
     } else if (t.kind == MotionKind::kCircular && !m.has_via) {
       notes.Add("circular move without its intermediate point: followed as a linear move", t.line);
     }
-    make_point(t.p_P, t.tool_dir_P, t);
+    make_point(t.p_P, t.tool_dir_P, t, true);
   }
 
   // Passes: a run of arc-off points followed by the welded run after it.
