@@ -242,6 +242,12 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file) {
       RapidData d{type, ParseRapidValue(value, &at, 0, file, st.line), st.line};
       WAAM_THROW_UNLESS(TrimBlank(value.substr(at)).empty(),
                         file << ":" << st.line << ": text after the value of " << name);
+      if (type == "ROBTARGET") {
+        // Checked where it is declared, so a bad quaternion names this line.
+        WAAM_THROW_UNLESS(d.value.kind == RapidValue::Kind::kList && d.value.items.size() == 4,
+                          file << ":" << st.line << ": robtarget must be [[x,y,z],[q1..q4],[cf1,cf4,cf6,cfx],[eax]]");
+        (void)RapidPose(d.value.items[0], d.value.items[1], file, st.line);
+      }
       data[name] = std::move(d);
       continue;
     }
@@ -317,6 +323,21 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file) {
     const RapidValue* target = value_of(args[static_cast<std::size_t>(n_pos - 1)], absj ? "JOINTTARGET" : "ROBTARGET",
                                         &literals[0]);
     const RapidValue* via = n_pos == 2 ? value_of(args[0], "ROBTARGET", &literals[1]) : nullptr;
+    // Offs(p, dx, dy, dz): p moved by (dx, dy, dz) mm in its work object, a computed target the twin can follow.
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    const std::string& target_arg = args[static_cast<std::size_t>(n_pos - 1)];
+    if (target == nullptr && !absj && Upper(target_arg).compare(0, 5, "OFFS(") == 0 && target_arg.back() == ')') {
+      const std::vector<std::string> offs = SplitRapidArgs(std::string_view(target_arg).substr(5, target_arg.size() - 6));
+      if (offs.size() == 4) {
+        bool numbers = true;
+        for (int k = 1; k < 4 && numbers; ++k) {
+          const std::string& o = offs[static_cast<std::size_t>(k)];
+          numbers = !o.empty() && o.find_first_not_of("0123456789.+-eE") == std::string::npos;
+          if (numbers) offset[k - 1] = ParseProgramNumber(o, file, st.line, "Offs offset");
+        }
+        if (numbers) target = value_of(offs[0], "ROBTARGET", &literals[0]);
+      }
+    }
     if (target == nullptr || (n_pos == 2 && via == nullptr)) {
       const std::string& expr = target == nullptr ? args[static_cast<std::size_t>(n_pos - 1)] : args[0];
       warnings.Add(first + " to a computed position (" + Upper(expr.substr(0, expr.find('('))).substr(0, 16) +
@@ -340,6 +361,7 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file) {
       WAAM_THROW_UNLESS(target->kind == RapidValue::Kind::kList && target->items.size() == 4,
                         file << ":" << st.line << ": robtarget must be [[x,y,z],[q1..q4],[cf1,cf4,cf6,cfx],[eax]]");
       Eigen::Isometry3d X_UT = RapidPose(target->items[0], target->items[1], file, st.line);
+      X_UT.translation() += offset;
       const std::vector<double> cf = RapidNumbers(target->items[2], 4, file, st.line, "confdata");
       const int cfx = static_cast<int>(cf[3]);
       if (cfx >= 0 && cfx <= 7) m.config = ((cfx & 4) ? 1 : 0) | ((cfx & 2) ? 2 : 0) | ((cfx & 1) ? 4 : 0);
