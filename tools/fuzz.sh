@@ -18,10 +18,10 @@ case "$target" in
   stl) seeds=$(find scenarios/meshes fuzz/seeds/stl -name '*.stl' -size -64k); max_len=65536 ;;
   scenario) seeds=$(find scenarios fuzz/seeds/scenario -name '*.yaml'); max_len=4096 ;;
   csv) seeds=$(find models/data fuzz/seeds/csv -name '*.csv'); max_len=8192 ;;
-  fanuc_ls) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.ls' 2>/dev/null); max_len=16384 ;;
-  abb_rapid) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.mod' 2>/dev/null); max_len=16384 ;;
-  gcode) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.nc' 2>/dev/null); max_len=16384 ;;
-  program_csv) seeds=$(find fuzz/seeds/programs tests/data/programs -name '*.csv' 2>/dev/null); max_len=16384 ;;
+  fanuc_ls) seeds=$(find tests/data/programs -name '*.ls'); max_len=16384 ;;
+  abb_rapid) seeds=$(find tests/data/programs -name '*.mod'); max_len=16384 ;;
+  gcode) seeds=$(find tests/data/programs -name '*.nc'); max_len=16384 ;;
+  program_csv) seeds=$(find tests/data/programs -name '*.csv'); max_len=16384 ;;
   *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, fanuc_ls, abb_rapid, gcode, program_csv)" >&2; exit 2 ;;
 esac
 
