@@ -10,11 +10,13 @@
 #include "planner/program/abb_rapid.h"
 #include "planner/program/fanuc_ls.h"
 #include "planner/program/gcode.h"
+#include "planner/program/kuka_krl.h"
 #include "planner/program/program_reader.h"
 #include "twin/cell/cell_check.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
+namespace fs = std::filesystem;
 
 std::string WriteProgramText(planner::ProgramFormat format, const planner::RobotProgram& program,
                              const planner::CellKinematics& kin) {
@@ -28,10 +30,17 @@ std::string WriteProgramText(planner::ProgramFormat format, const planner::Robot
       return planner::ProgramToAbbRapid(program, options);
     }
     case planner::ProgramFormat::kGcode: return planner::ProgramToGcode(program, planner::GcodeOptions{});
-    case planner::ProgramFormat::kKukaKrl:
+    case planner::ProgramFormat::kKukaKrl: {
+      // One text: the .src, then its .dat (RunExport writes them as two files).
+      planner::KukaKrlOptions options;
+      options.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
+      const planner::KukaKrlFiles files = planner::ProgramToKukaKrl(program, options);
+      return files.src + files.dat;
+    }
     case planner::ProgramFormat::kYaskawaJbi: break;
   }
-  WAAM_THROW("writing " << NameOf(format) << " programs is not supported yet (csv, fanuc_ls, abb_rapid, gcode are)");
+  WAAM_THROW("writing " << NameOf(format)
+                        << " programs is not supported yet (csv, fanuc_ls, abb_rapid, kuka_krl, gcode are)");
 }
 
 ExportResult RunExport(const ExportOptions& options) {
@@ -58,7 +67,19 @@ ExportResult RunExport(const ExportOptions& options) {
   }
   const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
   const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
-  WriteFileAtomic(options.out_file, WriteProgramText(result.format, program, kin));
+  if (result.format == planner::ProgramFormat::kKukaKrl) {
+    // <name>.src and <name>.dat side by side.
+    planner::KukaKrlOptions krl;
+    krl.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
+    const planner::KukaKrlFiles files = planner::ProgramToKukaKrl(program, krl);
+    fs::path src = options.out_file, dat = options.out_file;
+    src.replace_extension(".src");
+    dat.replace_extension(".dat");
+    WriteFileAtomic(dat, files.dat);
+    WriteFileAtomic(src, files.src);
+  } else {
+    WriteFileAtomic(options.out_file, WriteProgramText(result.format, program, kin));
+  }
   result.points = program.points.size();
   result.violations = report.violations.size();
   return result;

@@ -363,8 +363,8 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file) {
       Eigen::Isometry3d X_UT = RapidPose(target->items[0], target->items[1], file, st.line);
       X_UT.translation() += offset;
       const std::vector<double> cf = RapidNumbers(target->items[2], 4, file, st.line, "confdata");
-      const int cfx = static_cast<int>(cf[3]);
-      if (cfx >= 0 && cfx <= 7) m.config = ((cfx & 4) ? 1 : 0) | ((cfx & 2) ? 2 : 0) | ((cfx & 1) ? 4 : 0);
+      const int cfx = (cf[3] >= 0.0 && cf[3] <= 7.0) ? static_cast<int>(cf[3]) : -1;
+      if (cfx >= 0) m.config = ((cfx & 4) ? 1 : 0) | ((cfx & 2) ? 2 : 0) | ((cfx & 1) ? 4 : 0);
       const std::vector<double> e = RapidNumbers(target->items[3], 6, file, st.line, "extax");
       if (e[0] < 8e9 && e[1] < 8e9) {
         m.has_positioner = true;

@@ -66,7 +66,7 @@ void ParseLsPositionItem(std::string_view item, int group, LsPosition* pos, cons
     WAAM_THROW_UNLESS(colon != std::string_view::npos,
                       file << ":" << line << ": /POS item '" << std::string(item.substr(0, 40)) << "' is not KEY = value");
     const std::string key = Upper(TrimBlank(item.substr(0, colon)));
-    if (key == "UF" && group == 1) pos->uf = static_cast<int>(ParseProgramNumber(item.substr(colon + 1), file, line, "UF"));
+    if (key == "UF" && group == 1) pos->uf = internal::ParseProgramInteger(item.substr(colon + 1), file, line, "UF", 0, 999);
     return;  // UT and the like: the tool is the cell's
   }
   const std::string key = Upper(TrimBlank(item.substr(0, eq)));
@@ -212,7 +212,7 @@ ParsedProgram ReadFanucLs(std::string_view text, const std::string& file) {
                           file << ":" << pl << ": P[" << number << "] in /POS is not closed by '};' (truncated /POS)");
         const std::string ub = Upper(body);
         if (ub.size() >= 4 && ub.compare(0, 2, "GP") == 0 && ub.back() == ':') {
-          group = static_cast<int>(ParseProgramNumber(body.substr(2, body.size() - 3), file, pl, "motion group"));
+          group = internal::ParseProgramInteger(body.substr(2, body.size() - 3), file, pl, "motion group", 1, 8);
           continue;
         }
         WAAM_THROW_UNLESS(group > 0, file << ":" << pl << ": P[" << number << "] value before its GP1: line");

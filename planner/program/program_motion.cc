@@ -51,6 +51,16 @@ double ParseProgramNumber(std::string_view text, const std::string& file, int li
   return value;
 }
 
+int ParseProgramInteger(std::string_view text, const std::string& file, int line, std::string_view what, int lo,
+                        int hi) {
+  const double v = ParseProgramNumber(text, file, line, what);
+  WAAM_THROW_UNLESS(v >= lo && v <= hi && v == std::floor(v), file << ":" << line << ": " << what << " '"
+                                                                    << std::string(TrimBlank(text).substr(0, 40))
+                                                                    << "' must be a whole number in [" << lo << ", "
+                                                                    << hi << "]");
+  return static_cast<int>(v);
+}
+
 std::string_view TrimBlank(std::string_view text) {
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);

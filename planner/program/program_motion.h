@@ -103,6 +103,10 @@ std::vector<std::string_view> SplitProgramLines(std::string_view text, const std
 // A finite number, or InputError "file:line: <what> 'text' is not a number".
 double ParseProgramNumber(std::string_view text, const std::string& file, int line, std::string_view what);
 
+// A whole number within [lo, hi], or InputError "file:line: <what> 'text' must be a whole number in [lo, hi]".
+int ParseProgramInteger(std::string_view text, const std::string& file, int line, std::string_view what, int lo,
+                        int hi);
+
 // `text` without leading and trailing blanks.
 std::string_view TrimBlank(std::string_view text);
 

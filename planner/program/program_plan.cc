@@ -35,7 +35,7 @@ std::vector<Eigen::Vector3d> ArcPoints(const Eigen::Vector3d& a, const Eigen::Ve
     return t < 0.0 ? t + 2.0 * kPi : t;
   };
   const double end = angle(b);  // a -> via -> b runs counter-clockwise about n
-  const int n_steps = std::clamp(static_cast<int>(std::ceil(end * r / step)), 1, 100000);
+  const int n_steps = static_cast<int>(std::clamp(std::ceil(end * r / step), 1.0, 100000.0));
   std::vector<Eigen::Vector3d> out;
   for (int k = 1; k < n_steps; ++k) {
     const double t = end * k / n_steps;

@@ -26,7 +26,7 @@ ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string
     return ProgramFormat::kGcode;
   }
   WAAM_THROW(path.string() << ": cannot tell the program's format from its extension or first lines; give --format "
-                           << "(csv, fanuc_ls, abb_rapid, gcode)");
+                           << "(csv, fanuc_ls, abb_rapid, kuka_krl, gcode)");
 }
 
 ParsedProgram ReadProgramText(std::string_view text, const std::string& file, ProgramFormat format,
@@ -36,11 +36,15 @@ ParsedProgram ReadProgramText(std::string_view text, const std::string& file, Pr
     case ProgramFormat::kFanucLs: return ReadFanucLs(text, file);
     case ProgramFormat::kAbbRapid: return ReadAbbRapid(text, file);
     case ProgramFormat::kGcode: return ReadGcode(text, file, gcode);
-    case ProgramFormat::kKukaKrl:
+    case ProgramFormat::kKukaKrl: {
+      std::size_t dat = text.find("\nDEFDAT");
+      if (dat == std::string_view::npos) dat = text.find("\ndefdat");
+      return ReadKukaKrl(text, dat == std::string_view::npos ? std::string_view() : text.substr(dat + 1), file, file);
+    }
     case ProgramFormat::kYaskawaJbi: break;
   }
   WAAM_THROW(file << ": reading " << NameOf(format) << " programs is not supported yet (csv, fanuc_ls, abb_rapid, "
-                  << "gcode are)");
+                  << "kuka_krl, gcode are)");
 }
 
 ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
@@ -52,7 +56,28 @@ ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<P
                                                             << " bytes, more than the limit of " << kMaxProgramBytes);
   const std::string text = ReadFile(path);
   const ProgramFormat f = format ? *format : DetectProgramFormat(path, text);
-  ParsedProgram program = ReadProgramText(text, path.string(), f, gcode);
+  ParsedProgram program;
+  if (f == ProgramFormat::kKukaKrl) {
+    // The .src and its .dat beside it (same name), whichever of the two was given.
+    const bool given_dat = internal::Upper(path.extension().string()) == ".DAT";
+    auto sibling = [&](const char* lower, const char* upper) {
+      std::filesystem::path p = path;
+      p.replace_extension(lower);
+      if (!std::filesystem::exists(p)) p.replace_extension(upper);
+      return p;
+    };
+    const std::filesystem::path src = given_dat ? sibling(".src", ".SRC") : path;
+    const std::filesystem::path dat = given_dat ? path : sibling(".dat", ".DAT");
+    WAAM_THROW_UNLESS(std::filesystem::is_regular_file(src), path.string() << ": no " << src.filename().string()
+                                                                            << " beside the .dat");
+    const std::string src_text = given_dat ? ReadFile(src) : text;
+    const std::string dat_text = given_dat ? text : (std::filesystem::is_regular_file(dat) ? ReadFile(dat) : "");
+    WAAM_THROW_UNLESS(src_text.size() <= kMaxProgramBytes && dat_text.size() <= kMaxProgramBytes,
+                      src.string() << ": the program is more than the limit of " << kMaxProgramBytes << " bytes");
+    program = ReadKukaKrl(src_text, dat_text, src.string(), dat.string());
+  } else {
+    program = ReadProgramText(text, path.string(), f, gcode);
+  }
   if (program.name.empty()) program.name = path.stem().string();
   return program;
 }

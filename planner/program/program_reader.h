@@ -29,6 +29,12 @@ ParsedProgram ReadFanucLs(std::string_view text, const std::string& file);
 // MoveJ, MoveL, MoveC, MoveAbsJ, ArcLStart, ArcL, ArcLEnd, ArcCStart, ArcC, ArcCEnd, SetDO of a weld/arc signal.
 ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file);
 
+// KUKA KRL: the .dat's DECL E6POS / POS / E6AXIS / AXIS, then the .src's DEF ... END: PTP, LIN, CIRC (names or
+// aggregates), $VEL.CP and BAS(#CP_PARAMS, v) speeds (m/s), $BASE as a frame literal (else the scenario's user
+// frame), $OUT[1] and ArcTech ARC_ON / ARC_OFF switching the arc, E1 / E2 the positioner (deg).
+ParsedProgram ReadKukaKrl(std::string_view src, std::string_view dat, const std::string& src_file,
+                          const std::string& dat_file);
+
 // G-code: G0, G1, G2, G3 (XY plane), G20/G21, G90/G91, F, E, A (positioner tilt, deg), C (rotation, deg), the tool
 // direction A3= B3= C3= (Sinumerik ORIVECT style), arc on/off M-codes. Positions are the TCP in the part frame.
 ParsedProgram ReadGcode(std::string_view text, const std::string& file, const GcodeReadOptions& options = {});
@@ -36,7 +42,7 @@ ParsedProgram ReadGcode(std::string_view text, const std::string& file, const Gc
 // The CSV program table that `waam check` writes (program.csv): TCP in the user frame, A B C, positioner angles.
 ParsedProgram ReadProgramCsv(std::string_view text, const std::string& file);
 
-// The format of `path` from its extension (.ls, .mod/.prg, .nc/.gcode/.ngc/.tap, .csv) or, failing that, its first
+// The format of `path` from its extension (.ls, .mod/.prg, .src/.dat, .nc/.gcode/.ngc/.tap, .csv) or, failing that, its first
 // lines. Throws InputError when neither tells.
 ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string_view text);
 
@@ -44,7 +50,7 @@ ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string
 ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
                               const GcodeReadOptions& gcode = {});
 
-// Reads `text` with the reader of `format`; `file` names it in messages.
+// Reads `text` with the reader of `format`; `file` names it in messages. KRL: the .src text followed by its .dat.
 ParsedProgram ReadProgramText(std::string_view text, const std::string& file, ProgramFormat format,
                               const GcodeReadOptions& gcode = {});
 

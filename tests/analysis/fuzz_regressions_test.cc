@@ -86,6 +86,7 @@ void ReplayProgram(const std::string& target, ProgramFormat format) {
 TEST(FuzzRegressions, FanucLsInputsGiveAPlanOrAnInputError) { ReplayProgram("fanuc_ls", ProgramFormat::kFanucLs); }
 TEST(FuzzRegressions, AbbRapidInputsGiveAPlanOrAnInputError) { ReplayProgram("abb_rapid", ProgramFormat::kAbbRapid); }
 TEST(FuzzRegressions, GcodeInputsGiveAPlanOrAnInputError) { ReplayProgram("gcode", ProgramFormat::kGcode); }
+TEST(FuzzRegressions, KukaKrlInputsGiveAPlanOrAnInputError) { ReplayProgram("kuka_krl", ProgramFormat::kKukaKrl); }
 TEST(FuzzRegressions, ProgramCsvInputsGiveAPlanOrAnInputError) { ReplayProgram("program_csv", ProgramFormat::kCsv); }
 
 }  // namespace

@@ -31,7 +31,7 @@ TEST(ProgramCliTest, ExportThenImportGivesThePlanOfTheScenario) {
   ASSERT_EQ(RunWaam("plan " + scenario.string() + " -o " + (dir / "plan").string() + " -q --no-images", &err), 0)
       << err;
   const nlohmann::json planned = ReadJson(dir / "plan" / "plan.json");
-  for (const char* f : {"box.ls", "box.mod", "box.nc", "box.csv"}) {
+  for (const char* f : {"box.ls", "box.mod", "box.src", "box.nc", "box.csv"}) {
     SCOPED_TRACE(f);
     const fs::path program = dir / f;
     ASSERT_EQ(RunWaam("export " + scenario.string() + " -o " + program.string() + " -q", &err), 0) << err;
@@ -80,7 +80,7 @@ TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {
   EXPECT_EQ(RunWaam("import " + bad.string() + " -o " + (dir / "out").string() + " -q", &err), 2);
   EXPECT_THAT(err, HasSubstr("bad.nc:3: X 'NaN' is not a finite number"));
   EXPECT_FALSE(fs::exists(dir / "out" / "plan.json"));
-  EXPECT_EQ(RunWaam("import " + bad.string() + " --format kuka_krl -o " + (dir / "out").string() + " -q", &err), 2);
+  EXPECT_EQ(RunWaam("import " + bad.string() + " --format yaskawa_jbi -o " + (dir / "out").string() + " -q", &err), 2);
   EXPECT_THAT(err, HasSubstr("not supported yet"));
 }
 

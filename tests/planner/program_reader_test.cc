@@ -126,6 +126,25 @@ TEST(ProgramReaderTest, RapidWallWeldsTheSamePathAsTheFanucWall) {
   }
 }
 
+TEST(ProgramReaderTest, KrlWallWeldsTheSamePathAsTheFanucWall) {
+  // wall.src with its wall.dat found beside it; ArcTech ARC_ON / ARC_OFF and $OUT[1] switch the arc.
+  const ParsedProgram ls = ReadProgramFile(Fixture("wall.ls"), std::nullopt);
+  const ParsedProgram krl = ReadProgramFile(Fixture("wall.src"), std::nullopt);
+  EXPECT_EQ(krl.format, ProgramFormat::kKukaKrl);
+  EXPECT_EQ(krl.motions.size(), ls.motions.size());
+  const ProgramWarning* wait = FindWarning(krl, "WAIT");
+  ASSERT_NE(wait, nullptr);
+  EXPECT_EQ(wait->first_line, 30);
+  const CellKinematics cell = ReaderTestCell();
+  const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
+  const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(krl, cell, ImportSettings{}));
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_LT((a[i].p_P - b[i].p_P).norm(), 1e-6) << "weld point " << i;
+    EXPECT_NEAR(a[i].speed_mm_s, b[i].speed_mm_s, 1e-3) << "weld point " << i;
+  }
+}
+
 TEST(ProgramReaderTest, GcodeWallHasItsArcAndWeldsBetweenTheMCodes) {
   const ParsedProgram program = ReadProgramFile(Fixture("wall.nc"), std::nullopt);
   EXPECT_EQ(program.format, ProgramFormat::kGcode);
@@ -195,6 +214,23 @@ TEST(ProgramReaderTest, RapidBadInputsNameTheLine) {
   EXPECT_THAT(ErrorOf(ProgramFormat::kAbbRapid, ReplaceOnce(mod, "ENDMODULE\n", "")), HasSubstr("no ENDMODULE"));
   EXPECT_THAT(ErrorOf(ProgramFormat::kAbbRapid, ReplaceOnce(mod, "[1060,0,151.5]", "[1060,0]")),
               HasSubstr("position [x,y,z] must be a list of 3 numbers"));
+}
+
+TEST(ProgramReaderTest, KrlBadInputsNameTheLine) {
+  const std::string src = ReadFile(Fixture("wall.src")), dat = ReadFile(Fixture("wall.dat"));
+  auto error = [](const std::string& s, const std::string& d) {
+    try {
+      (void)ReadKukaKrl(s, d, "bad.src", "bad.dat");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(error(ReplaceOnce(src, "LIN XP4", "LIN XP14"), dat),
+              HasSubstr("bad.src:21: XP14 is used but not declared in the .dat or the .src"));
+  EXPECT_THAT(error(src, ReplaceOnce(dat, "{X 1030.0,Y 0.0", "{X nan,Y 0.0")), HasSubstr("bad.dat:8: X 'nan'"));
+  EXPECT_THAT(error(ReplaceOnce(src, "\nEND\n", "\n"), dat), HasSubstr("no END"));
+  EXPECT_THAT(error(src, ReplaceOnce(dat, ",Y 0.0,Z 151.5", ",Z 151.5")), HasSubstr("bad.dat:7: position lacks Y"));
 }
 
 TEST(ProgramReaderTest, GcodeBadInputsNameTheLine) {

@@ -13,6 +13,7 @@
 #include "planner/program/abb_rapid.h"
 #include "planner/program/fanuc_ls.h"
 #include "planner/program/gcode.h"
+#include "planner/program/kuka_krl.h"
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
 #include "planner/program/robot_program.h"
@@ -84,6 +85,14 @@ std::vector<Dialect> Dialects() {
          options.X_RU = cell.X_WR.inverse() * ProgramUserFrame(cell);
          options.X_FT = cell.X_FT;
          return ProgramToAbbRapid(p, options);
+       },
+       5e-4 + 1e-9, 5e-4 + 1e-9, false},
+      {ProgramFormat::kKukaKrl,
+       [](const RobotProgram& p, const CellKinematics& cell) {
+         KukaKrlOptions options;
+         options.X_RU = cell.X_WR.inverse() * ProgramUserFrame(cell);
+         const KukaKrlFiles files = ProgramToKukaKrl(p, options);
+         return files.src + files.dat;
        },
        5e-4 + 1e-9, 5e-4 + 1e-9, false},
       {ProgramFormat::kGcode,
