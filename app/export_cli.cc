@@ -17,7 +17,8 @@ void AddExportCommand(CLI::App& app, CommandRunner* runner) {
       "Plans the scenario (or reads its program: section), moves the cell along the path as `waam check` does\n"
       "(IK branch, positioner angles) and writes the program: csv (the eight-axis table), fanuc_ls (GP1 + GP2),\n"
       "abb_rapid (.mod: robtargets with quaternions and confdata, ArcLStart/ArcL/ArcLEnd, positioner as external\n"
-      "axes), gcode (TCP in the part frame, A/C positioner axes, arc on M3 / off M5). auto: from the extension.");
+      "axes), kuka_krl (.src + .dat: E6POS with S/T, E1/E2 positioner, $OUT[1] arc), gcode (TCP in the part frame,\n"
+      "A/C positioner axes, arc on M3 / off M5). auto: from the extension.");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
   command->add_option("--format", *format, "Program format: auto | " + EnumNameList<planner::ProgramFormat>(" | "));
   command->add_option("-o,--out", options->out_file, "Program file to write")->required();

@@ -14,7 +14,7 @@ void AddImportCommand(CLI::App& app, CommandRunner* runner) {
       "import",
       "Read a robot program or G-code made elsewhere and write what the twin understood of it.\n"
       "Formats: " + EnumNameList<planner::ProgramFormat>(", ") +
-          " (auto: from the extension .csv .ls .mod .nc/.gcode, or the first lines).\n"
+          " (auto: from the extension .csv .ls .mod .src/.dat .nc/.gcode, or the first lines).\n"
       "Positions are taken in the program's user frame (the scenario's program.frame.user_frame_mm, or the cell's\n"
       "FANUC world frame: arm base lifted to the j2 axis), joint positions through the arm's forward kinematics,\n"
       "external axes / group 2 as the positioner's tilt and rotation; circular moves are cut into chords of\n"

@@ -9,6 +9,7 @@
 #include "planner/program/abb_rapid.h"
 #include "planner/program/fanuc_ls.h"
 #include "planner/program/gcode.h"
+#include "planner/program/kuka_krl.h"
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
 #include "planner/program/robot_program.h"
@@ -59,6 +60,12 @@ std::string Text(ProgramFormat format) {
       return ProgramToAbbRapid(BenchProgram(), options);
     }
     case ProgramFormat::kGcode: return ProgramToGcode(BenchProgram(), GcodeOptions{});
+    case ProgramFormat::kKukaKrl: {
+      KukaKrlOptions options;
+      options.X_RU = cell.X_WR.inverse() * ProgramUserFrame(cell);
+      const KukaKrlFiles files = ProgramToKukaKrl(BenchProgram(), options);
+      return files.src + files.dat;
+    }
     default: return ProgramToCsv(BenchProgram());
   }
 }
@@ -75,6 +82,7 @@ BENCHMARK(BM_ReadProgram)
     ->Arg(static_cast<int>(ProgramFormat::kCsv))
     ->Arg(static_cast<int>(ProgramFormat::kFanucLs))
     ->Arg(static_cast<int>(ProgramFormat::kAbbRapid))
+    ->Arg(static_cast<int>(ProgramFormat::kKukaKrl))
     ->Arg(static_cast<int>(ProgramFormat::kGcode))
     ->Unit(benchmark::kMillisecond);
 
