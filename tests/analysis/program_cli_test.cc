@@ -10,6 +10,7 @@
 #include "analysis/import_command.h"
 #include "analysis/plan_command.h"
 #include "cli_test_util.h"
+#include "models/core/error.h"
 #include "models/core/files.h"
 
 namespace waam::analysis {
@@ -70,6 +71,30 @@ TEST(ProgramCliTest, CheckAndPlanAcceptAProgramScenario) {
   const nlohmann::json plan = ReadJson(dir / "plan" / "plan.json");
   EXPECT_EQ(plan["layers"], 2);
   EXPECT_EQ(plan["import"]["format"], "abb_rapid");
+}
+
+TEST(ProgramCliTest, ProgramSectionIsCheckedWhereItIsWritten) {
+  const fs::path dir = TempDir("program_section");
+  fs::copy_file(ProgramFixture("wall.nc"), dir / "wall.nc");
+  auto error = [&](const std::string& yaml) {
+    WriteFileAtomic(dir / "s.yaml", yaml);
+    try {
+      (void)LoadScenario(dir / "s.yaml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string process = "process: {travel_speed_mm_min: 400, wire_feed_mm_min: 3200}\n";
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  format: fanuc\n" + process),
+              HasSubstr("s.yaml:4: program.format = 'fanuc': must be auto or one of csv, fanuc_ls"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: nowhere.ls\n" + process), HasSubstr("program file"));
+  EXPECT_THAT(error("name: s\npart: {mesh: wall.nc}\nprogram:\n  file: wall.nc\n" + process),
+              HasSubstr("give either part (planned here) or program (planned elsewhere), not both"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  frame: {user_frame_mm: [0, 0, 0]}\n" + process),
+              HasSubstr("program.frame.user_frame_mm"));
+  EXPECT_EQ(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {arc_on_m: 7, arc_off_m: 9}\n" + process),
+            "no error");
 }
 
 TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {

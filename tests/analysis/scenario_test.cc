@@ -264,6 +264,8 @@ TEST(SettingNames, ReadmeListsEveryTable) {
   ExpectReadmeRow<StartWetting>(readme, "simulation.start_wetting");
   ExpectReadmeRow<CurvatureWidth>(readme, "simulation.curvature_width");
   ExpectReadmeRow<PositionerFollow>(readme, "cell.positioner.follow");
+  ExpectReadmeRow<ProgramFormat>(readme, "program.format");
+  ExpectReadmeRow<ProgramLayers>(readme, "program.layers");
 }
 
 TEST(SettingNames, EveryNameParsesBackToItsValue) {
