@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "analysis/import_command.h"
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -151,10 +152,11 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_
   EnsureOutputDirectory(options.out_dir);
 
   planner::PlanResult result;
+  ImportReport import;  // a scenario with a program: section
   {
     // The layer count is known only once the mesh is loaded; PlanScenario sets the bar's total.
     Progress progress("plan", 0, "layers", options.quiet);
-    result = planner::PlanScenario(scenario, &progress);
+    result = PlanScenarioOrProgram(scenario, &progress, &import);
   }
 
   RunOutputs outputs(options.out_dir / "plan.json");
@@ -170,7 +172,8 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_
     progress.Finish();
   }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  const nlohmann::json summary = PlanToJson(scenario, result);
+  nlohmann::json summary = PlanToJson(scenario, result);
+  if (scenario.program.present) summary["import"] = ImportToJson(import);
   WriteFileAtomic(options.out_dir / "plan.json", summary.dump(2) + "\n");
   outputs.Complete();
   // A pattern that does not suit the part is not an error (the plan is written) but worth a line even when quiet.

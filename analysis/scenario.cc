@@ -1,6 +1,7 @@
 // The whole scenario, composed from each module's section parsers.
 #include "analysis/scenario.h"
 
+#include "planner/program/program_section.h"
 #include "planner/scenario/yaml_fields.h"
 #include "twin/cell/cell_section.h"
 
@@ -14,6 +15,7 @@ Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::
   scenario.cell = twin::internal::ParseCellSection(top, dir);
   twin::internal::ParseSimulationSection(top, &scenario.simulation, dir);
   internal::ParseRunSection(top, &scenario.run);
+  scenario.program = planner::internal::ParseProgramSection(top, dir);
   // The CSW radius clamp is one rule for the planner's speed and the twin's bead width (simulation section).
   scenario.process.csw_min_radius_mm = scenario.simulation.csw_min_radius_mm;
   top.CheckNoUnknownKeys();

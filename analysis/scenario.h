@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "analysis/run_settings.h"
+#include "planner/program/program_settings.h"
 #include "planner/scenario/scenario.h"
 #include "twin/cell/cell_settings.h"
 #include "twin/simulation_settings.h"
@@ -16,6 +17,7 @@ struct Scenario : planner::Scenario {
   twin::CellSettings cell;              // optional `cell:` section (docs/CELL.md)
   twin::SimulationSettings simulation;  // optional `simulation:` section (the voxel twin)
   RunSettings run;                      // optional `run:` section (the steps of `waam run`)
+  planner::ProgramSettings program;     // optional `program:` section: a program made elsewhere instead of a part
 };
 
 // Loads and validates a whole scenario file: the document is read once (with the `--set` overrides) and each module

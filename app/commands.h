@@ -30,5 +30,7 @@ void AddBenchCommand(CLI::App& app, CommandRunner* runner);     // app/bench_cli
 void AddSweepCommand(CLI::App& app, CommandRunner* runner);     // app/sweep_cli.cc
 void AddDeviationCommand(CLI::App& app, CommandRunner* runner);   // app/distortion_cli.cc
 void AddCompensateCommand(CLI::App& app, CommandRunner* runner);  // app/distortion_cli.cc
+void AddImportCommand(CLI::App& app, CommandRunner* runner);      // app/import_cli.cc
+void AddExportCommand(CLI::App& app, CommandRunner* runner);      // app/export_cli.cc
 
 }  // namespace waam::app

@@ -35,6 +35,8 @@ int main(int argc, char** argv) {
   AddSweepCommand(app, &runner);
   AddDeviationCommand(app, &runner);
   AddCompensateCommand(app, &runner);
+  AddImportCommand(app, &runner);
+  AddExportCommand(app, &runner);
 
   // Every command takes --threads; the outputs are the same for any number of threads.
   int threads = 0;

@@ -122,7 +122,9 @@ TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh*
     result.deviation = MeasureDeviation(grid, *target);
     result.voids = FindVoids(grid, TargetVolume::FromMesh(*target, grid.voxel_mm(), settings.max_voxels),
                              settings.min_void_volume_mm3);
-  } else if (!plan.layers.empty()) {
+  } else if (std::any_of(plan.layers.begin(), plan.layers.end(),
+                         [](const planner::LayerPath& layer) { return !layer.slice.empty(); })) {
+    // Without a target mesh the sliced regions are the target; an imported program has none (no voids measured).
     result.voids = FindVoids(grid, TargetVolume::FromLayers(plan, grid.voxel_mm(), settings.max_voxels),
                              settings.min_void_volume_mm3);
   }

@@ -18,6 +18,12 @@ Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R) {
   return {a, b, c};
 }
 
+Eigen::Isometry3d ProgramUserFrame(const CellKinematics& cell) {
+  Eigen::Isometry3d X_WU = cell.X_WR;  // FANUC world (user) frame: on j1 at the height of j2
+  X_WU.translate(Eigen::Vector3d(0.0, 0.0, cell.arm.c1));
+  return X_WU;
+}
+
 RobotProgram BuildProgram(const CellKinematics& cell, const std::vector<CellSample>& motion, const std::string& name) {
   RobotProgram program;
   for (char ch : name) {
@@ -29,9 +35,7 @@ RobotProgram BuildProgram(const CellKinematics& cell, const std::vector<CellSamp
   }
   if (program.name.size() > 36) program.name.resize(36);
 
-  Eigen::Isometry3d X_WU = cell.X_WR;  // FANUC world (user) frame: on j1 at the height of j2
-  X_WU.translate(Eigen::Vector3d(0.0, 0.0, cell.arm.c1));
-  const Eigen::Isometry3d X_UW = X_WU.inverse();
+  const Eigen::Isometry3d X_UW = ProgramUserFrame(cell).inverse();
   for (std::size_t i = 0; i < motion.size(); ++i) {
     if (i + 1 < motion.size() && motion[i + 1].point == motion[i].point) continue;
     const CellSample& s = motion[i];
@@ -51,6 +55,9 @@ RobotProgram BuildProgram(const CellKinematics& cell, const std::vector<CellSamp
     p.weld = s.weld;
     p.q = s.q.head<6>();
     p.branch = s.branch;
+    const Eigen::Isometry3d X_WP = cell.X_WB * PartPose(cell.positioner, s.q[6], s.q[7]);
+    p.p_P = s.p_P;
+    p.tool_dir_P = -(X_WP.linear().transpose() * s.X_WT.linear().col(2));
     program.points.push_back(p);
   }
   return program;

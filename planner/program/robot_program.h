@@ -26,6 +26,8 @@ struct ProgramPoint {
   bool weld = false;             // arc on for the move ending here
   Joints6 q = Joints6::Zero();   // arm joints, rad (for the configuration string)
   int branch = 0;                // IkSolution::branch
+  Eigen::Vector3d p_P = Eigen::Vector3d::Zero();            // TCP in the part frame, mm (G-code writes it)
+  Eigen::Vector3d tool_dir_P = Eigen::Vector3d::UnitZ();    // unit, from the TCP up the torch, part frame
 };
 
 struct RobotProgram {
@@ -36,6 +38,10 @@ struct RobotProgram {
 // One program point per path point of the motion (the last sample of each move). The FANUC world frame is R
 // shifted up by the arm's c1 (its origin is on j1 at the height of j2). `name` is turned into a valid program name.
 RobotProgram BuildProgram(const CellKinematics& cell, const std::vector<CellSample>& motion, const std::string& name);
+
+// The frame the program positions are written in: the FANUC world frame, R shifted up by the arm's c1 (on j1 at
+// the height of j2), in W.
+Eigen::Isometry3d ProgramUserFrame(const CellKinematics& cell);
 
 // Euler angles (A, B, C) = (yaw z, pitch y, roll x) of a rotation, rad, by eq. 5.20-5.22.
 Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R);

@@ -98,10 +98,14 @@ Scenario ParsePlannerSections(YamlMap& top) {
   scenario.name = top.String("name");
   WAAM_THROW_UNLESS(!scenario.name.empty(), top.Where("name") << ": must not be empty");
 
-  scenario.part = ParsePart(top.Map("part"), root["part"], scenario.file.parent_path());
+  // A scenario with a program: section (planner/program/program_section.h) needs no part, slicing or path.
+  const bool from_program = root.IsMap() && root["program"];
+  WAAM_THROW_UNLESS(!from_program || !root["part"],
+                    top.Where("part") << ": give either part (planned here) or program (planned elsewhere), not both");
+  if (!from_program) scenario.part = ParsePart(top.Map("part"), root["part"], scenario.file.parent_path());
 
   // slicing
-  {
+  if (!from_program || top.Has("slicing")) {
     YamlMap slicing = top.Map("slicing");
     SlicingSettings& sl = scenario.slicing;
     sl.type = slicing.Enum("type", SlicingType::kPlanar);
@@ -162,7 +166,7 @@ Scenario ParsePlannerSections(YamlMap& top) {
   }
 
   // path
-  {
+  if (!from_program || top.Has("path")) {
     YamlMap path = top.Map("path");
     PathSettings& s = scenario.path;
     const bool skeleton = scenario.slicing.type == SlicingType::kSkeleton;

@@ -151,7 +151,26 @@ std::vector<BadInput> Catalogue() {
   const std::string flat = BinaryStl({Facet{{{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}}, Facet{{{1, 1, 1}, {1, 1, 1}, {5, 5, 5}}}});
   const std::string full = BinaryStl(tetra);
   const std::string csw_header = "travel_speed_mm_per_min,curvature_radius_mm,width_mm\n";
+  // A FANUC LS program with one position; P[2] is used and not defined.
+  const std::string ls_head = "/PROG  T\n/ATTR\n/MN\n   1:L  P[1] 100mm/sec FINE    ;\n";
+  const std::string ls_pos =
+      "/POS\nP[1]{\n   GP1:\n\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
+      "\tX =  1000.000  mm,\tY =     0.000  mm,\tZ =   180.000  mm,\n";
+  const std::string ls_tail = "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg\n};\n/END\n";
   return {
+      {"program-ls-truncated-pos", "import", "prog.ls", {{"prog.ls", ls_head + ls_pos}},
+       {"prog.ls:6: P[1] in /POS is not closed by '};' (truncated /POS)"}},
+      {"program-ls-position-not-defined", "import", "prog.ls",
+       {{"prog.ls", ls_head + "   2:L  P[2] 100mm/sec FINE    ;\n" + ls_pos + ls_tail}},
+       {"prog.ls:5: P[2] is used but not defined in /POS"}},
+      {"program-rapid-zero-quaternion", "import", "prog.mod",
+       {{"prog.mod", "MODULE T\n  CONST robtarget p1:=[[1000,0,180],[0,0,0,0],[0,0,0,0],[0,0,9E+09,9E+09,9E+09,9E+09]];\n"
+                     "  PROC main()\n    MoveL p1,v100,fine,tool0;\n  ENDPROC\nENDMODULE\n"}},
+       {"prog.mod:2: quaternion [0,0,0,0] of length 0"}},
+      {"program-gcode-nan", "import", "prog.nc", {{"prog.nc", "G21\nG1 X1 Y2 Z3 F400\nG1 XNaN Y2\n"}},
+       {"prog.nc:3: X 'NaN' is not a finite number"}},
+      {"program-jbi-not-read", "import", "prog.JBI", {{"prog.JBI", "/JOB\n//NAME T\n//POS\n///NPOS 0,0,0,0,0,0\n"}},
+       {"prog.JBI: reading yaskawa_jbi programs is not supported yet"}},
       {"stl-truncated-mid-facet", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", full.substr(0, 84 + 50 + 20)}},
        {"part.stl: truncated binary STL: header says 4 facets", "it ends inside facet 2"}},
       {"stl-wrong-facet-count", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(tetra, 3)}},

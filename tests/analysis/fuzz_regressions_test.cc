@@ -13,6 +13,8 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "planner/mesh/stl_io.h"
+#include "planner/program/program_plan.h"
+#include "planner/program/program_reader.h"
 
 namespace waam::planner {
 namespace {
@@ -75,6 +77,25 @@ TEST(FuzzRegressions, SweepInputsGiveASweepOrAnInputError) {
     (void)analysis::SweepBenchRuns(sweep);
   });
 }
+
+// The program readers, then the conversion into a plan, as their fuzz targets run them.
+void ReplayProgram(const std::string& target, ProgramFormat format) {
+  Replay(target, [format](const fs::path& input) {
+    CellKinematics cell;
+    cell.arm = OpwArm::ArcMate100iC12();
+    cell.X_WB.translation() = Eigen::Vector3d(1050.0, 0.0, 0.0);
+    const ParsedProgram program = ReadProgramText(ReadFile(input), input.string(), format);
+    ImportSettings settings;
+    settings.arc_step_mm = 5.0;
+    (void)ProgramToPlan(program, cell, settings);
+  });
+}
+
+TEST(FuzzRegressions, FanucLsInputsGiveAPlanOrAnInputError) { ReplayProgram("fanuc_ls", ProgramFormat::kFanucLs); }
+TEST(FuzzRegressions, AbbRapidInputsGiveAPlanOrAnInputError) { ReplayProgram("abb_rapid", ProgramFormat::kAbbRapid); }
+TEST(FuzzRegressions, GcodeInputsGiveAPlanOrAnInputError) { ReplayProgram("gcode", ProgramFormat::kGcode); }
+TEST(FuzzRegressions, KukaKrlInputsGiveAPlanOrAnInputError) { ReplayProgram("kuka_krl", ProgramFormat::kKukaKrl); }
+TEST(FuzzRegressions, ProgramCsvInputsGiveAPlanOrAnInputError) { ReplayProgram("program_csv", ProgramFormat::kCsv); }
 
 }  // namespace
 }  // namespace waam::planner

@@ -265,6 +265,8 @@ TEST(SettingNames, ReadmeListsEveryTable) {
   ExpectReadmeRow<CurvatureWidth>(readme, "simulation.curvature_width");
   ExpectReadmeRow<PositionerFollow>(readme, "cell.positioner.follow");
   ExpectReadmeRow<twin::CellPreset>(readme, "cell.preset");
+  ExpectReadmeRow<ProgramFormat>(readme, "program.format");
+  ExpectReadmeRow<ProgramLayers>(readme, "program.layers");
 }
 
 TEST(SettingNames, EveryNameParsesBackToItsValue) {

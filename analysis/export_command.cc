@@ -1,0 +1,88 @@
+// `waam export`: plan, move the cell, write one dialect.
+#include "analysis/export_command.h"
+
+#include <iostream>
+
+#include "analysis/import_command.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/core/progress.h"
+#include "planner/program/abb_rapid.h"
+#include "planner/program/fanuc_ls.h"
+#include "planner/program/gcode.h"
+#include "planner/program/kuka_krl.h"
+#include "planner/program/program_reader.h"
+#include "twin/cell/cell_check.h"
+#include "twin/cell/mujoco_cell.h"
+
+namespace waam::analysis {
+namespace fs = std::filesystem;
+
+std::string WriteProgramText(planner::ProgramFormat format, const planner::RobotProgram& program,
+                             const planner::CellKinematics& kin) {
+  switch (format) {
+    case planner::ProgramFormat::kCsv: return planner::ProgramToCsv(program);
+    case planner::ProgramFormat::kFanucLs: return planner::ProgramToFanucLs(program, planner::FanucLsOptions{});
+    case planner::ProgramFormat::kAbbRapid: {
+      planner::AbbRapidOptions options;
+      options.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
+      options.X_FT = kin.X_FT;
+      return planner::ProgramToAbbRapid(program, options);
+    }
+    case planner::ProgramFormat::kGcode: return planner::ProgramToGcode(program, planner::GcodeOptions{});
+    case planner::ProgramFormat::kKukaKrl: {
+      // One text: the .src, then its .dat (RunExport writes them as two files).
+      planner::KukaKrlOptions options;
+      options.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
+      const planner::KukaKrlFiles files = planner::ProgramToKukaKrl(program, options);
+      return files.src + files.dat;
+    }
+    case planner::ProgramFormat::kYaskawaJbi: break;
+  }
+  WAAM_THROW("writing " << NameOf(format)
+                        << " programs is not supported yet (csv, fanuc_ls, abb_rapid, kuka_krl, gcode are)");
+}
+
+ExportResult RunExport(const ExportOptions& options) {
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
+  ExportResult result;
+  if (options.format) {
+    result.format = *options.format;
+  } else {
+    const std::string ext = planner::internal::Upper(options.out_file.extension().string());
+    result.format = ext.empty() ? planner::ProgramFormat::kFanucLs
+                                : planner::DetectProgramFormat(options.out_file, "");
+  }
+  planner::PlanResult planned;
+  {
+    Progress progress("plan", 0, "layers", options.quiet);
+    planned = PlanScenarioOrProgram(scenario, &progress);
+  }
+  const twin::CellModel cell = twin::LoadCell(scenario.cell);
+  twin::CheckReport report;
+  {
+    Progress progress("check", 0, "samples", options.quiet);
+    report = twin::CheckPlan(cell, planned.plan, scenario.cell, scenario.process.rapid_speed_mm_min / 60.0, &progress);
+    progress.Finish();
+  }
+  const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
+  const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
+  if (result.format == planner::ProgramFormat::kKukaKrl) {
+    // <name>.src and <name>.dat side by side.
+    planner::KukaKrlOptions krl;
+    krl.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
+    const planner::KukaKrlFiles files = planner::ProgramToKukaKrl(program, krl);
+    fs::path src = options.out_file, dat = options.out_file;
+    src.replace_extension(".src");
+    dat.replace_extension(".dat");
+    WriteFileAtomic(dat, files.dat);
+    WriteFileAtomic(src, files.src);
+  } else {
+    WriteFileAtomic(options.out_file, WriteProgramText(result.format, program, kin));
+  }
+  result.points = program.points.size();
+  result.violations = report.violations.size();
+  return result;
+}
+
+}  // namespace waam::analysis

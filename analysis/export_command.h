@@ -1,0 +1,39 @@
+// `waam export`: the program of a scenario in one controller dialect (or G-code), as the cell check moves the cell.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/scenario.h"
+#include "planner/kinematics/cell_motion.h"
+#include "planner/program/program_motion.h"
+#include "planner/program/robot_program.h"
+
+namespace waam::analysis {
+
+struct ExportOptions {
+  std::filesystem::path scenario;
+  std::optional<planner::ProgramFormat> format;  // empty: from the output file's extension, else fanuc_ls
+  std::filesystem::path out_file;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+};
+
+struct ExportResult {
+  planner::ProgramFormat format = planner::ProgramFormat::kFanucLs;
+  std::size_t points = 0;
+  std::size_t violations = 0;  // what the cell check found on the way (the program is written all the same)
+};
+
+// The program text of `program` in `format` for the cell `kin` (its user frame and torch). Throws InputError for a
+// dialect without a writer.
+std::string WriteProgramText(planner::ProgramFormat format, const planner::RobotProgram& program,
+                             const planner::CellKinematics& kin);
+
+// Plans the scenario (or reads its program), moves the cell along it as `waam check` does and writes the program
+// atomically to out_file.
+ExportResult RunExport(const ExportOptions& options);
+
+}  // namespace waam::analysis

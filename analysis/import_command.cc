@@ -1,0 +1,160 @@
+// `waam import` and the plan of a scenario's program: section.
+#include "analysis/import_command.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include "analysis/plan_command.h"
+#include "models/bead/parabolic_bead.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/core/numbers.h"
+#include "models/core/progress.h"
+#include "models/core/run_outputs.h"
+#include "planner/program/program_motion.h"
+#include "twin/cell/cell_check.h"
+#include "twin/cell/mujoco_cell.h"
+
+namespace waam::analysis {
+namespace fs = std::filesystem;
+
+planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::ParsedProgram& program,
+                                    ImportReport* report) {
+  const twin::CellModel cell = twin::LoadCell(scenario.cell);
+  const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
+  const planner::ProcessSettings& process = scenario.process;
+  planner::ImportSettings settings;
+  if (scenario.program.user_frame_mm) {
+    const std::array<double, 6>& f = *scenario.program.user_frame_mm;
+    Eigen::Isometry3d X_WU = Eigen::Isometry3d::Identity();
+    X_WU.translation() = Eigen::Vector3d(f[0], f[1], f[2]);
+    X_WU.linear() = planner::internal::RotationZyx(f[5] * kPi / 180.0, f[4] * kPi / 180.0, f[3] * kPi / 180.0);
+    settings.X_WU = X_WU;
+  }
+  settings.bead_width_mm = scenario.path.bead_width_mm;
+  const double area = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
+                                                   process.travel_speed_mm_min, process.deposition_efficiency);
+  settings.bead_height_mm = 1.5 * area / settings.bead_width_mm;  // eq. 3.3: A = 2 w h / 3
+  settings.weld_speed_mm_s = process.travel_speed_mm_min / 60.0;
+  settings.rapid_speed_mm_s = process.rapid_speed_mm_min / 60.0;
+  settings.arc_step_mm = scenario.cell.step_mm;
+  settings.layer_tolerance_mm = scenario.program.layer_tolerance_mm;
+  planner::ImportedPlan imported = planner::ProgramToPlan(program, kin, settings);
+
+  // The bead of each weld point from the wire feed and its own travel speed (eq. 3.4, then eq. 3.3).
+  for (planner::LayerPath& layer : imported.plan.layers) {
+    for (planner::PathPoint& p : layer.points) {
+      if (!p.weld || p.speed_mm_s <= 0.0) continue;
+      const double a = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
+                                                    p.speed_mm_s * 60.0, process.deposition_efficiency);
+      p.bead_height_mm = 1.5 * a / p.bead_width_mm;
+    }
+  }
+  planner::PlanResult result;
+  result.plan = std::move(imported.plan);
+  if (result.plan.name.empty()) result.plan.name = scenario.name;
+  result.stats = planner::ComputeStats(result.plan, settings.rapid_speed_mm_s);
+  result.bead_width_mm = settings.bead_width_mm;
+  result.bead_area_mm2 = area;
+  result.bead_height_mm = settings.bead_height_mm;
+  result.layer_growth_mm = settings.bead_height_mm;
+  result.travel_speed_mm_min = process.travel_speed_mm_min;
+  double lo = 0.0, hi = 0.0, h_lo = 0.0, h_hi = 0.0;
+  bool any = false;
+  for (const planner::LayerPath& layer : result.plan.layers) {
+    for (const planner::PathPoint& p : layer.points) {
+      if (!p.weld) continue;
+      const double v = p.speed_mm_s * 60.0;
+      lo = any ? std::min(lo, v) : v, hi = any ? std::max(hi, v) : v;
+      h_lo = any ? std::min(h_lo, p.bead_height_mm) : p.bead_height_mm;
+      h_hi = any ? std::max(h_hi, p.bead_height_mm) : p.bead_height_mm;
+      any = true;
+    }
+  }
+  result.speed_min_mm_min = lo, result.speed_max_mm_min = hi;
+  result.layer_height_min_mm = h_lo, result.layer_height_max_mm = h_hi;
+  // Mean layer step along the build direction.
+  const auto& layers = result.plan.layers;
+  result.layer_height_mm =
+      layers.size() > 1 ? (layers.back().z_mm - layers.front().z_mm) / static_cast<double>(layers.size() - 1)
+                        : settings.bead_height_mm;
+  for (const planner::ProgramWarning& w : imported.warnings) {
+    result.warnings.push_back(w.what + " (" + std::to_string(w.count) + "x, first at line " +
+                              std::to_string(w.first_line) + "): the check follows the program without it");
+  }
+  if (report != nullptr) {
+    report->format = program.format;
+    report->motions = program.motions.size();
+    report->motions_by_kind = program.MotionsByKind();
+    report->points = imported.points;
+    report->warnings = imported.warnings;
+  }
+  return result;
+}
+
+planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report) {
+  if (!scenario.program.present) return planner::PlanScenario(scenario, progress);
+  planner::GcodeReadOptions gcode;
+  gcode.arc_on_m = scenario.program.gcode_arc_on_m;
+  gcode.arc_off_m = scenario.program.gcode_arc_off_m;
+  const planner::ParsedProgram program =
+      planner::ReadProgramFile(scenario.program.file, scenario.program.format, gcode);
+  ImportReport local;
+  planner::PlanResult result = PlanFromProgram(scenario, program, report != nullptr ? report : &local);
+  if (progress != nullptr) progress->Finish();
+  return result;
+}
+
+nlohmann::json ImportToJson(const ImportReport& report) {
+  nlohmann::json warnings = nlohmann::json::array();
+  for (const planner::ProgramWarning& w : report.warnings) {
+    warnings.push_back({{"what", w.what}, {"count", w.count}, {"first_line", w.first_line}});
+  }
+  return {{"format", report.format},
+          {"motions", report.motions},
+          {"motions_by_kind", report.motions_by_kind},
+          {"points", report.points},
+          {"warnings", warnings}};
+}
+
+nlohmann::json RunImport(const ImportOptions& options) {
+  Scenario scenario;
+  if (!options.scenario.empty()) {
+    scenario = LoadScenario(options.scenario, options.overrides);
+  } else {
+    WAAM_THROW_UNLESS(options.overrides.empty(), "--set needs --scenario");
+  }
+  if (scenario.name.empty()) scenario.name = options.program.stem().string();
+  planner::GcodeReadOptions gcode;
+  gcode.arc_on_m = scenario.program.gcode_arc_on_m;
+  gcode.arc_off_m = scenario.program.gcode_arc_off_m;
+  const planner::ParsedProgram program = planner::ReadProgramFile(options.program, options.format, gcode);
+  ImportReport report;
+  const planner::PlanResult result = PlanFromProgram(scenario, program, &report);
+
+  EnsureOutputDirectory(options.out_dir);
+  RunOutputs outputs(options.out_dir / "plan.json");
+  WritePlanH5(result.plan, outputs.Add(options.out_dir / "plan.h5"));
+  if (options.layer_images) {
+    Progress progress("pictures", result.plan.layers.size(), "layers", options.quiet);
+    for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
+      WriteLayerPng(result.plan.layers[i], outputs.Add(options.out_dir / "layers" / name));
+      progress.Update(i + 1);
+    }
+    progress.Finish();
+  }
+  CheckInterrupt();
+  nlohmann::json summary = PlanToJson(scenario, result);
+  summary["slicing"] = "program";
+  summary["pattern"] = "program";
+  summary["import"] = ImportToJson(report);
+  summary["import"]["file"] = options.program.string();
+  WriteFileAtomic(options.out_dir / "plan.json", summary.dump(2) + "\n");
+  outputs.Complete();
+  for (const std::string& warning : result.warnings) std::cerr << "waam: warning: " << warning << "\n";
+  return summary;
+}
+
+}  // namespace waam::analysis

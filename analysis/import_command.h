@@ -1,0 +1,55 @@
+// `waam import`: read a robot program or G-code made elsewhere into the twin's plan and write what was understood
+// (plan.json with an `import` section, plan.h5, layer pictures).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/scenario.h"
+#include "models/core/progress.h"
+#include "planner/planar_planner.h"
+#include "planner/program/program_plan.h"
+#include "planner/program/program_reader.h"
+
+namespace waam::analysis {
+
+struct ImportOptions {
+  std::filesystem::path program;                 // the program file
+  std::optional<planner::ProgramFormat> format;  // empty: from the extension or the first lines
+  std::filesystem::path scenario;                // optional: the cell, process and program frame; empty = defaults
+  std::filesystem::path out_dir;
+  std::vector<std::string> overrides;            // --set key.path=value on the scenario
+  bool quiet = false;
+  bool layer_images = true;
+};
+
+// What the import understood besides the plan.
+struct ImportReport {
+  planner::ProgramFormat format = planner::ProgramFormat::kCsv;
+  std::size_t motions = 0;
+  std::map<std::string, std::size_t> motions_by_kind;
+  std::size_t points = 0;                        // path points after circular moves are discretised
+  std::vector<planner::ProgramWarning> warnings;
+};
+
+// The plan of a program read with the scenario's cell (user frame, kinematics) and process (bead width; bead height
+// per point from the wire feed and the point's travel speed, eq. 3.3-3.4). Throws InputError for a bad program.
+planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::ParsedProgram& program,
+                                    ImportReport* report);
+
+// The plan of the scenario: from its program: section when it has one, else planned from its part (PlanScenario).
+// `report` (may be null) is filled for a program.
+planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report = nullptr);
+
+// The `import` section of plan.json: format, motions (count and by kind), points, warnings (what, count,
+// first_line).
+nlohmann::json ImportToJson(const ImportReport& report);
+
+// Reads the program, writes plan.h5, the layer pictures and plan.json (last). Returns the plan.json document.
+nlohmann::json RunImport(const ImportOptions& options);
+
+}  // namespace waam::analysis

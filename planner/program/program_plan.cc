@@ -1,0 +1,222 @@
+// Program targets into the part frame (the inverse of eq. 5.14-5.18: world TCP pose and positioner angles back to
+// the part), circular moves discretised, passes grouped into layers by height along their build direction.
+#include "planner/program/program_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "models/core/error.h"
+#include "planner/kinematics/positioner.h"
+#include "planner/program/robot_program.h"
+
+namespace waam::planner {
+namespace {
+
+Eigen::Isometry3d PartInWorld(const CellKinematics& cell, double tilt, double rotation) {
+  return cell.X_WB * PartPose(cell.positioner, tilt, rotation);
+}
+
+// Points along the circle through a, via, b (excluding a, including b), at most `step` apart; empty when the three
+// points are (nearly) on one line.
+std::vector<Eigen::Vector3d> ArcPoints(const Eigen::Vector3d& a, const Eigen::Vector3d& via, const Eigen::Vector3d& b,
+                                       double step) {
+  const Eigen::Vector3d u = via - a, v = b - a;
+  const Eigen::Vector3d w = u.cross(v);
+  const double w2 = w.squaredNorm();
+  if (w2 < 1e-12 * std::max(1.0, u.squaredNorm() * v.squaredNorm())) return {};
+  // Circumcentre of the triangle a, via, b.
+  const Eigen::Vector3d c = a + (u.squaredNorm() * v - v.squaredNorm() * u).cross(w) / (2.0 * w2);
+  const double r = (a - c).norm();
+  const Eigen::Vector3d e1 = (a - c) / r;
+  const Eigen::Vector3d n = w.normalized();
+  const Eigen::Vector3d e2 = n.cross(e1);
+  auto angle = [&](const Eigen::Vector3d& x) {
+    double t = std::atan2((x - c).dot(e2), (x - c).dot(e1));
+    return t < 0.0 ? t + 2.0 * kPi : t;
+  };
+  const double end = angle(b);  // a -> via -> b runs counter-clockwise about n
+  const int n_steps = static_cast<int>(std::clamp(std::ceil(end * r / step), 1.0, 100000.0));
+  std::vector<Eigen::Vector3d> out;
+  for (int k = 1; k < n_steps; ++k) {
+    const double t = end * k / n_steps;
+    out.push_back(c + r * (std::cos(t) * e1 + std::sin(t) * e2));
+  }
+  out.push_back(b);
+  return out;
+}
+
+struct PassSpan {
+  std::size_t first = 0, last = 0;  // [first, last) indices into the flat point list
+  Eigen::Vector3d build_dir = Eigen::Vector3d::UnitZ();
+  double height = 0.0;
+  bool welded = false;
+};
+
+}  // namespace
+
+std::vector<ResolvedTarget> ResolveTargets(const ParsedProgram& program, const CellKinematics& cell,
+                                           const ImportSettings& settings) {
+  const Eigen::Isometry3d X_WU = settings.X_WU ? *settings.X_WU : ProgramUserFrame(cell);
+  std::vector<ResolvedTarget> out;
+  out.reserve(program.motions.size());
+  double tilt = 0.0, rotation = 0.0;
+  for (const ProgramMotion& m : program.motions) {
+    if (m.has_positioner) tilt = m.tilt_rad, rotation = m.rotation_rad;
+    const Eigen::Isometry3d X_WP = PartInWorld(cell, tilt, rotation);
+    ResolvedTarget t;
+    t.kind = m.kind;
+    t.line = m.line;
+    t.tilt_rad = tilt;
+    t.rotation_rad = rotation;
+    t.speed_mm_s = m.speed_mm_s;
+    t.weld = m.weld;
+    if (m.has_joints) {
+      t.X_WT = cell.X_WR * ForwardKinematics(cell.arm, m.q) * cell.X_FT;
+    } else if (m.frame == TargetFrame::kPart) {
+      t.X_WT = X_WP * m.X_UT;
+    } else if (m.frame == TargetFrame::kRobot) {
+      t.X_WT = cell.X_WR * m.X_UT;
+    } else {
+      t.X_WT = X_WU * m.X_UT;
+    }
+    const Eigen::Isometry3d X_PT = X_WP.inverse() * t.X_WT;
+    t.p_P = X_PT.translation();
+    t.tool_dir_P = -X_PT.linear().col(2);
+    out.push_back(t);
+  }
+  return out;
+}
+
+ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& cell, const ImportSettings& settings) {
+  WAAM_THROW_UNLESS(!program.motions.empty(), program.name << ": the program has no motion instruction");
+  WAAM_DEMAND(settings.arc_step_mm > 0.0 && settings.bead_height_mm > 0.0 && settings.bead_width_mm > 0.0);
+  internal::WarningList notes;
+  const std::vector<ResolvedTarget> targets = ResolveTargets(program, cell, settings);
+  const Eigen::Isometry3d X_WU = settings.X_WU ? *settings.X_WU : ProgramUserFrame(cell);
+
+  // Flat point list: one point per target, arcs cut into chords.
+  std::vector<PathPoint> points;
+  points.reserve(targets.size());
+  // `target`: the motion's own end point (notes are counted once per motion, not per chord of an arc).
+  auto make_point = [&](const Eigen::Vector3d& p_P, const Eigen::Vector3d& tool_dir_P, const ResolvedTarget& t,
+                        bool target) {
+    PathPoint p;
+    p.p_P = p_P;
+    p.tool_dir_P = tool_dir_P.normalized();
+    p.bead_width_mm = settings.bead_width_mm;
+    p.bead_height_mm = settings.bead_height_mm;
+    p.weld = t.weld && !points.empty();
+    if (t.speed_mm_s > 0.0) {
+      p.speed_mm_s = t.speed_mm_s;
+    } else if (p.weld) {
+      p.speed_mm_s = settings.weld_speed_mm_s;
+      if (target) notes.Add("weld move without a speed: the scenario's process.travel_speed_mm_min used", t.line);
+    } else {
+      p.speed_mm_s = settings.rapid_speed_mm_s;
+    }
+    points.push_back(p);
+  };
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const ResolvedTarget& t = targets[i];
+    const ProgramMotion& m = program.motions[i];
+    if (t.kind == MotionKind::kCircular && i > 0 && m.has_via) {
+      const ResolvedTarget& prev = targets[i - 1];
+      // The arc lies in the frame its points are given in: P for part-frame targets, else W (the positioner's
+      // angles run linearly from the previous target's to this one's along it).
+      const bool in_part = m.frame == TargetFrame::kPart;
+      Eigen::Vector3d a, via, b;
+      if (in_part) {
+        a = prev.p_P, via = m.via, b = t.p_P;
+      } else {
+        const Eigen::Isometry3d X_WF = m.frame == TargetFrame::kRobot ? cell.X_WR : X_WU;
+        a = prev.X_WT.translation(), via = X_WF * m.via, b = t.X_WT.translation();
+      }
+      const std::vector<Eigen::Vector3d> arc = ArcPoints(a, via, b, settings.arc_step_mm);
+      if (arc.empty()) {
+        notes.Add("circular move through three points on one line: followed as a linear move", t.line);
+      } else {
+        const Eigen::Quaterniond q0(prev.X_WT.linear()), q1(t.X_WT.linear());
+        double length = 0.0;
+        Eigen::Vector3d last = a;
+        std::vector<double> along;
+        for (const Eigen::Vector3d& x : arc) along.push_back(length += (x - last).norm()), last = x;
+        for (std::size_t k = 0; k + 1 < arc.size(); ++k) {
+          const double f = along[k] / length;
+          const double tilt = prev.tilt_rad + f * (t.tilt_rad - prev.tilt_rad);
+          const double rot = prev.rotation_rad + f * (t.rotation_rad - prev.rotation_rad);
+          const Eigen::Isometry3d X_PW = PartInWorld(cell, tilt, rot).inverse();
+          const Eigen::Matrix3d R_WT = q0.slerp(f, q1).toRotationMatrix();
+          const Eigen::Vector3d dir_W = -R_WT.col(2);
+          if (in_part) {
+            // Part-frame orientation: interpolate the tool direction in P.
+            make_point(arc[k], (1.0 - f) * prev.tool_dir_P + f * t.tool_dir_P, t, false);
+          } else {
+            make_point(X_PW * arc[k], X_PW.linear() * dir_W, t, false);
+          }
+        }
+      }
+    } else if (t.kind == MotionKind::kCircular && !m.has_via) {
+      notes.Add("circular move without its intermediate point: followed as a linear move", t.line);
+    }
+    make_point(t.p_P, t.tool_dir_P, t, true);
+  }
+
+  // Passes: a run of arc-off points followed by the welded run after it.
+  std::vector<PassSpan> passes;
+  for (std::size_t i = 0; i < points.size();) {
+    PassSpan pass;
+    pass.first = i;
+    while (i < points.size() && !points[i].weld) ++i;
+    while (i < points.size() && points[i].weld) ++i;
+    pass.last = i;
+    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
+    int welded = 0;
+    for (std::size_t k = pass.first; k < pass.last; ++k) {
+      if (points[k].weld) dir += points[k].tool_dir_P, ++welded;
+    }
+    pass.welded = welded > 0;
+    pass.build_dir = (welded > 0 && dir.norm() > 1e-9) ? Eigen::Vector3d(dir.normalized())
+                                                       : points[pass.last - 1].tool_dir_P;
+    double h = 0.0;
+    for (std::size_t k = pass.first; k < pass.last; ++k) {
+      if (points[k].weld || welded == 0) h += points[k].p_P.dot(pass.build_dir);
+    }
+    pass.height = h / (welded > 0 ? welded : static_cast<int>(pass.last - pass.first));
+    passes.push_back(pass);
+  }
+
+  // Layers: consecutive passes at the same height along the same build direction.
+  const double tolerance =
+      settings.layer_tolerance_mm > 0.0 ? settings.layer_tolerance_mm : 0.5 * settings.bead_height_mm;
+  const double kSameDirection = std::cos(1.0 * kPi / 180.0);
+  ImportedPlan out;
+  out.plan.name = program.name;
+  const PassSpan* layer_pass = nullptr;  // the first welded pass of the current layer
+  for (const PassSpan& pass : passes) {
+    const bool new_layer = out.plan.layers.empty() ||
+                           (pass.welded && layer_pass != nullptr &&
+                            (pass.build_dir.dot(layer_pass->build_dir) < kSameDirection ||
+                             std::abs(pass.height - layer_pass->height) > tolerance));
+    if (new_layer) {
+      LayerPath layer;
+      layer.index = static_cast<int>(out.plan.layers.size());
+      layer.slice_in_plane = false;
+      out.plan.layers.push_back(layer);
+      layer_pass = nullptr;
+    }
+    LayerPath& layer = out.plan.layers.back();
+    if (pass.welded && layer_pass == nullptr) {
+      layer_pass = &pass;
+      layer.build_dir_P = pass.build_dir;
+      layer.z_mm = pass.height;
+    }
+    layer.points.insert(layer.points.end(), points.begin() + static_cast<std::ptrdiff_t>(pass.first),
+                        points.begin() + static_cast<std::ptrdiff_t>(pass.last));
+  }
+  out.points = points.size();
+  out.warnings = program.warnings;
+  for (ProgramWarning& w : notes.Take()) out.warnings.push_back(std::move(w));
+  return out;
+}
+
+}  // namespace waam::planner

@@ -1,0 +1,33 @@
+// The scenario's `program:` section: a robot program or G-code made elsewhere stands in for part/slicing/path.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "models/core/enum_names.h"
+#include "planner/program/program_motion.h"
+
+namespace waam::planner {
+
+// program.layers: how passes group into layers.
+enum class ProgramLayers { kAuto };
+constexpr std::array<EnumName<ProgramLayers>, 1> EnumNames(ProgramLayers) { return {{{ProgramLayers::kAuto, "auto"}}}; }
+WAAM_ENUM_JSON(ProgramLayers)
+
+struct ProgramSettings {
+  bool present = false;                       // the scenario has a program: section
+  std::filesystem::path file;                 // absolute (given relative to the scenario file)
+  std::optional<ProgramFormat> format;        // empty = auto (extension, then first lines)
+  // frame.user_frame_mm: where the program's user frame sits in the world, [x, y, z mm, rx, ry, rz deg],
+  // R = Rz(rz) Ry(ry) Rx(rx); empty = the cell's FANUC world frame (arm base lifted to the j2 axis).
+  std::optional<std::array<double, 6>> user_frame_mm;
+  ProgramLayers layers = ProgramLayers::kAuto;
+  double layer_tolerance_mm = 0.0;            // >= 0; 0 = half the bead height
+  int gcode_arc_on_m = 3;                     // gcode.arc_on_m
+  int gcode_arc_off_m = 5;                    // gcode.arc_off_m
+  std::string where;                          // "file:line: program" for messages
+};
+
+}  // namespace waam::planner

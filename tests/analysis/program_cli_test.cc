@@ -1,0 +1,113 @@
+// Tests of `waam import`, `waam export` and a scenario's program: section through the CLI: a scenario exported in
+// every dialect imports back to the plan `waam plan` makes of it, check runs on a program scenario, and a bad
+// program exits 2 writing nothing.
+#include <filesystem>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "analysis/import_command.h"
+#include "analysis/plan_command.h"
+#include "cli_test_util.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+
+namespace waam::analysis {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using cli_test::ReadJson;
+using cli_test::RunWaam;
+using cli_test::TempDir;
+
+fs::path ProgramFixture(const char* name) {
+  return fs::path(WAAM_SOURCE_DIR) / "tests" / "data" / "programs" / name;
+}
+
+TEST(ProgramCliTest, ExportThenImportGivesThePlanOfTheScenario) {
+  const fs::path dir = TempDir("program_export_import");
+  const fs::path scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "box.yaml";
+  std::string err;
+  ASSERT_EQ(RunWaam("plan " + scenario.string() + " -o " + (dir / "plan").string() + " -q --no-images", &err), 0)
+      << err;
+  const nlohmann::json planned = ReadJson(dir / "plan" / "plan.json");
+  for (const char* f : {"box.ls", "box.mod", "box.src", "box.nc", "box.csv"}) {
+    SCOPED_TRACE(f);
+    const fs::path program = dir / f;
+    ASSERT_EQ(RunWaam("export " + scenario.string() + " -o " + program.string() + " -q", &err), 0) << err;
+    const fs::path out = dir / (std::string("import_") + f);
+    ASSERT_EQ(RunWaam("import " + program.string() + " --scenario " + scenario.string() + " -o " + out.string() +
+                          " -q --no-images",
+                      &err),
+              0)
+        << err;
+    const nlohmann::json imported = ReadJson(out / "plan.json");
+    for (const char* key : {"layers", "passes", "path_elements"}) {
+      EXPECT_EQ(imported[key], planned[key]) << key;
+    }
+    EXPECT_NEAR(imported["weld_length_mm"].get<double>(), planned["weld_length_mm"].get<double>(), 0.01);
+    EXPECT_TRUE(imported["import"]["warnings"].empty());
+    EXPECT_TRUE(fs::exists(out / "plan.h5"));
+  }
+}
+
+TEST(ProgramCliTest, CheckAndPlanAcceptAProgramScenario) {
+  const fs::path dir = TempDir("program_scenario");
+  std::string err;
+  ASSERT_EQ(RunWaam("check " + ProgramFixture("wall_ls.yaml").string() + " -o " + (dir / "check").string() +
+                        " -q --no-images",
+                    &err),
+            0)
+      << err;
+  EXPECT_THAT(err, HasSubstr("instruction CALL not executed (1x, first at line 27)"));
+  const nlohmann::json check = ReadJson(dir / "check" / "check.json");
+  EXPECT_EQ(check["points"], 41);
+  ASSERT_EQ(RunWaam("plan " + ProgramFixture("wall_mod.yaml").string() + " -o " + (dir / "plan").string() +
+                        " -q --no-images",
+                    &err),
+            0)
+      << err;
+  const nlohmann::json plan = ReadJson(dir / "plan" / "plan.json");
+  EXPECT_EQ(plan["layers"], 2);
+  EXPECT_EQ(plan["import"]["format"], "abb_rapid");
+}
+
+TEST(ProgramCliTest, ProgramSectionIsCheckedWhereItIsWritten) {
+  const fs::path dir = TempDir("program_section");
+  fs::copy_file(ProgramFixture("wall.nc"), dir / "wall.nc");
+  auto error = [&](const std::string& yaml) {
+    WriteFileAtomic(dir / "s.yaml", yaml);
+    try {
+      (void)LoadScenario(dir / "s.yaml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string process = "process: {travel_speed_mm_min: 400, wire_feed_mm_min: 3200}\n";
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  format: fanuc\n" + process),
+              HasSubstr("s.yaml:4: program.format = 'fanuc': must be auto or one of csv, fanuc_ls"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: nowhere.ls\n" + process), HasSubstr("program file"));
+  EXPECT_THAT(error("name: s\npart: {mesh: wall.nc}\nprogram:\n  file: wall.nc\n" + process),
+              HasSubstr("give either part (planned here) or program (planned elsewhere), not both"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  frame: {user_frame_mm: [0, 0, 0]}\n" + process),
+              HasSubstr("program.frame.user_frame_mm"));
+  EXPECT_EQ(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {arc_on_m: 7, arc_off_m: 9}\n" + process),
+            "no error");
+}
+
+TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {
+  const fs::path dir = TempDir("program_bad");
+  const fs::path bad = dir / "bad.nc";
+  WriteFileAtomic(bad, "G21\nG1 X1 Y2 Z3 F400\nG1 XNaN Y2\n");
+  std::string err;
+  EXPECT_EQ(RunWaam("import " + bad.string() + " -o " + (dir / "out").string() + " -q", &err), 2);
+  EXPECT_THAT(err, HasSubstr("bad.nc:3: X 'NaN' is not a finite number"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "plan.json"));
+  EXPECT_EQ(RunWaam("import " + bad.string() + " --format yaskawa_jbi -o " + (dir / "out").string() + " -q", &err), 2);
+  EXPECT_THAT(err, HasSubstr("not supported yet"));
+}
+
+}  // namespace
+}  // namespace waam::analysis

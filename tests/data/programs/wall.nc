@@ -1,0 +1,19 @@
+%
+(two-layer wall, 60 mm, gantry WAAM: M3 torch on, M5 off)
+N10 G21 G90 G17
+N20 G0 X-30 Y0 Z30
+N30 G1 Z1.5 F6000
+N40 M3 (arc on)
+N50 G1 X0 F400
+N60 X30
+N70 M5
+N80 G0 Z3
+N90 G1 X30 Y0 Z3 F6000
+N100 M3
+N110 G3 X0 Y0 I-15 J-5 F400 ; arc through the mid point
+N120 G1 X-30
+N130 M5
+N140 G4 P1
+N150 G0 Z40
+N160 M30
+%
