@@ -9,6 +9,7 @@
 
 #include "analysis/scenario.h"
 #include "analysis/sweep.h"
+#include "fuzz/program_fuzz.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -81,13 +82,7 @@ TEST(FuzzRegressions, SweepInputsGiveASweepOrAnInputError) {
 // The program readers, then the conversion into a plan, as their fuzz targets run them.
 void ReplayProgram(const std::string& target, ProgramFormat format) {
   Replay(target, [format](const fs::path& input) {
-    CellKinematics cell;
-    cell.arm = OpwArm::ArcMate100iC12();
-    cell.X_WB.translation() = Eigen::Vector3d(1050.0, 0.0, 0.0);
-    const ParsedProgram program = ReadProgramText(ReadFile(input), input.string(), format);
-    ImportSettings settings;
-    settings.arc_step_mm = 5.0;
-    (void)ProgramToPlan(program, cell, settings);
+    fuzz::ReadAndPlanProgram(ReadFile(input), input.string(), format);
   });
 }
 
