@@ -1,7 +1,6 @@
 // `waam import` and the plan of a scenario's program: section.
 #include "analysis/import_command.h"
 
-#include <cstdio>
 #include <iostream>
 
 #include "analysis/plan_command.h"
@@ -134,17 +133,7 @@ nlohmann::json RunImport(const ImportOptions& options) {
 
   EnsureOutputDirectory(options.out_dir);
   RunOutputs outputs(options.out_dir / "plan.json");
-  WritePlanH5(result.plan, outputs.Add(options.out_dir / "plan.h5"));
-  if (options.layer_images) {
-    Progress progress("pictures", result.plan.layers.size(), "layers", options.quiet);
-    for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
-      char name[32];
-      std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
-      WriteLayerPng(result.plan.layers[i], outputs.Add(options.out_dir / "layers" / name));
-      progress.Update(i + 1);
-    }
-    progress.Finish();
-  }
+  WritePlanFiles(result.plan, options.out_dir, options.layer_images, options.quiet, &outputs);
   CheckInterrupt();
   nlohmann::json summary = PlanToJson(scenario, result);
   summary["slicing"] = "program";

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -20,6 +21,20 @@
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
+
+void WritePlanFiles(const planner::Plan& plan, const fs::path& out_dir, bool layer_images, bool quiet,
+                    RunOutputs* outputs) {
+  WritePlanH5(plan, outputs->Add(out_dir / "plan.h5"));
+  if (!layer_images) return;
+  Progress progress("pictures", plan.layers.size(), "layers", quiet);
+  for (std::size_t i = 0; i < plan.layers.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
+    WriteLayerPng(plan.layers[i], outputs->Add(out_dir / "layers" / name));
+    progress.Update(i + 1);
+  }
+  progress.Finish();
+}
 
 // `waam plan` warns when the beads leave more than this share of the sliced area uncovered, per cent.
 constexpr double kUncoveredWarningPct = 5.0;
@@ -160,17 +175,7 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_
   }
 
   RunOutputs outputs(options.out_dir / "plan.json");
-  WritePlanH5(result.plan, outputs.Add(options.out_dir / "plan.h5"));
-  if (options.layer_images) {
-    Progress progress("pictures", result.plan.layers.size(), "layers", options.quiet);
-    for (std::size_t i = 0; i < result.plan.layers.size(); ++i) {
-      char name[32];
-      std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
-      WriteLayerPng(result.plan.layers[i], outputs.Add(options.out_dir / "layers" / name));
-      progress.Update(i + 1);
-    }
-    progress.Finish();
-  }
+  WritePlanFiles(result.plan, options.out_dir, options.layer_images, options.quiet, &outputs);
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   nlohmann::json summary = PlanToJson(scenario, result);
   if (scenario.program.present) summary["import"] = ImportToJson(import);

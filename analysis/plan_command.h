@@ -10,6 +10,10 @@
 #include "analysis/scenario.h"
 #include "planner/planar_planner.h"
 
+namespace waam {
+class RunOutputs;
+}  // namespace waam
+
 namespace waam::analysis {
 
 struct PlanOptions {
@@ -30,6 +34,11 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
 
 // Writes every layer's path points to an HDF5 file (see the README for the layout).
 void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path);
+
+// Writes plan.h5 and, with `layer_images`, layers/layer_NNNN.png into `out_dir`, each recorded in `outputs` (so an
+// unfinished run removes them); shared by `waam plan` and `waam import`.
+void WritePlanFiles(const planner::Plan& plan, const std::filesystem::path& out_dir, bool layer_images, bool quiet,
+                    RunOutputs* outputs);
 
 // Draws one layer: the slice, the weld path in sequence colours, travel moves dashed, starts and stops marked.
 void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path& path);
