@@ -55,6 +55,30 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
   nlohmann::json accel = nlohmann::json::object();
   for (int a = 0; a < 8; ++a) accel[twin::AxisName(a)] = Finite(report.max_accel_deg_s2[a]);
   const twin::CellSettings& c = scenario.cell;
+  const auto margins_json = [&](const twin::CheckMargins& m) {
+    return nlohmann::json{{"violation_count", m.violations},
+                          {"violating_samples", m.violating_samples},
+                          {"min_arm_margin_deg", Finite(m.min_arm_margin_deg)},
+                          {"min_j5_deg", Finite(m.min_j5_deg)},
+                          {"min_clearance_mm", Finite(m.min_clearance_mm)},
+                          {"max_joint_speed_ratio", Finite(m.max_joint_speed_ratio)},
+                          {"margin", Finite(twin::CheckMargin(m, c))}};
+  };
+  nlohmann::json resolve = {{"mode", report.resolve.mode}};
+  if (report.resolve.mode == twin::CellResolve::kOptimise) {
+    double lo = 0.0, hi = 0.0;
+    int turned = 0;
+    for (double spin : report.resolve.layer_spin_deg) {
+      lo = std::min(lo, spin);
+      hi = std::max(hi, spin);
+      turned += spin != 0.0;
+    }
+    resolve["kept"] = report.resolve.kept_fixed ? "fixed" : "optimise";
+    resolve["before"] = margins_json(report.resolve.before);
+    resolve["after"] = margins_json(report.resolve.after);
+    resolve["spin_deg"] = {{"min", lo}, {"max", hi}, {"layers_turned", turned}};
+    resolve["layer_spin_deg"] = report.resolve.layer_spin_deg;
+  }
   const int worst_point = report.motion.empty() ? 0 : report.motion[report.worst_sample].point;
   return {
       {"scenario", scenario.name},
@@ -69,14 +93,17 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
       {"violation_count", report.violations.size()},
       {"min_joint_margin_deg", Finite(report.min_joint_margin_deg)},
       {"min_margin_joint", report.min_margin_joint},
+      {"min_arm_margin_deg", Finite(report.min_arm_margin_deg)},
       {"max_joint_speed_ratio", Finite(report.max_joint_speed_ratio)},
       {"max_speed_joint", report.max_speed_joint},
       {"min_j5_deg", Finite(report.min_j5_deg)},
+      {"min_clearance_mm", Finite(report.min_clearance_mm)},
       {"max_joint_accel_deg_s2", accel},
       {"duration_s", Finite(report.duration_s)},
       {"positioner_limit_layers", report.positioner_limit_layers},
       {"max_torch_tilt_deg", Finite(report.max_torch_tilt_deg)},
       {"worst_point", worst_point},
+      {"resolve", resolve},
       {"layers", layers},
       {"cell",
        {{"mjcf", mjcf.string()},
@@ -85,6 +112,7 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
         {"positioner_base_mm", c.positioner_base_mm},
         {"positioner_yaw_deg", c.positioner_yaw_deg},
         {"positioner_follow", c.positioner_follow},
+        {"positioner_tilt_tolerance_deg", c.positioner_tilt_tolerance_deg},
         {"part_offset_mm", c.part_offset_mm},
         {"part_yaw_deg", c.part_yaw_deg},
         {"joint_margin_deg", c.joint_margin_deg},

@@ -11,10 +11,11 @@ Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::
   planner::internal::YamlMap top = planner::internal::LoadScenarioTop(file, overrides);
   Scenario scenario;
   static_cast<planner::Scenario&>(scenario) = planner::internal::ParsePlannerSections(top);
-  const std::filesystem::path dir = scenario.file.parent_path();
+  const std::filesystem::path dir = scenario.dir;
   scenario.cell = twin::internal::ParseCellSection(top, dir);
   twin::internal::ParseSimulationSection(top, &scenario.simulation, dir);
   internal::ParseRunSection(top, &scenario.run);
+  internal::ParsePlaceSection(top, &scenario.place);
   scenario.program = planner::internal::ParseProgramSection(top, dir);
   // The CSW radius clamp is one rule for the planner's speed and the twin's bead width (simulation section).
   scenario.process.csw_min_radius_mm = scenario.simulation.csw_min_radius_mm;

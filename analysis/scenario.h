@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/place_settings.h"
 #include "analysis/run_settings.h"
 #include "planner/program/program_settings.h"
 #include "planner/scenario/scenario.h"
@@ -18,6 +19,7 @@ struct Scenario : planner::Scenario {
   twin::SimulationSettings simulation;  // optional `simulation:` section (the voxel twin)
   RunSettings run;                      // optional `run:` section (the steps of `waam run`)
   planner::ProgramSettings program;     // optional `program:` section: a program made elsewhere instead of a part
+  PlaceSettings place;                  // optional `place:` section: the ranges `waam place` searches
 };
 
 // Loads and validates a whole scenario file: the document is read once (with the `--set` overrides) and each module

@@ -23,6 +23,7 @@ void AddInspectCommand(CLI::App& app, CommandRunner* runner);   // app/inspect_c
 void AddGenerateCommand(CLI::App& app, CommandRunner* runner);  // app/generate_cli.cc
 void AddFitCommand(CLI::App& app, CommandRunner* runner);       // app/fit_cli.cc
 void AddCheckCommand(CLI::App& app, CommandRunner* runner);     // app/check_cli.cc
+void AddPlaceCommand(CLI::App& app, CommandRunner* runner);     // app/place_cli.cc
 void AddSimulateCommand(CLI::App& app, CommandRunner* runner);  // app/simulate_cli.cc
 void AddTuneVoidsCommand(CLI::App& app, CommandRunner* runner);  // app/tune_voids_cli.cc
 void AddRunCommand(CLI::App& app, CommandRunner* runner);       // app/run_cli.cc

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   AddGenerateCommand(app, &runner);
   AddFitCommand(app, &runner);
   AddCheckCommand(app, &runner);
+  AddPlaceCommand(app, &runner);
   AddSimulateCommand(app, &runner);
   AddTuneVoidsCommand(app, &runner);
   AddRunCommand(app, &runner);

@@ -21,7 +21,8 @@ int Subdivisions(double length_mm, double step_mm) {
 
 }  // namespace
 
-Eigen::Isometry3d TorchPose(const CellKinematics& cell, const Eigen::Vector3d& p_W, const Eigen::Vector3d& tool_dir_W) {
+Eigen::Isometry3d TorchPose(const CellKinematics& cell, const Eigen::Vector3d& p_W, const Eigen::Vector3d& tool_dir_W,
+                            double spin_rad) {
   const Eigen::Vector3d z = -tool_dir_W.normalized();
   Eigen::Vector3d radial = p_W - cell.X_WR.translation();
   radial.z() = 0.0;
@@ -33,6 +34,7 @@ Eigen::Isometry3d TorchPose(const CellKinematics& cell, const Eigen::Vector3d& p
     if (x.norm() < 1e-9) x = Eigen::Vector3d::UnitZ() - z.z() * z;
   }
   x.normalize();
+  if (spin_rad != 0.0) x = Eigen::AngleAxisd(spin_rad, z) * x;
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear().col(0) = x;
   X.linear().col(1) = z.cross(x);
@@ -57,8 +59,14 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
                                        const std::function<void(std::size_t)>& progress) {
   std::vector<CellSample> samples;
   std::vector<Eigen::Vector3d> tool_dirs_P;  // per sample: the torch axis in the part frame (unit)
+  std::vector<double> spins;                 // per sample: the torch's spin about its axis, rad
   samples.reserve(CountCellSamples(plan, options.step_mm));
   tool_dirs_P.reserve(samples.capacity());
+  spins.reserve(samples.capacity());
+  const auto layer_spin = [&](std::size_t l) {
+    return l < options.layer_spin_rad.size() ? options.layer_spin_rad[l] : 0.0;
+  };
+  double previous_spin = layer_spin(0);
   const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
   const Eigen::Isometry3d X_TF = cell.X_FT.inverse();
 
@@ -72,9 +80,12 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
 
   const PathPoint* prev = nullptr;
   int global_point = -1;
-  for (const LayerPath& layer : plan.layers) {
+  for (std::size_t l = 0; l < plan.layers.size(); ++l) {
+    const LayerPath& layer = plan.layers[l];
+    const double spin = layer_spin(l);
     // eq. 5.13 / Appendix B: the positioner turns this layer's build direction up; nearest to the last layer.
-    const PositionerAngles layer_angles = SolvePositionerAngles(cell.positioner, layer.build_dir_P, angles);
+    const PositionerAngles layer_angles =
+        SolvePositionerAnglesWithin(cell.positioner, layer.build_dir_P, angles, options.tilt_tolerance_rad);
     if (first_layer) previous_layer_angles = layer_angles;
     first_layer = false;
     // A layer entered by a weld move (a spiral: no arc-off move between layers to turn the positioner in) turns
@@ -110,7 +121,7 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
 
         if (options.positioner_per_point) {
           // The local normal (the point's tool direction) turned up, nearest to the previous sample's angles.
-          angles = SolvePositionerAngles(cell.positioner, tool_dir_P, angles);
+          angles = SolvePositionerAnglesWithin(cell.positioner, tool_dir_P, angles, options.tilt_tolerance_rad);
           s.positioner_at_limit = angles.at_limit;
         } else {
           angles = layer_angles;
@@ -129,12 +140,18 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
 
         s.q[6] = angles.tilt;
         s.q[7] = angles.rotation;
+        if (welded_entry && layer_length > 0.0) {
+          spins.push_back(previous_spin + std::min(1.0, along / layer_length) * (spin - previous_spin));
+        } else {
+          spins.push_back(reorient ? previous_spin + f * (spin - previous_spin) : spin);
+        }
         tool_dirs_P.push_back(tool_dir_P);
         samples.push_back(s);
       }
       prev = &cur;
     }
     previous_layer_angles = layer_angles;
+    previous_spin = spin;
   }
 
   // eq. 5.14-5.18: TCP point and torch axis from the (turned) part frame into the world, in parallel (each sample
@@ -148,7 +165,7 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
       const Eigen::Vector3d p_W = X_WP * s.p_P;
       const Eigen::Vector3d tool_dir_W = X_WP.linear() * tool_dirs_P[i];
       s.torch_tilt_rad = std::acos(std::clamp(tool_dir_W.z(), -1.0, 1.0));
-      s.X_WT = TorchPose(cell, p_W, tool_dir_W);
+      s.X_WT = TorchPose(cell, p_W, tool_dir_W, spins[i]);
     }
   });
 

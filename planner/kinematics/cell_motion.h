@@ -34,7 +34,10 @@ struct CellKinematics {
 
 // Torch pose in W for a TCP at p_W (mm) with the torch axis `tool_dir_W` (unit, from the TCP up the torch):
 // z_T = -tool_dir_W, and x_T points away from the arm's j1 axis (so j6 stays put as the arm swings).
-Eigen::Isometry3d TorchPose(const CellKinematics& cell, const Eigen::Vector3d& p_W, const Eigen::Vector3d& tool_dir_W);
+// `spin_rad` turns x_T (and y_T) further about z_T: the torch's rotation about its own axis, which the weld does not
+// see and the redundancy resolution chooses (twin/cell/cell_resolve.h).
+Eigen::Isometry3d TorchPose(const CellKinematics& cell, const Eigen::Vector3d& p_W, const Eigen::Vector3d& tool_dir_W,
+                            double spin_rad = 0.0);
 
 // One checked point of the motion: a path point or a point inserted between two (at most step_mm apart).
 struct CellSample {
@@ -65,6 +68,13 @@ struct MotionOptions {
   // false: positioner angles per layer from the layer's build direction; true: per sample from the point's tool
   // direction (curved layers: the positioner keeps turning the local normal up while welding).
   bool positioner_per_point = false;
+  // The process's tolerance on the torch angle to gravity: > 0 lets the positioner stop short of turning the build
+  // direction exactly up (SolvePositionerAnglesWithin), rad.
+  double tilt_tolerance_rad = 0.0;
+  // Per layer (index into plan.layers): the torch's spin about its axis, rad (empty: 0 everywhere). It changes from
+  // the last layer's value to the layer's own over the move into the layer (an arc-off move), or over the whole layer
+  // when it is entered by a weld move (a spiral), as the positioner's angles do.
+  std::vector<double> layer_spin_rad;
 };
 
 // Samples the plan's moves, solves positioner angles (per layer, from the layer's build direction, interpolated

@@ -66,4 +66,39 @@ PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen
   return out;
 }
 
+PositionerAngles SolvePositionerAnglesWithin(const Positioner& positioner, const Eigen::Vector3d& build_dir_P,
+                                             const PositionerAngles& previous, double tolerance_rad) {
+  if (tolerance_rad <= 0.0) return SolvePositionerAngles(positioner, build_dir_P, previous);
+  // Build direction in the table frame: m. After the table turns by r it is m' = Rz(r) m, whose x part
+  // m'_x = h cos(r + phi) no tilt about x can remove; the tilt t = atan2(m'_y, m'_z) brings the rest up. The torch
+  // angle left is asin(|m'_x|), within the tolerance while |cos(r + phi)| <= sin(tol) / h.
+  const Eigen::Vector3d m = (positioner.X_CP.linear() * build_dir_P).normalized();
+  const double h = std::hypot(m.x(), m.y());
+  const double phi = std::atan2(m.y(), m.x());
+  double r = previous.rotation;
+  const double limit = std::sin(tolerance_rad);
+  if (h > limit) {
+    const double alpha = std::acos(limit / h);  // allowed: r + phi in [alpha, pi - alpha] (mod pi)
+    const double x = r + phi;
+    const double xm = x - kPi * std::floor(x / kPi);  // in [0, pi)
+    if (xm < alpha) {
+      r += (alpha - xm <= xm + alpha) ? alpha - xm : -(xm + alpha);
+    } else if (xm > kPi - alpha) {
+      r += (xm - (kPi - alpha) <= (kPi + alpha) - xm) ? -(xm - (kPi - alpha)) : (kPi + alpha) - xm;
+    }
+  }
+  const Eigen::Vector3d turned = Eigen::AngleAxisd(r, Eigen::Vector3d::UnitZ()) * m;
+  const double t = std::atan2(turned.y(), turned.z());
+  if (r < positioner.rotation_lower || r > positioner.rotation_upper || t < positioner.tilt_lower ||
+      t > positioner.tilt_upper) {
+    return SolvePositionerAngles(positioner, build_dir_P, previous);
+  }
+  PositionerAngles out;
+  out.tilt = t;
+  out.rotation = r;
+  const Eigen::Vector3d up = PartPose(positioner, out.tilt, out.rotation).linear() * build_dir_P.normalized();
+  out.residual_rad = std::acos(std::clamp(up.z(), -1.0, 1.0));
+  return out;
+}
+
 }  // namespace waam::planner

@@ -44,4 +44,14 @@ struct PositionerAngles {
 PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen::Vector3d& build_dir_P,
                                        const PositionerAngles& previous);
 
+// The same with the process's tolerance on the torch angle to gravity: the positioner need not turn the build
+// direction exactly up, only to within `tolerance_rad` of it. It keeps the previous rotation while that is possible
+// (the tilt alone then brings the direction as close to up as it can) and otherwise turns the table the least angle
+// that does: near a vertical build direction the table then stands still instead of spinning round to follow its
+// small horizontal part (the rotation speed of the exact solution grows without bound there). Falls back to the exact
+// solution where the kept rotation leaves the rotation range or needs a tilt outside the tilt range. tolerance 0:
+// SolvePositionerAngles.
+PositionerAngles SolvePositionerAnglesWithin(const Positioner& positioner, const Eigen::Vector3d& build_dir_P,
+                                             const PositionerAngles& previous, double tolerance_rad);
+
 }  // namespace waam::planner

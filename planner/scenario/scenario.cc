@@ -93,6 +93,13 @@ Scenario ParsePlannerSections(YamlMap& top) {
   Scenario scenario;
   std::error_code ec;
   scenario.file = fs::absolute(top.file(), ec).lexically_normal();
+  scenario.dir = scenario.file.parent_path();
+  if (top.Has("base_dir")) {
+    const fs::path base = top.String("base_dir");
+    scenario.dir = (base.is_relative() ? scenario.dir / base : base).lexically_normal();
+    WAAM_THROW_UNLESS(fs::is_directory(scenario.dir, ec),
+                      top.Where("base_dir") << ": folder " << scenario.dir.string() << " not found");
+  }
   const YAML::Node root = top.node();
 
   scenario.name = top.String("name");
@@ -102,7 +109,7 @@ Scenario ParsePlannerSections(YamlMap& top) {
   const bool from_program = root.IsMap() && root["program"];
   WAAM_THROW_UNLESS(!from_program || !root["part"],
                     top.Where("part") << ": give either part (planned here) or program (planned elsewhere), not both");
-  if (!from_program) scenario.part = ParsePart(top.Map("part"), root["part"], scenario.file.parent_path());
+  if (!from_program) scenario.part = ParsePart(top.Map("part"), root["part"], scenario.dir);
 
   // slicing
   if (!from_program || top.Has("slicing")) {
@@ -193,7 +200,7 @@ Scenario ParsePlannerSections(YamlMap& top) {
     s.alternate_start = path.Bool("alternate_start", true);
     s.seed = static_cast<std::uint64_t>(path.Integer("seed", 0, 2147483647, 1));
     s.retract_mm = path.Number("retract_mm", 0.0, 500.0, s.retract_mm);
-    internal::ParseVoidFillingSection(path, scenario.file.parent_path(), &s.void_filling);
+    internal::ParseVoidFillingSection(path, scenario.dir, &s.void_filling);
     path.CheckNoUnknownKeys();
   }
 
@@ -220,7 +227,7 @@ Scenario ParsePlannerSections(YamlMap& top) {
                                std::pair{"width_height_model", &p.width_height_model}}) {
       if (!process.Has(key)) continue;
       fs::path file = process.String(key);
-      if (file.is_relative()) file = scenario.file.parent_path() / file;
+      if (file.is_relative()) file = scenario.dir / file;
       std::error_code ec;
       WAAM_THROW_UNLESS(fs::is_regular_file(file, ec),
                         process.Where(key) << ": model file " << file.string() << " not found");

@@ -111,6 +111,10 @@ struct ProcessSettings {
 
 struct Scenario {
   std::filesystem::path file;        // the scenario file (absolute)
+  // The folder relative file paths of the scenario are resolved against (absolute): the top-level `base_dir` (itself
+  // relative to the file's folder), or the file's folder. A scenario written elsewhere (`waam place`) keeps pointing
+  // at its original meshes and models this way.
+  std::filesystem::path dir;
   std::string name;
   PartSpec part;
   SlicingSettings slicing;

@@ -81,14 +81,18 @@ struct SampleContacts {
 constexpr std::size_t kCollisionChunk = 1024;
 
 // MuJoCo collision detection at every reachable sample of `motion`, in chunks checked in parallel (one CellState
-// each over the shared model): the contacts deeper than `tolerance_mm`, in sample order. Within a chunk a detection
+// each over the shared model): the contacts deeper than `tolerance_mm`, in sample order, and in `*min_clearance_mm`
+// the smallest clearance between cell bodies found by the detections (capped at CellModel::kClearanceMarginMm). A
+// skipped sample lies at most half the last clearance closer, so the figure overstates the true smallest clearance
+// by at most that. Within a chunk a detection
 // is skipped while no geom has moved by half the clearance found at the last one (conservative advancement: no
 // contact can have appeared); each chunk starts with a detection, so the contacts are those a detection at every
 // sample would find, whatever the chunks and the threads.
 std::vector<SampleContacts> CellContacts(const CellModel& cell, const std::vector<planner::CellSample>& motion,
-                                         double tolerance_mm) {
+                                         double tolerance_mm, double* min_clearance_mm) {
   const std::size_t chunks = (motion.size() + kCollisionChunk - 1) / kCollisionChunk;
   std::vector<std::vector<SampleContacts>> found(chunks);
+  std::vector<double> chunk_clearance(chunks, CellModel::kClearanceMarginMm);
   ParallelFor(chunks, [&](std::size_t c) {
     CellState state(cell);
     std::vector<CellContact> contacts;
@@ -100,9 +104,12 @@ std::vector<SampleContacts> CellContacts(const CellModel& cell, const std::vecto
       if (clearance > 0.0 && 2.0 * state.MotionSinceCollide() < clearance) continue;
       contacts.clear();
       state.Collide(tolerance_mm, &contacts, &clearance);
+      chunk_clearance[c] = std::min(chunk_clearance[c], clearance);
       for (CellContact& contact : contacts) found[c].push_back({i, std::move(contact)});
     }
   });
+  *min_clearance_mm = CellModel::kClearanceMarginMm;
+  for (double c : chunk_clearance) *min_clearance_mm = std::min(*min_clearance_mm, c);
   std::vector<SampleContacts> all;
   for (std::vector<SampleContacts>& chunk : found) {
     all.insert(all.end(), std::make_move_iterator(chunk.begin()), std::make_move_iterator(chunk.end()));
@@ -148,27 +155,14 @@ planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSe
   return kin;
 }
 
-CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
-                      double rapid_speed_mm_s, Progress* progress) {
-  const planner::CellKinematics kin = PartKinematics(cell, settings);
-  const double margin_rad = settings.joint_margin_deg / kDeg;
+namespace {
 
-  // The positioner solution keeps the joint margin: where it must hold a limit, it holds it `margin` inside.
-  planner::CellKinematics solve = kin;
-  if (solve.positioner.tilt_upper - solve.positioner.tilt_lower > 2.0 * margin_rad) {
-    solve.positioner.tilt_lower += margin_rad;
-    solve.positioner.tilt_upper -= margin_rad;
-  }
-  if (solve.positioner.rotation_upper - solve.positioner.rotation_lower > 2.0 * margin_rad) {
-    solve.positioner.rotation_lower += margin_rad;
-    solve.positioner.rotation_upper -= margin_rad;
-  }
-  planner::MotionOptions options;
-  options.step_mm = settings.step_mm;
-  options.rapid_speed_mm_s = rapid_speed_mm_s;
-  options.rotation_rad = settings.positioner_rotation_deg / kDeg;
-  options.positioner_per_point = settings.positioner_follow == twin::PositionerFollow::kPoint;
-
+// The check of the motion `options` give on `solve` (the kinematics the motion is planned on, the positioner's limits
+// kept `margin` inside) against the limits of `kin`.
+CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematics& kin,
+                             const planner::CellKinematics& solve, const planner::Plan& plan,
+                             const twin::CellSettings& settings, const planner::MotionOptions& options,
+                             Progress* progress) {
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";
   report.robot = cell.robot();
@@ -201,9 +195,10 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   limit_hi << kin.arm.upper, kin.positioner.tilt_upper, kin.positioner.rotation_upper;
   max_speed << kin.arm.max_speed, kin.positioner.tilt_max_speed, kin.positioner.rotation_max_speed;
   report.min_joint_margin_deg = std::numeric_limits<double>::infinity();
+  report.min_arm_margin_deg = std::numeric_limits<double>::infinity();
   report.min_j5_deg = std::numeric_limits<double>::infinity();
   int min_margin_sample = 0;
-  const std::vector<SampleContacts> cell_contacts = CellContacts(cell, motion, settings.collision_tolerance_mm);
+  const std::vector<SampleContacts> cell_contacts = CellContacts(cell, motion, settings.collision_tolerance_mm, &report.min_clearance_mm);
   std::size_t next_contact = 0;  // first entry of cell_contacts at or after the current sample
   Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
   bool have_velocity = false;
@@ -229,6 +224,7 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
     // Joint limits with margin (every axis).
     for (int j = 0; j < 8; ++j) {
       const double m_deg = std::min(s.q[j] - limit_lo[j], limit_hi[j] - s.q[j]) * kDeg;
+      if (j < 6) report.min_arm_margin_deg = std::min(report.min_arm_margin_deg, m_deg);
       if (m_deg < report.min_joint_margin_deg) {
         report.min_joint_margin_deg = m_deg;
         report.min_margin_joint = AxisName(j);
@@ -287,6 +283,7 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   report.ok = report.violations.empty();
   report.duration_s = motion.empty() ? 0.0 : motion.back().t_s;
   if (!std::isfinite(report.min_joint_margin_deg)) report.min_joint_margin_deg = 0.0;
+  if (!std::isfinite(report.min_arm_margin_deg)) report.min_arm_margin_deg = 0.0;
   if (!std::isfinite(report.min_j5_deg)) report.min_j5_deg = 0.0;
   report.worst_sample = min_margin_sample;
   int best_rank = 99;
@@ -297,6 +294,72 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
     }
   }
   if (progress) progress->Update(2 * total);
+  return report;
+}
+
+}  // namespace
+
+CheckMargins MarginsOf(const CheckReport& report) {
+  CheckMargins m;
+  m.violations = report.violations.size();
+  for (const CheckViolation& v : report.violations) m.violating_samples += static_cast<std::size_t>(v.samples);
+  m.min_arm_margin_deg = report.min_arm_margin_deg;
+  m.min_j5_deg = report.min_j5_deg;
+  m.min_clearance_mm = report.min_clearance_mm;
+  m.max_joint_speed_ratio = report.max_joint_speed_ratio;
+  return m;
+}
+
+double CheckMargin(const CheckMargins& m, const twin::CellSettings& settings) {
+  return std::min({(m.min_arm_margin_deg - settings.joint_margin_deg) / 10.0,
+                   (m.min_j5_deg - settings.singularity_deg) / 10.0,
+                   m.min_clearance_mm / CellModel::kClearanceMarginMm});
+}
+
+CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
+                      double rapid_speed_mm_s, Progress* progress) {
+  const planner::CellKinematics kin = PartKinematics(cell, settings);
+  const double margin_rad = settings.joint_margin_deg / kDeg;
+
+  // The positioner solution keeps the joint margin: where it must hold a limit, it holds it `margin` inside.
+  planner::CellKinematics solve = kin;
+  if (solve.positioner.tilt_upper - solve.positioner.tilt_lower > 2.0 * margin_rad) {
+    solve.positioner.tilt_lower += margin_rad;
+    solve.positioner.tilt_upper -= margin_rad;
+  }
+  if (solve.positioner.rotation_upper - solve.positioner.rotation_lower > 2.0 * margin_rad) {
+    solve.positioner.rotation_lower += margin_rad;
+    solve.positioner.rotation_upper -= margin_rad;
+  }
+  planner::MotionOptions options;
+  options.step_mm = settings.step_mm;
+  options.rapid_speed_mm_s = rapid_speed_mm_s;
+  options.rotation_rad = settings.positioner_rotation_deg / kDeg;
+  options.positioner_per_point = settings.positioner_follow == twin::PositionerFollow::kPoint;
+  options.tilt_tolerance_rad = settings.positioner_tilt_tolerance_deg / kDeg;
+  if (settings.resolve == CellResolve::kFixed) {
+    return CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
+  }
+
+  // optimise: the fixed rule's check, the spins per layer, the check of their motion; the better of the two is kept.
+  CheckReport fixed = CheckWithOptions(cell, kin, solve, plan, settings, options, nullptr);
+  options.layer_spin_rad = ResolveLayerSpins(cell, solve, plan, options, settings);
+  CheckReport report = CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
+  ResolveSummary summary;
+  summary.mode = CellResolve::kOptimise;
+  summary.before = MarginsOf(fixed);
+  summary.after = MarginsOf(report);
+  const bool worse = summary.after.violating_samples > summary.before.violating_samples ||
+                     (summary.after.violating_samples == summary.before.violating_samples &&
+                      CheckMargin(summary.after, settings) < CheckMargin(summary.before, settings));
+  for (double spin : options.layer_spin_rad) summary.layer_spin_deg.push_back(spin * kDeg);
+  if (worse) {
+    summary.kept_fixed = true;
+    summary.after = summary.before;
+    std::fill(summary.layer_spin_deg.begin(), summary.layer_spin_deg.end(), 0.0);
+    report = std::move(fixed);
+  }
+  report.resolve = std::move(summary);
   return report;
 }
 

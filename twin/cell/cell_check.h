@@ -10,6 +10,7 @@
 #include "planner/kinematics/cell_motion.h"
 #include "planner/path/tool_path.h"
 #include "twin/cell/cell_settings.h"
+#include "twin/cell/cell_resolve.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam {
@@ -36,6 +37,25 @@ struct CheckViolation {
   int sample = 0;          // index into CheckReport::motion where it is worst
 };
 
+// The figures of a check the redundancy resolution compares.
+struct CheckMargins {
+  std::size_t violations = 0;          // merged violations
+  std::size_t violating_samples = 0;   // summed over them
+  double min_arm_margin_deg = 0.0;
+  double min_j5_deg = 0.0;
+  double min_clearance_mm = 0.0;
+  double max_joint_speed_ratio = 0.0;
+};
+
+// What `cell.resolve` did (check.json `resolve`).
+struct ResolveSummary {
+  CellResolve mode = CellResolve::kFixed;
+  bool kept_fixed = false;            // optimise checked worse than the fixed rule, which was kept
+  CheckMargins before;                // the fixed rule's check
+  CheckMargins after;                 // the check reported (the resolved motion's, or the fixed one's when kept)
+  std::vector<double> layer_spin_deg; // per layer: the torch's spin about its axis, deg
+};
+
 // What `waam check` reports.
 struct CheckReport {
   bool ok = true;
@@ -46,16 +66,28 @@ struct CheckReport {
   std::vector<CheckViolation> violations;
   double min_joint_margin_deg = 0.0;  // smallest distance of any axis to its limit over the path, deg
   std::string min_margin_joint;
+  double min_arm_margin_deg = 0.0;     // the same over the arm's six joints only, deg (the positioner holds its
+                                       // tilt at exactly the margin where a layer needs more tilt than it has)
   double max_joint_speed_ratio = 0.0;  // largest |joint speed| / axis limit over weld moves
   std::string max_speed_joint;
   double min_j5_deg = 0.0;             // closest approach to the wrist singularity, deg
+  // Smallest distance between two cell bodies that may collide (negative: penetrating), capped at
+  // CellModel::kClearanceMarginMm; the torch against the deposited part is not included, mm.
+  double min_clearance_mm = 0.0;
   Eigen::Matrix<double, 8, 1> max_accel_deg_s2 = Eigen::Matrix<double, 8, 1>::Zero();  // per axis, weld moves
   double duration_s = 0.0;             // motion time of the whole path, s
   int positioner_limit_layers = 0;     // layers whose build direction needs more tilt than the positioner has
   double max_torch_tilt_deg = 0.0;     // largest torch angle from vertical while welding, deg
   int worst_sample = 0;                // index into `motion` of the worst sample (for the picture)
   std::vector<planner::CellSample> motion;  // the eight-axis trajectory
+  ResolveSummary resolve;                    // optimise: what was chosen, margins before and after
 };
+
+// The figures of `report` the resolution and `waam place` compare.
+CheckMargins MarginsOf(const CheckReport& report);
+// The smallest margin, each in excess of its violation threshold and scaled so that 1 is comfortable:
+// min((arm joint margin - joint_margin_deg) / 10 deg, (|J5| - singularity_deg) / 10 deg, clearance / 10 mm).
+double CheckMargin(const CheckMargins& margins, const twin::CellSettings& settings);
 
 // Names of the eight axes: j1..j6, pos_tilt, pos_rot.
 const char* AxisName(int axis);
@@ -68,7 +100,8 @@ CellModel LoadCell(const twin::CellSettings& settings);
 planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings);
 
 // Checks `plan` (part frame P) on `cell`, which LoadCell(settings) made. Arc-off moves run at `rapid_speed_mm_s`.
-// `progress` may be null.
+// With settings.resolve optimise the torch's spin per layer is chosen first (twin/cell/cell_resolve.h) and the
+// result is the better of that motion's check and the fixed rule's. `progress` may be null.
 CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress);
 

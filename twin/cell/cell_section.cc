@@ -71,6 +71,8 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
     cell.positioner_yaw_deg = pos.Number("yaw_deg", -360.0, 360.0, cell.positioner_yaw_deg);
     cell.positioner_rotation_deg = pos.Number("rotation_deg", -240.0, 240.0, cell.positioner_rotation_deg);
     cell.positioner_follow = pos.Enum("follow", cell.positioner_follow);
+    cell.positioner_tilt_tolerance_deg =
+        pos.Number("tilt_tolerance_deg", 0.0, 45.0, cell.positioner_tilt_tolerance_deg);
     pos.CheckNoUnknownKeys();
   }
   if (map.Has("torch")) {
@@ -85,8 +87,12 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
     WAAM_THROW_UNLESS(cell.torch.nozzle_length_mm + cell.torch.nozzle_radius_mm + 15.0 < length,
                       torch.Where("nozzle_length_mm") << ": the nozzle (plus its radius and 15 mm above the TCP) "
                                                          "must be shorter than the torch");
+    cell.torch.spin_range_deg = torch.Number("spin_range_deg", 0.0, 180.0, cell.torch.spin_range_deg);
+    cell.torch.spin_step_deg = torch.Number("spin_step_deg", 1.0, 90.0, cell.torch.spin_step_deg);
+    cell.torch.max_spin_deg_per_mm = torch.Number("max_spin_deg_per_mm", 0.01, 90.0, cell.torch.max_spin_deg_per_mm);
     torch.CheckNoUnknownKeys();
   }
+  cell.resolve = map.Enum("resolve", cell.resolve);
   if (map.Has("part")) {
     YamlMap part = map.Map("part");
     cell.part_offset_mm = Xyz(part, "offset_mm", cell.part_offset_mm);

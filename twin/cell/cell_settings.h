@@ -19,6 +19,13 @@ constexpr std::array<EnumName<PositionerFollow>, 2> EnumNames(PositionerFollow) 
 }
 WAAM_ENUM_JSON(PositionerFollow)
 
+// cell.resolve: how the axes the weld leaves free (the torch's spin about its axis) are chosen along the path.
+enum class CellResolve { kFixed, kOptimise };
+constexpr std::array<EnumName<CellResolve>, 2> EnumNames(CellResolve) {
+  return {{{CellResolve::kFixed, "fixed"}, {CellResolve::kOptimise, "optimise"}}};
+}
+WAAM_ENUM_JSON(CellResolve)
+
 // cell.preset: a complete cell (arm, torch, positioner, plate, clamps, placement); see twin/cell/cell_presets.h.
 enum class CellPreset { kFanucArcMate100ic, kAbbIrb1600, kKukaKr16, kYaskawaMh12 };
 constexpr std::array<EnumName<CellPreset>, 4> EnumNames(CellPreset) {
@@ -34,6 +41,11 @@ struct TorchSettings {
   std::array<double, 3> tcp_mm = {0.0, 0.0, 400.0};  // TCP in the flange frame (ROS-Industrial tool0: z out), mm
   double nozzle_radius_mm = 11.0;                     // gas nozzle radius, mm
   double nozzle_length_mm = 74.0;                     // nozzle length (its end 15 mm above the TCP), mm
+  // How far the redundancy resolution may turn the torch about its own axis from the default (x away from J1), and
+  // the spacing of the values it tries, deg. The weld does not see the turn; the arm's wrist does.
+  double spin_range_deg = 90.0;
+  double spin_step_deg = 15.0;
+  double max_spin_deg_per_mm = 1.0;  // fastest change of the spin along a weld, deg per mm of path
 };
 
 struct CellSettings {
@@ -56,6 +68,12 @@ struct CellSettings {
   double positioner_rotation_deg = 0.0;  // table rotation used while the build direction is vertical, deg
   // layer: angles per layer from its build direction; point: per point from the tool direction (curved layers)
   PositionerFollow positioner_follow = PositionerFollow::kLayer;
+  // cell.positioner.tilt_tolerance_deg: the torch angle to gravity the process allows; > 0 lets the positioner stop
+  // short of turning the build direction exactly up where that saves table rotation (0: exactly up), deg.
+  double positioner_tilt_tolerance_deg = 0.0;
+  // cell.resolve: fixed = the torch's x away from J1 everywhere; optimise = the spin per layer that keeps joint and
+  // singularity margins and clearances largest (twin/cell/cell_resolve.h).
+  CellResolve resolve = CellResolve::kFixed;
   std::array<double, 3> part_offset_mm = {0.0, 0.0, 0.0};  // part frame P relative to the plate's top centre, mm
   double part_yaw_deg = 0.0;                               // turn of the part on the plate, deg
   double joint_margin_deg = 2.0;         // a joint closer than this to its limit is a violation, deg

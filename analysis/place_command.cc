@@ -1,0 +1,311 @@
+// `waam place`: a grid search over the cell layout, coarse pass first, the whole path for the finalists.
+#include "analysis/place_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <numeric>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "analysis/import_command.h"
+#include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/core/parallel.h"
+#include "models/core/progress.h"
+#include "models/core/run_outputs.h"
+#include "planner/scenario/yaml_fields.h"
+#include "twin/cell/mujoco_cell.h"
+
+namespace waam::analysis {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<double> RangeValues(const std::optional<PlaceRange>& range, double current) {
+  if (!range) return {current};
+  if (range->step <= 0.0) return {range->min};
+  std::vector<double> values;
+  const auto n = static_cast<std::size_t>(std::floor((range->max - range->min) / range->step + 1e-9)) + 1;
+  for (std::size_t i = 0; i < n; ++i) values.push_back(range->min + static_cast<double>(i) * range->step);
+  return values;
+}
+
+// The plan with `keep` layers spread evenly over it (first and last included), each entered by an arc-off move:
+// the coarse pass's path. Its samples are a subset of the whole path's, its violations a subset of the whole path's
+// apart from the part collisions of the layers left out.
+planner::Plan CoarsePlan(const planner::Plan& plan, int keep) {
+  const std::size_t n = plan.layers.size();
+  if (n <= static_cast<std::size_t>(keep)) return plan;
+  planner::Plan coarse;
+  coarse.name = plan.name;
+  std::size_t last = n;
+  for (int i = 0; i < keep; ++i) {
+    const auto index = static_cast<std::size_t>(std::llround(static_cast<double>(i) * (n - 1) / (keep - 1)));
+    if (index == last) continue;
+    last = index;
+    coarse.layers.push_back(plan.layers[index]);
+    if (!coarse.layers.back().points.empty()) coarse.layers.back().points.front().weld = false;
+  }
+  return coarse;
+}
+
+std::string FormatValue(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// The key of the cell model a layout needs: the arm base and the positioner's yaw move bodies of the model.
+std::array<double, 3> ModelKey(const Layout& layout) {
+  return {layout[kPositionerYaw], layout[kRobotX], layout[kRobotY]};
+}
+
+nlohmann::json LayoutJson(const Layout& layout) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int v = 0; v < kPlaceVars; ++v) j[PlaceVariableName(v)] = layout[v];
+  return j;
+}
+
+nlohmann::json ScoreJson(const LayoutScore& s) {
+  nlohmann::json j = {{"pass", s.full ? "full" : "coarse"},
+                      {"violation_count", s.violations},
+                      {"violating_samples", s.violating_samples},
+                      {"margin", s.margin},
+                      {"min_joint_margin_deg", s.min_joint_margin_deg},
+                      {"min_j5_deg", s.min_j5_deg},
+                      {"min_clearance_mm", s.min_clearance_mm}};
+  if (!s.worst.empty()) {
+    j["worst_violation"] = {{"what", s.worst}, {s.worst_unit, s.worst_value}, {"layer", s.worst_layer}};
+  }
+  return j;
+}
+
+}  // namespace
+
+const char* PlaceVariableName(int variable) {
+  static const char* const kNames[kPlaceVars] = {"part_x_mm",          "part_y_mm",          "part_z_mm",
+                                                 "part_yaw_deg",       "table_rotation_deg", "positioner_yaw_deg",
+                                                 "robot_x_mm",         "robot_y_mm"};
+  return (variable >= 0 && variable < kPlaceVars) ? kNames[variable] : "?";
+}
+
+twin::CellSettings ApplyLayout(const twin::CellSettings& cell, const Layout& layout) {
+  twin::CellSettings out = cell;
+  out.part_offset_mm = {layout[kPartX], layout[kPartY], layout[kPartZ]};
+  out.part_yaw_deg = layout[kPartYaw];
+  out.positioner_rotation_deg = layout[kTableRotation];
+  out.positioner_yaw_deg = layout[kPositionerYaw];
+  out.robot_base_mm[0] = layout[kRobotX];
+  out.robot_base_mm[1] = layout[kRobotY];
+  return out;
+}
+
+std::vector<std::string> LayoutOverrides(const Layout& layout, const Layout& current, double robot_z_mm) {
+  std::vector<std::string> out;
+  const auto differs = [&](std::initializer_list<int> vars) {
+    for (int v : vars) {
+      if (layout[v] != current[v]) return true;
+    }
+    return false;
+  };
+  if (differs({kPartX, kPartY, kPartZ})) {
+    out.push_back("cell.part.offset_mm=[" + FormatValue(layout[kPartX]) + ", " + FormatValue(layout[kPartY]) + ", " +
+                  FormatValue(layout[kPartZ]) + "]");
+  }
+  if (differs({kPartYaw})) out.push_back("cell.part.yaw_deg=" + FormatValue(layout[kPartYaw]));
+  if (differs({kTableRotation})) out.push_back("cell.positioner.rotation_deg=" + FormatValue(layout[kTableRotation]));
+  if (differs({kPositionerYaw})) out.push_back("cell.positioner.yaw_deg=" + FormatValue(layout[kPositionerYaw]));
+  if (differs({kRobotX, kRobotY})) {
+    out.push_back("cell.robot.base_mm=[" + FormatValue(layout[kRobotX]) + ", " + FormatValue(layout[kRobotY]) + ", " +
+                  FormatValue(robot_z_mm) + "]");
+  }
+  return out;
+}
+
+LayoutScore ScoreLayout(const twin::CheckReport& report, const twin::CellSettings& cell, bool full) {
+  LayoutScore s;
+  s.full = full;
+  s.violations = report.violations.size();
+  for (const twin::CheckViolation& v : report.violations) s.violating_samples += static_cast<std::size_t>(v.samples);
+  for (const twin::CheckViolation& v : report.violations) {
+    if (v.sample != report.worst_sample) continue;
+    s.worst = v.kind + " " + v.joint + v.body1 + (v.body2.empty() ? "" : "/") + v.body2;
+    while (!s.worst.empty() && s.worst.back() == ' ') s.worst.pop_back();
+    s.worst_unit = v.unit;
+    s.worst_value = v.value;
+    s.worst_layer = v.layer;
+    break;
+  }
+  s.min_joint_margin_deg = report.min_arm_margin_deg;
+  s.min_j5_deg = report.min_j5_deg;
+  s.min_clearance_mm = report.min_clearance_mm;
+  s.margin = twin::CheckMargin(twin::MarginsOf(report), cell);
+  return s;
+}
+
+bool BetterLayout(const LayoutScore& a, const LayoutScore& b) {
+  if (a.violating_samples != b.violating_samples) return a.violating_samples < b.violating_samples;
+  return a.margin > b.margin;
+}
+
+void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path);  // place_picture.cc
+
+PlaceResult RunPlace(const PlaceOptions& options) {
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
+  EnsureOutputDirectory(options.out_dir);
+  planner::PlanResult planned;
+  {
+    Progress progress("plan", 0, "layers", options.quiet);
+    planned = PlanScenarioOrProgram(scenario, &progress);
+    progress.Finish();
+  }
+  const planner::Plan& plan = planned.plan;
+  const PlaceSettings& place = scenario.place;
+  const twin::CellSettings& cell = scenario.cell;
+  const double rapid_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
+
+  PlaceResult result;
+  const Layout current = {cell.part_offset_mm[0], cell.part_offset_mm[1], cell.part_offset_mm[2], cell.part_yaw_deg,
+                          cell.positioner_rotation_deg, cell.positioner_yaw_deg, cell.robot_base_mm[0],
+                          cell.robot_base_mm[1]};
+  const std::optional<PlaceRange>* ranges[kPlaceVars] = {
+      &place.part_x_mm,          &place.part_y_mm,          &place.part_z_mm,  &place.part_yaw_deg,
+      &place.table_rotation_deg, &place.positioner_yaw_deg, &place.robot_x_mm, &place.robot_y_mm};
+  for (int v = 0; v < kPlaceVars; ++v) result.values.push_back(RangeValues(*ranges[v], current[v]));
+  // The grid, the last variable varying fastest.
+  std::size_t count = 1;
+  for (const std::vector<double>& values : result.values) count *= values.size();
+  result.layouts.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t rest = i;
+    for (int v = kPlaceVars - 1; v >= 0; --v) {
+      const std::size_t n = result.values[v].size();
+      result.layouts[i][v] = result.values[v][rest % n];
+      rest /= n;
+    }
+  }
+
+  // One cell model per arm base and positioner yaw (MuJoCo compiles a model per placement), loaded in order.
+  std::map<std::array<double, 3>, twin::CellModel> models;
+  for (const Layout& layout : result.layouts) {
+    if (!models.count(ModelKey(layout))) models.emplace(ModelKey(layout), twin::LoadCell(ApplyLayout(cell, layout)));
+  }
+
+  // Coarse pass: a subset of the layers at a coarser step, every layout, in parallel over layouts.
+  const planner::Plan coarse_plan = CoarsePlan(plan, place.coarse_layers);
+  result.coarse.resize(count);
+  {
+    const auto start = std::chrono::steady_clock::now();
+    Progress progress("place", count, "layouts", options.quiet);
+    std::mutex mutex;
+    std::size_t done = 0;
+    ParallelFor(count, [&](std::size_t i) {
+      twin::CellSettings settings = ApplyLayout(cell, result.layouts[i]);
+      settings.step_mm = std::max(settings.step_mm, place.coarse_step_mm);
+      const twin::CheckReport report =
+          twin::CheckPlan(models.at(ModelKey(result.layouts[i])), coarse_plan, settings, rapid_mm_s, nullptr);
+      result.coarse[i] = ScoreLayout(report, settings, false);
+      const std::lock_guard<std::mutex> lock(mutex);
+      progress.Update(++done);
+    });
+    progress.Finish();
+    result.coarse_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  // Full checks: the best of the coarse pass, `finalists` at a time, until one passes or the coarse pass's passing
+  // layouts are used up (at most 4 batches).
+  std::vector<int> order(count);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return BetterLayout(result.coarse[a], result.coarse[b]); });
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t cap = std::min<std::size_t>(count, 4 * static_cast<std::size_t>(place.finalists));
+  Progress progress("full", 0, "layouts", options.quiet);
+  for (std::size_t next = 0; next < cap && !result.feasible;) {
+    const std::size_t batch = std::min<std::size_t>(place.finalists, cap - next);
+    // Past the first batch only layouts that passed the coarse pass are worth the whole path.
+    if (next > 0 && result.coarse[order[next]].violating_samples > 0) break;
+    std::vector<LayoutScore> scores(batch);
+    ParallelFor(batch, [&](std::size_t k) {
+      const Layout& layout = result.layouts[order[next + k]];
+      const twin::CellSettings settings = ApplyLayout(cell, layout);
+      const twin::CheckReport report = twin::CheckPlan(models.at(ModelKey(layout)), plan, settings, rapid_mm_s, nullptr);
+      scores[k] = ScoreLayout(report, settings, true);
+    });
+    for (std::size_t k = 0; k < batch; ++k) {
+      result.full_index.push_back(order[next + k]);
+      result.full.push_back(scores[k]);
+      if (result.best < 0 || BetterLayout(scores[k], result.best_score)) {
+        result.best = order[next + k];
+        result.best_score = scores[k];
+      }
+      result.feasible = result.feasible || scores[k].violating_samples == 0;
+    }
+    next += batch;
+    progress.SetTotal(cap);
+    progress.Update(next);
+  }
+  progress.Finish();
+  result.full_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // Outputs: the scenario with the best layout, the picture, place.json last.
+  RunOutputs outputs(options.out_dir / "place.json");
+  const Layout& best = result.layouts[result.best];
+  std::vector<std::string> overrides = options.overrides;
+  const std::vector<std::string> best_overrides = LayoutOverrides(best, current, cell.robot_base_mm[2]);
+  overrides.insert(overrides.end(), best_overrides.begin(), best_overrides.end());
+  if (result.feasible) overrides.push_back("run.expected_exit_code=0");
+  YAML::Node document = planner::internal::LoadScenarioTop(options.scenario, overrides).node();
+  std::error_code ec;
+  const fs::path out_abs = fs::absolute(options.out_dir, ec).lexically_normal();
+  const fs::path base_dir = scenario.dir.lexically_relative(out_abs);
+  document["base_dir"] = base_dir.empty() ? scenario.dir.string() : base_dir.string();
+  YAML::Emitter emitter;
+  emitter << document;
+  std::ostringstream text;
+  text << "# " << (result.feasible ? "The layout waam place found" : "The nearest miss waam place found (it does not pass)")
+       << " for " << options.scenario.string() << "; place.json has every layout tried.\n"
+       << "# base_dir: relative paths below are resolved against the original scenario's folder.\n"
+       << emitter.c_str() << "\n";
+  WriteFileAtomic(outputs.Add(options.out_dir / "scenario.yaml"), text.str());
+  if (options.images) WritePlaceMarginPng(result, outputs.Add(options.out_dir / "place_margin.png"));
+
+  nlohmann::json variables = nlohmann::json::array();
+  for (int v = 0; v < kPlaceVars; ++v) variables.push_back({{"name", PlaceVariableName(v)}, {"values", result.values[v]}});
+  nlohmann::json tried = nlohmann::json::array();
+  std::vector<int> full_of(count, -1);
+  for (std::size_t k = 0; k < result.full_index.size(); ++k) full_of[result.full_index[k]] = static_cast<int>(k);
+  for (std::size_t i = 0; i < count; ++i) {
+    nlohmann::json entry = {{"layout", LayoutJson(result.layouts[i])}, {"coarse", ScoreJson(result.coarse[i])}};
+    if (full_of[i] >= 0) entry["full"] = ScoreJson(result.full[full_of[i]]);
+    tried.push_back(entry);
+  }
+  nlohmann::json best_json = ScoreJson(result.best_score);
+  best_json["layout"] = LayoutJson(best);
+  best_json["overrides"] = best_overrides;
+  const nlohmann::json document_json = {
+      {"scenario", scenario.name},
+      {"feasible", result.feasible},
+      {"best", best_json},
+      {"scenario_file", "scenario.yaml"},
+      {"variables", variables},
+      {"layouts", count},
+      {"coarse_layers", coarse_plan.layers.size()},
+      {"coarse_step_mm", std::max(cell.step_mm, place.coarse_step_mm)},
+      {"full_checks", result.full.size()},
+      {"tried", tried},
+      {"timing", {{"coarse_s", result.coarse_s},
+                  {"full_s", result.full_s},
+                  {"coarse_layouts_per_s", result.coarse_s > 0.0 ? count / result.coarse_s : 0.0}}},
+  };
+  CheckInterrupt();
+  WriteFileAtomic(options.out_dir / "place.json", document_json.dump(2) + "\n");
+  outputs.Complete();
+  return result;
+}
+
+}  // namespace waam::analysis
