@@ -84,6 +84,7 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
         {"robot_yaw_deg", c.robot_yaw_deg},
         {"positioner_base_mm", c.positioner_base_mm},
         {"positioner_yaw_deg", c.positioner_yaw_deg},
+        {"positioner_type", report.positioner_type},
         {"positioner_follow", c.positioner_follow},
         {"part_offset_mm", c.part_offset_mm},
         {"part_yaw_deg", c.part_yaw_deg},
