@@ -111,6 +111,7 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
         {"robot_yaw_deg", c.robot_yaw_deg},
         {"positioner_base_mm", c.positioner_base_mm},
         {"positioner_yaw_deg", c.positioner_yaw_deg},
+        {"positioner_type", report.positioner_type},
         {"positioner_follow", c.positioner_follow},
         {"positioner_tilt_tolerance_deg", c.positioner_tilt_tolerance_deg},
         {"part_offset_mm", c.part_offset_mm},

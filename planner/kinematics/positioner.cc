@@ -32,6 +32,15 @@ PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen
   const Eigen::Vector3d m = (positioner.X_CP.linear() * build_dir_P).normalized();
   const double horizontal = std::hypot(m.x(), m.y());
   PositionerAngles out;
+  if (positioner.type != PositionerType::kTiltRotate) {
+    // A turntable only turns the build direction about the vertical, which leaves its angle to vertical: the torch
+    // follows the tool direction (tilted by the residual) and the table keeps its rotation. No positioner: nothing.
+    out.rotation = positioner.type == PositionerType::kTurntable ? previous.rotation : 0.0;
+    const Eigen::Vector3d turned = PartPose(positioner, 0.0, out.rotation).linear() * build_dir_P.normalized();
+    out.residual_rad = std::acos(std::clamp(turned.z(), -1.0, 1.0));
+    out.at_limit = out.residual_rad > 1e-6;
+    return out;
+  }
   if (horizontal < 1e-12) {
     out.tilt = m.z() > 0.0 ? 0.0 : kPi;  // upside down needs a half turn of the tilt axis
     out.rotation = previous.rotation;

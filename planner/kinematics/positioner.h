@@ -1,20 +1,43 @@
-// Two-axis tilt/rotate positioner: the part's pose for given axis angles, and the angles that turn a build
-// direction against gravity (dissertation eq. 5.9-5.13 and Appendix B; Lim & Soh eq. 1-6).
+// The positioner (none, a one-axis turntable or a two-axis tilt/rotate table): the part's pose for given axis angles,
+// and the angles that turn a build direction against gravity (dissertation eq. 5.9-5.13 and Appendix B; Lim & Soh
+// eq. 1-6).
 #pragma once
+
+#include <array>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "models/core/enum_names.h"
 #include "models/core/numbers.h"
 
 namespace waam::planner {
+
+// cell.positioner.type: which of the two axes (tilt, rotation) the cell has. An axis the cell lacks stays at 0.
+enum class PositionerType { kNone, kTurntable, kTiltRotate };
+constexpr std::array<EnumName<PositionerType>, 3> EnumNames(PositionerType) {
+  return {{{PositionerType::kNone, "none"},
+           {PositionerType::kTurntable, "turntable"},
+           {PositionerType::kTiltRotate, "tilt_rotate"}}};
+}
+WAAM_ENUM_JSON(PositionerType)
+
+// True when a cell with a positioner of `type` has the axis (6: tilt, 7: rotation; the arm's 0..5 always).
+constexpr bool HasAxis(PositionerType type, int axis) {
+  if (axis == 6) return type == PositionerType::kTiltRotate;
+  if (axis == 7) return type != PositionerType::kNone;
+  return axis >= 0 && axis < 6;
+}
 
 // Kinematic chain of the positioner, from its base frame B (on the floor, z up) to the part frame P:
 //   X_BP = X_BA * Rx(tilt) * X_AC * Rz(rotation) * X_CP
 // where A is the tilt axis frame (tilt about its x) and C the rotating table frame (rotation about its z).
 // X_BA and X_AC must be pure translations; X_CP is the part placement on the table (the substrate top, z = 0 of
-// P, plus the part's offset and turn on the plate). Lengths in mm, angles in rad.
+// P, plus the part's offset and turn on the plate). Lengths in mm, angles in rad. A turntable is the same chain with
+// the tilt held at 0 (A is then a fixed frame on the pedestal); no positioner holds both axes at 0 (the plate on a
+// fixed table).
 struct Positioner {
+  PositionerType type = PositionerType::kTiltRotate;
   Eigen::Vector3d p_BA = Eigen::Vector3d(0.0, 0.0, 700.0);   // tilt axis in B, mm
   Eigen::Vector3d p_AC = Eigen::Vector3d(0.0, 0.0, 60.0);    // table (rotation) frame in A at tilt 0, mm
   Eigen::Isometry3d X_CP = Eigen::Isometry3d::Identity();   // part frame on the table, mm
@@ -40,7 +63,9 @@ struct PositionerAngles {
 // Angles (rad) that turn `build_dir_P` (unit, part frame) to +z of B, choosing among the two solutions and the 2 pi
 // copies of the rotation the one nearest `previous` (tilt, rotation). When the build direction is already vertical
 // the rotation keeps previous.rotation. Past the tilt range the tilt stays at its limit (the torch then tilts by
-// residual_rad to keep the neutral welding position, dissertation section 5.3).
+// residual_rad to keep the neutral welding position, dissertation section 5.3). A turntable keeps the tilt at 0 and
+// the rotation at previous.rotation (turning a tilted build direction about the vertical leaves its angle to
+// vertical as it is); its residual is that angle and at_limit says it is not 0. No positioner keeps both at 0.
 PositionerAngles SolvePositionerAngles(const Positioner& positioner, const Eigen::Vector3d& build_dir_P,
                                        const PositionerAngles& previous);
 

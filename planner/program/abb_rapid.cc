@@ -66,9 +66,18 @@ std::string ProgramToAbbRapid(const RobotProgram& program, const AbbRapidOptions
                      Eigen::AngleAxisd(p.c_deg * kPi / 180.0, Eigen::Vector3d::UnitX()))
                         .toRotationMatrix();
     const int cfx = ((p.branch & 1) ? 4 : 0) + ((p.branch & 2) ? 2 : 0) + ((p.branch & 4) ? 1 : 0);
-    std::snprintf(buf, sizeof(buf), "  CONST robtarget pWAAM%zu:=%s,[%d,%d,%d,%d],[%.3f,%.3f,9E+09,9E+09,9E+09,9E+09]];\n",
+    // extjoint: eax_a, eax_b the positioner's tilt and rotation, a turntable's eax_a its rotation; 9E+09 unused.
+    char eax[96];
+    if (program.positioner == PositionerType::kTiltRotate) {
+      std::snprintf(eax, sizeof(eax), "%.3f,%.3f", ProgramValue(p.tilt_deg), ProgramValue(p.rotation_deg));
+    } else if (program.positioner == PositionerType::kTurntable) {
+      std::snprintf(eax, sizeof(eax), "%.3f,9E+09", ProgramValue(p.rotation_deg));
+    } else {
+      std::snprintf(eax, sizeof(eax), "9E+09,9E+09");
+    }
+    std::snprintf(buf, sizeof(buf), "  CONST robtarget pWAAM%zu:=%s,[%d,%d,%d,%d],[%s,9E+09,9E+09,9E+09,9E+09]];\n",
                   i + 1, RapidPose(X_UT).substr(0, RapidPose(X_UT).size() - 1).c_str(), Quadrant(p.q[0]),
-                  Quadrant(p.q[3]), Quadrant(p.q[5]), cfx, ProgramValue(p.tilt_deg), ProgramValue(p.rotation_deg));
+                  Quadrant(p.q[3]), Quadrant(p.q[5]), cfx, eax);
     data += buf;
     const bool next_weld = i + 1 < program.points.size() && program.points[i + 1].weld;
     const std::string target = "pWAAM" + std::to_string(i + 1);
@@ -88,7 +97,11 @@ std::string ProgramToAbbRapid(const RobotProgram& program, const AbbRapidOptions
     }
   }
   std::string out = "MODULE " + name + "\n";
-  out += "  ! waam-twin: positions in wobjWAAM; external axes eax_a = positioner tilt, eax_b = rotation (deg)\n";
+  out += program.positioner == PositionerType::kTiltRotate
+             ? "  ! waam-twin: positions in wobjWAAM; external axes eax_a = positioner tilt, eax_b = rotation (deg)\n"
+         : program.positioner == PositionerType::kTurntable
+             ? "  ! waam-twin: positions in wobjWAAM; external axis eax_a = turntable rotation (deg)\n"
+             : "  ! waam-twin: positions in wobjWAAM; no external axes\n";
   out += data;
   out += "\n  PROC main()\n";
   out += "    ConfL\\Off;\n";

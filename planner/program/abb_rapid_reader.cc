@@ -352,10 +352,11 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file) {
       m.has_joints = true;
       for (int k = 0; k < 6; ++k) m.q[k] = j[static_cast<std::size_t>(k)] * kPi / 180.0;
       const std::vector<double> e = RapidNumbers(target->items[1], 6, file, st.line, "extax");
-      if (e[0] < 8e9 && e[1] < 8e9) {
+      if (e[0] < 8e9) {  // 9E+09: an axis not in use
         m.has_positioner = true;
+        m.positioner_numbered = true;
         m.tilt_rad = e[0] * kPi / 180.0;
-        m.rotation_rad = e[1] * kPi / 180.0;
+        m.rotation_rad = e[1] < 8e9 ? e[1] * kPi / 180.0 : 0.0;
       }
     } else {
       WAAM_THROW_UNLESS(target->kind == RapidValue::Kind::kList && target->items.size() == 4,
@@ -366,10 +367,11 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file) {
       const int cfx = (cf[3] >= 0.0 && cf[3] <= 7.0) ? static_cast<int>(cf[3]) : -1;
       if (cfx >= 0) m.config = ((cfx & 4) ? 1 : 0) | ((cfx & 2) ? 2 : 0) | ((cfx & 1) ? 4 : 0);
       const std::vector<double> e = RapidNumbers(target->items[3], 6, file, st.line, "extax");
-      if (e[0] < 8e9 && e[1] < 8e9) {
+      if (e[0] < 8e9) {  // 9E+09: an axis not in use
         m.has_positioner = true;
+        m.positioner_numbered = true;
         m.tilt_rad = e[0] * kPi / 180.0;
-        m.rotation_rad = e[1] * kPi / 180.0;
+        m.rotation_rad = e[1] < 8e9 ? e[1] * kPi / 180.0 : 0.0;
       }
       // The work object: uframe * oframe in the robot's base frame (wobj0 = the base frame).
       Eigen::Isometry3d X_RU = Eigen::Isometry3d::Identity();

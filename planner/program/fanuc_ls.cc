@@ -53,7 +53,9 @@ std::string ProgramToFanucLs(const RobotProgram& program, const FanucLsOptions& 
     } else if (p.weld) {
       // Weld speeds in cm/min, the welding unit of the controller (400 mm/min = 40cm/min, no rounding to mm/s).
       const int speed = std::max(1, static_cast<int>(std::lround(p.speed_mm_s * 6.0)));
-      std::snprintf(buf, sizeof(buf), "L P[%zu] %dcm/min CNT100%s", i + 1, speed, options.coordinated ? " COORD" : "");
+      // COORD needs a positioner group to lead.
+      const bool coord = options.coordinated && program.positioner != PositionerType::kNone;
+      std::snprintf(buf, sizeof(buf), "L P[%zu] %dcm/min CNT100%s", i + 1, speed, coord ? " COORD" : "");
     } else {
       const int speed = std::max(1, static_cast<int>(std::lround(p.speed_mm_s)));
       std::snprintf(buf, sizeof(buf), "L P[%zu] %dmm/sec FINE", i + 1, speed);
@@ -76,8 +78,16 @@ std::string ProgramToFanucLs(const RobotProgram& program, const FanucLsOptions& 
                   ProgramValue(p.tcp_mm.x()), ProgramValue(p.tcp_mm.y()), ProgramValue(p.tcp_mm.z()),
                   ProgramValue(p.c_deg), ProgramValue(p.b_deg), ProgramValue(p.a_deg));
     pos += buf;
-    std::snprintf(buf, sizeof(buf), "   GP2:\n\tUF : %d, UT : %d,\n\tJ1 = %10.3f deg,\tJ2 = %10.3f deg\n};\n",
-                  options.user_frame, options.tool_frame, ProgramValue(p.tilt_deg), ProgramValue(p.rotation_deg));
+    // Motion group 2 is the positioner: J1 tilt and J2 rotation, a turntable's J1 its rotation, none without one.
+    if (program.positioner == PositionerType::kTiltRotate) {
+      std::snprintf(buf, sizeof(buf), "   GP2:\n\tUF : %d, UT : %d,\n\tJ1 = %10.3f deg,\tJ2 = %10.3f deg\n};\n",
+                    options.user_frame, options.tool_frame, ProgramValue(p.tilt_deg), ProgramValue(p.rotation_deg));
+    } else if (program.positioner == PositionerType::kTurntable) {
+      std::snprintf(buf, sizeof(buf), "   GP2:\n\tUF : %d, UT : %d,\n\tJ1 = %10.3f deg\n};\n", options.user_frame,
+                    options.tool_frame, ProgramValue(p.rotation_deg));
+    } else {
+      std::snprintf(buf, sizeof(buf), "};\n");
+    }
     pos += buf;
   }
 
@@ -87,7 +97,8 @@ std::string ProgramToFanucLs(const RobotProgram& program, const FanucLsOptions& 
   out +=
       "PROTECT\t\t= READ_WRITE;\nTCD:  STACK_SIZE\t= 0,\n      TASK_PRIORITY\t= 50,\n      TIME_SLICE\t= 0,\n"
       "      BUSY_LAMP_OFF\t= 0,\n      ABORT_REQUEST\t= 0,\n      PAUSE_REQUEST\t= 0;\n"
-      "DEFAULT_GROUP\t= 1,1,*,*,*;\nCONTROL_CODE\t= 00000000 00000000;\n/MN\n";
+      "DEFAULT_GROUP\t= " + std::string(program.positioner == PositionerType::kNone ? "1,*" : "1,1") +
+      ",*,*,*;\nCONTROL_CODE\t= 00000000 00000000;\n/MN\n";
   out += mn;
   out += "/POS\n";
   out += pos;

@@ -363,8 +363,10 @@ ParsedProgram ReadFanucLs(std::string_view text, const std::string& file) {
       for (int j = 0; j < 6; ++j) m.q[j] = pos.j[j] * kPi / 180.0;
     }
     if (pos.gp2) {
-      WAAM_THROW_UNLESS(pos.gp2_seen == 3, file << ":" << pos.line << ": P[" << target << "] GP2 needs J1 and J2");
+      // J1 and J2 of a two-axis positioner, or J1 alone of a turntable.
+      WAAM_THROW_UNLESS(pos.gp2_seen & 1, file << ":" << pos.line << ": P[" << target << "] GP2 needs J1");
       m.has_positioner = true;
+      m.positioner_numbered = true;
       m.tilt_rad = pos.gp2_j[0] * kPi / 180.0;
       m.rotation_rad = pos.gp2_j[1] * kPi / 180.0;
     }

@@ -8,8 +8,12 @@ namespace waam::planner {
 
 std::string ProgramToGcode(const RobotProgram& program, const GcodeOptions& options) {
   std::string out = "; " + program.name + " (waam-twin)\n";
-  out += "; X Y Z: TCP in the part frame (mm); A: positioner tilt, C: positioner rotation (deg); A3 B3 C3: tool "
-         "direction\n";
+  // The positioner words the cell has: A (tilt) and C (rotation), C alone for a turntable, none without one.
+  const bool tilt = HasAxis(program.positioner, 6), rotation = HasAxis(program.positioner, 7);
+  out += std::string("; X Y Z: TCP in the part frame (mm); ") +
+         (tilt ? "A: positioner tilt, C: positioner rotation (deg); "
+               : (rotation ? "C: turntable rotation (deg); " : "")) +
+         "A3 B3 C3: tool direction\n";
   char buf[320];
   std::snprintf(buf, sizeof(buf), "; arc on M%d, arc off M%d\nG21 G90\n", options.arc_on_m, options.arc_off_m);
   out += buf;
@@ -27,10 +31,17 @@ std::string ProgramToGcode(const RobotProgram& program, const GcodeOptions& opti
       out += buf;
       arc_on = false;
     }
-    std::snprintf(buf, sizeof(buf), "G1 X%.3f Y%.3f Z%.3f A%.3f C%.3f", ProgramValue(p.p_P.x()),
-                  ProgramValue(p.p_P.y()), ProgramValue(p.p_P.z()), ProgramValue(p.tilt_deg),
-                  ProgramValue(p.rotation_deg));
+    std::snprintf(buf, sizeof(buf), "G1 X%.3f Y%.3f Z%.3f", ProgramValue(p.p_P.x()), ProgramValue(p.p_P.y()),
+                  ProgramValue(p.p_P.z()));
     out += buf;
+    if (tilt) {
+      std::snprintf(buf, sizeof(buf), " A%.3f", ProgramValue(p.tilt_deg));
+      out += buf;
+    }
+    if (rotation) {
+      std::snprintf(buf, sizeof(buf), " C%.3f", ProgramValue(p.rotation_deg));
+      out += buf;
+    }
     const Eigen::Vector3d d = p.tool_dir_P.normalized();
     if ((d - last_dir).norm() > 1e-9) {
       last_dir = d;

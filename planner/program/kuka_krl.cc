@@ -28,7 +28,9 @@ KukaKrlFiles ProgramToKukaKrl(const RobotProgram& program, const KukaKrlOptions&
   KukaKrlFiles out;
   char buf[512];
   out.src = "&ACCESS RVP\n&REL 1\nDEF " + name + "( )\n;FOLD INI\n  BAS (#INITMOV,0 )\n;ENDFOLD (INI)\n";
-  out.src += "; waam-twin: positions in $BASE, E1 = positioner tilt, E2 = rotation (deg)\n";
+  out.src += program.positioner == PositionerType::kTiltRotate ? "; waam-twin: positions in $BASE, E1 = positioner tilt, E2 = rotation (deg)\n"
+             : program.positioner == PositionerType::kTurntable   ? "; waam-twin: positions in $BASE, E1 = turntable rotation (deg)\n"
+                                                                  : "; waam-twin: positions in $BASE, no external axes\n";
   out.src += "$BASE=" + KrlFrame(options.X_RU) + "\n$APO.CDIS=1.0\n";
   out.dat = "&ACCESS RVP\n&REL 1\nDEFDAT " + name + "\n";
   bool arc_on = false;
@@ -47,12 +49,17 @@ KukaKrlFiles ProgramToKukaKrl(const RobotProgram& program, const KukaKrlOptions&
     int t = 0;
     for (int k = 0; k < 6; ++k) t |= (p.q[k] < 0.0 ? 1 : 0) << k;
     const int s = ((p.branch & 1) ? 1 : 0) | ((p.branch & 2) ? 2 : 0) | ((p.branch & 4) ? 4 : 0);
+    // E1, E2 the positioner's tilt and rotation; a turntable's E1 its rotation; unused axes 0.0 as KSS writes them.
+    const double e1 = program.positioner == PositionerType::kTiltRotate  ? p.tilt_deg
+                      : program.positioner == PositionerType::kTurntable ? p.rotation_deg
+                                                                          : 0.0;
+    const double e2 = program.positioner == PositionerType::kTiltRotate ? p.rotation_deg : 0.0;
     std::snprintf(buf, sizeof(buf),
                   "DECL E6POS XP%zu={X %.3f,Y %.3f,Z %.3f,A %.4f,B %.4f,C %.4f,S %d,T %d,E1 %.4f,E2 %.4f,E3 0.0,E4 "
                   "0.0,E5 0.0,E6 0.0}\n",
                   i + 1, ProgramValue(p.tcp_mm.x()), ProgramValue(p.tcp_mm.y()), ProgramValue(p.tcp_mm.z()),
-                  ProgramValue(p.a_deg), ProgramValue(p.b_deg), ProgramValue(p.c_deg), s, t, ProgramValue(p.tilt_deg),
-                  ProgramValue(p.rotation_deg));
+                  ProgramValue(p.a_deg), ProgramValue(p.b_deg), ProgramValue(p.c_deg), s, t, ProgramValue(e1),
+                  ProgramValue(e2));
     out.dat += buf;
     if (i == 0) {
       std::snprintf(buf, sizeof(buf), "PTP XP%zu\n", i + 1);

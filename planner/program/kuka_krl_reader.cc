@@ -245,10 +245,11 @@ ParsedProgram ReadKukaKrl(std::string_view src, std::string_view dat, const std:
         if (s >= 0.0 && s <= 7.0) m.config = static_cast<int>(s);
       }
     }
-    if (a.count("E1") && a.count("E2")) {
+    if (a.count("E1")) {
       m.has_positioner = true;
+      m.positioner_numbered = true;
       m.tilt_rad = a.at("E1") * kPi / 180.0;
-      m.rotation_rad = a.at("E2") * kPi / 180.0;
+      m.rotation_rad = a.count("E2") ? a.at("E2") * kPi / 180.0 : 0.0;
     }
     if (circ) {
       const KrlDecl* aux = resolve(targets.front(), &storage[1]);

@@ -57,6 +57,10 @@ struct ProgramMotion {
   bool has_positioner = false;      // external axes / second group
   double tilt_rad = 0.0;
   double rotation_rad = 0.0;
+  // The program numbers its external axes (E1, E2 / eax_a, eax_b / GP2 J1, J2) instead of naming them: tilt_rad
+  // holds the first, rotation_rad the second (0 when it gives one). ProgramToPlan gives them to the cell's axes in
+  // order: tilt and rotation, or a turntable's rotation alone.
+  bool positioner_numbered = false;
   bool has_via = false;             // circular: the intermediate point, same frame as the target, mm
   Eigen::Vector3d via = Eigen::Vector3d::Zero();
   double speed_mm_s = 0.0;          // TCP speed of the move, mm/s; <= 0: unknown (the rapid speed is used)

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "models/core/error.h"
 #include "planner/kinematics/positioner.h"
@@ -60,10 +62,20 @@ std::vector<ResolvedTarget> ResolveTargets(const ParsedProgram& program, const C
   std::vector<ResolvedTarget> out;
   out.reserve(program.motions.size());
   double tilt = 0.0, rotation = 0.0;
+  const PositionerType type = cell.positioner.type;
   for (const ProgramMotion& m : program.motions) {
-    if (m.has_positioner) tilt = m.tilt_rad, rotation = m.rotation_rad;
+    bool missing_axis = false;
+    if (m.has_positioner) {
+      tilt = m.tilt_rad, rotation = m.rotation_rad;
+      // A turntable's only axis is the first numbered one (E1, eax_a, GP2 J1).
+      if (m.positioner_numbered && type == PositionerType::kTurntable) std::swap(tilt, rotation);
+      missing_axis = (!HasAxis(type, 6) && tilt != 0.0) || (!HasAxis(type, 7) && rotation != 0.0);
+      if (!HasAxis(type, 6)) tilt = 0.0;
+      if (!HasAxis(type, 7)) rotation = 0.0;
+    }
     const Eigen::Isometry3d X_WP = PartInWorld(cell, tilt, rotation);
     ResolvedTarget t;
+    t.missing_axis = missing_axis;
     t.kind = m.kind;
     t.line = m.line;
     t.tilt_rad = tilt;
@@ -119,6 +131,11 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const ResolvedTarget& t = targets[i];
     const ProgramMotion& m = program.motions[i];
+    if (t.missing_axis) {
+      notes.Add("positioner axis the cell lacks (cell.positioner.type " + std::string(NameOf(cell.positioner.type)) +
+                    ") moved: held at 0",
+                t.line);
+    }
     if (t.kind == MotionKind::kCircular && i > 0 && m.has_via) {
       const ResolvedTarget& prev = targets[i - 1];
       // The arc lies in the frame its points are given in: P for part-frame targets, else W (the positioner's

@@ -37,12 +37,14 @@ struct ResolvedTarget {
   Eigen::Vector3d tool_dir_P = Eigen::Vector3d::UnitZ();    // unit, from the TCP up the torch
   double tilt_rad = 0.0;
   double rotation_rad = 0.0;
+  bool missing_axis = false;  // the program moves a positioner axis the cell lacks (the value is not used)
   double speed_mm_s = 0.0;                                  // as the program gives it (<= 0: none)
   bool weld = false;
 };
 
 // The world and part-frame pose of every motion's target, with the positioner angles in force (a motion without
-// them keeps the last ones; 0, 0 before the first).
+// them keeps the last ones; 0, 0 before the first). Numbered external axes go to the cell's axes in order; an axis
+// the cell lacks (cell.positioner.type) stays at 0.
 std::vector<ResolvedTarget> ResolveTargets(const ParsedProgram& program, const CellKinematics& cell,
                                            const ImportSettings& settings);
 

@@ -35,6 +35,7 @@ RobotProgram BuildProgram(const CellKinematics& cell, const std::vector<CellSamp
   }
   if (program.name.size() > 36) program.name.resize(36);
 
+  program.positioner = cell.positioner.type;
   const Eigen::Isometry3d X_UW = ProgramUserFrame(cell).inverse();
   for (std::size_t i = 0; i < motion.size(); ++i) {
     if (i + 1 < motion.size() && motion[i + 1].point == motion[i].point) continue;
@@ -64,15 +65,25 @@ RobotProgram BuildProgram(const CellKinematics& cell, const std::vector<CellSamp
 }
 
 std::string ProgramToCsv(const RobotProgram& program) {
-  std::string out =
-      "point,layer,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,tilt_deg,rotation_deg,speed_mm_min,bead_height_mm,weld\n";
+  // The positioner columns the cell has: both, the rotation alone (turntable) or none.
+  const bool tilt = HasAxis(program.positioner, 6), rotation = HasAxis(program.positioner, 7);
+  std::string out = std::string("point,layer,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,") + (tilt ? "tilt_deg," : "") +
+                    (rotation ? "rotation_deg," : "") + "speed_mm_min,bead_height_mm,weld\n";
   char line[320];
   for (const ProgramPoint& p : program.points) {
-    std::snprintf(line, sizeof(line), "%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%.3f,%d\n", p.point, p.layer,
+    std::snprintf(line, sizeof(line), "%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,", p.point, p.layer,
                   ProgramValue(p.tcp_mm.x()), ProgramValue(p.tcp_mm.y()), ProgramValue(p.tcp_mm.z()),
-                  ProgramValue(p.a_deg), ProgramValue(p.b_deg), ProgramValue(p.c_deg), ProgramValue(p.tilt_deg),
-                  ProgramValue(p.rotation_deg),
-                  p.speed_mm_s * 60.0, p.bead_height_mm, p.weld ? 1 : 0);
+                  ProgramValue(p.a_deg), ProgramValue(p.b_deg), ProgramValue(p.c_deg));
+    out += line;
+    if (tilt) {
+      std::snprintf(line, sizeof(line), "%.3f,", ProgramValue(p.tilt_deg));
+      out += line;
+    }
+    if (rotation) {
+      std::snprintf(line, sizeof(line), "%.3f,", ProgramValue(p.rotation_deg));
+      out += line;
+    }
+    std::snprintf(line, sizeof(line), "%.1f,%.3f,%d\n", p.speed_mm_s * 60.0, p.bead_height_mm, p.weld ? 1 : 0);
     out += line;
   }
   return out;

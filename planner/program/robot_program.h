@@ -32,6 +32,9 @@ struct ProgramPoint {
 
 struct RobotProgram {
   std::string name;              // program name (letters, digits, underscores)
+  // The cell's positioner: the writers write only the external axes it has (tilt and rotation, the rotation alone,
+  // or none).
+  PositionerType positioner = PositionerType::kTiltRotate;
   std::vector<ProgramPoint> points;
 };
 
@@ -47,7 +50,7 @@ Eigen::Isometry3d ProgramUserFrame(const CellKinematics& cell);
 Eigen::Vector3d EulerZyx(const Eigen::Matrix3d& R);
 
 // The program as CSV: a header line, then point,layer,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,tilt_deg,rotation_deg,
-// speed_mm_min,bead_height_mm,weld.
+// speed_mm_min,bead_height_mm,weld; without tilt_deg for a turntable cell and without both for no positioner.
 std::string ProgramToCsv(const RobotProgram& program);
 
 // A value as a program prints it with three decimals: magnitudes below 5e-4 become 0, so no "-0.000" appears.

@@ -190,7 +190,11 @@ SkeletonSlicing SliceAlongSkeleton(const TriangleMesh& mesh, const SkeletonSlice
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // N_i = V_(i-1) (eq. 5.23)
   const double lo = options.h_min_mm * (1.0 - options.tolerance);
   const double hi = options.h_max_mm * (1.0 + options.tolerance);
-  if (progress) progress->SetTotal(static_cast<std::size_t>(z_top / options.h_min_mm) + 1);
+  // The layer count (the base and the layers above it, as the plan has them) is not known before the slicing:
+  // estimated from the part's height, raised whenever a bent axis (longer than the height) yields more, and set to
+  // the count at the end.
+  std::size_t expected_layers = static_cast<std::size_t>(z_top / options.h_min_mm) + 2;
+  if (progress) progress->SetTotal(expected_layers);
   while (true) {
     const SkeletonLayer& below = out.layers.empty() ? out.base : out.layers.back();
     // Reach: the next centroid lies within about half a section of the guess G.
@@ -265,10 +269,16 @@ SkeletonSlicing SliceAlongSkeleton(const TriangleMesh& mesh, const SkeletonSlice
     // eq. 5.23: the next plane starts along this layer's V, which the re-orientation made its normal (gamma <= beta).
     direction = accepted->normal_P;
     out.layers.push_back(*accepted);
-    if (progress) progress->Update(out.layers.size());
+    if (progress) {
+      if (out.layers.size() + 1 >= expected_layers) progress->SetTotal(expected_layers = out.layers.size() + 2);
+      progress->Update(out.layers.size() + 1);
+    }
     WAAM_THROW_UNLESS(out.layers.size() < 20000, "skeleton slicing: more than 20000 layers; check the units");
   }
-  if (progress) progress->Finish();
+  if (progress) {
+    progress->SetTotal(out.layers.size() + 1);
+    progress->Finish();
+  }
   return out;
 }
 

@@ -245,7 +245,9 @@ std::vector<BadInput> Catalogue() {
        {"arm.urdf:", ": joint 'joint_1': <limit> without velocity (rad/s; waam checks joint speeds)"}},
       {"cell-unknown-preset", "check", "s.yaml", {{"s.yaml", CellScenario("  preset: fanuc_m20ia\n")}},
        {"s.yaml:13: cell.preset = 'fanuc_m20ia': unknown value, expected one of fanuc_arcmate100ic, abb_irb1600, "
-        "kuka_kr16, yaskawa_mh12"}},
+        "kuka_kr16, yaskawa_mh12, kuka_kr16_turntable, abb_irb1600_table"}},
+      {"cell-unknown-positioner-type", "check", "s.yaml", {{"s.yaml", CellScenario("  positioner: {type: rotary}\n")}},
+       {"s.yaml:13: cell.positioner.type = 'rotary': unknown value, expected one of none, turntable, tilt_rotate"}},
       {"cell-preset-and-urdf", "check", "s.yaml",
        {{"s.yaml", [] {
           std::string text = UrdfScenario("arm.urdf");

@@ -58,6 +58,8 @@ TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
       {"preset_kuka_kr16", 0, {}},
       {"preset_yaskawa_mh12", 0, {}},
       {"preset_abb_irb1600_out_of_reach", 3, {"unreachable"}},
+      {"preset_kuka_kr16_turntable", 0, {}},
+      {"preset_abb_irb1600_table", 0, {}},
   };
   for (const Case& c : cases) {
     const fs::path out = TempDir(c.scenario);
@@ -73,6 +75,10 @@ TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
     EXPECT_TRUE(fs::exists(out / "program.csv")) << c.scenario;
     EXPECT_TRUE(fs::exists(out / "program.ls")) << c.scenario;
     const std::string name = c.scenario;
+    const std::string type = name.find("_turntable") != std::string::npos ? "turntable"
+                             : name.find("_table") != std::string::npos   ? "none"
+                                                                           : "tilt_rotate";
+    EXPECT_EQ(check.at("cell").at("positioner_type").get<std::string>(), type) << c.scenario;
     if (name.rfind("preset_", 0) == 0) {
       // A preset names its arm vendor first and itself as the source, with the closed-form IK.
       const std::string preset = name.substr(7, name.find("_out_of_reach") == std::string::npos

@@ -191,6 +191,31 @@ TEST(PlanCliTest, WarnsWhenThePatternLeavesMuchOfALayerUncovered) {
   EXPECT_EQ(err, "") << "contours cover the rings";
 }
 
+// The progress bar of a skeleton plan (a bent tube: more layers along its axis than its height suggests) never counts
+// past its total, and ends at the plan's layer count.
+TEST(PlanCliTest, SkeletonProgressStaysWithinItsTotalAndEndsAtTheLayerCount) {
+  const fs::path dir = TempDir("cli_skeleton_progress");
+  std::string err;
+  ASSERT_EQ(RunWaam("plan " + std::string(WAAM_SOURCE_DIR) + "/scenarios/distortion/small_bent_tube.yaml --no-images -o " +
+                        (dir / "out").string(),
+                    &err),
+            0)
+      << err;
+  const nlohmann::json plan = ReadJson(dir / "out" / "plan.json");
+  const std::size_t layers = plan.at("layers").get<std::size_t>();
+  std::size_t draws = 0, last_done = 0, last_total = 0;
+  for (std::size_t at = err.find("plan "); at != std::string::npos; at = err.find("plan ", at + 1)) {
+    std::size_t done = 0, total = 0;
+    const std::size_t bar = err.find("] ", at);
+    if (bar == std::string::npos || std::sscanf(err.c_str() + bar + 2, "%zu/%zu layers", &done, &total) != 2) continue;
+    EXPECT_LE(done, total) << err;
+    ++draws, last_done = done, last_total = total;
+  }
+  ASSERT_GT(draws, 0u) << err;
+  EXPECT_EQ(last_done, layers) << err;
+  EXPECT_EQ(last_total, layers) << err;
+}
+
 TEST(PlanCliTest, MissingScenarioFileExitsTwo) {
   std::string err;
   EXPECT_EQ(RunWaam("plan /nonexistent/scenario.yaml -o /tmp/waam_never", &err), 2);

@@ -264,6 +264,7 @@ TEST(SettingNames, ReadmeListsEveryTable) {
   ExpectReadmeRow<StartWetting>(readme, "simulation.start_wetting");
   ExpectReadmeRow<CurvatureWidth>(readme, "simulation.curvature_width");
   ExpectReadmeRow<PositionerFollow>(readme, "cell.positioner.follow");
+  ExpectReadmeRow<PositionerType>(readme, "cell.positioner.type");
   ExpectReadmeRow<twin::CellPreset>(readme, "cell.preset");
   ExpectReadmeRow<ProgramFormat>(readme, "program.format");
   ExpectReadmeRow<ProgramLayers>(readme, "program.layers");

@@ -81,5 +81,46 @@ TEST(PositionerTest, PastTheTiltRangeHoldsTheLimitAndReportsTheTorchTilt) {
   EXPECT_NEAR(Turned(pos, a, n).z(), std::cos(a.residual_rad), 1e-12);
 }
 
+TEST(PositionerTest, TurntableOnlyTurnsAndLeavesTheAngleToVertical) {
+  // A turntable cannot tilt: the tilt stays 0, the rotation keeps the previous one, and what is left for the torch
+  // is the build direction's whole angle to vertical.
+  Positioner pos;
+  pos.type = PositionerType::kTurntable;
+  pos.X_CP = Eigen::Translation3d(30.0, -20.0, 25.0) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ());
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g(0.0, 1.0);
+  PositionerAngles previous;
+  previous.rotation = 1.25;
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d n = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    const PositionerAngles a = SolvePositionerAngles(pos, n, previous);
+    EXPECT_EQ(a.tilt, 0.0);
+    EXPECT_EQ(a.rotation, previous.rotation);
+    EXPECT_NEAR(a.residual_rad, std::acos(n.z()), 1e-9) << "the plate stays level: the angle is the part frame's";
+    EXPECT_NEAR(std::cos(a.residual_rad), Turned(pos, a, n).z(), 1e-12);
+    EXPECT_EQ(a.at_limit, a.residual_rad > 1e-6);
+  }
+  EXPECT_FALSE(SolvePositionerAngles(pos, Eigen::Vector3d::UnitZ(), previous).at_limit);
+}
+
+TEST(PositionerTest, NoPositionerTurnsNothing) {
+  Positioner pos;
+  pos.type = PositionerType::kNone;
+  PositionerAngles previous;
+  previous.tilt = 0.4;
+  previous.rotation = 1.25;
+  const Eigen::Vector3d n = Eigen::Vector3d(1.0, 0.0, 1.0).normalized();
+  const PositionerAngles a = SolvePositionerAngles(pos, n, previous);
+  EXPECT_EQ(a.tilt, 0.0);
+  EXPECT_EQ(a.rotation, 0.0);
+  EXPECT_NEAR(a.residual_rad, kPi / 4, 1e-12);
+  EXPECT_TRUE(a.at_limit);
+  EXPECT_TRUE(HasAxis(PositionerType::kTiltRotate, 6));
+  EXPECT_FALSE(HasAxis(PositionerType::kTurntable, 6));
+  EXPECT_TRUE(HasAxis(PositionerType::kTurntable, 7));
+  EXPECT_FALSE(HasAxis(PositionerType::kNone, 7));
+  EXPECT_TRUE(HasAxis(PositionerType::kNone, 5));
+}
+
 }  // namespace
 }  // namespace waam::planner

@@ -3,6 +3,8 @@
 // on/off, speeds within the dialect's resolution, the positioner angles) and the same path in the part frame.
 #include <cmath>
 #include <functional>
+#include <regex>
+#include <string>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -21,8 +23,9 @@
 namespace waam::planner {
 namespace {
 
-CellKinematics RoundTripCell() {
+CellKinematics RoundTripCell(PositionerType type = PositionerType::kTiltRotate) {
   CellKinematics cell;
+  cell.positioner.type = type;
   cell.arm = OpwArm::ArcMate100iC12();
   cell.X_FT.translation() = Eigen::Vector3d(400.0, 0.0, 0.0);
   cell.X_FT.linear() << 0, 0, 1, 0, -1, 0, 1, 0, 0;
@@ -109,13 +112,52 @@ double DirAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.normalized().cross(b.normalized()).norm(), a.normalized().dot(b.normalized())) * 180.0 / kPi;
 }
 
-void CheckRoundTrip(const Plan& plan, const char* label) {
-  const CellKinematics cell = RoundTripCell();
+// The program writes only the external axes the cell has.
+void CheckExternalAxes(const std::string& text, ProgramFormat format, PositionerType type) {
+  const bool tilt = type == PositionerType::kTiltRotate, none = type == PositionerType::kNone;
+  switch (format) {
+    case ProgramFormat::kCsv:
+      EXPECT_EQ(text.find("tilt_deg") != std::string::npos, tilt);
+      EXPECT_EQ(text.find("rotation_deg") != std::string::npos, !none);
+      break;
+    case ProgramFormat::kFanucLs:
+      EXPECT_EQ(text.find("J2 =") != std::string::npos, tilt);
+      EXPECT_EQ(text.find("GP2") != std::string::npos, !none);
+      EXPECT_EQ(text.find("COORD") != std::string::npos, !none);
+      break;
+    case ProgramFormat::kAbbRapid:
+      // eax_a and eax_b in use, eax_a alone, or neither (9E+09).
+      EXPECT_EQ(text.find("],[9E+09,9E+09,9E+09") != std::string::npos, none);
+      EXPECT_EQ(std::regex_search(text, std::regex(R"(\.[0-9]{3},9E\+09,9E\+09,9E\+09,9E\+09,9E\+09\]\])")), !tilt && !none);
+      break;
+    case ProgramFormat::kKukaKrl:
+      // Unused axes 0.0 as KSS writes them.
+      if (!tilt) {
+        EXPECT_NE(text.find("E2 0.0000,"), std::string::npos);
+      }
+      if (none) {
+        EXPECT_NE(text.find("E1 0.0000,"), std::string::npos);
+      }
+      break;
+    case ProgramFormat::kGcode:
+      // A and C words with a value (A3= C3= are the tool direction).
+      EXPECT_EQ(std::regex_search(text, std::regex(R"( A-?[0-9]+\.[0-9])")), tilt);
+      EXPECT_EQ(std::regex_search(text, std::regex(R"( C-?[0-9]+\.[0-9])")), !none);
+      break;
+    default:
+      break;
+  }
+}
+
+void CheckRoundTrip(const Plan& plan, const char* label, PositionerType type = PositionerType::kTiltRotate) {
+  const CellKinematics cell = RoundTripCell(type);
   MotionOptions motion_options;
   motion_options.step_mm = 1e6;  // one sample per path point
   motion_options.rapid_speed_mm_s = 100.0;
+  motion_options.rotation_rad = type == PositionerType::kTurntable ? 0.6 : 0.0;  // a turntable turned off its zero
   const std::vector<CellSample> motion = PlanCellMotion(cell, plan, motion_options, {});
   const RobotProgram program = BuildProgram(cell, motion, "rt");
+  ASSERT_EQ(program.positioner, type);
   std::vector<PathPoint> planned;
   for (const LayerPath& layer : plan.layers) planned.insert(planned.end(), layer.points.begin(), layer.points.end());
   ASSERT_EQ(program.points.size(), planned.size());
@@ -124,6 +166,7 @@ void CheckRoundTrip(const Plan& plan, const char* label) {
   for (const Dialect& dialect : Dialects()) {
     SCOPED_TRACE(std::string(label) + " " + std::string(NameOf(dialect.format)));
     const std::string text = dialect.write(program, cell);
+    CheckExternalAxes(text, dialect.format, type);
     const ParsedProgram parsed = ReadProgramText(text, "round_trip", dialect.format);
     EXPECT_TRUE(parsed.warnings.empty()) << parsed.warnings.front().what << " (line " << parsed.warnings.front().first_line
                                          << ")";
@@ -177,6 +220,42 @@ TEST(ProgramRoundTripTest, PlanarLayersComeBackFromEveryDialect) {
 TEST(ProgramRoundTripTest, TiltedBuildDirectionComesBackFromEveryDialect) {
   // The positioner tilts the part by about 27 deg and turns it: both group-2 axes and the torch orientation move.
   CheckRoundTrip(SquareLayers(3, Eigen::Vector3d(0.3, 0.5, 1.0)), "multi-axis");
+}
+
+TEST(ProgramRoundTripTest, TurntableProgramsComeBackFromEveryDialect) {
+  // One external axis: the table's rotation (E1, eax_a, GP2 J1, C), turned 0.6 rad; the tilt is nowhere.
+  CheckRoundTrip(SquareLayers(3, Eigen::Vector3d::UnitZ()), "turntable planar", PositionerType::kTurntable);
+  // Layers the turntable cannot turn up: the torch follows the tool direction, tilted, and comes back so.
+  CheckRoundTrip(SquareLayers(3, Eigen::Vector3d(0.3, 0.5, 1.0)), "turntable tilted", PositionerType::kTurntable);
+}
+
+TEST(ProgramRoundTripTest, NoPositionerProgramsComeBackFromEveryDialect) {
+  CheckRoundTrip(SquareLayers(3, Eigen::Vector3d(0.3, 0.5, 1.0)), "none", PositionerType::kNone);
+}
+
+TEST(ProgramRoundTripTest, AxisTheCellLacksIsNotedAndHeldAtZero) {
+  // A two-axis program (tilt 20 deg) read on a turntable cell: the numbered axes go to the table in order (E1 = the
+  // rotation), the second is one the cell lacks: noted, held at 0.
+  const CellKinematics cell = RoundTripCell(PositionerType::kTurntable);
+  ParsedProgram program;
+  program.format = ProgramFormat::kKukaKrl;
+  ProgramMotion m;
+  m.has_pose = true;
+  m.X_UT.translation() = Eigen::Vector3d(1000.0, 0.0, 0.0);
+  m.has_positioner = true;
+  m.positioner_numbered = true;
+  m.tilt_rad = 0.35;
+  m.rotation_rad = 0.5;
+  m.line = 7;
+  program.motions = {m, m};
+  const std::vector<ResolvedTarget> targets = ResolveTargets(program, cell, ImportSettings{});
+  EXPECT_EQ(targets[0].rotation_rad, 0.35);
+  EXPECT_EQ(targets[0].tilt_rad, 0.0);
+  EXPECT_TRUE(targets[0].missing_axis);
+  const ImportedPlan imported = ProgramToPlan(program, cell, ImportSettings{});
+  ASSERT_FALSE(imported.warnings.empty());
+  EXPECT_THAT(imported.warnings.back().what, ::testing::HasSubstr("cell.positioner.type turntable"));
+  EXPECT_EQ(imported.warnings.back().first_line, 7);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <map>
 #include <tuple>
 
+#include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
@@ -133,19 +134,34 @@ const char* AxisName(int axis) {
 }
 
 CellModel LoadCell(const twin::CellSettings& settings) {
+  const Eigen::Isometry3d X_WR = PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg);
+  const Eigen::Isometry3d X_WB = PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg);
+  const planner::PositionerType type = settings.positioner_type.value_or(planner::PositionerType::kTiltRotate);
+  const bool builtin = settings.preset ? PresetUrdf(*settings.preset).empty()
+                                       : settings.robot_urdf.empty() && settings.mjcf.empty();
+  if (builtin && type != planner::PositionerType::kTiltRotate) {
+    // The built-in arm with another positioner: the file's text with the positioner composed in.
+    CellModel::RobotInfo info{"FANUC ARC Mate 100iC/12", "builtin"};
+    if (settings.preset) {
+      info = {std::string(PresetInfo(*settings.preset).robot_name), std::string(NameOf(*settings.preset))};
+    }
+    return CellModel::FromXml(ComposeBuiltinCell(type), info, X_WR, X_WB, CellModel::BuiltinModelPath());
+  }
   if (settings.preset && PresetUrdf(*settings.preset).empty()) {
     // The built-in cell under its preset name.
     const CellModel::RobotInfo info{std::string(PresetInfo(*settings.preset).robot_name),
                                     std::string(NameOf(*settings.preset))};
-    return CellModel::FromFile({}, info, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
-                               PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
+    return CellModel::FromFile({}, info, X_WR, X_WB);
   }
-  if (!settings.robot_urdf.empty()) {
-    return LoadUrdfCell(settings, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
-                        PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
-  }
-  return CellModel(settings.mjcf, PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg),
-                   PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg));
+  if (!settings.robot_urdf.empty()) return LoadUrdfCell(settings, X_WR, X_WB);
+  CellModel cell(settings.mjcf, X_WR, X_WB);
+  // A model file of one's own has the positioner its joints describe; a type the scenario names must be that one.
+  const planner::PositionerType has = cell.kinematics().positioner.type;
+  WAAM_THROW_UNLESS(!settings.positioner_type || *settings.positioner_type == has,
+                    settings.where << ": cell.positioner.type is " << NameOf(*settings.positioner_type) << " but "
+                                   << cell.file().string() << " has a " << NameOf(has)
+                                   << " positioner (its joints pos_tilt, pos_rot)");
+  return cell;
 }
 
 planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings) {
@@ -165,6 +181,7 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
                              Progress* progress) {
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";
+  report.positioner_type = kin.positioner.type;
   report.robot = cell.robot();
   for (const planner::LayerPath& layer : plan.layers) report.points += layer.points.size();
   const std::size_t total = planner::CountCellSamples(plan, settings.step_mm);
@@ -221,8 +238,9 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
       continue;
     }
 
-    // Joint limits with margin (every axis).
+    // Joint limits with margin (every axis the cell has; a missing one stays at 0 and is no limit).
     for (int j = 0; j < 8; ++j) {
+      if (!planner::HasAxis(kin.positioner.type, j)) continue;
       const double m_deg = std::min(s.q[j] - limit_lo[j], limit_hi[j] - s.q[j]) * kDeg;
       if (j < 6) report.min_arm_margin_deg = std::min(report.min_arm_margin_deg, m_deg);
       if (m_deg < report.min_joint_margin_deg) {
@@ -242,6 +260,7 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
     if (s.weld && i > 0 && s.dt_s > 0.0 && motion[i - 1].reachable) {
       const Eigen::Matrix<double, 8, 1> v = (s.q - motion[i - 1].q) / s.dt_s;
       for (int j = 0; j < 8; ++j) {
+        if (!planner::HasAxis(kin.positioner.type, j)) continue;
         const double ratio = std::abs(v[j]) / max_speed[j];
         if (ratio > report.max_joint_speed_ratio) {
           report.max_joint_speed_ratio = ratio;

@@ -61,6 +61,7 @@ struct CheckReport {
   bool ok = true;
   std::string ik = "closed_form";  // closed_form (OPW arm) | numerical (a user's arm; failures are unreachable)
   CellModel::RobotInfo robot;      // the arm: name, source (builtin, preset, file) and its joint names
+  planner::PositionerType positioner_type = planner::PositionerType::kTiltRotate;  // the axes the cell's model has
   std::size_t points = 0;    // path points
   std::size_t samples = 0;   // checked samples (path points and the points inserted every step_mm)
   std::vector<CheckViolation> violations;

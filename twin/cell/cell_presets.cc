@@ -10,11 +10,17 @@ namespace {
 
 // The positioner stands in front of the arm at about 70 % of its reach, tilt axis across the line between them, so
 // that a small part on the plate is reached on every branch the wall needs (scenarios/cell/preset_*.yaml).
-constexpr std::array<CellPresetInfo, 4> kPresets = {{
+// The turntable and fixed-table cells are the KUKA and ABB arms of the library with the positioner replaced (see
+// PositionerMjcf in cell_compose.cc: the same plate at the same 600 mm working height, so the same placement).
+constexpr std::array<CellPresetInfo, 6> kPresets = {{
     {CellPreset::kFanucArcMate100ic, "FANUC ARC Mate 100iC/12", "", 1420.0, {1050.0, 0.0, 0.0}, {}},
     {CellPreset::kAbbIrb1600, "ABB IRB 1600-8/1.45", "abb_irb1600_145.urdf", 1450.0, {1000.0, 0.0, 0.0}, {}},
     {CellPreset::kKukaKr16, "KUKA KR 16-2", "kuka_kr16_2.urdf", 1611.0, {1150.0, 0.0, 0.0}, {}},
     {CellPreset::kYaskawaMh12, "Yaskawa Motoman MH12", "yaskawa_mh12.urdf", 1440.0, {1000.0, 0.0, 0.0}, {}},
+    {CellPreset::kKukaKr16Turntable, "KUKA KR 16-2", "kuka_kr16_2.urdf", 1611.0, {1150.0, 0.0, 0.0}, {},
+     planner::PositionerType::kTurntable},
+    {CellPreset::kAbbIrb1600Table, "ABB IRB 1600-8/1.45", "abb_irb1600_145.urdf", 1450.0, {1000.0, 0.0, 0.0}, {},
+     planner::PositionerType::kNone},
 }};
 
 }  // namespace
@@ -46,6 +52,7 @@ void ApplyPreset(CellPreset preset, CellSettings* cell) {
   cell->robot_yaw_deg = 0.0;
   cell->positioner_base_mm = info.positioner_base_mm;
   cell->positioner_yaw_deg = 90.0;
+  cell->positioner_type = info.positioner;
 }
 
 }  // namespace waam::twin

@@ -1,5 +1,5 @@
-// The library of cells behind `cell.preset`: one complete cell per name (arm, torch, placement; the two-axis
-// positioner with plate and clamps of the built-in cell). The FANUC preset is the built-in MJCF; the others are arms
+// The library of cells behind `cell.preset`: one complete cell per name (arm, torch, placement and positioner: the
+// built-in cell's two axes, its rotary table alone, or a fixed welding table; each with plate and clamps). The FANUC preset is the built-in MJCF; the others are arms
 // we wrote as URDF with primitive collision shapes (twin/data/presets/*.urdf, each citing its kinematics, limits and
 // speeds) read through the URDF path (twin/cell/urdf_arm.h, cell_compose.h). The names are the table of CellPreset
 // in cell_settings.h, used by the scenario parser, its error message and the README.
@@ -20,6 +20,7 @@ struct CellPresetInfo {
   double reach_mm;              // published reach to the wrist centre, mm
   std::array<double, 3> positioner_base_mm;  // where the preset puts the positioner (arm base at the origin), mm
   TorchSettings torch;          // the torch on the flange (URDF presets; the built-in cell has its own)
+  planner::PositionerType positioner = planner::PositionerType::kTiltRotate;  // its positioner's axes
 };
 
 // The preset's entry in the library (every CellPreset has one).

@@ -67,6 +67,7 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
   }
   if (map.Has("positioner")) {
     YamlMap pos = map.Map("positioner");
+    if (pos.Has("type")) cell.positioner_type = pos.Enum<planner::PositionerType>("type");
     cell.positioner_base_mm = Xyz(pos, "base_mm", cell.positioner_base_mm);
     cell.positioner_yaw_deg = pos.Number("yaw_deg", -360.0, 360.0, cell.positioner_yaw_deg);
     cell.positioner_rotation_deg = pos.Number("rotation_deg", -240.0, 240.0, cell.positioner_rotation_deg);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "models/core/enum_names.h"
+#include "planner/kinematics/positioner.h"
 
 namespace waam::twin {
 
@@ -27,12 +28,14 @@ constexpr std::array<EnumName<CellResolve>, 2> EnumNames(CellResolve) {
 WAAM_ENUM_JSON(CellResolve)
 
 // cell.preset: a complete cell (arm, torch, positioner, plate, clamps, placement); see twin/cell/cell_presets.h.
-enum class CellPreset { kFanucArcMate100ic, kAbbIrb1600, kKukaKr16, kYaskawaMh12 };
-constexpr std::array<EnumName<CellPreset>, 4> EnumNames(CellPreset) {
+enum class CellPreset { kFanucArcMate100ic, kAbbIrb1600, kKukaKr16, kYaskawaMh12, kKukaKr16Turntable, kAbbIrb1600Table };
+constexpr std::array<EnumName<CellPreset>, 6> EnumNames(CellPreset) {
   return {{{CellPreset::kFanucArcMate100ic, "fanuc_arcmate100ic"},
            {CellPreset::kAbbIrb1600, "abb_irb1600"},
            {CellPreset::kKukaKr16, "kuka_kr16"},
-           {CellPreset::kYaskawaMh12, "yaskawa_mh12"}}};
+           {CellPreset::kYaskawaMh12, "yaskawa_mh12"},
+           {CellPreset::kKukaKr16Turntable, "kuka_kr16_turntable"},
+           {CellPreset::kAbbIrb1600Table, "abb_irb1600_table"}}};
 }
 WAAM_ENUM_JSON(CellPreset)
 
@@ -65,6 +68,9 @@ struct CellSettings {
   double robot_yaw_deg = 0.0;                                      // turn of R about world z, deg
   std::array<double, 3> positioner_base_mm = {1050.0, 0.0, 0.0};  // positioner base frame B in the world, mm
   double positioner_yaw_deg = 90.0;                                // turn of B about world z, deg
+  // cell.positioner.type: the axes the positioner has (none, turntable, tilt_rotate); unset: the preset's, the
+  // model file's (cell.mjcf), else tilt_rotate.
+  std::optional<planner::PositionerType> positioner_type;
   double positioner_rotation_deg = 0.0;  // table rotation used while the build direction is vertical, deg
   // layer: angles per layer from its build direction; point: per point from the tool direction (curved layers)
   PositionerFollow positioner_follow = PositionerFollow::kLayer;

@@ -57,6 +57,7 @@ struct CellModel::Impl {
   int robot_base = -1, positioner_base = -1, flange = -1;
   int tcp = -1, part_origin = -1, nozzle = -1, speeds = -1;
   planner::CellKinematics kinematics;
+  planner::PositionerType positioner_type = planner::PositionerType::kTiltRotate;  // from the joints it has
   bool closed_form = true;
   std::string not_opw_reason;  // why the closed form does not apply (empty when it does)
   Eigen::Vector3d nozzle_a_T = Eigen::Vector3d::Zero(), nozzle_b_T = Eigen::Vector3d::Zero();
@@ -133,7 +134,18 @@ void LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* im
     return id;
   };
   const char* const names[8] = {"j1", "j2", "j3", "j4", "j5", "j6", "pos_tilt", "pos_rot"};
+  // The positioner's joints say its type: both (tilt_rotate), pos_rot alone (turntable) or none.
+  const bool has_tilt = mj_name2id(m, mjOBJ_JOINT, "pos_tilt") >= 0;
+  const bool has_rot = mj_name2id(m, mjOBJ_JOINT, "pos_rot") >= 0;
+  WAAM_THROW_UNLESS(has_rot || !has_tilt, file.string() << ": the cell model has a joint 'pos_tilt' but no 'pos_rot' "
+                                                           "(a positioner is tilt_rotate, turntable or none)");
+  impl->positioner_type = has_tilt ? planner::PositionerType::kTiltRotate
+                                   : (has_rot ? planner::PositionerType::kTurntable : planner::PositionerType::kNone);
   for (int j = 0; j < 8; ++j) {
+    if (!planner::HasAxis(impl->positioner_type, j)) {
+      impl->jnt[j] = impl->qadr[j] = -1;
+      continue;
+    }
     const int id = require(mjOBJ_JOINT, names[j], "joint");
     WAAM_THROW_UNLESS(m->jnt_type[id] == mjJNT_HINGE && m->jnt_limited[id],
                       file.string() << ": joint '" << names[j] << "' must be a limited hinge");
@@ -211,31 +223,54 @@ void ReadKinematics(CellModel::Impl* impl) {
   impl->nozzle_b_T = X_TG * Eigen::Vector3d(0.0, 0.0, half);
   impl->nozzle_radius_mm = m->geom_size[3 * g] * kMm;
 
-  // Positioner chain: B -> tilt axis frame A -> table frame C -> plate top (part_origin).
+  // Positioner chain: B -> tilt axis frame A -> table frame C -> plate top (part_origin). A turntable has no A (the
+  // table frame C sits on B, p_BA holds its offset), no positioner no C either (the plate is fixed: C = B).
   const int pb = impl->positioner_base;
-  const int tilt_body = m->jnt_bodyid[impl->jnt[6]];
-  const int rot_body = m->jnt_bodyid[impl->jnt[7]];
   cell.X_WB = Pose(d->xpos + 3 * pb, d->xmat + 9 * pb);
-  const Eigen::Isometry3d X_WA = Pose(d->xpos + 3 * tilt_body, d->xmat + 9 * tilt_body);
-  const Eigen::Isometry3d X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
-  const Eigen::Isometry3d X_BA = cell.X_WB.inverse() * X_WA;
-  const Eigen::Isometry3d X_AC = X_WA.inverse() * X_WC;
-  const Eigen::Vector3d tilt_axis(m->jnt_axis + 3 * impl->jnt[6]);
-  const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
-  WAAM_THROW_UNLESS(X_BA.linear().isIdentity(1e-9) && X_AC.linear().isIdentity(1e-9) &&
-                        (tilt_axis - Eigen::Vector3d::UnitX()).norm() < 1e-9 &&
-                        (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 && tilt_body == m->body_parentid[rot_body] &&
-                        m->body_parentid[tilt_body] == pb,
-                    impl->file.string() << ": the positioner must be positioner_base -> body with pos_tilt (axis 1 0 0) "
-                                           "-> body with pos_rot (axis 0 0 1), without rotated body frames");
-  cell.positioner.p_BA = X_BA.translation();
-  cell.positioner.p_AC = X_AC.translation();
+  cell.positioner.type = impl->positioner_type;
+  Eigen::Isometry3d X_WC = cell.X_WB;
+  if (impl->positioner_type == planner::PositionerType::kTiltRotate) {
+    const int tilt_body = m->jnt_bodyid[impl->jnt[6]];
+    const int rot_body = m->jnt_bodyid[impl->jnt[7]];
+    const Eigen::Isometry3d X_WA = Pose(d->xpos + 3 * tilt_body, d->xmat + 9 * tilt_body);
+    X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
+    const Eigen::Isometry3d X_BA = cell.X_WB.inverse() * X_WA;
+    const Eigen::Isometry3d X_AC = X_WA.inverse() * X_WC;
+    const Eigen::Vector3d tilt_axis(m->jnt_axis + 3 * impl->jnt[6]);
+    const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
+    WAAM_THROW_UNLESS(X_BA.linear().isIdentity(1e-9) && X_AC.linear().isIdentity(1e-9) &&
+                          (tilt_axis - Eigen::Vector3d::UnitX()).norm() < 1e-9 &&
+                          (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 &&
+                          tilt_body == m->body_parentid[rot_body] && m->body_parentid[tilt_body] == pb,
+                      impl->file.string() << ": the positioner must be positioner_base -> body with pos_tilt (axis 1 0 0) "
+                                             "-> body with pos_rot (axis 0 0 1), without rotated body frames");
+    cell.positioner.p_BA = X_BA.translation();
+    cell.positioner.p_AC = X_AC.translation();
+    cell.positioner.tilt_lower = m->jnt_range[2 * impl->jnt[6]];
+    cell.positioner.tilt_upper = m->jnt_range[2 * impl->jnt[6] + 1];
+  } else {
+    cell.positioner.p_BA = Eigen::Vector3d::Zero();
+    cell.positioner.p_AC = Eigen::Vector3d::Zero();
+    cell.positioner.tilt_lower = cell.positioner.tilt_upper = 0.0;
+    cell.positioner.rotation_lower = cell.positioner.rotation_upper = 0.0;
+  }
+  if (impl->positioner_type == planner::PositionerType::kTurntable) {
+    const int rot_body = m->jnt_bodyid[impl->jnt[7]];
+    X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
+    const Eigen::Isometry3d X_BC = cell.X_WB.inverse() * X_WC;
+    const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
+    WAAM_THROW_UNLESS(X_BC.linear().isIdentity(1e-9) && (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 &&
+                          m->body_parentid[rot_body] == pb,
+                      impl->file.string() << ": the turntable must be positioner_base -> body with pos_rot (axis 0 0 1), "
+                                             "without a rotated body frame");
+    cell.positioner.p_BA = X_BC.translation();
+  }
+  if (impl->positioner_type != planner::PositionerType::kNone) {
+    cell.positioner.rotation_lower = m->jnt_range[2 * impl->jnt[7]];
+    cell.positioner.rotation_upper = m->jnt_range[2 * impl->jnt[7] + 1];
+  }
   const int po = impl->part_origin;
   cell.positioner.X_CP = X_WC.inverse() * Pose(d->site_xpos + 3 * po, d->site_xmat + 9 * po);
-  cell.positioner.tilt_lower = m->jnt_range[2 * impl->jnt[6]];
-  cell.positioner.tilt_upper = m->jnt_range[2 * impl->jnt[6] + 1];
-  cell.positioner.rotation_lower = m->jnt_range[2 * impl->jnt[7]];
-  cell.positioner.rotation_upper = m->jnt_range[2 * impl->jnt[7] + 1];
   cell.positioner.tilt_max_speed = speed[6] * kPi / 180.0;
   cell.positioner.rotation_max_speed = speed[7] * kPi / 180.0;
 
@@ -389,7 +424,9 @@ CellState::~CellState() = default;
 
 void CellState::SetJoints(const Joints8& q) {
   mjData* d = data_->d.get();
-  for (int j = 0; j < 8; ++j) d->qpos[model_->qadr[j]] = q[j];
+  for (int j = 0; j < 8; ++j) {
+    if (model_->qadr[j] >= 0) d->qpos[model_->qadr[j]] = q[j];  // an axis the cell lacks stays at 0
+  }
   mj_kinematics(model_->m, d);
 }
 

@@ -59,7 +59,8 @@ class CellModel {
   // convention); an arm whose axes are not of the OPW kind, or whose closed form differs from MuJoCo's forward
   // kinematics on random poses, gets the numerical IK on this model. Throws InputError naming the file and MuJoCo's message for a
   // file that does not parse or compile, that lacks a required joint, body, site or field, or whose positioner chain
-  // is not tilt-about-x then rotate-about-z.
+  // is not tilt-about-x then rotate-about-z. The positioner's type is read off its joints: pos_tilt and pos_rot
+  // (tilt_rotate), pos_rot alone (turntable: positioner_base -> table about z) or neither (none: a fixed plate).
   CellModel(const std::filesystem::path& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
   // The same with the bases where the file puts them.
   explicit CellModel(const std::filesystem::path& mjcf);
