@@ -39,6 +39,36 @@ std::uint64_t EdgeKey(int a, int b) {
   return (lo << 32) | hi;
 }
 
+// The distinct points of `corners` (bit-identical coordinates, -0 and +0 alike) in first-seen order, and for each
+// corner the index of its distinct point. An open-addressing table of 32-bit slots: a 1 M-facet STL repeats each
+// point about six times, so this one pass leaves a sixth of the points to the tolerance grid.
+std::vector<int> DistinctPoints(const std::vector<Eigen::Vector3d>& corners, std::vector<Eigen::Vector3d>* distinct) {
+  std::size_t capacity = 16;
+  while (capacity < 2 * corners.size()) capacity *= 2;
+  std::vector<std::int32_t> slots(capacity, -1);
+  std::vector<int> index_of(corners.size());
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const Eigen::Vector3d& p = corners[c];  // == holds for -0 and +0, and BitsKey maps both to one key
+    if (!p.allFinite()) {  // never equal to anything, as in the tolerance search
+      index_of[c] = static_cast<int>(distinct->size());
+      distinct->push_back(p);
+      continue;
+    }
+    // The key's low bits pick the slot, so they are mixed first (splitmix64's finaliser).
+    std::uint64_t h = BitsKey(p);
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    std::size_t slot = (h ^ (h >> 31)) & (capacity - 1);
+    while (slots[slot] >= 0 && (*distinct)[slots[slot]] != p) slot = (slot + 1) & (capacity - 1);
+    if (slots[slot] < 0) {
+      slots[slot] = static_cast<std::int32_t>(distinct->size());
+      distinct->push_back(p);
+    }
+    index_of[c] = slots[slot];
+  }
+  return index_of;
+}
+
 }  // namespace
 
 bool IsDegenerateFacet(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -53,7 +83,7 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
   TriangleMesh mesh;
   std::unordered_map<std::uint64_t, int> head;  // cell key -> last vertex inserted in that cell
   std::vector<int> next;                        // vertex -> previous vertex in the same cell list
-  head.reserve(corners.size() / 2 + 1);
+  head.reserve(corners.size() / 6 + 1);
   const bool exact = weld_tolerance_mm <= 0.0;
   const double tol2 = weld_tolerance_mm * weld_tolerance_mm;
   const double inv_cell = exact ? 0.0 : 0.5 / weld_tolerance_mm;
@@ -100,11 +130,19 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
     return id;
   };
 
+  // Bit-identical corners weld to the same vertex (the lowest within the tolerance of the first of them stays the
+  // lowest: every vertex added later has a higher number), so each distinct point is looked up once, in the order
+  // of its first corner: the same vertices, numbered the same, as looking up every corner.
+  std::vector<Eigen::Vector3d> distinct;
+  const std::vector<int> distinct_of = DistinctPoints(corners, &distinct);
+  std::vector<int> vertex_of(distinct.size());
+  for (std::size_t d = 0; d < distinct.size(); ++d) vertex_of[d] = find_or_add(distinct[d]);
+
   std::size_t dropped = 0;
   mesh.facets.reserve(corners.size() / 3);
   for (std::size_t f = 0; f + 2 < corners.size(); f += 3) {
-    const std::array<int, 3> ids = {find_or_add(corners[f]), find_or_add(corners[f + 1]),
-                                    find_or_add(corners[f + 2])};
+    const std::array<int, 3> ids = {vertex_of[distinct_of[f]], vertex_of[distinct_of[f + 1]],
+                                    vertex_of[distinct_of[f + 2]]};
     if (ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0] ||
         IsDegenerateFacet(mesh.vertices[ids[0]], mesh.vertices[ids[1]], mesh.vertices[ids[2]])) {
       ++dropped;
