@@ -116,7 +116,18 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
     }
   }
 
-  for (int group = 0; group < mesh.groups; ++group) {
+  // Each group's increment du_g = K_g^-1 f_g depends only on the elements active then and the group's own strains,
+  // not on the other increments: the groups are solved in parallel, each into its own slot, and their increments
+  // added in group order afterwards (the same sums as one after the other). Up to min(threads, groups)
+  // factorisations are held at once.
+  struct GroupSolution {
+    std::vector<int> node_of;  // dof block -> node
+    Eigen::VectorXd du;
+    std::size_t nonzeros = 0;
+  };
+  std::vector<GroupSolution> solutions(mesh.groups);
+  ParallelFor(solutions.size(), [&](std::size_t group_index) {
+    const int group = static_cast<int>(group_index);
     CheckInterrupt();
     std::vector<std::uint8_t> active(mesh.elements.size(), 0);
     bool any_new = false;
@@ -124,7 +135,7 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
       active[e] = final_active[e] && mesh.elements[e].group <= group;
       any_new = any_new || (active[e] && mesh.elements[e].group == group);
     }
-    if (!any_new) continue;
+    if (!any_new) return;
     KeepConnectedToSubstrate(mesh, &active);
     // Number the nodes of the active elements.
     std::vector<int> dof_of(n_nodes, -1);
@@ -139,7 +150,7 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
       }
     }
     const int nn = static_cast<int>(node_of.size());
-    if (nn == 0) continue;
+    if (nn == 0) return;
     // The assembly gathers by column: node a's three columns (and its three entries of f) are summed only from the
     // elements around a, in element order, the order a scatter over the elements adds them in. Each node writes
     // only its own columns, so the nodes run in parallel and K and f are the same, bit for bit, on any number of
@@ -225,11 +236,18 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
                         "substrate?); raise models distortion substrate_stiffness_n_mm3");
       du = ldlt.solve(f);
     }
-    for (int a = 0; a < nn; ++a) u[node_of[a]] += du.segment<3>(3 * a);
+    solutions[group_index].nonzeros = static_cast<std::size_t>(k.nonZeros());
+    solutions[group_index].du = std::move(du);
+    solutions[group_index].node_of = std::move(node_of);
+  });
+  for (const GroupSolution& solution : solutions) {
+    if (solution.node_of.empty()) continue;
+    const std::vector<int>& node_of = solution.node_of;
+    for (std::size_t a = 0; a < node_of.size(); ++a) u[node_of[a]] += solution.du.segment<3>(3 * a);
     if (stats != nullptr) {
       stats->solves += 1;
-      stats->dofs = std::max<std::size_t>(stats->dofs, 3 * static_cast<std::size_t>(nn));
-      stats->nonzeros = std::max<std::size_t>(stats->nonzeros, static_cast<std::size_t>(k.nonZeros()));
+      stats->dofs = std::max<std::size_t>(stats->dofs, 3 * node_of.size());
+      stats->nonzeros = std::max<std::size_t>(stats->nonzeros, solution.nonzeros);
     }
   }
   if (stats != nullptr) {
