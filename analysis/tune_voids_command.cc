@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "planner/path/junctions.h"
 #include "planner/planar_planner.h"
@@ -110,10 +112,17 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
   Progress progress("tune-voids", representative.size() * static_cast<std::size_t>(options.max_trials + 3),
                     "trials", options.quiet);
   std::size_t done = 0;
-  int index = 0;
-  for (const auto& [name, junction] : representative) {
-    ++index;
-    JunctionTuning tuning;
+  std::mutex progress_mutex;
+  // The junction classes are tuned in parallel, each into its own slot (a class's trials are its own deposits); within
+  // a class the plain and geometric trials run side by side, and the search after them one trial at a time (each
+  // shift follows from the voids the previous ones left).
+  const std::vector<std::pair<std::string, planner::Junction>> classes(representative.begin(), representative.end());
+  std::vector<JunctionTuning> tunings(classes.size());
+  ParallelFor(classes.size(), [&](std::size_t class_index) {
+    const std::string& name = classes[class_index].first;
+    const planner::Junction& junction = classes[class_index].second;
+    const int index = static_cast<int>(class_index) + 1;
+    JunctionTuning& tuning = tunings[class_index];
     tuning.junction_class = name;
     tuning.centre_mm = junction.centre;
     tuning.ribs = junction.ribs;
@@ -142,13 +151,18 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
       TuneTrial trial = internal::SimulateTrial(plan, scenario.simulation, rapid_mm_s, crop,
                                                 picture.empty() ? std::filesystem::path() : options.out_dir / picture);
       trial.shift_mm = shift;
-      tuning.history.push_back(trial);
+      std::lock_guard<std::mutex> lock(progress_mutex);
       progress.Update(++done);
       return trial;
     };
     const std::string stem = "junction_" + std::to_string(index);
-    tuning.plain = run(0.0, options.images ? stem + "_plain.png" : "");
-    tuning.geometric = run(unit_shift, "");
+    TuneTrial first_two[2];
+    ParallelFor(2, [&](std::size_t t) {
+      first_two[t] = t == 0 ? run(0.0, options.images ? stem + "_plain.png" : "") : run(unit_shift, "");
+    });
+    tuning.plain = first_two[0];
+    tuning.geometric = first_two[1];
+    tuning.history = {tuning.plain, tuning.geometric};
     // Search: the smallest shift whose void volume is below the threshold. Above it: the shift is raised by the
     // void length still measured (eq. 4.6: the shift that fills a void is its length L); once a shift fills the
     // void, bisection between the last failing and the first filling shift.
@@ -177,6 +191,7 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
         break;
       }
       const TuneTrial t = run(shift, "");
+      tuning.history.push_back(t);
       if (t.void_volume_mm3 <= options.threshold_mm3) {
         hi = shift;
         best = t;
@@ -193,11 +208,10 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
       // Re-run the final shift with its picture (deterministic: the same numbers as the search found).
       const std::string picture = stem + "_tuned.png";
       run(best.shift_mm, picture);
-      tuning.history.pop_back();
       tuning.pictures = {stem + "_plain.png", picture};
     }
-    result.junctions.push_back(std::move(tuning));
-  }
+  });
+  result.junctions = std::move(tunings);
   progress.Finish();
 
   if (!options.training_csv.empty()) WriteFileAtomic(options.training_csv, TrainingCsv(result, options));

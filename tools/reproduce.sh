@@ -29,12 +29,14 @@
 #   peers             tools/peers.sh: PrusaSlicer and KDL beside waam plan and the closed-form IK; README.md (installs
 #                     prusa-slicer and liborocos-kdl-dev; several minutes)
 #   readme_figures    waam simulate of the planar demo and the thruster blades: deviation, voids; README.md (a minute)
+#   threads           wall time of plan, check, deviation, compensate, tune-voids and fit distortion on 1 and 2
+#                     threads, back to back; README.md (several minutes)
 # Needs a built ./build/waam (bash tools/test.sh --quick builds it); the *_bench tables and twin_tests need their
 # executables (cmake --build build --target NAME).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tables=(ding_table twin_table compensation twin_tests deposition_bench distortion_fit published rib_web model_fits
-        void_length_fit fit_bench check_bench cup_support readme_figures peers)
+        void_length_fit fit_bench check_bench cup_support readme_figures peers threads)
 only=""
 out="out/reproduce"
 check=0
@@ -538,6 +540,52 @@ PY
 
 peers() {
   { echo '```'; bash tools/peers.sh "$out/peers"; echo '```'; } | put peers
+}
+
+threads() {
+  local d="$out/threads" w="$PWD/build/waam"
+  mkdir -p "$d"
+  "$w" generate torus --param major_radius_mm=120 --param minor_radius_mm=40 --param major_segments=1224 \
+    --param minor_segments=408 -o "$d/torus_1m.stl" > /dev/null
+  printf 'name: torus_1m\npart:\n  mesh: %s\nslicing:\n  type: planar\n  layer_height_mm: 1.5\npath:\n  bead_width_mm: 2\n%s\n' \
+    "$d/torus_1m.stl" 'process: {travel_speed_mm_min: 400, wire_feed_mm_min: 3200}' > "$d/torus_1m.yaml"
+  "$w" compensate scenarios/distortion/small_bent_tube.yaml -o "$d/tube_scan" --max-iter 0 --no-program --no-images \
+    -q > /dev/null
+  python3 - "$d" "$w" <<'PY' | put threads
+import os, resource, subprocess, sys, time
+d, w = sys.argv[1], sys.argv[2]
+tube = "scenarios/distortion/small_bent_tube.yaml"
+runs = [
+    ("`waam plan` the 1 M-facet torus, contour pattern", ["plan", f"{d}/torus_1m.yaml", "--set", "path.pattern=contour", "--no-images"]),
+    ("`waam plan` the 1 M-facet torus, hybrid pattern", ["plan", f"{d}/torus_1m.yaml", "--set", "path.pattern=hybrid", "--no-images"]),
+    ("`waam check scenarios/multiaxis/thruster_cone.yaml`", ["check", "scenarios/multiaxis/thruster_cone.yaml", "--no-images"]),
+    ("`waam deviation`: the torus's 499,392 vertices against its 998,784 facets", ["deviation", f"{d}/torus_1m.stl", f"{d}/torus_1m.stl", "--no-images"]),
+    ("`waam compensate` small_bent_tube, FE, two corrected builds", ["compensate", tube, "--max-iter", "2", "--tol-mm", "0.01", "--no-program", "--no-images"]),
+    ("`waam tune-voids scenarios/ribweb/rib_web_eulerian.yaml` (two junction classes)", ["tune-voids", "scenarios/ribweb/rib_web_eulerian.yaml", "--no-images"]),
+    ("`waam fit distortion` small_bent_tube's twin scan, reduced model", ["fit", "distortion", f"{d}/tube_scan/scan_before.ply", "--scenario", tube, "--mode", "reduced"]),
+]
+load = open("/proc/loadavg").read().split()[:3]
+rows = []
+for i, (label, args) in enumerate(runs):
+    wall, cpu = [], []
+    for threads in (1, 2):
+        out = f"{d}/run{i}_t{threads}"
+        extra = ["-o", out + ("/distortion.json" if args[:2] == ["fit", "distortion"] else "")]
+        quiet = [] if args[0] == "deviation" else ["-q"]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        t0 = time.perf_counter()
+        subprocess.run([w] + args + extra + quiet + ["--threads", str(threads)], check=True, stdout=subprocess.DEVNULL)
+        wall.append(time.perf_counter() - t0)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+    rows.append("| %s | %.2f s (%.2f s) | %.2f s (%.2f s) | %.2f |" % (label, wall[0], cpu[0], wall[1], cpu[1],
+                                                                      wall[1] / wall[0]))
+print("Load average %s before the runs (%d hardware threads)." % (" ".join(load), os.cpu_count()))
+print()
+print("| run | 1 thread: wall (CPU) | 2 threads: wall (CPU) | wall 2 / 1 |")
+print("| --- | --- | --- | --- |")
+print("\n".join(rows))
+PY
 }
 
 for table in "${tables[@]}"; do

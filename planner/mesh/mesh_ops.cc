@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <unordered_map>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -39,6 +39,74 @@ std::uint64_t EdgeKey(int a, int b) {
   return (lo << 32) | hi;
 }
 
+// splitmix64's finaliser: the low bits of a key, which pick a slot of the tables below, mixed from all of its bits.
+std::uint64_t Mix(std::uint64_t h) {
+  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+  h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+  return h ^ (h >> 31);
+}
+
+// A map from 64-bit cell keys to vertex ids for at most `n` keys: open addressing with linear probing in two flat
+// arrays (one cache miss a lookup, where std::unordered_map chases a node).
+class CellTable {
+ public:
+  explicit CellTable(std::size_t n) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * n) capacity *= 2;
+    mask_ = capacity - 1;
+    keys_.resize(capacity);
+    ids_.assign(capacity, -1);
+  }
+  // The id stored for `key`, or null.
+  int* Find(std::uint64_t key) {
+    for (std::size_t slot = Mix(key) & mask_; ids_[slot] >= 0; slot = (slot + 1) & mask_) {
+      if (keys_[slot] == key) return &ids_[slot];
+    }
+    return nullptr;
+  }
+  // The slot of `key`, holding `id` if the key was new (then true), else its id as it was (then false).
+  std::pair<int*, bool> TryEmplace(std::uint64_t key, int id) {
+    std::size_t slot = Mix(key) & mask_;
+    for (; ids_[slot] >= 0; slot = (slot + 1) & mask_) {
+      if (keys_[slot] == key) return {&ids_[slot], false};
+    }
+    keys_[slot] = key;
+    ids_[slot] = id;
+    return {&ids_[slot], true};
+  }
+
+ private:
+  std::size_t mask_ = 0;
+  std::vector<std::uint64_t> keys_;
+  std::vector<int> ids_;
+};
+
+// The distinct points of `corners` (bit-identical coordinates, -0 and +0 alike) in first-seen order, and for each
+// corner the index of its distinct point. An open-addressing table of 32-bit slots: a 1 M-facet STL repeats each
+// point about six times, so this one pass leaves a sixth of the points to the tolerance grid.
+std::vector<int> DistinctPoints(const std::vector<Eigen::Vector3d>& corners, std::vector<Eigen::Vector3d>* distinct) {
+  std::size_t capacity = 16;
+  while (capacity < 2 * corners.size()) capacity *= 2;
+  std::vector<std::int32_t> slots(capacity, -1);
+  std::vector<int> index_of(corners.size());
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const Eigen::Vector3d& p = corners[c];  // == holds for -0 and +0, and BitsKey maps both to one key
+    if (!p.allFinite()) {  // never equal to anything, as in the tolerance search
+      index_of[c] = static_cast<int>(distinct->size());
+      distinct->push_back(p);
+      continue;
+    }
+    std::size_t slot = Mix(BitsKey(p)) & (capacity - 1);
+    while (slots[slot] >= 0 && (*distinct)[slots[slot]] != p) slot = (slot + 1) & (capacity - 1);
+    if (slots[slot] < 0) {
+      slots[slot] = static_cast<std::int32_t>(distinct->size());
+      distinct->push_back(p);
+    }
+    index_of[c] = slots[slot];
+  }
+  return index_of;
+}
+
 }  // namespace
 
 bool IsDegenerateFacet(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -51,9 +119,13 @@ bool IsDegenerateFacet(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const
 TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double weld_tolerance_mm,
                            std::size_t* degenerate) {
   TriangleMesh mesh;
-  std::unordered_map<std::uint64_t, int> head;  // cell key -> last vertex inserted in that cell
-  std::vector<int> next;                        // vertex -> previous vertex in the same cell list
-  head.reserve(corners.size() / 2 + 1);
+  // Bit-identical corners weld to the same vertex (the lowest within the tolerance of the first of them stays the
+  // lowest: every vertex added later has a higher number), so each distinct point is looked up once, in the order
+  // of its first corner: the same vertices, numbered the same, as looking up every corner.
+  std::vector<Eigen::Vector3d> distinct;
+  const std::vector<int> distinct_of = DistinctPoints(corners, &distinct);
+  CellTable head(distinct.size());  // cell key -> last vertex inserted in that cell
+  std::vector<int> next;            // vertex -> previous vertex in the same cell list
   const bool exact = weld_tolerance_mm <= 0.0;
   const double tol2 = weld_tolerance_mm * weld_tolerance_mm;
   const double inv_cell = exact ? 0.0 : 0.5 / weld_tolerance_mm;
@@ -61,16 +133,16 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
   auto find_or_add = [&](const Eigen::Vector3d& p) -> int {
     int best = std::numeric_limits<int>::max();
     if (exact) {
-      const auto it = head.find(BitsKey(p));
-      for (int v = it == head.end() ? -1 : it->second; v >= 0; v = next[v]) {
+      const int* last = head.Find(BitsKey(p));
+      for (int v = last == nullptr ? -1 : *last; v >= 0; v = next[v]) {
         if (mesh.vertices[v] == p) best = std::min(best, v);
       }
       if (best != std::numeric_limits<int>::max()) return best;
       const int id = static_cast<int>(mesh.vertices.size());
       mesh.vertices.push_back(p);
-      auto [slot, inserted] = head.try_emplace(BitsKey(p), id);
-      next.push_back(inserted ? -1 : slot->second);
-      slot->second = id;
+      auto [slot, inserted] = head.TryEmplace(BitsKey(p), id);
+      next.push_back(inserted ? -1 : *slot);
+      *slot = id;
       return id;
     }
     // Cells are 2 tol wide, so along each axis a point is within tol of its own cell and at most one neighbour:
@@ -84,27 +156,29 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
       other[a] = u - static_cast<double>(cell[a]) < 0.5 ? cell[a] - 1 : cell[a] + 1;
     }
     for (int corner = 0; corner < 8; ++corner) {
-      const auto it = head.find(CellKey(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1],
-                                        corner & 4 ? other[2] : cell[2]));
-      if (it == head.end()) continue;
-      for (int v = it->second; v >= 0; v = next[v]) {
+      const int* last = head.Find(CellKey(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1],
+                                          corner & 4 ? other[2] : cell[2]));
+      if (last == nullptr) continue;
+      for (int v = *last; v >= 0; v = next[v]) {
         if (v < best && (mesh.vertices[v] - p).squaredNorm() <= tol2) best = v;
       }
     }
     if (best != std::numeric_limits<int>::max()) return best;
     const int id = static_cast<int>(mesh.vertices.size());
     mesh.vertices.push_back(p);
-    auto [slot, inserted] = head.try_emplace(CellKey(cell[0], cell[1], cell[2]), id);
-    next.push_back(inserted ? -1 : slot->second);
-    slot->second = id;
+    auto [slot, inserted] = head.TryEmplace(CellKey(cell[0], cell[1], cell[2]), id);
+    next.push_back(inserted ? -1 : *slot);
+    *slot = id;
     return id;
   };
+  std::vector<int> vertex_of(distinct.size());
+  for (std::size_t d = 0; d < distinct.size(); ++d) vertex_of[d] = find_or_add(distinct[d]);
 
   std::size_t dropped = 0;
   mesh.facets.reserve(corners.size() / 3);
   for (std::size_t f = 0; f + 2 < corners.size(); f += 3) {
-    const std::array<int, 3> ids = {find_or_add(corners[f]), find_or_add(corners[f + 1]),
-                                    find_or_add(corners[f + 2])};
+    const std::array<int, 3> ids = {vertex_of[distinct_of[f]], vertex_of[distinct_of[f + 1]],
+                                    vertex_of[distinct_of[f + 2]]};
     if (ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0] ||
         IsDegenerateFacet(mesh.vertices[ids[0]], mesh.vertices[ids[1]], mesh.vertices[ids[2]])) {
       ++dropped;

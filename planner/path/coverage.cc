@@ -8,6 +8,7 @@
 #include <map>
 #include <vector>
 
+#include "planner/geometry/bead_outline.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/geometry/polygon.h"
 
@@ -45,6 +46,53 @@ bool ClipToSlab(Eigen::Vector2d* a, Eigen::Vector2d* b, double lo, double hi, bo
   return true;
 }
 
+// The part of a Clipper ring with lo <= x <= hi (Clipper units), by Sutherland-Hodgman against the slab's two sides:
+// the same orientation, and where the ring leaves and re-enters the slab, an edge along its side; such edges of
+// one ring overlap with opposite directions and cancel under the non-zero rule. Empty when nothing is left.
+ClipperLib::Path CutRingToSlab(const ClipperLib::Path& ring, ClipperLib::cInt lo, ClipperLib::cInt hi) {
+  auto cut = [](const ClipperLib::Path& in, ClipperLib::cInt x0, bool keep_above) {
+    ClipperLib::Path out;
+    if (in.empty()) return out;
+    auto inside = [&](const ClipperLib::IntPoint& p) { return keep_above ? p.X >= x0 : p.X <= x0; };
+    auto crossing = [&](const ClipperLib::IntPoint& s, const ClipperLib::IntPoint& e) {
+      const double t = static_cast<double>(x0 - s.X) / static_cast<double>(e.X - s.X);
+      return ClipperLib::IntPoint(x0, s.Y + static_cast<ClipperLib::cInt>(std::llround(t * static_cast<double>(e.Y - s.Y))));
+    };
+    ClipperLib::IntPoint s = in.back();
+    for (const ClipperLib::IntPoint& e : in) {
+      if (inside(e)) {
+        if (!inside(s)) out.push_back(crossing(s, e));
+        out.push_back(e);
+      } else if (inside(s)) {
+        out.push_back(crossing(s, e));
+      }
+      s = e;
+    }
+    return out;
+  };
+  ClipperLib::Path out = cut(cut(ring, lo, true), hi, false);
+  if (out.size() < 3) out.clear();
+  return out;
+}
+
+// Every ring of `paths` cut to lo <= x <= hi (mm), rings wholly inside kept as they are.
+ClipperLib::Paths CutToSlab(const ClipperLib::Paths& paths, double lo_mm, double hi_mm) {
+  const ClipperLib::cInt lo = internal::ToClipper({lo_mm, 0.0}).X, hi = internal::ToClipper({hi_mm, 0.0}).X;
+  ClipperLib::Paths out;
+  for (const ClipperLib::Path& ring : paths) {
+    ClipperLib::cInt ring_lo = ring.front().X, ring_hi = ring_lo;
+    for (const ClipperLib::IntPoint& p : ring) ring_lo = std::min(ring_lo, p.X), ring_hi = std::max(ring_hi, p.X);
+    if (ring_hi < lo || ring_lo > hi) continue;
+    if (ring_lo >= lo && ring_hi <= hi) {
+      out.push_back(ring);
+      continue;
+    }
+    ClipperLib::Path cut = CutRingToSlab(ring, lo, hi);
+    if (!cut.empty()) out.push_back(std::move(cut));
+  }
+  return out;
+}
+
 }  // namespace
 
 double UncoveredArea(const LayerPath& layer) {
@@ -64,11 +112,9 @@ double UncoveredArea(const LayerPath& layer) {
     radius_max = std::max(radius_max, radius);
   }
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
-  double y_lo = x_lo, y_hi = -x_lo;
   for (const PolygonWithHoles& region : layer.slice) {
     for (const Eigen::Vector2d& p : region.outer) {
       x_lo = std::min(x_lo, p.x()), x_hi = std::max(x_hi, p.x());
-      y_lo = std::min(y_lo, p.y()), y_hi = std::max(y_hi, p.y());
     }
   }
   if (!(x_hi > x_lo)) return Area(layer.slice);
@@ -82,13 +128,13 @@ double UncoveredArea(const LayerPath& layer) {
                                                                             (kColumnBeadWidths * 2.0 * radius_max))),
                                                  1, kMaxColumns);
   const double column_mm = (x_hi - x_lo) / columns;
+  const ClipperLib::Paths slice_paths = internal::ToPaths(layer.slice);
   double uncovered = 0.0;
   for (int c = 0; c < columns; ++c) {
     // The first and last column reach past the slice, so no sliver of it is missed by rounding.
     const double lo = c == 0 ? x_lo - 1.0 : x_lo + c * column_mm;
     const double hi = c == columns - 1 ? x_hi + 1.0 : x_lo + (c + 1) * column_mm;
-    const PolygonWithHoles box{{{lo, y_lo - 1.0}, {hi, y_lo - 1.0}, {hi, y_hi + 1.0}, {lo, y_hi + 1.0}}, {}};
-    const std::vector<PolygonWithHoles> part = columns == 1 ? layer.slice : internal::Intersection(layer.slice, {box});
+    const ClipperLib::Paths part = columns == 1 ? slice_paths : CutToSlab(slice_paths, lo, hi);
     if (part.empty()) continue;
     // Each pass as one polyline (the buffer of a polyline is the union of its moves' buffers, and Clipper's union
     // of a polyline's buffer meets far fewer crossings than that of separate moves), cut where it leaves the column.
@@ -110,12 +156,12 @@ double UncoveredArea(const LayerPath& layer) {
       }
       if (cut_b) open = nullptr;
     }
-    std::vector<PolygonWithHoles> covered;
+    // The beads' outlines of every width, their union and the difference in one Clipper pass.
+    ClipperLib::Paths outlines;
     for (const auto& [bin, moves] : by_width) {
-      const std::vector<PolygonWithHoles> swept = internal::BufferPolylines(moves, 0.5 * bin * kWidthBinMm, kCoverageArcToleranceMm);
-      covered.insert(covered.end(), swept.begin(), swept.end());
+      internal::AppendBeadOutlines(moves, 0.5 * bin * kWidthBinMm, kCoverageArcToleranceMm, &outlines);
     }
-    uncovered += Area(internal::Difference(part, covered));
+    uncovered += internal::AreaOutsideBeads(part, outlines);
   }
   return uncovered;
 }

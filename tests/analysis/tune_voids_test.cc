@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -13,6 +14,7 @@
 #include "analysis/plan_command.h"
 #include "analysis/scenario.h"
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "planner/planar_planner.h"
 #include "planner/scenario/scenario.h"
 
@@ -73,6 +75,27 @@ TEST(TuneVoids, CrossJunctionVoidFallsAsTheShiftGrows) {
   const nlohmann::json plan_json = PlanToJson(scenario, plan)["void_filling"];
   EXPECT_EQ(plan_json["corrected_corners"].get<std::size_t>(), plan.plan.layers.size());
   EXPECT_NEAR(plan_json["classes"]["4 ribs 90/90/90/90"]["mean_shift_mm"].get<double>(), j.tuned.shift_mm, 1e-9);
+}
+
+// The junction classes are tuned in parallel (and each class's plain and geometric trials): the same tune.json,
+// byte for byte, on 1 and 4 threads, for a rib web with two classes.
+TEST(TuneVoids, SameTuneJsonOnOneAndFourThreads) {
+  std::string json[2];
+  for (const int threads : {1, 4}) {
+    TuneVoidsOptions options;
+    options.scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios/ribweb/rib_web_eulerian.yaml";
+    options.out_dir = fs::path(::testing::TempDir()) / ("tune_threads_" + std::to_string(threads));
+    options.quiet = true;
+    options.images = false;
+    SetThreadCount(threads);
+    const TuneVoidsResult result = RunTuneVoids(options);
+    SetThreadCount(0);
+    ASSERT_EQ(result.junctions.size(), 2u) << "two junction classes tuned side by side";
+    std::ifstream in(options.out_dir / "tune.json");
+    json[threads == 1 ? 0 : 1].assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  EXPECT_FALSE(json[0].empty());
+  EXPECT_EQ(json[0], json[1]);
 }
 
 TEST(TuneVoids, BadInputIsNamed) {

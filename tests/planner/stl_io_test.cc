@@ -1,6 +1,7 @@
 // Tests of the STL reader/writers: round trips, welding, the mesh report and every bad-input message.
 #include "planner/mesh/stl_io.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "planner/mesh/generators.h"
+#include "planner/mesh/mesh_ops.h"
 #include "planner/slicing/planar_slicer.h"
 #include "tests/planner/mesh_test_util.h"
 
@@ -112,6 +114,61 @@ TEST(StlIo, WeldsWithinToleranceOnlyAndDropsDegenerateFacets) {
   MeshReport exact;
   ReadStl(file, 0.0, &exact);
   EXPECT_EQ(exact.boundary_edges, 6u) << "with tolerance 0 the 1e-5 mm gap stays open";
+}
+
+// WeldTriangles against the rule its header states, applied corner by corner with a search over every earlier
+// vertex: each corner joins the lowest-numbered vertex within the tolerance, else becomes a new one. A seeded soup
+// with bit-identical repeats, -0 and +0, points just inside and just outside the tolerance, in shuffled order.
+TEST(StlIo, WeldMatchesTheCornerByCornerRule) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> pick(0, 59);
+  std::uniform_real_distribution<double> jitter(-0.8, 0.8);
+  std::vector<Eigen::Vector3d> base;
+  for (int i = 0; i < 60; ++i) base.emplace_back(i % 4, (i / 4) % 5, i / 20);
+  base[0] = Eigen::Vector3d(-0.0, 0.0, -0.0);  // and base[59] the same point with +0
+  base[59] = Eigen::Vector3d(0.0, 0.0, 0.0);
+  const double tol = 0.01;
+  std::vector<Eigen::Vector3d> corners;
+  for (int f = 0; f < 400; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d p = base[pick(rng)];
+      if (f % 3 == 1) p += Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng)) * tol;  // within tol or not
+      corners.push_back(p);
+    }
+  }
+  // The rule, corner by corner.
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<int> id_of(corners.size());
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    int id = -1;
+    for (std::size_t v = 0; v < vertices.size() && id < 0; ++v) {
+      if ((vertices[v] - corners[c]).squaredNorm() <= tol * tol) id = static_cast<int>(v);
+    }
+    if (id < 0) {
+      id = static_cast<int>(vertices.size());
+      vertices.push_back(corners[c]);
+    }
+    id_of[c] = id;
+  }
+  std::size_t degenerate = 0;
+  const TriangleMesh mesh = WeldTriangles(corners, tol, &degenerate);
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < corners.size() / 3; ++f) {
+    const std::array<int, 3> ids = {id_of[3 * f], id_of[3 * f + 1], id_of[3 * f + 2]};
+    if (ids[0] == ids[1] || ids[1] == ids[2] || ids[0] == ids[2] ||
+        IsDegenerateFacet(vertices[ids[0]], vertices[ids[1]], vertices[ids[2]])) {
+      continue;
+    }
+    ASSERT_LT(kept, mesh.facets.size());
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(mesh.vertices[mesh.facets[kept][k]], vertices[ids[k]]) << "facet " << f << " corner " << k;
+    }
+    ++kept;
+  }
+  EXPECT_EQ(kept, mesh.facets.size());
+  EXPECT_EQ(degenerate, corners.size() / 3 - kept);
+  EXPECT_GT(kept, 100u);
+  EXPECT_LT(vertices.size(), corners.size() / 2) << "the soup must repeat points";
 }
 
 TEST(StlIo, ReportsMisorientedFacetsButStaysSliceable) {

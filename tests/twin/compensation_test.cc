@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "twin/compensation/compensation_internal.h"
 #include "twin/deposition/bead_deposition.h"
 #include "twin/scanner/surface_mesh.h"
@@ -145,6 +146,42 @@ TEST(Compensation, PartialRingAtTheTopIsNotMeasuredAsAnOutlineMove) {
   const Eigen::Vector3d p = kCentre + Eigen::Vector3d(0.0, 15.0, top - 4.0);
   EXPECT_NEAR(a.Outline(p).dot(Eigen::Vector3d::UnitY()), -1.0, 0.5)
       << "the outline move at the gap is held from the whole sections below, not read off the gap";
+}
+
+// The loop's scans, section measures and per-layer corrections run in parallel, each into its own slot: the same
+// iterations and the same compensated path, bit for bit, on 1 and 4 threads, with either correction method.
+TEST(Compensation, SameOnOneAndFourThreads) {
+  Tube tube;
+  tube.plan = HotSideTube(15.0, 16);
+  tube.target = ExtractSurface(DepositPlan(tube.plan, Coarse(), 100.0, nullptr).grid());
+  for (const CorrectionMethod method : {CorrectionMethod::kAxis, CorrectionMethod::kPoints}) {
+    CompensationOptions o = Reduced(0.04);
+    o.tolerance_mm = 0.01;  // unreachable: every iteration corrects
+    o.max_iterations = 1;
+    o.correction = method;
+    SetThreadCount(1);
+    const CompensationResult one = Compensate(tube.plan, tube.target, Coarse(), o);
+    SetThreadCount(4);
+    const CompensationResult four = Compensate(tube.plan, tube.target, Coarse(), o);
+    SetThreadCount(0);
+    ASSERT_EQ(one.iterations.size(), 2u) << "one corrected build";
+    ASSERT_EQ(four.iterations.size(), one.iterations.size());
+    for (std::size_t i = 0; i < one.iterations.size(); ++i) {
+      EXPECT_EQ(one.iterations[i].max_abs_deviation_mm, four.iterations[i].max_abs_deviation_mm) << i;
+      EXPECT_EQ(one.iterations[i].rms_deviation_mm, four.iterations[i].rms_deviation_mm) << i;
+      EXPECT_EQ(one.iterations[i].axis_deviation_mm, four.iterations[i].axis_deviation_mm) << i;
+      EXPECT_EQ(one.iterations[i].max_correction_mm, four.iterations[i].max_correction_mm) << i;
+    }
+    EXPECT_GT(one.iterations[0].max_correction_mm, 0.0) << "the path was corrected";
+    ASSERT_EQ(one.plan.layers.size(), four.plan.layers.size());
+    for (std::size_t l = 0; l < one.plan.layers.size(); ++l) {
+      ASSERT_EQ(one.plan.layers[l].points.size(), four.plan.layers[l].points.size());
+      for (std::size_t k = 0; k < one.plan.layers[l].points.size(); ++k) {
+        ASSERT_EQ(one.plan.layers[l].points[k].p_P, four.plan.layers[l].points[k].p_P) << l << " " << k;
+      }
+    }
+    EXPECT_EQ(one.last_scan.deviation_mm, four.last_scan.deviation_mm);
+  }
 }
 
 TEST(Compensation, LoopThatCannotReachTheToleranceSaysSo) {

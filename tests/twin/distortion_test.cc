@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "tests/twin/test_plans.h"
 #include "twin/compensation/compensation.h"
 #include "twin/distortion/distortion_fit.h"
@@ -181,6 +182,35 @@ TEST(Distortion, EachLoopOfASpiralPassIsItsOwnLayer) {
   const Eigen::Vector3d u2 = ComputeDistortion(b.depositor.grid(), b.history, p, o).Displacement(top);
   EXPECT_GT((u2 - u1).norm(), 0.2 * u1.norm()) << "vertical_ratio must matter on a spiral: " << u1.transpose()
                                                 << " vs " << u2.transpose();
+}
+
+// The FE assembly gathers each node's columns in parallel: the same displacements, bit for bit, on 1 and 4 threads,
+// and the same stiffness pattern (stats) as well.
+TEST(Distortion, SameFieldOnOneAndFourThreads) {
+  const Build b(SpiralTube(6, 4.0), 0.5);
+  const models::DistortionParams p = Params(0.004, 1.0);
+  DistortionStats one_stats, four_stats;
+  SetThreadCount(1);
+  const DistortionField one = ComputeDistortion(b.depositor.grid(), b.history, p, Fe(1.0, 3), &one_stats);
+  SetThreadCount(4);
+  const DistortionField four = ComputeDistortion(b.depositor.grid(), b.history, p, Fe(1.0, 3), &four_stats);
+  SetThreadCount(0);
+  ASSERT_GT(one.nodes(), 500u) << "several nodes a thread";
+  EXPECT_EQ(one.nodes(), four.nodes());
+  EXPECT_EQ(one_stats.dofs, four_stats.dofs);
+  EXPECT_EQ(one_stats.nonzeros, four_stats.nonzeros);
+  EXPECT_EQ(one_stats.solves, four_stats.solves);
+  int moved = 0;
+  for (double x = -16.0; x <= 16.0; x += 0.75) {
+    for (double y = -11.0; y <= 11.0; y += 0.75) {
+      for (double z = 0.25; z <= 9.0; z += 0.75) {
+        const Eigen::Vector3d u1 = one.Displacement({x, y, z}), u4 = four.Displacement({x, y, z});
+        ASSERT_EQ(u1, u4) << "at " << x << " " << y << " " << z;
+        moved += u1.squaredNorm() > 0.0;
+      }
+    }
+  }
+  EXPECT_GT(moved, 100) << "the comparison must cover displaced points";
 }
 
 TEST(Distortion, BadOptionsNameTheField) {

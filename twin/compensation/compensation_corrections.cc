@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include "models/core/numbers.h"
+#include "models/core/parallel.h"
 #include "twin/compensation/compensation_internal.h"
 #include "twin/scanner/point_hash.h"
 
@@ -31,7 +32,8 @@ std::vector<std::vector<Eigen::Vector3d>> LocalCorrections(const planner::Plan& 
   const double radius = 0.5 * bead_width_mm + std::min(scan.max_abs_mm, 20.0) + 1.0;
   const PointHash hash(scan.points, radius);
   std::vector<std::vector<Eigen::Vector3d>> s(nominal.layers.size());
-  for (std::size_t l = 0; l < nominal.layers.size(); ++l) {
+  // Each layer's corrections depend only on the scan: the layers run in parallel, each into its own slot.
+  ParallelFor(nominal.layers.size(), [&](std::size_t l) {
     const planner::LayerPath& layer = nominal.layers[l];
     const Eigen::Vector3d n = layer.build_dir_P.normalized();
     s[l].assign(layer.points.size(), Eigen::Vector3d::Zero());
@@ -67,7 +69,7 @@ std::vector<std::vector<Eigen::Vector3d>> LocalCorrections(const planner::Plan& 
         }
       }
     }
-  }
+  });
   return s;
 }
 
@@ -195,7 +197,8 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
   a.shift.assign(a.stations.size(), Eigen::Vector3d::Zero());
   a.outline.assign(a.stations.size(), std::array<double, SectionShift::kDirections>{});
   a.measured.assign(a.stations.size(), 0);
-  for (std::size_t i = 0; i < a.stations.size(); ++i) {
+  // Each station's section is measured on its own (its own slots), in parallel; the largest shift is taken after.
+  ParallelFor(a.stations.size(), [&](std::size_t i) {
     const AxisStation& s = a.stations[i];
     const double reach = 1.5 * s.radius_mm + 2.0 * slab + 5.0;
     const SectionMeasure t = MeasureSection(reference, s, slab, reach);
@@ -203,22 +206,23 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
     // A complete section only: a slab past the shortened, tilted top cuts a partial ring whose centre is not the axis.
     if (m.points == 0 || t.points == 0 || m.d_min_mm < 0.7 * t.d_min_mm || m.d_max_mm < 0.7 * t.d_max_mm ||
         m.d_max_mm > 1.25 * t.d_max_mm) {
-      continue;
+      return;
     }
     const std::vector<Eigen::Vector3d> scan_in = InSlab(scan, s, slab, reach);
     const std::vector<Eigen::Vector3d> reference_in = InSlab(reference, s, slab, reach);
-    if (!Surrounds(scan_in, s, a.t1[i], m.centroid) || !Surrounds(reference_in, s, a.t1[i], t.centroid)) continue;
+    if (!Surrounds(scan_in, s, a.t1[i], m.centroid) || !Surrounds(reference_in, s, a.t1[i], t.centroid)) return;
     const Eigen::Vector3d d = m.centroid - t.centroid;
     a.shift[i] = d - d.dot(s.normal) * s.normal;
     const std::array<double, SectionShift::kDirections> hs = Support(scan_in, s, a.t1[i], m.centroid);
     const std::array<double, SectionShift::kDirections> hr = Support(reference_in, s, a.t1[i], t.centroid);
     for (int k = 0; k < SectionShift::kDirections; ++k) a.outline[i][k] = hs[k] - hr[k];
     a.measured[i] = 1;
-    a.max_measured_mm = std::max(a.max_measured_mm, a.shift[i].norm());
-  }
+  });
   std::vector<std::size_t> ok;
   for (std::size_t i = 0; i < a.stations.size(); ++i) {
-    if (a.measured[i]) ok.push_back(i);
+    if (!a.measured[i]) continue;
+    ok.push_back(i);
+    a.max_measured_mm = std::max(a.max_measured_mm, a.shift[i].norm());
   }
   if (ok.empty()) return a;
   // Bottom: hold the first measured values. Top: the last outline, and a straight line through the last measured
@@ -275,10 +279,10 @@ std::vector<std::vector<Eigen::Vector3d>> EstimateCorrections(const planner::Pla
   const SectionShift sections = MeasureSectionShift(reference_points, scan_points, axis_step_mm);
   // The scan moved back by the axis offset and the outline move of its section, measured again against the reference.
   std::vector<Eigen::Vector3d> recentred(scan.points.size());
-  for (std::size_t j = 0; j < scan.points.size(); ++j) {
+  ParallelFor(scan.points.size(), [&](std::size_t j) {
     const Eigen::Vector3d p = scan.points[j] - sections.Axis(scan.points[j]);
     recentred[j] = p - sections.Outline(p);
-  }
+  });
   const ScanDeviation local_scan = MeasureScanDeviation(recentred, reference_distance);
   std::vector<std::vector<Eigen::Vector3d>> s = LocalCorrections(nominal, local_scan, bead_width_mm);
   const int debug = debug_level;

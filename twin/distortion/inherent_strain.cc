@@ -19,6 +19,7 @@
 #include <Eigen/SparseCore>
 
 #include "models/core/error.h"
+#include "models/core/parallel.h"
 #include "models/core/progress.h"
 
 namespace waam::twin::internal {
@@ -101,7 +102,32 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
   const std::size_t dropped = KeepConnectedToSubstrate(mesh, &final_active);
   if (stats != nullptr) stats->dropped_elements = dropped;
 
-  for (int group = 0; group < mesh.groups; ++group) {
+  // The elements around each node, in element order: elements_at[n] .. elements_at[n + 1] in element_list.
+  std::vector<int> elements_at(n_nodes + 1, 0);
+  for (const HexElement& el : mesh.elements) {
+    for (int n : el.nodes) ++elements_at[n + 1];
+  }
+  for (std::size_t n = 0; n < n_nodes; ++n) elements_at[n + 1] += elements_at[n];
+  std::vector<int> element_list(elements_at[n_nodes]);
+  {
+    std::vector<int> next(elements_at.begin(), elements_at.end() - 1);
+    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+      for (int n : mesh.elements[e].nodes) element_list[next[n]++] = static_cast<int>(e);
+    }
+  }
+
+  // Each group's increment du_g = K_g^-1 f_g depends only on the elements active then and the group's own strains,
+  // not on the other increments: the groups are solved in parallel, each into its own slot, and their increments
+  // added in group order afterwards (the same sums as one after the other). Up to min(threads, groups)
+  // factorisations are held at once.
+  struct GroupSolution {
+    std::vector<int> node_of;  // dof block -> node
+    Eigen::VectorXd du;
+    std::size_t nonzeros = 0;
+  };
+  std::vector<GroupSolution> solutions(mesh.groups);
+  ParallelFor(solutions.size(), [&](std::size_t group_index) {
+    const int group = static_cast<int>(group_index);
     CheckInterrupt();
     std::vector<std::uint8_t> active(mesh.elements.size(), 0);
     bool any_new = false;
@@ -109,7 +135,7 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
       active[e] = final_active[e] && mesh.elements[e].group <= group;
       any_new = any_new || (active[e] && mesh.elements[e].group == group);
     }
-    if (!any_new) continue;
+    if (!any_new) return;
     KeepConnectedToSubstrate(mesh, &active);
     // Number the nodes of the active elements.
     std::vector<int> dof_of(n_nodes, -1);
@@ -124,69 +150,75 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
       }
     }
     const int nn = static_cast<int>(node_of.size());
-    if (nn == 0) continue;
-    // Lower-triangle sparsity pattern from the node adjacency (nodes sharing an element).
+    if (nn == 0) return;
+    // The assembly gathers by column: node a's three columns (and its three entries of f) are summed only from the
+    // elements around a, in element order, the order a scatter over the elements adds them in. Each node writes
+    // only its own columns, so the nodes run in parallel and K and f are the same, bit for bit, on any number of
+    // threads. Columns hold the lower triangle (rows >= column), from the nodes sharing an element with a.
     std::vector<std::vector<int>> adjacent(nn);
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
-      if (!active[e]) continue;
-      for (int a : mesh.elements[e].nodes) {
-        for (int b : mesh.elements[e].nodes) {
-          if (dof_of[b] >= dof_of[a]) adjacent[dof_of[a]].push_back(dof_of[b]);
+    ParallelFor(nn, [&](std::size_t a) {
+      const int node = node_of[a];
+      for (int k = elements_at[node]; k < elements_at[node + 1]; ++k) {
+        if (!active[element_list[k]]) continue;
+        for (int b : mesh.elements[element_list[k]].nodes) {
+          if (dof_of[b] >= static_cast<int>(a)) adjacent[a].push_back(dof_of[b]);
         }
       }
-    }
+      std::sort(adjacent[a].begin(), adjacent[a].end());
+      adjacent[a].erase(std::unique(adjacent[a].begin(), adjacent[a].end()), adjacent[a].end());
+    });
     Eigen::SparseMatrix<double> k(3 * nn, 3 * nn);
-    {
-      std::vector<int> counts(3 * nn);
-      for (int a = 0; a < nn; ++a) {
-        std::sort(adjacent[a].begin(), adjacent[a].end());
-        adjacent[a].erase(std::unique(adjacent[a].begin(), adjacent[a].end()), adjacent[a].end());
-        for (int c = 0; c < 3; ++c) counts[3 * a + c] = 3 * static_cast<int>(adjacent[a].size()) - c;
-      }
-      k.reserve(counts);
-      for (int a = 0; a < nn; ++a) {
-        for (int c = 0; c < 3; ++c) {
-          const int col = 3 * a + c;
-          for (int b : adjacent[a]) {
-            for (int r = 0; r < 3; ++r) {
-              if (3 * b + r >= col) k.insert(3 * b + r, col) = 0.0;
-            }
+    int* outer = k.outerIndexPtr();
+    outer[0] = 0;
+    for (int a = 0; a < nn; ++a) {
+      for (int c = 0; c < 3; ++c) outer[3 * a + c + 1] = outer[3 * a + c] + 3 * static_cast<int>(adjacent[a].size()) - c;
+    }
+    k.resizeNonZeros(outer[3 * nn]);
+    int* inner = k.innerIndexPtr();
+    double* values = k.valuePtr();
+    std::fill(values, values + outer[3 * nn], 0.0);
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * nn);
+    ParallelFor(nn, [&](std::size_t a_index) {
+      const int a = static_cast<int>(a_index);
+      for (int c = 0; c < 3; ++c) {
+        int at = outer[3 * a + c];
+        for (int b : adjacent[a]) {
+          for (int r = 0; r < 3; ++r) {
+            if (3 * b + r >= 3 * a + c) inner[at++] = 3 * b + r;
           }
         }
       }
-      k.makeCompressed();
-    }
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * nn);
-    double* values = k.valuePtr();
-    const int* outer = k.outerIndexPtr();
-    const int* inner = k.innerIndexPtr();
-    auto entry = [&](int row, int col) -> double& {
-      const int* lo = inner + outer[col];
-      const int* hi = inner + outer[col + 1];
-      return values[std::lower_bound(lo, hi, row) - inner];
-    };
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
-      if (!active[e]) continue;
-      const HexElement& el = mesh.elements[e];
-      int dofs[24];
-      for (int n = 0; n < 8; ++n) {
-        for (int c = 0; c < 3; ++c) dofs[3 * n + c] = 3 * dof_of[el.nodes[n]] + c;
-      }
-      for (int j = 0; j < 24; ++j) {
-        for (int i = 0; i < 24; ++i) {
-          if (dofs[i] >= dofs[j]) entry(dofs[i], dofs[j]) += ke(i, j);
+      auto entry = [&](int row, int col) -> double& {
+        const int* lo = inner + outer[col];
+        const int* hi = inner + outer[col + 1];
+        return values[std::lower_bound(lo, hi, row) - inner];
+      };
+      const int node = node_of[a];
+      for (int k_at = elements_at[node]; k_at < elements_at[node + 1]; ++k_at) {
+        const int e = element_list[k_at];
+        if (!active[e]) continue;
+        const HexElement& el = mesh.elements[e];
+        const int local = static_cast<int>(std::find(el.nodes.begin(), el.nodes.end(), node) - el.nodes.begin());
+        int dofs[24];
+        for (int n = 0; n < 8; ++n) {
+          for (int c = 0; c < 3; ++c) dofs[3 * n + c] = 3 * dof_of[el.nodes[n]] + c;
+        }
+        for (int c = 0; c < 3; ++c) {
+          const int j = 3 * local + c;
+          for (int i = 0; i < 24; ++i) {
+            if (dofs[i] >= dofs[j]) entry(dofs[i], dofs[j]) += ke(i, j);
+          }
+        }
+        if (el.group == group) {
+          const Eigen::Matrix<double, 24, 1> fe = gd * InherentStrain(el, params.vertical_ratio);
+          for (int c = 0; c < 3; ++c) f[3 * a + c] += fe[3 * local + c];
+        }
+        // Winkler springs on the bottom face (nodes 0-3) of a substrate element.
+        if (el.ijk.z() == 0 && local < 4) {
+          for (int c = 0; c < 3; ++c) entry(3 * a + c, 3 * a + c) += spring;
         }
       }
-      if (el.group == group) {
-        const Eigen::Matrix<double, 24, 1> fe = gd * InherentStrain(el, params.vertical_ratio);
-        for (int i = 0; i < 24; ++i) f[dofs[i]] += fe[i];
-      }
-      if (el.ijk.z() == 0) {
-        for (int n = 0; n < 4; ++n) {  // nodes 0-3 are the bottom face
-          for (int c = 0; c < 3; ++c) entry(dofs[3 * n + c], dofs[3 * n + c]) += spring;
-        }
-      }
-    }
+    });
     Eigen::VectorXd du;
     if (options.solver == FeSolver::kCg) {
       Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::IncompleteCholesky<double>> cg;
@@ -204,11 +236,18 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
                         "substrate?); raise models distortion substrate_stiffness_n_mm3");
       du = ldlt.solve(f);
     }
-    for (int a = 0; a < nn; ++a) u[node_of[a]] += du.segment<3>(3 * a);
+    solutions[group_index].nonzeros = static_cast<std::size_t>(k.nonZeros());
+    solutions[group_index].du = std::move(du);
+    solutions[group_index].node_of = std::move(node_of);
+  });
+  for (const GroupSolution& solution : solutions) {
+    if (solution.node_of.empty()) continue;
+    const std::vector<int>& node_of = solution.node_of;
+    for (std::size_t a = 0; a < node_of.size(); ++a) u[node_of[a]] += solution.du.segment<3>(3 * a);
     if (stats != nullptr) {
       stats->solves += 1;
-      stats->dofs = std::max<std::size_t>(stats->dofs, 3 * static_cast<std::size_t>(nn));
-      stats->nonzeros = std::max<std::size_t>(stats->nonzeros, static_cast<std::size_t>(k.nonZeros()));
+      stats->dofs = std::max<std::size_t>(stats->dofs, 3 * node_of.size());
+      stats->nonzeros = std::max<std::size_t>(stats->nonzeros, solution.nonzeros);
     }
   }
   if (stats != nullptr) {
