@@ -17,6 +17,7 @@
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
 #include "planner/program/robot_program.h"
+#include "planner/program/yaskawa_jbi.h"
 
 namespace waam::planner {
 namespace {
@@ -72,6 +73,10 @@ struct Dialect {
   bool part_frame;               // positions compared in the part frame (G-code) rather than the user frame
 };
 
+// The station's pulses per degree the JBI round trip writes and reads with (a controller's parameters; any value
+// above 500 keeps the whole-pulse rounding within 1e-3 deg).
+constexpr std::array<double, 2> kStationPulsesPerDeg = {1365.3, 1137.8};
+
 std::vector<Dialect> Dialects() {
   return {
       {ProgramFormat::kCsv, [](const RobotProgram& p, const CellKinematics&) { return ProgramToCsv(p); },
@@ -95,6 +100,14 @@ std::vector<Dialect> Dialects() {
          return files.src + files.dat;
        },
        5e-4 + 1e-9, 5e-4 + 1e-9, false},
+      {ProgramFormat::kYaskawaJbi,
+       [](const RobotProgram& p, const CellKinematics& cell) {
+         YaskawaJbiOptions options;
+         options.X_RU = cell.X_WR.inverse() * ProgramUserFrame(cell);
+         options.station_pulses_per_deg = kStationPulsesPerDeg;
+         return ProgramToYaskawaJbi(p, options);
+       },
+       0.05 + 1e-9, 0.05 + 1e-9, false},
       {ProgramFormat::kGcode,
        [](const RobotProgram& p, const CellKinematics&) { return ProgramToGcode(p, GcodeOptions{}); },
        5e-4 / 60.0 + 1e-9, 5e-4 / 60.0 + 1e-9, true},
@@ -124,7 +137,9 @@ void CheckRoundTrip(const Plan& plan, const char* label) {
   for (const Dialect& dialect : Dialects()) {
     SCOPED_TRACE(std::string(label) + " " + std::string(NameOf(dialect.format)));
     const std::string text = dialect.write(program, cell);
-    const ParsedProgram parsed = ReadProgramText(text, "round_trip", dialect.format);
+    JbiReadOptions jbi;
+    jbi.station_pulses_per_deg = kStationPulsesPerDeg;
+    const ParsedProgram parsed = ReadProgramText(text, "round_trip", dialect.format, GcodeReadOptions{}, jbi);
     EXPECT_TRUE(parsed.warnings.empty()) << parsed.warnings.front().what << " (line " << parsed.warnings.front().first_line
                                          << ")";
     ImportSettings settings;
