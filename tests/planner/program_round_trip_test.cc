@@ -172,6 +172,13 @@ void CheckRoundTrip(const Plan& plan, const char* label) {
     // welds, the same layers.
     const ImportedPlan imported = ProgramToPlan(parsed, cell, settings);
     ASSERT_EQ(imported.points, planned.size());
+    // The cell motion of the imported plan follows the program's positioner angles rather than solving its own.
+    const std::vector<CellSample> again = PlanCellMotion(cell, imported.plan, motion_options, {});
+    ASSERT_EQ(again.size(), program.points.size());
+    for (std::size_t i = 0; i < again.size(); ++i) {
+      EXPECT_NEAR(again[i].q[6] * kDeg, program.points[i].tilt_deg, 1e-3) << "point " << i;
+      EXPECT_NEAR(again[i].q[7] * kDeg, program.points[i].rotation_deg, 1e-3) << "point " << i;
+    }
     EXPECT_EQ(imported.plan.layers.size(), plan.layers.size());
     std::size_t k = 0;
     for (const LayerPath& layer : imported.plan.layers) {
@@ -192,6 +199,37 @@ TEST(ProgramRoundTripTest, PlanarLayersComeBackFromEveryDialect) {
 TEST(ProgramRoundTripTest, TiltedBuildDirectionComesBackFromEveryDialect) {
   // The positioner tilts the part by about 27 deg and turns it: both group-2 axes and the torch orientation move.
   CheckRoundTrip(SquareLayers(3, Eigen::Vector3d(0.3, 0.5, 1.0)), "multi-axis");
+}
+
+TEST(ProgramRoundTripTest, GivenPositionerAnglesDriveTheCellMotionInsteadOfSolvedOnes) {
+  // Vertical layers: the solver keeps the tilt at 0. The second layer's points carry a program's own angles.
+  Plan plan = SquareLayers(2, Eigen::Vector3d::UnitZ());
+  for (PathPoint& p : plan.layers[1].points) p.positioner_rad = Eigen::Vector2d(0.3, -0.8);
+  MotionOptions options;
+  options.step_mm = 1e6;  // one sample per path point
+  options.rapid_speed_mm_s = 100.0;
+  const std::vector<CellSample> motion = PlanCellMotion(RoundTripCell(), plan, options, {});
+  const std::size_t first = plan.layers[0].points.size();
+  ASSERT_EQ(motion.size(), first + plan.layers[1].points.size());
+  for (std::size_t i = 0; i < motion.size(); ++i) {
+    EXPECT_NEAR(motion[i].q[6], i < first ? 0.0 : 0.3, 1e-12) << "sample " << i;
+    if (i >= first) {
+      EXPECT_NEAR(motion[i].q[7], -0.8, 1e-12) << "sample " << i;
+    }
+  }
+  // Halfway along a move the angles are halfway between the previous point's and the given ones.
+  options.step_mm = 1.0;
+  const std::vector<CellSample> fine = PlanCellMotion(RoundTripCell(), plan, options, {});
+  std::size_t entry = 0;
+  while (fine[entry].point < static_cast<int>(first)) ++entry;  // the samples of the move into layer 2
+  std::size_t last = entry;
+  while (fine[last + 1].point == static_cast<int>(first)) ++last;
+  ASSERT_GT(last, entry);
+  const double tilt_before = fine[entry - 1].q[6];
+  for (std::size_t i = entry; i <= last; ++i) {
+    const double f = static_cast<double>(i - entry + 1) / static_cast<double>(last - entry + 1);
+    EXPECT_NEAR(fine[i].q[6], tilt_before + f * (0.3 - tilt_before), 1e-12) << "sample " << i;
+  }
 }
 
 }  // namespace
