@@ -12,14 +12,16 @@
 #include "planner/program/gcode.h"
 #include "planner/program/kuka_krl.h"
 #include "planner/program/program_reader.h"
+#include "planner/program/yaskawa_jbi.h"
 #include "twin/cell/cell_check.h"
+#include "twin/cell/cell_presets.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
 
 std::string WriteProgramText(planner::ProgramFormat format, const planner::RobotProgram& program,
-                             const planner::CellKinematics& kin) {
+                             const planner::CellKinematics& kin, const planner::JbiReadOptions& jbi) {
   switch (format) {
     case planner::ProgramFormat::kCsv: return planner::ProgramToCsv(program);
     case planner::ProgramFormat::kFanucLs: return planner::ProgramToFanucLs(program, planner::FanucLsOptions{});
@@ -37,10 +39,15 @@ std::string WriteProgramText(planner::ProgramFormat format, const planner::Robot
       const planner::KukaKrlFiles files = planner::ProgramToKukaKrl(program, options);
       return files.src + files.dat;
     }
-    case planner::ProgramFormat::kYaskawaJbi: break;
+    case planner::ProgramFormat::kYaskawaJbi: {
+      planner::YaskawaJbiOptions options;
+      options.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
+      options.station_pulses_per_deg = jbi.station_pulses_per_deg;
+      return planner::ProgramToYaskawaJbi(program, options);
+    }
   }
-  WAAM_THROW("writing " << NameOf(format)
-                        << " programs is not supported yet (csv, fanuc_ls, abb_rapid, kuka_krl, gcode are)");
+  WAAM_DEMAND(false);
+  return {};
 }
 
 ExportResult RunExport(const ExportOptions& options) {
@@ -48,11 +55,12 @@ ExportResult RunExport(const ExportOptions& options) {
   ExportResult result;
   if (options.format) {
     result.format = *options.format;
+  } else if (const auto by_extension = planner::ProgramFormatOfExtension(options.out_file)) {
+    result.format = *by_extension;
   } else {
-    const std::string ext = planner::internal::Upper(options.out_file.extension().string());
-    result.format = ext.empty() ? planner::ProgramFormat::kFanucLs
-                                : planner::DetectProgramFormat(options.out_file, "");
+    result.format = scenario.cell.preset ? twin::PresetDialect(*scenario.cell.preset) : planner::ProgramFormat::kFanucLs;
   }
+  const planner::JbiReadOptions jbi = JbiOptionsOf(scenario, {}, options.station_pulses_per_deg);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);
@@ -78,7 +86,7 @@ ExportResult RunExport(const ExportOptions& options) {
     WriteFileAtomic(dat, files.dat);
     WriteFileAtomic(src, files.src);
   } else {
-    WriteFileAtomic(options.out_file, WriteProgramText(result.format, program, kin));
+    WriteFileAtomic(options.out_file, WriteProgramText(result.format, program, kin, jbi));
   }
   result.points = program.points.size();
   result.violations = report.violations.size();

@@ -1,6 +1,7 @@
 // `waam import` and the plan of a scenario's program: section.
 #include "analysis/import_command.h"
 
+#include <cmath>
 #include <iostream>
 
 #include "analysis/plan_command.h"
@@ -91,13 +92,34 @@ planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::Par
   return result;
 }
 
+planner::JbiReadOptions JbiOptionsOf(const Scenario& scenario, const std::vector<double>& robot,
+                                     const std::vector<double>& station) {
+  planner::JbiReadOptions jbi;
+  jbi.robot_pulses_per_deg = scenario.program.yaskawa_pulses_per_deg;
+  jbi.station_pulses_per_deg = scenario.program.yaskawa_station_pulses_per_deg;
+  auto check = [](const std::vector<double>& v, std::size_t n, const char* flag) {
+    WAAM_THROW_UNLESS(v.size() == n, flag << ": needs " << n << " values separated by commas, " << v.size()
+                                          << " given");
+    for (double x : v) WAAM_THROW_UNLESS(std::isfinite(x) && x > 0.0, flag << " = " << x << ": must be > 0");
+  };
+  if (!robot.empty()) {
+    check(robot, 6, "--pulses-per-deg");
+    for (int j = 0; j < 6; ++j) jbi.robot_pulses_per_deg[j] = robot[j];
+  }
+  if (!station.empty()) {
+    check(station, 2, "--station-pulses-per-deg");
+    jbi.station_pulses_per_deg = {station[0], station[1]};
+  }
+  return jbi;
+}
+
 planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report) {
   if (!scenario.program.present) return planner::PlanScenario(scenario, progress);
   planner::GcodeReadOptions gcode;
   gcode.arc_on_m = scenario.program.gcode_arc_on_m;
   gcode.arc_off_m = scenario.program.gcode_arc_off_m;
   const planner::ParsedProgram program =
-      planner::ReadProgramFile(scenario.program.file, scenario.program.format, gcode);
+      planner::ReadProgramFile(scenario.program.file, scenario.program.format, gcode, JbiOptionsOf(scenario));
   ImportReport local;
   planner::PlanResult result = PlanFromProgram(scenario, program, report != nullptr ? report : &local);
   if (progress != nullptr) progress->Finish();
@@ -127,7 +149,9 @@ nlohmann::json RunImport(const ImportOptions& options) {
   planner::GcodeReadOptions gcode;
   gcode.arc_on_m = scenario.program.gcode_arc_on_m;
   gcode.arc_off_m = scenario.program.gcode_arc_off_m;
-  const planner::ParsedProgram program = planner::ReadProgramFile(options.program, options.format, gcode);
+  const planner::ParsedProgram program =
+      planner::ReadProgramFile(options.program, options.format, gcode,
+                               JbiOptionsOf(scenario, options.pulses_per_deg, options.station_pulses_per_deg));
   ImportReport report;
   const planner::PlanResult result = PlanFromProgram(scenario, program, &report);
 

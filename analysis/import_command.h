@@ -25,6 +25,10 @@ struct ImportOptions {
   std::vector<std::string> overrides;            // --set key.path=value on the scenario
   bool quiet = false;
   bool layer_images = true;
+  // Yaskawa INFORM: encoder pulses per degree of the arm (6) and of the station (2); empty = the scenario's
+  // program.yaskawa settings.
+  std::vector<double> pulses_per_deg;
+  std::vector<double> station_pulses_per_deg;
 };
 
 // What the import understood besides the plan.
@@ -35,6 +39,11 @@ struct ImportReport {
   std::size_t points = 0;                        // path points after circular moves are discretised
   std::vector<planner::ProgramWarning> warnings;
 };
+
+// The Yaskawa reader's pulses per degree: the scenario's program.yaskawa settings, replaced by `robot` (6 values) and
+// `station` (2 values) when they are not empty. Throws InputError for a wrong count or a value not > 0.
+planner::JbiReadOptions JbiOptionsOf(const Scenario& scenario, const std::vector<double>& robot = {},
+                                     const std::vector<double>& station = {});
 
 // The plan of a program read with the scenario's cell (user frame, kinematics) and process (bead width; bead height
 // per point from the wire feed and the point's travel speed, eq. 3.3-3.4). Throws InputError for a bad program.

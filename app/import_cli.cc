@@ -14,12 +14,14 @@ void AddImportCommand(CLI::App& app, CommandRunner* runner) {
       "import",
       "Read a robot program or G-code made elsewhere and write what the twin understood of it.\n"
       "Formats: " + EnumNameList<planner::ProgramFormat>(", ") +
-          " (auto: from the extension .csv .ls .mod .src/.dat .nc/.gcode, or the first lines).\n"
+          " (auto: from the extension .csv .ls .mod .src/.dat .jbi .nc/.gcode, or the first lines).\n"
       "Positions are taken in the program's user frame (the scenario's program.frame.user_frame_mm, or the cell's\n"
       "FANUC world frame: arm base lifted to the j2 axis), joint positions through the arm's forward kinematics,\n"
       "external axes / group 2 as the positioner's tilt and rotation; circular moves are cut into chords of\n"
       "cell.checks.step_mm; passes group into layers by their height along the build direction. Instructions the\n"
       "twin does not execute (calls, jumps, weaving, offsets) are listed with their count and first line.\n"
+      "Yaskawa INFORM: pulse positions need the controller's pulses per degree (--pulses-per-deg, EC station\n"
+      "positions --station-pulses-per-deg, or the scenario's program.yaskawa keys).\n"
       "Writes to the output directory:\n"
       "  plan.json       the fields of `waam plan` plus import {format, motions, motions_by_kind, points,\n"
       "                  warnings [{what, count, first_line}]}\n"
@@ -31,6 +33,12 @@ void AddImportCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("--scenario", options->scenario, "Scenario YAML: the cell, process and program frame");
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
   command->add_option("--set", options->overrides, "Override a scenario setting, key.path=value (repeatable)");
+  command->add_option("--pulses-per-deg", options->pulses_per_deg,
+                      "Yaskawa INFORM: the arm's encoder pulses per degree S,L,U,R,B,T")
+      ->delimiter(',');
+  command->add_option("--station-pulses-per-deg", options->station_pulses_per_deg,
+                      "Yaskawa INFORM: the station's encoder pulses per degree TILT,ROTATION")
+      ->delimiter(',');
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->layer_images, "Do not draw the per-layer PNGs");
   command->callback([options, format, runner] {

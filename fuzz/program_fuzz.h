@@ -21,7 +21,11 @@ inline void ReadAndPlanProgram(std::string_view text, const std::string& file, p
     c.X_WB.translation() = Eigen::Vector3d(1050.0, 0.0, 0.0);
     return c;
   }();
-  const planner::ParsedProgram program = planner::ReadProgramText(text, file, format);
+  // Yaskawa pulse positions are read (not refused) with some pulses per degree.
+  planner::JbiReadOptions jbi;
+  jbi.robot_pulses_per_deg = {1000.0, 1400.0, 1000.0, 800.0, 1200.0, 500.0};
+  jbi.station_pulses_per_deg = {1365.3, 1137.8};
+  const planner::ParsedProgram program = planner::ReadProgramText(text, file, format, {}, jbi);
   (void)program.MotionsByKind();
   planner::ImportSettings settings;
   settings.arc_step_mm = 5.0;

@@ -1,6 +1,7 @@
 // Reading speed of the program readers (lines per second) on a 100,000-point program in each dialect, and the
 // conversion of what was read into a plan. Run: build/analysis/benchmarks/waam_program_bench.
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include <benchmark/benchmark.h>
@@ -13,6 +14,7 @@
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
 #include "planner/program/robot_program.h"
+#include "planner/program/yaskawa_jbi.h"
 
 namespace {
 using namespace waam::planner;
@@ -50,6 +52,9 @@ const RobotProgram& BenchProgram() {
   return program;
 }
 
+// A JBI's station pulses per degree (tilt, rotation), written and read with the same values.
+constexpr std::array<double, 2> kBenchStationPulsesPerDeg = {1365.3, 1137.8};
+
 std::string Text(ProgramFormat format) {
   const CellKinematics cell = BenchCell();
   switch (format) {
@@ -66,6 +71,12 @@ std::string Text(ProgramFormat format) {
       const KukaKrlFiles files = ProgramToKukaKrl(BenchProgram(), options);
       return files.src + files.dat;
     }
+    case ProgramFormat::kYaskawaJbi: {
+      YaskawaJbiOptions options;
+      options.X_RU = cell.X_WR.inverse() * ProgramUserFrame(cell);
+      options.station_pulses_per_deg = kBenchStationPulsesPerDeg;
+      return ProgramToYaskawaJbi(BenchProgram(), options);
+    }
     default: return ProgramToCsv(BenchProgram());
   }
 }
@@ -74,7 +85,9 @@ void BM_ReadProgram(benchmark::State& state) {
   const ProgramFormat format = static_cast<ProgramFormat>(state.range(0));
   const std::string text = Text(format);
   const auto lines = static_cast<std::int64_t>(std::count(text.begin(), text.end(), '\n'));
-  for (auto _ : state) benchmark::DoNotOptimize(ReadProgramText(text, "bench", format));
+  JbiReadOptions jbi;
+  jbi.station_pulses_per_deg = kBenchStationPulsesPerDeg;
+  for (auto _ : state) benchmark::DoNotOptimize(ReadProgramText(text, "bench", format, GcodeReadOptions{}, jbi));
   state.SetItemsProcessed(state.iterations() * lines);  // items = lines
   state.SetLabel(std::string(waam::NameOf(format)) + ", " + std::to_string(lines) + " lines");
 }
@@ -83,6 +96,7 @@ BENCHMARK(BM_ReadProgram)
     ->Arg(static_cast<int>(ProgramFormat::kFanucLs))
     ->Arg(static_cast<int>(ProgramFormat::kAbbRapid))
     ->Arg(static_cast<int>(ProgramFormat::kKukaKrl))
+    ->Arg(static_cast<int>(ProgramFormat::kYaskawaJbi))
     ->Arg(static_cast<int>(ProgramFormat::kGcode))
     ->Unit(benchmark::kMillisecond);
 

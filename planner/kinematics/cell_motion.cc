@@ -105,6 +105,7 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
       const int n = prev ? Subdivisions(length, options.step_mm) : 1;
       // The move into a layer's first point carries the positioner from the last layer's angles to this layer's.
       const bool reorient = (i == 0);
+      const PositionerAngles move_start = angles;  // where the positioner is when this move starts
       for (int k = 1; k <= n; ++k) {
         const double f = prev ? static_cast<double>(k) / n : 1.0;
         if (welded_entry) along += length / n;
@@ -119,7 +120,12 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
         s.bead_height_mm = cur.bead_height_mm;
         s.speed_mm_s = (s.weld && cur.speed_mm_s > 0.0) ? cur.speed_mm_s : options.rapid_speed_mm_s;
 
-        if (options.positioner_per_point) {
+        if (cur.positioner_rad.allFinite()) {
+          // The program's own angles (a program made elsewhere), reached linearly along the move.
+          angles.tilt = move_start.tilt + f * (cur.positioner_rad[0] - move_start.tilt);
+          angles.rotation = move_start.rotation + f * (cur.positioner_rad[1] - move_start.rotation);
+          s.positioner_at_limit = false;
+        } else if (options.positioner_per_point) {
           // The local normal (the point's tool direction) turned up, nearest to the previous sample's angles.
           angles = SolvePositionerAnglesWithin(cell.positioner, tool_dir_P, angles, options.tilt_tolerance_rad);
           s.positioner_at_limit = angles.at_limit;

@@ -82,7 +82,8 @@ struct MotionOptions {
 // samples: weld moves at the planned speed, arc-off moves at the rapid speed but never faster than any axis allows.
 // The torch poses are computed in parallel, the IK and time stamps in order (each depends on the previous sample);
 // the result does not depend on the thread count. `progress` (may be empty) is called with the number of samples
-// done.
+// done. A point with its own positioner angles (PathPoint::positioner_rad, a program made elsewhere) is reached with
+// those, linearly along its move, instead of solved ones.
 std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& plan, const MotionOptions& options,
                                        const std::function<void(std::size_t)>& progress);
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct PathPoint {
   double bead_height_mm = 0.0;                                 // planned bead (layer) height, mm
   double speed_mm_s = 0.0;                                     // travel speed of the move ending here, mm/s
   bool weld = false;
+  // Positioner (tilt, rotation) at this point as a program made elsewhere gives them, rad; NaN = not given (the
+  // cell motion solves them from the build direction). Not written to plan.h5 / plan.json.
+  Eigen::Vector2d positioner_rad = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 // The path of one layer.

@@ -110,10 +110,12 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
   std::vector<PathPoint> points;
   points.reserve(targets.size());
   // `target`: the motion's own end point (notes are counted once per motion, not per chord of an arc).
+  // `positioner_rad`: the program's (tilt, rotation) at the point, which the cell motion then follows.
   auto make_point = [&](const Eigen::Vector3d& p_P, const Eigen::Vector3d& tool_dir_P, const ResolvedTarget& t,
-                        bool target) {
+                        bool target, const Eigen::Vector2d& positioner_rad) {
     PathPoint p;
     p.p_P = p_P;
+    p.positioner_rad = positioner_rad;
     p.tool_dir_P = tool_dir_P.normalized();
     p.bead_width_mm = settings.bead_width_mm;
     p.bead_height_mm = settings.bead_height_mm;
@@ -166,16 +168,16 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
           const Eigen::Vector3d dir_W = -R_WT.col(2);
           if (in_part) {
             // Part-frame orientation: interpolate the tool direction in P.
-            make_point(arc[k], (1.0 - f) * prev.tool_dir_P + f * t.tool_dir_P, t, false);
+            make_point(arc[k], (1.0 - f) * prev.tool_dir_P + f * t.tool_dir_P, t, false, Eigen::Vector2d(tilt, rot));
           } else {
-            make_point(X_PW * arc[k], X_PW.linear() * dir_W, t, false);
+            make_point(X_PW * arc[k], X_PW.linear() * dir_W, t, false, Eigen::Vector2d(tilt, rot));
           }
         }
       }
     } else if (t.kind == MotionKind::kCircular && !m.has_via) {
       notes.Add("circular move without its intermediate point: followed as a linear move", t.line);
     }
-    make_point(t.p_P, t.tool_dir_P, t, true);
+    make_point(t.p_P, t.tool_dir_P, t, true, Eigen::Vector2d(t.tilt_rad, t.rotation_rad));
   }
 
   // Passes: a run of arc-off points followed by the welded run after it.

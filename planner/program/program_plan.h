@@ -56,7 +56,8 @@ struct ImportedPlan {
 };
 
 // The program as the twin's plan (part frame P). Passes (arc-off lead-in + welded run) whose mean height along
-// their mean tool direction stays within the tolerance form one layer. Throws InputError for a program without
+// their mean tool direction stays within the tolerance form one layer. Every point carries the program's positioner
+// angles (PathPoint::positioner_rad; 0, 0 until the program first gives them), which the cell motion then follows. Throws InputError for a program without
 // motions.
 ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& cell, const ImportSettings& settings);
 

@@ -6,7 +6,7 @@
 
 namespace waam::planner {
 
-ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string_view text) {
+std::optional<ProgramFormat> ProgramFormatOfExtension(const std::filesystem::path& path) {
   const std::string ext = internal::Upper(path.extension().string());
   if (ext == ".LS") return ProgramFormat::kFanucLs;
   if (ext == ".MOD" || ext == ".PRG" || ext == ".MODX") return ProgramFormat::kAbbRapid;
@@ -16,6 +16,11 @@ ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string
     return ProgramFormat::kGcode;
   }
   if (ext == ".CSV") return ProgramFormat::kCsv;
+  return std::nullopt;
+}
+
+ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string_view text) {
+  if (const std::optional<ProgramFormat> f = ProgramFormatOfExtension(path)) return *f;
   const std::string head = internal::Upper(internal::TrimBlank(text.substr(0, std::min<std::size_t>(text.size(), 4096))));
   if (head.compare(0, 5, "/PROG") == 0) return ProgramFormat::kFanucLs;
   if (head.compare(0, 6, "MODULE") == 0 || head.find("\nMODULE") != std::string::npos) return ProgramFormat::kAbbRapid;
@@ -26,11 +31,11 @@ ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string
     return ProgramFormat::kGcode;
   }
   WAAM_THROW(path.string() << ": cannot tell the program's format from its extension or first lines; give --format "
-                           << "(csv, fanuc_ls, abb_rapid, kuka_krl, gcode)");
+                           << "(csv, fanuc_ls, abb_rapid, kuka_krl, yaskawa_jbi, gcode)");
 }
 
 ParsedProgram ReadProgramText(std::string_view text, const std::string& file, ProgramFormat format,
-                              const GcodeReadOptions& gcode) {
+                              const GcodeReadOptions& gcode, const JbiReadOptions& jbi) {
   switch (format) {
     case ProgramFormat::kCsv: return ReadProgramCsv(text, file);
     case ProgramFormat::kFanucLs: return ReadFanucLs(text, file);
@@ -41,14 +46,14 @@ ParsedProgram ReadProgramText(std::string_view text, const std::string& file, Pr
       if (dat == std::string_view::npos) dat = text.find("\ndefdat");
       return ReadKukaKrl(text, dat == std::string_view::npos ? std::string_view() : text.substr(dat + 1), file, file);
     }
-    case ProgramFormat::kYaskawaJbi: break;
+    case ProgramFormat::kYaskawaJbi: return ReadYaskawaJbi(text, file, jbi);
   }
-  WAAM_THROW(file << ": reading " << NameOf(format) << " programs is not supported yet (csv, fanuc_ls, abb_rapid, "
-                  << "kuka_krl, gcode are)");
+  WAAM_DEMAND(false);
+  return {};
 }
 
 ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
-                              const GcodeReadOptions& gcode) {
+                              const GcodeReadOptions& gcode, const JbiReadOptions& jbi) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   WAAM_THROW_UNLESS(!ec, path.string() << ": cannot read the program: " << ec.message());
@@ -76,7 +81,7 @@ ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<P
                       src.string() << ": the program is more than the limit of " << kMaxProgramBytes << " bytes");
     program = ReadKukaKrl(src_text, dat_text, src.string(), dat.string());
   } else {
-    program = ReadProgramText(text, path.string(), f, gcode);
+    program = ReadProgramText(text, path.string(), f, gcode, jbi);
   }
   if (program.name.empty()) program.name = path.stem().string();
   return program;

@@ -2,6 +2,7 @@
 // file; ReadProgramFile picks one by the format or the file's extension and content.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -14,6 +15,12 @@ namespace waam::planner {
 struct GcodeReadOptions {
   int arc_on_m = 3;    // M3: torch on (the spindle code most WAAM gantries reuse)
   int arc_off_m = 5;   // M5: torch off
+};
+
+// Yaskawa INFORM settings: the controller's encoder pulses per degree (0 = unknown: a pulse position is refused).
+struct JbiReadOptions {
+  std::array<double, 6> robot_pulses_per_deg = {};    // axes S, L, U, R, B, T
+  std::array<double, 2> station_pulses_per_deg = {};  // station axes 1 and 2: positioner tilt, rotation
 };
 
 // Each reader takes the whole text and the file name for messages, and throws InputError "file:line: what" for a
@@ -35,6 +42,14 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file);
 ParsedProgram ReadKukaKrl(std::string_view src, std::string_view dat, const std::string& src_file,
                           const std::string& dat_file);
 
+// Yaskawa INFORM job (.JBI): /JOB, //NAME, //POS (///NPOS counts checked against the positions given; ///POSTYPE
+// ROBOT or BASE: the arm's base frame, USER: the scenario's user frame, PULSE: joint pulses through forward
+// kinematics; C0000k=X,Y,Z mm,Rx,Ry,Rz deg with R = Rz Ry Rx; ///RCONF the IK branch; EC station pulses the
+// positioner tilt and rotation), //INST (MOVJ, MOVL, MOVC circles of three points, MOVS as linear, V= mm/s or a
+// variable, ARCON / ARCOF; CALL, JUMP, TIMER, weaving, shifts and the like warned), END. A pulse position whose
+// pulses per degree are not given is refused, naming the axis.
+ParsedProgram ReadYaskawaJbi(std::string_view text, const std::string& file, const JbiReadOptions& options = {});
+
 // G-code: G0, G1, G2, G3 (XY plane), G20/G21, G90/G91, F, E, A (positioner tilt, deg), C (rotation, deg), the tool
 // direction A3= B3= C3= (Sinumerik ORIVECT style), arc on/off M-codes. Positions are the TCP in the part frame.
 ParsedProgram ReadGcode(std::string_view text, const std::string& file, const GcodeReadOptions& options = {});
@@ -42,16 +57,20 @@ ParsedProgram ReadGcode(std::string_view text, const std::string& file, const Gc
 // The CSV program table that `waam check` writes (program.csv): TCP in the user frame, A B C, positioner angles.
 ParsedProgram ReadProgramCsv(std::string_view text, const std::string& file);
 
-// The format of `path` from its extension (.ls, .mod/.prg, .src/.dat, .nc/.gcode/.ngc/.tap, .csv) or, failing that, its first
+// The format of `path` from its extension (.ls, .mod/.prg, .src/.dat, .jbi, .nc/.gcode/.ngc/.tap, .csv) or, failing that, its first
 // lines. Throws InputError when neither tells.
 ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string_view text);
 
 // Reads `path` (at most kMaxProgramBytes) with the reader of `format` (empty: detected).
 ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
-                              const GcodeReadOptions& gcode = {});
+                              const GcodeReadOptions& gcode = {}, const JbiReadOptions& jbi = {});
 
 // Reads `text` with the reader of `format`; `file` names it in messages. KRL: the .src text followed by its .dat.
 ParsedProgram ReadProgramText(std::string_view text, const std::string& file, ProgramFormat format,
-                              const GcodeReadOptions& gcode = {});
+                              const GcodeReadOptions& gcode = {}, const JbiReadOptions& jbi = {});
+
+// The format an extension names (.ls, .mod/.prg/.modx, .src/.dat, .jbi, .nc/.gcode/.ngc/.tap/.g/.mpf, .csv; any
+// case), or empty.
+std::optional<ProgramFormat> ProgramFormatOfExtension(const std::filesystem::path& path);
 
 }  // namespace waam::planner

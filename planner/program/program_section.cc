@@ -42,6 +42,18 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
                       gcode.Where("arc_off_m") << " = " << s.gcode_arc_off_m << ": must differ from arc_on_m");
     gcode.CheckNoUnknownKeys();
   }
+  if (section.Has("yaskawa")) {
+    YamlMap yaskawa = section.Map("yaskawa");
+    if (yaskawa.Has("pulses_per_deg")) {
+      const std::vector<double> v = yaskawa.Numbers("pulses_per_deg", 6, 1e-3, 1e7);
+      for (int j = 0; j < 6; ++j) s.yaskawa_pulses_per_deg[j] = v[j];
+    }
+    if (yaskawa.Has("station_pulses_per_deg")) {
+      const std::vector<double> v = yaskawa.Numbers("station_pulses_per_deg", 2, 1e-3, 1e7);
+      s.yaskawa_station_pulses_per_deg = {v[0], v[1]};
+    }
+    yaskawa.CheckNoUnknownKeys();
+  }
   section.CheckNoUnknownKeys();
   return s;
 }

@@ -27,6 +27,10 @@ struct ProgramSettings {
   double layer_tolerance_mm = 0.0;            // >= 0; 0 = half the bead height
   int gcode_arc_on_m = 3;                     // gcode.arc_on_m
   int gcode_arc_off_m = 5;                    // gcode.arc_off_m
+  // yaskawa.pulses_per_deg: the arm's encoder pulses per degree (S, L, U, R, B, T), for pulse positions; 0 = unknown
+  std::array<double, 6> yaskawa_pulses_per_deg = {};
+  // yaskawa.station_pulses_per_deg: the station's (positioner tilt, rotation), for EC positions; 0 = unknown
+  std::array<double, 2> yaskawa_station_pulses_per_deg = {};
   std::string where;                          // "file:line: program" for messages
 };
 

@@ -137,6 +137,13 @@ struct BadInput {
   std::vector<std::string> folders = {};       // folders created in the case's folder
 };
 
+std::string ReplaceAll(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
 std::vector<BadInput> Catalogue() {
   const std::string ok = ScenarioText();
   std::vector<Facet> tetra = Tetrahedron();
@@ -157,6 +164,10 @@ std::vector<BadInput> Catalogue() {
       "/POS\nP[1]{\n   GP1:\n\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
       "\tX =  1000.000  mm,\tY =     0.000  mm,\tZ =   180.000  mm,\n";
   const std::string ls_tail = "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg\n};\n/END\n";
+  // A Yaskawa INFORM job whose ///NPOS says 3 C positions and gives 2.
+  const std::string jbi_pos = "/JOB\n//NAME T\n//POS\n///NPOS 3,0,0,0,0,0\n///POSTYPE ROBOT\n///RECTAN\n"
+                              "C00000=1000,0,180,180,0,0\nC00001=1000,0,150,180,0,0\n";
+  const std::string jbi_inst = "//INST\n///GROUP1 RB1\nNOP\nMOVJ C00000 VJ=10.00\nMOVL C00001 V=10.0\n";
   return {
       {"program-ls-truncated-pos", "import", "prog.ls", {{"prog.ls", ls_head + ls_pos}},
        {"prog.ls:6: P[1] in /POS is not closed by '};' (truncated /POS)"}},
@@ -169,8 +180,18 @@ std::vector<BadInput> Catalogue() {
        {"prog.mod:2: quaternion [0,0,0,0] of length 0"}},
       {"program-gcode-nan", "import", "prog.nc", {{"prog.nc", "G21\nG1 X1 Y2 Z3 F400\nG1 XNaN Y2\n"}},
        {"prog.nc:3: X 'NaN' is not a finite number"}},
-      {"program-jbi-not-read", "import", "prog.JBI", {{"prog.JBI", "/JOB\n//NAME T\n//POS\n///NPOS 0,0,0,0,0,0\n"}},
-       {"prog.JBI: reading yaskawa_jbi programs is not supported yet"}},
+      {"program-jbi-wrong-count", "import", "prog.JBI", {{"prog.JBI", jbi_pos + jbi_inst}},
+       {"prog.JBI:4: ///NPOS says 3 C positions, 2 are given"}},
+      {"program-jbi-position-not-defined", "import", "prog.JBI",
+       {{"prog.JBI", ReplaceAll(jbi_pos, "NPOS 3", "NPOS 2") + jbi_inst + "MOVL C00002 V=10.0\nEND\n"}},
+       {"prog.JBI:14: C00002 is used but not defined in //POS"}},
+      {"program-jbi-truncated-pos", "import", "prog.JBI", {{"prog.JBI", jbi_pos.substr(0, jbi_pos.rfind("C00001"))}},
+       {"prog.JBI:7: the job ends inside //POS (no //INST): it is truncated"}},
+      {"program-jbi-pulses-unknown", "import", "prog.JBI",
+       {{"prog.JBI", ReplaceAll(ReplaceAll(jbi_pos, "NPOS 3", "NPOS 2"), "ROBOT\n///RECTAN", "PULSE\n///PULSE") +
+                         jbi_inst + "END\n"}},
+       {"prog.JBI:7: a pulse position and the robot's pulses per degree are unknown (axis S): give "
+        "program.yaskawa.pulses_per_deg [S, L, U, R, B, T] or --pulses-per-deg"}},
       {"stl-truncated-mid-facet", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", full.substr(0, 84 + 50 + 20)}},
        {"part.stl: truncated binary STL: header says 4 facets", "it ends inside facet 2"}},
       {"stl-wrong-facet-count", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(tetra, 3)}},

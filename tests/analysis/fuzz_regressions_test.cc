@@ -90,6 +90,9 @@ TEST(FuzzRegressions, FanucLsInputsGiveAPlanOrAnInputError) { ReplayProgram("fan
 TEST(FuzzRegressions, AbbRapidInputsGiveAPlanOrAnInputError) { ReplayProgram("abb_rapid", ProgramFormat::kAbbRapid); }
 TEST(FuzzRegressions, GcodeInputsGiveAPlanOrAnInputError) { ReplayProgram("gcode", ProgramFormat::kGcode); }
 TEST(FuzzRegressions, KukaKrlInputsGiveAPlanOrAnInputError) { ReplayProgram("kuka_krl", ProgramFormat::kKukaKrl); }
+TEST(FuzzRegressions, YaskawaJbiInputsGiveAPlanOrAnInputError) {
+  ReplayProgram("yaskawa_jbi", ProgramFormat::kYaskawaJbi);
+}
 TEST(FuzzRegressions, ProgramCsvInputsGiveAPlanOrAnInputError) { ReplayProgram("program_csv", ProgramFormat::kCsv); }
 
 }  // namespace

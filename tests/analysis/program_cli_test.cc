@@ -32,13 +32,15 @@ TEST(ProgramCliTest, ExportThenImportGivesThePlanOfTheScenario) {
   ASSERT_EQ(RunWaam("plan " + scenario.string() + " -o " + (dir / "plan").string() + " -q --no-images", &err), 0)
       << err;
   const nlohmann::json planned = ReadJson(dir / "plan" / "plan.json");
-  for (const char* f : {"box.ls", "box.mod", "box.src", "box.nc", "box.csv"}) {
+  for (const char* f : {"box.ls", "box.mod", "box.src", "box.nc", "box.csv", "box.JBI"}) {
     SCOPED_TRACE(f);
     const fs::path program = dir / f;
-    ASSERT_EQ(RunWaam("export " + scenario.string() + " -o " + program.string() + " -q", &err), 0) << err;
+    // A JBI's station positions are encoder pulses: written and read with the same pulses per degree.
+    const std::string pulses = fs::path(f).extension() == ".JBI" ? " --station-pulses-per-deg 1365.3,1137.8" : "";
+    ASSERT_EQ(RunWaam("export " + scenario.string() + " -o " + program.string() + pulses + " -q", &err), 0) << err;
     const fs::path out = dir / (std::string("import_") + f);
     ASSERT_EQ(RunWaam("import " + program.string() + " --scenario " + scenario.string() + " -o " + out.string() +
-                          " -q --no-images",
+                          pulses + " -q --no-images",
                       &err),
               0)
         << err;
@@ -71,6 +73,33 @@ TEST(ProgramCliTest, CheckAndPlanAcceptAProgramScenario) {
   const nlohmann::json plan = ReadJson(dir / "plan" / "plan.json");
   EXPECT_EQ(plan["layers"], 2);
   EXPECT_EQ(plan["import"]["format"], "abb_rapid");
+}
+
+TEST(ProgramCliTest, ExportWritesThePresetsDialectAndAJbiScenarioPlans) {
+  const fs::path dir = TempDir("program_preset_dialect");
+  const fs::path scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "preset_yaskawa_mh12.yaml";
+  std::string err;
+  // No --format and no extension: the Yaskawa preset's dialect, which needs the station's pulses per degree.
+  EXPECT_EQ(RunWaam("export " + scenario.string() + " -o " + (dir / "job").string() + " -q", &err), 2);
+  EXPECT_THAT(err, HasSubstr("station's pulses per degree"));
+  EXPECT_FALSE(fs::exists(dir / "job"));
+  ASSERT_EQ(RunWaam("export " + scenario.string() + " -o " + (dir / "job").string() +
+                        " --station-pulses-per-deg 1000,1000 -q",
+                    &err),
+            0)
+      << err;
+  const std::string job = ReadFile(dir / "job");
+  EXPECT_EQ(job.substr(0, 5), "/JOB\n");
+  EXPECT_THAT(job, HasSubstr("///GROUP1 RB1,ST1"));
+  // A scenario whose program: is a JBI with a pulse position (its pulses per degree in program.yaskawa).
+  ASSERT_EQ(RunWaam("plan " + ProgramFixture("wall_jbi.yaml").string() + " -o " + (dir / "plan").string() +
+                        " -q --no-images",
+                    &err),
+            0)
+      << err;
+  const nlohmann::json plan = ReadJson(dir / "plan" / "plan.json");
+  EXPECT_EQ(plan["layers"], 2);
+  EXPECT_EQ(plan["import"]["format"], "yaskawa_jbi");
 }
 
 TEST(ProgramCliTest, ProgramSectionIsCheckedWhereItIsWritten) {
@@ -106,7 +135,8 @@ TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {
   EXPECT_THAT(err, HasSubstr("bad.nc:3: X 'NaN' is not a finite number"));
   EXPECT_FALSE(fs::exists(dir / "out" / "plan.json"));
   EXPECT_EQ(RunWaam("import " + bad.string() + " --format yaskawa_jbi -o " + (dir / "out").string() + " -q", &err), 2);
-  EXPECT_THAT(err, HasSubstr("not supported yet"));
+  EXPECT_THAT(err, HasSubstr("bad.nc:1: a JBI job starts with /JOB, not 'G21'"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "plan.json"));
 }
 
 }  // namespace

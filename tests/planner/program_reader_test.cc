@@ -145,6 +145,42 @@ TEST(ProgramReaderTest, KrlWallWeldsTheSamePathAsTheFanucWall) {
   }
 }
 
+JbiReadOptions WallJbiPulses() {
+  JbiReadOptions jbi;
+  jbi.robot_pulses_per_deg = {1000.0, 1400.0, 1000.0, 800.0, 1200.0, 500.0};  // as wall_jbi.yaml gives them
+  return jbi;
+}
+
+TEST(ProgramReaderTest, JbiWallWeldsTheSamePathAsTheFanucWall) {
+  // ///POSTYPE USER positions in the scenario's user frame; the MOVC circle's first point is where the robot stands;
+  // the pulse position C00009 through forward kinematics.
+  const ParsedProgram ls = ReadProgramFile(Fixture("wall.ls"), std::nullopt);
+  const ParsedProgram jbi = ReadProgramFile(Fixture("wall.JBI"), std::nullopt, GcodeReadOptions{}, WallJbiPulses());
+  EXPECT_EQ(jbi.format, ProgramFormat::kYaskawaJbi);
+  EXPECT_EQ(jbi.name, "WALL");
+  ASSERT_EQ(jbi.motions.size(), ls.motions.size());
+  EXPECT_EQ(jbi.MotionsByKind(), ls.MotionsByKind());
+  for (std::size_t i = 0; i < ls.motions.size(); ++i) {
+    EXPECT_EQ(jbi.motions[i].weld, ls.motions[i].weld) << "motion " << i;
+    EXPECT_EQ(jbi.motions[i].has_joints, ls.motions[i].has_joints) << "motion " << i;
+  }
+  EXPECT_LT((jbi.motions.back().q - ls.motions.back().q).norm(), 1e-12);
+  EXPECT_EQ(jbi.motions[1].config, 0);  // ///RCONF 1,0,0: no flip, upper arm, front
+  for (const char* what : {"CALL", "WVON", "WVOF", "TIMER", "JUMP"}) {
+    EXPECT_NE(FindWarning(jbi, what), nullptr) << what;
+  }
+  EXPECT_EQ(FindWarning(jbi, "CALL")->first_line, 29);
+  const CellKinematics cell = ReaderTestCell();
+  const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
+  const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(jbi, cell, ImportSettings{}));
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_LT((a[i].p_P - b[i].p_P).norm(), 1e-6) << "weld point " << i;
+    EXPECT_LT((a[i].tool_dir_P - b[i].tool_dir_P).norm(), 1e-9) << "weld point " << i;
+    EXPECT_NEAR(b[i].speed_mm_s, 6.7, 1e-9) << "weld point " << i;
+  }
+}
+
 TEST(ProgramReaderTest, GcodeWallHasItsArcAndWeldsBetweenTheMCodes) {
   const ParsedProgram program = ReadProgramFile(Fixture("wall.nc"), std::nullopt);
   EXPECT_EQ(program.format, ProgramFormat::kGcode);
@@ -231,6 +267,67 @@ TEST(ProgramReaderTest, KrlBadInputsNameTheLine) {
   EXPECT_THAT(error(src, ReplaceOnce(dat, "{X 1030.0,Y 0.0", "{X nan,Y 0.0")), HasSubstr("bad.dat:8: X 'nan'"));
   EXPECT_THAT(error(ReplaceOnce(src, "\nEND\n", "\n"), dat), HasSubstr("no END"));
   EXPECT_THAT(error(src, ReplaceOnce(dat, ",Y 0.0,Z 151.5", ",Z 151.5")), HasSubstr("bad.dat:7: position lacks Y"));
+}
+
+TEST(ProgramReaderTest, JbiStationAxesArePositionerAnglesThroughTheirPulsesPerDegree) {
+  std::string jbi = ReadFile(Fixture("wall.JBI"));
+  jbi = ReplaceOnce(jbi, "///NPOS 10,0,0,0,0,0", "///NPOS 10,0,2,0,0,0");
+  jbi = ReplaceOnce(jbi, "C00009=0,14000,0,0,-96000,0\n", "C00009=0,14000,0,0,-96000,0\nEC00000=0,0\nEC00001=-45000,90000\n");
+  jbi = ReplaceOnce(jbi, "///GROUP1 RB1", "///GROUP1 RB1,ST1");
+  jbi = ReplaceOnce(jbi, "MOVL C00001 V=100.0", "MOVL C00001 EC00000 V=100.0");
+  jbi = ReplaceOnce(jbi, "MOVL C00004 V=100.0", "MOVL C00004 EC00001 V=100.0");
+  JbiReadOptions options = WallJbiPulses();
+  options.station_pulses_per_deg = {1500.0, 1000.0};
+  const ParsedProgram program = ReadYaskawaJbi(jbi, "wall.JBI", options);
+  ASSERT_TRUE(program.motions[1].has_positioner);
+  EXPECT_EQ(program.motions[1].tilt_rad, 0.0);
+  ASSERT_TRUE(program.motions[4].has_positioner);
+  EXPECT_NEAR(program.motions[4].tilt_rad * kDeg, -30.0, 1e-12);
+  EXPECT_NEAR(program.motions[4].rotation_rad * kDeg, 90.0, 1e-12);
+  // Without the station's pulses per degree the EC position is refused, naming the setting.
+  try {
+    (void)ReadYaskawaJbi(jbi, "wall.JBI", WallJbiPulses());
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("wall.JBI:22: station positions are encoder pulses and the station's pulses per "
+                                    "degree are unknown: give program.yaskawa.station_pulses_per_deg"));
+  }
+}
+
+TEST(ProgramReaderTest, JbiBadInputsNameTheLine) {
+  const std::string jbi = ReadFile(Fixture("wall.JBI"));
+  auto error = [](const std::string& text, const JbiReadOptions& options) {
+    try {
+      (void)ReadYaskawaJbi(text, "bad.JBI", options);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const JbiReadOptions pulses = WallJbiPulses();
+  // A wrong count: NPOS says 3 C positions, 2 are given.
+  const std::string three = "/JOB\n//NAME W\n//POS\n///NPOS 3,0,0,0,0,0\n///TOOL 1\n///POSTYPE ROBOT\n///RECTAN\n"
+                            "C00000=1000,0,180,180,0,0\nC00001=1000,0,150,180,0,0\n//INST\n///GROUP1 RB1\nNOP\n"
+                            "MOVJ C00000 VJ=10.00\nMOVL C00001 V=10.0\nEND\n";
+  EXPECT_THAT(error(three, pulses), HasSubstr("bad.JBI:4: ///NPOS says 3 C positions, 2 are given"));
+  EXPECT_EQ(error(ReplaceOnce(three, "NPOS 3", "NPOS 2"), pulses), "no error");
+  // A MOVL naming a C variable that //POS does not define.
+  EXPECT_THAT(error(ReplaceOnce(jbi, "MOVL C00003 V=6.7", "MOVL C00013 V=6.7"), pulses),
+              HasSubstr("bad.JBI:36: C00013 is used but not defined in //POS"));
+  // A truncated //POS.
+  EXPECT_THAT(error(jbi.substr(0, jbi.find("C00006=")), pulses),
+              HasSubstr("bad.JBI:15: the job ends inside //POS (no //INST): it is truncated"));
+  // A pulse position without the arm's pulses per degree.
+  EXPECT_THAT(error(jbi, JbiReadOptions{}),
+              HasSubstr("bad.JBI:21: a pulse position and the robot's pulses per degree are unknown (axis S)"));
+  EXPECT_THAT(error(ReplaceOnce(jbi, "C00002=1030.000", "C00002=nan"), pulses),
+              HasSubstr("bad.JBI:12: C00002 value 'nan' is not a finite number"));
+  EXPECT_THAT(error(ReplaceOnce(jbi, "0.000,151.500,180.0000,0.0000,0.0000\nC00003", "0.000,151.500\nC00003"), pulses),
+              HasSubstr("bad.JBI:12: C00002 has 3 values; a robot position has six"));
+  EXPECT_THAT(error(ReplaceOnce(jbi, "\nEND\n", "\n"), pulses), HasSubstr("no END"));
+  EXPECT_THAT(error(ReplaceOnce(jbi, "///POSTYPE USER", "///POSTYPE CYLINDER"), pulses),
+              HasSubstr("bad.JBI:7: ///POSTYPE 'CYLINDER': must be ROBOT, BASE, USER or PULSE"));
+  EXPECT_THAT(error(ReplaceOnce(jbi, "/JOB\n", ""), pulses), HasSubstr("bad.JBI:1: a JBI job starts with /JOB"));
 }
 
 TEST(ProgramReaderTest, GcodeBadInputsNameTheLine) {

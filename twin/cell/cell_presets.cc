@@ -39,6 +39,17 @@ std::filesystem::path PresetUrdf(CellPreset preset) {
   return DataDir() / "twin" / "data" / "presets" / std::string(info.urdf);
 }
 
+planner::ProgramFormat PresetDialect(CellPreset preset) {
+  switch (preset) {
+    case CellPreset::kFanucArcMate100ic: return planner::ProgramFormat::kFanucLs;
+    case CellPreset::kAbbIrb1600: return planner::ProgramFormat::kAbbRapid;
+    case CellPreset::kKukaKr16: return planner::ProgramFormat::kKukaKrl;
+    case CellPreset::kYaskawaMh12: return planner::ProgramFormat::kYaskawaJbi;
+  }
+  WAAM_DEMAND(false);
+  return planner::ProgramFormat::kFanucLs;
+}
+
 void ApplyPreset(CellPreset preset, CellSettings* cell) {
   const CellPresetInfo& info = PresetInfo(preset);
   cell->preset = preset;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "planner/program/program_motion.h"
 #include "twin/cell/cell_settings.h"
 
 namespace waam::twin {
@@ -28,6 +29,10 @@ const CellPresetInfo& PresetInfo(CellPreset preset);
 
 // The URDF file of a URDF preset (empty path for the built-in one).
 std::filesystem::path PresetUrdf(CellPreset preset);
+
+// The program dialect of the preset's controller (fanuc_ls, abb_rapid, kuka_krl, yaskawa_jbi): what `waam export`
+// writes when neither --format nor the output file's extension names one.
+planner::ProgramFormat PresetDialect(CellPreset preset);
 
 // Sets `cell` to the preset's cell: its arm (robot_urdf) and torch, the arm at the origin facing +x, the positioner
 // at the preset's place with its tilt axis across the line between them. The scenario's own keys are read after.

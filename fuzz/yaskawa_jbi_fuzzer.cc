@@ -1,0 +1,15 @@
+// libFuzzer target: the Yaskawa INFORM (.JBI) reader, then the conversion of what it read into a plan (fuzz/program_fuzz.h).
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "fuzz/program_fuzz.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  try {
+    waam::fuzz::ReadAndPlanProgram(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.JBI",
+                                   waam::planner::ProgramFormat::kYaskawaJbi);
+  } catch (const waam::InputError&) {
+  }
+  return 0;
+}
