@@ -179,14 +179,10 @@ void CheckRoundTrip(const Plan& plan, const char* label, PositionerType type = P
   for (const Dialect& dialect : Dialects()) {
     SCOPED_TRACE(std::string(label) + " " + std::string(NameOf(dialect.format)));
     const std::string text = dialect.write(program, cell);
-<<<<<<< HEAD
     CheckExternalAxes(text, dialect.format, type);
-    const ParsedProgram parsed = ReadProgramText(text, "round_trip", dialect.format);
-=======
     JbiReadOptions jbi;
     jbi.station_pulses_per_deg = kStationPulsesPerDeg;
     const ParsedProgram parsed = ReadProgramText(text, "round_trip", dialect.format, GcodeReadOptions{}, jbi);
->>>>>>> jbi
     EXPECT_TRUE(parsed.warnings.empty()) << parsed.warnings.front().what << " (line " << parsed.warnings.front().first_line
                                          << ")";
     ImportSettings settings;
@@ -248,7 +244,6 @@ TEST(ProgramRoundTripTest, TiltedBuildDirectionComesBackFromEveryDialect) {
   CheckRoundTrip(SquareLayers(3, Eigen::Vector3d(0.3, 0.5, 1.0)), "multi-axis");
 }
 
-<<<<<<< HEAD
 TEST(ProgramRoundTripTest, TurntableProgramsComeBackFromEveryDialect) {
   // One external axis: the table's rotation (E1, eax_a, GP2 J1, C), turned 0.6 rad; the tilt is nowhere.
   CheckRoundTrip(SquareLayers(3, Eigen::Vector3d::UnitZ()), "turntable planar", PositionerType::kTurntable);
@@ -283,7 +278,8 @@ TEST(ProgramRoundTripTest, AxisTheCellLacksIsNotedAndHeldAtZero) {
   ASSERT_FALSE(imported.warnings.empty());
   EXPECT_THAT(imported.warnings.back().what, ::testing::HasSubstr("cell.positioner.type turntable"));
   EXPECT_EQ(imported.warnings.back().first_line, 7);
-=======
+}
+
 TEST(ProgramRoundTripTest, GivenPositionerAnglesDriveTheCellMotionInsteadOfSolvedOnes) {
   // Vertical layers: the solver keeps the tilt at 0. The second layer's points carry a program's own angles.
   Plan plan = SquareLayers(2, Eigen::Vector3d::UnitZ());
@@ -313,7 +309,6 @@ TEST(ProgramRoundTripTest, GivenPositionerAnglesDriveTheCellMotionInsteadOfSolve
     const double f = static_cast<double>(i - entry + 1) / static_cast<double>(last - entry + 1);
     EXPECT_NEAR(fine[i].q[6], tilt_before + f * (0.3 - tilt_before), 1e-12) << "sample " << i;
   }
->>>>>>> jbi
 }
 
 }  // namespace
