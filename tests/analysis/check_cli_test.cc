@@ -60,6 +60,7 @@ TEST(CheckCliTest, EveryCellScenarioGivesItsExpectedResult) {
       {"preset_abb_irb1600_out_of_reach", 3, {"unreachable"}},
       {"preset_kuka_kr16_turntable", 0, {}},
       {"preset_abb_irb1600_table", 0, {}},
+      {"cell_torch_meets_clamp", 3, {"collision"}},
   };
   for (const Case& c : cases) {
     const fs::path out = TempDir(c.scenario);

@@ -266,6 +266,7 @@ TEST(SettingNames, ReadmeListsEveryTable) {
   ExpectReadmeRow<PositionerFollow>(readme, "cell.positioner.follow");
   ExpectReadmeRow<PositionerType>(readme, "cell.positioner.type");
   ExpectReadmeRow<twin::CellPreset>(readme, "cell.preset");
+  ExpectReadmeRow<twin::CellResolve>(readme, "cell.resolve");
   ExpectReadmeRow<ProgramFormat>(readme, "program.format");
   ExpectReadmeRow<ProgramLayers>(readme, "program.layers");
 }

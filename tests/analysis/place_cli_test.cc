@@ -1,0 +1,79 @@
+// End-to-end tests of `waam place`: a planted layout fault (the torch meets a clamp) gets a placement that passes,
+// written as a scenario `waam check` passes; a part out of reach everywhere gets no layout, the nearest miss named;
+// the same inputs give the same place.json (timings aside) on one and two threads; a bad range is one line.
+#include <filesystem>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/analysis/cli_test_util.h"
+
+namespace waam::analysis {
+namespace place_cli_test {
+namespace fs = std::filesystem;
+using cli_test::ReadJson;
+using cli_test::RunWaam;
+using cli_test::TempDir;
+
+std::string Scenario(const char* name) { return std::string(WAAM_SOURCE_DIR) + "/scenarios/cell/" + name + ".yaml"; }
+
+TEST(PlaceCliTest, ThePlantedClampFaultGetsAPlacementThatPasses) {
+  const fs::path out = TempDir("place_clamp");
+  std::string err;
+  ASSERT_EQ(RunWaam("place " + Scenario("cell_torch_meets_clamp") + " -q -o " + out.string(), &err), 0) << err;
+  const nlohmann::json place = ReadJson(out / "place.json");
+  EXPECT_TRUE(place.at("feasible").get<bool>());
+  EXPECT_EQ(place.at("best").at("violating_samples").get<int>(), 0);
+  EXPECT_EQ(place.at("best").at("pass").get<std::string>(), "full");
+  EXPECT_EQ(place.at("layouts").get<int>(), 8);
+  EXPECT_EQ(place.at("tried").size(), 8u);
+  // The scenario as written (the original's layout is a fault) is one waam check passes.
+  EXPECT_TRUE(fs::exists(out / "place_margin.png"));
+  const fs::path check = out / "check";
+  ASSERT_EQ(RunWaam("check " + (out / "scenario.yaml").string() + " -q --no-images --no-program -o " + check.string(),
+                    &err), 0) << err;
+  EXPECT_TRUE(ReadJson(check / "check.json").at("ok").get<bool>());
+  // The layout the search kept is not the planted one (yaw 0, centred), which fails.
+  const nlohmann::json& best = place.at("best").at("layout");
+  EXPECT_FALSE(best.at("part_yaw_deg").get<double>() == 0.0 && best.at("part_x_mm").get<double>() == 0.0 &&
+               best.at("part_y_mm").get<double>() == 0.0);
+
+  // Deterministic: the same answer and the same scores on one thread.
+  const fs::path one = TempDir("place_clamp_1");
+  ASSERT_EQ(RunWaam("place " + Scenario("cell_torch_meets_clamp") + " -q --no-images --threads 1 -o " + one.string(),
+                    &err), 0) << err;
+  nlohmann::json a = place, b = ReadJson(one / "place.json");
+  a.erase("timing");
+  b.erase("timing");
+  EXPECT_EQ(a, b);
+}
+
+TEST(PlaceCliTest, APartOutOfReachEverywhereHasNoLayoutAndNamesTheNearestMiss) {
+  const fs::path out = TempDir("place_out_of_reach");
+  std::string err;
+  EXPECT_EQ(RunWaam("place " + Scenario("cell_out_of_reach") + " -q --no-images --set place.part_x_mm=[-100,100,100]" +
+                        " --set place.part_y_mm=0 --set place.part_yaw_deg=0 -o " + out.string(),
+                    &err),
+            3)
+      << err;
+  const nlohmann::json place = ReadJson(out / "place.json");
+  EXPECT_FALSE(place.at("feasible").get<bool>());
+  EXPECT_EQ(place.at("layouts").get<int>(), 3);
+  EXPECT_GT(place.at("best").at("violating_samples").get<int>(), 0);
+  EXPECT_THAT(place.at("best").at("worst_violation").at("what").get<std::string>(), ::testing::HasSubstr("unreachable"));
+  EXPECT_GT(place.at("best").at("worst_violation").at("reach_excess_mm").get<double>(), 0.0);
+}
+
+TEST(PlaceCliTest, ARangeWithMinAboveMaxIsOneLine) {
+  const fs::path out = TempDir("place_bad");
+  std::string err;
+  EXPECT_EQ(RunWaam("place " + Scenario("cell_ok") + " -q --set place.part_x_mm=[50,-50,10] -o " + out.string(), &err),
+            2);
+  EXPECT_THAT(err, ::testing::HasSubstr("place.part_x_mm"));
+  EXPECT_THAT(err, ::testing::HasSubstr("min must not exceed max"));
+  EXPECT_FALSE(fs::exists(out / "place.json"));
+}
+
+}  // namespace place_cli_test
+}  // namespace waam::analysis
