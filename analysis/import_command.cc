@@ -11,6 +11,7 @@
 #include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
+#include "planner/mesh/stl_io.h"
 #include "planner/program/program_motion.h"
 #include "twin/cell/cell_check.h"
 #include "twin/cell/mujoco_cell.h"
@@ -122,6 +123,10 @@ planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* pr
       planner::ReadProgramFile(scenario.program.file, scenario.program.format, gcode, JbiOptionsOf(scenario));
   ImportReport local;
   planner::PlanResult result = PlanFromProgram(scenario, program, report != nullptr ? report : &local);
+  if (!scenario.program.target.empty()) {
+    // The intended part, for the viewer and simulate's deviation measures (welded as a planned part's mesh is).
+    result.mesh = planner::ReadStl(scenario.program.target, 1e-4, &result.mesh_report);
+  }
   if (progress != nullptr) progress->Finish();
   return result;
 }

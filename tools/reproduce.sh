@@ -31,12 +31,16 @@
 #   readme_figures    waam simulate of the planar demo and the thruster blades: deviation, voids; README.md (a minute)
 #   threads           wall time of plan, check, deviation, compensate, tune-voids and fit distortion on 1 and 2
 #                     threads, back to back; README.md (several minutes)
+#   resolve           waam check of every scenario with cell.resolve fixed and optimise: margins before and after,
+#                     the spins chosen, both wall times; CELL.md (ten minutes or more)
+#   place             waam place on the tube part II and the planted clamp fault: layouts, passes, wall time;
+#                     CELL.md (a minute)
 # Needs a built ./build/waam (bash tools/test.sh --quick builds it); the *_bench tables and twin_tests need their
 # executables (cmake --build build --target NAME).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tables=(ding_table twin_table compensation twin_tests deposition_bench distortion_fit published rib_web model_fits
-        void_length_fit fit_bench check_bench cup_support readme_figures peers threads)
+        void_length_fit fit_bench check_bench cup_support readme_figures peers threads resolve place)
 only=""
 out="out/reproduce"
 check=0
@@ -585,6 +589,70 @@ print()
 print("| run | 1 thread: wall (CPU) | 2 threads: wall (CPU) | wall 2 / 1 |")
 print("| --- | --- | --- | --- |")
 print("\n".join(rows))
+PY
+}
+
+resolve() {
+  local d="$out/resolve"
+  mkdir -p "$d"
+  : > "$d/runs.txt"
+  for s in $(find scenarios -name '*.yaml' ! -path '*/robots/*' ! -name '*sweep*' | sort); do
+    grep -q '^program:' "$s" && continue
+    local id=${s#scenarios/}
+    id=${id%.yaml}
+    id=${id//\//-}
+    for mode in fixed optimise; do
+      local start end
+      start=$(date +%s.%N)
+      ./build/waam check "$s" -o "$d/$id/$mode" -q --no-images --no-program --set cell.resolve=$mode >/dev/null 2>&1 || true
+      end=$(date +%s.%N)
+      echo "$id $mode $(echo "$end - $start" | bc)" >> "$d/runs.txt"
+    done
+  done
+  python3 - "$d" <<'PY' | put resolve
+import json, os, sys
+d = sys.argv[1]
+times = {}
+for line in open(os.path.join(d, "runs.txt")):
+    i, mode, t = line.split()
+    times[(i, mode)] = float(t)
+print("| scenario | violations fixed / optimise | arm joint margin deg | J5 deg | clearance mm | spin deg (layers turned) | kept | wall s fixed / optimise |")
+print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+for i in sorted({k[0] for k in times}):
+    f = os.path.join(d, i, "optimise", "check.json")
+    if not os.path.exists(f):
+        continue
+    r = json.load(open(f))["resolve"]
+    b, a, sp = r["before"], r["after"], r["spin_deg"]
+    print("| `%s` | %d / %d | %.1f / %.1f | %.1f / %.1f | %.1f / %.1f | %+.0f..%+.0f (%d) | %s | %.1f / %.1f |" % (
+        i, b["violation_count"], a["violation_count"], b["min_arm_margin_deg"], a["min_arm_margin_deg"],
+        b["min_j5_deg"], a["min_j5_deg"], b["min_clearance_mm"], a["min_clearance_mm"], sp["min"], sp["max"],
+        sp["layers_turned"], r["kept"], times[(i, "fixed")], times[(i, "optimise")]))
+PY
+}
+
+place() {
+  local d="$out/place"
+  mkdir -p "$d"
+  ./build/waam place scenarios/tubes/part_2.yaml -o "$d/part_2" -q --no-images \
+    --set cell.part.offset_mm=[0,0,0] --set cell.part.yaw_deg=0 >/dev/null || true
+  ./build/waam place scenarios/cell/cell_torch_meets_clamp.yaml -o "$d/clamp" -q --no-images >/dev/null || true
+  ./build/waam place scenarios/cell/cell_out_of_reach.yaml -o "$d/out_of_reach" -q --no-images \
+    --set 'place.part_x_mm=[-100,100,100]' --set place.part_y_mm=0 --set place.part_yaw_deg=0 >/dev/null || true
+  python3 - "$d" <<'PY' | put place
+import json, sys
+d = sys.argv[1]
+print("| `waam place` | layouts | coarse pass: wall s (layouts/s) | whole path: layouts, wall s | answer |")
+print("| --- | --- | --- | --- | --- |")
+for name, label in (("part_2", "`tubes/part_2.yaml` from the centred, unturned layout"),
+                    ("clamp", "`cell/cell_torch_meets_clamp.yaml`"),
+                    ("out_of_reach", "`cell/cell_out_of_reach.yaml` (part x -100..100)")):
+    p = json.load(open(f"{d}/{name}/place.json"))
+    t, b = p["timing"], p["best"]
+    ans = ("passes: " + ", ".join(b["overrides"]) + ", margin %.2f" % b["margin"]) if p["feasible"] else \
+          "none passes; nearest miss: %d violating samples, worst %s" % (b["violating_samples"], b["worst_violation"]["what"])
+    print("| %s | %d | %.1f (%.0f) | %d, %.1f | %s |" % (label, p["layouts"], t["coarse_s"], t["coarse_layouts_per_s"],
+                                                     p["full_checks"], t["full_s"], ans))
 PY
 }
 

@@ -7,6 +7,18 @@ namespace waam::planner::internal {
 
 ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& scenario_dir) {
   ProgramSettings s;
+  if (top.Has("target")) {
+    // The intended part of a program made elsewhere (a planned part is its own target).
+    WAAM_THROW_UNLESS(top.Has("program"), top.Where("target") << ": only with a program: section (a part: is its own "
+                                                                 "target)");
+    s.target = top.String("target");
+    WAAM_THROW_UNLESS(!s.target.empty(), top.Where("target") << ": must name an STL file");
+    if (s.target.is_relative()) s.target = scenario_dir / s.target;
+    s.target = s.target.lexically_normal();
+    std::error_code ec;
+    WAAM_THROW_UNLESS(std::filesystem::is_regular_file(s.target, ec),
+                      top.Where("target") << ": target file " << s.target.string() << " not found");
+  }
   if (!top.Has("program")) return s;
   YamlMap section = top.Map("program");
   s.present = true;

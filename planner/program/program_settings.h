@@ -31,6 +31,9 @@ struct ProgramSettings {
   std::array<double, 6> yaskawa_pulses_per_deg = {};
   // yaskawa.station_pulses_per_deg: the station's (positioner tilt, rotation), for EC positions; 0 = unknown
   std::array<double, 2> yaskawa_station_pulses_per_deg = {};
+  // The scenario's top-level `target:` (absolute): the intended part as STL in the part frame P (plate top z = 0),
+  // for the viewer's ghost and simulate's deviation measures; empty = none.
+  std::filesystem::path target;
   std::string where;                          // "file:line: program" for messages
 };
 

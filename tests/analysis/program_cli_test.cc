@@ -20,6 +20,7 @@ using ::testing::HasSubstr;
 using cli_test::ReadJson;
 using cli_test::RunWaam;
 using cli_test::TempDir;
+using cli_test::Slurp;
 
 fs::path ProgramFixture(const char* name) {
   return fs::path(WAAM_SOURCE_DIR) / "tests" / "data" / "programs" / name;
@@ -124,6 +125,29 @@ TEST(ProgramCliTest, ProgramSectionIsCheckedWhereItIsWritten) {
               HasSubstr("program.frame.user_frame_mm"));
   EXPECT_EQ(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {arc_on_m: 7, arc_off_m: 9}\n" + process),
             "no error");
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\ntarget: nowhere.stl\n" + process),
+              HasSubstr("s.yaml:4: target: target file"));
+  EXPECT_THAT(error("name: s\npart: {generator: {type: box, size_mm: [10, 10, 5]}}\nslicing: {type: planar, "
+                    "layer_height_mm: 1}\npath: {pattern: contour, bead_width_mm: 6}\ntarget: wall.nc\n" + process),
+              HasSubstr("only with a program: section"));
+}
+
+TEST(ProgramCliTest, TargetGivesAProgramItsDeviationMeasures) {
+  const fs::path dir = TempDir("program_target");
+  fs::copy_file(ProgramFixture("wall.ls"), dir / "wall.ls");
+  std::string err;
+  ASSERT_EQ(RunWaam("generate box --param size_mm=120,20,6 -o " + (dir / "target.stl").string(), &err), 0) << err;
+  const std::string base = Slurp(ProgramFixture("wall_ls.yaml"));
+  WriteFileAtomic(dir / "with.yaml", base + "target: target.stl\n");
+  WriteFileAtomic(dir / "without.yaml", base);
+  ASSERT_EQ(RunWaam("simulate " + (dir / "with.yaml").string() + " -q --no-images -o " + (dir / "with").string(), &err),
+            0) << err;
+  ASSERT_EQ(RunWaam("simulate " + (dir / "without.yaml").string() + " -q --no-images -o " + (dir / "without").string(),
+                    &err), 0) << err;
+  const nlohmann::json with = ReadJson(dir / "with" / "simulate.json");
+  const nlohmann::json without = ReadJson(dir / "without" / "simulate.json");
+  EXPECT_GT(with.at("deviation").at("samples").get<int>(), 0);
+  EXPECT_EQ(without.at("deviation").at("samples").get<int>(), 0);
 }
 
 TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {
