@@ -44,6 +44,7 @@ TEST(CellResolve, SpinTakesJ6BackInsideItsLimitsWithTheSameWeld) {
   const planner::Plan wall = testing::RectangleWall(4, 120.0, 40.0, 2.0, 8.0);
   // Where J6 stands under the fixed rule on the unrestricted cell.
   CellSettings settings;
+  settings.resolve = CellResolve::kFixed;
   const CheckReport free = CheckPlan(LoadCell(settings), wall, settings, 100.0, nullptr);
   ASSERT_TRUE(free.ok);
   double lo = 1e9, hi = -1e9;
@@ -86,13 +87,20 @@ TEST(CellResolve, SpinTakesJ6BackInsideItsLimitsWithTheSameWeld) {
   fs::remove(file);
 }
 
-TEST(CellResolve, APathTheFixedRuleServesKeepsItsMargins) {
+TEST(CellResolve, APathTheFixedRuleServesKeepsItsMotion) {
+  // The default is optimise; a path whose fixed-rule margins are all comfortable keeps that motion untouched.
   const planner::Plan wall = testing::RectangleWall(3, 100.0, 30.0, 2.0, 8.0);
   CellSettings settings;
-  settings.resolve = CellResolve::kOptimise;
-  const CheckReport r = CheckPlan(LoadCell(settings), wall, settings, 100.0, nullptr);
+  EXPECT_EQ(settings.resolve, CellResolve::kOptimise);
+  const CellModel cell = LoadCell(settings);
+  const CheckReport r = CheckPlan(cell, wall, settings, 100.0, nullptr);
   EXPECT_TRUE(r.ok);
-  EXPECT_GE(CheckMargin(r.resolve.after, settings), CheckMargin(r.resolve.before, settings));
+  EXPECT_TRUE(r.resolve.kept_fixed);
+  EXPECT_GE(CheckMargin(r.resolve.after, settings), 1.0);
+  settings.resolve = CellResolve::kFixed;
+  const CheckReport f = CheckPlan(cell, wall, settings, 100.0, nullptr);
+  ASSERT_EQ(f.motion.size(), r.motion.size());
+  for (std::size_t i = 0; i < f.motion.size(); ++i) EXPECT_EQ(f.motion[i].q, r.motion[i].q);
 }
 
 }  // namespace cell_resolve_test

@@ -361,12 +361,21 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   }
 
   // optimise: the fixed rule's check, the spins per layer, the check of their motion; the better of the two is kept.
-  CheckReport fixed = CheckWithOptions(cell, kin, solve, plan, settings, options, nullptr);
-  options.layer_spin_rad = ResolveLayerSpins(cell, solve, plan, options, settings);
-  CheckReport report = CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
+  // The progress bar runs once for the fixed check and again for the resolved one.
+  CheckReport fixed = CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
   ResolveSummary summary;
   summary.mode = CellResolve::kOptimise;
   summary.before = MarginsOf(fixed);
+  if (summary.before.violating_samples == 0 && CheckMargin(summary.before, settings) >= 1.0) {
+    // Nothing to gain: every margin already counts as comfortable (the resolution scores margins up to 1).
+    summary.kept_fixed = true;
+    summary.after = summary.before;
+    summary.layer_spin_deg.assign(plan.layers.size(), 0.0);
+    fixed.resolve = std::move(summary);
+    return fixed;
+  }
+  options.layer_spin_rad = ResolveLayerSpins(cell, solve, plan, options, settings);
+  CheckReport report = CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
   summary.after = MarginsOf(report);
   const bool worse = summary.after.violating_samples > summary.before.violating_samples ||
                      (summary.after.violating_samples == summary.before.violating_samples &&

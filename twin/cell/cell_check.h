@@ -101,8 +101,9 @@ CellModel LoadCell(const twin::CellSettings& settings);
 planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings);
 
 // Checks `plan` (part frame P) on `cell`, which LoadCell(settings) made. Arc-off moves run at `rapid_speed_mm_s`.
-// With settings.resolve optimise the torch's spin per layer is chosen first (twin/cell/cell_resolve.h) and the
-// result is the better of that motion's check and the fixed rule's. `progress` may be null.
+// With settings.resolve optimise (the default) the fixed rule's motion is checked first; unless it passes with every
+// margin comfortable (CheckMargin >= 1), the torch's spin per layer is chosen (twin/cell/cell_resolve.h) and the result
+// is the better of that motion's check and the fixed rule's. `progress` may be null.
 CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress);
 

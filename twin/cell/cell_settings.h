@@ -78,8 +78,9 @@ struct CellSettings {
   // short of turning the build direction exactly up where that saves table rotation (0: exactly up), deg.
   double positioner_tilt_tolerance_deg = 0.0;
   // cell.resolve: fixed = the torch's x away from J1 everywhere; optimise = the spin per layer that keeps joint and
-  // singularity margins and clearances largest (twin/cell/cell_resolve.h).
-  CellResolve resolve = CellResolve::kFixed;
+  // singularity margins and clearances largest (twin/cell/cell_resolve.h), where the fixed rule leaves a violation or
+  // a margin short of comfortable (CheckMargin < 1); elsewhere the fixed rule's motion is kept as it is.
+  CellResolve resolve = CellResolve::kOptimise;
   std::array<double, 3> part_offset_mm = {0.0, 0.0, 0.0};  // part frame P relative to the plate's top centre, mm
   double part_yaw_deg = 0.0;                               // turn of the part on the plate, deg
   double joint_margin_deg = 2.0;         // a joint closer than this to its limit is a violation, deg
