@@ -206,6 +206,7 @@ PlaceResult RunPlace(const PlaceOptions& options) {
     ParallelFor(count, [&](std::size_t i) {
       twin::CellSettings settings = ApplyLayout(cell, result.layouts[i]);
       settings.step_mm = std::max(settings.step_mm, place.coarse_step_mm);
+      settings.resolve = twin::CellResolve::kFixed;  // the ranking needs the layout's effect, not the resolution's
       const twin::CheckReport report =
           twin::CheckPlan(models.at(ModelKey(result.layouts[i])), coarse_plan, settings, rapid_mm_s, nullptr);
       result.coarse[i] = ScoreLayout(report, settings, false);

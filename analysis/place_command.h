@@ -71,8 +71,9 @@ struct PlaceResult {
   double full_s = 0.0;                   // wall time of the full checks, s
 };
 
-// Plans the scenario once and searches its `place:` ranges: every layout on the coarse pass (cell.place
-// coarse_layers layers at coarse_step_mm, in parallel over layouts), then the best on the whole path, `finalists`
+// Plans the scenario once and searches its `place:` ranges: every layout on the coarse pass (place.coarse_layers
+// layers at coarse_step_mm with cell.resolve fixed, in parallel over layouts), then the best on the whole path with
+// the scenario's cell.resolve, `finalists`
 // at a time, until one passes or the coarse pass's passing layouts (at most 4 x finalists) are used up. Writes
 // place.json, scenario.yaml (the scenario with the best layout and `base_dir` pointing back at its files) and
 // place_margin.png. Throws InputError for a bad scenario or cell.

@@ -269,6 +269,11 @@ std::vector<BadInput> Catalogue() {
         "kuka_kr16, yaskawa_mh12, kuka_kr16_turntable, abb_irb1600_table"}},
       {"cell-unknown-positioner-type", "check", "s.yaml", {{"s.yaml", CellScenario("  positioner: {type: rotary}\n")}},
        {"s.yaml:13: cell.positioner.type = 'rotary': unknown value, expected one of none, turntable, tilt_rotate"}},
+      {"cell-unknown-resolve", "check", "s.yaml", {{"s.yaml", CellScenario("  resolve: optimal\n")}},
+       {"s.yaml:13: cell.resolve = 'optimal': unknown value, expected one of fixed, optimise"}},
+      {"place-range-min-above-max", "place", "s.yaml",
+       {{"s.yaml", CellScenario("  part: {yaw_deg: 0}\nplace:\n  part_x_mm: [50, -50, 10]\n")}},
+       {"s.yaml:15: place.part_x_mm = [50, -50, 10]: min must not exceed max ([min, max, step])"}},
       {"cell-preset-and-urdf", "check", "s.yaml",
        {{"s.yaml", [] {
           std::string text = UrdfScenario("arm.urdf");
