@@ -37,6 +37,8 @@ std::vector<Eigen::Vector3d> ArcPoints(const Eigen::Vector3d& a, const Eigen::Ve
     return t < 0.0 ? t + 2.0 * kPi : t;
   };
   const double end = angle(b);  // a -> via -> b runs counter-clockwise about n
+  // A circle too large for doubles (a centre offset of 1e61 mm) is no circle a controller runs: a straight move.
+  if (!c.allFinite() || !std::isfinite(r) || !std::isfinite(end) || !e1.allFinite() || !e2.allFinite()) return {};
   const int n_steps = static_cast<int>(std::clamp(std::ceil(end * r / step), 1.0, 100000.0));
   std::vector<Eigen::Vector3d> out;
   for (int k = 1; k < n_steps; ++k) {
@@ -152,7 +154,7 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
       }
       const std::vector<Eigen::Vector3d> arc = ArcPoints(a, via, b, settings.arc_step_mm);
       if (arc.empty()) {
-        notes.Add("circular move through three points on one line: followed as a linear move", t.line);
+        notes.Add("circular move through three points on one line (or too large a circle): followed as a linear move", t.line);
       } else {
         const Eigen::Quaterniond q0(prev.X_WT.linear()), q1(t.X_WT.linear());
         double length = 0.0;
