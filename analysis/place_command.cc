@@ -127,10 +127,11 @@ std::vector<std::string> LayoutOverrides(const Layout& layout, const Layout& cur
 }
 
 LayoutScore ScoreLayout(const twin::CheckReport& report, const twin::CellSettings& cell, bool full) {
+  const twin::CheckMargins m = twin::MarginsOf(report);
   LayoutScore s;
   s.full = full;
-  s.violations = report.violations.size();
-  for (const twin::CheckViolation& v : report.violations) s.violating_samples += static_cast<std::size_t>(v.samples);
+  s.violations = m.violations;
+  s.violating_samples = m.violating_samples;
   for (const twin::CheckViolation& v : report.violations) {
     if (v.sample != report.worst_sample) continue;
     s.worst = v.kind + " " + v.joint + v.body1 + (v.body2.empty() ? "" : "/") + v.body2;
@@ -140,10 +141,10 @@ LayoutScore ScoreLayout(const twin::CheckReport& report, const twin::CellSetting
     s.worst_layer = v.layer;
     break;
   }
-  s.min_joint_margin_deg = report.min_arm_margin_deg;
-  s.min_j5_deg = report.min_j5_deg;
-  s.min_clearance_mm = report.min_clearance_mm;
-  s.margin = twin::CheckMargin(twin::MarginsOf(report), cell);
+  s.min_joint_margin_deg = m.min_arm_margin_deg;
+  s.min_j5_deg = m.min_j5_deg;
+  s.min_clearance_mm = m.min_clearance_mm;
+  s.margin = twin::CheckMargin(m, cell);
   return s;
 }
 
