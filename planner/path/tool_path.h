@@ -26,6 +26,9 @@ struct PathPoint {
   // Positioner (tilt, rotation) at this point as a program made elsewhere gives them, rad; NaN = not given (the
   // cell motion solves them from the build direction). Not written to plan.h5 / plan.json.
   Eigen::Vector2d positioner_rad = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  // Seconds the torch waits at this point once it has arrived, before the next move: a program's own wait (G-code G4,
+  // FANUC WAIT, RAPID WaitTime, KRL WAIT SEC, INFORM TIMER), s >= 0. The timeline counts it as a wait.
+  double dwell_s = 0.0;
 };
 
 // The path of one layer.
