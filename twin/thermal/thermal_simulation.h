@@ -1,0 +1,93 @@
+// Transient heat conduction in a WAAM deposit and its substrate plate: material switched on as it is laid, arc heat
+// spread over the bead of each step, losses by convection and radiation and into the table (issue "Time and heat").
+// The solver computes on data (no file is read here): materials come loaded (models/thermal/material.h).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "models/thermal/material.h"
+
+namespace waam::twin {
+
+// Everything the solver needs, resolved (lengths in mm, temperatures in degC, SI otherwise).
+struct ThermalSettings {
+  models::ThermalMaterial deposit;          // the wire's metal
+  models::ThermalMaterial substrate;        // the plate's metal
+  Eigen::AlignedBox3d substrate_box_mm;     // the plate in the part frame; its top is usually z = 0
+  Eigen::AlignedBox3d deposit_box_mm;       // where the deposit may grow (the part's bounds plus a margin)
+  double cell_mm = 2.0;                     // grid spacing near the deposit, mm
+  double initial_c = 20.0;                  // plate temperature at t = 0, degC
+  double ambient_c = 20.0;                  // air temperature for convection and radiation, degC
+  double convection_w_m2k = 10.0;           // h on every exposed face, W/(m^2 K)
+  double emissivity = -1.0;                 // < 0: each material's own; else this for every exposed face
+  // Contact with the table under the plate's bottom face; conductance 0 = an insulated bottom (losses by convection
+  // and radiation there instead).
+  double table_conductance_w_m2k = 0.0;     // W/(m^2 K)
+  double table_c = 20.0;                    // table temperature, degC
+};
+
+// Energy accounts since t = 0, J. input_j = stored_j + lost_j up to the solver's truncation error.
+struct EnergyBalance {
+  double input_j = 0.0;        // heat put into the metal by the arc (efficiency already applied by the caller)
+  double stored_j = 0.0;       // change of enthalpy of every active cell (latent heat included), incl. the heat a cell
+                               // brings when switched on at its activation temperature
+  double lost_j = 0.0;         // convection + radiation + table
+  double convection_j = 0.0;
+  double radiation_j = 0.0;
+  double table_j = 0.0;
+  double RelativeError() const;  // |input - stored - lost| / input (0 when input is 0)
+};
+
+// Solver statistics for thermal.json.
+struct ThermalStats {
+  std::size_t cells = 0;          // grid cells (active or not)
+  std::size_t active_cells = 0;
+  std::size_t steps = 0;          // time steps taken
+  std::size_t iterations = 0;     // linear-solver iterations, summed (0 for an explicit method)
+};
+
+// The temperature field on the solver's grid (for thermal.h5 and the pictures): cell (i, j, k) is centred at
+// origin_mm + (i + 1/2, j + 1/2, k + 1/2) cell_mm; NaN where no metal is.
+struct TemperatureField {
+  Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();
+  double cell_mm = 0.0;
+  Eigen::Vector3i size = Eigen::Vector3i::Zero();  // cells along x, y, z
+  std::vector<float> temperature_c;                // x fastest, then y, then z
+};
+
+// The state of one thermal simulation, advanced step by step by its caller (the build's timeline drives it).
+class ThermalSimulation {
+ public:
+  // Throws InputError for settings out of their range (naming the setting).
+  explicit ThermalSimulation(const ThermalSettings& settings);
+  ~ThermalSimulation();
+  ThermalSimulation(ThermalSimulation&&) noexcept;
+  ThermalSimulation& operator=(ThermalSimulation&&) noexcept;
+
+  // Moves the arc from p0 to p1 (part frame, mm) over `seconds`, switching on the bead of width x height (mm)
+  // laid along it and putting `heat_w` (W, the arc power times its efficiency) into it.
+  void Weld(const Eigen::Vector3d& p0_mm, const Eigen::Vector3d& p1_mm, double width_mm, double height_mm,
+            double heat_w, double seconds);
+  // Advances `seconds` with no heat input (travel, waits).
+  void Cool(double seconds);
+
+  double time_s() const;
+  // Temperature at a point of the metal (plate or deposit), degC; NaN where no metal is (yet).
+  double TemperatureAt(const Eigen::Vector3d& p_mm) const;
+  // Highest temperature of the metal inside `box` (mm), degC; NaN when the box holds no metal.
+  double MaxTemperatureIn(const Eigen::AlignedBox3d& box_mm) const;
+  EnergyBalance Energy() const;
+  ThermalStats Stats() const;
+  TemperatureField Field() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace waam::twin
