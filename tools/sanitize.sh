@@ -18,4 +18,5 @@ cmake --build "$build" -j"$jobs"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$(pwd)/tools/sanitize.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-ctest --test-dir "$build" --output-on-failure -j"$jobs" "$@"
+# The scheduler tests (label cluster) run the Release build only: they check Slurm, Dask and the scripts.
+ctest --test-dir "$build" --output-on-failure -j"$jobs" -LE cluster "$@"

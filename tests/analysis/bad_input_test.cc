@@ -134,7 +134,8 @@ struct BadInput {
   std::string input;                           // the file named on the command line, in the case's folder
   std::map<std::string, std::string> files;    // name -> contents, written into the case's folder
   std::vector<std::string> expected;           // each must appear in the one stderr line
-  std::vector<std::string> folders = {};       // folders created in the case's folder
+  std::vector<std::string> folders = {};       // folders created in the case's folder (before the files)
+  std::string options = "";                    // options after the input, e.g. "--shard 3/3"
 };
 
 std::string ReplaceAll(std::string text, const std::string& from, const std::string& to) {
@@ -241,6 +242,14 @@ std::vector<BadInput> Catalogue() {
        {"sweep.yaml:3: grid: path.bead_width_mm: must be a non-empty list of values"}},
       {"sweep-missing-base", "sweep", "sweep.yaml", {{"sweep.yaml", "base: nothere.yaml\ngrid: {path.pattern: [hybrid]}\n"}},
        {"sweep.yaml: base: scenario file ", "nothere.yaml not found"}},
+      {"sweep-list-without-runs", "sweep", "sweep.yaml", {{"sweep.yaml", "base: s.yaml\nlist: []\n"}, {"s.yaml", ok}},
+       {"sweep.yaml:2: list: must be a non-empty list of mappings"}},
+      {"sweep-shard-out-of-range", "sweep", "sweep.yaml",
+       {{"sweep.yaml", "base: s.yaml\ngrid: {path.pattern: [hybrid]}\n"}, {"s.yaml", ok}},
+       {"--shard '3/3': expected K/N with 0 <= K < N, e.g. 0/4 for the first of 4 shards"}, {}, "--shard 3/3"},
+      {"bench-merge-missing-shard", "bench --merge", "s0",
+       {{"s0/bench.json", R"({"scenarios": [{"id": "a"}], "shard": {"index": 0, "count": 2, "runs_total": 2}})"}},
+       {"shard 1/2 missing from --merge"}, {"s0"}},
       {"robot-model-does-not-parse", "check", "s.yaml",
        {{"s.yaml", CellScenario("  mjcf: broken.xml\n")}, {"broken.xml", "<mujoco><worldbody><body></mujoco>\n"}},
        {"broken.xml: MuJoCo cannot load the cell model: XML parse error", "Line number=1"}},
@@ -312,12 +321,13 @@ TEST(BadInputCatalogue, EveryCaseExitsTwoWithOneLineNamingFileAndPlaceAndNoOutpu
   for (const BadInput& c : Catalogue()) {
     SCOPED_TRACE(c.id);
     const fs::path dir = CaseDir(c.id);
-    for (const auto& [name, contents] : c.files) std::ofstream(dir / name, std::ios::binary) << contents;
     for (const std::string& folder : c.folders) fs::create_directories(dir / folder);
+    for (const auto& [name, contents] : c.files) std::ofstream(dir / name, std::ios::binary) << contents;
     const bool fit = c.command.rfind("fit", 0) == 0;
+    const bool bench = c.command == "sweep" || c.command.rfind("bench", 0) == 0;  // no pictures to leave out
     const fs::path out = fit ? dir / "out" / "model.json" : dir / "out";
-    const std::string args = c.command + " " + (dir / c.input).string() + " -o " + out.string() +
-                             (fit ? "" : c.command == "sweep" ? " -q" : " -q --no-images");
+    const std::string args = c.command + " " + (dir / c.input).string() + " " + c.options + " -o " + out.string() +
+                             (fit ? "" : bench ? " -q" : " -q --no-images");
     const CliRun run = Waam(args, dir / "stderr.txt");
     EXPECT_EQ(run.exit_code, 2) << "expected exit code 2 (bad input) for " << c.id << "; stderr: " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "expected one line on stderr: " << run.err;
