@@ -193,7 +193,19 @@ std::string VoidPlot() {
                  "smallest angle theta_min [deg]", "void length L [mm]", {measured, predicted});
 }
 
-std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir) {
+// Most scenarios whose pictures report.html embeds; past them it links the picture files (a 1,000-run sweep would
+// otherwise make a report of hundreds of megabytes, and decoding every PNG dominates a merge).
+constexpr std::size_t kMaxEmbeddedScenarios = 24;
+
+// A link to the PNG at `dir`/`relative` (relative to report.html, as `id`/`relative`), or "" if it is absent.
+std::string LinkedPng(const fs::path& dir, const std::string& id, const std::string& relative,
+                      const std::string& caption) {
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / relative, ec)) return "";
+  return "<figure><a href=\"" + HtmlEscape(id + "/" + relative) + "\">" + HtmlEscape(caption) + "</a></figure>\n";
+}
+
+std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir, bool embed_pictures) {
   const std::string id = e.value("id", "");
   const fs::path dir = out_dir / id;
   std::ostringstream html;
@@ -221,16 +233,20 @@ std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir) {
   }
   html << "</table>\n<div class=\"figs\">\n";
   // The middle layer of the plan, the joint trajectories, the worst cell pose, the part's height and deviation.
+  std::vector<std::pair<std::string, std::string>> pictures;  // path under the run's folder, caption
   const nlohmann::json layers = Metric(e, "plan", "layers");
   if (layers.is_number_integer()) {
     char name[32];
     std::snprintf(name, sizeof(name), "layer_%04d.png", layers.get<int>() / 2);
-    html << EmbeddedPng(dir / "plan" / "layers" / name, std::string("plan: ") + name);
+    pictures.emplace_back(std::string("plan/layers/") + name, std::string("plan: ") + name);
   }
-  html << EmbeddedPng(dir / "check" / "joints.png", "check: joint trajectories");
-  html << EmbeddedPng(dir / "check" / "cell_worst.png", "check: cell at the worst sample");
-  html << EmbeddedPng(dir / "simulate" / "deviation_map.png", "simulate: deviation from the target");
-  html << EmbeddedPng(dir / "simulate" / "top_height.png", "simulate: top height");
+  pictures.emplace_back("check/joints.png", "check: joint trajectories");
+  pictures.emplace_back("check/cell_worst.png", "check: cell at the worst sample");
+  pictures.emplace_back("simulate/deviation_map.png", "simulate: deviation from the target");
+  pictures.emplace_back("simulate/top_height.png", "simulate: top height");
+  for (const auto& [relative, caption] : pictures) {
+    html << (embed_pictures ? EmbeddedPng(dir / relative, caption) : LinkedPng(dir, id, relative, caption));
+  }
   html << "</div>\n";
   return html.str();
 }
@@ -330,7 +346,13 @@ void WriteBenchReport(const nlohmann::json& bench, const fs::path& out_dir) {
   html << "<h2>Junction voids</h2>\n" << Guarded([] { return VoidPlot(); });
   html << "<h2>Inner-loop performance (Google Benchmark)</h2>\n" << PerfTable(timing.value("perf", nlohmann::json()));
   html << "<h2>Each scenario</h2>\n";
-  for (const nlohmann::json& e : scenarios) html << ScenarioSection(e, out_dir);
+  if (scenarios.size() > kMaxEmbeddedScenarios) {
+    html << "<p>The pictures of the first " << kMaxEmbeddedScenarios << " scenarios are shown; the others' are "
+         << "linked (files in each scenario's folder).</p>\n";
+  }
+  for (std::size_t i = 0; i < scenarios.size(); ++i) {
+    html << ScenarioSection(scenarios[i], out_dir, i < kMaxEmbeddedScenarios);
+  }
   html << "</body></html>\n";
   WriteFileAtomic(out_dir / "report.html", html.str());
 }
