@@ -281,6 +281,27 @@ TEST(RunCli, PlantedCellFaultExitsThreeAsExpected) {
   EXPECT_EQ(summary["steps"][1]["status"], "violations");
 }
 
+// A list option takes its items comma separated or space separated (and both at once).
+TEST(RunCli, StepsCommaOrSpaceSeparated) {
+  const fs::path scenario = WriteScenario("tiny_block", kTinyScenario);
+  for (const std::string steps : {"plan,simulate", "plan simulate", "plan, simulate"}) {
+    const fs::path out = fs::path(::testing::TempDir()) / "waam_test_run_cli_steps";
+    fs::remove_all(out);
+    std::string err;
+    ASSERT_EQ(RunWaamCli("run " + scenario.string() + " -o " + out.string() + " -q --no-images --steps " + steps,
+                         &err), 0) << "--steps " << steps << ": " << err;
+    const nlohmann::json summary = ReadJson(out / "summary.json");
+    ASSERT_EQ(summary["steps"].size(), 2u) << "--steps " << steps;
+    EXPECT_EQ(summary["steps"][0]["name"], "plan");
+    EXPECT_EQ(summary["steps"][1]["name"], "simulate");
+  }
+  std::string err;
+  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + ::testing::TempDir() + "/waam_test_run_cli_steps_bad" +
+                       " -q --steps plan,weld", &err), 2);
+  EXPECT_THAT(err, HasSubstr("weld"));
+  EXPECT_THAT(err, ::testing::Not(HasSubstr("plan,weld"))) << "the list is split before the names are checked";
+}
+
 TEST(RunCli, BadScenarioIsExitTwoWithOneLine) {
   const fs::path scenario = WriteScenario("tiny_bad_layer", "name: x\npart:\n  generator: {type: box}\n"
                                                             "slicing:\n  layer_height_mm: -1\n");

@@ -132,7 +132,7 @@ mjModel* LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl
   auto require = [&](int type, const char* name, const char* what) {
     const int id = mj_name2id(m, type, name);
     WAAM_THROW_UNLESS(id >= 0, file.string() << ": the cell model has no " << what << " named '" << name
-                                             << "' (see README, 'Describing your own cell')");
+                                             << "' (see docs/SCENARIOS.md, 'Describing your own cell')");
     return id;
   };
   const char* const names[8] = {"j1", "j2", "j3", "j4", "j5", "j6", "pos_tilt", "pos_rot"};
