@@ -24,26 +24,9 @@ using cli_test::FilesUnder;
 using cli_test::RunWaam;
 using cli_test::TempDir;
 
-// Two layers of a small block: plans and checks in well under a second.
-constexpr char kTinyScenario[] = R"(name: tiny_block
-part:
-  generator: {type: box, size_mm: [30, 20, 3]}
-slicing:
-  type: planar
-  layer_height_mm: 1.5
-path:
-  pattern: continuous
-  bead_width_mm: 6
-process:
-  travel_speed_mm_min: 400
-  wire_feed_mm_min: 3200
-simulation:
-  voxel_mm: 1.0
-)";
-
 fs::path WriteTinyScenario(const fs::path& dir) {
   const fs::path file = dir / "tiny.yaml";
-  std::ofstream(file) << kTinyScenario;
+  std::ofstream(file) << cli_test::kTinyBlockScenario;
   return file;
 }
 

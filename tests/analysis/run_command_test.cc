@@ -25,22 +25,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using cli_test::ReadJson;
 
-// A 30 x 20 x 3 mm block, two layers, 1 mm voxels: the whole run takes well under a second of compute.
-constexpr char kTinyScenario[] = R"(name: tiny_block
-part:
-  generator: {type: box, size_mm: [30, 20, 3]}
-slicing:
-  type: planar
-  layer_height_mm: 1.5
-path:
-  pattern: continuous
-  bead_width_mm: 6
-process:
-  travel_speed_mm_min: 400
-  wire_feed_mm_min: 3200
-simulation:
-  voxel_mm: 1.0
-)";
+constexpr const char* kTinyScenario = cli_test::kTinyBlockScenario;
 
 fs::path WriteScenario(const std::string& name, const std::string& text) {
   // Per process: tests writing the same scenario run in parallel under ctest -j.
