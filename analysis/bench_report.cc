@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "analysis/bench_command.h"
+#include "analysis/png_file.h"
 #include "analysis/svg_plot.h"
 #include "analysis/viewer.h"
 #include "models/bead/csw_model.h"
@@ -40,8 +41,7 @@ std::string EmbeddedPng(const fs::path& path, const std::string& caption, int ma
   if (image.cols > max_width) {
     cv::resize(image, image, cv::Size(max_width, image.rows * max_width / image.cols), 0, 0, cv::INTER_AREA);
   }
-  std::vector<unsigned char> png;
-  cv::imencode(".png", image, png);
+  const std::vector<unsigned char> png = internal::EncodePng(image);
   return "<figure><img alt=\"" + HtmlEscape(caption) + "\" src=\"data:image/png;base64," + Base64(png) +
          "\"><figcaption>" + HtmlEscape(caption) + "</figcaption></figure>\n";
 }

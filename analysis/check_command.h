@@ -34,7 +34,7 @@ twin::CheckReport RunCheck(const CheckOptions& options);
 twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& plan,
                                  const CheckOptions& options);
 
-// The check.json document (field names are the public contract documented in the README).
+// The check.json document (field names are the public contract documented in docs/CELL.md).
 nlohmann::json CheckToJson(const Scenario& scenario, const std::filesystem::path& mjcf,
                            const twin::CheckReport& report);
 

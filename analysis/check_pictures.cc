@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "analysis/check_command.h"
+#include "analysis/png_file.h"
 #include "models/core/files.h"
 #include "models/core/numbers.h"
 #include "twin/cell/mujoco_cell.h"
@@ -19,12 +18,6 @@ namespace waam::analysis {
 namespace fs = std::filesystem;
 
 namespace {
-
-void WritePng(const cv::Mat& image, const fs::path& path) {
-  std::vector<unsigned char> bytes;
-  if (!cv::imencode(".png", image, bytes)) throw std::runtime_error("PNG encoding failed for " + path.string());
-  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
 
 // Surface sample points of a collision shape in the world (mm); their projected convex hull is its silhouette.
 std::vector<Eigen::Vector3d> SurfacePoints(const twin::CellShape& s) {
@@ -153,7 +146,7 @@ void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& ki
   DrawView(img, side, shapes, surfaces, marked, path_W, s.X_WT.translation(), "side (x right, z up)");
   DrawView(img, top, shapes, surfaces, marked, path_W, s.X_WT.translation(), "top (x right, y up)");
   cv::putText(img, caption, {10, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 180), 2);
-  WritePng(img, path);
+  internal::WritePngAtomic(img, path);
 }
 
 void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport& report, const fs::path& path) {
@@ -198,7 +191,7 @@ void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport
     cv::putText(img, text, {r.x + r.width - 200, r.y + r.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
                 cv::Scalar(80, 80, 80), 1);
   }
-  WritePng(img, path);
+  internal::WritePngAtomic(img, path);
 }
 
 }  // namespace waam::analysis

@@ -5,9 +5,9 @@
 #include <limits>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis/png_file.h"
 #include "analysis/distortion_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -94,9 +94,7 @@ void WriteScanDeviationPng(const twin::ScanDeviation& scan, const std::string& t
                 scan.max_mm, scan.rms_mm, scan.points.size());
   cv::putText(image, caption, cv::Point(5, image.rows - 10), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1,
               cv::LINE_AA);
-  std::vector<unsigned char> bytes;
-  WAAM_THROW_UNLESS(cv::imencode(".png", image, bytes), "cannot encode " << path.string() << " as PNG");
-  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  internal::WritePngAtomic(image, path);
 }
 
 nlohmann::json RunDeviation(const DeviationOptions& options) {

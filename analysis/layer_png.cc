@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis/png_file.h"
 #include "analysis/plan_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -152,10 +153,7 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
   }
 
   std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 3};
-  // OpenCV picks the encoder from the extension, so encode in memory and write the bytes ourselves.
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes, params)) throw std::runtime_error("PNG encoding failed for " + path.string());
-  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  internal::WritePngAtomic(image, path, params);
 }
 
 }  // namespace waam::analysis

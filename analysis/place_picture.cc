@@ -2,14 +2,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis/png_file.h"
 #include "analysis/place_command.h"
 #include "models/core/files.h"
 
@@ -112,9 +111,7 @@ void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path) {
   answer += "  margin " + Fixed(result.best_score.margin, 2) + (result.feasible ? "" : ", still violating");
   text(answer, 10, height - 25, 0.5, cv::Scalar(0, 0, 0));
 
-  std::vector<unsigned char> bytes;
-  if (!cv::imencode(".png", img, bytes)) throw std::runtime_error("PNG encoding failed for " + path.string());
-  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  internal::WritePngAtomic(img, path);
 }
 
 }  // namespace waam::analysis

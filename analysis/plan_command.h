@@ -29,10 +29,10 @@ struct PlanOptions {
 // scenarios and meshes.
 planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary = nullptr);
 
-// The plan.json document (the public contract: field names are documented in the README).
+// The plan.json document (the public contract: field names are documented in docs/OUTPUTS.md).
 nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& result);
 
-// Writes every layer's path points to an HDF5 file (see the README for the layout).
+// Writes every layer's path points to an HDF5 file (see docs/OUTPUTS.md for the layout).
 void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path);
 
 // Writes plan.h5 and, with `layer_images`, layers/layer_NNNN.png into `out_dir`, each recorded in `outputs` (so an

@@ -13,15 +13,12 @@
 namespace waam::analysis {
 namespace {
 
+using internal::CheckH5Output;
 using internal::H5Handle;
 
 constexpr std::array<const char*, 11> kColumns = {
     "x_mm", "y_mm", "z_mm", "tool_x", "tool_y", "tool_z", "bead_width_mm", "bead_height_mm",
     "travel_speed_mm_min", "weld", "layer"};
-
-void CheckPlanH5(bool ok, const std::filesystem::path& path, const char* what) {
-  if (!ok) throw std::runtime_error("HDF5 output " + path.string() + ": " + what + " failed");
-}
 
 void WriteStringAttribute(hid_t object, const char* name, const std::string& value,
                           const std::filesystem::path& path) {
@@ -29,8 +26,8 @@ void WriteStringAttribute(hid_t object, const char* name, const std::string& val
   H5Tset_size(type.get(), value.size() + 1);
   H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   H5Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  CheckPlanH5(attribute.get() >= 0, path, "attribute create");
-  CheckPlanH5(H5Awrite(attribute.get(), type.get(), value.c_str()) >= 0, path, "attribute write");
+  CheckH5Output(attribute.get() >= 0, path, "attribute create");
+  CheckH5Output(H5Awrite(attribute.get(), type.get(), value.c_str()) >= 0, path, "attribute write");
 }
 
 }  // namespace
@@ -38,15 +35,14 @@ void WriteStringAttribute(hid_t object, const char* name, const std::string& val
 void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path) {
   AtomicOutput out(path);
   {
-    H5Handle file(H5Fcreate(out.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-    CheckPlanH5(file.get() >= 0, path, "file create");
+    H5Handle file = internal::CreateH5Output(out.temp_path(), path);
     std::string columns;
     for (const char* column : kColumns) columns += std::string(columns.empty() ? "" : ",") + column;
     WriteStringAttribute(file.get(), "columns", columns, path);
     WriteStringAttribute(file.get(), "scenario", plan.name, path);
     WriteStringAttribute(file.get(), "frame", "part frame P: z = 0 is the substrate top, mm", path);
     H5Handle group(H5Gcreate2(file.get(), "layers", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    CheckPlanH5(group.get() >= 0, path, "group create");
+    CheckH5Output(group.get() >= 0, path, "group create");
 
     std::vector<double> table;
     for (const planner::LayerPath& layer : plan.layers) {
@@ -65,12 +61,14 @@ void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path) {
       H5Handle dataset(H5Dcreate2(group.get(), name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
                                   H5P_DEFAULT),
                        H5Dclose);
-      CheckPlanH5(dataset.get() >= 0, path, "dataset create");
+      CheckH5Output(dataset.get() >= 0, path, "dataset create");
       if (!table.empty()) {
-        CheckPlanH5(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, table.data()) >= 0, path,
+        CheckH5Output(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, table.data()) >= 0, path,
               "dataset write");
       }
     }
+    group.Close();
+    internal::CloseH5Output(&file, path);
   }
   out.Commit();
 }

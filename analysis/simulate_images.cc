@@ -7,9 +7,9 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis/png_file.h"
 #include "analysis/simulate_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -30,9 +30,7 @@ void Save(const cv::Mat& raw, const std::string& caption, const std::filesystem:
   cv::Mat framed(image.rows + 30, std::max(image.cols, text.width + 10), CV_8UC3, cv::Scalar(255, 255, 255));
   image.copyTo(framed(cv::Rect(0, 30, image.cols, image.rows)));
   cv::putText(framed, caption, cv::Point(5, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  std::vector<unsigned char> bytes;
-  WAAM_THROW_UNLESS(cv::imencode(".png", framed, bytes), "cannot encode " << path.string() << " as PNG");
-  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  internal::WritePngAtomic(framed, path);
 }
 
 std::string Format(const char* format, double a, double b) {

@@ -21,19 +21,15 @@ namespace {
 
 using internal::H5Handle;
 
-void CheckH5Write(bool ok, const std::filesystem::path& path, const char* what) {
-  WAAM_THROW_UNLESS(ok, "cannot write " << path.string() << ": HDF5 " << what << " failed");
-}
-
 template <typename T>
 void WriteDataset(hid_t parent, const char* name, hid_t file_type, hid_t memory_type, const std::vector<T>& data,
                   int rank, const hsize_t* dims, const std::filesystem::path& path) {
   H5Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
-  CheckH5Write(space.get() >= 0, path, "dataspace");
+  internal::CheckH5Output(space.get() >= 0, path, "dataspace");
   H5Handle dataset(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-  CheckH5Write(dataset.get() >= 0, path, name);
+  internal::CheckH5Output(dataset.get() >= 0, path, name);
   if (!data.empty()) {
-    CheckH5Write(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0, path, name);
+    internal::CheckH5Output(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0, path, name);
   }
 }
 
@@ -42,8 +38,8 @@ void WriteDoubleAttribute(hid_t object, const char* name, const std::vector<doub
   const hsize_t n = values.size();
   H5Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
   H5Handle attribute(H5Acreate2(object, name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  CheckH5Write(attribute.get() >= 0, path, name);
-  CheckH5Write(H5Awrite(attribute.get(), H5T_NATIVE_DOUBLE, values.data()) >= 0, path, name);
+  internal::CheckH5Output(attribute.get() >= 0, path, name);
+  internal::CheckH5Output(H5Awrite(attribute.get(), H5T_NATIVE_DOUBLE, values.data()) >= 0, path, name);
 }
 
 }  // namespace
@@ -63,12 +59,11 @@ void WriteSimulationH5(const twin::TwinResult& result, const std::filesystem::pa
   });
   AtomicOutput out(path);
   {
-    H5Handle file(H5Fcreate(out.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-    CheckH5Write(file.get() >= 0, path, "file create");
+    H5Handle file = internal::CreateH5Output(out.temp_path(), path);
     WriteDoubleAttribute(file.get(), "voxel_mm", {grid.voxel_mm()}, path);
     WriteDoubleAttribute(file.get(), "origin_mm", {0.0, 0.0, 0.0}, path);
     H5Handle voxels(H5Gcreate2(file.get(), "voxels", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    CheckH5Write(voxels.get() >= 0, path, "group voxels");
+    internal::CheckH5Output(voxels.get() >= 0, path, "group voxels");
     const hsize_t n = bead.size();
     const hsize_t dims3[2] = {n, 3};
     WriteDataset(voxels.get(), "ijk", H5T_STD_I32LE, H5T_NATIVE_INT32, ijk, 2, dims3, path);
@@ -92,6 +87,8 @@ void WriteSimulationH5(const twin::TwinResult& result, const std::filesystem::pa
     }
     const hsize_t bdims[2] = {static_cast<hsize_t>(result.depositor.beads().size()), 5};
     WriteDataset(file.get(), "beads", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, beads, 2, bdims, path);
+    voxels.Close();
+    internal::CloseH5Output(&file, path);
   }
   out.Commit();
 }

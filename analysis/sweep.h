@@ -18,7 +18,7 @@ struct SweepRun {
   std::vector<std::pair<std::string, std::string>> values;  // key path, value as YAML text
 };
 
-// A sweep file (README "waam sweep"), expanded.
+// A sweep file (docs/BENCHMARKS.md, "Sweeps"), expanded.
 struct Sweep {
   std::string name;                  // `name`, default: the file's stem
   std::filesystem::path file;        // the sweep file

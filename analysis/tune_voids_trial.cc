@@ -2,14 +2,13 @@
 // milled in horizontal cuts as the dissertation measured its junctions (003 sec. 4.4.2.1).
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string_view>
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis/png_file.h"
 #include "analysis/tune_voids_internal.h"
 #include "models/core/files.h"
 #include "twin/deposition/bead_deposition.h"
@@ -71,9 +70,7 @@ void WriteSectionPicture(const twin::VoxelGrid& grid, const twin::TargetVolume& 
   }
   cv::Mat big;
   cv::resize(image, big, cv::Size(), 4.0, 4.0, cv::INTER_NEAREST);
-  std::vector<unsigned char> bytes;
-  if (!cv::imencode(".png", big, bytes)) throw std::runtime_error("PNG encoding failed for " + path.string());
-  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  internal::WritePngAtomic(big, path);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@ namespace waam::app {
 // What a subcommand runs once its options are parsed; returns the process exit code.
 using CommandRunner = std::function<int()>;
 
-// Exit codes: the public contract documented in the README.
+// Exit codes: the public contract documented in docs/COMMANDS.md.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitInternalError = 1;
 inline constexpr int kExitBadInput = 2;

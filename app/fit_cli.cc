@@ -50,9 +50,10 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
                   "role=column overrides, e.g. --columns speed=v,width=w_mm (roles listed above)")
       ->delimiter(',');
   fit->add_option("--speed-range", *speed_range,
-                  "feasible travel-speed window MIN MAX [mm/min]: rows outside it are left out of the fit (and listed), and "
-                  "the inverse models clamp to it; default: all rows, window = the data's speed range")
-      ->expected(2);
+                  "feasible travel-speed window MIN MAX or MIN,MAX [mm/min]: rows outside it are left out of the fit (and "
+                  "listed), and the inverse models clamp to it; default: all rows, window = the data's speed range")
+      ->expected(2)
+      ->delimiter(',');
   fit->add_option("--degree", options->degree, "width-height polynomial degree (1-8)")->capture_default_str();
   fit->add_option("--space", options->space, "speed-height residuals in v (linear) or ln v (log)")
       ->capture_default_str();

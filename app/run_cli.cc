@@ -27,7 +27,8 @@ void AddRunCommand(CLI::App& app, CommandRunner* runner) {
   command->add_option("--set", options->overrides,
                       "Override a scenario setting, key.path=value (repeatable), e.g. --set simulation.voxel_mm=1");
   command->add_option("--steps", options->steps,
-                      "Steps to run instead of the scenario's (space separated), e.g. --steps plan simulate");
+                      "Steps to run instead of the scenario's (comma or space separated), e.g. --steps plan,simulate")
+      ->delimiter(',');
   command->add_flag("-q,--quiet", options->quiet, "No progress on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw the steps' PNGs (nor the check step's viewer.html)");
   command->callback([options, runner] {

@@ -18,7 +18,7 @@ void AddSweepCommand(CLI::App& app, CommandRunner* runner) {
   CLI::App* command = app.add_subcommand(
       "sweep",
       "Run a base scenario over a grid or a list of settings, as `waam bench` runs scenarios (each run a child\n"
-      "`waam run`, -j, --mem-gb, --shard, resume). The sweep file (README: waam sweep):\n"
+      "`waam run`, -j, --mem-gb, --shard, resume). The sweep file (docs/BENCHMARKS.md, Sweeps):\n"
       "  base: box.yaml                       # the scenario, relative to the sweep file\n"
       "  set: {simulation.voxel_mm: 1}        # optional: --set of every run\n"
       "  grid:                                # every combination (or list: [{key: value, ...}, ...])\n"

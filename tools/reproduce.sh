@@ -15,7 +15,7 @@
 #   distortion_fit    waam fit distortion from twin scans at known parameters;
 #                     deposition_twin.md (several minutes)
 #   published         the papers' figures next to ours: waam bench on the scenarios models/data/reference_figures.csv
-#                     names; README.md (several minutes)
+#                     names; BENCHMARKS.md (several minutes)
 #   rib_web           waam plan of the rib web (contour, Eulerian with and without void filling): rib_web_passes;
 #                     waam tune-voids on the three junctions: rib_web_junctions; waam simulate of the 12-layer cross:
 #                     rib_web_cross; rib_web.md (under a minute)
@@ -25,12 +25,12 @@
 #                     minutes, the --loo run most of it)
 #   fit_bench         waam_fit_bench: CPU time of each fit; MODELS.md (a minute)
 #   check_bench       waam_check_bench: a build hour of path through waam check's checks; CELL.md (seconds)
-#   cup_support       waam plan of cup_two_handles.yaml split and in one piece: support metal; README.md (a minute)
-#   peers             tools/peers.sh: PrusaSlicer and KDL beside waam plan and the closed-form IK; README.md (installs
-#                     prusa-slicer and liborocos-kdl-dev; several minutes)
-#   readme_figures    waam simulate of the planar demo and the thruster blades: deviation, voids; README.md (a minute)
+#   cup_support       waam plan of cup_two_handles.yaml split and in one piece: support metal; RESULTS.md (a minute)
+#   peers             tools/peers.sh: PrusaSlicer and KDL beside waam plan and the closed-form IK; BENCHMARKS.md
+#                     (installs prusa-slicer and liborocos-kdl-dev; several minutes)
+#   readme_figures    waam simulate of the planar demo and the thruster blades: deviation, voids; RESULTS.md (a minute)
 #   threads           wall time of plan, check, deviation, compensate, tune-voids and fit distortion on 1 and 2
-#                     threads, back to back; README.md (several minutes)
+#                     threads, back to back; BENCHMARKS.md (several minutes)
 #   resolve           waam check of every scenario with cell.resolve fixed and optimise: margins before and after,
 #                     the spins chosen, both wall times; CELL.md (ten minutes or more)
 #   place             waam place on the tube part II and the planted clamp fault: layouts, passes, wall time;

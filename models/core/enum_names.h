@@ -1,7 +1,7 @@
 // Settings that take one of a closed set of names ("contour", "zigzag", ...) are enums parsed once at the boundary
 // (scenario file, command line) from ONE table of names per enum, which the parser, its error message, --help and
-// the README's schema (checked by a test) all use. An enum E declares its table next to it, found by argument-
-// dependent lookup:
+// the name table of docs/SCENARIOS.md (checked by a test) all use. An enum E declares its table next to it, found by
+// argument-dependent lookup:
 //   enum class Blend { kNone, kFixed, kSpeed };
 //   constexpr std::array<EnumName<Blend>, 3> EnumNames(Blend) {
 //     return {{{Blend::kNone, "none"}, {Blend::kFixed, "fixed"}, {Blend::kSpeed, "speed"}}};

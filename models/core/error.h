@@ -1,5 +1,5 @@
-// The two kinds of failure (as in Drake): InputError for anything a user can cause, InternalError (WAAM_DEMAND)
-// for the code's own mistakes.
+// The two kinds of failure (as in Drake): InputError for anything a user can cause (OutputError, one of them, for an
+// output that cannot be written), InternalError (WAAM_DEMAND) for the code's own mistakes.
 #pragma once
 
 #include <sstream>
@@ -14,6 +14,13 @@ namespace waam {
 class InputError : public std::runtime_error {
  public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Thrown when an output cannot be written (disk full, no permission, a path that is a file): the message is one line
+// "cannot write <path>: <reason>". A user can fix it, so it is an InputError: the CLI prints it and exits with code 2.
+class OutputError : public InputError {
+ public:
+  explicit OutputError(const std::string& message) : InputError(message) {}
 };
 
 // Thrown by WAAM_DEMAND when an invariant of the code itself fails: a bug, not bad input. The message names the

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -32,20 +34,23 @@ AtomicOutput::~AtomicOutput() {
 
 void AtomicOutput::Commit() {
   std::error_code ec;
-  WAAM_THROW_UNLESS(fs::exists(temp_path_, ec), "output " << final_path_.string() << ": nothing was written");
+  if (!fs::exists(temp_path_, ec)) ThrowOutputError(final_path_, "nothing was written");
   fs::rename(temp_path_, final_path_, ec);
-  WAAM_THROW_UNLESS(!ec, "output " << final_path_.string() << ": cannot rename temporary file: " << ec.message());
+  if (ec) ThrowOutputError(final_path_, ec.message());
   committed_ = true;
 }
 
 void WriteFileAtomic(const fs::path& path, std::string_view contents) {
   AtomicOutput out(path);
   {
+    errno = 0;
     std::ofstream stream(out.temp_path(), std::ios::binary | std::ios::trunc);
-    WAAM_THROW_UNLESS(stream, "output " << path.string() << ": cannot open for writing");
+    if (!stream) ThrowOutputError(path, LastSystemError("cannot open for writing"));
     stream.write(contents.data(), static_cast<std::streamsize>(contents.size()));
     stream.flush();
-    WAAM_THROW_UNLESS(stream, "output " << path.string() << ": write failed (disk full?)");
+    if (!stream) ThrowOutputError(path, LastSystemError("write failed"));
+    stream.close();
+    if (stream.fail()) ThrowOutputError(path, LastSystemError("close failed"));
   }
   out.Commit();
 }
@@ -64,11 +69,20 @@ std::string ReadFile(const fs::path& path) {
 void EnsureOutputDirectory(const fs::path& dir) {
   std::error_code ec;
   if (fs::exists(dir, ec)) {
-    WAAM_THROW_UNLESS(fs::is_directory(dir, ec), "output directory " << dir.string() << " exists and is not a directory");
+    if (!fs::is_directory(dir, ec)) ThrowOutputError(dir, "exists and is not a directory");
     return;
   }
   fs::create_directories(dir, ec);
-  WAAM_THROW_UNLESS(!ec, "output directory " << dir.string() << ": cannot create: " << ec.message());
+  if (ec) ThrowOutputError(dir, "cannot create the directory: " + ec.message());
+}
+
+void ThrowOutputError(const fs::path& path, const std::string& reason) {
+  throw OutputError("cannot write " + path.string() + ": " + reason);
+}
+
+std::string LastSystemError(const std::string& fallback) {
+  const int error = errno;
+  return error == 0 ? fallback : std::string(std::strerror(error));
 }
 
 }  // namespace waam

@@ -12,7 +12,7 @@ namespace waam {
 // Writers that need a file name (HDF5, OpenCV) write to temp_path().
 class AtomicOutput {
  public:
-  // Creates the parent directory of `final_path` if needed. Throws InputError if it cannot be created.
+  // Creates the parent directory of `final_path` if needed. Throws OutputError if it cannot be created.
   explicit AtomicOutput(std::filesystem::path final_path);
   ~AtomicOutput();
   AtomicOutput(const AtomicOutput&) = delete;
@@ -21,7 +21,8 @@ class AtomicOutput {
   const std::filesystem::path& temp_path() const { return temp_path_; }
   const std::filesystem::path& final_path() const { return final_path_; }
 
-  // Renames the temporary onto the final name. Throws InputError if the temporary is missing or the rename fails.
+  // Renames the temporary onto the final name. Throws OutputError if the temporary is missing or the rename fails
+  // (e.g. `final_path` is a directory).
   void Commit();
 
  private:
@@ -30,13 +31,20 @@ class AtomicOutput {
   bool committed_ = false;
 };
 
-// Writes `contents` to `path` atomically (temporary file, flush, rename).
+// Writes `contents` to `path` atomically (temporary file, flush, close, rename). Throws OutputError naming the path
+// and the system's reason when any of these fails (disk full, no permission, a parent that is a file).
 void WriteFileAtomic(const std::filesystem::path& path, std::string_view contents);
 
 // Reads a whole file. Throws InputError naming the file if it is missing, a directory or unreadable.
 std::string ReadFile(const std::filesystem::path& path);
 
-// Creates `dir` (and parents) for outputs. Throws InputError if it exists as a file or cannot be created.
+// Creates `dir` (and parents) for outputs. Throws OutputError if it exists as a file or cannot be created.
 void EnsureOutputDirectory(const std::filesystem::path& dir);
+
+// Throws OutputError "cannot write <path>: <reason>". Writers of other formats (HDF5, STL) call it when a write fails.
+[[noreturn]] void ThrowOutputError(const std::filesystem::path& path, const std::string& reason);
+
+// The system's reason for the last failed call (strerror(errno)), or `fallback` when errno is 0.
+std::string LastSystemError(const std::string& fallback);
 
 }  // namespace waam

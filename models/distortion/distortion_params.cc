@@ -4,6 +4,7 @@
 #include <optional>
 
 #include <cmath>
+#include <sstream>
 
 #include "models/core/error.h"
 #include "models/fit/model_file.h"
@@ -23,10 +24,11 @@ double DistortionParams::StrainAt(double q_j_mm) const {
   return strain * std::pow(std::max(q_j_mm, 1e-9) / reference_heat_input_j_mm, heat_exponent);
 }
 
-void ValidateDistortionParams(const DistortionParams& p, const std::string& where) {
+std::string DistortionParamsProblem(const DistortionParams& p, const std::string& where) {
+  std::ostringstream problem;
   auto range = [&](const char* name, double v, double lo, double hi) {
-    WAAM_THROW_UNLESS(std::isfinite(v) && v >= lo && v <= hi,
-                      where << ": " << name << " = " << v << ": must be in [" << lo << ", " << hi << "]");
+    if (problem.tellp() > 0 || (std::isfinite(v) && v >= lo && v <= hi)) return;
+    problem << where << ": " << name << " = " << v << ": must be in [" << lo << ", " << hi << "]";
   };
   range("strain", p.strain, 0.0, 0.1);
   range("vertical_ratio", p.vertical_ratio, 0.0, 10.0);
@@ -36,6 +38,12 @@ void ValidateDistortionParams(const DistortionParams& p, const std::string& wher
   range("substrate_stiffness_n_mm3", p.substrate_stiffness_n_mm3, 1e-3, 1e9);
   range("youngs_modulus_mpa", p.youngs_modulus_mpa, 1.0, 1e7);
   range("poisson", p.poisson, 0.0, 0.49);
+  return problem.str();
+}
+
+void ValidateDistortionParams(const DistortionParams& p, const std::string& where) {
+  const std::string problem = DistortionParamsProblem(p, where);
+  WAAM_THROW_UNLESS(problem.empty(), problem);
 }
 
 DistortionMode ParseDistortionMode(const std::string& name, const std::string& where) {

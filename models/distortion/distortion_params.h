@@ -40,6 +40,10 @@ struct DistortionParams {
   double StrainAt(double q_j_mm) const;
 };
 
+// The first parameter of `params` outside its valid range, as "<where>: <name> = <value>: must be in [lo, hi]",
+// or "" when all are valid. Does not throw (the distortion fit asks it at every trial step).
+std::string DistortionParamsProblem(const DistortionParams& params, const std::string& where);
+
 // Throws InputError "<where>: <field> = value: must be ..." for a parameter out of its range.
 void ValidateDistortionParams(const DistortionParams& params, const std::string& where);
 

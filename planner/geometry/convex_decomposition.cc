@@ -204,8 +204,10 @@ std::vector<Ring> ApplyCut(const WorkRegion& region, Vertex from, Vertex to, con
 }
 
 // Groups cycles into regions: positive cycles are outlines, negative ones holes of the outline that holds them.
-std::vector<WorkRegion> Regroup(const std::vector<Ring>& cycles) {
-  std::vector<WorkRegion> regions;
+// Returns false when a hole lies in no outline (degenerate geometry).
+bool Regroup(const std::vector<Ring>& cycles, std::vector<WorkRegion>* regions_out) {
+  std::vector<WorkRegion>& regions = *regions_out;
+  regions.clear();
   std::vector<const Ring*> holes;
   for (const Ring& c : cycles) {
     if (SignedArea(c) > 0.0) {
@@ -219,10 +221,10 @@ std::vector<WorkRegion> Regroup(const std::vector<Ring>& cycles) {
     for (int r = 0; r < static_cast<int>(regions.size()) && owner < 0; ++r) {
       if (regions.size() == 1 || PointInRing(hole->front(), regions[r].cycles[0])) owner = r;
     }
-    if (owner < 0) throw DecompositionFailed("convex decomposition: a hole lost its outline");
+    if (owner < 0) return false;
     regions[owner].cycles.push_back(*hole);
   }
-  return regions;
+  return true;
 }
 
 // Cleans a ring: drops repeated points (closer than `tol`) and vertices where the ring goes straight on, and
@@ -269,9 +271,12 @@ Ring CleanRing(const Ring& in, bool ccw, double tol, double straight_mm, bool gr
   return r;
 }
 
-// Chooses and applies the cut that removes the notch with the greatest interior angle. Returns false if the region
-// has no notch left.
-bool EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* cycles_out) {
+// What EliminateOneNotch did.
+enum class NotchStep { kNoNotchLeft, kCut, kNoUsableCut };
+
+// Chooses and applies the cut that removes the notch with the greatest interior angle. Returns kNoNotchLeft if the
+// region is convex, kNoUsableCut if degenerate geometry leaves the notch without a usable cut.
+NotchStep EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* cycles_out) {
   Vertex ref;
   double best_phi = std::numbers::pi + 1e-9;
   for (int ci = 0; ci < static_cast<int>(region.cycles.size()); ++ci) {
@@ -283,7 +288,7 @@ bool EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* 
       }
     }
   }
-  if (ref.cycle < 0) return false;
+  if (ref.cycle < 0) return NotchStep::kNoNotchLeft;
   const Ring& c = region.cycles[ref.cycle];
   const Vec p = c[ref.index];
   const Vec r1 = (p - At(c, ref.index - 1)).normalized();  // extension of V_{i-1} V_i
@@ -310,11 +315,11 @@ bool EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* 
   }
   if (best_notch.cycle >= 0) {  // notch-notch routine
     *cycles_out = ApplyCut(region, ref, best_notch, nullptr);
-    return true;
+    return NotchStep::kCut;
   }
   if (best_vertex.cycle >= 0) {  // notch-vertex routine
     *cycles_out = ApplyCut(region, ref, best_vertex, nullptr);
-    return true;
+    return NotchStep::kCut;
   }
   // Notch-line routine: the bisector to the first edge. If it lands on a vertex that cannot take the cut, or meets
   // the edge at a grazing angle (a sliver), tilt it inside the cone; the steepest usable direction wins.
@@ -351,9 +356,9 @@ bool EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* 
   if (best_line.angle >= 0.0) {
     *cycles_out = best_line.on_edge ? ApplyCut(region, ref, best_line.target, &best_line.h)
                                     : ApplyCut(region, ref, best_line.target, nullptr);
-    return true;
+    return NotchStep::kCut;
   }
-  throw DecompositionFailed("convex decomposition: no cut found for a notch");
+  return NotchStep::kNoUsableCut;
 }
 
 // Inserts into each piece the vertices of other pieces that lie inside its edges, so that neighbours share edges
@@ -425,7 +430,7 @@ Ring FillShallowNotches(const Ring& ring, double depth_mm) {
   return CleanRing(ring, SignedArea(ring) > 0.0, tol, std::max(depth_mm, tol), /*grow_only=*/true);
 }
 
-std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region) {
+ConvexDecomposition DecomposeConvex(const PolygonWithHoles& region) {
   const double scale = std::max(1.0, BoundingDiagonal(region));
   const double tol = 1e-9 * scale;
   WorkRegion start;
@@ -440,21 +445,29 @@ std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region) {
   std::size_t budget = 16;
   for (const Ring& c : start.cycles) budget += 2 * c.size();
 
-  std::vector<Ring> pieces;
+  ConvexDecomposition out;
   std::vector<WorkRegion> stack{start};
+  std::vector<WorkRegion> regrouped;
   while (!stack.empty()) {
     WorkRegion current = std::move(stack.back());
     stack.pop_back();
     std::vector<Ring> cycles;
-    if (!EliminateOneNotch(current, tol, &cycles)) {
-      pieces.push_back(CleanRing(current.cycles[0], true, tol, tol));
+    const NotchStep step = EliminateOneNotch(current, tol, &cycles);
+    if (step == NotchStep::kNoNotchLeft) {
+      out.pieces.push_back(CleanRing(current.cycles[0], true, tol, tol));
       continue;
     }
-    if (--budget == 0) throw DecompositionFailed("convex decomposition: too many cuts");
-    for (WorkRegion& r : Regroup(cycles)) stack.push_back(std::move(r));
+    if (step == NotchStep::kNoUsableCut) out.failure = "no usable cut for a notch";
+    if (out.ok() && --budget == 0) out.failure = "too many cuts";
+    if (out.ok() && !Regroup(cycles, &regrouped)) out.failure = "a cut left a hole outside every outline";
+    if (!out.ok()) {
+      out.pieces.clear();
+      return out;
+    }
+    for (WorkRegion& r : regrouped) stack.push_back(std::move(r));
   }
-  MergeConvexNeighbours(&pieces, tol);
-  return pieces;
+  MergeConvexNeighbours(&out.pieces, tol);
+  return out;
 }
 
 }  // namespace waam::planner

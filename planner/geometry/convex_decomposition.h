@@ -1,7 +1,6 @@
 // Convex decomposition of slice regions by notch elimination and minimum-width directions (Ding et al. 2014, 3.1-3.2).
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,20 +20,21 @@ struct SharedEdge {
   bool a_on_boundary = false;
 };
 
+// The outcome of a convex decomposition (a result with a status, as Ceres' Summary): the pieces, or why degenerate
+// geometry defeated the notch elimination (a limit of the method on such input, not a bug and not bad input).
+struct ConvexDecomposition {
+  std::vector<Ring> pieces;  // convex, CCW, tiling the region; empty when !ok()
+  std::string failure;       // "" on success, else what stopped it, e.g. "no usable cut for a notch"
+  bool ok() const { return failure.empty(); }
+};
+
 // Splits `region` (outer CCW, holes CW; either orientation is accepted) into convex pieces, returned CCW, by
 // eliminating notches (vertices with an interior angle > pi) one at a time, the largest angle first: notch-notch,
 // notch-vertex and notch-line cuts (Ding et al. 2014, 3.1). Holes are merged into the outline by the same cuts.
 // The pieces tile the region: no overlaps, areas sum to Area(region). Throws InputError for a region with fewer
-// than 3 distinct outer vertices, and DecompositionFailed if degenerate geometry leaves a notch without a usable cut
-// (a limit of the method on such input, not a bug: the continuous pattern then plans that region with the hybrid
-// pattern and reports it).
-std::vector<Ring> DecomposeConvex(const PolygonWithHoles& region);
-
-// Thrown by DecomposeConvex when degenerate geometry defeats the notch elimination.
-class DecompositionFailed : public std::runtime_error {
- public:
-  explicit DecompositionFailed(const std::string& what) : std::runtime_error(what) {}
-};
+// than 3 distinct outer vertices. When degenerate geometry leaves a notch without a usable cut the result is not
+// ok() and says why: the continuous pattern then plans that region with the hybrid pattern and reports it.
+ConvexDecomposition DecomposeConvex(const PolygonWithHoles& region);
 
 // The lines along which pieces of a decomposition of `region` touch, longest first (pieces from DecomposeConvex).
 std::vector<SharedEdge> FindSharedEdges(const std::vector<Ring>& pieces, const PolygonWithHoles& region);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -181,7 +182,7 @@ bool StartsWithSolid(const std::string& data) {
 
 void WriteOrThrow(std::ofstream& out, const std::filesystem::path& path) {
   out.close();
-  WAAM_THROW_UNLESS(!out.fail(), path.string() << ": cannot write the STL file (disk full or no permission?)");
+  if (out.fail()) ThrowOutputError(path, LastSystemError("the STL write failed"));
 }
 
 }  // namespace
@@ -266,8 +267,9 @@ void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path,
                     path.string() << ": " << mesh.facets.size() << " facets exceed the STL limit of " << kMaxStlFacets);
   AtomicOutput output(path);
   {
+    errno = 0;
     std::ofstream out(output.temp_path(), std::ios::binary | std::ios::trunc);
-    WAAM_THROW_UNLESS(out.is_open(), path.string() << ": cannot open for writing");
+    if (!out.is_open()) ThrowOutputError(path, LastSystemError("cannot open for writing"));
     char header[80] = {};
     std::memcpy(header, header_text.data(), std::min<std::size_t>(header_text.size(), sizeof(header)));
     out.write(header, sizeof(header));
@@ -335,8 +337,9 @@ std::string MeshReportJson(const MeshReport& report) {
 
 void WriteStlAscii(const TriangleMesh& mesh, const std::filesystem::path& path, const std::string& name) {
   AtomicOutput output(path);
+  errno = 0;
   std::ofstream out(output.temp_path(), std::ios::trunc);
-  WAAM_THROW_UNLESS(out.is_open(), path.string() << ": cannot open for writing");
+  if (!out.is_open()) ThrowOutputError(path, LastSystemError("cannot open for writing"));
   out.precision(9);
   out << "solid " << name << "\n";
   for (const std::array<int, 3>& f : mesh.facets) {

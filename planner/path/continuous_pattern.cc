@@ -308,37 +308,37 @@ Prepared SeparateRoundHoles(const PolygonWithHoles& region, const OverlapSpacing
 
 void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& options, const OverlapSpacing& spacing,
                     std::vector<Move2D>* moves, std::vector<std::string>* notes) {
+  WAAM_DEMAND(moves != nullptr && notes != nullptr);  // a fallback to the hybrid pattern is always reported
   const Prepared prepared = SeparateRoundHoles(region, spacing);
   std::vector<Ring> pieces;
   std::vector<std::vector<bool>> piece_shared;  // per piece edge: a line shared with another piece
   std::vector<SharedEdge> shared;
-  try {
-    for (const PolygonWithHoles& exact : prepared.regions) {
-      PolygonWithHoles part{FillShallowNotches(exact.outer, kCurveToleranceFraction * options.bead_width_mm), {}};
-      for (const Ring& hole : exact.holes) {
-        part.holes.push_back(FillShallowNotches(hole, kCurveToleranceFraction * options.bead_width_mm));
-      }
-      const std::vector<Ring> part_pieces = DecomposeConvex(part);
-      for (SharedEdge edge : FindSharedEdges(part_pieces, part)) {
-        edge.piece_a += static_cast<int>(pieces.size());
-        edge.piece_b += static_cast<int>(pieces.size());
-        shared.push_back(edge);
-      }
-      pieces.insert(pieces.end(), part_pieces.begin(), part_pieces.end());
-      for (const Ring& piece : part_pieces) {
-        piece_shared.push_back(SharedEdgeFlags(piece, part));
-      }
+  for (const PolygonWithHoles& exact : prepared.regions) {
+    PolygonWithHoles part{FillShallowNotches(exact.outer, kCurveToleranceFraction * options.bead_width_mm), {}};
+    for (const Ring& hole : exact.holes) {
+      part.holes.push_back(FillShallowNotches(hole, kCurveToleranceFraction * options.bead_width_mm));
     }
-  } catch (const DecompositionFailed& e) {
-    // A decomposition that fails on degenerate geometry falls back to the hybrid baseline for this region, said.
-    if (notes) {
+    const ConvexDecomposition decomposition = DecomposeConvex(part);
+    if (!decomposition.ok()) {
+      // Degenerate geometry defeated the decomposition: this region gets the hybrid baseline, and the plan says so.
       const Eigen::Vector2d c = region.outer.empty() ? Eigen::Vector2d::Zero() : region.outer.front();
       std::ostringstream note;
-      note << "the region at (" << c.x() << ", " << c.y() << ") mm was planned with the hybrid pattern: " << e.what();
+      note << "the region at (" << c.x() << ", " << c.y() << ") mm was planned with the hybrid pattern: convex "
+           << "decomposition failed: " << decomposition.failure;
       notes->push_back(note.str());
+      PlanHybrid(region, options, spacing, moves);
+      return;
     }
-    PlanHybrid(region, options, spacing, moves);
-    return;
+    const std::vector<Ring>& part_pieces = decomposition.pieces;
+    for (SharedEdge edge : FindSharedEdges(part_pieces, part)) {
+      edge.piece_a += static_cast<int>(pieces.size());
+      edge.piece_b += static_cast<int>(pieces.size());
+      shared.push_back(edge);
+    }
+    pieces.insert(pieces.end(), part_pieces.begin(), part_pieces.end());
+    for (const Ring& piece : part_pieces) {
+      piece_shared.push_back(SharedEdgeFlags(piece, part));
+    }
   }
   std::stable_sort(shared.begin(), shared.end(), [](const SharedEdge& x, const SharedEdge& y) {
     return (x.b - x.a).norm() > (y.b - y.a).norm();

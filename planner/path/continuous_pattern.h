@@ -10,7 +10,7 @@ namespace waam::planner::internal {
 
 // Appends the moves of the continuous pattern for one region (mm) to `moves`; `spacing` from OverlapSpacingFor.
 // Where the convex decomposition fails on degenerate geometry, the region is planned with the hybrid pattern and a
-// line saying so is appended to `notes` (may be null).
+// line saying so is appended to `notes` (not null).
 void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& options, const OverlapSpacing& spacing,
                     std::vector<Move2D>* moves, std::vector<std::string>* notes);
 

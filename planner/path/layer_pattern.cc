@@ -44,6 +44,8 @@ OverlapSpacing OverlapSpacingFor(OverlapModel model, double bead_width_mm) {
 std::vector<Move2D> PlanLayerPattern(const std::vector<PolygonWithHoles>& slice, const PatternOptions& options,
                                      std::vector<std::string>* notes) {
   internal::ValidatePatternOptions(options);
+  std::vector<std::string> unread_notes;  // a caller that passed no `notes` asked not to hear them
+  if (notes == nullptr) notes = &unread_notes;
   const OverlapSpacing spacing = OverlapSpacingFor(options.overlap_model, options.bead_width_mm);
   // Clean the slice through Clipper first: consistent orientation, no self-touching rings, no duplicate points; with
   // a tolerance, the rings simplified to it first (a facetted slice has a vertex per facet, and every offset and

@@ -19,6 +19,23 @@
 
 namespace waam::analysis::cli_test {
 
+// A 30 x 20 x 3 mm block, two layers, 1 mm voxels: a whole `waam run` takes well under a second of compute.
+inline constexpr char kTinyBlockScenario[] = R"(name: tiny_block
+part:
+  generator: {type: box, size_mm: [30, 20, 3]}
+slicing:
+  type: planar
+  layer_height_mm: 1.5
+path:
+  pattern: continuous
+  bead_width_mm: 6
+process:
+  travel_speed_mm_min: 400
+  wire_feed_mm_min: 3200
+simulation:
+  voxel_mm: 1.0
+)";
+
 // An empty folder for one test: <tmp>/waam_analysis_test_<pid>/<name> (per process, since ctest runs tests in
 // parallel processes).
 inline std::filesystem::path TempDir(const std::string& name) {

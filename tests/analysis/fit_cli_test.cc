@@ -61,6 +61,14 @@ TEST(FitCliTest, SpeedRangeExcludesRowsAndSaysWhich) {
   EXPECT_EQ(WidthHeightModel::Load(out).fit().stats.n, 16u);
 }
 
+TEST(FitCliTest, SpeedRangeTakesACommaSeparatedPair) {
+  const fs::path out = waam::testing::TestDir() / "wh_comma.json";
+  const CliRun run = Waam("fit width-height " + Data("nguyen2022_table18_bead_vs_speed.csv") +
+                          " --speed-range 150,900 -o " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(WidthHeightModel::Load(out).fit().stats.n, 16u) << "the same rows as --speed-range 150 900";
+}
+
 TEST(FitCliTest, VoidLengthPrintsCrossValidationAndHoldOut) {
   const fs::path out = waam::testing::TestDir() / "void.json";
   const CliRun run = Waam("fit void-length " + Data("nguyen2022_appendixA1_junction_voids.csv") +

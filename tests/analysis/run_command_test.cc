@@ -25,22 +25,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using cli_test::ReadJson;
 
-// A 30 x 20 x 3 mm block, two layers, 1 mm voxels: the whole run takes well under a second of compute.
-constexpr char kTinyScenario[] = R"(name: tiny_block
-part:
-  generator: {type: box, size_mm: [30, 20, 3]}
-slicing:
-  type: planar
-  layer_height_mm: 1.5
-path:
-  pattern: continuous
-  bead_width_mm: 6
-process:
-  travel_speed_mm_min: 400
-  wire_feed_mm_min: 3200
-simulation:
-  voxel_mm: 1.0
-)";
+constexpr const char* kTinyScenario = cli_test::kTinyBlockScenario;
 
 fs::path WriteScenario(const std::string& name, const std::string& text) {
   // Per process: tests writing the same scenario run in parallel under ctest -j.
@@ -279,6 +264,27 @@ TEST(RunCli, PlantedCellFaultExitsThreeAsExpected) {
   EXPECT_EQ(summary["expected_exit_code"].get<int>(), 3) << "the planted fault declares run.expected_exit_code";
   EXPECT_TRUE(summary["as_expected"].get<bool>());
   EXPECT_EQ(summary["steps"][1]["status"], "violations");
+}
+
+// A list option takes its items comma separated or space separated (and both at once).
+TEST(RunCli, StepsCommaOrSpaceSeparated) {
+  const fs::path scenario = WriteScenario("tiny_block", kTinyScenario);
+  for (const std::string steps : {"plan,simulate", "plan simulate", "plan, simulate"}) {
+    const fs::path out = fs::path(::testing::TempDir()) / "waam_test_run_cli_steps";
+    fs::remove_all(out);
+    std::string err;
+    ASSERT_EQ(RunWaamCli("run " + scenario.string() + " -o " + out.string() + " -q --no-images --steps " + steps,
+                         &err), 0) << "--steps " << steps << ": " << err;
+    const nlohmann::json summary = ReadJson(out / "summary.json");
+    ASSERT_EQ(summary["steps"].size(), 2u) << "--steps " << steps;
+    EXPECT_EQ(summary["steps"][0]["name"], "plan");
+    EXPECT_EQ(summary["steps"][1]["name"], "simulate");
+  }
+  std::string err;
+  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + ::testing::TempDir() + "/waam_test_run_cli_steps_bad" +
+                       " -q --steps plan,weld", &err), 2);
+  EXPECT_THAT(err, HasSubstr("weld"));
+  EXPECT_THAT(err, ::testing::Not(HasSubstr("plan,weld"))) << "the list is split before the names are checked";
 }
 
 TEST(RunCli, BadScenarioIsExitTwoWithOneLine) {

@@ -242,33 +242,33 @@ TEST_F(ScenarioTest, MissingFileIsNamed) {
 namespace waam::planner {
 namespace {
 
-// The README's table of setting names lists exactly the names of each setting's table in the code.
+// The table of setting names in docs/SCENARIOS.md lists exactly the names of each setting's table in the code.
 template <typename E>
-void ExpectReadmeRow(const std::string& readme, const std::string& key) {
+void ExpectDocRow(const std::string& doc, const std::string& key) {
   const std::string row = "| `" + key + "` | " + EnumNameList<E>() + " |";
-  EXPECT_NE(readme.find(row), std::string::npos) << "README.md should have the row\n" << row;
+  EXPECT_NE(doc.find(row), std::string::npos) << "docs/SCENARIOS.md should have the row\n" << row;
 }
 
-TEST(SettingNames, ReadmeListsEveryTable) {
-  std::ifstream in(std::filesystem::path(WAAM_SOURCE_DIR) / "README.md");
-  const std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ASSERT_FALSE(readme.empty());
-  ExpectReadmeRow<SlicingType>(readme, "slicing.type");
-  ExpectReadmeRow<SplitMethod>(readme, "slicing.split");
-  ExpectReadmeRow<Pattern>(readme, "path.pattern");
-  ExpectReadmeRow<OverlapModel>(readme, "path.overlap_model");
-  ExpectReadmeRow<VoidFillingMode>(readme, "path.void_filling.mode");
-  ExpectReadmeRow<BeadModel>(readme, "process.bead_model");
-  ExpectReadmeRow<Blend>(readme, "simulation.blend");
-  ExpectReadmeRow<StopCrater>(readme, "simulation.stop_crater");
-  ExpectReadmeRow<StartWetting>(readme, "simulation.start_wetting");
-  ExpectReadmeRow<CurvatureWidth>(readme, "simulation.curvature_width");
-  ExpectReadmeRow<PositionerFollow>(readme, "cell.positioner.follow");
-  ExpectReadmeRow<PositionerType>(readme, "cell.positioner.type");
-  ExpectReadmeRow<twin::CellPreset>(readme, "cell.preset");
-  ExpectReadmeRow<twin::CellResolve>(readme, "cell.resolve");
-  ExpectReadmeRow<ProgramFormat>(readme, "program.format");
-  ExpectReadmeRow<ProgramLayers>(readme, "program.layers");
+TEST(SettingNames, ScenarioDocListsEveryTable) {
+  std::ifstream in(std::filesystem::path(WAAM_SOURCE_DIR) / "docs" / "SCENARIOS.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(doc.empty());
+  ExpectDocRow<SlicingType>(doc, "slicing.type");
+  ExpectDocRow<SplitMethod>(doc, "slicing.split");
+  ExpectDocRow<Pattern>(doc, "path.pattern");
+  ExpectDocRow<OverlapModel>(doc, "path.overlap_model");
+  ExpectDocRow<VoidFillingMode>(doc, "path.void_filling.mode");
+  ExpectDocRow<BeadModel>(doc, "process.bead_model");
+  ExpectDocRow<Blend>(doc, "simulation.blend");
+  ExpectDocRow<StopCrater>(doc, "simulation.stop_crater");
+  ExpectDocRow<StartWetting>(doc, "simulation.start_wetting");
+  ExpectDocRow<CurvatureWidth>(doc, "simulation.curvature_width");
+  ExpectDocRow<PositionerFollow>(doc, "cell.positioner.follow");
+  ExpectDocRow<PositionerType>(doc, "cell.positioner.type");
+  ExpectDocRow<twin::CellPreset>(doc, "cell.preset");
+  ExpectDocRow<twin::CellResolve>(doc, "cell.resolve");
+  ExpectDocRow<ProgramFormat>(doc, "program.format");
+  ExpectDocRow<ProgramLayers>(doc, "program.layers");
 }
 
 TEST(SettingNames, EveryNameParsesBackToItsValue) {

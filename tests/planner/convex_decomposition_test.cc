@@ -21,7 +21,9 @@ using testing::DingLikeShapes;
 
 // Pieces are convex, tile the region without overlap and their areas sum to the region's.
 void ExpectTiling(const PolygonWithHoles& region, const std::string& name) {
-  const std::vector<Ring> pieces = DecomposeConvex(region);
+  const ConvexDecomposition decomposition = DecomposeConvex(region);
+  ASSERT_TRUE(decomposition.ok()) << name << ": " << decomposition.failure;
+  const std::vector<Ring>& pieces = decomposition.pieces;
   ASSERT_FALSE(pieces.empty()) << name;
   const double area = Area(region);
   double sum = 0.0;
@@ -48,13 +50,13 @@ TEST(DecomposeConvex, TilesLTAndUShapes) {
   ExpectTiling(testing::LShape(), "L");
   ExpectTiling(testing::TShape(), "T");
   ExpectTiling(testing::UShape(), "U");
-  EXPECT_EQ(DecomposeConvex(testing::LShape()).size(), 2u) << "one notch-line cut splits an L in two";
-  EXPECT_EQ(DecomposeConvex(testing::TShape()).size(), 2u)
+  EXPECT_EQ(DecomposeConvex(testing::LShape()).pieces.size(), 2u) << "one notch-line cut splits an L in two";
+  EXPECT_EQ(DecomposeConvex(testing::TShape()).pieces.size(), 2u)
       << "notch-notch: one cut along the line through both notches of a T removes both";
 }
 
 TEST(DecomposeConvex, ConvexInputIsOnePiece) {
-  const std::vector<Ring> pieces = DecomposeConvex({testing::Circle(0, 0, 10, 12), {}});
+  const std::vector<Ring> pieces = DecomposeConvex({testing::Circle(0, 0, 10, 12), {}}).pieces;
   ASSERT_EQ(pieces.size(), 1u);
   EXPECT_NEAR(SignedArea(pieces[0]), SignedArea(testing::Circle(0, 0, 10, 12)), 1e-9);
 }
@@ -116,7 +118,8 @@ TEST(FillShallowNotches, CurvedWallLosesItsFacetNotchesOnly) {
   EXPECT_LT(Area(internal::Difference({band}, {grown})), 1e-3) << "the region only grows";
   EXPECT_LT(Area(internal::Difference({grown}, internal::Offset({band}, depth + 0.01))), 1e-3)
       << "by no more than the depth";
-  EXPECT_GT(DecomposeConvex(band).size(), 3 * DecomposeConvex(grown).size()) << "fewer pieces to decompose";
+  EXPECT_GT(DecomposeConvex(band).pieces.size(), 3 * DecomposeConvex(grown).pieces.size())
+      << "fewer pieces to decompose";
   const Ring square = testing::Rect(0, 0, 10, 10);
   EXPECT_EQ(FillShallowNotches(square, 5.0), square) << "a convex ring has no notch to cut off";
   EXPECT_THAT([] { FillShallowNotches(testing::Rect(0, 0, 1, 1), -1.0); },
@@ -125,7 +128,7 @@ TEST(FillShallowNotches, CurvedWallLosesItsFacetNotchesOnly) {
 
 TEST(FindSharedEdges, LShapeSharesItsCut) {
   const PolygonWithHoles l = testing::LShape();
-  const std::vector<Ring> pieces = DecomposeConvex(l);
+  const std::vector<Ring> pieces = DecomposeConvex(l).pieces;
   const std::vector<SharedEdge> shared = FindSharedEdges(pieces, l);
   ASSERT_EQ(shared.size(), 1u);
   EXPECT_TRUE(shared[0].a_on_boundary);

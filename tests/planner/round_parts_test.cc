@@ -76,13 +76,13 @@ std::vector<int> AllLayers() {
 TEST(RoundParts, DecompositionOfAConvexPolygonIsItself) {
   for (int n = 3; n <= 128; ++n) {
     const Ring ngon = testing::Circle(0, 0, 30, n);
-    const std::vector<Ring> pieces = DecomposeConvex({ngon, {}});
+    const std::vector<Ring> pieces = DecomposeConvex({ngon, {}}).pieces;
     ASSERT_EQ(pieces.size(), 1u) << n << "-gon: a convex polygon has no notch to cut";
     EXPECT_EQ(pieces[0].size(), ngon.size()) << n << "-gon: the piece should keep every corner";
     EXPECT_NEAR(SignedArea(pieces[0]), SignedArea(ngon), 1e-9 * SignedArea(ngon)) << n << "-gon";
   }
   for (const Shape& shape : RoundShapes()) {
-    const std::vector<Ring> pieces = DecomposeConvex(shape.region);
+    const std::vector<Ring> pieces = DecomposeConvex(shape.region).pieces;
     ASSERT_EQ(pieces.size(), 1u) << shape.name << ": points a rounding error off an edge are no notches";
     EXPECT_NEAR(SignedArea(pieces[0]), Area(shape.region), 1e-6 * Area(shape.region)) << shape.name;
   }
@@ -92,7 +92,7 @@ TEST(RoundParts, ThroughClipperStillOnePiece) {
   // The slice goes through Clipper (its 1e-4 mm grid) before the decomposition, as PlanLayerPattern does.
   for (const Shape& shape : RoundShapes()) {
     for (const PolygonWithHoles& region : internal::Union({shape.region})) {
-      EXPECT_EQ(DecomposeConvex(region).size(), 1u) << shape.name;
+      EXPECT_EQ(DecomposeConvex(region).pieces.size(), 1u) << shape.name;
     }
   }
 }

@@ -2,7 +2,7 @@
 // built-in cell's two axes, its rotary table alone, or a fixed welding table; each with plate and clamps). The FANUC preset is the built-in MJCF; the others are arms
 // we wrote as URDF with primitive collision shapes (twin/data/presets/*.urdf, each citing its kinematics, limits and
 // speeds) read through the URDF path (twin/cell/urdf_arm.h, cell_compose.h). The names are the table of CellPreset
-// in cell_settings.h, used by the scenario parser, its error message and the README.
+// in cell_settings.h, used by the scenario parser, its error message and docs/SCENARIOS.md.
 #pragma once
 
 #include <array>

@@ -56,7 +56,7 @@ struct CellSettings {
   // torch keys of the section then override the preset's.
   std::optional<CellPreset> preset;
   // The MuJoCo cell model; empty = the built-in twin/data/cell_arcmate100ic.xml. A user's file must have the
-  // joints, bodies and sites listed in the README ("Describing your own cell").
+  // joints, bodies and sites listed in docs/SCENARIOS.md ("Describing your own cell").
   std::filesystem::path mjcf;
   // cell.robot.urdf: the arm from a URDF file instead (with the built-in positioner); see twin/cell/urdf_arm.h.
   std::filesystem::path robot_urdf;

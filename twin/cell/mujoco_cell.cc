@@ -49,7 +49,7 @@ Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
 
 // The MuJoCo side of a CellModel: immutable once the constructor has returned.
 struct CellModel::Impl {
-  mjModel* m = nullptr;
+  const mjModel* m = nullptr;  // read-only: edited only by BuildModel, through the pointer LoadModel returns
   fs::path file;
   CellModel::RobotInfo robot;
   int qadr[8] = {};
@@ -63,7 +63,7 @@ struct CellModel::Impl {
   Eigen::Vector3d nozzle_a_T = Eigen::Vector3d::Zero(), nozzle_b_T = Eigen::Vector3d::Zero();
   double nozzle_radius_mm = 0.0;
   ~Impl() {
-    if (m) mj_deleteModel(m);
+    if (m) mj_deleteModel(const_cast<mjModel*>(m));  // MuJoCo's delete takes a non-const pointer
   }
 };
 
@@ -89,12 +89,14 @@ struct CellState::Data {
 
 namespace {
 
-// Loads and checks the model file and places the bases (the constructor's first half; the kinematics follow).
-void LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* impl) {
+// Loads and checks the model file (the constructor's first half; placing the bases and the kinematics follow).
+// `impl` owns the model; the returned pointer is the only one that may edit it, while BuildModel builds it.
+mjModel* LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* impl) {
   InstallMujocoHandlers();
   impl->file = mjcf.empty() ? CellModel::BuiltinModelPath() : mjcf;
   const fs::path& file = impl->file;
   char error[1024] = "";
+  mjModel* m = nullptr;
   if (xml) {
     // Composed text: handed to MuJoCo in a virtual file system; the meshes it names come from disk.
     auto vfs = std::make_unique<mjVFS>();
@@ -103,14 +105,15 @@ void LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* im
     WAAM_DEMAND(mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml->size())) == 0);
     const int index = mj_findFileVFS(vfs.get(), name);
     std::memcpy(vfs->filedata[index], xml->data(), xml->size());
-    impl->m = mj_loadXML(name, vfs.get(), error, sizeof(error));
+    m = mj_loadXML(name, vfs.get(), error, sizeof(error));
     mj_deleteVFS(vfs.get());
   } else {
     std::error_code ec;
     WAAM_THROW_UNLESS(fs::is_regular_file(file, ec), file.string() << ": MJCF cell model not found");
-    impl->m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
+    m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
   }
-  if (impl->m == nullptr) {
+  impl->m = m;
+  if (m == nullptr) {
     // MuJoCo's XML errors span several lines ("XML parse error 14:\nError=... Line number=1: ..."): join them so
     // the CLI prints the one line the bad-input contract promises, with the line number MuJoCo reports.
     std::string message;
@@ -125,12 +128,11 @@ void LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* im
     while (!message.empty() && message.back() == ' ') message.pop_back();
     WAAM_THROW(file.string() << ": MuJoCo cannot load the cell model: " << message);
   }
-  mjModel* m = impl->m;
 
   auto require = [&](int type, const char* name, const char* what) {
     const int id = mj_name2id(m, type, name);
     WAAM_THROW_UNLESS(id >= 0, file.string() << ": the cell model has no " << what << " named '" << name
-                                             << "' (see README, 'Describing your own cell')");
+                                             << "' (see docs/SCENARIOS.md, 'Describing your own cell')");
     return id;
   };
   const char* const names[8] = {"j1", "j2", "j3", "j4", "j5", "j6", "pos_tilt", "pos_rot"};
@@ -167,6 +169,7 @@ void LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* im
                     file.string() << ": bodies 'robot_base' and 'positioner_base' must be children of the world");
   // Contacts are reported up to kClearanceMarginMm apart, which gives the clearance used to skip checks.
   for (int g = 0; g < m->ngeom; ++g) m->geom_margin[g] = CellModel::kClearanceMarginMm / kMm;
+  return m;
 }
 
 void PlaceBody(mjModel* m, int body, const Eigen::Isometry3d& X) {
@@ -352,9 +355,9 @@ std::shared_ptr<const CellModel::Impl> BuildModel(const fs::path& mjcf, const Ei
                                                   const Eigen::Isometry3d* X_WB, const std::string* xml = nullptr,
                                                   const CellModel::RobotInfo* info = nullptr) {
   auto impl = std::make_shared<CellModel::Impl>();
-  LoadModel(mjcf, xml, impl.get());
-  if (X_WR) PlaceBody(impl->m, impl->robot_base, *X_WR);
-  if (X_WB) PlaceBody(impl->m, impl->positioner_base, *X_WB);
+  mjModel* editable = LoadModel(mjcf, xml, impl.get());
+  if (X_WR) PlaceBody(editable, impl->robot_base, *X_WR);
+  if (X_WB) PlaceBody(editable, impl->positioner_base, *X_WB);
   ReadKinematics(impl.get());
   if (info) {
     impl->robot = *info;

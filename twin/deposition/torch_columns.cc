@@ -3,8 +3,9 @@
 #include "twin/deposition/torch_columns.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
+
+#include "models/core/error.h"
 
 namespace waam::twin::internal {
 namespace {
@@ -16,7 +17,7 @@ constexpr double kAxisSnap = 1e-9;
 }  // namespace
 
 TorchFrame::TorchFrame(const Eigen::Vector3d& tool_dir_P, double voxel_mm) : v_(voxel_mm) {
-  assert(voxel_mm > 0.0 && tool_dir_P.norm() > 0.0);
+  WAAM_DEMAND(voxel_mm > 0.0 && tool_dir_P.norm() > 0.0);  // both checked where the scenario is read
   t_ = tool_dir_P.normalized();
   t_.cwiseAbs().maxCoeff(&axis_);
   a0_ = (axis_ + 1) % 3;

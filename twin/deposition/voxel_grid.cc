@@ -47,9 +47,15 @@ std::uint64_t VoxelGrid::Key(const VoxelIndex& b) {
 
 const VoxelGrid::Block* VoxelGrid::FindBlock(const VoxelIndex& v) const {
   const VoxelIndex b(FloorDiv(v.x(), kBlockBits), FloorDiv(v.y(), kBlockBits), FloorDiv(v.z(), kBlockBits));
+  const auto it = index_.find(Key(b));
+  return it == index_.end() ? nullptr : &blocks_[it->second];
+}
+
+VoxelGrid::Block* VoxelGrid::FindBlockForWrite(const VoxelIndex& v) {
+  const VoxelIndex b(FloorDiv(v.x(), kBlockBits), FloorDiv(v.y(), kBlockBits), FloorDiv(v.z(), kBlockBits));
   const std::uint64_t key = Key(b);
   if (key != cached_key_) {
-    auto it = index_.find(key);
+    const auto it = index_.find(key);
     cached_key_ = key;
     cached_block_ = it == index_.end() ? -1 : static_cast<std::int64_t>(it->second);
   }
@@ -79,8 +85,7 @@ const VoxelData* VoxelGrid::Get(const VoxelIndex& v) const {
 
 bool VoxelGrid::Set(const VoxelIndex& v, const VoxelData& data) {
   if (v.z() < 0) return false;  // substrate
-  const Block* found = FindBlock(v);
-  Block* block = const_cast<Block*>(found);
+  Block* block = FindBlockForWrite(v);
   if (block == nullptr) {
     const VoxelIndex b(FloorDiv(v.x(), kBlockBits), FloorDiv(v.y(), kBlockBits), FloorDiv(v.z(), kBlockBits));
     blocks_.emplace_back();

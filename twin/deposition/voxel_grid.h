@@ -22,7 +22,8 @@ struct VoxelData {
 };
 
 // A sparse grid of 8^3-voxel blocks in a hash map. Voxels below z = 0 are the substrate: solid, never stored.
-// Holds at most `max_voxels` occupied voxels; Set() past that throws InputError naming the limit.
+// The const methods write nothing, so a const grid can be read from many threads at once. Holds at most
+// `max_voxels` occupied voxels; Set() past that throws InputError naming the limit.
 class VoxelGrid {
  public:
   static constexpr int kBlockBits = 3;
@@ -78,16 +79,19 @@ class VoxelGrid {
     std::array<VoxelData, kBlockVoxels> data{};
   };
   static std::uint64_t Key(const VoxelIndex& block_coord);
+  // The block holding voxel `v`, or nullptr. Const and cache-free: a const grid is read from many threads at once.
   const Block* FindBlock(const VoxelIndex& v) const;
+  // The same for Set(), through a one-entry cache of the last block (deposition writes runs of voxels per block).
+  Block* FindBlockForWrite(const VoxelIndex& v);
 
   double voxel_mm_;
   std::size_t max_voxels_;
   std::size_t occupied_ = 0;
   std::vector<Block> blocks_;
   std::unordered_map<std::uint64_t, std::uint32_t> index_;
-  // One-entry cache of the last block looked up (column scans touch the same block many times).
-  mutable std::uint64_t cached_key_ = ~std::uint64_t{0};
-  mutable std::int64_t cached_block_ = -1;
+  // One-entry cache of the last block Set() looked up; written only by non-const methods.
+  std::uint64_t cached_key_ = ~std::uint64_t{0};
+  std::int64_t cached_block_ = -1;
 };
 
 }  // namespace waam::twin

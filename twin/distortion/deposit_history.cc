@@ -79,6 +79,11 @@ DepositHistory::DepositHistory(const planner::Plan& plan, const Depositor& depos
     }
     passes_.push_back(std::move(t));
   }
+  grid_ = &depositor.grid();
+  voxels_.reserve(grid_->occupied());
+  grid_->ForEach([&](const VoxelIndex& v, const VoxelData& d) {
+    voxels_.push_back(At(d.bead, d.time_s, grid_->Center(v)));
+  });
 }
 
 VoxelDeposit DepositHistory::At(std::uint32_t bead, double time_s, const Eigen::Vector3d& p_P) const {
@@ -128,13 +133,8 @@ VoxelDeposit DepositHistory::At(std::uint32_t bead, double time_s, const Eigen::
 }
 
 const std::vector<VoxelDeposit>& DepositHistory::Voxels(const VoxelGrid& grid) const {
-  if (cached_grid_ == &grid && cached_count_ == grid.occupied()) return cached_;
-  cached_.clear();
-  cached_.reserve(grid.occupied());
-  grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) { cached_.push_back(At(d.bead, d.time_s, grid.Center(v))); });
-  cached_grid_ = &grid;
-  cached_count_ = grid.occupied();
-  return cached_;
+  WAAM_DEMAND(&grid == grid_ && grid.occupied() == voxels_.size());  // the depositor's grid, unchanged since
+  return voxels_;
 }
 
 double DepositHistory::SpeedAt(std::uint32_t bead, double time_s) const {

@@ -24,7 +24,8 @@ struct VoxelDeposit {
 class DepositHistory {
  public:
   // From the plan the depositor executed (same `settings` and `rapid_speed_mm_s` > 0, so pass i is bead i) and the
-  // wire feed of the process (`wire_feed_mm_s` > 0). Throws InputError if the plan and the bead table disagree.
+  // wire feed of the process (`wire_feed_mm_s` > 0), after the deposit: At() of every voxel of the depositor's grid
+  // is computed here, once. Throws InputError if the plan and the bead table disagree.
   DepositHistory(const planner::Plan& plan, const Depositor& depositor, const twin::SimulationSettings& settings,
                  double rapid_speed_mm_s, double wire_feed_mm_s);
 
@@ -36,8 +37,8 @@ class DepositHistory {
   // the segment of the pass nearest to p_P among those whose stamp-time window holds time_s. A continuous spiral is
   // one pass through every layer; each of its loops belongs to its own layer.
   VoxelDeposit At(std::uint32_t bead, double time_s, const Eigen::Vector3d& p_P) const;
-  // At() of every voxel of `grid` in VoxelGrid::ForEach order, computed on the first call for this grid and kept (the
-  // grid must not change while this history is used with it). Throws InputError for a voxel of an unknown bead.
+  // At() of every voxel of `grid` in VoxelGrid::ForEach order. `grid` must be the depositor's grid this history was
+  // made from, unchanged since (WAAM_DEMAND). Const and free of caches: safe to call from many threads.
   const std::vector<VoxelDeposit>& Voxels(const VoxelGrid& grid) const;
   // Build direction (unit) and mean planned bead height (mm) of layer `layer`.
   const Eigen::Vector3d& LayerDir(int layer) const { return layer_dir_[layer]; }
@@ -65,9 +66,8 @@ class DepositHistory {
   double wire_feed_mm_s_;
   std::vector<Segment> segments_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;  // spatial hash of segments_
-  mutable const VoxelGrid* cached_grid_ = nullptr;
-  mutable std::size_t cached_count_ = 0;
-  mutable std::vector<VoxelDeposit> cached_;
+  const VoxelGrid* grid_ = nullptr;   // the depositor's grid, whose voxels voxels_ describes
+  std::vector<VoxelDeposit> voxels_;  // At() of every voxel of grid_, in VoxelGrid::ForEach order
 };
 
 }  // namespace waam::twin

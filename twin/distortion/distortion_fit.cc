@@ -56,11 +56,8 @@ struct ScanResidual {
   }
   bool operator()(double const* const* x, double* residual) const {
     const models::DistortionParams p = Params(x[0]);
-    try {
-      models::ValidateDistortionParams(p, "fit");
-    } catch (const InputError&) {
-      return false;  // outside the valid range: Ceres shortens the step
-    }
+    // Outside the valid range: the residual is not defined there, and Ceres shortens the step.
+    if (!models::DistortionParamsProblem(p, "fit").empty()) return false;
     const DistortionField field = ComputeDistortion(*grid, *history, p, options);
     for (std::size_t i = 0; i < points->size(); ++i) {
       const Eigen::Vector3d& s = (*points)[i];
