@@ -36,6 +36,25 @@ fs::path WritePlateScenario(const fs::path& dir, const std::string& pattern, con
   return file;
 }
 
+TEST(PlanCommandTest, TimelineWaitsOutTheMinimumLayerTime) {
+  const fs::path dir = TempDir("min_layer_time");
+  PlanOptions options;
+  options.scenario = WritePlateScenario(dir, "contour");
+  options.out_dir = dir / "out";
+  options.quiet = true;
+  options.layer_images = false;
+  options.overrides = {"process.interpass.min_layer_time_s=900", "path.island_order=round_robin"};
+  RunPlan(options);
+  const nlohmann::json timeline = ReadJson(options.out_dir / "plan.json")["timeline"];
+  ASSERT_GE(timeline["layers"].size(), 2u);
+  EXPECT_GT(timeline["wait_s"].get<double>(), 0.0);
+  for (std::size_t l = 1; l < timeline["layers"].size(); ++l) {
+    EXPECT_NEAR(timeline["layers"][l]["start_s"].get<double>() - timeline["layers"][l - 1]["start_s"].get<double>(),
+                900.0, 1e-6)
+        << "each layer lasts min_layer_time_s from its first arc start to the next one's (layer " << l << ")";
+  }
+}
+
 TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
   const fs::path dir = TempDir("contract");
   PlanOptions options;
@@ -67,6 +86,27 @@ TEST(PlanCommandTest, WritesTheContractFieldsAndFiles) {
     std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
     EXPECT_TRUE(fs::exists(options.out_dir / "layers" / name)) << name;
   }
+  // The timeline (docs/TIMELINE.md): its total is the estimated time, its parts add up, one entry per layer.
+  ASSERT_TRUE(plan.contains("timeline"));
+  const nlohmann::json& timeline = plan["timeline"];
+  const double total = timeline["total_s"].get<double>();
+  EXPECT_DOUBLE_EQ(plan["estimated_time_s"].get<double>(), total);
+  EXPECT_NEAR(total,
+              timeline["arc_on_s"].get<double>() + timeline["travel_s"].get<double>() +
+                  timeline["wait_s"].get<double>(),
+              1e-6 * total);
+  EXPECT_GT(timeline["travel_s"].get<double>(), 0.0) << "the approach and the moves between passes";
+  ASSERT_EQ(timeline["layers"].size(), result.plan.layers.size());
+  double last_end = 0.0;
+  for (const nlohmann::json& layer : timeline["layers"]) {
+    for (const char* field : {"layer", "start_s", "end_s", "arc_on_s", "travel_s", "wait_s"}) {
+      EXPECT_TRUE(layer.contains(field)) << "timeline.layers[] must have '" << field << "'";
+    }
+    EXPECT_GE(layer["start_s"].get<double>(), last_end) << "layers follow each other";
+    EXPECT_GT(layer["end_s"].get<double>(), layer["start_s"].get<double>());
+    last_end = layer["end_s"].get<double>();
+  }
+  EXPECT_DOUBLE_EQ(result.stats.estimated_time_s, total);
 
   // plan.h5 holds every point of every layer.
   const hid_t file = H5Fopen((options.out_dir / "plan.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
