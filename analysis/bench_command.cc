@@ -20,6 +20,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "planner/scenario/scenario.h"
@@ -362,7 +363,7 @@ nlohmann::json RunBench(const BenchOptions& options) {
   // The shard: every shard_count-th run, so shards of a sorted folder get a mix of scenarios.
   std::vector<BenchRun> runs;
   for (std::size_t i = options.shard_index; i < all.size(); i += options.shard_count) runs.push_back(all[i]);
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   const auto start = std::chrono::steady_clock::now();
   const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(runs.size())));
   const int child_threads = std::max(1, ThreadCount() / jobs);

@@ -13,6 +13,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -164,7 +165,7 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
 
 planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_out) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
 
   planner::PlanResult result;
   ImportReport import;  // a scenario with a program: section

@@ -12,6 +12,7 @@
 
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
 #include "twin/scanner/surface_mesh.h"
@@ -87,7 +88,7 @@ nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult
 
 twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanResult& planned,
                                  const SimulateOptions& options) {
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   RunOutputs outputs(options.out_dir / "simulate.json");
   const twin::SimulationSettings& settings = scenario.simulation;
   // Refuse up front what cannot fit: the expected bead volume in voxels against the limit.
