@@ -71,6 +71,16 @@ nlohmann::json Metric(const nlohmann::json& entry, const std::string& step, cons
   return s && s->contains("metrics") && (*s)["metrics"].contains(key) ? (*s)["metrics"][key] : nlohmann::json();
 }
 
+// A simulate measure's cell: its value, or "n/a" with the reason (simulate.json not_applicable) as a tooltip.
+std::string MeasureCell(const nlohmann::json& entry, const std::string& key) {
+  const nlohmann::json value = Metric(entry, "simulate", key);
+  const nlohmann::json reasons = Metric(entry, "simulate", "not_applicable");
+  if (value.is_null() && reasons.is_object() && reasons.contains(key)) {
+    return "<span class=\"na\" title=\"" + Cell(reasons[key]) + "\">n/a</span>";
+  }
+  return Cell(value);
+}
+
 // user + system CPU time of a scenario's child process, s (the wall time depends on the machine's load).
 std::string CpuSeconds(const nlohmann::json& timing) {
   if (!timing.contains("user_s") || !timing.contains("sys_s")) return Cell(nullptr);
@@ -95,8 +105,8 @@ std::string OverviewTable(const nlohmann::json& scenarios) {
          << Cell(Metric(e, "check", "violation_count")) << "</td><td>"
          << Cell(Metric(e, "simulate", "volume_error_pct")) << "</td><td>"
          << Cell(Metric(e, "simulate", "deviation/rms_mm")) << "</td><td>" << Cell(Metric(e, "simulate", "voids/count"))
-         << "</td><td>" << Cell(Metric(e, "simulate", "ra_mm")) << "</td><td>"
-         << Cell(Metric(e, "simulate", "boundary_lag_mm")) << "</td></tr>\n";
+         << "</td><td>" << MeasureCell(e, "ra_mm") << "</td><td>" << MeasureCell(e, "boundary_lag_mm")
+         << "</td></tr>\n";
   }
   html << "</table>\n";
   return html.str();
@@ -215,11 +225,28 @@ std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir) {
          << "</td><td>" << Cell(t.value("wall_s", nlohmann::json())) << "</td><td>"
          << Cell(t.value("peak_rss_mb", nlohmann::json())) << "</td><td class=\"metrics\">";
     for (auto it = s["metrics"].begin(); it != s["metrics"].end(); ++it) {
+      if (it.key() == "not_applicable" || it.key() == "notes") continue;  // listed below the table
       html << HtmlEscape(it.key()) << " = " << Cell(it.value()) << "; ";
     }
     html << "</td></tr>\n";
   }
-  html << "</table>\n<div class=\"figs\">\n";
+  html << "</table>\n";
+  // Measures that do not apply to this part and settings that explain its deviation (simulate.json).
+  const nlohmann::json reasons = Metric(e, "simulate", "not_applicable");
+  const nlohmann::json notes = Metric(e, "simulate", "notes");
+  if ((reasons.is_object() && !reasons.empty()) || (notes.is_array() && !notes.empty())) {
+    html << "<ul class=\"notes\">\n";
+    if (reasons.is_object()) {
+      for (auto it = reasons.begin(); it != reasons.end(); ++it) {
+        html << "<li>" << HtmlEscape(it.key()) << " not applicable: " << Cell(it.value()) << "</li>\n";
+      }
+    }
+    if (notes.is_array()) {
+      for (const nlohmann::json& note : notes) html << "<li>note: " << Cell(note) << "</li>\n";
+    }
+    html << "</ul>\n";
+  }
+  html << "<div class=\"figs\">\n";
   // The middle layer of the plan, the joint trajectories, the worst cell pose, the part's height and deviation.
   const nlohmann::json layers = Metric(e, "plan", "layers");
   if (layers.is_number_integer()) {
