@@ -7,6 +7,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -19,6 +20,7 @@
 #include "models/core/run_outputs.h"
 #include "planner/geometry/polygon.h"
 #include "twin/scanner/surface_mesh.h"
+#include "twin/scanner/voxel_surface.h"
 
 namespace waam::analysis {
 
@@ -168,16 +170,18 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
     return r;
   }();
 
-  // The surface mesh has about ten facets per exposed voxel face; past kMaxStlFacets the part is exported from a
-  // coarser copy of the grid (majority of the fine voxels), reported as stl_voxel_mm.
-  constexpr double kMaxStlFacets = 5.0e6;
-  const double faces = static_cast<double>(twin::ExposedFaces(result.depositor.grid()));
+  // The part's surface: coplanar voxel faces merged (twin::ExtractVoxelSurface). Past kMaxStlFacets (a part of
+  // about 10^6 separate bumps) it is exported from a coarser copy of the grid (majority of the fine voxels), reported
+  // as stl_voxel_mm.
+  constexpr std::size_t kMaxStlFacets = 5000000;
+  const auto surface_start = std::chrono::steady_clock::now();
   int factor = 1;
-  while (10.0 * faces / (factor * factor) > kMaxStlFacets && factor < 8) ++factor;
-  const planner::TriangleMesh surface =
-      factor == 1 ? twin::ExtractSurface(result.depositor.grid())
-                  : twin::ExtractSurface(twin::Coarsen(result.depositor.grid(), factor));
+  planner::TriangleMesh surface = twin::ExtractVoxelSurface(result.depositor.grid());
+  while (surface.facets.size() > kMaxStlFacets && factor < 8) {
+    surface = twin::ExtractVoxelSurface(twin::Coarsen(result.depositor.grid(), ++factor));
+  }
   planner::WriteStlBinary(surface, outputs.Add(options.out_dir / "part.stl"), "waam simulate: " + scenario.name);
+  const double surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surface_start).count();
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
   WriteSimulationH5(result, outputs.Add(options.out_dir / "part.h5"));
   if (options.images) {
@@ -189,6 +193,7 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
   nlohmann::json json = SimulationToJson(scenario, planned, result);
   json["stl_voxel_mm"] = stl_voxel_mm;
   json["stl_facets"] = surface.facets.size();
+  json["performance"]["surface_s"] = surface_s;
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   WriteFileAtomic(options.out_dir / "simulate.json", json.dump(2) + "\n");
   outputs.Complete();
