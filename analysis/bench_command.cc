@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "analysis/scenario.h"
+#include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/output_lock.h"
@@ -299,7 +300,21 @@ nlohmann::json ReadPerf(const fs::path& dir) {
 std::vector<std::pair<fs::path, std::string>> BenchScenarios(const std::vector<fs::path>& paths) {
   std::vector<fs::path> files;
   std::vector<fs::path> roots;
-  for (const fs::path& path : paths.empty() ? std::vector<fs::path>{"scenarios"} : paths) {
+  std::vector<fs::path> given = paths;
+  if (given.empty()) {
+    // No list: ./scenarios (in the repository), else the installed example scenarios (the data folder).
+    std::error_code ec;
+    const fs::path installed = DataDir() / "scenarios";
+    if (fs::is_directory("scenarios", ec)) {
+      given.push_back("scenarios");
+    } else if (fs::is_directory(installed, ec)) {
+      given.push_back(installed);
+    } else {
+      WAAM_THROW("bench: no scenarios given, and neither ./scenarios nor the example scenarios ("
+                 << installed.string() << ") exist: give scenario files or folders, e.g. waam bench my.yaml -o out");
+    }
+  }
+  for (const fs::path& path : given) {
     std::error_code ec;
     if (fs::is_directory(path, ec)) {
       std::vector<fs::path> found;

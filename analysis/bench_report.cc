@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "analysis/bench_command.h"
 #include "analysis/svg_plot.h"
@@ -320,6 +322,66 @@ std::string SweepTable(const nlohmann::json& sweep, const nlohmann::json& scenar
   return html.str();
 }
 
+// Wall time and peak memory of each scenario's `waam run`, one bar per scenario.
+std::string ScenarioPlots(const nlohmann::json& scenarios) {
+  std::vector<SvgBar> wall, memory;
+  for (const nlohmann::json& e : scenarios) {
+    const std::string id = e.value("id", "");
+    const nlohmann::json timing = e.value("timing", nlohmann::json::object());
+    const nlohmann::json w = timing.value("wall_s", nlohmann::json()), m = timing.value("peak_rss_mb", nlohmann::json());
+    const std::string colour = e.value("outcome", "fail") == "fail" ? "#d62728" : kColours[0];
+    wall.push_back({id, w.is_number() ? w.get<double>() : std::nan(""), colour});
+    memory.push_back({id, m.is_number() ? m.get<double>() : std::nan(""), kColours[2]});
+  }
+  if (wall.empty()) return "";
+  return SvgBarChart("Wall time per scenario (red: failed)", "wall time [s]", wall, std::nan("")) +
+         SvgBarChart("Peak memory per scenario", "peak resident memory [MiB]", memory, std::nan(""));
+}
+
+// The papers' figures against ours: ours / published per row with a numeric published value (1 = agreement).
+std::string ReferencePlot(const nlohmann::json& reference) {
+  std::vector<SvgBar> bars;
+  for (const nlohmann::json& r : reference) {
+    const nlohmann::json published = r.value("published_value", nlohmann::json());
+    const nlohmann::json ours = r.value("ours", nlohmann::json());
+    if (!published.is_number() || published.get<double>() == 0.0) continue;
+    const double ratio = ours.is_number() ? ours.get<double>() / published.get<double>() : std::nan("");
+    bars.push_back({r.value("source", "") + ": " + r.value("quantity", ""), ratio,
+                    std::isfinite(ratio) && std::abs(ratio - 1.0) > 0.25 ? kColours[4] : kColours[0]});
+  }
+  if (bars.empty()) return "";
+  return SvgBarChart("Ours / published (dashed: agreement; orange: more than 25 % off)", "ours / published", bars,
+                     1.0, 760);
+}
+
+// One plot per sweep metric against each swept key with numeric values: the runs' metric over the key's values.
+std::string SweepPlots(const nlohmann::json& sweep, const nlohmann::json& scenarios) {
+  std::map<std::string, const nlohmann::json*> by_id;
+  for (const nlohmann::json& e : scenarios) by_id[e.value("id", "")] = &e;
+  std::ostringstream html;
+  for (const nlohmann::json& metric : sweep.value("metrics", nlohmann::json::array())) {
+    const std::string name = metric;
+    const std::size_t dot = name.find('.');
+    if (dot == std::string::npos) continue;
+    for (const nlohmann::json& key_json : sweep.value("keys", nlohmann::json::array())) {
+      const std::string key = key_json;
+      SvgSeries points{name, {}, {}, kColours[0], false};
+      for (const nlohmann::json& run : sweep.value("runs", nlohmann::json::array())) {
+        const nlohmann::json x = run.value("values", nlohmann::json::object()).value(key, nlohmann::json());
+        const auto found = by_id.find(run.value("id", ""));
+        if (!x.is_number() || found == by_id.end()) continue;
+        const nlohmann::json y = Metric(*found->second, name.substr(0, dot), name.substr(dot + 1));
+        if (!y.is_number()) continue;
+        points.x.push_back(x.get<double>());
+        points.y.push_back(y.get<double>());
+      }
+      if (points.x.empty()) continue;
+      html << SvgPlot(name + " against " + key, key, name, {points}, 420, 300);
+    }
+  }
+  return html.str();
+}
+
 // A section whose data could not be read says why instead of failing the whole report.
 template <typename F>
 std::string Guarded(F&& make) {
@@ -350,9 +412,14 @@ void WriteBenchReport(const nlohmann::json& bench, const fs::path& out_dir) {
        << Cell(timing["total_s"]) << " s on " << Cell(timing["hardware_threads"])
        << " hardware threads. Each scenario ran as <code>waam run</code> in its own process; peak memory is that "
           "process's maximum resident set.</p>\n";
-  if (bench.contains("sweep")) html << "<h2>Sweep</h2>\n" << SweepTable(bench["sweep"], scenarios);
-  html << "<h2>Scenarios</h2>\n" << OverviewTable(scenarios);
-  html << "<h2>Published figures and ours</h2>\n" << ReferenceTable(bench["reference"]);
+  if (bench.contains("sweep")) {
+    html << "<h2>Sweep</h2>\n" << SweepTable(bench["sweep"], scenarios) << "<div class=\"plots\">"
+         << SweepPlots(bench["sweep"], scenarios) << "</div>\n";
+  }
+  html << "<h2>Scenarios</h2>\n" << OverviewTable(scenarios) << "<div class=\"plots\">" << ScenarioPlots(scenarios)
+       << "</div>\n";
+  html << "<h2>Published figures and ours</h2>\n" << ReferenceTable(bench["reference"]) << "<div class=\"plots\">"
+       << ReferencePlot(bench["reference"]) << "</div>\n";
   html << "<h2>Bead models fitted to the papers' data</h2>\n" << Guarded([] { return ModelPlots(); });
   html << "<h2>Junction voids</h2>\n" << Guarded([] { return VoidPlot(); });
   html << "<h2>Inner-loop performance (Google Benchmark)</h2>\n" << PerfTable(timing.value("perf", nlohmann::json()));

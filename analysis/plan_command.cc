@@ -31,7 +31,7 @@ void WritePlanFiles(const planner::Plan& plan, const fs::path& out_dir, bool lay
   for (std::size_t i = 0; i < plan.layers.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
-    WriteLayerPng(plan.layers[i], outputs->Add(out_dir / "layers" / name));
+    WriteLayerPng(plan.layers[i], plan.name, outputs->Add(out_dir / "layers" / name));
     progress.Update(i + 1);
   }
   progress.Finish();

@@ -185,10 +185,10 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
   WriteSimulationH5(result, outputs.Add(options.out_dir / "part.h5"));
   if (options.images) {
-    WriteHeightMapPng(result.top, outputs.Add(options.out_dir / "top_height.png"));
-    WriteSectionPng(result, 0, outputs.Add(options.out_dir / "section_xz.png"));
-    WriteSectionPng(result, 1, outputs.Add(options.out_dir / "section_yz.png"));
-    WriteDeviationPng(result, outputs.Add(options.out_dir / "deviation_map.png"));
+    WriteHeightMapPng(result.top, scenario.name, outputs.Add(options.out_dir / "top_height.png"));
+    WriteSectionPng(result, 0, scenario.name, outputs.Add(options.out_dir / "section_xz.png"));
+    WriteSectionPng(result, 1, scenario.name, outputs.Add(options.out_dir / "section_yz.png"));
+    WriteDeviationPng(result, scenario.name, outputs.Add(options.out_dir / "deviation_map.png"));
   }
   nlohmann::json json = SimulationToJson(scenario, planned, result);
   json["stl_voxel_mm"] = stl_voxel_mm;

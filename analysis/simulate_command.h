@@ -49,9 +49,12 @@ std::vector<std::string> SimulationNotes(const Scenario& scenario, const planner
 void WriteSimulationH5(const twin::TwinResult& result, const std::filesystem::path& path);
 
 // Pictures: top height map (colour by height), vertical sections through the part's middle along x and y
-// (colour by layer), and the top view of the signed deviation (blue below, red above the target).
-void WriteHeightMapPng(const twin::HeightMap& map, const std::filesystem::path& path);
-void WriteSectionPng(const twin::TwinResult& result, int axis, const std::filesystem::path& path);
-void WriteDeviationPng(const twin::TwinResult& result, const std::filesystem::path& path);
+// (colour by layer), and the top view of the signed deviation (blue below, red above the target). Each has a title
+// naming `part` and the quantity, axes in mm and a colour bar with its unit (analysis/picture_frame.h).
+void WriteHeightMapPng(const twin::HeightMap& map, const std::string& part, const std::filesystem::path& path);
+void WriteSectionPng(const twin::TwinResult& result, int axis, const std::string& part,
+                     const std::filesystem::path& path);
+void WriteDeviationPng(const twin::TwinResult& result, const std::string& part,
+                       const std::filesystem::path& path);
 
 }  // namespace waam::analysis
