@@ -170,15 +170,16 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
     return r;
   }();
 
-  // The part's surface: coplanar voxel faces merged (twin::ExtractVoxelSurface). Past kMaxStlFacets (a part of
-  // about 10^6 separate bumps) it is exported from a coarser copy of the grid (majority of the fine voxels), reported
-  // as stl_voxel_mm.
+  // The part's surface: coplanar voxel faces merged (twin::ExtractVoxelSurface). Past kMaxStlFacets exposed voxel
+  // faces or facets it is exported from a coarser copy of the grid (majority of the fine voxels), reported as
+  // stl_voxel_mm.
   constexpr std::size_t kMaxStlFacets = 5000000;
   const auto surface_start = std::chrono::steady_clock::now();
   int factor = 1;
-  planner::TriangleMesh surface = twin::ExtractVoxelSurface(result.depositor.grid());
-  while (surface.facets.size() > kMaxStlFacets && factor < 8) {
-    surface = twin::ExtractVoxelSurface(twin::Coarsen(result.depositor.grid(), ++factor));
+  planner::TriangleMesh surface = twin::ExtractVoxelSurface(result.depositor.grid(), kMaxStlFacets);
+  while ((surface.facets.empty() || surface.facets.size() > kMaxStlFacets) && factor < 8 &&
+         result.depositor.grid().occupied() > 0) {
+    surface = twin::ExtractVoxelSurface(twin::Coarsen(result.depositor.grid(), ++factor), kMaxStlFacets);
   }
   planner::WriteStlBinary(surface, outputs.Add(options.out_dir / "part.stl"), "waam simulate: " + scenario.name);
   const double surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surface_start).count();

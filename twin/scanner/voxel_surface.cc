@@ -142,15 +142,20 @@ Eigen::Vector3i Corner(int axis, int plane, int u, int v) {
   return p;
 }
 
-// Key of the axis-parallel line along `axis` through p: the axis and p's two other coordinates.
-std::uint64_t LineKey(int axis, const Eigen::Vector3i& p) {
-  const auto bits = [](int c) { return static_cast<std::uint64_t>(c + (1 << 20)) & 0x1FFFFF; };
-  return static_cast<std::uint64_t>(axis) | bits(p[(axis + 1) % 3]) << 2 | bits(p[(axis + 2) % 3]) << 23;
-}
+// The quad corners sorted for the lines along one axis: by the two other coordinates, then the one along the axis,
+// so the corners on a line segment are one contiguous range.
+struct LineIndex {
+  int axis;
+  std::vector<Eigen::Vector3i> corners;
+  std::array<int, 3> Key(const Eigen::Vector3i& p) const {
+    return {p[(axis + 1) % 3], p[(axis + 2) % 3], p[axis]};
+  }
+  bool Less(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const { return Key(a) < Key(b); }
+};
 
 }  // namespace
 
-planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid) {
+planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max_faces) {
   MeshOccupancy occ(grid);
   const std::vector<Eigen::Vector3i> surface = SurfaceVoxels(grid, &occ);
   CheckInterrupt();
@@ -163,25 +168,29 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid) {
       faces.push_back({d, v[axis] + (d % 2 == 0 ? 1 : 0), v[(axis + 2) % 3], v[(axis + 1) % 3]});
     }
   }
+  if (faces.size() > max_faces) return {};
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());  // a voxel may be listed twice
   const std::vector<Quad> quads = MergeFaces(faces);
   std::vector<Face>().swap(faces);
   CheckInterrupt();
 
-  // Every quad corner on the three axis lines through it, so that an edge finds the corners lying inside it.
-  std::unordered_map<std::uint64_t, std::vector<int>> lines;
+  // Every quad corner, sorted three ways, so that an edge along any axis finds the corners lying inside it.
+  std::vector<Eigen::Vector3i> corners;
+  corners.reserve(4 * quads.size());
   for (const Quad& q : quads) {
     const int axis = q.d / 2;
-    for (int c = 0; c < 4; ++c) {
-      const Eigen::Vector3i p = Corner(axis, q.plane, c & 1 ? q.u1 + 1 : q.u0, c & 2 ? q.v1 + 1 : q.v0);
-      for (int a = 0; a < 3; ++a) lines[LineKey(a, p)].push_back(p[a]);
-    }
+    for (int c = 0; c < 4; ++c) corners.push_back(Corner(axis, q.plane, c & 1 ? q.u1 + 1 : q.u0, c & 2 ? q.v1 + 1 : q.v0));
   }
-  for (auto& [key, coords] : lines) {
-    std::sort(coords.begin(), coords.end());
-    coords.erase(std::unique(coords.begin(), coords.end()), coords.end());
+  std::array<LineIndex, 3> lines;
+  for (int a = 0; a < 3; ++a) {
+    lines[a].axis = a;
+    lines[a].corners = corners;
+    std::sort(lines[a].corners.begin(), lines[a].corners.end(),
+              [&](const Eigen::Vector3i& p, const Eigen::Vector3i& q) { return lines[a].Less(p, q); });
+    lines[a].corners.erase(std::unique(lines[a].corners.begin(), lines[a].corners.end()), lines[a].corners.end());
   }
+  std::vector<Eigen::Vector3i>().swap(corners);
 
   planner::TriangleMesh mesh;
   const double half_voxel = 0.5 * grid.voxel_mm();
@@ -209,15 +218,15 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid) {
       while (a[along] == b[along]) ++along;
       ring.push_back(vertex(2 * a));
       is_corner.push_back(true);
-      const std::vector<int>& on_line = lines.at(LineKey(along, a));
-      const int lo = std::min(a[along], b[along]), hi = std::max(a[along], b[along]);
-      auto first = std::upper_bound(on_line.begin(), on_line.end(), lo);
-      auto last = std::lower_bound(on_line.begin(), on_line.end(), hi);
+      const LineIndex& line = lines[along];
+      const auto less = [&](const Eigen::Vector3i& p, const Eigen::Vector3i& q) { return line.Less(p, q); };
+      const Eigen::Vector3i& lo = a[along] < b[along] ? a : b;
+      const Eigen::Vector3i& hi = a[along] < b[along] ? b : a;
+      auto first = std::upper_bound(line.corners.begin(), line.corners.end(), lo, less);
+      auto last = std::lower_bound(line.corners.begin(), line.corners.end(), hi, less);
       const std::size_t start = ring.size();
       for (auto it = first; it != last; ++it) {
-        Eigen::Vector3i p = a;
-        p[along] = *it;
-        ring.push_back(vertex(2 * p));
+        ring.push_back(vertex(2 * *it));
         is_corner.push_back(false);
       }
       if (a[along] > b[along]) std::reverse(ring.begin() + start, ring.end());
