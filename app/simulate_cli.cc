@@ -29,9 +29,10 @@ void AddSimulateCommand(CLI::App& app, CommandRunner* runner) {
       "                     boundary_lag_mm (interior minus outer-bead mean height); these four are null on\n"
       "                     multi-directional or non-planar parts, not_applicable {measure: reason} says why;\n"
       "                     notes [...] (settings that explain a large deviation), performance, settings\n"
-      "  part.stl           surface of the simulated part (binary STL, mm; from a coarser grid past 5 M facets,\n"
-      "                     see stl_voxel_mm)\n"
+      "  part.stl           surface of the simulated part (binary STL, mm; coplanar voxel faces merged, closed\n"
+      "                     and manifold; from a coarser grid past 5 M faces, see stl_voxel_mm)\n"
       "  part.h5            /voxels/{ijk, bead, layer, time_s}, /top_height_mm, /beads; attribute voxel_mm\n"
+      "                     (deflate-compressed, chunks of whole rows)\n"
       "  top_height.png, section_xz.png, section_yz.png, deviation_map.png\n"
       "simulate.json is written last: its presence marks a complete run.");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
