@@ -35,12 +35,13 @@ const std::array<Eigen::Vector3i, 6> kDirs = {Eigen::Vector3i(1, 0, 0),  Eigen::
 
 // Examines voxel v: if it has an exposed face it goes to `surface`; for every pair of voxels touching v along an edge
 // only (both voxels between them empty), one of the two empty voxels is filled for the mesh and goes to `filled`.
-void Examine(const Eigen::Vector3i& v, MeshOccupancy* occ, std::vector<Eigen::Vector3i>* surface,
-             std::vector<Eigen::Vector3i>* filled) {
+// Returns the number of its exposed faces.
+int Examine(const Eigen::Vector3i& v, MeshOccupancy* occ, std::vector<Eigen::Vector3i>* surface,
+            std::vector<Eigen::Vector3i>* filled) {
   bool empty[6];
-  bool any = false;
-  for (int d = 0; d < 6; ++d) any |= (empty[d] = !(*occ)(v + kDirs[d]));
-  if (!any) return;
+  int exposed = 0;
+  for (int d = 0; d < 6; ++d) exposed += (empty[d] = !(*occ)(v + kDirs[d])) ? 1 : 0;
+  if (exposed == 0) return 0;
   surface->push_back(v);
   for (int d1 = 0; d1 < 6; ++d1) {
     for (int d2 = d1 + 1; d2 < 6; ++d2) {
@@ -51,18 +52,24 @@ void Examine(const Eigen::Vector3i& v, MeshOccupancy* occ, std::vector<Eigen::Ve
       empty[d] = false;
     }
   }
+  return exposed;
 }
 
 // The voxels with an exposed face, after filling every edge-only contact (filled voxels are examined in turn).
-std::vector<Eigen::Vector3i> SurfaceVoxels(const VoxelGrid& grid, MeshOccupancy* occ) {
-  std::vector<Eigen::Vector3i> surface, filled;
-  grid.ForEach([&](const VoxelIndex& v, const VoxelData&) { Examine(v, occ, &surface, &filled); });
-  while (!filled.empty()) {
+// Stops early, returning false, once more than `max_faces` exposed faces are seen.
+bool SurfaceVoxels(const VoxelGrid& grid, MeshOccupancy* occ, std::size_t max_faces,
+                   std::vector<Eigen::Vector3i>* surface) {
+  std::vector<Eigen::Vector3i> filled;
+  std::size_t faces = 0;
+  grid.ForEach([&](const VoxelIndex& v, const VoxelData&) {
+    if (faces <= max_faces) faces += static_cast<std::size_t>(Examine(v, occ, surface, &filled));
+  });
+  while (!filled.empty() && faces <= max_faces) {
     std::vector<Eigen::Vector3i> next;
-    for (const Eigen::Vector3i& v : filled) Examine(v, occ, &surface, &next);
+    for (const Eigen::Vector3i& v : filled) faces += static_cast<std::size_t>(Examine(v, occ, surface, &next));
     filled = std::move(next);
   }
-  return surface;
+  return faces <= max_faces;
 }
 
 // One exposed face: direction d (0..5, axis d / 2, + when even), the plane's corner coordinate along the axis, and
@@ -157,7 +164,8 @@ struct LineIndex {
 
 planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max_faces) {
   MeshOccupancy occ(grid);
-  const std::vector<Eigen::Vector3i> surface = SurfaceVoxels(grid, &occ);
+  std::vector<Eigen::Vector3i> surface;
+  if (!SurfaceVoxels(grid, &occ, max_faces, &surface)) return {};
   CheckInterrupt();
   // The exposed faces of the surface voxels (with the filled voxels counted as metal).
   std::vector<Face> faces;
