@@ -18,8 +18,10 @@
 #include <thread>
 
 #include "analysis/scenario.h"
+#include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "planner/scenario/scenario.h"
@@ -298,7 +300,21 @@ nlohmann::json ReadPerf(const fs::path& dir) {
 std::vector<std::pair<fs::path, std::string>> BenchScenarios(const std::vector<fs::path>& paths) {
   std::vector<fs::path> files;
   std::vector<fs::path> roots;
-  for (const fs::path& path : paths.empty() ? std::vector<fs::path>{"scenarios"} : paths) {
+  std::vector<fs::path> given = paths;
+  if (given.empty()) {
+    // No list: ./scenarios (in the repository), else the installed example scenarios (the data folder).
+    std::error_code ec;
+    const fs::path installed = DataDir() / "scenarios";
+    if (fs::is_directory("scenarios", ec)) {
+      given.push_back("scenarios");
+    } else if (fs::is_directory(installed, ec)) {
+      given.push_back(installed);
+    } else {
+      WAAM_THROW("bench: no scenarios given, and neither ./scenarios nor the example scenarios ("
+                 << installed.string() << ") exist: give scenario files or folders, e.g. waam bench my.yaml -o out");
+    }
+  }
+  for (const fs::path& path : given) {
     std::error_code ec;
     if (fs::is_directory(path, ec)) {
       std::vector<fs::path> found;
@@ -362,7 +378,7 @@ nlohmann::json RunBench(const BenchOptions& options) {
   // The shard: every shard_count-th run, so shards of a sorted folder get a mix of scenarios.
   std::vector<BenchRun> runs;
   for (std::size_t i = options.shard_index; i < all.size(); i += options.shard_count) runs.push_back(all[i]);
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   const auto start = std::chrono::steady_clock::now();
   const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(runs.size())));
   const int child_threads = std::max(1, ThreadCount() / jobs);

@@ -6,6 +6,7 @@
 #include "analysis/bench_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
@@ -104,7 +105,7 @@ nlohmann::json MergeBench(const std::vector<fs::path>& dirs, const fs::path& out
     WAAM_THROW_UNLESS(fresh, "scenario '" << id << "' is in both " << it->second.string() << " and " << dir.string());
   }
 
-  EnsureOutputDirectory(out_dir);
+  ClaimOutputDirectory(out_dir);
   nlohmann::json scenarios = nlohmann::json::array();
   nlohmann::json counts = {{"pass", 0}, {"expected_fail", 0}, {"fail", 0}, {"total", entries.size()}};
   double wall_s = 0.0;

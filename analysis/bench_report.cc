@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "analysis/bench_command.h"
 #include "analysis/png_file.h"
@@ -71,6 +73,16 @@ nlohmann::json Metric(const nlohmann::json& entry, const std::string& step, cons
   return s && s->contains("metrics") && (*s)["metrics"].contains(key) ? (*s)["metrics"][key] : nlohmann::json();
 }
 
+// A simulate measure's cell: its value, or "n/a" with the reason (simulate.json not_applicable) as a tooltip.
+std::string MeasureCell(const nlohmann::json& entry, const std::string& key) {
+  const nlohmann::json value = Metric(entry, "simulate", key);
+  const nlohmann::json reasons = Metric(entry, "simulate", "not_applicable");
+  if (value.is_null() && reasons.is_object() && reasons.contains(key)) {
+    return "<span class=\"na\" title=\"" + Cell(reasons[key]) + "\">n/a</span>";
+  }
+  return Cell(value);
+}
+
 // user + system CPU time of a scenario's child process, s (the wall time depends on the machine's load).
 std::string CpuSeconds(const nlohmann::json& timing) {
   if (!timing.contains("user_s") || !timing.contains("sys_s")) return Cell(nullptr);
@@ -95,8 +107,8 @@ std::string OverviewTable(const nlohmann::json& scenarios) {
          << Cell(Metric(e, "check", "violation_count")) << "</td><td>"
          << Cell(Metric(e, "simulate", "volume_error_pct")) << "</td><td>"
          << Cell(Metric(e, "simulate", "deviation/rms_mm")) << "</td><td>" << Cell(Metric(e, "simulate", "voids/count"))
-         << "</td><td>" << Cell(Metric(e, "simulate", "ra_mm")) << "</td><td>"
-         << Cell(Metric(e, "simulate", "boundary_lag_mm")) << "</td></tr>\n";
+         << "</td><td>" << MeasureCell(e, "ra_mm") << "</td><td>" << MeasureCell(e, "boundary_lag_mm")
+         << "</td></tr>\n";
   }
   html << "</table>\n";
   return html.str();
@@ -227,11 +239,28 @@ std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir, bo
          << "</td><td>" << Cell(t.value("wall_s", nlohmann::json())) << "</td><td>"
          << Cell(t.value("peak_rss_mb", nlohmann::json())) << "</td><td class=\"metrics\">";
     for (auto it = s["metrics"].begin(); it != s["metrics"].end(); ++it) {
+      if (it.key() == "not_applicable" || it.key() == "notes") continue;  // listed below the table
       html << HtmlEscape(it.key()) << " = " << Cell(it.value()) << "; ";
     }
     html << "</td></tr>\n";
   }
-  html << "</table>\n<div class=\"figs\">\n";
+  html << "</table>\n";
+  // Measures that do not apply to this part and settings that explain its deviation (simulate.json).
+  const nlohmann::json reasons = Metric(e, "simulate", "not_applicable");
+  const nlohmann::json notes = Metric(e, "simulate", "notes");
+  if ((reasons.is_object() && !reasons.empty()) || (notes.is_array() && !notes.empty())) {
+    html << "<ul class=\"notes\">\n";
+    if (reasons.is_object()) {
+      for (auto it = reasons.begin(); it != reasons.end(); ++it) {
+        html << "<li>" << HtmlEscape(it.key()) << " not applicable: " << Cell(it.value()) << "</li>\n";
+      }
+    }
+    if (notes.is_array()) {
+      for (const nlohmann::json& note : notes) html << "<li>note: " << Cell(note) << "</li>\n";
+    }
+    html << "</ul>\n";
+  }
+  html << "<div class=\"figs\">\n";
   // The middle layer of the plan, the joint trajectories, the worst cell pose, the part's height and deviation.
   std::vector<std::pair<std::string, std::string>> pictures;  // path under the run's folder, caption
   const nlohmann::json layers = Metric(e, "plan", "layers");
@@ -309,6 +338,66 @@ std::string SweepTable(const nlohmann::json& sweep, const nlohmann::json& scenar
   return html.str();
 }
 
+// Wall time and peak memory of each scenario's `waam run`, one bar per scenario.
+std::string ScenarioPlots(const nlohmann::json& scenarios) {
+  std::vector<SvgBar> wall, memory;
+  for (const nlohmann::json& e : scenarios) {
+    const std::string id = e.value("id", "");
+    const nlohmann::json timing = e.value("timing", nlohmann::json::object());
+    const nlohmann::json w = timing.value("wall_s", nlohmann::json()), m = timing.value("peak_rss_mb", nlohmann::json());
+    const std::string colour = e.value("outcome", "fail") == "fail" ? "#d62728" : kColours[0];
+    wall.push_back({id, w.is_number() ? w.get<double>() : std::nan(""), colour});
+    memory.push_back({id, m.is_number() ? m.get<double>() : std::nan(""), kColours[2]});
+  }
+  if (wall.empty()) return "";
+  return SvgBarChart("Wall time per scenario (red: failed)", "wall time [s]", wall, std::nan("")) +
+         SvgBarChart("Peak memory per scenario", "peak resident memory [MiB]", memory, std::nan(""));
+}
+
+// The papers' figures against ours: ours / published per row with a numeric published value (1 = agreement).
+std::string ReferencePlot(const nlohmann::json& reference) {
+  std::vector<SvgBar> bars;
+  for (const nlohmann::json& r : reference) {
+    const nlohmann::json published = r.value("published_value", nlohmann::json());
+    const nlohmann::json ours = r.value("ours", nlohmann::json());
+    if (!published.is_number() || published.get<double>() == 0.0) continue;
+    const double ratio = ours.is_number() ? ours.get<double>() / published.get<double>() : std::nan("");
+    bars.push_back({r.value("source", "") + ": " + r.value("quantity", ""), ratio,
+                    std::isfinite(ratio) && std::abs(ratio - 1.0) > 0.25 ? kColours[4] : kColours[0]});
+  }
+  if (bars.empty()) return "";
+  return SvgBarChart("Ours / published (dashed: agreement; orange: more than 25 % off)", "ours / published", bars,
+                     1.0, 760);
+}
+
+// One plot per sweep metric against each swept key with numeric values: the runs' metric over the key's values.
+std::string SweepPlots(const nlohmann::json& sweep, const nlohmann::json& scenarios) {
+  std::map<std::string, const nlohmann::json*> by_id;
+  for (const nlohmann::json& e : scenarios) by_id[e.value("id", "")] = &e;
+  std::ostringstream html;
+  for (const nlohmann::json& metric : sweep.value("metrics", nlohmann::json::array())) {
+    const std::string name = metric;
+    const std::size_t dot = name.find('.');
+    if (dot == std::string::npos) continue;
+    for (const nlohmann::json& key_json : sweep.value("keys", nlohmann::json::array())) {
+      const std::string key = key_json;
+      SvgSeries points{name, {}, {}, kColours[0], false};
+      for (const nlohmann::json& run : sweep.value("runs", nlohmann::json::array())) {
+        const nlohmann::json x = run.value("values", nlohmann::json::object()).value(key, nlohmann::json());
+        const auto found = by_id.find(run.value("id", ""));
+        if (!x.is_number() || found == by_id.end()) continue;
+        const nlohmann::json y = Metric(*found->second, name.substr(0, dot), name.substr(dot + 1));
+        if (!y.is_number()) continue;
+        points.x.push_back(x.get<double>());
+        points.y.push_back(y.get<double>());
+      }
+      if (points.x.empty()) continue;
+      html << SvgPlot(name + " against " + key, key, name, {points}, 420, 300);
+    }
+  }
+  return html.str();
+}
+
 // A section whose data could not be read says why instead of failing the whole report.
 template <typename F>
 std::string Guarded(F&& make) {
@@ -339,9 +428,14 @@ void WriteBenchReport(const nlohmann::json& bench, const fs::path& out_dir) {
        << Cell(timing["total_s"]) << " s on " << Cell(timing["hardware_threads"])
        << " hardware threads. Each scenario ran as <code>waam run</code> in its own process; peak memory is that "
           "process's maximum resident set.</p>\n";
-  if (bench.contains("sweep")) html << "<h2>Sweep</h2>\n" << SweepTable(bench["sweep"], scenarios);
-  html << "<h2>Scenarios</h2>\n" << OverviewTable(scenarios);
-  html << "<h2>Published figures and ours</h2>\n" << ReferenceTable(bench["reference"]);
+  if (bench.contains("sweep")) {
+    html << "<h2>Sweep</h2>\n" << SweepTable(bench["sweep"], scenarios) << "<div class=\"plots\">"
+         << SweepPlots(bench["sweep"], scenarios) << "</div>\n";
+  }
+  html << "<h2>Scenarios</h2>\n" << OverviewTable(scenarios) << "<div class=\"plots\">" << ScenarioPlots(scenarios)
+       << "</div>\n";
+  html << "<h2>Published figures and ours</h2>\n" << ReferenceTable(bench["reference"]) << "<div class=\"plots\">"
+       << ReferencePlot(bench["reference"]) << "</div>\n";
   html << "<h2>Bead models fitted to the papers' data</h2>\n" << Guarded([] { return ModelPlots(); });
   html << "<h2>Junction voids</h2>\n" << Guarded([] { return VoidPlot(); });
   html << "<h2>Inner-loop performance (Google Benchmark)</h2>\n" << PerfTable(timing.value("perf", nlohmann::json()));

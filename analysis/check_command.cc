@@ -7,6 +7,7 @@
 #include "analysis/viewer.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -124,7 +125,7 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
 
 twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& plan,
                                  const CheckOptions& options) {
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   const twin::CellModel cell = twin::LoadCell(scenario.cell);
   RunOutputs outputs(options.out_dir / "check.json");
   twin::CheckReport report;

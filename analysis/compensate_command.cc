@@ -7,6 +7,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
 #include "planner/planar_planner.h"
@@ -70,7 +71,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
     planned = planner::PlanScenario(scenario, &progress);
   }
   WAAM_THROW_UNLESS(!planned.mesh.facets.empty(), options.scenario.string() << ": compensate needs a target part mesh");
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   Progress progress("compensate", static_cast<std::size_t>(options.max_iterations) + 1, "builds", options.quiet);
   const twin::CompensationResult result =
       twin::Compensate(planned.plan, planned.mesh, scenario.simulation, loop,

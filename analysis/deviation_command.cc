@@ -11,6 +11,7 @@
 #include "analysis/distortion_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "planner/mesh/stl_io.h"
 #include "twin/scanner/point_cloud_io.h"
 
@@ -102,7 +103,7 @@ nlohmann::json RunDeviation(const DeviationOptions& options) {
   planner::MeshReport report;
   const planner::TriangleMesh target = planner::ReadStl(options.target, 0.0, &report);
   const std::vector<Eigen::Vector3d> points = twin::ReadPointCloud(options.scan, 0.5);
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   const twin::MeshDistance distance(target);
   const twin::ScanDeviation scan = twin::MeasureScanDeviation(points, distance);
   const twin::AxisComparison axis = twin::CompareAxis(twin::SampleSurface(target, 0.5 * options.axis_step_mm),

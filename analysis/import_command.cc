@@ -9,6 +9,7 @@
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -163,7 +164,7 @@ nlohmann::json RunImport(const ImportOptions& options) {
   ImportReport report;
   const planner::PlanResult result = PlanFromProgram(scenario, program, &report);
 
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   RunOutputs outputs(options.out_dir / "plan.json");
   WritePlanFiles(result.plan, options.out_dir, options.layer_images, options.quiet, &outputs);
   CheckInterrupt();

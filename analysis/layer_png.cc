@@ -2,6 +2,8 @@
 // starts and stops.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -9,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "analysis/png_file.h"
+#include "analysis/picture_frame.h"
 #include "analysis/plan_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -58,7 +61,7 @@ void DashedLine(cv::Mat& image, cv::Point a, cv::Point b, const cv::Scalar& colo
 
 }  // namespace
 
-void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path& path) {
+void WriteLayerPng(const planner::LayerPath& layer, const std::string& part, const std::filesystem::path& path) {
   // Draw in the slice plane, seen along the build direction, so the slice and the path overlay; a cone or cylinder
   // layer (slice in the development plane) shows its path seen from +z and no slice.
   const std::vector<planner::PolygonWithHoles> no_slice;
@@ -136,9 +139,6 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
   }
 
   char caption[128];
-  std::snprintf(caption, sizeof(caption), "layer %d  z = %.2f mm  beads at planned width; green: arc start, red: arc stop",
-                layer.index, layer.z_mm);
-  cv::putText(image, caption, cv::Point(10, 24), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   const Eigen::Vector3d& dir = layer.build_dir_P;
   if (!layer.slice_in_plane) {
     std::snprintf(caption, sizeof(caption), "curved layer seen from +z; its slice (development plane) not drawn");
@@ -149,11 +149,20 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path&
     caption[0] = '\0';
   }
   if (caption[0] != '\0') {
-    cv::putText(image, caption, cv::Point(10, 44), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    cv::putText(image, caption, cv::Point(10, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
 
-  std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 3};
-  internal::WritePngAtomic(image, path, params);
+  // The picture spans its margins too: x_mm = lo.x + (px - kMargin) / scale, rows with y up.
+  const double x0 = lo.x() - kMargin / view.scale, y0 = lo.y() - kMargin / view.scale;
+  const ColourScale sequence = ColourMapScale(cv::COLORMAP_JET, 0.0, total, "weld path [mm]");
+  const bool xy = layer.slice_in_plane ? layer.slice_axes_P.isApprox(Eigen::Matrix<double, 3, 2>::Identity(), 1e-9)
+                                       : true;
+  std::snprintf(caption, sizeof(caption), "%s: layer %d, z = %.2f mm: weld path by sequence; green start, red stop",
+                part.c_str(), layer.index, layer.z_mm);
+  const FramedPicture framed = FramePicture(image, x0, x0 + image.cols / view.scale, y0, y0 + image.rows / view.scale,
+                                            caption, xy ? "x [mm]" : "slice u [mm]", xy ? "y [mm]" : "slice v [mm]",
+                                            &sequence);
+  internal::WritePngAtomic(framed.image, path);
 }
 
 }  // namespace waam::analysis

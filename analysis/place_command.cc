@@ -14,6 +14,7 @@
 #include "analysis/import_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -157,7 +158,7 @@ void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path);  // p
 
 PlaceResult RunPlace(const PlaceOptions& options) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);

@@ -14,6 +14,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -31,7 +32,7 @@ void WritePlanFiles(const planner::Plan& plan, const fs::path& out_dir, bool lay
   for (std::size_t i = 0; i < plan.layers.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof(name), "layer_%04zu.png", i);
-    WriteLayerPng(plan.layers[i], outputs->Add(out_dir / "layers" / name));
+    WriteLayerPng(plan.layers[i], plan.name, outputs->Add(out_dir / "layers" / name));
     progress.Update(i + 1);
   }
   progress.Finish();
@@ -167,7 +168,7 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
 
 planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_out) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
 
   planner::PlanResult result;
   ImportReport import;  // a scenario with a program: section

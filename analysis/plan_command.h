@@ -40,7 +40,8 @@ void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path);
 void WritePlanFiles(const planner::Plan& plan, const std::filesystem::path& out_dir, bool layer_images, bool quiet,
                     RunOutputs* outputs);
 
-// Draws one layer: the slice, the weld path in sequence colours, travel moves dashed, starts and stops marked.
-void WriteLayerPng(const planner::LayerPath& layer, const std::filesystem::path& path);
+// Draws one layer of the part named `part`: the slice, the weld path in sequence colours, travel moves dashed, starts
+// and stops marked, with axes in mm, a colour bar of the path length and a title (analysis/picture_frame.h).
+void WriteLayerPng(const planner::LayerPath& layer, const std::string& part, const std::filesystem::path& path);
 
 }  // namespace waam::analysis

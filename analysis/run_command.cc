@@ -12,6 +12,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "planner/scenario/scenario.h"
 
 namespace waam::analysis {
@@ -83,7 +84,7 @@ RunSummary RunScenario(const RunOptions& options) {
   const Clock::time_point start = Clock::now();
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   const std::vector<const internal::RunStep*> steps = ResolveSteps(scenario, options);
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   // A summary.json from an earlier run must not describe this one while it is being replaced.
   std::error_code ec;
   fs::remove(options.out_dir / "summary.json", ec);

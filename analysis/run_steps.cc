@@ -88,14 +88,14 @@ StepOutcome RunSimulateStep(RunContext& context, const fs::path& step_dir) {
   if (context.results.contains("check") && fs::is_regular_file(viewer)) {
     AddDepositToViewer(viewer, result.depositor, &result.deviation);
   }
-  nlohmann::json document = SimulationToJson(context.scenario, result);
+  nlohmann::json document = SimulationToJson(context.scenario, *context.planned, result);
   document.erase("performance");  // timings and memory: summary.json keeps them under `timing`
   StepOutcome outcome;
   outcome.metrics = PickMetrics(
       document, {"/voxels", "/deposited_volume_mm3", "/expected_volume_mm3", "/volume_error_pct",
                  "/deviation/min_mm", "/deviation/max_mm", "/deviation/rms_mm", "/voids/count",
                  "/voids/volume_mm3", "/valleys/count", "/ra_mm", "/waviness_mm", "/boundary_lag_mm",
-                 "/build_time_s"});
+                 "/build_time_s", "/not_applicable", "/notes"});
   context.results["simulate"] = std::move(document);
   return outcome;
 }

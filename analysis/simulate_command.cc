@@ -7,24 +7,75 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
+#include "planner/geometry/polygon.h"
 #include "twin/scanner/surface_mesh.h"
+#include "twin/scanner/voxel_surface.h"
 
 namespace waam::analysis {
 
-nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult& result) {
+std::vector<std::string> SimulationNotes(const Scenario& scenario, const planner::PlanResult& planned) {
+  std::vector<std::string> notes;
+  char text[512];
+  // A layer of beads grows its bead area over the bead spacing (layer_growth_mm, 003 eq. 3.3-3.4); when the slicer
+  // steps by a different height, every layer adds the difference and the part outgrows (or falls short of) its target.
+  const double layer = planned.layer_height_mm;
+  const double grows = planned.layer_growth_mm > 0.0 ? planned.layer_growth_mm : planned.bead_height_mm;
+  const std::size_t layers = planned.plan.layers.size();
+  if (layer > 0.0 && grows > 0.0 && std::abs(grows - layer) > 0.1 * layer) {
+    std::snprintf(text, sizeof(text),
+                  "layer height: the layers are planned %.3g mm apart (slicing.layer_height_mm) but a layer of the "
+                  "beads laid grows %.3g mm (bead area / bead spacing): over %zu layers the part grows up to %.3g mm "
+                  "%s than its target, which the deviation measures include",
+                  layer, grows, layers, std::abs(grows - layer) * static_cast<double>(layers),
+                  grows > layer ? "taller" : "shorter");
+    notes.emplace_back(text);
+  }
+  // The narrowest sliced wall: 2 x area / perimeter of a region is its thickness for a thin wall (a strip or a ring).
+  double wall = std::numeric_limits<double>::infinity();
+  for (const planner::LayerPath& l : planned.plan.layers) {
+    for (const planner::PolygonWithHoles& region : l.slice) {
+      double perimeter = planner::Perimeter(region.outer);
+      for (const planner::Ring& hole : region.holes) perimeter += planner::Perimeter(hole);
+      if (perimeter > 0.0) wall = std::min(wall, 2.0 * planner::Area(region) / perimeter);
+    }
+  }
+  const double width = planned.bead_width_mm;
+  if (std::isfinite(wall) && width > 0.0 && wall < 0.9 * width) {
+    std::snprintf(text, sizeof(text),
+                  "bead width: the narrowest wall is about %.3g mm thick but the bead is %.3g mm wide "
+                  "(path.bead_width_mm): the bead stands up to %.3g mm proud of each side of such a wall",
+                  wall, width, 0.5 * (width - wall));
+    notes.emplace_back(text);
+  }
+  return notes;
+}
+
+nlohmann::json SimulationToJson(const Scenario& scenario, const planner::PlanResult& planned,
+                                const twin::TwinResult& result) {
   const twin::TwinMeasures& m = result.measures;
   const twin::VoidReport& voids = result.voids;
   const twin::SimulationSettings& s = scenario.simulation;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double seconds = std::max(m.deposition_s, 1e-9);
+  // Each top-surface measure that does not apply is null, and not_applicable names it with the reason.
+  nlohmann::json not_applicable = nlohmann::json::object();
+  if (!m.top_surface_not_applicable.empty()) {
+    for (const char* key : {"waviness_mm", "ra_mm", "top_height", "boundary_lag_mm"}) {
+      not_applicable[key] = m.top_surface_not_applicable;
+    }
+  }
   return {
       {"scenario", scenario.name},
       {"voxel_mm", m.voxel_mm},
@@ -63,6 +114,8 @@ nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult
         {"boundary_mean_mm", m.boundary_lag.boundary_mean_mm},
         {"interior_columns", m.boundary_lag.interior_columns},
         {"boundary_columns", m.boundary_lag.boundary_columns}}},
+      {"not_applicable", not_applicable},
+      {"notes", SimulationNotes(scenario, planned)},
       {"performance",
        {{"deposition_s", m.deposition_s},
         {"bead_mm_per_s", m.weld_length_mm / seconds},
@@ -87,7 +140,7 @@ nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult
 
 twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanResult& planned,
                                  const SimulateOptions& options) {
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
   RunOutputs outputs(options.out_dir / "simulate.json");
   const twin::SimulationSettings& settings = scenario.simulation;
   // Refuse up front what cannot fit: the expected bead volume in voxels against the limit.
@@ -117,27 +170,31 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
     return r;
   }();
 
-  // The surface mesh has about ten facets per exposed voxel face; past kMaxStlFacets the part is exported from a
-  // coarser copy of the grid (majority of the fine voxels), reported as stl_voxel_mm.
-  constexpr double kMaxStlFacets = 5.0e6;
-  const double faces = static_cast<double>(twin::ExposedFaces(result.depositor.grid()));
+  // The part's surface: coplanar voxel faces merged (twin::ExtractVoxelSurface). Past kMaxStlFacets exposed voxel
+  // faces or facets it is exported from a coarser copy of the grid (majority of the fine voxels), reported as
+  // stl_voxel_mm.
+  constexpr std::size_t kMaxStlFacets = 5000000;
+  const auto surface_start = std::chrono::steady_clock::now();
   int factor = 1;
-  while (10.0 * faces / (factor * factor) > kMaxStlFacets && factor < 8) ++factor;
-  const planner::TriangleMesh surface =
-      factor == 1 ? twin::ExtractSurface(result.depositor.grid())
-                  : twin::ExtractSurface(twin::Coarsen(result.depositor.grid(), factor));
+  planner::TriangleMesh surface = twin::ExtractVoxelSurface(result.depositor.grid(), kMaxStlFacets);
+  while ((surface.facets.empty() || surface.facets.size() > kMaxStlFacets) && factor < 8 &&
+         result.depositor.grid().occupied() > 0) {
+    surface = twin::ExtractVoxelSurface(twin::Coarsen(result.depositor.grid(), ++factor), kMaxStlFacets);
+  }
   planner::WriteStlBinary(surface, outputs.Add(options.out_dir / "part.stl"), "waam simulate: " + scenario.name);
+  const double surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surface_start).count();
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
   WriteSimulationH5(result, outputs.Add(options.out_dir / "part.h5"));
   if (options.images) {
-    WriteHeightMapPng(result.top, outputs.Add(options.out_dir / "top_height.png"));
-    WriteSectionPng(result, 0, outputs.Add(options.out_dir / "section_xz.png"));
-    WriteSectionPng(result, 1, outputs.Add(options.out_dir / "section_yz.png"));
-    WriteDeviationPng(result, outputs.Add(options.out_dir / "deviation_map.png"));
+    WriteHeightMapPng(result.top, scenario.name, outputs.Add(options.out_dir / "top_height.png"));
+    WriteSectionPng(result, 0, scenario.name, outputs.Add(options.out_dir / "section_xz.png"));
+    WriteSectionPng(result, 1, scenario.name, outputs.Add(options.out_dir / "section_yz.png"));
+    WriteDeviationPng(result, scenario.name, outputs.Add(options.out_dir / "deviation_map.png"));
   }
-  nlohmann::json json = SimulationToJson(scenario, result);
+  nlohmann::json json = SimulationToJson(scenario, planned, result);
   json["stl_voxel_mm"] = stl_voxel_mm;
   json["stl_facets"] = surface.facets.size();
+  json["performance"]["surface_s"] = surface_s;
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   WriteFileAtomic(options.out_dir / "simulate.json", json.dump(2) + "\n");
   outputs.Complete();

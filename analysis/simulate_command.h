@@ -35,7 +35,13 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
                                  const SimulateOptions& options);
 
 // The simulate.json document (the public contract; fields documented in `waam simulate --help`).
-nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult& result);
+nlohmann::json SimulationToJson(const Scenario& scenario, const planner::PlanResult& planned,
+                                const twin::TwinResult& result);
+
+// The notes simulate.json and the bench report give where the scenario's own settings explain a large deviation:
+// layers planned thinner or thicker than a layer of beads grows (slicing.layer_height_mm against the bead laid),
+// and walls thinner than the bead (path.bead_width_mm against the narrowest sliced wall). Empty when neither holds.
+std::vector<std::string> SimulationNotes(const Scenario& scenario, const planner::PlanResult& planned);
 
 // Writes the voxel grid and the top height map to HDF5: /voxels/{ijk (N x 3 int32), bead (N uint32),
 // layer (N int32), time_s (N float32)}, /top_height_mm (ny x nx float32, NaN where empty), /beads table,
@@ -43,9 +49,12 @@ nlohmann::json SimulationToJson(const Scenario& scenario, const twin::TwinResult
 void WriteSimulationH5(const twin::TwinResult& result, const std::filesystem::path& path);
 
 // Pictures: top height map (colour by height), vertical sections through the part's middle along x and y
-// (colour by layer), and the top view of the signed deviation (blue below, red above the target).
-void WriteHeightMapPng(const twin::HeightMap& map, const std::filesystem::path& path);
-void WriteSectionPng(const twin::TwinResult& result, int axis, const std::filesystem::path& path);
-void WriteDeviationPng(const twin::TwinResult& result, const std::filesystem::path& path);
+// (colour by layer), and the top view of the signed deviation (blue below, red above the target). Each has a title
+// naming `part` and the quantity, axes in mm and a colour bar with its unit (analysis/picture_frame.h).
+void WriteHeightMapPng(const twin::HeightMap& map, const std::string& part, const std::filesystem::path& path);
+void WriteSectionPng(const twin::TwinResult& result, int axis, const std::string& part,
+                     const std::filesystem::path& path);
+void WriteDeviationPng(const twin::TwinResult& result, const std::string& part,
+                       const std::filesystem::path& path);
 
 }  // namespace waam::analysis

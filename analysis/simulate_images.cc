@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "analysis/png_file.h"
+#include "analysis/picture_frame.h"
 #include "analysis/simulate_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -17,20 +18,17 @@
 namespace waam::analysis {
 namespace {
 
-// Scales a picture (nearest, so voxels stay crisp) so that its longer side is about 800 px, flips it so +y (or +z)
-// points up, adds a caption line as wide as it needs, and writes it atomically as PNG.
-void Save(const cv::Mat& raw, const std::string& caption, const std::filesystem::path& path) {
+// Flips `raw` (row 0 = lowest y or z) so +y (or +z) points up, scales it (nearest, so voxels stay crisp) so that its
+// longer side is about 800 px, frames it (title, axes in mm, colour bar) and writes it atomically as PNG.
+void Save(const cv::Mat& raw, double x_lo, double x_hi, double y_lo, double y_hi, const std::string& title,
+          const std::string& x_label, const std::string& y_label, const ColourScale& scale,
+          const std::filesystem::path& path) {
   cv::Mat image;
   cv::flip(raw, image, 0);
   const int longer = std::max(image.cols, image.rows);
-  const double scale = std::clamp(800.0 / std::max(1, longer), 1.0, 16.0);
-  if (scale > 1.0) cv::resize(image, image, cv::Size(), scale, scale, cv::INTER_NEAREST);
-  int baseline = 0;
-  const cv::Size text = cv::getTextSize(caption, cv::FONT_HERSHEY_SIMPLEX, 0.5, 1, &baseline);
-  cv::Mat framed(image.rows + 30, std::max(image.cols, text.width + 10), CV_8UC3, cv::Scalar(255, 255, 255));
-  image.copyTo(framed(cv::Rect(0, 30, image.cols, image.rows)));
-  cv::putText(framed, caption, cv::Point(5, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  internal::WritePngAtomic(framed, path);
+  const double zoom = std::clamp(800.0 / std::max(1, longer), 1.0, 16.0);
+  if (zoom > 1.0) cv::resize(image, image, cv::Size(), zoom, zoom, cv::INTER_NEAREST);
+  internal::WritePngAtomic(FramePicture(image, x_lo, x_hi, y_lo, y_hi, title, x_label, y_label, &scale).image, path);
 }
 
 std::string Format(const char* format, double a, double b) {
@@ -41,7 +39,7 @@ std::string Format(const char* format, double a, double b) {
 
 }  // namespace
 
-void WriteHeightMapPng(const twin::HeightMap& map, const std::filesystem::path& path) {
+void WriteHeightMapPng(const twin::HeightMap& map, const std::string& part, const std::filesystem::path& path) {
   const int nx = std::max(1, map.nx), ny = std::max(1, map.ny);
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (float z : map.top_mm) {
@@ -63,10 +61,13 @@ void WriteHeightMapPng(const twin::HeightMap& map, const std::filesystem::path& 
   cv::Mat colour;
   cv::applyColorMap(gray, colour, cv::COLORMAP_VIRIDIS);
   colour.setTo(cv::Scalar(255, 255, 255), empty);
-  Save(colour, Format("top height, view from +z: %.2f mm (purple) .. %.2f mm (yellow)", lo, hi), path);
+  const double v = map.voxel_mm;
+  Save(colour, map.i0 * v, (map.i0 + nx) * v, map.j0 * v, (map.j0 + ny) * v, part + ": top height, seen from +z",
+       "x [mm]", "y [mm]", ColourMapScale(cv::COLORMAP_VIRIDIS, lo, hi, "top height z [mm]"), path);
 }
 
-void WriteSectionPng(const twin::TwinResult& result, int axis, const std::filesystem::path& path) {
+void WriteSectionPng(const twin::TwinResult& result, int axis, const std::string& part,
+                     const std::filesystem::path& path) {
   WAAM_THROW_UNLESS(axis == 0 || axis == 1, "section picture: axis " << axis << " must be 0 (x) or 1 (y)");
   const twin::VoxelGrid& grid = result.depositor.grid();
   twin::VoxelIndex lo, hi;
@@ -90,20 +91,25 @@ void WriteSectionPng(const twin::TwinResult& result, int axis, const std::filesy
       const twin::VoxelData* data = grid.Get(v);
       if (data == nullptr) continue;
       const int layer = result.depositor.LayerOf(*data);
-      gray.at<unsigned char>(k - lo.z(), a - lo[axis]) = static_cast<unsigned char>(255.0 * (layer % layers) / layers);
+      gray.at<unsigned char>(k - lo.z(), a - lo[axis]) =
+          static_cast<unsigned char>(layers > 1 ? 255.0 * (layer % layers) / (layers - 1) : 0.0);
       empty.at<unsigned char>(k - lo.z(), a - lo[axis]) = 0;
     }
   }
   cv::Mat colour;
   cv::applyColorMap(gray, colour, cv::COLORMAP_TURBO);
   colour.setTo(cv::Scalar(255, 255, 255), empty);
-  Save(colour,
-       std::string(axis == 0 ? "section x-z at y = " : "section y-z at x = ") +
-           Format("%.1f mm, colour = layer (1..%.0f)", (middle + 0.5) * grid.voxel_mm(), layers),
-       path);
+  const double v = grid.voxel_mm();
+  const char* name = axis == 0 ? "x" : "y";
+  Save(colour, lo[axis] * v, (hi[axis] + 1) * v, lo.z() * v, (hi.z() + 1) * v,
+       part + ": layers in the section " + name + "-z at " + (axis == 0 ? "y" : "x") +
+           Format(" = %.1f mm", (middle + 0.5) * v, 0.0),
+       std::string(name) + " [mm]", "z [mm]",
+       ColourMapScale(cv::COLORMAP_TURBO, 1.0, std::max(2, layers), "layer (1 = first)"), path);
 }
 
-void WriteDeviationPng(const twin::TwinResult& result, const std::filesystem::path& path) {
+void WriteDeviationPng(const twin::TwinResult& result, const std::string& part,
+                       const std::filesystem::path& path) {
   const twin::HeightMap& map = result.top;
   const int nx = std::max(1, map.nx), ny = std::max(1, map.ny);
   // The deviation of the highest upward face of every column: the top surface seen by a scanner from above.
@@ -123,18 +129,28 @@ void WriteDeviationPng(const twin::TwinResult& result, const std::filesystem::pa
     }
     extent = std::max(extent, std::abs(s.deviation_mm));
   }
+  // Diverging scale: blue (below the target) - white - red (above), BGR; entry 0 is -extent, 255 is +extent.
+  ColourScale scale;
+  scale.lut = cv::Mat(1, 256, CV_8UC3);
+  for (int e = 0; e < 256; ++e) {
+    const double t = e / 127.5 - 1.0;
+    const auto fade = static_cast<unsigned char>(std::lround(255.0 * (1.0 - std::abs(t))));
+    scale.lut.at<cv::Vec3b>(0, e) = t < 0 ? cv::Vec3b(255, fade, fade) : cv::Vec3b(fade, fade, 255);
+  }
+  scale.lo = -extent;
+  scale.hi = extent;
+  scale.label = "deviation [mm], + above target";
   cv::Mat colour(ny, nx, CV_8UC3, cv::Scalar(255, 255, 255));
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const double d = dev[static_cast<std::size_t>(j) * nx + i];
       if (std::isnan(d)) continue;
-      // Diverging scale: blue (below the target) - white - red (above), BGR.
       const double t = std::clamp(d / extent, -1.0, 1.0);
-      const auto fade = static_cast<unsigned char>(255.0 * (1.0 - std::abs(t)));
-      colour.at<cv::Vec3b>(j, i) = t < 0 ? cv::Vec3b(255, fade, fade) : cv::Vec3b(fade, fade, 255);
+      colour.at<cv::Vec3b>(j, i) = scale.lut.at<cv::Vec3b>(0, static_cast<int>(std::lround(127.5 * (t + 1.0))));
     }
   }
-  Save(colour, Format("top-surface deviation from the target: blue -%.2f .. red +%.2f mm", extent, extent), path);
+  Save(colour, map.i0 * v, (map.i0 + nx) * v, map.j0 * v, (map.j0 + ny) * v,
+       part + ": top-surface deviation from the target, seen from +z", "x [mm]", "y [mm]", scale, path);
 }
 
 }  // namespace waam::analysis

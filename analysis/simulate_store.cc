@@ -1,6 +1,7 @@
 // Exports of the simulated part: binary STL of its surface and the voxel grid in HDF5.
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -26,7 +27,21 @@ void WriteDataset(hid_t parent, const char* name, hid_t file_type, hid_t memory_
                   int rank, const hsize_t* dims, const std::filesystem::path& path) {
   H5Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
   internal::CheckH5Output(space.get() >= 0, path, "dataspace");
-  H5Handle dataset(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  // Compressed (shuffle + deflate 4) in chunks of whole rows, about 256 KiB each: the readers take row ranges (the
+  // voxels in deposition order, the height map's rows), so a chunk is never read for a few of its columns.
+  H5Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  internal::CheckH5Output(create.get() >= 0, path, "dataset properties");
+  hsize_t row_values = 1;
+  for (int r = 1; r < rank; ++r) row_values *= dims[r];
+  if (dims[0] > 0 && row_values > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    std::vector<hsize_t> chunk(dims, dims + rank);
+    const hsize_t kChunkBytes = 256 * 1024;
+    chunk[0] = std::clamp<hsize_t>(kChunkBytes / (row_values * sizeof(T)), 1, dims[0]);
+    internal::CheckH5Output(H5Pset_chunk(create.get(), rank, chunk.data()) >= 0 && H5Pset_shuffle(create.get()) >= 0 &&
+                     H5Pset_deflate(create.get(), 4) >= 0,
+                 path, "chunked, compressed layout");
+  }
+  H5Handle dataset(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, create.get(), H5P_DEFAULT), H5Dclose);
   internal::CheckH5Output(dataset.get() >= 0, path, name);
   if (!data.empty()) {
     internal::CheckH5Output(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0, path, name);

@@ -107,4 +107,59 @@ std::string SvgPlot(const std::string& title, const std::string& x_label, const 
   return svg.str();
 }
 
+std::string SvgBarChart(const std::string& title, const std::string& x_label, const std::vector<SvgBar>& bars,
+                        double reference, int width) {
+  double x0 = 0.0, x1 = std::isfinite(reference) ? reference : 0.0;
+  std::size_t longest = 1;
+  for (const SvgBar& b : bars) {
+    if (std::isfinite(b.value)) {
+      x0 = std::min(x0, b.value);
+      x1 = std::max(x1, b.value);
+    }
+    longest = std::max(longest, b.label.size());
+  }
+  if (x1 - x0 < 1e-12) x1 = x0 + 1.0;
+  const double xs = NiceStep(x1 - x0, 6);
+  x0 = std::floor(x0 / xs) * xs;
+  x1 = std::ceil(x1 / xs) * xs;
+  const double row = 16, top = 28;
+  const double left = std::min(6.2 * static_cast<double>(longest) + 12.0, 0.45 * width), right = width - 50.0;
+  const double bottom = top + row * static_cast<double>(bars.size()) + 4;
+  const int height = static_cast<int>(bottom) + 40;
+  auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * (right - left); };
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+  svg << "<text x=\"" << width / 2 << "\" y=\"16\" text-anchor=\"middle\" font-size=\"13\">" << HtmlEscape(title)
+      << "</text>\n";
+  for (double x = x0; x <= x1 + xs * 1e-6; x += xs) {
+    svg << "<line x1=\"" << px(x) << "\" y1=\"" << top << "\" x2=\"" << px(x) << "\" y2=\"" << bottom
+        << "\" stroke=\"#ddd\"/><text x=\"" << px(x) << "\" y=\"" << bottom + 14 << "\" text-anchor=\"middle\">"
+        << Num(x) << "</text>\n";
+  }
+  svg << "<text x=\"" << (left + right) / 2 << "\" y=\"" << height - 8 << "\" text-anchor=\"middle\">"
+      << HtmlEscape(x_label) << "</text>\n";
+  for (std::size_t i = 0; i < bars.size(); ++i) {
+    const SvgBar& b = bars[i];
+    const double y = top + row * static_cast<double>(i);
+    svg << "<text x=\"" << left - 5 << "\" y=\"" << y + 11 << "\" text-anchor=\"end\">" << HtmlEscape(b.label)
+        << "</text>";
+    if (std::isfinite(b.value)) {
+      const double a = px(std::min(0.0, b.value)), e = px(std::max(0.0, b.value));
+      svg << "<rect x=\"" << a << "\" y=\"" << y + 2 << "\" width=\"" << std::max(e - a, 0.5) << "\" height=\""
+          << row - 4 << "\" fill=\"" << b.colour << "\"/><text x=\"" << e + 4 << "\" y=\"" << y + 11 << "\">"
+          << Num(b.value) << "</text>\n";
+    } else {
+      svg << "<text x=\"" << px(0.0) + 4 << "\" y=\"" << y + 11 << "\" fill=\"#888\">n/a</text>\n";
+    }
+  }
+  if (std::isfinite(reference)) {
+    svg << "<line x1=\"" << px(reference) << "\" y1=\"" << top << "\" x2=\"" << px(reference) << "\" y2=\"" << bottom
+        << "\" stroke=\"#444\" stroke-dasharray=\"4,3\"/>\n";
+  }
+  svg << "<line x1=\"" << left << "\" y1=\"" << top << "\" x2=\"" << left << "\" y2=\"" << bottom
+      << "\" stroke=\"#444\"/>\n</svg>\n";
+  return svg.str();
+}
+
 }  // namespace waam::analysis

@@ -18,6 +18,19 @@ struct SvgSeries {
 std::string SvgPlot(const std::string& title, const std::string& x_label, const std::string& y_label,
                     const std::vector<SvgSeries>& series, int width = 520, int height = 340);
 
+// One bar of an SvgBarChart: its label and value; a non-finite value draws no bar and writes "n/a".
+struct SvgBar {
+  std::string label;
+  double value = 0.0;
+  std::string colour = "#1f77b4";
+};
+
+// A horizontal bar chart (one row per bar, label left, value at the bar's end) `width` px wide, with an x axis of
+// `x_label` from min(0, values) to the largest value; `reference` (if finite) draws a dashed line at that value
+// (e.g. 1 for ratios).
+std::string SvgBarChart(const std::string& title, const std::string& x_label, const std::vector<SvgBar>& bars,
+                        double reference, int width = 640);
+
 // Escapes &, <, >, " for HTML text and attributes.
 std::string HtmlEscape(const std::string& text);
 

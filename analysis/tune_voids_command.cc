@@ -14,6 +14,7 @@
 #include "analysis/tune_voids_internal.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
@@ -79,7 +80,7 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
   WAAM_THROW_UNLESS(static_cast<int>(planned.plan.layers.size()) >= options.layers,
                     "tune-voids --layers = " << options.layers << ": the part has only " << planned.plan.layers.size()
                                              << " layers");
-  EnsureOutputDirectory(options.out_dir);
+  ClaimOutputDirectory(options.out_dir);
 
   TuneVoidsResult result;
   const double w = planned.bead_width_mm;

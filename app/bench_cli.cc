@@ -21,7 +21,8 @@ void AddBenchCommand(CLI::App& app, CommandRunner* runner) {
       "(each child gets --threads = threads / N, at least 1) while the sum of their expected peak memory (the\n"
       "previous result's in the output directory, else 1 GiB) stays within --mem-gb. --shard K/N runs every N-th\n"
       "scenario from the K-th (K = 0..N-1), for a cluster; --merge DIR... -o DIR puts the shards back together.\n"
-      "Arguments are scenario files or folders (every *.yaml under a folder); default: scenarios/. Scenarios with\n"
+      "Arguments are scenario files or folders (every *.yaml under a folder); default: ./scenarios, else the\n"
+      "installed example scenarios (<data>/scenarios, see waam --version). Scenarios with\n"
       "`run: {expected_exit_code: 3}` (the planted cell faults) count as expected_fail when check finds the fault.\n"
       "Writes to the output directory:\n"
       "  <id>/                 the scenario's `waam run` outputs (summary.json, plan/, check/, simulate/), run.log\n"
@@ -36,7 +37,7 @@ void AddBenchCommand(CLI::App& app, CommandRunner* runner) {
       "An interrupted bench resumes: scenarios whose bench_entry.json matches the scenario text are not rerun\n"
       "(--fresh reruns all). Inner-loop benchmarks: tools/perf_bench.sh <dir>/perf writes Google Benchmark JSON that\n"
       "the report includes. Exit code 3 when a scenario did not end with its expected exit code.");
-  command->add_option("scenarios", options->scenarios, "Scenario files or folders (default: scenarios)");
+  command->add_option("scenarios", options->scenarios, "Scenario files or folders (default: ./scenarios, else the installed examples)");
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
   command->add_option("--set", options->overrides,
                       "Override a setting in every scenario, key.path=value (repeatable), e.g. "

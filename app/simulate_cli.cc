@@ -26,10 +26,13 @@ void AddSimulateCommand(CLI::App& app, CommandRunner* runner) {
       "                     valleys {...} (enclosed in their horizontal cut but open to the top), waviness_mm (largest\n"
       "                     peak-to-valley along the x and y section lines of the top layer), ra_mm (Ding eq. 7),\n"
       "                     top_height {mean_mm, min_mm, max_mm} (Ding Fig. 13, the same columns as ra_mm),\n"
-      "                     boundary_lag_mm (interior minus outer-bead mean height), performance, settings\n"
-      "  part.stl           surface of the simulated part (binary STL, mm; from a coarser grid past 5 M facets,\n"
-      "                     see stl_voxel_mm)\n"
+      "                     boundary_lag_mm (interior minus outer-bead mean height); these four are null on\n"
+      "                     multi-directional or non-planar parts, not_applicable {measure: reason} says why;\n"
+      "                     notes [...] (settings that explain a large deviation), performance, settings\n"
+      "  part.stl           surface of the simulated part (binary STL, mm; coplanar voxel faces merged, closed\n"
+      "                     and manifold; from a coarser grid past 5 M faces, see stl_voxel_mm)\n"
       "  part.h5            /voxels/{ijk, bead, layer, time_s}, /top_height_mm, /beads; attribute voxel_mm\n"
+      "                     (deflate-compressed, chunks of whole rows)\n"
       "  top_height.png, section_xz.png, section_yz.png, deviation_map.png\n"
       "simulate.json is written last: its presence marks a complete run.");
   command->add_option("scenario", options->scenario, "Scenario YAML file")->required();
@@ -41,11 +44,15 @@ void AddSimulateCommand(CLI::App& app, CommandRunner* runner) {
   command->callback([options, runner] {
     *runner = [options] {
       const twin::TwinMeasures m = analysis::RunSimulate(*options);
+      char top[160] = "top-surface measures n/a (see not_applicable)";
+      if (m.top_surface_not_applicable.empty()) {
+        std::snprintf(top, sizeof(top), "Ra %.3f mm, waviness %.2f mm, boundary lag %.2f mm", m.ra_mm,
+                      m.waviness_mm, m.boundary_lag.lag_mm);
+      }
       std::printf("deposited %zu layers, %zu beads, %.2f m of bead into %zu voxels of %.2f mm: volume %.0f of %.0f "
-                  "mm^3 expected, Ra %.3f mm, waviness %.2f mm, boundary lag %.2f mm -> %s\n",
+                  "mm^3 expected, %s -> %s\n",
                   m.layers, m.beads, m.weld_length_mm / 1000.0, m.voxels, m.voxel_mm, m.deposited_volume_mm3,
-                  m.expected_volume_mm3, m.ra_mm, m.waviness_mm, m.boundary_lag.lag_mm,
-                  (options->out_dir / "simulate.json").string().c_str());
+                  m.expected_volume_mm3, top, (options->out_dir / "simulate.json").string().c_str());
       return kExitOk;
     };
   });

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <sstream>
 
 #include "models/core/error.h"
 #include "twin/scanner/target_volume.h"
@@ -44,6 +45,40 @@ double SectionWaviness(const HeightMap& map, const std::vector<planner::PolygonW
 
 }  // namespace
 
+std::string TopSurfaceNotApplicable(const planner::Plan& plan) {
+  if (plan.layers.empty() || plan.layers.back().slice.empty()) {
+    return "the top layer has no sliced region (an imported program): no top surface to measure";
+  }
+  const double kMaxTilt = std::cos(1.0 * M_PI / 180.0);
+  for (const planner::LayerPath& layer : plan.layers) {
+    std::ostringstream why;
+    if (layer.build_dir_P.normalized().z() < kMaxTilt) {
+      why << "multi-directional part: layer " << layer.index << " grows along (" << layer.build_dir_P.x() << ", "
+          << layer.build_dir_P.y() << ", " << layer.build_dir_P.z()
+          << "), not +z; top-surface measures of a planar build do not apply";
+      return why.str();
+    }
+    if (!layer.slice_in_plane || !layer.slice_axes_P.isApprox(Eigen::Matrix<double, 3, 2>::Identity(), 1e-6)) {
+      why << "non-planar part: layer " << layer.index
+          << " is not a horizontal plane; top-surface measures of a planar build do not apply";
+      return why.str();
+    }
+    double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo, bead_h = 0.0;
+    for (const planner::PathPoint& p : layer.points) {
+      if (!p.weld) continue;
+      z_lo = std::min(z_lo, p.p_P.z());
+      z_hi = std::max(z_hi, p.p_P.z());
+      bead_h = std::max(bead_h, p.bead_height_mm);
+    }
+    if (z_hi - z_lo > 1.5 * bead_h) {  // a spiral layer ramps by one layer height
+      why << "non-planar part: the weld points of layer " << layer.index << " span " << (z_hi - z_lo)
+          << " mm in z; top-surface measures of a planar build do not apply";
+      return why.str();
+    }
+  }
+  return "";
+}
+
 TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh* target,
                          const twin::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
                          const PassCallback& on_pass) {
@@ -76,7 +111,12 @@ TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh*
 
   // The virtual scanner.
   result.top = TopHeightMap(grid);
-  if (!plan.layers.empty()) {
+  m.top_surface_not_applicable = TopSurfaceNotApplicable(plan);
+  if (!m.top_surface_not_applicable.empty()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    m.waviness_mm = m.ra_mm = m.top_mean_mm = m.top_min_mm = m.top_max_mm = nan;
+    m.boundary_lag.lag_mm = m.boundary_lag.interior_mean_mm = m.boundary_lag.boundary_mean_mm = nan;
+  } else {
     const std::vector<planner::PolygonWithHoles>& top_region = plan.layers.back().slice;
     m.waviness_mm = SectionWaviness(result.top, top_region, 0.5 * bead_width_mm);
     const std::vector<double> heights = RegionHeights(result.top, top_region, 0.5 * bead_width_mm);

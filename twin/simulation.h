@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <string>
 
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
@@ -32,9 +33,19 @@ struct TwinMeasures {
   double top_min_mm = 0.0;
   double top_max_mm = 0.0;
   BoundaryLag boundary_lag;              // 003 Fig. 24 measure along the x and y section lines of the top layer
+  // Why the top-surface measures above (waviness, Ra, top height, boundary lag) do not apply to this part, e.g. a
+  // multi-directional or non-planar build; empty when they apply. When set, those measures are NaN.
+  std::string top_surface_not_applicable;
   std::size_t grid_memory_bytes = 0;
   double deposition_s = 0.0;             // wall-clock time of the deposition alone, s
 };
+
+// Why the top-surface measures of a planar build (Ra, waviness, top height, boundary lag: measured on the top
+// layer's region from above) do not apply to `plan`, or "" when they do. They do not apply when a layer grows along
+// a direction more than 1 deg from +z (multi-directional), when a layer is not a horizontal plane (a curved,
+// tilted or developed slice, or weld points of one layer spanning more than 1.5 bead heights in z), or when the top
+// layer has no sliced region (an imported program).
+std::string TopSurfaceNotApplicable(const planner::Plan& plan);
 
 // Everything the twin produces in memory.
 struct TwinResult {

@@ -19,6 +19,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "models/core/output_lock.h"
 #include "tests/analysis/cli_test_util.h"
 
 namespace waam::analysis {
@@ -378,6 +379,21 @@ TEST(BadInputCatalogue, UnreachablePathPointIsACheckViolationNamingThePoint) {
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_THAT(ss.str(), HasSubstr("\"unreachable\"")) << "check.json must list the unreachable points";
+}
+
+// An output folder another process holds: the command refuses in one line naming the folder and the holder's pid
+// (this test process holds it), exit 2, and writes nothing into it (docs/BAD_INPUTS.md, "Output folder in use").
+TEST(BadInputCatalogue, OutputFolderInUseIsRefusedNamingFolderAndPid) {
+  const fs::path dir = CaseDir("folder-in-use");
+  ClaimOutputDirectory(dir / "out");
+  const CliRun run = Waam("plan " + std::string(WAAM_SOURCE_DIR) + "/scenarios/box.yaml -q --no-images -o " +
+                              (dir / "out").string(),
+                          dir / "stderr.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "expected one line on stderr: " << run.err;
+  EXPECT_THAT(run.err, HasSubstr("output folder " + (dir / "out").string() + " is in use by pid " +
+                                 std::to_string(::getpid())));
+  EXPECT_FALSE(fs::exists(dir / "out" / "plan.json")) << "a refused command writes nothing";
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/picture_frame.h"
 #include "analysis/plan_command.h"
 #include "models/core/files.h"
 
@@ -48,14 +49,16 @@ TEST(LayerPng, SidewaysLayerIsDrawnInItsSlicePlane) {
   }
   const fs::path dir = fs::temp_directory_path() / ("waam_layer_png_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  WriteLayerPng(layer, dir / "sideways.png");
+  WriteLayerPng(layer, "square", dir / "sideways.png");
   const auto [w, h] = PngSize(dir / "sideways.png");
-  EXPECT_EQ(w, h) << "slice and path overlay in a square picture";
+  const cv::Size margins = FrameMargins(true);  // title, axes and colour bar around the plot
+  EXPECT_EQ(w - margins.width, h - margins.height) << "slice and path overlay in a square plot";
 
   layer.slice_in_plane = false;  // a cone layer: the path seen from +z (a line along y at x = 100), no slice
-  WriteLayerPng(layer, dir / "curved.png");
+  WriteLayerPng(layer, "square", dir / "curved.png");
   const auto [wc, hc] = PngSize(dir / "curved.png");
-  EXPECT_LT(wc, hc / 4) << "only the path, edge-on";
+  EXPECT_EQ(hc - margins.height, 800) << "only the path, edge-on: its length fills the plot's height";
+  EXPECT_LT(wc, 800) << "only the path, edge-on";
   fs::remove_all(dir);
 }
 

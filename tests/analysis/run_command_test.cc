@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/bench_command.h"
+#include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "tests/analysis/cli_test_util.h"
@@ -200,6 +201,29 @@ TEST(BenchCommand, RunsEachScenarioInAChildAndResumes) {
   EXPECT_EQ(fs::last_write_time(options.out_dir / "tiny" / "bench_entry.json"), stamp);
   nlohmann::json a = bench["scenarios"], b = again["scenarios"];
   EXPECT_EQ(a.dump(), b.dump());
+}
+
+// `waam bench` with no list outside the repository: the example scenarios of the data folder, or one line saying
+// what to give it when there are none.
+TEST(BenchCommand, NoListOutsideTheRepositoryRunsTheExamplesOrSaysWhatToGive) {
+  const fs::path here = fs::current_path();
+  const fs::path elsewhere = fs::temp_directory_path() / ("waam_bench_cwd_" + std::to_string(::getpid()));
+  fs::create_directories(elsewhere);
+  fs::current_path(elsewhere);
+  const auto examples = BenchScenarios({});
+  ::setenv("WAAM_DATA_DIR", elsewhere.c_str(), 1);
+  std::string message;
+  try {
+    BenchScenarios({});
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  ::unsetenv("WAAM_DATA_DIR");
+  fs::current_path(here);
+  ASSERT_FALSE(examples.empty());
+  EXPECT_EQ(examples.front().first.string().rfind((DataDir() / "scenarios").string(), 0), 0u)
+      << "the installed example scenarios: " << examples.front().first;
+  EXPECT_THAT(message, HasSubstr("give scenario files or folders"));
 }
 
 TEST(BenchCommand, MissingScenarioIsABadInputError) {

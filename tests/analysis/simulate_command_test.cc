@@ -78,6 +78,54 @@ TEST(SimulateCommand, WritesTheContract) {
   EXPECT_EQ(result.measures.voxels, result.depositor.grid().occupied());
 }
 
+// Top-surface measures only where they apply: the planar block keeps its numbers; the same block with its top layer
+// grown along +x (a multi-directional part) has them null, each with the reason in not_applicable.
+TEST(SimulateCommand, TopSurfaceMeasuresAreNullWithAReasonOnAMultiDirectionalPart) {
+  Fixture f = SmallBlock();
+  SimulateOptions options;
+  options.quiet = true;
+  options.images = false;
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_planar";
+  SimulatePlanned(f.scenario, f.planned, options);
+  const nlohmann::json planar = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+  EXPECT_TRUE(planar["ra_mm"].is_number()) << planar["ra_mm"];
+  EXPECT_TRUE(planar["waviness_mm"].is_number());
+  EXPECT_TRUE(planar["not_applicable"].is_object() && planar["not_applicable"].empty()) << planar["not_applicable"];
+
+  f.planned.plan.layers.back().build_dir_P = Eigen::Vector3d::UnitX();
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_multidir";
+  SimulatePlanned(f.scenario, f.planned, options);
+  const nlohmann::json multi = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+  for (const char* key : {"ra_mm", "waviness_mm", "boundary_lag_mm"}) {
+    EXPECT_TRUE(multi[key].is_null()) << key << " must be null on a multi-directional part: " << multi[key];
+    ASSERT_TRUE(multi["not_applicable"].contains(key)) << key;
+    EXPECT_THAT(multi["not_applicable"][key].get<std::string>(), HasSubstr("multi-directional"));
+  }
+  EXPECT_TRUE(multi["top_height"]["mean_mm"].is_null());
+  EXPECT_EQ(multi["deviation"]["rms_mm"], planar["deviation"]["rms_mm"]) << "the deviation applies to any part";
+}
+
+// The notes name a layer height the beads do not grow by and a wall thinner than the bead, and nothing otherwise.
+TEST(SimulateCommand, NotesNameLayerHeightAndBeadWidthMismatches) {
+  Fixture f = SmallBlock();
+  f.planned.bead_width_mm = 6.0;
+  f.planned.layer_height_mm = 2.0;
+  f.planned.layer_growth_mm = 2.05;
+  EXPECT_THAT(SimulationNotes(f.scenario, f.planned), ::testing::IsEmpty()) << "a 2.5 % mismatch is no note";
+  f.planned.layer_height_mm = 1.8;
+  f.planned.layer_growth_mm = 2.6;
+  const std::vector<std::string> notes = SimulationNotes(f.scenario, f.planned);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_THAT(notes[0], HasSubstr("slicing.layer_height_mm"));
+  EXPECT_THAT(notes[0], HasSubstr("taller"));
+  // A 3 mm wide, 30 mm long wall under the 6 mm bead.
+  f.planned.layer_growth_mm = 1.8;
+  f.planned.plan.layers.back().slice = {planner::PolygonWithHoles{{{0, 0}, {3, 0}, {3, 30}, {0, 30}}, {}}};
+  const std::vector<std::string> wall = SimulationNotes(f.scenario, f.planned);
+  ASSERT_EQ(wall.size(), 1u);
+  EXPECT_THAT(wall[0], HasSubstr("path.bead_width_mm"));
+}
+
 // Identical inputs, identical outputs: the STL bytes and every measure except the timings.
 TEST(SimulateCommand, IsDeterministic) {
   const Fixture f = SmallBlock();

@@ -41,5 +41,26 @@ TEST(Simulation, BlockAgainstItsBoxTarget) {
   EXPECT_GT(m.build_time_s, 0.0);
 }
 
+// The top-surface measures apply to a planar plan only: a tilted build direction, a slice off the horizontal plane,
+// a layer whose weld points climb several bead heights, or no top region each give a reason.
+TEST(Simulation, TopSurfaceMeasuresApplyToPlanarPlansOnly) {
+  const double w = 6.0, h = 2.0, l = 0.738 * w;
+  const planner::Plan planar = testing::ParallelBlock(testing::BlockPositions(0.5 * w, 0.47 * w, l, 4), 40.0, 3,
+                                                      2.0 / 3.0 * w * h / l, w, h, 8.0);
+  EXPECT_EQ(TopSurfaceNotApplicable(planar), "");
+  planner::Plan tilted = planar;
+  tilted.layers[1].build_dir_P = Eigen::Vector3d(0.0, std::sin(0.1), std::cos(0.1));  // 5.7 deg off +z
+  EXPECT_NE(TopSurfaceNotApplicable(tilted).find("multi-directional"), std::string::npos);
+  planner::Plan curved = planar;
+  curved.layers[0].slice_in_plane = false;
+  EXPECT_NE(TopSurfaceNotApplicable(curved).find("non-planar"), std::string::npos);
+  planner::Plan climbing = planar;
+  for (std::size_t i = 0; i < climbing.layers[2].points.size(); ++i) climbing.layers[2].points[i].p_P.z() += 0.5 * i;
+  EXPECT_NE(TopSurfaceNotApplicable(climbing).find("non-planar"), std::string::npos);
+  planner::Plan imported = planar;
+  imported.layers.back().slice.clear();
+  EXPECT_NE(TopSurfaceNotApplicable(imported).find("no sliced region"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace waam::twin
