@@ -149,7 +149,7 @@ std::shared_ptr<SimulateHolder> Simulate(const std::shared_ptr<const ScenarioHol
   const twin::TwinResult result = twin::SimulateBuild(
       planned.plan, planned.mesh.facets.empty() ? nullptr : &planned.mesh, s.simulation,
       s.process.rapid_speed_mm_min / 60.0, s.path.bead_width_mm, {});
-  h->document = analysis::SimulationToJson(s, result);
+  h->document = analysis::SimulationToJson(s, planned, result);
   const twin::VoxelGrid& grid = result.depositor.grid();
   h->voxel_mm = grid.voxel_mm();
   grid.ForEach([&](const twin::VoxelIndex& v, const twin::VoxelData&) {
