@@ -146,6 +146,17 @@ twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& 
     WriteJointPlots(kin, report, outputs.Add(options.out_dir / "joints.png"));
   }
   nlohmann::json document = CheckToJson(scenario, cell.file(), report);
+  if (plan.X_FT) {
+    // The program's own tool moved instead of the cell's torch: how far apart the two TCPs are.
+    const Eigen::Isometry3d X_TT = kin.X_FT.inverse() * *plan.X_FT;
+    const double offset_mm = X_TT.translation().norm();
+    const double angle_deg = Eigen::AngleAxisd(X_TT.linear()).angle() * kDeg;
+    document["tool"] = {{"source", "program"},
+                        {"name", plan.tool_name},
+                        {"offset_from_torch_mm", offset_mm},
+                        {"angle_from_torch_deg", angle_deg},
+                        {"differs_from_torch", offset_mm > 0.01 || angle_deg > 0.01}};
+  }
   if (options.images && options.viewer) {
     const ViewerSummary viewer = WriteViewer(scenario.name, cell, kin, plan, options.target, report,
                                              outputs.Add(options.out_dir / "viewer.html"));

@@ -123,8 +123,9 @@ planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* pr
   planner::GcodeReadOptions gcode;
   gcode.arc_on_m = scenario.program.gcode_arc_on_m;
   gcode.arc_off_m = scenario.program.gcode_arc_off_m;
-  const planner::ParsedProgram program =
-      planner::ReadProgramFile(scenario.program.file, scenario.program.format, gcode, JbiOptionsOf(scenario));
+  gcode.feed_unit = scenario.program.gcode_feed_unit;
+  const planner::ParsedProgram program = planner::ReadProgramFile(scenario.program.file, scenario.program.format,
+                                                                  gcode, JbiOptionsOf(scenario), scenario.program.frames);
   ImportReport local;
   planner::PlanResult result = PlanFromProgram(scenario, program, report != nullptr ? report : &local);
   if (!scenario.program.target.empty()) {
@@ -158,9 +159,11 @@ nlohmann::json RunImport(const ImportOptions& options) {
   planner::GcodeReadOptions gcode;
   gcode.arc_on_m = scenario.program.gcode_arc_on_m;
   gcode.arc_off_m = scenario.program.gcode_arc_off_m;
+  gcode.feed_unit = scenario.program.gcode_feed_unit;
   const planner::ParsedProgram program =
       planner::ReadProgramFile(options.program, options.format, gcode,
-                               JbiOptionsOf(scenario, options.pulses_per_deg, options.station_pulses_per_deg));
+                               JbiOptionsOf(scenario, options.pulses_per_deg, options.station_pulses_per_deg),
+                               scenario.program.frames);
   ImportReport report;
   const planner::PlanResult result = PlanFromProgram(scenario, program, &report);
 

@@ -25,7 +25,16 @@ inline void ReadAndPlanProgram(std::string_view text, const std::string& file, p
   planner::JbiReadOptions jbi;
   jbi.robot_pulses_per_deg = {1000.0, 1400.0, 1000.0, 800.0, 1200.0, 500.0};
   jbi.station_pulses_per_deg = {1365.3, 1137.8};
-  const planner::ParsedProgram program = planner::ReadProgramText(text, file, format, {}, jbi);
+  // Numbered frames and tools 1 and 2 are given, as a scenario's program.frames would (the others are refused).
+  static const planner::ProgramFrames frames = [] {
+    planner::ProgramFrames f;
+    f.uframe[1] = {100.0, 0.0, 50.0, 0.0, 0.0, 90.0};
+    f.uframe[2] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    f.utool[1] = std::array<double, 6>{0.0, 0.0, 400.0, 0.0, -20.0, 0.0};
+    f.utool[2] = std::nullopt;
+    return f;
+  }();
+  const planner::ParsedProgram program = planner::ReadProgramText(text, file, format, {}, jbi, frames);
   (void)program.MotionsByKind();
   planner::ImportSettings settings;
   settings.arc_step_mm = 5.0;

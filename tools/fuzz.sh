@@ -23,7 +23,7 @@ case "$target" in
   fanuc_ls) seeds=$(find tests/data/programs -name '*.ls'); max_len=16384 ;;
   abb_rapid) seeds=$(find tests/data/programs -name '*.mod'); max_len=16384 ;;
   gcode) seeds=$(find tests/data/programs -name '*.nc'); max_len=16384 ;;
-  kuka_krl) seeds=$(mkdir -p build-fuzz/seeds && cat tests/data/programs/wall.src tests/data/programs/wall.dat > build-fuzz/seeds/wall_krl.src && echo build-fuzz/seeds/wall_krl.src); max_len=16384 ;;
+  kuka_krl) seeds=$(mkdir -p build-fuzz/seeds && for p in wall base_tool; do cat tests/data/programs/$p.src tests/data/programs/$p.dat > build-fuzz/seeds/${p}_krl.src; echo build-fuzz/seeds/${p}_krl.src; done); max_len=16384 ;;
   yaskawa_jbi) seeds=$(find tests/data/programs fuzz/seeds/yaskawa_jbi -name '*.JBI'); max_len=16384 ;;
   program_csv) seeds=$(find tests/data/programs -name '*.csv'); max_len=16384 ;;
   *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, urdf, sweep, fanuc_ls, abb_rapid, gcode, program_csv, kuka_krl, yaskawa_jbi)" >&2; exit 2 ;;

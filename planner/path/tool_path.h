@@ -3,10 +3,12 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "planner/geometry/polygon.h"
 
@@ -64,6 +66,10 @@ struct PathStats {
 struct Plan {
   std::string name;
   std::vector<LayerPath> layers;
+  // The TCP the plan is for, in the flange frame, mm: an imported program's own tool, which the check then moves
+  // instead of the cell's torch; empty: the cell's torch.
+  std::optional<Eigen::Isometry3d> X_FT;
+  std::string tool_name;  // the program's name for that tool ("UT 2", "TOOL_DATA[4]", "tWeld")
 };
 
 // Counts passes, path elements and lengths (estimated_time_s is left 0: the timeline gives it).

@@ -290,6 +290,16 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file) {
           continue;
         }
       }
+      if (first == "WAITTIME" && args.size() == 1) {
+        // WaitTime [\InPos,] t (s): the torch waits at its last target; a time from a variable is warned.
+        const std::string_view t = TrimBlank(args[0]);
+        if (!t.empty() && (std::isdigit(static_cast<unsigned char>(t[0])) || t[0] == '.')) {
+          internal::AddDwell(&program.motions, ParseProgramNumber(t, file, st.line, "WaitTime"), st.line, &warnings);
+        } else {
+          warnings.Add("WaitTime of a variable not in the timeline", st.line);
+        }
+        continue;
+      }
       if (first == "CONFL" || first == "CONFJ" || first == "SINGAREA" || first == "ACCSET") continue;
       warnings.Add("instruction " + first.substr(0, 24) + " not executed", st.line);
       continue;

@@ -8,7 +8,8 @@
 namespace waam::planner {
 
 struct FanucLsOptions {
-  int user_frame = 1;      // UF of the positions (the FANUC world frame of BuildProgram must be taught as this UF)
+  int user_frame = 0;      // UF of the positions: 0, the FANUC world frame of BuildProgram (else it must be taught
+                           // as this UF, and the reader needs program.frames.uframe.<n>)
   int tool_frame = 1;      // UT: the torch TCP
   int arc_schedule = 1;    // Arc Start[n] / Arc End[n]
   bool coordinated = true; // weld moves with the COORD option (coordinated motion, positioner leading)

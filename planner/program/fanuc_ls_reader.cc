@@ -1,18 +1,19 @@
-// FANUC LS (ASCII teach-pendant program) reader: /MN statements with continuation lines, /POS positions of both
-// motion groups.
+// FANUC LS (ASCII teach-pendant program) reader: the sections split into /MN statements (numbered or not, broken
+// over continuation lines) and /POS positions, each statement tokenized and run by a small function of its kind.
 #include <cctype>
 #include <cmath>
 #include <map>
-#include <set>
 
 #include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "planner/program/program_reader.h"
+#include "planner/program/program_tokens.h"
 
 namespace waam::planner {
 namespace {
 
-using internal::ParseProgramNumber;
+using internal::TokenCursor;
+using internal::TokenKind;
 using internal::TrimBlank;
 using internal::Upper;
 
@@ -28,363 +29,534 @@ struct LsPosition {
   bool gp2 = false;
   double gp2_j[2] = {0, 0};
   int gp2_seen = 0;
-  int uf = -1;
+  int uf = -1;                // GP1 UF and UT (-1: not given)
+  int ut = -1;
 };
 
 struct LsStatement {
-  std::string text;
+  std::string text;  // without its line number and closing ';'
   int line = 0;
 };
 
+// The program's sections as read.
+struct LsSource {
+  std::string name;
+  std::vector<LsStatement> statements;
+  std::map<int, LsPosition> positions;
+};
+
+// What runs while the /MN statements are executed.
+struct LsRun {
+  const std::string& file;
+  const ProgramFrames& frames;
+  const std::map<int, LsPosition>& positions;
+  ParsedProgram& program;
+  internal::WarningList& warnings;
+  bool arc_on = false;
+  int uframe_num = -1;  // UFRAME_NUM / UTOOL_NUM set by the program (-1: the controller's, unknown)
+  int utool_num = -1;
+};
+
 // "N U T, 0, 0, 0" -> branch bits (bit 0 back, bit 1 elbow down, bit 2 wrist flipped), as FanucConfig writes them.
-int ParseLsConfig(std::string_view text, const std::string& file, int line) {
+int ParseLsConfig(const std::string& text, const std::string& file, int line) {
   const std::string u = Upper(text);
-  int bits = 0;
-  int letters = 0;
+  int bits = 0, letters = 0;
   for (char c : u.substr(0, u.find(','))) {
     if (c == ' ') continue;
     ++letters;
     if (c == 'F') bits |= 4;
     else if (c == 'D') bits |= 2;
     else if (c == 'B') bits |= 1;
-    else WAAM_THROW_UNLESS(c == 'N' || c == 'U' || c == 'T', file << ":" << line << ": CONFIG '" << std::string(text)
+    else WAAM_THROW_UNLESS(c == 'N' || c == 'U' || c == 'T', file << ":" << line << ": CONFIG '" << text
                                                                 << "': expected letters N/F, U/D, T/B");
   }
-  WAAM_THROW_UNLESS(letters == 3, file << ":" << line << ": CONFIG '" << std::string(text)
+  WAAM_THROW_UNLESS(letters == 3, file << ":" << line << ": CONFIG '" << text
                                        << "': expected three letters (wrist N/F, elbow U/D, base T/B)");
   return bits;
 }
 
-// One "KEY = value unit" or "KEY : value" item of a /POS group line.
-void ParseLsPositionItem(std::string_view item, int group, LsPosition* pos, const std::string& file, int line,
-                         internal::WarningList* warnings) {
-  item = TrimBlank(item);
-  if (item.empty()) return;
-  const std::size_t eq = item.find('=');
-  if (eq == std::string_view::npos) {
-    const std::size_t colon = item.find(':');
-    WAAM_THROW_UNLESS(colon != std::string_view::npos,
-                      file << ":" << line << ": /POS item '" << std::string(item.substr(0, 40)) << "' is not KEY = value");
-    const std::string key = Upper(TrimBlank(item.substr(0, colon)));
-    if (key == "UF" && group == 1) pos->uf = internal::ParseProgramInteger(item.substr(colon + 1), file, line, "UF", 0, 999);
-    return;  // UT and the like: the tool is the cell's
-  }
-  const std::string key = Upper(TrimBlank(item.substr(0, eq)));
-  std::string_view value = TrimBlank(item.substr(eq + 1));
-  for (std::string_view unit : {"mm", "deg", "MM", "DEG"}) {
-    if (value.size() >= unit.size() && value.substr(value.size() - unit.size()) == unit) {
-      value = TrimBlank(value.substr(0, value.size() - unit.size()));
-      break;
-    }
-  }
-  const double v = ParseProgramNumber(value, file, line, key);
+// One /POS group line: "UF : 1, UT : 1, CONFIG : '...'," or "X = 1.0 mm, Y = ..." or "J1 = 0.0 deg, ...".
+void ReadLsGroupLine(TokenCursor& ts, int group, LsPosition* pos, internal::WarningList* warnings) {
   static const char* const kCart[6] = {"X", "Y", "Z", "W", "P", "R"};
-  if (group == 1) {
-    for (int k = 0; k < 6; ++k) {
-      if (key == kCart[k]) {
-        pos->cartesian = true;
-        pos->xyzwpr[k] = v;
-        pos->xyzwpr_seen |= 1 << k;
-        return;
+  while (!ts.AtEnd()) {
+    if (ts.Accept(",")) continue;
+    const std::string key = ts.ExpectWord("a /POS item KEY = value");
+    if (ts.Accept(":")) {
+      if (key == "CONFIG") {
+        if (ts.Peek().kind != TokenKind::kString) ts.Fail("CONFIG without its quoted string");
+        pos->config = ParseLsConfig(ts.Next().text, ts.file(), ts.line());
+      } else if ((key == "UF" || key == "UT") && group == 1) {
+        (key == "UF" ? pos->uf : pos->ut) = ts.ExpectInteger(key, 0, 999);
+      } else {
+        ts.Next();  // UF / UT of another group: the positioner's frame is the cell's
       }
+      continue;
     }
-    if (key.size() == 2 && key[0] == 'J' && key[1] >= '1' && key[1] <= '6') {
-      pos->joints = true;
-      pos->j[key[1] - '1'] = v;
-      pos->j_seen |= 1 << (key[1] - '1');
-      return;
+    if (!ts.Accept("=")) ts.Fail("/POS item '" + key + "' is not KEY = value");
+    const double v = ts.ExpectNumber(key);
+    if (ts.Is("MM") || ts.Is("DEG")) ts.Next();
+    bool used = false;
+    for (int k = 0; k < 6 && group == 1; ++k) {
+      if (key != kCart[k]) continue;
+      pos->cartesian = true, pos->xyzwpr[k] = v, pos->xyzwpr_seen |= 1 << k, used = true;
     }
-    warnings->Add("GP1 extended axis " + key + " ignored", line);
-    return;
+    if (group == 1 && key.size() == 2 && key[0] == 'J' && key[1] >= '1' && key[1] <= '6') {
+      pos->joints = true, pos->j[key[1] - '1'] = v, pos->j_seen |= 1 << (key[1] - '1'), used = true;
+    }
+    if (group == 2 && (key == "J1" || key == "J2")) {
+      pos->gp2 = true, pos->gp2_j[key[1] - '1'] = v, pos->gp2_seen |= 1 << (key[1] - '1'), used = true;
+    }
+    if (!used) {
+      warnings->Add(group == 1 ? "GP1 extended axis " + key + " ignored"
+                               : "motion group GP" + std::to_string(group) + " axis " + key + " ignored",
+                    ts.line());
+    }
   }
-  if (group == 2 && (key == "J1" || key == "J2")) {
-    pos->gp2 = true;
-    pos->gp2_j[key[1] - '1'] = v;
-    pos->gp2_seen |= 1 << (key[1] - '1');
-    return;
-  }
-  warnings->Add("motion group GP" + std::to_string(group) + " axis " + key + " ignored", line);
 }
 
-// Parses "P[12]" or "P[12:comment]" / "PR[3]" at `s[*at]`; returns the number, `*register_ref` when PR.
-bool ParseLsRef(const std::string& s, std::size_t* at, int* number, bool* register_ref) {
-  std::size_t i = *at;
-  while (i < s.size() && s[i] == ' ') ++i;
-  *register_ref = s.compare(i, 3, "PR[") == 0;
-  if (!*register_ref && s.compare(i, 2, "P[") != 0) return false;
-  i += *register_ref ? 3 : 2;
-  const std::size_t close = s.find(']', i);
-  if (close == std::string::npos) return false;
-  const std::string inside = s.substr(i, std::min(s.find(':', i), close) - i);
-  if (inside.empty() || inside.size() > 9) return false;
-  for (char c : inside) {
-    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
-  }
-  *number = std::stoi(inside);
-  *at = close + 1;
-  return true;
+// "P[12]", "P[12:comment]" or "PR[3]" at the cursor; the number, `*register_ref` when PR; -1 when none is there.
+int ReadLsPositionRef(TokenCursor& ts, bool* register_ref) {
+  if (!(ts.Is("P") || ts.Is("PR")) || !ts.Is("[", 1)) return -1;
+  *register_ref = ts.Next().text == "PR";
+  ts.Next();
+  if (*register_ref && ts.Is("GP1") && ts.Is(":", 1)) ts.Next(), ts.Next();  // PR[GP1:3]
+  const int number = ts.ExpectInteger(*register_ref ? "PR number" : "P number", 1, 99999);
+  while (!ts.AtEnd() && !ts.Is("]")) ts.Next();  // ":comment"
+  ts.Expect("]", "position");
+  return number;
 }
 
-}  // namespace
+// The lines of a P[n]{ ... }; entry, from the line after its head to its "};".
+LsPosition ReadLsPosition(const std::vector<std::string_view>& lines, std::size_t* li, int number,
+                          const std::string& file, internal::WarningList* warnings) {
+  LsPosition pos;
+  pos.line = static_cast<int>(*li) + 1;
+  int group = 0;
+  for (++*li; *li < lines.size(); ++*li) {
+    const int pl = static_cast<int>(*li) + 1;
+    const std::string_view body = TrimBlank(lines[*li]);
+    if (body.empty()) continue;
+    if (body == "};") break;
+    WAAM_THROW_UNLESS(body.front() != '/',
+                      file << ":" << pl << ": P[" << number << "] in /POS is not closed by '};' (truncated /POS)");
+    TokenCursor ts(body, file, pl);
+    if (ts.Peek().kind == TokenKind::kWord && ts.Peek().text.compare(0, 2, "GP") == 0 && ts.Is(":", 1)) {
+      const std::string gp = ts.Peek().text.substr(2);
+      group = internal::ParseProgramInteger(gp, file, pl, "motion group", 1, 8);
+      ts.Next(), ts.Next();
+      if (ts.AtEnd()) continue;
+    }
+    WAAM_THROW_UNLESS(group > 0, file << ":" << pl << ": P[" << number << "] value before its GP1: line");
+    ReadLsGroupLine(ts, group, &pos, warnings);
+  }
+  WAAM_THROW_UNLESS(*li < lines.size(), file << ":" << pos.line << ": P[" << number
+                                              << "] in /POS is not closed by '};' (truncated /POS)");
+  WAAM_THROW_UNLESS(!pos.cartesian || pos.xyzwpr_seen == 63,
+                    file << ":" << pos.line << ": P[" << number << "] lacks one of X, Y, Z, W, P, R");
+  WAAM_THROW_UNLESS(!pos.joints || pos.j_seen == 63,
+                    file << ":" << pos.line << ": P[" << number << "] lacks one of J1..J6");
+  WAAM_THROW_UNLESS(pos.cartesian != pos.joints,
+                    file << ":" << pos.line << ": P[" << number << "] needs GP1 as X..R or as J1..J6");
+  WAAM_THROW_UNLESS(!pos.gp2 || (pos.gp2_seen & 1), file << ":" << pos.line << ": P[" << number << "] GP2 needs J1");
+  return pos;
+}
 
-ParsedProgram ReadFanucLs(std::string_view text, const std::string& file) {
-  const std::vector<std::string_view> lines = internal::SplitProgramLines(text, file);
-  ParsedProgram program;
-  program.format = ProgramFormat::kFanucLs;
-  internal::WarningList warnings;
-  std::vector<LsStatement> statements;
-  std::map<int, LsPosition> positions;
-  enum class Section { kNone, kAttr, kAppl, kMn, kPos, kEnd } section = Section::kNone;
-  bool seen_prog = false;
-  bool open_statement = false;
+// One /MN line: "  12:  L P[3] ... ;" (numbered), "    :  P[5] ... ;" (continuation) or "L P[3] ... ;" (written
+// without line numbers, as hand-edited and exported programs are; such a line without its ';' goes on below).
+void AddLsMnLine(std::string_view raw, int line, const std::string& file, std::vector<LsStatement>* statements,
+                 bool* open) {
+  std::string_view t = TrimBlank(raw);
+  std::size_t digits = 0;
+  while (digits < t.size() && std::isdigit(static_cast<unsigned char>(t[digits]))) ++digits;
+  const std::string_view after = TrimBlank(t.substr(digits));
+  const bool numbered = digits > 0 && !after.empty() && after.front() == ':';
+  const bool continuation = digits == 0 && t.front() == ':';
+  if (numbered || continuation) t = TrimBlank(after.empty() ? after : after.substr(1));
+  if (continuation) {
+    WAAM_THROW_UNLESS(*open, file << ":" << line << ": continuation line without a statement before it");
+  } else if (numbered) {
+    WAAM_THROW_UNLESS(!*open, file << ":" << statements->back().line << ": statement without its closing ';'");
+  }
+  if (numbered || !*open) {
+    internal::CheckMotionCount(statements->size(), file, line);
+    statements->push_back({"", line});
+  } else {
+    statements->back().text += ' ';
+  }
+  *open = true;
+  if (!t.empty() && t.back() == ';') {
+    t.remove_suffix(1);
+    *open = false;
+  }
+  statements->back().text += std::string(TrimBlank(t));
+}
+
+// The sections /PROG, /ATTR, /APPL, /MN, /POS, /END.
+LsSource ReadLsSections(const std::vector<std::string_view>& lines, const std::string& file,
+                        internal::WarningList* warnings) {
+  LsSource src;
+  enum class Section { kNone, kHeader, kMn, kPos, kEnd } section = Section::kNone;
+  bool open = false;
   for (std::size_t li = 0; li < lines.size(); ++li) {
     const int line = static_cast<int>(li) + 1;
-    const std::string_view raw = lines[li];
-    const std::string_view t = TrimBlank(raw);
+    const std::string_view t = TrimBlank(lines[li]);
     if (t.empty()) continue;
-    if (t.front() == '/') {
-      const std::string head = Upper(t.substr(0, t.find_first_of(" \t") == std::string_view::npos
-                                                      ? t.size()
-                                                      : t.find_first_of(" \t")));
-      if (head == "/PROG") {
-        seen_prog = true;
-        program.name = std::string(TrimBlank(t.substr(5)));
-        program.name = program.name.substr(0, program.name.find_first_of(" \t"));
+    if (t.front() == '/' && (t.size() < 2 || t[1] != '/')) {
+      const std::string head = Upper(t.substr(0, std::min(t.find_first_of(" \t"), t.size())));
+      if (head == "/PROG" && section == Section::kNone) {
+        section = Section::kHeader;
+        src.name = std::string(TrimBlank(t.substr(5)));
+        src.name = src.name.substr(0, src.name.find_first_of(" \t"));
         continue;
       }
-      WAAM_THROW_UNLESS(seen_prog, file << ":" << line << ": expected /PROG <name> before " << head);
+      WAAM_THROW_UNLESS(section != Section::kNone, file << ":" << line << ": expected /PROG <name> before " << head);
       WAAM_THROW_UNLESS(section != Section::kEnd, file << ":" << line << ": text after /END");
-      if (head == "/ATTR") section = Section::kAttr;
-      else if (head == "/APPL") section = Section::kAppl;
+      if (head == "/ATTR" || head == "/APPL") section = Section::kHeader;
       else if (head == "/MN") section = Section::kMn;
       else if (head == "/POS") section = Section::kPos;
       else if (head == "/END") section = Section::kEnd;
       else WAAM_THROW(file << ":" << line << ": unknown section " << head);
       continue;
     }
-    WAAM_THROW_UNLESS(seen_prog, file << ":" << line << ": expected /PROG <name> as the first line");
+    WAAM_THROW_UNLESS(section != Section::kNone, file << ":" << line << ": expected /PROG <name> as the first line");
     if (section == Section::kMn) {
-      // "  12:  L P[3] 40cm/min CNT100 ;" or a continuation "    :  P[5] 40cm/min CNT100 ;".
-      const std::size_t colon = raw.find(':');
-      WAAM_THROW_UNLESS(colon != std::string_view::npos,
-                        file << ":" << line << ": /MN line is not 'n: instruction ;'");
-      const std::string_view number = TrimBlank(raw.substr(0, colon));
-      bool digits = true;
-      for (char c : number) digits = digits && std::isdigit(static_cast<unsigned char>(c));
-      WAAM_THROW_UNLESS(digits, file << ":" << line << ": /MN line is not 'n: instruction ;'");
-      std::string_view body = TrimBlank(raw.substr(colon + 1));
-      if (number.empty() && open_statement) {
-        statements.back().text += ' ';
-      } else {
-        WAAM_THROW_UNLESS(!number.empty(), file << ":" << line << ": continuation line without a statement before it");
-        statements.push_back({"", line});
-      }
-      open_statement = true;
-      if (!body.empty() && body.back() == ';') {
-        body.remove_suffix(1);
-        open_statement = false;
-      }
-      statements.back().text += std::string(TrimBlank(body));
+      AddLsMnLine(lines[li], line, file, &src.statements, &open);
     } else if (section == Section::kPos) {
-      // P[n]{ or P[n:"comment"]{ ... };
-      const std::string head = Upper(t);
-      std::size_t at = 0;
-      int number = 0;
+      TokenCursor ts(t, file, line);
       bool is_register = false;
-      WAAM_THROW_UNLESS(ParseLsRef(head, &at, &number, &is_register) && !is_register &&
-                            TrimBlank(t.substr(at)) == "{",
+      const int number = ReadLsPositionRef(ts, &is_register);
+      WAAM_THROW_UNLESS(number > 0 && !is_register && ts.Accept("{") && ts.AtEnd(),
                         file << ":" << line << ": /POS expected 'P[n]{', got '" << std::string(t.substr(0, 40)) << "'");
-      WAAM_THROW_UNLESS(positions.count(number) == 0, file << ":" << line << ": P[" << number << "] defined twice");
-      internal::CheckMotionCount(positions.size(), file, line);
-      LsPosition pos;
-      pos.line = line;
-      int group = 0;
-      bool closed = false;
-      for (++li; li < lines.size(); ++li) {
-        const int pl = static_cast<int>(li) + 1;
-        std::string_view body = TrimBlank(lines[li]);
-        if (body.empty()) continue;
-        if (body == "};") {
-          closed = true;
-          break;
-        }
-        WAAM_THROW_UNLESS(body.front() != '/',
-                          file << ":" << pl << ": P[" << number << "] in /POS is not closed by '};' (truncated /POS)");
-        const std::string ub = Upper(body);
-        if (ub.size() >= 4 && ub.compare(0, 2, "GP") == 0 && ub.back() == ':') {
-          group = internal::ParseProgramInteger(body.substr(2, body.size() - 3), file, pl, "motion group", 1, 8);
-          continue;
-        }
-        WAAM_THROW_UNLESS(group > 0, file << ":" << pl << ": P[" << number << "] value before its GP1: line");
-        std::string rest(body);
-        const std::size_t config = Upper(rest).find("CONFIG");
-        if (config != std::string::npos) {
-          const std::size_t q1 = rest.find('\'', config);
-          const std::size_t q2 = q1 == std::string::npos ? q1 : rest.find('\'', q1 + 1);
-          WAAM_THROW_UNLESS(q2 != std::string::npos, file << ":" << pl << ": CONFIG without its quoted string");
-          pos.config = ParseLsConfig(std::string_view(rest).substr(q1 + 1, q2 - q1 - 1), file, pl);
-          rest.erase(config, q2 + 1 - config);
-        }
-        std::size_t start = 0;
-        while (start <= rest.size()) {
-          std::size_t comma = rest.find(',', start);
-          if (comma == std::string::npos) comma = rest.size();
-          ParseLsPositionItem(std::string_view(rest).substr(start, comma - start), group, &pos, file, pl, &warnings);
-          start = comma + 1;
-        }
-      }
-      WAAM_THROW_UNLESS(closed, file << ":" << pos.line << ": P[" << number
-                                     << "] in /POS is not closed by '};' (truncated /POS)");
-      WAAM_THROW_UNLESS(!pos.cartesian || pos.xyzwpr_seen == 63,
-                        file << ":" << pos.line << ": P[" << number << "] lacks one of X, Y, Z, W, P, R");
-      WAAM_THROW_UNLESS(!pos.joints || pos.j_seen == 63,
-                        file << ":" << pos.line << ": P[" << number << "] lacks one of J1..J6");
-      WAAM_THROW_UNLESS(pos.cartesian != pos.joints,
-                        file << ":" << pos.line << ": P[" << number << "] needs GP1 as X..R or as J1..J6");
-      positions[number] = pos;
+      WAAM_THROW_UNLESS(src.positions.count(number) == 0, file << ":" << line << ": P[" << number << "] defined twice");
+      internal::CheckMotionCount(src.positions.size(), file, line);
+      src.positions[number] = ReadLsPosition(lines, &li, number, file, warnings);
+    } else if (section == Section::kEnd) {
+      WAAM_THROW(file << ":" << line << ": text after /END");
     }
     // /ATTR and /APPL: header data the motion does not depend on.
   }
-  WAAM_THROW_UNLESS(seen_prog, file << ": not a FANUC LS program (no /PROG line)");
+  WAAM_THROW_UNLESS(section != Section::kNone, file << ": not a FANUC LS program (no /PROG line)");
   WAAM_THROW_UNLESS(section == Section::kEnd, file << ":" << lines.size() << ": no /END: the program is truncated");
-  WAAM_THROW_UNLESS(!open_statement, file << ":" << statements.back().line << ": statement without its closing ';'");
+  WAAM_THROW_UNLESS(!open, file << ":" << src.statements.back().line << ": statement without its closing ';'");
+  return src;
+}
 
-  std::set<int> user_frames;
-  bool arc_on = false;
-  for (const LsStatement& st : statements) {
-    const std::string u = Upper(st.text);
-    if (u.empty() || u[0] == '!' || u.compare(0, 2, "//") == 0) continue;  // comment
-    const bool motion = u.size() > 2 && (u[0] == 'J' || u[0] == 'L' || u[0] == 'C' || u[0] == 'A') && u[1] == ' ' &&
-                        (u.find("P[", 2) != std::string::npos);
-    if (!motion) {
-      if (u.compare(0, 9, "ARC START") == 0) {
-        arc_on = true;
-      } else if (u.compare(0, 7, "ARC END") == 0) {
-        arc_on = false;
-      } else if (u.compare(0, 4, "LBL[") == 0) {
-        // a label does nothing by itself
-      } else if (u == "END") {
-        break;  // the program ends here
-      } else {
-        std::size_t end = u.find_first_of(" [=(");
-        std::string name = u.substr(0, std::min<std::size_t>(end, 24));
-        if (name.empty()) name = u.substr(0, 24);
-        warnings.Add("instruction " + name + " not executed", st.line);
-      }
-      continue;
-    }
-    internal::CheckMotionCount(program.motions.size(), file, st.line);
-    ProgramMotion m;
-    m.line = st.line;
-    m.kind = u[0] == 'J' ? MotionKind::kJoint : (u[0] == 'L' ? MotionKind::kLinear : MotionKind::kCircular);
-    std::size_t at = 1;
-    int target = 0, via = 0;
-    bool is_register = false;
-    WAAM_THROW_UNLESS(ParseLsRef(u, &at, &target, &is_register),
-                      file << ":" << st.line << ": motion without a P[n] or PR[n] position");
-    if (u[0] == 'A') {
-      warnings.Add("circular arc motion A not executed", st.line);
-      continue;
-    }
-    if (m.kind == MotionKind::kCircular) {
-      via = target;
-      bool via_register = is_register;
-      WAAM_THROW_UNLESS(ParseLsRef(u, &at, &target, &is_register),
-                        file << ":" << st.line << ": circular motion C needs its via and end positions");
-      is_register = is_register || via_register;
-    }
-    if (is_register) {
-      warnings.Add("motion to a position register PR[n] not executed", st.line);
-      continue;
-    }
-    // Speed.
-    while (at < u.size() && u[at] == ' ') ++at;
-    std::size_t speed_end = u.find(' ', at);
-    if (speed_end == std::string::npos) speed_end = u.size();
-    const std::string speed = u.substr(at, speed_end - at);
-    at = speed_end;
-    const std::size_t unit_at = speed.find_first_not_of("0123456789.");
-    const std::string unit = unit_at == std::string::npos ? "" : speed.substr(unit_at);
-    if (speed.compare(0, 2, "R[") == 0 || speed.compare(0, 3, "AR[") == 0) {
-      warnings.Add("speed from a register: the scenario's speed used", st.line);
-    } else if (speed == "MAX_SPEED" || unit == "%" || unit == "SEC" || unit == "DEG/SEC") {
-      if (m.kind != MotionKind::kJoint) warnings.Add("speed " + unit + " of a Cartesian move: the scenario's speed used", st.line);
-    } else {
-      WAAM_THROW_UNLESS(unit_at != std::string::npos && unit_at > 0,
-                        file << ":" << st.line << ": motion speed '" << speed << "' has no number and unit");
-      const double v = ParseProgramNumber(speed.substr(0, unit_at), file, st.line, "speed");
-      WAAM_THROW_UNLESS(v > 0.0, file << ":" << st.line << ": motion speed " << speed << " must be > 0");
-      if (unit == "MM/SEC") m.speed_mm_s = v;
-      else if (unit == "CM/MIN") m.speed_mm_s = v * 10.0 / 60.0;
-      else if (unit == "INCH/MIN") m.speed_mm_s = v * 25.4 / 60.0;
-      else WAAM_THROW(file << ":" << st.line << ": motion speed unit '" << unit << "' unknown");
-    }
-    // Termination and options.
-    bool option_start = false, option_end = false;
-    std::string options = u.substr(at);
-    for (const char* arc : {"ARC START", "ARC END"}) {
-      const std::size_t k = options.find(arc);
-      if (k == std::string::npos) continue;
-      (arc[4] == 'S' ? option_start : option_end) = true;
-      const std::size_t close = options.find(']', k);
-      options.erase(k, (close == std::string::npos ? options.size() : close + 1) - k);
-    }
-    std::size_t k = 0;
-    while (k < options.size()) {
-      while (k < options.size() && options[k] == ' ') ++k;
-      std::size_t e = options.find(' ', k);
-      if (e == std::string::npos) e = options.size();
-      const std::string word = options.substr(k, e - k);
-      k = e;
-      if (word.empty() || word == "FINE" || word == "COORD" || word.compare(0, 3, "CNT") == 0 ||
-          word.compare(0, 2, "CD") == 0) {
-        continue;
-      }
-      warnings.Add("motion option " + word.substr(0, word.find_first_of("[,(")) + " not executed", st.line);
-    }
-    m.weld = option_start ? false : arc_on;
-    if (option_start) arc_on = true;
-    if (option_end) m.weld = true, arc_on = false;
+// A register's text "R[5]" / "AR[1]" / "R[R[2]]" at the cursor (its name already read).
+std::string ReadLsRegister(TokenCursor& ts, const std::string& name) {
+  std::string text = name + "[";
+  int depth = 0;
+  do {
+    const internal::Token& t = ts.Next();
+    if (t.kind == TokenKind::kEnd) ts.Fail(name + "[ without its ']'");
+    if (t.text == "[") ++depth;
+    if (t.text == "]") --depth;
+    if (depth > 0 && t.text != "[") text += t.text;
+  } while (depth > 0);
+  return text + "]";
+}
 
-    const auto found = positions.find(target);
-    WAAM_THROW_UNLESS(found != positions.end(),
-                      file << ":" << st.line << ": P[" << target << "] is used but not defined in /POS");
-    const LsPosition& pos = found->second;
-    if (pos.cartesian) {
-      m.has_pose = true;
-      m.frame = TargetFrame::kUser;
-      m.X_UT.translation() = Eigen::Vector3d(pos.xyzwpr[0], pos.xyzwpr[1], pos.xyzwpr[2]);
-      m.X_UT.linear() = internal::RotationZyx(pos.xyzwpr[5] * kPi / 180.0, pos.xyzwpr[4] * kPi / 180.0,
-                                              pos.xyzwpr[3] * kPi / 180.0);
-      m.config = pos.config;
-      if (pos.uf >= 0) user_frames.insert(pos.uf);
-    } else {
-      m.has_joints = true;
-      for (int j = 0; j < 6; ++j) m.q[j] = pos.j[j] * kPi / 180.0;
-    }
-    if (pos.gp2) {
-      // J1 and J2 of a two-axis positioner, or J1 alone of a turntable.
-      WAAM_THROW_UNLESS(pos.gp2_seen & 1, file << ":" << pos.line << ": P[" << target << "] GP2 needs J1");
-      m.has_positioner = true;
-      m.positioner_numbered = true;
-      m.tilt_rad = pos.gp2_j[0] * kPi / 180.0;
-      m.rotation_rad = pos.gp2_j[1] * kPi / 180.0;
-    }
-    if (m.kind == MotionKind::kCircular) {
-      const auto v = positions.find(via);
-      WAAM_THROW_UNLESS(v != positions.end(),
-                        file << ":" << st.line << ": P[" << via << "] is used but not defined in /POS");
-      WAAM_THROW_UNLESS(v->second.cartesian,
-                        file << ":" << st.line << ": the via point P[" << via << "] of a C motion must be Cartesian");
-      m.has_via = true;
-      m.via = Eigen::Vector3d(v->second.xyzwpr[0], v->second.xyzwpr[1], v->second.xyzwpr[2]);
-    }
-    program.motions.push_back(m);
+// A speed unit: "%", "mm/sec", "cm/min", "inch/min", "deg/sec", "sec", "msec" (upper case), or "".
+std::string ReadLsSpeedUnit(TokenCursor& ts) {
+  if (ts.Accept("%")) return "%";
+  if (ts.Peek().kind != TokenKind::kWord) return "";
+  if (ts.Is("/", 1)) {
+    std::string unit = ts.Next().text + "/";
+    ts.Next();
+    if (ts.Peek().kind == TokenKind::kWord) unit += ts.Next().text;
+    return unit;
   }
-  if (user_frames.size() > 1) {
-    warnings.Add("positions in " + std::to_string(user_frames.size()) +
-                     " user frames (UF): all taken as the scenario's program.frame",
-                 1);
+  if (ts.Is("SEC") || ts.Is("MSEC")) return ts.Next().text;
+  return "";
+}
+
+// The speed of a motion, mm/s (0: none in the program: the scenario's, with a warning). Forms: a number with its
+// unit, R[n] or AR[n] with a unit (a register), WELD_SPEED (the weld schedule's), MAX_SPEED.
+double ReadLsSpeed(LsRun& run, TokenCursor& ts, MotionKind kind) {
+  const int line = ts.line();
+  if (ts.Accept("WELD_SPEED")) {
+    run.warnings.Add("speed WELD_SPEED from the weld schedule: the scenario's process.travel_speed_mm_min used", line);
+    return 0.0;
+  }
+  if (ts.Accept("MAX_SPEED")) return 0.0;
+  if ((ts.Is("R") || ts.Is("AR")) && ts.Is("[", 1)) {
+    const std::string reg = ReadLsRegister(ts, ts.Next().text);
+    ReadLsSpeedUnit(ts);
+    run.warnings.Add("speed from a register (" + reg + "): the scenario's speed used", line);
+    return 0.0;
+  }
+  if (ts.Peek().kind != TokenKind::kNumber) {
+    ts.Fail("motion speed '" + ts.Rest() + "' has no number and unit");
+  }
+  const double v = ts.Next().number;
+  const std::string unit = ReadLsSpeedUnit(ts);
+  if (unit == "%" || unit == "SEC" || unit == "MSEC" || unit == "DEG/SEC") {
+    if (kind != MotionKind::kJoint) {
+      run.warnings.Add("speed " + unit + " of a Cartesian move: the scenario's speed used", line);
+    }
+    return 0.0;
+  }
+  WAAM_THROW_UNLESS(!unit.empty(), ts.file() << ":" << line << ": motion speed '" << v << "' has no unit");
+  WAAM_THROW_UNLESS(v > 0.0, ts.file() << ":" << line << ": motion speed " << v << unit << " must be > 0");
+  if (unit == "MM/SEC") return v;
+  if (unit == "CM/MIN") return v * 10.0 / 60.0;
+  if (unit == "INCH/MIN") return v * 25.4 / 60.0;
+  ts.Fail("motion speed unit '" + unit + "' unknown");
+}
+
+// The termination: FINE, CNT n, CNT R[n], CD n, CR n (the path runs through the point either way here).
+void ReadLsTermination(TokenCursor& ts) {
+  const std::string& w = ts.Peek().text;
+  if (ts.Peek().kind == TokenKind::kWord &&
+      (w == "FINE" || w.compare(0, 3, "CNT") == 0 || w.compare(0, 2, "CD") == 0 || w.compare(0, 2, "CR") == 0)) {
+    ts.Next();
+    if ((ts.Is("R") || ts.Is("AR")) && ts.Is("[", 1)) ReadLsRegister(ts, ts.Next().text);
+    return;
+  }
+  ts.Fail("motion without its termination (FINE, CNT n, CD n or CR n) at '" + ts.Rest() + "'");
+}
+
+// Motion options after the termination: Arc Start[..] / Arc End[..] switch the arc; COORD, PTH and BREAK change
+// nothing here; Weave and everything else (Offset,PR[n], Tool_Offset, INC, ACC, Skip, TB/TA/DB ...) is warned.
+void ReadLsMotionOptions(LsRun& run, TokenCursor& ts, bool* arc_start, bool* arc_end) {
+  while (!ts.AtEnd()) {
+    if (ts.Peek().kind != TokenKind::kWord) {
+      if (!ts.SkipGroup()) ts.Next();
+      continue;
+    }
+    const std::string word = ts.Next().text;
+    if (word == "ARC" && (ts.Is("START") || ts.Is("END"))) {
+      (ts.Next().text == "START" ? *arc_start : *arc_end) = true;
+      ts.SkipGroup();
+      continue;
+    }
+    if (word == "COORD" || word == "PTH" || word == "BREAK") continue;
+    if (word == "WEAVE") {
+      run.warnings.Add("instruction WEAVE not executed: one bead along the path", ts.line());
+      while (!ts.AtEnd() && !ts.Is("[")) ts.Next();
+      ts.SkipGroup();
+      continue;
+    }
+    run.warnings.Add("motion option " + word.substr(0, 24) + " not executed", ts.line());
+    if (ts.PeekNumber()) {
+      // TB / TA / DB <time or distance>, <action>: the action runs to the end of the statement.
+      ts.ExpectNumber(word);
+      ReadLsSpeedUnit(ts);
+      if (ts.Is("MM")) ts.Next();
+      while (!ts.AtEnd()) ts.Next();
+    } else if (ts.Accept(",")) {
+      ts.Accept("PR");
+      ts.Accept("LBL");
+      ts.SkipGroup();
+    } else {
+      ts.SkipGroup();
+    }
+  }
+}
+
+// The pose of a frame or tool given in the scenario as x, y, z, w, p, r (mm, deg).
+Eigen::Isometry3d LsFramePose(const std::array<double, 6>& f) {
+  return internal::PoseXyzAbc(f[0], f[1], f[2], f[5], f[4], f[3]);
+}
+
+// The frame a Cartesian position is taught in and the tool it is taught with: UF 0 is the world, UF n the
+// scenario's program.frames.uframe.n (else program.frame.user_frame_mm, the program's one user frame), UT n the
+// scenario's program.frames.utool.n (UT 0 the faceplate; no utool table at all: the cell's torch). Refuses a frame,
+// or a tool missing from a utool table, that the scenario does not give, and a UF / UT other than the UFRAME_NUM /
+// UTOOL_NUM the program set (the controller stops there).
+void SetLsFrameAndTool(LsRun& run, const LsPosition& pos, int number, int line, ProgramMotion* m) {
+  const int uf = pos.uf >= 0 ? pos.uf : std::max(run.uframe_num, 0);
+  const int ut = pos.ut >= 0 ? pos.ut : run.utool_num;
+  WAAM_THROW_UNLESS(run.uframe_num < 0 || pos.uf < 0 || pos.uf == run.uframe_num,
+                    run.file << ":" << line << ": P[" << number << "] is taught in UF " << pos.uf
+                             << " but UFRAME_NUM is " << run.uframe_num << ": the controller stops at this motion");
+  WAAM_THROW_UNLESS(run.utool_num < 0 || pos.ut < 0 || pos.ut == run.utool_num,
+                    run.file << ":" << line << ": P[" << number << "] is taught with UT " << pos.ut
+                             << " but UTOOL_NUM is " << run.utool_num << ": the controller stops at this motion");
+  if (m->has_pose) {
+    const auto frame = run.frames.uframe.find(uf);
+    if (uf == 0) {
+      m->frame = TargetFrame::kArmWorld;
+    } else if (frame != run.frames.uframe.end()) {
+      m->frame = TargetFrame::kArmWorld;
+      m->X_UT = LsFramePose(frame->second) * m->X_UT;
+    } else {
+      WAAM_THROW_UNLESS(run.frames.user_frame,
+                        run.file << ":" << line << ": P[" << number << "] is taught in user frame UF " << uf
+                                 << ", which the program does not define: give program.frames.uframe." << uf
+                                 << " = [x, y, z, w, p, r] (mm, deg, in the world frame)");
+      m->frame = TargetFrame::kUser;
+    }
+  }
+  // No tool named, or no tool table in the scenario: the cell's torch is the program's tool.
+  if (ut < 0 || run.frames.utool.empty()) return;
+  const auto tool = run.frames.utool.find(ut);
+  WAAM_THROW_UNLESS(ut == 0 || tool != run.frames.utool.end(),
+                    run.file << ":" << line << ": P[" << number << "] is taught with tool UT " << ut
+                             << ", which the program does not define: give program.frames.utool." << ut
+                             << " = [x, y, z, w, p, r] (mm, deg, in the flange frame) or torch (the cell's)");
+  if (ut != 0 && !tool->second) return;
+  m->has_tool = true;
+  m->X_FT = ut == 0 ? Eigen::Isometry3d::Identity() : LsFramePose(*tool->second);
+  m->tool_name = "UT " + std::to_string(ut);
+}
+
+// The target of a motion from /POS: pose or joints, positioner group GP2, frame and tool.
+void SetLsTarget(LsRun& run, int number, int line, ProgramMotion* m) {
+  const auto found = run.positions.find(number);
+  WAAM_THROW_UNLESS(found != run.positions.end(),
+                    run.file << ":" << line << ": P[" << number << "] is used but not defined in /POS");
+  const LsPosition& pos = found->second;
+  if (pos.cartesian) {
+    m->has_pose = true;
+    m->X_UT = internal::PoseXyzAbc(pos.xyzwpr[0], pos.xyzwpr[1], pos.xyzwpr[2], pos.xyzwpr[5], pos.xyzwpr[4],
+                                   pos.xyzwpr[3]);
+    m->config = pos.config;
+  } else {
+    m->has_joints = true;
+    for (int j = 0; j < 6; ++j) m->q[j] = pos.j[j] * kPi / 180.0;
+  }
+  SetLsFrameAndTool(run, pos, number, line, m);
+  if (pos.gp2) {
+    // J1 and J2 of a two-axis positioner, or J1 alone of a turntable.
+    m->has_positioner = true;
+    m->positioner_numbered = true;
+    m->tilt_rad = pos.gp2_j[0] * kPi / 180.0;
+    m->rotation_rad = pos.gp2_j[1] * kPi / 180.0;
+  }
+}
+
+// "J P[1] 30% FINE", "L P[2] 100mm/sec CNT100 Arc Start[1]", "C P[6] P[7] 40cm/min FINE" (the via point and the
+// end), "A P[3] ..." (circular arc: warned). PR targets are warned (the register is not in the program).
+void ExecLsMotion(LsRun& run, TokenCursor& ts, const std::string& letter) {
+  const int line = ts.line();
+  ProgramMotion m;
+  m.line = line;
+  m.kind = letter == "J" ? MotionKind::kJoint : (letter == "L" ? MotionKind::kLinear : MotionKind::kCircular);
+  bool is_register = false;
+  int target = ReadLsPositionRef(ts, &is_register);
+  if (letter == "A") {
+    run.warnings.Add("circular arc motion A not executed", line);
+    return;
+  }
+  int via = -1;
+  if (m.kind == MotionKind::kCircular) {
+    via = target;
+    bool end_register = false;
+    target = ReadLsPositionRef(ts, &end_register);
+    WAAM_THROW_UNLESS(target > 0, run.file << ":" << line << ": circular motion C needs its via and end positions");
+    is_register = is_register || end_register;
+  }
+  if (is_register) {
+    run.warnings.Add("motion to a position register PR[n] not executed", line);
+    return;
+  }
+  internal::CheckMotionCount(run.program.motions.size(), run.file, line);
+  m.speed_mm_s = ReadLsSpeed(run, ts, m.kind);
+  ReadLsTermination(ts);
+  bool arc_start = false, arc_end = false;
+  ReadLsMotionOptions(run, ts, &arc_start, &arc_end);
+  // Arc Start on a motion: the arc strikes at its end point; Arc End: the move welds, the arc ends at its end.
+  m.weld = arc_start ? false : run.arc_on;
+  if (arc_start) run.arc_on = true;
+  if (arc_end) m.weld = true, run.arc_on = false;
+  SetLsTarget(run, target, line, &m);
+  if (via > 0) {
+    const auto v = run.positions.find(via);
+    WAAM_THROW_UNLESS(v != run.positions.end(),
+                      run.file << ":" << line << ": P[" << via << "] is used but not defined in /POS");
+    WAAM_THROW_UNLESS(v->second.cartesian,
+                      run.file << ":" << line << ": the via point P[" << via << "] of a C motion must be Cartesian");
+    ProgramMotion via_motion;
+    via_motion.has_pose = true;
+    SetLsTarget(run, via, line, &via_motion);
+    WAAM_THROW_UNLESS(via_motion.frame == m.frame && (via_motion.frame != TargetFrame::kArmWorld ||
+                                                      v->second.uf == run.positions.at(target).uf),
+                      run.file << ":" << line << ": the via point P[" << via << "] is in another user frame");
+    m.has_via = true;
+    m.via = via_motion.X_UT.translation();
+  }
+  run.program.motions.push_back(m);
+}
+
+// "WAIT 1.00(sec)": the torch waits at its last target; WAIT R[n] and WAIT <condition> are warned.
+void ExecLsWait(LsRun& run, TokenCursor& ts) {
+  if (ts.Peek().kind == TokenKind::kNumber) {
+    const double s = ts.ExpectNumber("WAIT time");
+    ts.Accept("(");
+    const std::string unit = ts.Peek().kind == TokenKind::kWord ? ts.Next().text : "SEC";
+    ts.Accept(")");
+    WAAM_THROW_UNLESS(unit == "SEC" && ts.AtEnd(), ts.file() << ":" << ts.line() << ": WAIT " << s << "(" << unit
+                                                             << ") must be WAIT t(sec)");
+    internal::AddDwell(&run.program.motions, s, ts.line(), &run.warnings);
+    return;
+  }
+  if (ts.Is("R") && ts.Is("[", 1)) {
+    run.warnings.Add("WAIT R[n] (a time from a register) not in the timeline", ts.line());
+    return;
+  }
+  run.warnings.Add("WAIT for a condition not executed", ts.line());
+}
+
+// UFRAME_NUM=n / UTOOL_NUM=n: the frame and tool the positions must be taught in; from a register: unknown.
+void ExecLsFrameNumber(LsRun& run, TokenCursor& ts, const std::string& word) {
+  ts.Expect("=", word);
+  int& number = word == "UFRAME_NUM" ? run.uframe_num : run.utool_num;
+  number = ts.PeekNumber() ? ts.ExpectInteger(word, 0, 999) : -1;
+}
+
+// Runs one /MN statement; false at END.
+bool ExecLsStatement(LsRun& run, const LsStatement& st) {
+  const std::string_view text = TrimBlank(st.text);
+  if (text.empty() || text.front() == '!' || text.compare(0, 2, "//") == 0) return true;  // comment, disabled line
+  TokenCursor ts(text, run.file, st.line);
+  if (ts.Peek().kind != TokenKind::kWord) {
+    run.warnings.Add("instruction " + ts.Rest().substr(0, 24) + " not executed", st.line);
+    return true;
+  }
+  const std::string first = ts.Peek().text;
+  if ((first == "J" || first == "L" || first == "C" || first == "A") && (ts.Is("P", 1) || ts.Is("PR", 1))) {
+    ts.Next();
+    ExecLsMotion(run, ts, first);
+    return true;
+  }
+  ts.Next();
+  if (first == "ARC" && (ts.Is("START") || ts.Is("END"))) {
+    run.arc_on = ts.Next().text == "START";
+  } else if (first == "WAIT") {
+    ExecLsWait(run, ts);
+  } else if (first == "UFRAME_NUM" || first == "UTOOL_NUM") {
+    ExecLsFrameNumber(run, ts, first);
+  } else if (first == "END") {
+    return false;
+  } else if (first == "LBL") {
+    // a label does nothing by itself
+  } else if (first == "WEAVE") {
+    run.warnings.Add("instruction WEAVE not executed: one bead along the path", st.line);
+  } else if (first.compare(0, 9, "MULTIPASS") == 0 || first.compare(0, 3, "MP_") == 0) {
+    run.warnings.Add("multi-pass instruction " + first.substr(0, 24) + " not executed: the taught pass only",
+                     st.line);
+  } else if ((first == "UFRAME" || first == "UTOOL") && ts.Is("[")) {
+    run.warnings.Add(first + "[n] set by the program not executed: program.frames." +
+                         (first == "UFRAME" ? "uframe" : "utool") + " used",
+                     st.line);
+  } else {
+    run.warnings.Add("instruction " + first.substr(0, 24) + " not executed", st.line);
+  }
+  return true;
+}
+
+}  // namespace
+
+ParsedProgram ReadFanucLs(std::string_view text, const std::string& file, const ProgramFrames& frames) {
+  const std::vector<std::string_view> lines = internal::SplitProgramLines(text, file);
+  internal::WarningList warnings;
+  const LsSource src = ReadLsSections(lines, file, &warnings);
+  ParsedProgram program;
+  program.format = ProgramFormat::kFanucLs;
+  program.name = src.name;
+  LsRun run{file, frames, src.positions, program, warnings, false, -1, -1};
+  for (const LsStatement& st : src.statements) {
+    if (!ExecLsStatement(run, st)) break;
   }
   program.warnings = warnings.Take();
   return program;

@@ -1,5 +1,6 @@
 // G-code reader: modal motion, units, absolute/relative positions, arcs in the XY plane, arc on/off by M-codes or
 // extrusion.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -78,6 +79,55 @@ std::string CodeName(char letter, double code) {
 
 }  // namespace
 
+// G4 (dwell) on its own line: P in milliseconds, S or X in seconds (Marlin / RepRap and FANUC's G04); the torch
+// waits at its last target. Returns false when the line is not a G4.
+bool ReadGcodeDwell(const std::vector<GcodeWord>& words, const std::string& file, int line, ParsedProgram* program,
+                    internal::WarningList* warnings) {
+  bool g4 = false;
+  for (const GcodeWord& w : words) g4 = g4 || (w.name == "G" && w.value == 4.0);
+  if (!g4) return false;
+  double seconds = 0.0;
+  bool timed = false;
+  for (const GcodeWord& w : words) {
+    if (w.name == "G" || w.name == "N") {
+      WAAM_THROW_UNLESS(w.name == "N" || w.value == 4.0,
+                        file << ":" << line << ": G4 shares its line with G" << w.value << ": a dwell stands alone");
+      continue;
+    }
+    WAAM_THROW_UNLESS(w.name == "P" || w.name == "S" || w.name == "X",
+                      file << ":" << line << ": G4 takes P (ms), S or X (s), not " << w.name);
+    WAAM_THROW_UNLESS(w.value >= 0.0, file << ":" << line << ": G4 " << w.name << w.value << " must be >= 0");
+    if (w.name == "P" && w.value != std::floor(w.value)) {
+      warnings->Add("G4 P with a fraction read as milliseconds (Marlin, FANUC; LinuxCNC and Grbl read seconds)", line);
+    }
+    seconds += w.name == "P" ? w.value / 1000.0 : w.value;
+    timed = true;
+  }
+  if (!timed) {
+    warnings->Add("G4 without a time (waits for the moves to finish): no wait", line);
+    return true;
+  }
+  internal::AddDwell(&program->motions, seconds, line, warnings);
+  return true;
+}
+
+// Warns when the weld feeds look like the other unit: below 60 read as mm/min (under 1 mm/s, no arc travels that
+// slowly) or above 200 read as mm/s (12 m/min, beyond any WAAM deposit), as written, in the program's length unit.
+void CheckGcodeFeedUnit(std::vector<double> feeds, GcodeFeedUnit unit, internal::WarningList* warnings) {
+  if (feeds.empty()) return;
+  std::sort(feeds.begin(), feeds.end());
+  const double median = feeds[feeds.size() / 2];
+  if (unit == GcodeFeedUnit::kMmPerMin && median < 60.0) {
+    warnings->Add("weld feeds (median F" + std::to_string(median).substr(0, 8) +
+                      ") look like mm/s: set program.gcode.feed_unit: mm_per_s if the controller reads them so",
+                  1);
+  } else if (unit == GcodeFeedUnit::kMmPerS && median > 200.0) {
+    warnings->Add("weld feeds (median F" + std::to_string(median).substr(0, 8) +
+                      ") look like mm/min: program.gcode.feed_unit is mm_per_s",
+                  1);
+  }
+}
+
 ParsedProgram ReadGcode(std::string_view text, const std::string& file, const GcodeReadOptions& options) {
   const std::vector<std::string_view> lines = internal::SplitProgramLines(text, file);
   ParsedProgram program;
@@ -95,9 +145,13 @@ ParsedProgram ReadGcode(std::string_view text, const std::string& file, const Gc
   double tilt_deg = 0.0, rotation_deg = 0.0;
   Eigen::Vector3d tool = Eigen::Vector3d::UnitZ();
   bool any_position = false;
+  double raw_feed = 0.0;    // modal F as written
+  std::vector<double> weld_feeds;  // F as written on weld moves, for the unit check
+  const double feed_scale = options.feed_unit == GcodeFeedUnit::kMmPerS ? 1.0 : 1.0 / 60.0;
   for (std::size_t li = 0; li < lines.size(); ++li) {
     const int line = static_cast<int>(li) + 1;
     const std::vector<GcodeWord> words = GcodeWords(lines[li], file, line);
+    if (ReadGcodeDwell(words, file, line, &program, &warnings)) continue;
     bool axis = false, has_e = false;
     double e = 0.0;
     Eigen::Vector3d target = pos, centre_offset = Eigen::Vector3d::Zero();
@@ -146,7 +200,8 @@ ParsedProgram ReadGcode(std::string_view text, const std::string& file, const Gc
         has_r = true;
       } else if (n == "F") {
         WAAM_THROW_UNLESS(w.value > 0.0, file << ":" << line << ": F" << w.value << " must be > 0");
-        feed_mm_s = w.value * unit / 60.0;
+        feed_mm_s = w.value * unit * feed_scale;
+        raw_feed = w.value;
       } else if (n == "E") {
         has_e = true;
         e = w.value;
@@ -179,6 +234,7 @@ ParsedProgram ReadGcode(std::string_view text, const std::string& file, const Gc
     m.rotation_rad = rotation * kPi / 180.0;
     m.speed_mm_s = mode == 0 ? 0.0 : feed_mm_s;
     m.weld = mode != 0 && (arc_on || extruding);
+    if (m.weld && raw_feed > 0.0) weld_feeds.push_back(raw_feed);
     if (m.kind == MotionKind::kCircular) {
       if (!has_ij || has_r || !any_position) {
         warnings.Add(has_r ? "G2/G3 with a radius R: followed as a linear move"
@@ -224,6 +280,7 @@ ParsedProgram ReadGcode(std::string_view text, const std::string& file, const Gc
     tool = tool_words;
     any_position = true;
   }
+  CheckGcodeFeedUnit(weld_feeds, options.feed_unit, &warnings);
   program.warnings = warnings.Take();
   return program;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "models/core/error.h"
+#include "models/core/numbers.h"
 
 namespace waam::planner {
 
@@ -82,6 +83,21 @@ Eigen::Matrix3d RotationZyx(double a, double b, double c) {
   return (Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(b, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(c, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
+}
+
+Eigen::Isometry3d PoseXyzAbc(double x, double y, double z, double a_deg, double b_deg, double c_deg) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  X.linear() = RotationZyx(a_deg * kPi / 180.0, b_deg * kPi / 180.0, c_deg * kPi / 180.0);
+  return X;
+}
+
+void AddDwell(std::vector<ProgramMotion>* motions, double seconds, int line, WarningList* warnings) {
+  if (motions->empty()) {
+    warnings->Add("wait before the first motion: not in the timeline", line);
+    return;
+  }
+  motions->back().dwell_s += seconds;
 }
 
 }  // namespace internal

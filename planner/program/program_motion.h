@@ -38,9 +38,10 @@ WAAM_ENUM_JSON(MotionKind)
 
 // Where a motion's Cartesian target is given: the user frame U (the scenario's program.frame, or the cell's default:
 // the FANUC world frame, R lifted to the j2 height), the robot base frame R (a frame the program defines itself,
-// e.g. an ABB wobjdata, already applied), or the part frame P (G-code written with the tool tip in workpiece
-// coordinates, as five-axis controllers with TCPM do).
-enum class TargetFrame { kUser, kRobot, kPart };
+// e.g. an ABB wobjdata or a KRL BASE_DATA, already applied), the part frame P (G-code written with the tool tip in
+// workpiece coordinates, as five-axis controllers with TCPM do), or the arm's world frame A (the cell's FANUC world
+// frame whatever the scenario's program.frame: a FANUC UF 0 position, or a numbered user frame already applied).
+enum class TargetFrame { kUser, kRobot, kPart, kArmWorld };
 
 // One motion instruction as the controller would execute it.
 struct ProgramMotion {
@@ -65,6 +66,26 @@ struct ProgramMotion {
   Eigen::Vector3d via = Eigen::Vector3d::Zero();
   double speed_mm_s = 0.0;          // TCP speed of the move, mm/s; <= 0: unknown (the rapid speed is used)
   bool weld = false;                // arc on during this move
+  double dwell_s = 0.0;             // the program waits this long at the target once there (G4, WAIT...), s >= 0
+  // The program's tool: its TCP in the flange frame F, mm (a tool the program defines, or one it names that the
+  // scenario's program.frames gives); false: the cell's torch.
+  bool has_tool = false;
+  Eigen::Isometry3d X_FT = Eigen::Isometry3d::Identity();
+  std::string tool_name;            // how the program names its tool ("UT 2", "TOOL_DATA[4]", "tWeld"), for reports
+};
+
+// Frames and tools a program names by number without defining them, from the scenario's program.frames. Each is
+// six numbers as the controller shows them: x, y, z (mm) and three angles (deg) in the dialect's own order (FANUC
+// w, p, r with R = Rz(r) Ry(p) Rx(w); KUKA a, b, c with R = Rz(a) Ry(b) Rx(c)).
+struct ProgramFrames {
+  // FANUC UFRAME n (in the FANUC world frame), KUKA BASE_DATA[n] (in the robot's base frame), mm and deg.
+  std::map<int, std::array<double, 6>> uframe;
+  // FANUC UTOOL n, KUKA TOOL_DATA[n] (in the flange frame), mm and deg; an empty value: the cell's torch. An empty
+  // table: every tool the program names without defining it is the cell's torch.
+  std::map<int, std::optional<std::array<double, 6>>> utool;
+  // The scenario gives program.frame.user_frame_mm: a FANUC program's one numbered user frame without a
+  // program.frames entry is that frame.
+  bool user_frame = false;
 };
 
 // An instruction the twin did not execute: what, how often, where first.
@@ -122,6 +143,13 @@ void CheckMotionCount(std::size_t motions, const std::string& file, int line);
 
 // Rotation Rz(a) Ry(b) Rx(c) (angles in rad): FANUC W P R = (c, b, a), KUKA A B C = (a, b, c).
 Eigen::Matrix3d RotationZyx(double a, double b, double c);
+
+// The pose of six numbers x, y, z (mm), a, b, c (deg) with R = Rz(a) Ry(b) Rx(c) (KUKA's order; FANUC's w, p, r is
+// (r, p, w) here).
+Eigen::Isometry3d PoseXyzAbc(double x, double y, double z, double a_deg, double b_deg, double c_deg);
+
+// Sets `m`'s dwell to `seconds` more, or warns "wait before the first motion" when there is none yet.
+void AddDwell(std::vector<ProgramMotion>* motions, double seconds, int line, WarningList* warnings);
 
 }  // namespace internal
 }  // namespace waam::planner

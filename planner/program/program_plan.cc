@@ -49,6 +49,15 @@ std::vector<Eigen::Vector3d> ArcPoints(const Eigen::Vector3d& a, const Eigen::Ve
   return out;
 }
 
+// The world pose of a motion's frame (not kPart, which moves with the positioner).
+Eigen::Isometry3d FrameInWorld(const CellKinematics& cell, const Eigen::Isometry3d& X_WU, TargetFrame frame) {
+  switch (frame) {
+    case TargetFrame::kRobot: return cell.X_WR;
+    case TargetFrame::kArmWorld: return ProgramUserFrame(cell);
+    default: return X_WU;
+  }
+}
+
 struct PassSpan {
   std::size_t first = 0, last = 0;  // [first, last) indices into the flat point list
   Eigen::Vector3d build_dir = Eigen::Vector3d::UnitZ();
@@ -58,8 +67,21 @@ struct PassSpan {
 
 }  // namespace
 
+const ProgramMotion* ProgramTool(const ParsedProgram& program) {
+  const ProgramMotion* first = nullptr;
+  for (const ProgramMotion& m : program.motions) {
+    if (!m.has_tool) continue;
+    if (m.weld) return &m;
+    if (first == nullptr) first = &m;
+  }
+  return first;
+}
+
 std::vector<ResolvedTarget> ResolveTargets(const ParsedProgram& program, const CellKinematics& cell,
                                            const ImportSettings& settings) {
+  // Joint targets put the arm where the check's tool (the program's, else the cell's torch) then finds it again.
+  const ProgramMotion* tool = ProgramTool(program);
+  const Eigen::Isometry3d X_FT = tool != nullptr ? tool->X_FT : cell.X_FT;
   const Eigen::Isometry3d X_WU = settings.X_WU ? *settings.X_WU : ProgramUserFrame(cell);
   std::vector<ResolvedTarget> out;
   out.reserve(program.motions.size());
@@ -84,14 +106,13 @@ std::vector<ResolvedTarget> ResolveTargets(const ParsedProgram& program, const C
     t.rotation_rad = rotation;
     t.speed_mm_s = m.speed_mm_s;
     t.weld = m.weld;
+    t.dwell_s = m.dwell_s;
     if (m.has_joints) {
-      t.X_WT = cell.X_WR * ForwardKinematics(cell.arm, m.q) * cell.X_FT;
+      t.X_WT = cell.X_WR * ForwardKinematics(cell.arm, m.q) * X_FT;
     } else if (m.frame == TargetFrame::kPart) {
       t.X_WT = X_WP * m.X_UT;
-    } else if (m.frame == TargetFrame::kRobot) {
-      t.X_WT = cell.X_WR * m.X_UT;
     } else {
-      t.X_WT = X_WU * m.X_UT;
+      t.X_WT = FrameInWorld(cell, X_WU, m.frame) * m.X_UT;
     }
     const Eigen::Isometry3d X_PT = X_WP.inverse() * t.X_WT;
     t.p_P = X_PT.translation();
@@ -149,7 +170,7 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
       if (in_part) {
         a = prev.p_P, via = m.via, b = t.p_P;
       } else {
-        const Eigen::Isometry3d X_WF = m.frame == TargetFrame::kRobot ? cell.X_WR : X_WU;
+        const Eigen::Isometry3d X_WF = FrameInWorld(cell, X_WU, m.frame);
         a = prev.X_WT.translation(), via = X_WF * m.via, b = t.X_WT.translation();
       }
       const std::vector<Eigen::Vector3d> arc = ArcPoints(a, via, b, settings.arc_step_mm);
@@ -180,6 +201,7 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
       notes.Add("circular move without its intermediate point: followed as a linear move", t.line);
     }
     make_point(t.p_P, t.tool_dir_P, t, true, Eigen::Vector2d(t.tilt_rad, t.rotation_rad));
+    points.back().dwell_s = t.dwell_s;
   }
 
   // Passes: a run of arc-off points followed by the welded run after it.
@@ -235,6 +257,16 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
                         points.begin() + static_cast<std::ptrdiff_t>(pass.last));
   }
   out.points = points.size();
+  if (const ProgramMotion* tool = ProgramTool(program)) {
+    out.plan.X_FT = tool->X_FT, out.plan.tool_name = tool->tool_name;
+    for (const ProgramMotion& m : program.motions) {
+      if (m.has_tool && m.has_pose && !m.X_FT.isApprox(tool->X_FT, 1e-9)) {
+        notes.Add("Cartesian move with tool " + m.tool_name + ", not " + tool->tool_name + ": the check moves " +
+                      tool->tool_name,
+                  m.line);
+      }
+    }
+  }
   out.warnings = program.warnings;
   for (ProgramWarning& w : notes.Take()) out.warnings.push_back(std::move(w));
   return out;

@@ -40,10 +40,16 @@ struct ResolvedTarget {
   bool missing_axis = false;  // the program moves a positioner axis the cell lacks (the value is not used)
   double speed_mm_s = 0.0;                                  // as the program gives it (<= 0: none)
   bool weld = false;
+  double dwell_s = 0.0;                                     // the program's wait at the target, s
 };
 
+// The motion whose tool the check moves: the first welded one that names a tool, else the first that does; null
+// when none does (the cell's torch).
+const ProgramMotion* ProgramTool(const ParsedProgram& program);
+
 // The world and part-frame pose of every motion's target, with the positioner angles in force (a motion without
-// them keeps the last ones; 0, 0 before the first). Numbered external axes go to the cell's axes in order; an axis
+// them keeps the last ones; 0, 0 before the first). Joint targets go through forward kinematics with the check's
+// tool (ProgramTool, else the cell's torch). Numbered external axes go to the cell's axes in order; an axis
 // the cell lacks (cell.positioner.type) stays at 0.
 std::vector<ResolvedTarget> ResolveTargets(const ParsedProgram& program, const CellKinematics& cell,
                                            const ImportSettings& settings);
@@ -57,8 +63,9 @@ struct ImportedPlan {
 
 // The program as the twin's plan (part frame P). Passes (arc-off lead-in + welded run) whose mean height along
 // their mean tool direction stays within the tolerance form one layer. Every point carries the program's positioner
-// angles (PathPoint::positioner_rad; 0, 0 until the program first gives them), which the cell motion then follows. Throws InputError for a program without
-// motions.
+// angles (PathPoint::positioner_rad; 0, 0 until the program first gives them), which the cell motion then follows,
+// and its wait (PathPoint::dwell_s). The plan's tool (Plan::X_FT) is the program's first (a second one is warned).
+// Throws InputError for a program without motions.
 ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& cell, const ImportSettings& settings);
 
 }  // namespace waam::planner

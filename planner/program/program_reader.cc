@@ -35,16 +35,17 @@ ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string
 }
 
 ParsedProgram ReadProgramText(std::string_view text, const std::string& file, ProgramFormat format,
-                              const GcodeReadOptions& gcode, const JbiReadOptions& jbi) {
+                              const GcodeReadOptions& gcode, const JbiReadOptions& jbi, const ProgramFrames& frames) {
   switch (format) {
     case ProgramFormat::kCsv: return ReadProgramCsv(text, file);
-    case ProgramFormat::kFanucLs: return ReadFanucLs(text, file);
+    case ProgramFormat::kFanucLs: return ReadFanucLs(text, file, frames);
     case ProgramFormat::kAbbRapid: return ReadAbbRapid(text, file);
     case ProgramFormat::kGcode: return ReadGcode(text, file, gcode);
     case ProgramFormat::kKukaKrl: {
       std::size_t dat = text.find("\nDEFDAT");
       if (dat == std::string_view::npos) dat = text.find("\ndefdat");
-      return ReadKukaKrl(text, dat == std::string_view::npos ? std::string_view() : text.substr(dat + 1), file, file);
+      return ReadKukaKrl(text, dat == std::string_view::npos ? std::string_view() : text.substr(dat + 1), file, file,
+                         frames);
     }
     case ProgramFormat::kYaskawaJbi: return ReadYaskawaJbi(text, file, jbi);
   }
@@ -53,7 +54,7 @@ ParsedProgram ReadProgramText(std::string_view text, const std::string& file, Pr
 }
 
 ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
-                              const GcodeReadOptions& gcode, const JbiReadOptions& jbi) {
+                              const GcodeReadOptions& gcode, const JbiReadOptions& jbi, const ProgramFrames& frames) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   WAAM_THROW_UNLESS(!ec, path.string() << ": cannot read the program: " << ec.message());
@@ -79,9 +80,9 @@ ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<P
     const std::string dat_text = given_dat ? text : (std::filesystem::is_regular_file(dat) ? ReadFile(dat) : "");
     WAAM_THROW_UNLESS(src_text.size() <= kMaxProgramBytes && dat_text.size() <= kMaxProgramBytes,
                       src.string() << ": the program is more than the limit of " << kMaxProgramBytes << " bytes");
-    program = ReadKukaKrl(src_text, dat_text, src.string(), dat.string());
+    program = ReadKukaKrl(src_text, dat_text, src.string(), dat.string(), frames);
   } else {
-    program = ReadProgramText(text, path.string(), f, gcode, jbi);
+    program = ReadProgramText(text, path.string(), f, gcode, jbi, frames);
   }
   if (program.name.empty()) program.name = path.stem().string();
   return program;

@@ -11,10 +11,17 @@
 
 namespace waam::planner {
 
-// G-code settings: which M-codes switch the arc (a G1 with a growing E extrudes, and welds, too).
+// The unit of a G-code F word (program.gcode.feed_unit).
+enum class GcodeFeedUnit { kMmPerMin, kMmPerS };
+constexpr std::array<EnumName<GcodeFeedUnit>, 2> EnumNames(GcodeFeedUnit) {
+  return {{{GcodeFeedUnit::kMmPerMin, "mm_per_min"}, {GcodeFeedUnit::kMmPerS, "mm_per_s"}}};
+}
+
+// G-code settings: which M-codes switch the arc (a G1 with a growing E extrudes, and welds, too), the feed's unit.
 struct GcodeReadOptions {
   int arc_on_m = 3;    // M3: torch on (the spindle code most WAAM gantries reuse)
   int arc_off_m = 5;   // M5: torch off
+  GcodeFeedUnit feed_unit = GcodeFeedUnit::kMmPerMin;  // F in mm/min (G94, the standard) or mm/s (some WAAM controllers)
 };
 
 // Yaskawa INFORM settings: the controller's encoder pulses per degree (0 = unknown: a pulse position is refused).
@@ -30,7 +37,7 @@ struct JbiReadOptions {
 // FANUC LS: /PROG, /ATTR, /APPL, /MN (J, L, C motions; Arc Start/End as instructions and motion options; registers,
 // CALL, IF, JMP, LBL, comments, Weave, Offset, TOOL_OFFSET warned), /POS (GP1 Cartesian with CONFIG or joints, GP2
 // positioner joints), /END.
-ParsedProgram ReadFanucLs(std::string_view text, const std::string& file);
+ParsedProgram ReadFanucLs(std::string_view text, const std::string& file, const ProgramFrames& frames = {});
 
 // ABB RAPID module: robtarget / jointtarget / speeddata / welddata / wobjdata declarations (CONST, PERS, VAR);
 // MoveJ, MoveL, MoveC, MoveAbsJ, ArcLStart, ArcL, ArcLEnd, ArcCStart, ArcC, ArcCEnd, SetDO of a weld/arc signal.
@@ -40,7 +47,7 @@ ParsedProgram ReadAbbRapid(std::string_view text, const std::string& file);
 // aggregates), $VEL.CP and BAS(#CP_PARAMS, v) speeds (m/s), $BASE as a frame literal (else the scenario's user
 // frame), $OUT[1] and ArcTech ARC_ON / ARC_OFF switching the arc, E1 / E2 the positioner (deg).
 ParsedProgram ReadKukaKrl(std::string_view src, std::string_view dat, const std::string& src_file,
-                          const std::string& dat_file);
+                          const std::string& dat_file, const ProgramFrames& frames = {});
 
 // Yaskawa INFORM job (.JBI): /JOB, //NAME, //POS (///NPOS counts checked against the positions given; ///POSTYPE
 // ROBOT or BASE: the arm's base frame, USER: the scenario's user frame, PULSE: joint pulses through forward
@@ -63,11 +70,13 @@ ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string
 
 // Reads `path` (at most kMaxProgramBytes) with the reader of `format` (empty: detected).
 ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
-                              const GcodeReadOptions& gcode = {}, const JbiReadOptions& jbi = {});
+                              const GcodeReadOptions& gcode = {}, const JbiReadOptions& jbi = {},
+                              const ProgramFrames& frames = {});
 
 // Reads `text` with the reader of `format`; `file` names it in messages. KRL: the .src text followed by its .dat.
 ParsedProgram ReadProgramText(std::string_view text, const std::string& file, ProgramFormat format,
-                              const GcodeReadOptions& gcode = {}, const JbiReadOptions& jbi = {});
+                              const GcodeReadOptions& gcode = {}, const JbiReadOptions& jbi = {},
+                              const ProgramFrames& frames = {});
 
 // The format an extension names (.ls, .mod/.prg/.modx, .src/.dat, .jbi, .nc/.gcode/.ngc/.tap/.g/.mpf, .csv; any
 // case), or empty.

@@ -4,6 +4,46 @@
 #include "models/core/error.h"
 
 namespace waam::planner::internal {
+namespace {
+
+// frames: {uframe: {6: [x, y, z, w, p, r]}, utool: {5: [...] or torch}} (mm, deg).
+ProgramFrames ParseProgramFrames(YamlMap& frames) {
+  ProgramFrames out;
+  for (const char* kind : {"uframe", "utool"}) {
+    if (!frames.Has(kind)) continue;
+    YamlMap table = frames.Map(kind);
+    for (const auto& entry : table.node()) {
+      WAAM_THROW_UNLESS(entry.first.IsScalar(), table.Where("") << ": keys must be frame numbers");
+      const std::string key = entry.first.as<std::string>();
+      int n = -1;
+      try {
+        std::size_t used = 0;
+        n = std::stoi(key, &used);
+        if (used != key.size()) n = -1;
+      } catch (const std::exception&) {
+        n = -1;
+      }
+      WAAM_THROW_UNLESS(n >= 1 && n <= 999, table.Where(key) << ": must be a frame number in [1, 999]");
+      const bool torch = entry.second.IsScalar() && entry.second.as<std::string>() == "torch";
+      WAAM_THROW_UNLESS(!torch || std::string(kind) == "utool",
+                        table.Where(key) << " = torch: only a tool (utool) can be the cell's torch");
+      if (torch) {
+        (void)table.String(key);
+        out.utool[n] = std::nullopt;
+        continue;
+      }
+      const std::vector<double> v = table.Numbers(key, 6, -1e6, 1e6);
+      const std::array<double, 6> f = {v[0], v[1], v[2], v[3], v[4], v[5]};
+      if (std::string(kind) == "uframe") out.uframe[n] = f;
+      else out.utool[n] = f;
+    }
+    table.CheckNoUnknownKeys();
+  }
+  frames.CheckNoUnknownKeys();
+  return out;
+}
+
+}  // namespace
 
 ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& scenario_dir) {
   ProgramSettings s;
@@ -41,6 +81,7 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
     if (frame.Has("user_frame_mm")) {
       const std::vector<double> v = frame.Numbers("user_frame_mm", 6, -1e6, 1e6);
       s.user_frame_mm = std::array<double, 6>{v[0], v[1], v[2], v[3], v[4], v[5]};
+      s.frames.user_frame = true;
     }
     frame.CheckNoUnknownKeys();
   }
@@ -52,7 +93,14 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
     s.gcode_arc_off_m = gcode.Integer("arc_off_m", 0, 999, 5);
     WAAM_THROW_UNLESS(s.gcode_arc_on_m != s.gcode_arc_off_m,
                       gcode.Where("arc_off_m") << " = " << s.gcode_arc_off_m << ": must differ from arc_on_m");
+    s.gcode_feed_unit = gcode.Enum("feed_unit", GcodeFeedUnit::kMmPerMin);
     gcode.CheckNoUnknownKeys();
+  }
+  if (section.Has("frames")) {
+    YamlMap frames = section.Map("frames");
+    const bool user_frame = s.frames.user_frame;
+    s.frames = ParseProgramFrames(frames);
+    s.frames.user_frame = user_frame;
   }
   if (section.Has("yaskawa")) {
     YamlMap yaskawa = section.Map("yaskawa");

@@ -8,6 +8,7 @@
 
 #include "models/core/enum_names.h"
 #include "planner/program/program_motion.h"
+#include "planner/program/program_reader.h"
 
 namespace waam::planner {
 
@@ -27,6 +28,10 @@ struct ProgramSettings {
   double layer_tolerance_mm = 0.0;            // >= 0; 0 = half the bead height
   int gcode_arc_on_m = 3;                     // gcode.arc_on_m
   int gcode_arc_off_m = 5;                    // gcode.arc_off_m
+  GcodeFeedUnit gcode_feed_unit = GcodeFeedUnit::kMmPerMin;  // gcode.feed_unit: mm_per_min | mm_per_s
+  // frames.uframe.<n> / frames.utool.<n>: frames and tools the program names by number without defining them
+  // (FANUC UFRAME / UTOOL, KUKA BASE_DATA / TOOL_DATA), [x, y, z mm, three angles deg]; a tool may be `torch`.
+  ProgramFrames frames;
   // yaskawa.pulses_per_deg: the arm's encoder pulses per degree (S, L, U, R, B, T), for pulse positions; 0 = unknown
   std::array<double, 6> yaskawa_pulses_per_deg = {};
   // yaskawa.station_pulses_per_deg: the station's (positioner tilt, rotation), for EC positions; 0 = unknown

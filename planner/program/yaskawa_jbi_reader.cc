@@ -265,6 +265,18 @@ ParsedProgram ReadYaskawaJbi(std::string_view text, const std::string& file, con
       state.arc_on = word == "ARCON";
       continue;
     }
+    if (word == "TIMER") {
+      // TIMER T=t (s): the torch waits at its last target; a time from a variable is warned.
+      const std::size_t t = u.find("T=");
+      WAAM_THROW_UNLESS(t != std::string::npos, file << ":" << line << ": TIMER without its T=");
+      const std::string value(TrimBlank(std::string_view(u).substr(t + 2)));
+      if (value.empty() || !(std::isdigit(static_cast<unsigned char>(value[0])) || value[0] == '.')) {
+        warnings.Add("TIMER of a variable not in the timeline", line);
+      } else {
+        internal::AddDwell(&program.motions, ParseProgramNumber(value, file, line, "TIMER T"), line, &warnings);
+      }
+      continue;
+    }
     if (!movj && !movl && !movc && !movs) {
       warnings.Add("instruction " + word.substr(0, 24) + " not executed", line);
       continue;

@@ -163,7 +163,7 @@ std::vector<BadInput> Catalogue() {
   // A FANUC LS program with one position; P[2] is used and not defined.
   const std::string ls_head = "/PROG  T\n/ATTR\n/MN\n   1:L  P[1] 100mm/sec FINE    ;\n";
   const std::string ls_pos =
-      "/POS\nP[1]{\n   GP1:\n\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
+      "/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
       "\tX =  1000.000  mm,\tY =     0.000  mm,\tZ =   180.000  mm,\n";
   const std::string ls_tail = "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg\n};\n/END\n";
   // A Yaskawa INFORM job whose ///NPOS says 3 C positions and gives 2.
@@ -176,6 +176,17 @@ std::vector<BadInput> Catalogue() {
       {"program-ls-position-not-defined", "import", "prog.ls",
        {{"prog.ls", ls_head + "   2:L  P[2] 100mm/sec FINE    ;\n" + ls_pos + ls_tail}},
        {"prog.ls:5: P[2] is used but not defined in /POS"}},
+      {"program-ls-uframe-not-defined", "import", "prog.ls",
+       {{"prog.ls", ls_head + ReplaceAll(ls_pos, "UF : 0", "UF : 6") + ls_tail}},
+       {"prog.ls:4: P[1] is taught in user frame UF 6, which the program does not define: give "
+        "program.frames.uframe.6 = [x, y, z, w, p, r]"}},
+      {"program-krl-base-not-defined", "import", "prog.src",
+       {{"prog.src", "DEF prog( )\n$BASE=BASE_DATA[8]\n$VEL.CP=0.1\nLIN {X 10.0,Y 0.0,Z 5.0,A 0.0,B 0.0,C 180.0}\n"
+                     "END\n"}},
+       {"prog.src:4: $BASE is BASE_DATA[8], which the program does not define: give program.frames.uframe.8 = "
+        "[x, y, z, a, b, c]"}},
+      {"program-gcode-dwell-with-move", "import", "prog.nc", {{"prog.nc", "G1 X10 F400\nG4 G1 P500 X20\n"}},
+       {"prog.nc:2: G4 shares its line with G1: a dwell stands alone"}},
       {"program-rapid-zero-quaternion", "import", "prog.mod",
        {{"prog.mod", "MODULE T\n  CONST robtarget p1:=[[1000,0,180],[0,0,0,0],[0,0,0,0],[0,0,9E+09,9E+09,9E+09,9E+09]];\n"
                      "  PROC main()\n    MoveL p1,v100,fine,tool0;\n  ENDPROC\nENDMODULE\n"}},

@@ -125,11 +125,41 @@ TEST(ProgramCliTest, ProgramSectionIsCheckedWhereItIsWritten) {
               HasSubstr("program.frame.user_frame_mm"));
   EXPECT_EQ(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {arc_on_m: 7, arc_off_m: 9}\n" + process),
             "no error");
+  // program.gcode.feed_unit and program.frames (numbered frames and tools, a tool may be the cell's torch).
+  EXPECT_EQ(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {feed_unit: mm_per_s}\n  frames: {uframe: {2: [0, 0, "
+                  "0, 0, 0, 90]}, utool: {1: torch, 3: [0, 0, 400, 0, 0, 0]}}\n" + process),
+            "no error");
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {feed_unit: mm_per_hour}\n" + process),
+              HasSubstr("program.gcode.feed_unit = 'mm_per_hour'"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  frames: {uframe: {six: [0, 0, 0, 0, 0, 0]}}\n" + process),
+              HasSubstr("program.frames.uframe.six: must be a frame number in [1, 999]"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  frames: {uframe: {6: torch}}\n" + process),
+              HasSubstr("only a tool (utool) can be the cell's torch"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  frames: {utool: {6: [0, 0, 400]}}\n" + process),
+              HasSubstr("program.frames.utool.6"));
   EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\ntarget: nowhere.stl\n" + process),
               HasSubstr("s.yaml:4: target: target file"));
   EXPECT_THAT(error("name: s\npart: {generator: {type: box, size_mm: [10, 10, 5]}}\nslicing: {type: planar, "
                     "layer_height_mm: 1}\npath: {pattern: contour, bead_width_mm: 6}\ntarget: wall.nc\n" + process),
               HasSubstr("only with a program: section"));
+}
+
+TEST(ProgramCliTest, CheckMovesTheToolAProgramSetsAndSaysSo) {
+  // base_tool.src sets TOOL_DATA[4] (380 mm along the flange's z, turned 20 deg) and welds with it.
+  const fs::path dir = TempDir("program_tool");
+  for (const char* f : {"base_tool.src", "base_tool.dat"}) fs::copy_file(ProgramFixture(f), dir / f);
+  WriteFileAtomic(dir / "s.yaml", "name: base_tool\nprogram:\n  file: base_tool.src\n"
+                                  "process: {travel_speed_mm_min: 400, wire_feed_mm_min: 3200}\n");
+  std::string err;
+  const int code = RunWaam("check " + (dir / "s.yaml").string() + " -o " + (dir / "check").string() +
+                               " -q --no-images",
+                           &err);
+  ASSERT_TRUE(code == 0 || code == 3) << err;
+  const nlohmann::json check = ReadJson(dir / "check" / "check.json");
+  ASSERT_TRUE(check.contains("tool")) << check.dump().substr(0, 400);
+  EXPECT_EQ(check["tool"]["name"], "TOOL_DATA[4]");
+  EXPECT_EQ(check["tool"]["source"], "program");
+  EXPECT_TRUE(check["tool"]["differs_from_torch"].get<bool>());
 }
 
 TEST(ProgramCliTest, TargetGivesAProgramItsDeviationMeasures) {

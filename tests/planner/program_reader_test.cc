@@ -39,6 +39,15 @@ const ProgramWarning* FindWarning(const ParsedProgram& program, const std::strin
   return nullptr;
 }
 
+// wall.ls is taught in UF 1, which sits on the FANUC world frame.
+ProgramFrames WallLsFrames() {
+  ProgramFrames frames;
+  frames.uframe[1] = {0, 0, 0, 0, 0, 0};
+  return frames;
+}
+
+ParsedProgram ReadWallLs() { return ReadProgramFile(Fixture("wall.ls"), std::nullopt, {}, {}, WallLsFrames()); }
+
 std::vector<PathPoint> WeldPoints(const ImportedPlan& imported) {
   std::vector<PathPoint> out;
   for (const LayerPath& layer : imported.plan.layers) {
@@ -50,7 +59,7 @@ std::vector<PathPoint> WeldPoints(const ImportedPlan& imported) {
 }
 
 TEST(ProgramReaderTest, FanucLsWallIsReadWithItsWarnings) {
-  const ParsedProgram program = ReadProgramFile(Fixture("wall.ls"), std::nullopt);
+  const ParsedProgram program = ReadWallLs();
   EXPECT_EQ(program.format, ProgramFormat::kFanucLs);
   EXPECT_EQ(program.name, "WALL");
   ASSERT_EQ(program.motions.size(), 9u);
@@ -76,7 +85,7 @@ TEST(ProgramReaderTest, FanucLsWallIsReadWithItsWarnings) {
 }
 
 TEST(ProgramReaderTest, CircularMovesAreCutIntoChordsOnTheCircle) {
-  const ParsedProgram program = ReadProgramFile(Fixture("wall.ls"), std::nullopt);
+  const ParsedProgram program = ReadWallLs();
   ImportSettings settings;
   settings.arc_step_mm = 1.0;
   const CellKinematics cell = ReaderTestCell();
@@ -106,16 +115,17 @@ TEST(ProgramReaderTest, CircularMovesAreCutIntoChordsOnTheCircle) {
 }
 
 TEST(ProgramReaderTest, RapidWallWeldsTheSamePathAsTheFanucWall) {
-  const ParsedProgram ls = ReadProgramFile(Fixture("wall.ls"), std::nullopt);
+  const ParsedProgram ls = ReadWallLs();
   const ParsedProgram mod = ReadProgramFile(Fixture("wall.mod"), std::nullopt);
   EXPECT_EQ(mod.format, ProgramFormat::kAbbRapid);
   EXPECT_EQ(mod.name, "WALL");
   EXPECT_EQ(mod.motions.size(), ls.motions.size()) << "Offs(pEnd2, 0, 0, 40) is followed";
   EXPECT_NE(FindWarning(mod, "TORCHCLEAN"), nullptr);
   EXPECT_NE(FindWarning(mod, "\\WEAVE"), nullptr);
-  const ProgramWarning* wait = FindWarning(mod, "WAITTIME");
-  ASSERT_NE(wait, nullptr);
-  EXPECT_EQ(wait->count, 2);
+  // WaitTime 1 after the retract Offs(pEnd2, 0, 0, 40); the 0.5 s of TorchClean (not called) is read in file order.
+  EXPECT_EQ(FindWarning(mod, "WAITTIME"), nullptr);
+  EXPECT_NEAR(mod.motions[mod.motions.size() - 2].dwell_s, 1.0, 1e-12);
+  EXPECT_NEAR(mod.motions.back().dwell_s, 0.5, 1e-12);
   const CellKinematics cell = ReaderTestCell();
   const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
   const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(mod, cell, ImportSettings{}));
@@ -128,13 +138,15 @@ TEST(ProgramReaderTest, RapidWallWeldsTheSamePathAsTheFanucWall) {
 
 TEST(ProgramReaderTest, KrlWallWeldsTheSamePathAsTheFanucWall) {
   // wall.src with its wall.dat found beside it; ArcTech ARC_ON / ARC_OFF and $OUT[1] switch the arc.
-  const ParsedProgram ls = ReadProgramFile(Fixture("wall.ls"), std::nullopt);
+  const ParsedProgram ls = ReadWallLs();
   const ParsedProgram krl = ReadProgramFile(Fixture("wall.src"), std::nullopt);
   EXPECT_EQ(krl.format, ProgramFormat::kKukaKrl);
   EXPECT_EQ(krl.motions.size(), ls.motions.size());
-  const ProgramWarning* wait = FindWarning(krl, "WAIT");
-  ASSERT_NE(wait, nullptr);
-  EXPECT_EQ(wait->first_line, 30);
+  // WAIT SEC 1.0 (line 30): the torch waits at XP8, the end of the second layer.
+  EXPECT_EQ(FindWarning(krl, "WAIT"), nullptr);
+  ASSERT_EQ(krl.motions.size(), 9u);
+  EXPECT_EQ(krl.motions[6].line, 28);
+  EXPECT_NEAR(krl.motions[6].dwell_s, 1.0, 1e-12);
   const CellKinematics cell = ReaderTestCell();
   const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
   const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(krl, cell, ImportSettings{}));
@@ -154,7 +166,7 @@ JbiReadOptions WallJbiPulses() {
 TEST(ProgramReaderTest, JbiWallWeldsTheSamePathAsTheFanucWall) {
   // ///POSTYPE USER positions in the scenario's user frame; the MOVC circle's first point is where the robot stands;
   // the pulse position C00009 through forward kinematics.
-  const ParsedProgram ls = ReadProgramFile(Fixture("wall.ls"), std::nullopt);
+  const ParsedProgram ls = ReadWallLs();
   const ParsedProgram jbi = ReadProgramFile(Fixture("wall.JBI"), std::nullopt, GcodeReadOptions{}, WallJbiPulses());
   EXPECT_EQ(jbi.format, ProgramFormat::kYaskawaJbi);
   EXPECT_EQ(jbi.name, "WALL");
@@ -166,7 +178,10 @@ TEST(ProgramReaderTest, JbiWallWeldsTheSamePathAsTheFanucWall) {
   }
   EXPECT_LT((jbi.motions.back().q - ls.motions.back().q).norm(), 1e-12);
   EXPECT_EQ(jbi.motions[1].config, 0);  // ///RCONF 1,0,0: no flip, upper arm, front
-  for (const char* what : {"CALL", "WVON", "WVOF", "TIMER", "JUMP"}) {
+  double timer = 0.0;
+  for (const ProgramMotion& m : jbi.motions) timer += m.dwell_s;
+  EXPECT_NEAR(timer, 1.0, 1e-12) << "TIMER T=1.00";
+  for (const char* what : {"CALL", "WVON", "WVOF", "JUMP"}) {
     EXPECT_NE(FindWarning(jbi, what), nullptr) << what;
   }
   EXPECT_EQ(FindWarning(jbi, "CALL")->first_line, 29);
@@ -185,8 +200,17 @@ TEST(ProgramReaderTest, GcodeWallHasItsArcAndWeldsBetweenTheMCodes) {
   const ParsedProgram program = ReadProgramFile(Fixture("wall.nc"), std::nullopt);
   EXPECT_EQ(program.format, ProgramFormat::kGcode);
   EXPECT_EQ(program.MotionsByKind().at("circular"), 1u);
-  EXPECT_NE(FindWarning(program, "G4"), nullptr);
+  // N140 G4 P1: one millisecond at the end of the second layer (N120 G1 X-30), in the plan too.
+  EXPECT_EQ(FindWarning(program, "G4"), nullptr);
+  double dwell = 0.0;
+  for (const ProgramMotion& m : program.motions) dwell += m.dwell_s;
+  EXPECT_NEAR(dwell, 0.001, 1e-12);
   const ImportedPlan imported = ProgramToPlan(program, ReaderTestCell(), ImportSettings{});
+  double plan_dwell = 0.0;
+  for (const LayerPath& layer : imported.plan.layers) {
+    for (const PathPoint& p : layer.points) plan_dwell += p.dwell_s;
+  }
+  EXPECT_NEAR(plan_dwell, 0.001, 1e-12);
   EXPECT_EQ(imported.plan.layers.size(), 2u);
   double weld = 0.0;
   for (const LayerPath& layer : imported.plan.layers) {
@@ -210,7 +234,7 @@ TEST(ProgramReaderTest, CsvTableIsRead) {
 // Bad inputs: one line naming file:line and what is wrong.
 std::string ErrorOf(ProgramFormat format, const std::string& text) {
   try {
-    (void)ReadProgramText(text, "bad", format);
+    (void)ReadProgramText(text, "bad", format, {}, {}, WallLsFrames());
   } catch (const InputError& e) {
     return e.what();
   }

@@ -341,7 +341,8 @@ double CheckMargin(const CheckMargins& m, const twin::CellSettings& settings) {
 
 CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress) {
-  const planner::CellKinematics kin = PartKinematics(cell, settings);
+  planner::CellKinematics kin = PartKinematics(cell, settings);
+  if (plan.X_FT) kin.X_FT = *plan.X_FT;  // an imported program's own tool is the TCP that moves
   const double margin_rad = settings.joint_margin_deg / kDeg;
 
   // The positioner solution keeps the joint margin: where it must hold a limit, it holds it `margin` inside.
