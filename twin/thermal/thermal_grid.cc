@@ -69,6 +69,9 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   enthalpy.push_back(h);
   temperature.push_back(table[material_index].Temperature(h));
   inflow_j.push_back(0.0);
+  rate.push_back(0.0);
+  guess.push_back(0.0);
+  chord.push_back(0.0);
   depth.push_back(-1);
   bound_start.push_back(0.0);
   bound_end.push_back(0.0);

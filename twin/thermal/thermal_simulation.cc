@@ -52,6 +52,7 @@ internal::ArcStep LayStep(ThermalState& s, std::size_t first, std::size_t last, 
   for (std::size_t p = first; p < last; ++p) arc.seconds += s.pieces[p].seconds;
   for (std::size_t p = first; p < last; ++p) {
     const internal::ArcPiece& piece = s.pieces[p];
+    if (piece.pause) continue;
     const std::vector<int> heated = internal::LayPiece(s, piece, step);
     const double half = 0.5 * std::max(piece.width_mm, s.dx_mm);
     Eigen::AlignedBox3d swept(piece.p0_mm);
@@ -79,12 +80,18 @@ void Pump(ThermalState& s, bool flush) {
     while (p < s.pieces.size() && (steps.empty() || time < batch_time)) {
       std::size_t q = p;
       double length = 0.0, seconds = 0.0;
-      while (q < s.pieces.size() && length < micro_length && seconds < micro_time) {
-        length += (s.pieces[q].p1_mm - s.pieces[q].p0_mm).norm();
-        seconds += s.pieces[q].seconds;
-        ++q;
+      if (s.pieces[q].pause) {
+        seconds = s.pieces[q++].seconds;  // a pause is a micro step of its own
+      } else {
+        while (q < s.pieces.size() && !s.pieces[q].pause && length < micro_length && seconds < micro_time) {
+          length += (s.pieces[q].p1_mm - s.pieces[q].p0_mm).norm();
+          seconds += s.pieces[q].seconds;
+          ++q;
+        }
       }
-      if (!flush && length < micro_length && seconds < micro_time) break;  // an unfinished micro step
+      const bool closed = s.pieces[p].pause || (q < s.pieces.size() && s.pieces[q].pause) || length >= micro_length ||
+                          seconds >= micro_time;
+      if (!flush && !closed) break;  // an unfinished micro step
       steps.emplace_back(p, q);
       time += seconds;
       p = q;
@@ -164,6 +171,7 @@ ThermalSimulation::ThermalSimulation(const ThermalSettings& settings) : impl_(st
     s.table[m] = internal::ThermalPropertyTable(material, low, high, 1.0, reference);
     s.emissivity[m] = settings.emissivity >= 0.0 ? settings.emissivity : material.emissivity;
     s.reference_h[m] = 0.0;
+    s.hot_c[m] = material.solidus_c - 100.0;
   }
   if (settings.far_step_s > 0.0) {
     s.level_step_s = {settings.far_step_s};
@@ -210,8 +218,28 @@ void ThermalSimulation::Cool(double seconds) {
   WAAM_THROW_UNLESS(std::isfinite(seconds) && seconds >= 0.0, "thermal cool seconds = " << seconds
                                                                                        << ": must be >= 0");
   ThermalState& s = impl_->s;
-  Pump(s, true);
   double left = seconds;
+  if (s.settings.far_step_s > 0.0) {
+    // With multirate, up to far_step_s of the pause joins the batch as micro steps growing from the last one, so
+    // that short travel between beads does not cost whole-model steps.
+    double step = s.pieces.empty() ? s.last_step_s : s.pieces.back().seconds;
+    double queued = 0.0;
+    while (left > 0.0 && queued < s.settings.far_step_s) {
+      step = std::min({left, s.settings.max_step_s, step * s.settings.step_growth});
+      if (left <= 1.25 * step) step = left;
+      internal::ArcPiece pause;
+      pause.p0_mm = pause.p1_mm = s.pieces.empty() ? Eigen::Vector3d::Zero() : s.pieces.back().p1_mm;
+      pause.seconds = step;
+      pause.pause = true;
+      s.pieces.push_back(pause);
+      s.pieces_seconds += step;
+      queued += step;
+      left -= step;
+    }
+    Pump(s, left > 0.0);
+    if (left <= 0.0) return;
+  }
+  Pump(s, true);
   while (left > 0.0) {
     double dt = std::min({left, s.settings.max_step_s, s.last_step_s * s.settings.step_growth});
     if (left <= 1.25 * dt) dt = left;  // no sliver of a step at the end

@@ -18,6 +18,8 @@ constexpr std::size_t kChunk = 4096;
 // Below this many cells a loop runs on the calling thread (the pool's dispatch would cost more than it saves).
 constexpr std::size_t kParallelCells = 24576;
 constexpr int kMaxIterations = 2000;
+// A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
+constexpr int kFinerCell = -2;
 
 // Runs body(begin, end, chunk) over the chunks of [0, n), in parallel when n is large.
 template <typename Body>
@@ -76,9 +78,13 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
 }
 
 // Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
-// (C V / dt) (T - T_old) = Q + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of docs/THERMAL.md).
-void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
-              std::vector<int>& local_of) {
+// (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of
+// docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`, faces towards cells of a
+// finer level (depth > level) carry no flux.
+// The capacity is the chord slope of H between T_old and chord_c[cell] when `chord_c` is given (the nonlinear
+// iteration), else the tangent at T_old.
+void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
+              const std::vector<double>* chord_c, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   L.cells.clear();
   for (int c : candidates) {
@@ -92,6 +98,7 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
   L.rhs.resize(n);
   L.source_w.assign(n, 0.0);
   L.t_new.resize(n);
+  L.capacity.resize(n);
   for (int m = m0; m < m1; ++m) {
     for (const auto& [cell, watts] : s.batch[m].heat_w) {
       if (local_of[cell] != kNoCell) L.source_w[local_of[cell]] += watts * s.batch[m].seconds / L.seconds;
@@ -104,13 +111,20 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
       const double t = s.temperature[c];
       const ThermalPropertyTable& table = s.table[s.material[c]];
       const double k = table.Conductivity(t);
-      double diagonal = table.Capacity(t) * volume / L.seconds;
-      double rhs = diagonal * t + L.source_w[i];
+      double capacity = table.Capacity(t);
+      if (chord_c != nullptr && std::abs((*chord_c)[c] - t) > 1e-3) {
+        capacity = (table.Enthalpy((*chord_c)[c]) - s.enthalpy[c]) / ((*chord_c)[c] - t);
+      }
+      L.capacity[i] = capacity;
+      double diagonal = capacity * volume / L.seconds;
+      double rhs = diagonal * t + L.source_w[i] + s.inflow_j[c] / L.seconds;
       for (int f = 0; f < 6; ++f) {
         const int j = s.neighbour[c][f];
         L.neighbour[i][f] = kNoCell;
         L.conductance[i][f] = 0.0;
-        if (j != kNoCell && s.born[j] < m1) {
+        if (j != kNoCell && s.born[j] < m1 && finer_apart && s.depth[j] > level) {
+          L.neighbour[i][f] = kFinerCell;
+        } else if (j != kNoCell && s.born[j] < m1) {
           const double kj = s.table[s.material[j]].Conductivity(s.temperature[j]);
           // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2.
           const double g = 2.0 * k * kj / (k + kj) * s.dx_m;
@@ -135,10 +149,10 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
   for (int c : L.cells) local_of[c] = kNoCell;
 }
 
-// Solves the level's system by conjugate gradients with the Jacobi preconditioner, from the state's temperatures,
-// until every preconditioned residual |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below
-// the tolerance. Returns the iterations.
-int SolveLevel(ThermalState& s, LevelSystem& L) {
+// Solves the level's system by conjugate gradients with the Jacobi preconditioner, from `guess` (degC by active
+// cell), until every preconditioned residual |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is
+// below the tolerance. Returns the iterations.
+int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess) {
   const std::size_t n = L.cells.size();
   std::vector<double>& x = L.t_new;
   std::vector<double> r(n), z(n), p(n), ap(n);
@@ -147,11 +161,12 @@ int SolveLevel(ThermalState& s, LevelSystem& L) {
     double y = L.diagonal[i] * v[i];
     for (int f = 0; f < 6; ++f) {
       const int j = L.neighbour[i][f];
-      if (j != kNoCell) y -= L.conductance[i][f] * v[j];
+      if (j >= 0) y -= L.conductance[i][f] * v[j];
     }
     return y;
   };
-  for (std::size_t i = 0; i < n; ++i) x[i] = s.temperature[L.cells[i]];
+  if (n == 0) return 0;
+  for (std::size_t i = 0; i < n; ++i) x[i] = guess[L.cells[i]];
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
     double rz = 0.0, worst = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
@@ -202,17 +217,42 @@ int SolveLevel(ThermalState& s, LevelSystem& L) {
   return iterations;
 }
 
+// Solves the level's backward-Euler step over the candidates: the linearised system, then, while some cell's
+// enthalpy after the step (H_old + C (T - T_old)) maps back to a temperature more than 1 K + 2 % of its change away
+// from the solved one (a cell melting or freezing in the step), again with the chord capacities
+// (H(T) - H_old) / (T - T_old) of the last solution (at most 12 times): the nonlinear step converged, so that the
+// latent heat cannot be jumped over. `guess` is the first guess by active cell.
+void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
+               const std::vector<double>& guess, std::vector<int>& local_of) {
+  LevelSystem& L = s.levels[level];
+  Assemble(s, level, candidates, m0, m1, finer_apart, nullptr, local_of);
+  s.stats.iterations += static_cast<std::size_t>(SolveLevel(s, L, guess));
+  for (int round = 0; round < 12; ++round) {
+    bool converged = true;
+    for (std::size_t i = 0; i < L.cells.size() && converged; ++i) {
+      const int c = L.cells[i];
+      const double change = L.t_new[i] - s.temperature[c];
+      const double h = s.enthalpy[c] + L.capacity[i] * change;
+      const double mismatch = std::abs(s.table[s.material[c]].Temperature(h) - L.t_new[i]);
+      converged = mismatch <= 1.0 + 0.02 * std::abs(change);
+    }
+    if (converged) return;
+    for (std::size_t i = 0; i < L.cells.size(); ++i) s.chord[L.cells[i]] = L.t_new[i];
+    Assemble(s, level, candidates, m0, m1, finer_apart, &s.chord, local_of);
+    s.stats.iterations += static_cast<std::size_t>(SolveLevel(s, L, s.chord));
+  }
+}
+
 // Per-chunk energy accounts of an update, J.
 struct UpdateAccount {
   double input = 0.0, convection = 0.0, radiation = 0.0, table = 0.0;
 };
 
-// Moves each updated cell's enthalpy by the energy its faces pass at the solved temperatures (eq. 4 of
-// docs/THERMAL.md): every interior face's flux leaves one cell and enters the other, so energy is conserved whatever
-// the solver's residual. Updates every region cell when `all`, else the cells not handed to a finer level (depth ==
-// level); faces towards finer cells carry no flux here (their energy arrived in inflow_j); faces towards cells
+// Moves each cell's enthalpy by the energy its faces pass at the solved temperatures (eq. 4 of docs/THERMAL.md):
+// every interior face's flux leaves one cell and enters the other, so energy is conserved whatever the solver's
+// residual. Faces towards finer cells carry no flux here (their energy arrived in inflow_j); faces towards cells
 // outside the region put their energy into those cells' inflow_j (serial then).
-void Update(ThermalState& s, int level, bool all) {
+void Update(ThermalState& s, int level) {
   LevelSystem& L = s.levels[level];
   const std::size_t n = L.cells.size();
   const double dt = L.seconds;
@@ -223,15 +263,14 @@ void Update(ThermalState& s, int level, bool all) {
     UpdateAccount acc;
     for (std::size_t i = begin; i < end; ++i) {
       const int c = L.cells[i];
-      if (!all && s.depth[c] != level) continue;
       const double t = L.t_new[i];
       double power = L.source_w[i];
       acc.input += L.source_w[i] * dt;
       for (int f = 0; f < 6; ++f) {
         const double g = L.conductance[i][f];
         const int j = L.neighbour[i][f];
+        if (j == kFinerCell) continue;
         if (j != kNoCell) {
-          if (s.depth[L.cells[j]] > level) continue;
           power += g * (L.t_new[j] - t);
         } else if (g > 0.0) {
           const int other = s.neighbour[c][f];
@@ -264,34 +303,41 @@ void Update(ThermalState& s, int level, bool all) {
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       const int c = L.cells[i];
-      if (!all && s.depth[c] != level) continue;
       s.enthalpy[c] += dh[i];
       s.inflow_j[c] = 0.0;
-      s.temperature[c] = s.table[s.material[c]].Temperature(s.enthalpy[c]);
+      const double t = s.table[s.material[c]].Temperature(s.enthalpy[c]);
+      s.rate[c] = (t - s.temperature[c]) / dt;
+      s.temperature[c] = t;
     }
   });
 }
 
-// The cells of `region` whose centres lie within `radius_mm` of the beads laid in micro steps [m0, m1).
+// The cells of `region` whose centres lie within `radius_mm` of the beads laid in micro steps [m0, m1), and those
+// at or above the solidus minus 100 K (a melting or freezing cell moves its latent heat only in small steps: the
+// linearised step would otherwise jump across the mushy zone).
 std::vector<int> NearArc(const ThermalState& s, const std::vector<int>& region, int m0, int m1, double radius_mm) {
   Eigen::AlignedBox3d box;
   for (int m = m0; m < m1; ++m) {
     if (!s.batch[m].swept_mm.isEmpty()) box.extend(s.batch[m].swept_mm);
   }
   std::vector<int> near;
-  if (box.isEmpty()) return near;
-  box.min().array() -= radius_mm;
-  box.max().array() += radius_mm;
+  if (!box.isEmpty()) {
+    box.min().array() -= radius_mm;
+    box.max().array() += radius_mm;
+  }
   for (int c : region) {
     const Eigen::Vector3i g = s.CellIndex(s.grid_of[c]);
-    if (box.contains(s.Centre(g.x(), g.y(), g.z()))) near.push_back(c);
+    if (s.temperature[c] >= s.hot_c[s.material[c]] || (!box.isEmpty() && box.contains(s.Centre(g.x(), g.y(), g.z())))) {
+      near.push_back(c);
+    }
   }
   return near;
 }
 
 // One level of the multirate scheme over micro steps [m0, m1) (docs/THERMAL.md, "Multirate"): a backward-Euler
-// step of the whole region, then, near the arc, finer steps with this step's temperatures as their moving
-// boundary, and the enthalpy update of the cells left to this level.
+// step of the whole region; near the arc, finer steps with this step's temperatures as their boundary moving
+// linearly in time; then the cells left to this level solved again, implicitly, with the energy the finer steps
+// passed through their faces as a source, and updated.
 void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
              std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
@@ -300,36 +346,44 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   const double start = s.time_s + s.batch_start_s[m0];
   L.end_time_s = start + L.seconds;
   s.level_interval[level] = {start, L.end_time_s};
-  Assemble(s, level, candidates, m0, m1, local_of);
+  // First guess: each cell's last rate of change carried over the step (the far field changes smoothly).
+  for (int c : candidates) s.guess[c] = s.temperature[c] + s.rate[c] * L.seconds;
+  SolveStep(s, level, candidates, m0, m1, false, s.guess, local_of);
   for (int c : L.cells) s.depth[c] = level;
-  s.stats.iterations += static_cast<std::size_t>(SolveLevel(s, L));
   const bool finest = level + 1 >= static_cast<int>(s.levels.size()) || m1 - m0 <= 1;
   std::vector<int> near;
   if (!finest) near = NearArc(s, L.cells, m0, m1, s.level_radius_mm[level + 1]);
   if (near.empty()) {
-    Update(s, level, true);
-  } else {
-    for (std::size_t i = 0; i < L.cells.size(); ++i) {
-      const int c = L.cells[i];
-      s.bound_start[c] = s.temperature[c];
-      s.bound_end[c] = L.t_new[i];
-      s.bound_level[c] = level;
-    }
-    // Sub-intervals of at least the finer level's step, cut at micro-step boundaries.
-    const double step = s.level_step_s[level + 1];
-    int a = m0;
-    while (a < m1) {
-      int b = a;
-      double length = 0.0;
-      while (b < m1 && (b == a || length < step * (1.0 - 1e-9))) length += s.batch[b++].seconds;
-      for (int c : near) s.depth[c] = level + 1;
-      Advance(s, level + 1, near, a, b, local_of);
-      a = b;
-    }
-    for (int c : near) s.depth[c] = level + 1;
-    Update(s, level, false);
+    Update(s, level);
+    for (int c : L.cells) s.depth[c] = level - 1;
+    return;
   }
-  for (int c : L.cells) s.depth[c] = level - 1;
+  for (std::size_t i = 0; i < L.cells.size(); ++i) {
+    const int c = L.cells[i];
+    s.bound_start[c] = s.temperature[c];
+    s.bound_end[c] = L.t_new[i];
+    s.bound_level[c] = level;
+  }
+  // Sub-intervals of at least the finer level's step, cut at micro-step boundaries.
+  const double step = s.level_step_s[level + 1];
+  int a = m0;
+  while (a < m1) {
+    int b = a;
+    double length = 0.0;
+    while (b < m1 && (b == a || length < step * (1.0 - 1e-9))) length += s.batch[b++].seconds;
+    for (int c : near) s.depth[c] = level + 1;
+    Advance(s, level + 1, near, a, b, local_of);
+    a = b;
+  }
+  for (int c : near) s.depth[c] = level + 1;
+  std::vector<int> rest;
+  for (int c : L.cells) {
+    if (s.depth[c] == level) rest.push_back(c);
+  }
+  SolveStep(s, level, rest, m0, m1, true, s.bound_end, local_of);
+  Update(s, level);
+  for (int c : near) s.depth[c] = level - 1;
+  for (int c : rest) s.depth[c] = level - 1;
 }
 
 }  // namespace

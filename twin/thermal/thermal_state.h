@@ -30,10 +30,12 @@ struct ArcStep {
   Eigen::AlignedBox3d swept_mm;                // the bead laid in this step, mm (empty for no bead)
 };
 
-// A piece of the arc's path no longer than one cell, waiting to be grouped into micro steps.
+// A piece of the arc's path no longer than one cell, waiting to be grouped into micro steps; or a pause (no arc, no
+// bead), a micro step of its own.
 struct ArcPiece {
   Eigen::Vector3d p0_mm, p1_mm;
   double width_mm = 0.0, height_mm = 0.0, heat_w = 0.0, seconds = 0.0;
+  bool pause = false;
 };
 
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
@@ -42,6 +44,7 @@ struct LevelSystem {
   std::vector<std::array<int, 6>> neighbour;  // local index of each face's neighbour in the region, or kNoCell
   std::vector<std::array<double, 6>> conductance;  // W/K through each face to a present neighbour, else 0
   std::vector<double> diagonal, rhs, source_w, t_new;  // W/K, W, W, degC (the step's solution)
+  std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
   double seconds = 0.0;
   double end_time_s = 0.0;
 };
@@ -56,6 +59,7 @@ struct ThermalState {
   std::array<ThermalPropertyTable, 2> table;            // deposit, substrate
   std::array<double, 2> emissivity = {0.0, 0.0};        // per material
   std::array<double, 2> reference_h = {0.0, 0.0};       // J/m^3 of a cell as it starts (plate) or switches on
+  std::array<double, 2> hot_c = {0.0, 0.0};             // solidus - 100 K: cells this hot take micro steps, degC
 
   std::vector<CellKind> kind;      // per grid cell
   std::vector<int> active_of;      // per grid cell: its active-cell id or kNoCell
@@ -67,6 +71,9 @@ struct ThermalState {
   std::vector<int> born;            // index of the micro step of the pending batch that lays it; -1 = present
   std::vector<double> enthalpy;     // J/m^3 (relative to each table's reference temperature)
   std::vector<double> temperature;  // degC, the state's temperature (from the enthalpy)
+  std::vector<double> rate;         // dT/dt over the cell's last step, K/s (extrapolated for the solver's first guess)
+  std::vector<double> guess;        // scratch: the solver's first guess, degC
+  std::vector<double> chord;        // scratch: the temperatures of the nonlinear iteration's chords, degC
   std::vector<double> inflow_j;     // energy received through faces solved at finer levels, J, not yet applied
   std::vector<int> depth;           // deepest multirate level whose region holds the cell (-1: none)
   std::vector<double> bound_start, bound_end;  // Dirichlet line in time seen by finer levels, degC
