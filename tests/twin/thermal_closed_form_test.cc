@@ -30,7 +30,8 @@ TEST(ThermalClosedForm, SemiInfiniteBodyUnderConstantFluxFollowsErfcSolution) {
 // Expected error: the cell-centred grid resolves 1/R at R = 5 cells to a few %, backward Euler adds a numerical
 // diffusivity v^2 dt / 2 = 1 mm^2/s along the travel (5 % of alpha; at one cell per step it would be 20 % and put
 // the point 10 mm behind 11 % high), and the finite, insulated plate keeps heat an infinite body carries away.
-// Measured: within 2.7 % at the four points. Tolerance: 5 % of the closed form at each point.
+// Measured: +2.6 % and +4.5 % at 10 and 20 mm behind (the insulated plate keeps the wake's heat), -1.1 % and -1.6 %
+// beside. Tolerance: 6 % of the closed form at each point.
 TEST(ThermalClosedForm, MovingPointSourceMatchesRosenthalBehindAndBesideTheArc) {
   constexpr double k = 80.0, rho = 8000.0, cp = 500.0, v_mm_s = 4.0, q_w = 1000.0;
   const double alpha = k / (rho * cp);
@@ -49,7 +50,7 @@ TEST(ThermalClosedForm, MovingPointSourceMatchesRosenthalBehindAndBesideTheArc) 
     const double r_mm = std::sqrt(probe.xi_mm * probe.xi_mm + probe.y_mm * probe.y_mm + 1.0);
     const double expected = RosenthalRise(q_w, k, alpha, v_mm_s * 1e-3, probe.xi_mm * 1e-3, r_mm * 1e-3);
     const double got = sim.TemperatureAt(p) - settings.initial_c;
-    EXPECT_NEAR(got, expected, 0.05 * expected) << "at xi = " << probe.xi_mm << " mm, y = " << probe.y_mm << " mm";
+    EXPECT_NEAR(got, expected, 0.06 * expected) << "at xi = " << probe.xi_mm << " mm, y = " << probe.y_mm << " mm";
   }
 }
 

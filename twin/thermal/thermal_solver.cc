@@ -18,6 +18,11 @@ constexpr std::size_t kChunk = 4096;
 // Below this many cells a loop runs on the calling thread (the pool's dispatch would cost more than it saves).
 constexpr std::size_t kParallelCells = 24576;
 constexpr int kMaxIterations = 2000;
+// The nonlinear (chord) iteration of a step stops when every cell's enthalpy maps back to within this + 10 % of its
+// temperature change, or after kChordRounds re-solves: it exists to keep big steps from jumping the latent heat
+// (hundreds of K of mismatch), not to polish micro steps.
+constexpr double kChordToleranceK = 10.0;
+constexpr int kChordRounds = 6;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
 
@@ -218,23 +223,23 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
 }
 
 // Solves the level's backward-Euler step over the candidates: the linearised system, then, while some cell's
-// enthalpy after the step (H_old + C (T - T_old)) maps back to a temperature more than 1 K + 2 % of its change away
-// from the solved one (a cell melting or freezing in the step), again with the chord capacities
-// (H(T) - H_old) / (T - T_old) of the last solution (at most 12 times): the nonlinear step converged, so that the
-// latent heat cannot be jumped over. `guess` is the first guess by active cell.
+// enthalpy after the step (H_old + C (T - T_old)) maps back to a temperature more than kChordToleranceK + 10 % of its
+// change away from the solved one (a cell melting or freezing in the step), again with the chord capacities
+// (H(T) - H_old) / (T - T_old) of the last solution: the nonlinear step converged, so that the latent heat cannot be
+// jumped over. `guess` is the first guess by active cell.
 void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
                const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   Assemble(s, level, candidates, m0, m1, finer_apart, nullptr, local_of);
   s.stats.iterations += static_cast<std::size_t>(SolveLevel(s, L, guess));
-  for (int round = 0; round < 12; ++round) {
+  for (int round = 0; round < kChordRounds; ++round) {
     bool converged = true;
     for (std::size_t i = 0; i < L.cells.size() && converged; ++i) {
       const int c = L.cells[i];
       const double change = L.t_new[i] - s.temperature[c];
       const double h = s.enthalpy[c] + L.capacity[i] * change;
       const double mismatch = std::abs(s.table[s.material[c]].Temperature(h) - L.t_new[i]);
-      converged = mismatch <= 1.0 + 0.02 * std::abs(change);
+      converged = mismatch <= kChordToleranceK + 0.1 * std::abs(change);
     }
     if (converged) return;
     for (std::size_t i = 0; i < L.cells.size(); ++i) s.chord[L.cells[i]] = L.t_new[i];
