@@ -3,10 +3,11 @@
 
 Transient conduction rho cp dT/dt = div(k grad T) + q on the plate + wall (one hexahedral mesh of the problem's
 cell size, trilinear Q1 elements), convection -k dT/dn = h (T - T_ambient) on every boundary face, backward Euler
-with the problem's step. The heat source q is the one waam's solver uses: in each step the arc's heat is spread
+with the problem's step (consistent mass matrix, or row-sum lumped with --lumped). The heat source q is the one waam's solver uses: in each step the arc's heat is spread
 evenly over the cells whose centres lie in the bead cross-section (width x height, plus one cell below) along the
 piece of path the arc covers in that step (a DG0 field, so its integral is exactly the arc's power).
 Run with Debian's python3-dolfinx (0.5): /usr/bin/python3 tools/peers/thermal_fenicsx.py tools/peers/thermal_wall.json
+[--lumped]
 """
 import json
 import sys
@@ -66,7 +67,7 @@ def probe_cells(msh, points):
     return np.asarray(cells, dtype=np.int32)
 
 
-def solve(spec):
+def solve(spec, lumped):
     t_start, cpu_start = time.perf_counter(), time.process_time()
     msh = build_mesh(spec)
     V = fem.FunctionSpace(msh, ("Lagrange", 1))
@@ -80,10 +81,22 @@ def solve(spec):
     T_old.x.array[:] = spec["initial_c"]
     T = fem.Function(V)
     q = fem.Function(Q)
-    a = fem.form(rc / dt * u * v * ufl.dx + k * ufl.dot(ufl.grad(u), ufl.grad(v)) * ufl.dx + hconv * u * v * ufl.ds)
-    L = fem.form(rc / dt * T_old * v * ufl.dx + q * v * ufl.dx + hconv * t_amb * v * ufl.ds)
-    A = assemble_matrix(a)
-    A.assemble()
+    stiffness = k * ufl.dot(ufl.grad(u), ufl.grad(v)) * ufl.dx + hconv * u * v * ufl.ds
+    if lumped:
+        # Row-sum lumped heat capacity (a diagonal mass matrix, as a finite-volume scheme has).
+        A = assemble_matrix(fem.form(stiffness))
+        A.assemble()
+        mass = fem.petsc.create_vector(fem.form(rc / dt * v * ufl.dx))
+        assemble_vector(mass, fem.form(rc / dt * v * ufl.dx))
+        mass.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        diagonal = A.getDiagonal()
+        diagonal.axpy(1.0, mass)
+        A.setDiagonal(diagonal)
+        L = fem.form(q * v * ufl.dx + hconv * t_amb * v * ufl.ds)
+    else:
+        A = assemble_matrix(fem.form(rc / dt * u * v * ufl.dx + stiffness))
+        A.assemble()
+        L = fem.form(rc / dt * T_old * v * ufl.dx + q * v * ufl.dx + hconv * t_amb * v * ufl.ds)
     b = fem.petsc.create_vector(L)
     ksp = PETSc.KSP().create(msh.comm)
     ksp.setOperators(A)
@@ -111,9 +124,13 @@ def solve(spec):
         if step < weld_steps:
             hot = heated_cells(spec, mid_mm, x0 + step * step_mm, x0 + (step + 1) * step_mm)
             q.x.array[hot] = spec["heat_w"] / (len(hot) * cell_m3)
-        with b.localForm() as local:
-            local.set(0.0)
+        if lumped:
+            b.pointwiseMult(mass, T_old.vector)  # M_lumped T_old, then the assembled terms are added to it
+        else:
+            with b.localForm() as local:
+                local.set(0.0)
         assemble_vector(b, L)
+        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         ksp.solve(b, T.vector)
         iterations += ksp.getIterationNumber()
         T.x.scatter_forward()
@@ -124,17 +141,17 @@ def solve(spec):
             history[n].append(float(values[i][0]))
     wall_s, cpu_s = time.perf_counter() - t_start, time.process_time() - cpu_start
     # setup_s includes FFCx's just-in-time compile of the forms (cached in ~/.cache/fenics after the first run).
-    return {"peer": "fenicsx", "wall_s": wall_s, "cpu_s": cpu_s, "setup_s": setup_s,
+    return {"peer": "fenicsx", "mass": "lumped" if lumped else "consistent", "wall_s": wall_s, "cpu_s": cpu_s, "setup_s": setup_s,
             "cells": int(len(cells)), "dofs": int(V.dofmap.index_map.size_global),
             "steps": weld_steps + cool_steps, "iterations": iterations, "time_s": times, "probes_c": history}
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: thermal_fenicsx.py <problem.json>")
+    if len(sys.argv) not in (2, 3) or (len(sys.argv) == 3 and sys.argv[2] != "--lumped"):
+        sys.exit("usage: thermal_fenicsx.py <problem.json> [--lumped]")
     with open(sys.argv[1]) as f:
         spec = json.load(f)
-    print(json.dumps(solve(spec)))
+    print(json.dumps(solve(spec, len(sys.argv) == 3)))
 
 
 if __name__ == "__main__":
