@@ -17,6 +17,19 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kAbsoluteZeroC = -273.15;
+// Physical bounds, far outside any metal's, that keep the interpolation and the products rho cp clear of overflow,
+// underflow and rounding to zero (a table from 5e-324 to 1e308 would interpolate to 0).
+constexpr double kMaxTemperatureC = 1.0e5;
+constexpr double kMaxLatentHeatJKg = 1.0e8;
+struct PropertyRange {
+  const char* column;
+  double min;
+  double max;
+  const char* unit;
+};
+constexpr std::array<PropertyRange, 3> kPropertyRanges = {{{"conductivity_w_mk", 1e-6, 1e4, "W/(m K)"},
+                                                           {"density_kg_m3", 1e-3, 1e5, "kg/m^3"},
+                                                           {"specific_heat_j_kgk", 1e-3, 1e7, "J/(kg K)"}}};
 constexpr std::array<const char*, 4> kNumberKeys = {"solidus_c", "liquidus_c", "latent_heat_j_kg", "emissivity"};
 constexpr std::array<const char*, 5> kColumns = {"temperature_c", "conductivity_w_mk", "density_kg_m3",
                                                  "specific_heat_j_kgk", "source"};
@@ -94,6 +107,8 @@ void CheckTemperatures(const CsvTable& table, const std::vector<double>& t) {
   for (std::size_t i = 0; i < t.size(); ++i) {
     WAAM_THROW_UNLESS(t[i] > kAbsoluteZeroC, table.source() << ":" << table.line(i) << ": column 'temperature_c': "
                                                            << t[i] << " degC is below absolute zero");
+    WAAM_THROW_UNLESS(t[i] <= kMaxTemperatureC, table.source() << ":" << table.line(i) << ": column 'temperature_c': "
+                                                               << t[i] << " degC is above " << kMaxTemperatureC);
     if (i == 0) continue;
     WAAM_THROW_UNLESS(t[i] > t[i - 1], table.source()
                                            << ":" << table.line(i) << ": column 'temperature_c': " << t[i]
@@ -103,11 +118,15 @@ void CheckTemperatures(const CsvTable& table, const std::vector<double>& t) {
   }
 }
 
-std::vector<double> PositiveColumn(const CsvTable& table, const char* column) {
-  std::vector<double> values = table.Numbers(column);
+std::vector<double> PropertyColumn(const CsvTable& table, const PropertyRange& range) {
+  std::vector<double> values = table.Numbers(range.column);
   for (std::size_t i = 0; i < values.size(); ++i) {
-    WAAM_THROW_UNLESS(values[i] > 0.0, table.source() << ":" << table.line(i) << ": column '" << column
+    WAAM_THROW_UNLESS(values[i] > 0.0, table.source() << ":" << table.line(i) << ": column '" << range.column
                                                       << "': " << values[i] << " must be > 0");
+    WAAM_THROW_UNLESS(values[i] >= range.min && values[i] <= range.max,
+                      table.source() << ":" << table.line(i) << ": column '" << range.column << "': " << values[i]
+                                     << " is outside the physical range [" << range.min << ", " << range.max << "] "
+                                     << range.unit);
   }
   return values;
 }
@@ -115,11 +134,15 @@ std::vector<double> PositiveColumn(const CsvTable& table, const char* column) {
 void CheckScalars(const models::ThermalMaterial& m, const std::string& source) {
   WAAM_THROW_UNLESS(m.solidus_c > kAbsoluteZeroC && m.liquidus_c > kAbsoluteZeroC,
                     source << ": solidus_c and liquidus_c must be above absolute zero");
+  WAAM_THROW_UNLESS(m.solidus_c <= kMaxTemperatureC && m.liquidus_c <= kMaxTemperatureC,
+                    source << ": solidus_c and liquidus_c must not exceed " << kMaxTemperatureC << " degC");
   WAAM_THROW_UNLESS(m.solidus_c <= m.liquidus_c, source << ": solidus_c = " << m.solidus_c
                                                         << " is above liquidus_c = " << m.liquidus_c
                                                         << ": the solidus must not exceed the liquidus");
   WAAM_THROW_UNLESS(m.latent_heat_j_kg >= 0.0,
                     source << ": latent_heat_j_kg = " << m.latent_heat_j_kg << " must be >= 0");
+  WAAM_THROW_UNLESS(m.latent_heat_j_kg <= kMaxLatentHeatJKg, source << ": latent_heat_j_kg = " << m.latent_heat_j_kg
+                                                                   << " is above " << kMaxLatentHeatJKg);
   WAAM_THROW_UNLESS(m.emissivity >= 0.0 && m.emissivity <= 1.0,
                     source << ": emissivity = " << m.emissivity << " must be in [0, 1]");
 }
@@ -155,9 +178,9 @@ models::ThermalMaterial ParseThermalMaterial(std::string_view text, const std::s
   }
   m.temperature_c = table.Numbers("temperature_c");
   CheckTemperatures(table, m.temperature_c);
-  m.conductivity_w_mk = PositiveColumn(table, "conductivity_w_mk");
-  m.density_kg_m3 = PositiveColumn(table, "density_kg_m3");
-  m.specific_heat_j_kgk = PositiveColumn(table, "specific_heat_j_kgk");
+  m.conductivity_w_mk = PropertyColumn(table, kPropertyRanges[0]);
+  m.density_kg_m3 = PropertyColumn(table, kPropertyRanges[1]);
+  m.specific_heat_j_kgk = PropertyColumn(table, kPropertyRanges[2]);
   m.solidus_c = NumberKey(header, source, "solidus_c");
   m.liquidus_c = NumberKey(header, source, "liquidus_c");
   m.latent_heat_j_kg = NumberKey(header, source, "latent_heat_j_kg");

@@ -137,6 +137,12 @@ TEST(ThermalMaterialIo, BrokenFilesNameTheRowOrKeyAndTheRule) {
   EXPECT_THAT(MaterialError(MaterialText("# emissivity: 0.5\n", "# emissivity: 0.5\n# emissivity: 0.6\n")),
               HasSubstr("key 'emissivity' is given twice"));
   EXPECT_THAT(MaterialError(std::string(kMaterialHead) + kMaterialColumns), HasSubstr("the property table has no rows"));
+  // Values no metal has, which would break the interpolation (5e-324 next to 1e308 rounds to 0 between the rows).
+  EXPECT_THAT(MaterialError(MaterialText("1000,30,7500", "1000,5e-324,7500")),
+              HasSubstr("m.csv:9: column 'conductivity_w_mk': 4.94066e-324 is outside the physical range [1e-06, 10000]"));
+  EXPECT_THAT(MaterialError(MaterialText("1000,30", "1e308,30")), HasSubstr("m.csv:9: column 'temperature_c': 1e+308"));
+  EXPECT_THAT(MaterialError(MaterialText("latent_heat_j_kg: 250000", "latent_heat_j_kg: 1e300")),
+              HasSubstr("is above 1e+08"));
 }
 
 }  // namespace
