@@ -4,7 +4,10 @@
 #    (continuous, hybrid, contour, zigzag) on the 1 M-facet torus at 1.5 mm layers and 2 mm beads, and on the bunny
 #    and torus PrusaSlicer's package ships (/usr/share/PrusaSlicer/shapes);
 #  - KDL's numerical IK (Debian liborocos-kdl-dev, tools/peers/kdl_vs_opw.cc compiled here, not in the project
-#    build) against waam's closed-form IK on the same arm.
+#    build) against waam's closed-form IK on the same arm;
+#  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py) against waam's thermal model
+#    (build/analysis/benchmarks/waam_thermal_peer) on the wall of tools/peers/thermal_wall.json: probe temperatures
+#    (target: within 2 % of the peak rise) and the time ratio.
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
 # Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam). Times are wall clock, one run each;
 # a ratio above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
@@ -18,11 +21,13 @@ waam="$repo/build/waam"
 [ -x "$waam" ] || { echo "peers: build waam first (build/waam)" >&2; exit 1; }
 
 # The peers, installed once.
-if ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ]; then
+if ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ] ||
+  ! /usr/bin/python3 -c "import dolfinx" 2> /dev/null; then
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get install -y prusa-slicer liborocos-kdl-dev > "$out/apt.log" 2>&1 ||
-    { $sudo apt-get update > /dev/null && $sudo apt-get install -y prusa-slicer liborocos-kdl-dev > "$out/apt.log" 2>&1; }
+  peers=(prusa-slicer liborocos-kdl-dev python3-dolfinx)
+  $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1 ||
+    { $sudo apt-get update > /dev/null && $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1; }
 fi
 
 seconds() { date +%s.%N; }
@@ -92,3 +97,13 @@ done
 g++ -O2 -std=c++20 -I"$repo" -isystem /usr/include/eigen3 tools/peers/kdl_vs_opw.cc planner/kinematics/opw_arm.cc \
   planner/kinematics/angles.cc -o "$out/kdl_vs_opw" -lorocos-kdl
 "$out/kdl_vs_opw" 20000
+
+# FEniCSx and waam's thermal model on the same wall (same cells, step, source, losses; constant properties). The
+# FEniCSx time includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
+thermal="$repo/tools/peers/thermal_wall.json"
+[ -x build/analysis/benchmarks/waam_thermal_peer ] || cmake --build build --target waam_thermal_peer > /dev/null
+build/analysis/benchmarks/waam_thermal_peer "$thermal" > "$out/thermal_waam.json" ||
+  { echo "peers: waam_thermal_peer failed" >&2; exit 1; }
+/usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" > "$out/thermal_fenicsx.json" 2> "$out/thermal_fenicsx.log" ||
+  { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx.log)" >&2; exit 1; }
+/usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam.json" "$out/thermal_fenicsx.json" "$thermal"

@@ -9,6 +9,7 @@
 
 #include "analysis/scenario.h"
 #include "analysis/sweep.h"
+#include "analysis/thermal_material_io.h"
 #include "fuzz/program_fuzz.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
@@ -94,6 +95,13 @@ TEST(FuzzRegressions, YaskawaJbiInputsGiveAPlanOrAnInputError) {
   ReplayProgram("yaskawa_jbi", ProgramFormat::kYaskawaJbi);
 }
 TEST(FuzzRegressions, ProgramCsvInputsGiveAPlanOrAnInputError) { ReplayProgram("program_csv", ProgramFormat::kCsv); }
+
+TEST(FuzzRegressions, ThermalMaterialInputsGiveAMaterialOrAnInputError) {
+  Replay("thermal_material", [](const fs::path& input) {
+    const models::ThermalMaterial m = analysis::ParseThermalMaterial(ReadFile(input), input.string(), "fuzz");
+    for (double t : {-300.0, 20.0, 1500.0, 1e300}) EXPECT_GT(m.EffectiveHeatCapacity(t), 0.0) << input;
+  });
+}
 
 }  // namespace
 }  // namespace waam::planner

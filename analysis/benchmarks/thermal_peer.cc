@@ -1,0 +1,117 @@
+// Peer driver: solves the conduction problem of tools/peers/thermal_wall.json on waam's thermal model
+// (twin::ThermalSimulation) and prints the probe histories as JSON, as tools/peers/thermal_fenicsx.py does for FEniCSx.
+// Usage: waam_thermal_peer <problem.json> [far_step_s]  (tools/peers.sh runs both and compares them). Without
+// far_step_s the solver's default time stepping (ThermalSettings) is used; 0 solves the whole model every micro step.
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "models/core/files.h"
+#include "models/thermal/material.h"
+#include "twin/thermal/thermal_simulation.h"
+
+namespace {
+
+using nlohmann::json;
+
+Eigen::Vector3d Point(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+
+Eigen::AlignedBox3d Box(const json& j) { return {Point(j.at("min")), Point(j.at("max"))}; }
+
+// The problem's constant properties as a one-row table, no latent heat (the peer comparison allows constant ones).
+waam::models::ThermalMaterial ConstantMaterial(const json& spec) {
+  waam::models::ThermalMaterial m;
+  m.name = "peer_constant";
+  m.source = "tools/peers/thermal_wall.json";
+  m.temperature_c = {spec.at("initial_c").get<double>()};
+  m.conductivity_w_mk = {spec.at("conductivity_w_mk").get<double>()};
+  m.density_kg_m3 = {spec.at("density_kg_m3").get<double>()};
+  m.specific_heat_j_kgk = {spec.at("specific_heat_j_kgk").get<double>()};
+  m.solidus_c = 1.0e4;
+  m.liquidus_c = 1.0e4;
+  m.latent_heat_j_kg = 0.0;
+  m.emissivity = 0.0;
+  return m;
+}
+
+json Run(const json& spec, const std::string& far_step_s) {
+  waam::twin::ThermalSettings st;
+  st.deposit = st.substrate = ConstantMaterial(spec);
+  st.substrate_box_mm = Box(spec.at("plate_mm"));
+  st.deposit_box_mm = Box(spec.at("wall_mm"));
+  st.cell_mm = spec.at("cell_mm").get<double>();
+  st.initial_c = spec.at("initial_c").get<double>();
+  st.ambient_c = spec.at("ambient_c").get<double>();
+  st.convection_w_m2k = spec.at("convection_w_m2k").get<double>();
+  st.emissivity = 0.0;
+  st.table_conductance_w_m2k = 0.0;
+  if (!far_step_s.empty()) st.far_step_s = std::stod(far_step_s);
+  const double dt = spec.at("step_s").get<double>();
+  const double width = spec.at("bead_width_mm").get<double>(), height = spec.at("bead_height_mm").get<double>();
+  const Eigen::Vector3d a = Point(spec.at("path_mm").at(0)), b = Point(spec.at("path_mm").at(1));
+  const Eigen::AlignedBox3d wall = st.deposit_box_mm;
+
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  waam::twin::ThermalSimulation sim(st);
+  // The wall stands before the pass: its layers are laid with no heat in a negligible time (cells switch on at the
+  // ambient temperature, which is the initial one).
+  for (double top = wall.min().z() + height; top <= wall.max().z() + 1e-9; top += height) {
+    sim.Weld({wall.min().x(), a.y(), top}, {wall.max().x(), a.y(), top}, width, height, 0.0, 1e-9);
+  }
+  sim.Cool(0.0);
+  const double t0 = sim.time_s();
+  std::vector<std::string> names;
+  std::vector<Eigen::Vector3d> probes;
+  for (const auto& [name, p] : spec.at("probes_mm").items()) {
+    names.push_back(name);
+    probes.push_back(Point(p));
+  }
+  json times = json::array(), history = json::object();
+  auto sample = [&] {
+    times.push_back(sim.time_s() - t0);
+    for (std::size_t i = 0; i < names.size(); ++i) history[names[i]].push_back(sim.TemperatureAt(probes[i]));
+  };
+  const int weld_steps = static_cast<int>(std::lround((b - a).norm() / (spec.at("speed_mm_s").get<double>() * dt)));
+  const int cool_steps = static_cast<int>(std::lround(spec.at("cool_s").get<double>() / dt));
+  for (int i = 0; i < weld_steps; ++i) {
+    const Eigen::Vector3d p0 = a + (b - a) * (static_cast<double>(i) / weld_steps);
+    const Eigen::Vector3d p1 = a + (b - a) * (static_cast<double>(i + 1) / weld_steps);
+    sim.Weld(p0, p1, width, height, spec.at("heat_w").get<double>(), dt);
+    sample();
+  }
+  for (int i = 0; i < cool_steps; ++i) {
+    sim.Cool(dt);
+    sample();
+  }
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  const waam::twin::ThermalStats stats = sim.Stats();
+  const waam::twin::EnergyBalance energy = sim.Energy();
+  return {{"peer", "waam"}, {"wall_s", wall_s}, {"cpu_s", cpu_s}, {"cells", stats.active_cells},
+          {"steps", stats.steps}, {"iterations", stats.iterations}, {"far_step_s", st.far_step_s},
+          {"energy_relative_error", energy.RelativeError()}, {"time_s", times}, {"probes_c", history}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || argc > 3) {
+    std::fprintf(stderr, "usage: waam_thermal_peer <problem.json> [far_step_s]\n");
+    return 2;
+  }
+  try {
+    const json spec = json::parse(waam::ReadFile(argv[1]));
+    std::cout << Run(spec, argc == 3 ? std::string(argv[2]) : std::string()).dump() << std::endl;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "waam_thermal_peer: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
