@@ -234,6 +234,7 @@ Scenario ParsePlannerSections(YamlMap& top) {
       *target = file.lexically_normal();
     }
     p.rapid_speed_mm_min = process.Number("rapid_speed_mm_min", 100.0, 100000.0, 6000.0);
+    ParseArcAndInterpass(process, &p.arc, &p.interpass);
     process.CheckNoUnknownKeys();
   }
 

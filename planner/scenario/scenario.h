@@ -10,6 +10,7 @@
 
 #include "models/core/enum_names.h"
 #include "planner/path/pattern_names.h"
+#include "planner/scenario/arc_settings.h"
 #include "planner/scenario/void_filling_settings.h"
 
 namespace waam::planner {
@@ -107,6 +108,8 @@ struct ProcessSettings {
   // model was fitted to. Its key is the twin's simulation.csw_min_radius_mm (the twin widens beads by the same rule);
   // the full scenario loader (analysis/scenario.h) copies it here.
   double csw_min_radius_mm = 30.0;
+  ArcSettings arc;                      // process.arc: arc power and efficiency (the thermal model's heat input)
+  InterpassSettings interpass;          // process.interpass: wait before a layer for a temperature or a layer time
 };
 
 struct Scenario {
