@@ -29,7 +29,25 @@ struct ThermalSettings {
   // and radiation there instead).
   double table_conductance_w_m2k = 0.0;     // W/(m^2 K)
   double table_c = 20.0;                    // table temperature, degC
+
+  // Time stepping and the solver (docs/THERMAL.md). While the arc burns, each micro step moves it arc_step_cells
+  // cells (and lasts at most max_arc_step_s). Multirate: the whole model steps every far_step_s, the cells within
+  // near_radius_mm of the arc's path every near_step_s, and the cells within arc_radius_mm every micro step.
+  // far_step_s = 0 solves the whole model at every micro step (no multirate); near_step_s = 0 drops the middle level.
+  double arc_step_cells = 1.0;              // arc travel per micro step, cells
+  double max_arc_step_s = 0.5;              // longest micro step (a slow or standing arc), s
+  double far_step_s = 0.0;                  // step of the whole model while welding, s
+  double near_step_s = 1.0;                 // step of the region near the arc, s
+  double near_radius_mm = 40.0;             // that region's reach from the bead laid in a far step, mm
+  double arc_radius_mm = 12.0;              // reach of the micro steps' region from the bead laid in a near step, mm
+  double max_step_s = 10.0;                 // longest step while no arc burns, s
+  double step_growth = 1.5;                 // each step with no arc at most this times the previous one
+  double solver_tolerance_c = 1e-3;         // CG stops when every Jacobi correction is below this, K
 };
+
+// Throws InputError naming the first setting out of its range (e.g. "thermal setting cell_mm = 0: must be > 0"),
+// or a material table that is not a function of temperature or has a value <= 0.
+void CheckThermalSettings(const ThermalSettings& settings);
 
 // Energy accounts since t = 0, J. input_j = stored_j + lost_j up to the solver's truncation error.
 struct EnergyBalance {

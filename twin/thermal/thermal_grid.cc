@@ -1,0 +1,178 @@
+// The thermal model's grid: which cells hold plate or deposit, switching cells on as beads are laid, and the cells
+// each piece of bead heats.
+#include <algorithm>
+#include <cmath>
+
+#include "models/core/error.h"
+#include "twin/thermal/thermal_state.h"
+
+namespace waam::twin::internal {
+namespace {
+
+constexpr double kInsideToleranceMm = 1e-9;
+// Face order of ThermalState::neighbour: -x, +x, -y, +y, -z, +z; the opposite face of f is f ^ 1.
+constexpr int kFaceStep[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+
+bool CentreIn(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c) {
+  return (c.array() >= box.min().array() - kInsideToleranceMm).all() &&
+         (c.array() <= box.max().array() + kInsideToleranceMm).all();
+}
+
+// Where a cell centre lies relative to a bead piece: inside its cross-section swept along the piece, with the
+// cross-section's bottom lowered by `extra_depth_mm` (the layer under the arc).
+bool InBead(const ArcPiece& piece, const Eigen::Vector3d& c, double half_width_mm, double extra_depth_mm) {
+  const Eigen::Vector2d d = (piece.p1_mm - piece.p0_mm).head<2>();
+  const double length2 = d.squaredNorm();
+  double s = 0.0;
+  double lateral = 0.0;
+  double top = 0.0;
+  double bottom = 0.0;
+  if (length2 > 1e-18) {
+    s = (c.head<2>() - piece.p0_mm.head<2>()).dot(d) / length2;
+    if (s < -kInsideToleranceMm || s > 1.0 + kInsideToleranceMm) return false;
+    s = std::clamp(s, 0.0, 1.0);
+    lateral = (c.head<2>() - piece.p0_mm.head<2>() - s * d).norm();
+    top = piece.p0_mm.z() + s * (piece.p1_mm.z() - piece.p0_mm.z());
+    bottom = top - piece.height_mm;
+  } else {
+    // A standing arc or a vertical move: a disc column.
+    lateral = (c.head<2>() - piece.p0_mm.head<2>()).norm();
+    top = std::max(piece.p0_mm.z(), piece.p1_mm.z());
+    bottom = std::min(piece.p0_mm.z(), piece.p1_mm.z()) - piece.height_mm;
+  }
+  return lateral <= half_width_mm + kInsideToleranceMm && c.z() <= top + kInsideToleranceMm &&
+         c.z() >= bottom - extra_depth_mm - kInsideToleranceMm;
+}
+
+}  // namespace
+
+Eigen::Vector3i ThermalState::CellIndex(int grid) const {
+  const int i = grid % size.x();
+  const int j = (grid / size.x()) % size.y();
+  const int k = grid / (size.x() * size.y());
+  return {i, j, k};
+}
+
+Eigen::Vector3d ThermalState::Centre(int i, int j, int k) const {
+  return origin_mm + dx_mm * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+}
+
+bool ThermalState::IsTableFace(int cell, int face) const {
+  return face == 4 && material[cell] == kSubstrate && CellIndex(grid_of[cell]).z() == plate_bottom_k;
+}
+
+int ThermalState::Activate(int grid, int material_index, double h, int born_step) {
+  const int id = static_cast<int>(grid_of.size());
+  grid_of.push_back(grid);
+  material.push_back(static_cast<std::uint8_t>(material_index));
+  born.push_back(born_step);
+  enthalpy.push_back(h);
+  temperature.push_back(table[material_index].Temperature(h));
+  inflow_j.push_back(0.0);
+  depth.push_back(-1);
+  bound_start.push_back(0.0);
+  bound_end.push_back(0.0);
+  bound_level.push_back(0);
+  active_of[grid] = id;
+  std::array<int, 6> links;
+  const Eigen::Vector3i c = CellIndex(grid);
+  for (int f = 0; f < 6; ++f) {
+    const Eigen::Vector3i n = c + Eigen::Vector3i(kFaceStep[f][0], kFaceStep[f][1], kFaceStep[f][2]);
+    links[f] = kNoCell;
+    if ((n.array() < 0).any() || (n.array() >= size.array()).any()) continue;
+    const int other = active_of[GridIndex(n.x(), n.y(), n.z())];
+    if (other == kNoCell) continue;
+    links[f] = other;
+    neighbour[other][f ^ 1] = id;
+  }
+  neighbour.push_back(links);
+  return id;
+}
+
+void InitialiseThermalState(ThermalState& s) {
+  const ThermalSettings& st = s.settings;
+  s.dx_mm = st.cell_mm;
+  s.dx_m = st.cell_mm * 1e-3;
+  Eigen::AlignedBox3d all = st.substrate_box_mm;
+  all.extend(st.deposit_box_mm);
+  // x and y start at the boxes' corner; z is shifted so that the plate's top is a cell face.
+  const double top = st.substrate_box_mm.max().z();
+  s.origin_mm = all.min();
+  s.origin_mm.z() = top - std::ceil((top - all.min().z()) / s.dx_mm - 1e-9) * s.dx_mm;
+  for (int a = 0; a < 3; ++a) {
+    s.size[a] = std::max(1, static_cast<int>(std::ceil((all.max()[a] - s.origin_mm[a]) / s.dx_mm - 1e-9)));
+  }
+  const std::size_t count = static_cast<std::size_t>(s.size.x()) * s.size.y() * s.size.z();
+  s.kind.assign(count, CellKind::kEmpty);
+  s.active_of.assign(count, kNoCell);
+  s.plate_bottom_k = s.size.z();
+  for (int k = 0; k < s.size.z(); ++k) {
+    for (int j = 0; j < s.size.y(); ++j) {
+      for (int i = 0; i < s.size.x(); ++i) {
+        const Eigen::Vector3d c = s.Centre(i, j, k);
+        CellKind& kind = s.kind[s.GridIndex(i, j, k)];
+        if (CentreIn(st.substrate_box_mm, c)) {
+          kind = CellKind::kPlate;
+          s.plate_bottom_k = std::min(s.plate_bottom_k, k);
+        } else if (CentreIn(st.deposit_box_mm, c)) {
+          kind = CellKind::kDeposit;
+        }
+      }
+    }
+  }
+  // The plate starts at the initial temperature, everywhere.
+  const double h0 = s.table[kSubstrate].Enthalpy(st.initial_c);
+  for (std::size_t g = 0; g < count; ++g) {
+    if (s.kind[g] == CellKind::kPlate) s.Activate(static_cast<int>(g), kSubstrate, h0, -1);
+  }
+  WAAM_THROW_UNLESS(!s.grid_of.empty(), "thermal substrate box holds no cell centre at cell_mm = "
+                                            << st.cell_mm << ": the plate must be at least one cell thick");
+}
+
+std::vector<int> LayPiece(ThermalState& s, const ArcPiece& piece, int step) {
+  // Beads narrower than a cell still lay the cells their path crosses.
+  const double half_width = 0.5 * std::max(piece.width_mm, s.dx_mm);
+  const double below = s.dx_mm;  // the layer under the arc is heated too
+  Eigen::AlignedBox3d box(piece.p0_mm);
+  box.extend(piece.p1_mm);
+  box.min() -= Eigen::Vector3d(half_width, half_width, piece.height_mm + below);
+  box.max() += Eigen::Vector3d(half_width, half_width, 0.0);
+  Eigen::Vector3i lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(0, static_cast<int>(std::floor((box.min()[a] - s.origin_mm[a]) / s.dx_mm - 0.5)));
+    hi[a] = std::min(s.size[a] - 1, static_cast<int>(std::ceil((box.max()[a] - s.origin_mm[a]) / s.dx_mm - 0.5)));
+  }
+  std::vector<int> heated;
+  for (int k = lo.z(); k <= hi.z(); ++k) {
+    for (int j = lo.y(); j <= hi.y(); ++j) {
+      for (int i = lo.x(); i <= hi.x(); ++i) {
+        const int g = s.GridIndex(i, j, k);
+        if (s.kind[g] == CellKind::kEmpty) continue;
+        const Eigen::Vector3d c = s.Centre(i, j, k);
+        if (!InBead(piece, c, half_width, below)) continue;
+        int id = s.active_of[g];
+        if (id == kNoCell && s.kind[g] == CellKind::kDeposit && InBead(piece, c, half_width, 0.0)) {
+          id = s.Activate(g, kDeposit, s.reference_h[kDeposit], step);
+        }
+        if (id != kNoCell) heated.push_back(id);
+      }
+    }
+  }
+  if (!heated.empty()) return heated;
+  // No metal in or under the bead's cross-section: the first metal straight below the arc takes the heat.
+  const Eigen::Vector3d mid = 0.5 * (piece.p0_mm + piece.p1_mm);
+  const int i = static_cast<int>(std::floor((mid.x() - s.origin_mm.x()) / s.dx_mm));
+  const int j = static_cast<int>(std::floor((mid.y() - s.origin_mm.y()) / s.dx_mm));
+  if (i < 0 || j < 0 || i >= s.size.x() || j >= s.size.y()) return heated;
+  int k = std::min(s.size.z() - 1, static_cast<int>(std::floor((mid.z() - s.origin_mm.z()) / s.dx_mm)));
+  for (; k >= 0; --k) {
+    const int id = s.active_of[s.GridIndex(i, j, k)];
+    if (id != kNoCell) {
+      heated.push_back(id);
+      break;
+    }
+  }
+  return heated;
+}
+
+}  // namespace waam::twin::internal

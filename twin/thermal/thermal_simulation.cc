@@ -1,0 +1,308 @@
+// ThermalSimulation: checks the settings, cuts the arc's path into micro steps and batches, and answers queries on
+// the temperature field (the numerics are in thermal_solver.cc, the grid in thermal_grid.cc).
+#include "twin/thermal/thermal_simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "models/core/error.h"
+#include "twin/thermal/thermal_state.h"
+
+namespace waam::twin {
+
+using internal::ThermalState;
+
+namespace {
+
+// Grid cells the solver accepts (5 bytes each for the grid's maps; the active cells cost about 200 bytes each).
+constexpr double kMaxGridCells = 6.4e7;
+constexpr double kSlack = 1e-9;
+
+void CheckRange(bool ok, const char* name, double value, const char* rule) {
+  WAAM_THROW_UNLESS(ok, "thermal setting " << name << " = " << value << ": " << rule);
+}
+
+void CheckBox(const Eigen::AlignedBox3d& box, const char* name) {
+  const bool finite = box.min().allFinite() && box.max().allFinite();
+  WAAM_THROW_UNLESS(finite && !box.isEmpty() && (box.sizes().array() > 0.0).all(),
+                    "thermal setting " << name << " is empty or flat (min " << box.min().transpose() << ", max "
+                                       << box.max().transpose() << " mm): it must have a positive size along x, y, z");
+}
+
+// One arc piece per micro step's travel (at most a cell) and per max_arc_step_s of time.
+std::vector<internal::ArcPiece> CutIntoPieces(const ThermalState& s, const internal::ArcPiece& weld) {
+  const double length = (weld.p1_mm - weld.p0_mm).norm();
+  const double piece_mm = s.dx_mm * std::min(1.0, s.settings.arc_step_cells);
+  const int by_length = static_cast<int>(std::ceil(length / piece_mm - kSlack));
+  const int by_time = static_cast<int>(std::ceil(weld.seconds / s.settings.max_arc_step_s - kSlack));
+  const int n = std::max({1, by_length, by_time});
+  std::vector<internal::ArcPiece> pieces(n, weld);
+  for (int i = 0; i < n; ++i) {
+    pieces[i].p0_mm = weld.p0_mm + (weld.p1_mm - weld.p0_mm) * (static_cast<double>(i) / n);
+    pieces[i].p1_mm = weld.p0_mm + (weld.p1_mm - weld.p0_mm) * (static_cast<double>(i + 1) / n);
+    pieces[i].seconds = weld.seconds / n;
+  }
+  return pieces;
+}
+
+// Lays the pieces [first, last) as micro step `step` of the batch.
+internal::ArcStep LayStep(ThermalState& s, std::size_t first, std::size_t last, int step) {
+  internal::ArcStep arc;
+  for (std::size_t p = first; p < last; ++p) arc.seconds += s.pieces[p].seconds;
+  for (std::size_t p = first; p < last; ++p) {
+    const internal::ArcPiece& piece = s.pieces[p];
+    const std::vector<int> heated = internal::LayPiece(s, piece, step);
+    const double half = 0.5 * std::max(piece.width_mm, s.dx_mm);
+    Eigen::AlignedBox3d swept(piece.p0_mm);
+    swept.extend(piece.p1_mm);
+    swept.min() -= Eigen::Vector3d(half, half, piece.height_mm + s.dx_mm);
+    swept.max() += Eigen::Vector3d(half, half, 0.0);
+    arc.swept_mm.extend(swept);
+    if (heated.empty() || piece.heat_w <= 0.0) continue;
+    const double watts = piece.heat_w * piece.seconds / arc.seconds / static_cast<double>(heated.size());
+    for (int c : heated) arc.heat_w.emplace_back(c, watts);
+  }
+  return arc;
+}
+
+// Solves the pending arc motion in batches of far_step_s (or of one micro step without multirate); with `flush`,
+// solves all of it, else leaves what does not fill a batch of whole micro steps.
+void Pump(ThermalState& s, bool flush) {
+  const double micro_length = s.settings.arc_step_cells * s.dx_mm * (1.0 - kSlack);
+  const double micro_time = s.settings.max_arc_step_s * (1.0 - kSlack);
+  const double batch_time = s.settings.far_step_s * (1.0 - kSlack);
+  while (!s.pieces.empty()) {
+    std::vector<std::pair<std::size_t, std::size_t>> steps;
+    std::size_t p = 0;
+    double time = 0.0;
+    while (p < s.pieces.size() && (steps.empty() || time < batch_time)) {
+      std::size_t q = p;
+      double length = 0.0, seconds = 0.0;
+      while (q < s.pieces.size() && length < micro_length && seconds < micro_time) {
+        length += (s.pieces[q].p1_mm - s.pieces[q].p0_mm).norm();
+        seconds += s.pieces[q].seconds;
+        ++q;
+      }
+      if (!flush && length < micro_length && seconds < micro_time) break;  // an unfinished micro step
+      steps.emplace_back(p, q);
+      time += seconds;
+      p = q;
+    }
+    if (steps.empty() || (!flush && time < batch_time)) return;
+    for (std::size_t m = 0; m < steps.size(); ++m) {
+      s.batch.push_back(LayStep(s, steps[m].first, steps[m].second, static_cast<int>(m)));
+    }
+    s.pieces.erase(s.pieces.begin(), s.pieces.begin() + static_cast<std::ptrdiff_t>(p));
+    s.pieces_seconds = 0.0;
+    for (const internal::ArcPiece& piece : s.pieces) s.pieces_seconds += piece.seconds;
+    internal::SolveBatch(s);
+  }
+}
+
+}  // namespace
+
+double EnergyBalance::RelativeError() const {
+  return input_j > 0.0 ? std::abs(input_j - stored_j - lost_j) / input_j : 0.0;
+}
+
+void CheckThermalSettings(const ThermalSettings& st) {
+  internal::CheckThermalMaterial(st.deposit, "thermal deposit material");
+  internal::CheckThermalMaterial(st.substrate, "thermal substrate material");
+  CheckBox(st.substrate_box_mm, "substrate_box_mm");
+  CheckBox(st.deposit_box_mm, "deposit_box_mm");
+  CheckRange(std::isfinite(st.cell_mm) && st.cell_mm > 0.0, "cell_mm", st.cell_mm, "must be > 0");
+  Eigen::AlignedBox3d all = st.substrate_box_mm;
+  all.extend(st.deposit_box_mm);
+  const Eigen::Vector3d cells = all.sizes() / st.cell_mm + Eigen::Vector3d::Constant(2.0);
+  CheckRange(cells.prod() <= kMaxGridCells, "cell_mm", st.cell_mm,
+             "the grid over the plate and the deposit box would exceed 6.4e7 cells: use larger cells");
+  CheckRange(std::isfinite(st.initial_c) && st.initial_c > -273.15, "initial_c", st.initial_c,
+             "must be above absolute zero");
+  CheckRange(std::isfinite(st.ambient_c) && st.ambient_c > -273.15, "ambient_c", st.ambient_c,
+             "must be above absolute zero");
+  CheckRange(std::isfinite(st.table_c) && st.table_c > -273.15, "table_c", st.table_c, "must be above absolute zero");
+  CheckRange(std::isfinite(st.convection_w_m2k) && st.convection_w_m2k >= 0.0, "convection_w_m2k",
+             st.convection_w_m2k, "must be >= 0");
+  CheckRange(std::isfinite(st.emissivity) && st.emissivity <= 1.0, "emissivity", st.emissivity,
+             "must be <= 1 (< 0: each material's own)");
+  CheckRange(std::isfinite(st.table_conductance_w_m2k) && st.table_conductance_w_m2k >= 0.0,
+             "table_conductance_w_m2k", st.table_conductance_w_m2k, "must be >= 0 (0: insulated)");
+  CheckRange(std::isfinite(st.arc_step_cells) && st.arc_step_cells > 0.0, "arc_step_cells", st.arc_step_cells,
+             "must be > 0");
+  CheckRange(std::isfinite(st.max_arc_step_s) && st.max_arc_step_s > 0.0, "max_arc_step_s", st.max_arc_step_s,
+             "must be > 0");
+  CheckRange(std::isfinite(st.far_step_s) && st.far_step_s >= 0.0, "far_step_s", st.far_step_s,
+             "must be >= 0 (0: no multirate)");
+  CheckRange(std::isfinite(st.near_step_s) && st.near_step_s >= 0.0, "near_step_s", st.near_step_s,
+             "must be >= 0 (0: no middle level)");
+  CheckRange(std::isfinite(st.arc_radius_mm) && st.arc_radius_mm >= 2.0 * st.cell_mm, "arc_radius_mm",
+             st.arc_radius_mm, "must be >= 2 cell_mm");
+  CheckRange(std::isfinite(st.near_radius_mm) && st.near_radius_mm >= st.arc_radius_mm, "near_radius_mm",
+             st.near_radius_mm, "must be >= arc_radius_mm");
+  CheckRange(std::isfinite(st.max_step_s) && st.max_step_s > 0.0, "max_step_s", st.max_step_s, "must be > 0");
+  CheckRange(std::isfinite(st.step_growth) && st.step_growth >= 1.0, "step_growth", st.step_growth, "must be >= 1");
+  CheckRange(std::isfinite(st.solver_tolerance_c) && st.solver_tolerance_c > 0.0, "solver_tolerance_c",
+             st.solver_tolerance_c, "must be > 0");
+}
+
+struct ThermalSimulation::Impl {
+  ThermalState s;
+};
+
+ThermalSimulation::ThermalSimulation(const ThermalSettings& settings) : impl_(std::make_unique<Impl>()) {
+  CheckThermalSettings(settings);
+  ThermalState& s = impl_->s;
+  s.settings = settings;
+  // Enthalpy tables every 1 K from below every start temperature to far above boiling; the deposit's enthalpy is 0
+  // at the ambient temperature (a cell switches on there), the plate's at the initial temperature.
+  const double low = std::min({settings.initial_c, settings.ambient_c, settings.table_c, 0.0}) - 100.0;
+  for (int m = 0; m < 2; ++m) {
+    const models::ThermalMaterial& material = m == internal::kDeposit ? settings.deposit : settings.substrate;
+    const double high = std::max({4000.0, material.liquidus_c + 1500.0, material.temperature_c.back()});
+    const double reference = m == internal::kDeposit ? settings.ambient_c : settings.initial_c;
+    s.table[m] = internal::ThermalPropertyTable(material, low, high, 1.0, reference);
+    s.emissivity[m] = settings.emissivity >= 0.0 ? settings.emissivity : material.emissivity;
+    s.reference_h[m] = 0.0;
+  }
+  if (settings.far_step_s > 0.0) {
+    s.level_step_s = {settings.far_step_s};
+    s.level_radius_mm = {std::numeric_limits<double>::infinity()};
+    if (settings.near_step_s > 0.0) {
+      s.level_step_s.push_back(settings.near_step_s);
+      s.level_radius_mm.push_back(settings.near_radius_mm);
+    }
+    s.level_step_s.push_back(0.0);
+    s.level_radius_mm.push_back(settings.arc_radius_mm);
+  } else {
+    s.level_step_s = {0.0};
+    s.level_radius_mm = {std::numeric_limits<double>::infinity()};
+  }
+  s.last_step_s = settings.max_arc_step_s;
+  internal::InitialiseThermalState(s);
+}
+
+ThermalSimulation::~ThermalSimulation() = default;
+ThermalSimulation::ThermalSimulation(ThermalSimulation&&) noexcept = default;
+ThermalSimulation& ThermalSimulation::operator=(ThermalSimulation&&) noexcept = default;
+
+void ThermalSimulation::Weld(const Eigen::Vector3d& p0_mm, const Eigen::Vector3d& p1_mm, double width_mm,
+                             double height_mm, double heat_w, double seconds) {
+  WAAM_THROW_UNLESS(p0_mm.allFinite() && p1_mm.allFinite(), "thermal weld: a path point is not finite");
+  WAAM_THROW_UNLESS(std::isfinite(width_mm) && width_mm >= 0.0, "thermal weld width_mm = " << width_mm
+                                                                                           << ": must be >= 0");
+  WAAM_THROW_UNLESS(std::isfinite(height_mm) && height_mm >= 0.0, "thermal weld height_mm = " << height_mm
+                                                                                             << ": must be >= 0");
+  WAAM_THROW_UNLESS(std::isfinite(heat_w) && heat_w >= 0.0, "thermal weld heat_w = " << heat_w << ": must be >= 0");
+  WAAM_THROW_UNLESS(std::isfinite(seconds) && seconds >= 0.0, "thermal weld seconds = " << seconds
+                                                                                       << ": must be >= 0");
+  if (seconds == 0.0) return;
+  ThermalState& s = impl_->s;
+  internal::ArcPiece weld{p0_mm, p1_mm, width_mm, height_mm, heat_w, seconds};
+  for (const internal::ArcPiece& piece : CutIntoPieces(s, weld)) {
+    s.pieces.push_back(piece);
+    s.pieces_seconds += piece.seconds;
+  }
+  Pump(s, false);
+}
+
+void ThermalSimulation::Cool(double seconds) {
+  WAAM_THROW_UNLESS(std::isfinite(seconds) && seconds >= 0.0, "thermal cool seconds = " << seconds
+                                                                                       << ": must be >= 0");
+  ThermalState& s = impl_->s;
+  Pump(s, true);
+  double left = seconds;
+  while (left > 0.0) {
+    double dt = std::min({left, s.settings.max_step_s, s.last_step_s * s.settings.step_growth});
+    if (left <= 1.25 * dt) dt = left;  // no sliver of a step at the end
+    internal::CoolStep(s, dt);
+    s.last_step_s = std::min(dt, s.settings.max_step_s);
+    left -= dt;
+  }
+}
+
+double ThermalSimulation::time_s() const { return impl_->s.time_s + impl_->s.pieces_seconds; }
+
+// The queries first solve the arc motion held back for the next batch, so that they see the state at time_s().
+double ThermalSimulation::TemperatureAt(const Eigen::Vector3d& p_mm) const {
+  ThermalState& s = impl_->s;
+  Pump(s, true);
+  const Eigen::Vector3d x = (p_mm - s.origin_mm) / s.dx_mm;
+  if (!x.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  const Eigen::Vector3i cell = x.array().floor().cast<int>();
+  // The cell holding the point, else (a point of a box edge whose cell's centre lies outside the box) the metal
+  // cell of the 3 x 3 x 3 around it whose centre is nearest.
+  double best = std::numeric_limits<double>::infinity();
+  double value = std::numeric_limits<double>::quiet_NaN();
+  for (int r = 0; r < 27; ++r) {
+    const Eigen::Vector3i c = cell + Eigen::Vector3i(r % 3 - 1, (r / 3) % 3 - 1, r / 9 - 1);
+    if ((c.array() < 0).any() || (c.array() >= s.size.array()).any()) continue;
+    const int id = s.active_of[s.GridIndex(c.x(), c.y(), c.z())];
+    if (id == internal::kNoCell) continue;
+    const double d = (s.Centre(c.x(), c.y(), c.z()) - p_mm).squaredNorm() + (r == 13 ? -1e300 : 0.0);
+    if (d < best) {
+      best = d;
+      value = s.temperature[id];
+    }
+  }
+  return value;
+}
+
+double ThermalSimulation::MaxTemperatureIn(const Eigen::AlignedBox3d& box_mm) const {
+  ThermalState& s = impl_->s;
+  Pump(s, true);
+  double hottest = std::numeric_limits<double>::quiet_NaN();
+  if (box_mm.isEmpty()) return hottest;
+  Eigen::Vector3i lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(0, static_cast<int>(std::floor((box_mm.min()[a] - s.origin_mm[a]) / s.dx_mm)));
+    hi[a] = std::min(s.size[a] - 1, static_cast<int>(std::floor((box_mm.max()[a] - s.origin_mm[a]) / s.dx_mm)));
+  }
+  // Every cell the box touches.
+  for (int k = lo.z(); k <= hi.z(); ++k) {
+    for (int j = lo.y(); j <= hi.y(); ++j) {
+      for (int i = lo.x(); i <= hi.x(); ++i) {
+        const int id = s.active_of[s.GridIndex(i, j, k)];
+        if (id == internal::kNoCell) continue;
+        if (!(s.temperature[id] <= hottest)) hottest = s.temperature[id];
+      }
+    }
+  }
+  return hottest;
+}
+
+EnergyBalance ThermalSimulation::Energy() const {
+  ThermalState& s = impl_->s;
+  Pump(s, true);
+  EnergyBalance e = s.energy;
+  e.stored_j = 0.0;
+  for (std::size_t c = 0; c < s.enthalpy.size(); ++c) e.stored_j += s.enthalpy[c] - s.reference_h[s.material[c]];
+  e.stored_j *= s.CellVolume();
+  e.lost_j = e.convection_j + e.radiation_j + e.table_j;
+  return e;
+}
+
+ThermalStats ThermalSimulation::Stats() const {
+  ThermalState& s = impl_->s;
+  Pump(s, true);
+  ThermalStats stats = s.stats;
+  stats.cells = s.kind.size();
+  stats.active_cells = s.grid_of.size();
+  return stats;
+}
+
+TemperatureField ThermalSimulation::Field() const {
+  ThermalState& s = impl_->s;
+  Pump(s, true);
+  TemperatureField field;
+  field.origin_mm = s.origin_mm;
+  field.cell_mm = s.dx_mm;
+  field.size = s.size;
+  field.temperature_c.assign(s.kind.size(), std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t c = 0; c < s.grid_of.size(); ++c) {
+    field.temperature_c[s.grid_of[c]] = static_cast<float>(s.temperature[c]);
+  }
+  return field;
+}
+
+}  // namespace waam::twin

@@ -1,0 +1,364 @@
+// The thermal solver: one backward-Euler step of a region of active cells (system assembly, Jacobi-preconditioned
+// conjugate gradients, conservative enthalpy update) and the multirate recursion over regions nearer and nearer
+// the arc. Derivations and stability in docs/THERMAL.md.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "models/core/error.h"
+#include "models/core/parallel.h"
+#include "twin/thermal/thermal_state.h"
+
+namespace waam::twin::internal {
+namespace {
+
+// Cells per chunk of the deterministic parallel loops: every reduction sums per-chunk partials in chunk order, and
+// the chunks do not depend on the thread count, so the results are bit-identical on any number of threads.
+constexpr std::size_t kChunk = 4096;
+// Below this many cells a loop runs on the calling thread (the pool's dispatch would cost more than it saves).
+constexpr std::size_t kParallelCells = 24576;
+constexpr int kMaxIterations = 2000;
+
+// Runs body(begin, end, chunk) over the chunks of [0, n), in parallel when n is large.
+template <typename Body>
+void ForChunks(std::size_t n, const Body& body) {
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  auto run = [&](std::size_t c) { body(c * kChunk, std::min(n, (c + 1) * kChunk), c); };
+  if (n >= kParallelCells) {
+    ParallelFor(chunks, run);
+  } else {
+    for (std::size_t c = 0; c < chunks; ++c) run(c);
+  }
+}
+
+std::size_t Chunks(std::size_t n) { return (n + kChunk - 1) / kChunk; }
+
+double Sum(const std::vector<double>& partial) {
+  double total = 0.0;
+  for (double v : partial) total += v;
+  return total;
+}
+
+// The Dirichlet value a finer level sees on a cell outside its region at time t: linear in time between the
+// values the coarser level that owns the cell had at its interval's ends.
+double Bound(const ThermalState& s, int cell, double t) {
+  const auto [t0, t1] = s.level_interval[s.bound_level[cell]];
+  const double f = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
+  return s.bound_start[cell] + f * (s.bound_end[cell] - s.bound_start[cell]);
+}
+
+// Convection, radiation (linearised about the state's temperature t_old) and table losses of one face at t, W.
+struct FaceLoss {
+  double convection = 0.0, radiation = 0.0, table = 0.0;
+};
+FaceLoss LossOfFace(const ThermalState& s, int cell, int face, double t_old, double t) {
+  const ThermalSettings& st = s.settings;
+  const double area = s.dx_m * s.dx_m;
+  FaceLoss loss;
+  if (st.table_conductance_w_m2k > 0.0 && s.IsTableFace(cell, face)) {
+    loss.table = st.table_conductance_w_m2k * area * (t - st.table_c);
+    return loss;
+  }
+  loss.convection = st.convection_w_m2k * area * (t - st.ambient_c);
+  const double eps = s.emissivity[s.material[cell]];
+  const double tk = t_old + kKelvin;
+  const double ta = st.ambient_c + kKelvin;
+  loss.radiation = eps * kStefanBoltzmann * area * (tk * tk * tk * tk - ta * ta * ta * ta + 4.0 * tk * tk * tk * (t - t_old));
+  return loss;
+}
+
+// d(loss)/dT of a boundary face and the loss at T = 0 degC of its linearisation, so loss(T) = slope T + offset.
+void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double* slope, double* offset) {
+  const FaceLoss at0 = LossOfFace(s, cell, face, t_old, 0.0);
+  const FaceLoss at1 = LossOfFace(s, cell, face, t_old, 1.0);
+  *offset = at0.convection + at0.radiation + at0.table;
+  *slope = at1.convection + at1.radiation + at1.table - *offset;
+}
+
+// Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
+// (C V / dt) (T - T_old) = Q + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of docs/THERMAL.md).
+void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
+              std::vector<int>& local_of) {
+  LevelSystem& L = s.levels[level];
+  L.cells.clear();
+  for (int c : candidates) {
+    if (s.born[c] < m1) L.cells.push_back(c);
+  }
+  const std::size_t n = L.cells.size();
+  for (std::size_t i = 0; i < n; ++i) local_of[L.cells[i]] = static_cast<int>(i);
+  L.neighbour.resize(n);
+  L.conductance.resize(n);
+  L.diagonal.resize(n);
+  L.rhs.resize(n);
+  L.source_w.assign(n, 0.0);
+  L.t_new.resize(n);
+  for (int m = m0; m < m1; ++m) {
+    for (const auto& [cell, watts] : s.batch[m].heat_w) {
+      if (local_of[cell] != kNoCell) L.source_w[local_of[cell]] += watts * s.batch[m].seconds / L.seconds;
+    }
+  }
+  const double volume = s.CellVolume();
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const int c = L.cells[i];
+      const double t = s.temperature[c];
+      const ThermalPropertyTable& table = s.table[s.material[c]];
+      const double k = table.Conductivity(t);
+      double diagonal = table.Capacity(t) * volume / L.seconds;
+      double rhs = diagonal * t + L.source_w[i];
+      for (int f = 0; f < 6; ++f) {
+        const int j = s.neighbour[c][f];
+        L.neighbour[i][f] = kNoCell;
+        L.conductance[i][f] = 0.0;
+        if (j != kNoCell && s.born[j] < m1) {
+          const double kj = s.table[s.material[j]].Conductivity(s.temperature[j]);
+          // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2.
+          const double g = 2.0 * k * kj / (k + kj) * s.dx_m;
+          L.conductance[i][f] = g;
+          diagonal += g;
+          if (local_of[j] != kNoCell) {
+            L.neighbour[i][f] = local_of[j];
+          } else {
+            rhs += g * Bound(s, j, L.end_time_s);
+          }
+        } else {
+          double slope = 0.0, offset = 0.0;
+          LinearLoss(s, c, f, t, &slope, &offset);
+          diagonal += slope;
+          rhs -= offset;
+        }
+      }
+      L.diagonal[i] = diagonal;
+      L.rhs[i] = rhs;
+    }
+  });
+  for (int c : L.cells) local_of[c] = kNoCell;
+}
+
+// Solves the level's system by conjugate gradients with the Jacobi preconditioner, from the state's temperatures,
+// until every preconditioned residual |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below
+// the tolerance. Returns the iterations.
+int SolveLevel(ThermalState& s, LevelSystem& L) {
+  const std::size_t n = L.cells.size();
+  std::vector<double>& x = L.t_new;
+  std::vector<double> r(n), z(n), p(n), ap(n);
+  std::vector<double> part_a(Chunks(n)), part_b(Chunks(n)), part_max(Chunks(n));
+  auto apply = [&](const std::vector<double>& v, std::size_t i) {
+    double y = L.diagonal[i] * v[i];
+    for (int f = 0; f < 6; ++f) {
+      const int j = L.neighbour[i][f];
+      if (j != kNoCell) y -= L.conductance[i][f] * v[j];
+    }
+    return y;
+  };
+  for (std::size_t i = 0; i < n; ++i) x[i] = s.temperature[L.cells[i]];
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
+    double rz = 0.0, worst = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      r[i] = L.rhs[i] - apply(x, i);
+      z[i] = r[i] / L.diagonal[i];
+      p[i] = z[i];
+      rz += r[i] * z[i];
+      worst = std::max(worst, std::abs(z[i]));
+    }
+    part_a[c] = rz;
+    part_max[c] = worst;
+  });
+  double rz = Sum(part_a);
+  double worst = *std::max_element(part_max.begin(), part_max.end());
+  const double tolerance = s.settings.solver_tolerance_c;
+  int iterations = 0;
+  while (worst > tolerance && iterations < kMaxIterations) {
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
+      double pap = 0.0;
+      for (std::size_t i = begin; i < end; ++i) {
+        ap[i] = apply(p, i);
+        pap += p[i] * ap[i];
+      }
+      part_a[c] = pap;
+    });
+    const double alpha = rz / Sum(part_a);
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
+      double rz_new = 0.0, w = 0.0;
+      for (std::size_t i = begin; i < end; ++i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * ap[i];
+        z[i] = r[i] / L.diagonal[i];
+        rz_new += r[i] * z[i];
+        w = std::max(w, std::abs(z[i]));
+      }
+      part_b[c] = rz_new;
+      part_max[c] = w;
+    });
+    const double rz_new = Sum(part_b);
+    worst = *std::max_element(part_max.begin(), part_max.end());
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
+    });
+    ++iterations;
+  }
+  return iterations;
+}
+
+// Per-chunk energy accounts of an update, J.
+struct UpdateAccount {
+  double input = 0.0, convection = 0.0, radiation = 0.0, table = 0.0;
+};
+
+// Moves each updated cell's enthalpy by the energy its faces pass at the solved temperatures (eq. 4 of
+// docs/THERMAL.md): every interior face's flux leaves one cell and enters the other, so energy is conserved whatever
+// the solver's residual. Updates every region cell when `all`, else the cells not handed to a finer level (depth ==
+// level); faces towards finer cells carry no flux here (their energy arrived in inflow_j); faces towards cells
+// outside the region put their energy into those cells' inflow_j (serial then).
+void Update(ThermalState& s, int level, bool all) {
+  LevelSystem& L = s.levels[level];
+  const std::size_t n = L.cells.size();
+  const double dt = L.seconds;
+  const double volume = s.CellVolume();
+  std::vector<double> dh(n, 0.0);
+  std::vector<UpdateAccount> part(Chunks(n));
+  auto body = [&](std::size_t begin, std::size_t end, std::size_t chunk) {
+    UpdateAccount acc;
+    for (std::size_t i = begin; i < end; ++i) {
+      const int c = L.cells[i];
+      if (!all && s.depth[c] != level) continue;
+      const double t = L.t_new[i];
+      double power = L.source_w[i];
+      acc.input += L.source_w[i] * dt;
+      for (int f = 0; f < 6; ++f) {
+        const double g = L.conductance[i][f];
+        const int j = L.neighbour[i][f];
+        if (j != kNoCell) {
+          if (s.depth[L.cells[j]] > level) continue;
+          power += g * (L.t_new[j] - t);
+        } else if (g > 0.0) {
+          const int other = s.neighbour[c][f];
+          const double flux = g * (Bound(s, other, L.end_time_s) - t);
+          power += flux;
+          s.inflow_j[other] -= flux * dt;
+        } else {
+          const FaceLoss loss = LossOfFace(s, c, f, s.temperature[c], t);
+          power -= loss.convection + loss.radiation + loss.table;
+          acc.convection += loss.convection * dt;
+          acc.radiation += loss.radiation * dt;
+          acc.table += loss.table * dt;
+        }
+      }
+      dh[i] = (power * dt + s.inflow_j[c]) / volume;
+    }
+    part[chunk] = acc;
+  };
+  if (level == 0) {
+    ForChunks(n, body);  // no cell lies outside the top region, so no other cell's inflow is written
+  } else {
+    for (std::size_t c = 0; c < Chunks(n); ++c) body(c * kChunk, std::min(n, (c + 1) * kChunk), c);
+  }
+  for (const UpdateAccount& acc : part) {
+    s.energy.input_j += acc.input;
+    s.energy.convection_j += acc.convection;
+    s.energy.radiation_j += acc.radiation;
+    s.energy.table_j += acc.table;
+  }
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const int c = L.cells[i];
+      if (!all && s.depth[c] != level) continue;
+      s.enthalpy[c] += dh[i];
+      s.inflow_j[c] = 0.0;
+      s.temperature[c] = s.table[s.material[c]].Temperature(s.enthalpy[c]);
+    }
+  });
+}
+
+// The cells of `region` whose centres lie within `radius_mm` of the beads laid in micro steps [m0, m1).
+std::vector<int> NearArc(const ThermalState& s, const std::vector<int>& region, int m0, int m1, double radius_mm) {
+  Eigen::AlignedBox3d box;
+  for (int m = m0; m < m1; ++m) {
+    if (!s.batch[m].swept_mm.isEmpty()) box.extend(s.batch[m].swept_mm);
+  }
+  std::vector<int> near;
+  if (box.isEmpty()) return near;
+  box.min().array() -= radius_mm;
+  box.max().array() += radius_mm;
+  for (int c : region) {
+    const Eigen::Vector3i g = s.CellIndex(s.grid_of[c]);
+    if (box.contains(s.Centre(g.x(), g.y(), g.z()))) near.push_back(c);
+  }
+  return near;
+}
+
+// One level of the multirate scheme over micro steps [m0, m1) (docs/THERMAL.md, "Multirate"): a backward-Euler
+// step of the whole region, then, near the arc, finer steps with this step's temperatures as their moving
+// boundary, and the enthalpy update of the cells left to this level.
+void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
+             std::vector<int>& local_of) {
+  LevelSystem& L = s.levels[level];
+  L.seconds = 0.0;
+  for (int m = m0; m < m1; ++m) L.seconds += s.batch[m].seconds;
+  const double start = s.time_s + s.batch_start_s[m0];
+  L.end_time_s = start + L.seconds;
+  s.level_interval[level] = {start, L.end_time_s};
+  Assemble(s, level, candidates, m0, m1, local_of);
+  for (int c : L.cells) s.depth[c] = level;
+  s.stats.iterations += static_cast<std::size_t>(SolveLevel(s, L));
+  const bool finest = level + 1 >= static_cast<int>(s.levels.size()) || m1 - m0 <= 1;
+  std::vector<int> near;
+  if (!finest) near = NearArc(s, L.cells, m0, m1, s.level_radius_mm[level + 1]);
+  if (near.empty()) {
+    Update(s, level, true);
+  } else {
+    for (std::size_t i = 0; i < L.cells.size(); ++i) {
+      const int c = L.cells[i];
+      s.bound_start[c] = s.temperature[c];
+      s.bound_end[c] = L.t_new[i];
+      s.bound_level[c] = level;
+    }
+    // Sub-intervals of at least the finer level's step, cut at micro-step boundaries.
+    const double step = s.level_step_s[level + 1];
+    int a = m0;
+    while (a < m1) {
+      int b = a;
+      double length = 0.0;
+      while (b < m1 && (b == a || length < step * (1.0 - 1e-9))) length += s.batch[b++].seconds;
+      for (int c : near) s.depth[c] = level + 1;
+      Advance(s, level + 1, near, a, b, local_of);
+      a = b;
+    }
+    for (int c : near) s.depth[c] = level + 1;
+    Update(s, level, false);
+  }
+  for (int c : L.cells) s.depth[c] = level - 1;
+}
+
+}  // namespace
+
+void SolveBatch(ThermalState& s) {
+  const int steps = static_cast<int>(s.batch.size());
+  if (steps == 0) return;
+  s.batch_start_s.assign(steps + 1, 0.0);
+  for (int m = 0; m < steps; ++m) s.batch_start_s[m + 1] = s.batch_start_s[m] + s.batch[m].seconds;
+  const int levels = static_cast<int>(s.level_step_s.size());
+  s.levels.resize(levels);
+  s.level_interval.resize(levels);
+  std::vector<int> all(s.grid_of.size());
+  for (std::size_t c = 0; c < all.size(); ++c) all[c] = static_cast<int>(c);
+  std::vector<int> local_of(all.size(), kNoCell);
+  Advance(s, 0, all, 0, steps, local_of);
+  for (int& b : s.born) b = -1;
+  s.time_s += s.batch_start_s[steps];
+  s.last_step_s = s.batch.back().seconds;
+  s.stats.steps += static_cast<std::size_t>(steps);
+  s.batch.clear();
+}
+
+void CoolStep(ThermalState& s, double seconds) {
+  WAAM_DEMAND(s.batch.empty() && seconds > 0.0);
+  ArcStep step;
+  step.seconds = seconds;
+  s.batch.push_back(step);
+  SolveBatch(s);
+}
+
+}  // namespace waam::twin::internal

@@ -1,0 +1,112 @@
+// The thermal model's data: the grid, the active cells and their enthalpy, the arc steps waiting to be solved, and
+// the solver's entry points shared by the files of twin/thermal/ (internal to the module).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "twin/thermal/thermal_simulation.h"
+#include "twin/thermal/thermal_tables.h"
+
+namespace waam::twin::internal {
+
+constexpr double kStefanBoltzmann = 5.670374419e-8;  // W/(m^2 K^4), CODATA 2018
+constexpr double kKelvin = 273.15;
+constexpr int kNoCell = -1;
+constexpr int kDeposit = 0;    // material index of the deposit
+constexpr int kSubstrate = 1;  // material index of the plate
+
+// What a grid cell can hold.
+enum class CellKind : std::uint8_t { kEmpty, kPlate, kDeposit };
+
+// One micro step of the arc: its duration, the cells it switches on and the heat it puts into cells.
+struct ArcStep {
+  double seconds = 0.0;
+  std::vector<std::pair<int, double>> heat_w;  // (active cell, W) over the step
+  Eigen::AlignedBox3d swept_mm;                // the bead laid in this step, mm (empty for no bead)
+};
+
+// A piece of the arc's path no longer than one cell, waiting to be grouped into micro steps.
+struct ArcPiece {
+  Eigen::Vector3d p0_mm, p1_mm;
+  double width_mm = 0.0, height_mm = 0.0, heat_w = 0.0, seconds = 0.0;
+};
+
+// One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
+struct LevelSystem {
+  std::vector<int> cells;                     // active-cell ids of the region, present in the level's interval
+  std::vector<std::array<int, 6>> neighbour;  // local index of each face's neighbour in the region, or kNoCell
+  std::vector<std::array<double, 6>> conductance;  // W/K through each face to a present neighbour, else 0
+  std::vector<double> diagonal, rhs, source_w, t_new;  // W/K, W, W, degC (the step's solution)
+  double seconds = 0.0;
+  double end_time_s = 0.0;
+};
+
+struct ThermalState {
+  ThermalSettings settings;
+  Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();  // corner of the grid's first cell
+  Eigen::Vector3i size = Eigen::Vector3i::Zero();       // cells along x, y, z
+  double dx_mm = 2.0;
+  double dx_m = 0.002;
+  int plate_bottom_k = 0;                               // z index of the plate's lowest cells
+  std::array<ThermalPropertyTable, 2> table;            // deposit, substrate
+  std::array<double, 2> emissivity = {0.0, 0.0};        // per material
+  std::array<double, 2> reference_h = {0.0, 0.0};       // J/m^3 of a cell as it starts (plate) or switches on
+
+  std::vector<CellKind> kind;      // per grid cell
+  std::vector<int> active_of;      // per grid cell: its active-cell id or kNoCell
+
+  // Active cells (ids in the order they switched on).
+  std::vector<int> grid_of;
+  std::vector<std::uint8_t> material;
+  std::vector<std::array<int, 6>> neighbour;  // active-cell id across -x, +x, -y, +y, -z, +z, or kNoCell
+  std::vector<int> born;            // index of the micro step of the pending batch that lays it; -1 = present
+  std::vector<double> enthalpy;     // J/m^3 (relative to each table's reference temperature)
+  std::vector<double> temperature;  // degC, the state's temperature (from the enthalpy)
+  std::vector<double> inflow_j;     // energy received through faces solved at finer levels, J, not yet applied
+  std::vector<int> depth;           // deepest multirate level whose region holds the cell (-1: none)
+  std::vector<double> bound_start, bound_end;  // Dirichlet line in time seen by finer levels, degC
+  std::vector<int> bound_level;     // the level whose interval the line spans
+
+  // Pending arc motion, and the batch of micro steps being solved.
+  std::vector<ArcPiece> pieces;
+  double pieces_seconds = 0.0;
+  std::vector<ArcStep> batch;
+  std::vector<double> batch_start_s;   // time of each micro step's start since the batch start, s
+  // Multirate levels: 0 is the whole model; level l > 0 covers the cells within level_radius_mm[l] of the beads laid
+  // in its parent's interval, in steps of at least level_step_s[l] (0: one micro step).
+  std::vector<double> level_step_s, level_radius_mm;
+  std::vector<LevelSystem> levels;
+  std::vector<std::pair<double, double>> level_interval;  // [start, end] time of each level's current interval
+
+  double time_s = 0.0;
+  double last_step_s = 0.0;  // length of the last step, s (the next cooling step grows from it)
+  EnergyBalance energy;
+  ThermalStats stats;
+
+  double CellVolume() const { return dx_m * dx_m * dx_m; }
+  int GridIndex(int i, int j, int k) const { return i + size.x() * (j + size.y() * k); }
+  Eigen::Vector3i CellIndex(int grid) const;
+  Eigen::Vector3d Centre(int i, int j, int k) const;
+  // Switches on the cell `grid` (plate or deposit) at the enthalpy `h`, linking its neighbours; returns its id.
+  int Activate(int grid, int material_index, double h, int born_step);
+  bool IsTableFace(int cell, int face) const;
+};
+
+// Builds the grid and switches on the plate (settings already checked).
+void InitialiseThermalState(ThermalState& s);
+
+// Lays the bead of `piece` (cells whose centre lies in it switch on at the ambient temperature, born at micro step
+// `step`) and returns the cells that receive its heat (the new ones and those under the arc).
+std::vector<int> LayPiece(ThermalState& s, const ArcPiece& piece, int step);
+
+// Solves the pending batch of micro steps (multirate backward Euler) and clears it.
+void SolveBatch(ThermalState& s);
+// Advances the whole state by one backward-Euler step of `seconds` with no heat input.
+void CoolStep(ThermalState& s, double seconds);
+
+}  // namespace waam::twin::internal

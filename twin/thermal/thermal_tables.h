@@ -1,0 +1,41 @@
+// A metal's thermal properties resampled on a uniform temperature grid: conductivity, volumetric enthalpy (latent
+// heat included) and its inverse, each looked up in O(1) or O(log n) inside the solver's loops.
+#pragma once
+
+#include <vector>
+
+#include "models/thermal/material.h"
+
+namespace waam::twin::internal {
+
+// Volumetric enthalpy H(T) = integral of ThermalMaterial::EffectiveHeatCapacity from `reference_c`, tabulated every
+// `step_c` between `low_c` and `high_c` and linear in between (extrapolated linearly with the end slopes beyond).
+class ThermalPropertyTable {
+ public:
+  ThermalPropertyTable() = default;
+  // Throws nothing; the material must already be valid (CheckThermalMaterial).
+  ThermalPropertyTable(const models::ThermalMaterial& material, double low_c, double high_c, double step_c,
+                       double reference_c);
+
+  double Conductivity(double t_c) const;  // W/(m K)
+  double Enthalpy(double t_c) const;      // J/m^3, 0 at the reference temperature
+  double Capacity(double t_c) const;      // dH/dT of the table's segment holding t_c, J/(m^3 K)
+  double Temperature(double h_j_m3) const;  // inverse of Enthalpy, degC
+  double emissivity() const { return emissivity_; }
+
+ private:
+  double Position(double t_c, int* segment) const;  // segment index (clamped) and the fraction within it
+
+  double low_c_ = 0.0;
+  double step_c_ = 1.0;
+  double emissivity_ = 0.0;
+  std::vector<double> conductivity_;  // W/(m K) at the nodes
+  std::vector<double> enthalpy_;      // J/m^3 at the nodes, strictly increasing
+};
+
+// Throws InputError naming `what` (e.g. "thermal deposit material mild_steel") when the tables are not a function
+// of temperature (sizes differ, temperatures not strictly increasing), a property is not > 0, liquidus < solidus,
+// the latent heat is negative or the emissivity is outside [0, 1].
+void CheckThermalMaterial(const models::ThermalMaterial& material, const char* what);
+
+}  // namespace waam::twin::internal
