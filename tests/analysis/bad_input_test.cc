@@ -130,8 +130,8 @@ std::string UrdfScenario(const std::string& urdf, const std::string& extra = "")
 // One row of the catalogue (docs/BAD_INPUTS.md has the same rows, by id).
 struct BadInput {
   std::string id;
-  std::string command;                         // "plan", "check" or "fit <model>"
-  std::string input;                           // the file named on the command line, in the case's folder
+  std::string command;                         // "plan", "check", "material" or "fit <model>"
+  std::string input;                           // the file named on the command line, in the case's folder ('@': as is)
   std::map<std::string, std::string> files;    // name -> contents, written into the case's folder
   std::vector<std::string> expected;           // each must appear in the one stderr line
   std::vector<std::string> folders = {};       // folders created in the case's folder
@@ -158,6 +158,10 @@ std::vector<BadInput> Catalogue() {
   const std::string flat = BinaryStl({Facet{{{0, 0, 0}, {10, 0, 0}, {20, 0, 0}}}, Facet{{{1, 1, 1}, {1, 1, 1}, {5, 5, 5}}}});
   const std::string full = BinaryStl(tetra);
   const std::string csw_header = "travel_speed_mm_per_min,curvature_radius_mm,width_mm\n";
+  // A valid thermal material file (docs/THERMAL.md, "Materials"): rows on lines 6 and 7.
+  const std::string material_ok =
+      "# solidus_c: 1400 | test\n# liquidus_c: 1450\n# latent_heat_j_kg: 250000\n# emissivity: 0.5\n"
+      "temperature_c,conductivity_w_mk,density_kg_m3,specific_heat_j_kgk\n20,50,7800,450\n1000,30,7500,650\n";
   // A FANUC LS program with one position; P[2] is used and not defined.
   const std::string ls_head = "/PROG  T\n/ATTR\n/MN\n   1:L  P[1] 100mm/sec FINE    ;\n";
   const std::string ls_pos =
@@ -281,6 +285,22 @@ std::vector<BadInput> Catalogue() {
           return text;
         }()}},
        {"s.yaml:13: cell.preset: give cell.preset or cell.robot.urdf, not both"}},
+      {"material-unknown-name", "material", "@unobtainium", {},
+       {"unknown material 'unobtainium': expected one of al5356, mild_steel, ss316l, ti6al4v"}},
+      {"material-temperature-repeated", "material", "m.csv", {{"m.csv", material_ok + "1000,30,7500,650\n"}},
+       {"m.csv:8: column 'temperature_c': 1000 does not exceed the previous row's 1000: temperatures must be "
+        "strictly increasing"}},
+      {"material-negative-value", "material", "m.csv", {{"m.csv", ReplaceAll(material_ok, "20,50,", "20,-50,")}},
+       {"m.csv:6: column 'conductivity_w_mk': -50 must be > 0"}},
+      {"material-text-in-a-number", "material", "m.csv", {{"m.csv", ReplaceAll(material_ok, "7800,", "heavy,")}},
+       {"m.csv:6: column 'density_kg_m3': 'heavy' is not a number"}},
+      {"material-missing-column", "material", "m.csv",
+       {{"m.csv", ReplaceAll(ReplaceAll(ReplaceAll(material_ok, ",specific_heat_j_kgk", ""), ",450\n", "\n"),
+                             ",650\n", "\n")}},
+       {"m.csv: no column 'specific_heat_j_kgk'"}},
+      {"material-solidus-above-liquidus", "material", "m.csv",
+       {{"m.csv", ReplaceAll(material_ok, "solidus_c: 1400", "solidus_c: 1500")}},
+       {"m.csv: solidus_c = 1500 is above liquidus_c = 1450: the solidus must not exceed the liquidus"}},
       {"urdf-xacro", "check", "s.yaml",
        {{"s.yaml", UrdfScenario("arm.urdf.xacro")}, {"arm.urdf.xacro", MiniUrdf("m.stl")}},
        {"arm.urdf.xacro: a .xacro file is not read; run `xacro arm.urdf.xacro > arm.urdf` once and name the .urdf"}},
@@ -316,8 +336,11 @@ TEST(BadInputCatalogue, EveryCaseExitsTwoWithOneLineNamingFileAndPlaceAndNoOutpu
     for (const std::string& folder : c.folders) fs::create_directories(dir / folder);
     const bool fit = c.command.rfind("fit", 0) == 0;
     const fs::path out = fit ? dir / "out" / "model.json" : dir / "out";
-    const std::string args = c.command + " " + (dir / c.input).string() + " -o " + out.string() +
-                             (fit ? "" : c.command == "sweep" ? " -q" : " -q --no-images");
+    // An input starting with '@' is passed as it is (a name, not a file of the case's folder).
+    const std::string input = c.input.rfind('@', 0) == 0 ? c.input.substr(1) : (dir / c.input).string();
+    const bool quiet_only = c.command == "sweep" || c.command == "material";
+    const std::string args = c.command + " " + input + " -o " + out.string() +
+                             (fit ? "" : quiet_only ? " -q" : " -q --no-images");
     const CliRun run = Waam(args, dir / "stderr.txt");
     EXPECT_EQ(run.exit_code, 2) << "expected exit code 2 (bad input) for " << c.id << "; stderr: " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "expected one line on stderr: " << run.err;
