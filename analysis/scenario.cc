@@ -22,6 +22,7 @@ Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::
   scenario.process.csw_min_radius_mm = scenario.simulation.csw_min_radius_mm;
   top.CheckNoUnknownKeys();
   internal::CheckThermalScenario(scenario.process, scenario.thermal);
+  internal::LoadThermalMaterials(dir, &scenario.thermal);
   return scenario;
 }
 

@@ -1,6 +1,7 @@
 // The `thermal:` scenario section: metals, plate, grid, losses and probes of the thermal model.
 #include "analysis/thermal_settings.h"
 
+#include "analysis/thermal_material_io.h"
 #include "models/core/error.h"
 #include "planner/scenario/scenario.h"
 #include "planner/scenario/yaml_fields.h"
@@ -77,6 +78,17 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
   out->sample_s = thermal.Number("sample_s", 0.01, 600.0, out->sample_s);
   ParseProbes(thermal, out);
   thermal.CheckNoUnknownKeys();
+}
+
+void LoadThermalMaterials(const std::filesystem::path& scenario_dir, ThermalSection* thermal) {
+  if (!thermal->given) return;
+  for (ThermalMaterialChoice* choice : {&thermal->deposit, &thermal->substrate}) {
+    try {
+      choice->material = LoadThermalMaterial(choice->name_or_path, scenario_dir);
+    } catch (const InputError& e) {
+      WAAM_THROW(choice->where << ": " << e.what());
+    }
+  }
 }
 
 void CheckThermalScenario(const planner::ProcessSettings& process, const ThermalSection& thermal) {

@@ -63,6 +63,9 @@ using planner::internal::YamlMap;
 // loaded by LoadScenario). Throws InputError naming file:line and key for unknown keys, out-of-range values, a
 // missing material or substrate size, and duplicate probe names.
 void ParseThermalSection(YamlMap& top, ThermalSection* out);
+// Loads the deposit's and the substrate's materials (LoadThermalMaterial, relative paths against `scenario_dir`).
+// Throws InputError naming the scenario key, then the material's own message (an unknown name lists the known ones).
+void LoadThermalMaterials(const std::filesystem::path& scenario_dir, ThermalSection* thermal);
 // The rules across the process and thermal sections: an interpass max_c needs a thermal section and must lie above
 // thermal.ambient_c; interpass.at: {probe: NAME} names one of thermal.probes; a thermal section needs process.arc.
 // Throws InputError naming the key.
