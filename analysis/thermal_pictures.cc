@@ -57,16 +57,17 @@ void WriteInterpassPng(const ThermalRunResult& result, const planner::InterpassS
   if (interpass.HasMax()) temps.push_back(interpass.max_c);
   const auto [t_lo, t_hi] = PaddedRange(temps, -273.0);
   const double w_hi = std::max(1.0, 1.1 * *std::max_element(waits.begin(), waits.end()));
-  const PlotFrame top{cv::Rect(90, 70, 860, 260), 0.5, layers + 0.5, t_lo, t_hi};
-  const PlotFrame bottom{cv::Rect(90, 420, 860, 260), 0.5, layers + 0.5, 0.0, w_hi};
+  // Layers by their index (0 = the first), as in thermal.json.
+  const PlotFrame top{cv::Rect(90, 70, 860, 260), -0.5, layers - 0.5, t_lo, t_hi};
+  const PlotFrame bottom{cv::Rect(90, 420, 860, 260), -0.5, layers - 0.5, 0.0, w_hi};
   PutLabel(image, "Interpass temperature and interpass wait per layer", {90, 28}, 0.7);
-  top.DrawAxes(image, "layer", "interpass temperature [degC] (" +
+  top.DrawAxes(image, "layer (0 = the first)", "interpass temperature [degC] (" +
                                    std::string(interpass.at == planner::InterpassAt::kProbe ? "probe " + interpass.probe
                                                                                             : NameOf(interpass.at)) +
                                    ", before the layer's first arc start)");
-  bottom.DrawAxes(image, "layer", "interpass wait before the layer [s]");
+  bottom.DrawAxes(image, "layer (0 = the first)", "interpass wait before the layer [s]");
   if (interpass.HasMax()) {
-    const cv::Point a = top.Px(0.5, interpass.max_c), b = top.Px(layers + 0.5, interpass.max_c);
+    const cv::Point a = top.Px(-0.5, interpass.max_c), b = top.Px(layers - 0.5, interpass.max_c);
     for (int x = a.x; x < b.x; x += 12) cv::line(image, {x, a.y}, {std::min(x + 6, b.x), a.y}, {0, 0, 220}, 2);
     PutLabel(image, Printf("max_c = %.0f degC", interpass.max_c), {b.x - 150, a.y - 6}, 0.5, {0, 0, 220});
   }
@@ -74,13 +75,13 @@ void WriteInterpassPng(const ThermalRunResult& result, const planner::InterpassS
   for (int i = 0; i < layers; ++i) {
     const ThermalLayer& l = result.layers[i];
     if (std::isfinite(l.interpass_c)) {
-      const cv::Point p = top.Px(i + 1, l.interpass_c);
+      const cv::Point p = top.Px(i, l.interpass_c);
       if (previous.x >= 0) cv::line(image, previous, p, SeriesColour(0), 2, cv::LINE_AA);
       cv::circle(image, p, 4, l.interpass_reached ? SeriesColour(0) : cv::Scalar(0, 0, 220), cv::FILLED, cv::LINE_AA);
       previous = p;
     }
-    const double half = std::min(0.4, 0.4 * 860.0 / std::max(1, layers));
-    cv::rectangle(image, bottom.Px(i + 1 - half, 0.0), bottom.Px(i + 1 + half, l.wait_s), SeriesColour(1),
+    const double half = 0.4;
+    cv::rectangle(image, bottom.Px(i - half, 0.0), bottom.Px(i + half, l.wait_s), SeriesColour(1),
                   cv::FILLED);
   }
   internal::WritePngFile(image, path);
@@ -130,7 +131,8 @@ void WriteProbesPng(const ThermalRunResult& result, const planner::InterpassSett
   if (interpass.HasMax()) {
     const int y = 90 + 26 * static_cast<int>(result.probes.size());
     cv::line(image, {905, y - 5}, {935, y - 5}, {0, 0, 220}, 1);
-    PutLabel(image, Printf("interpass max %.0f degC", interpass.max_c), {942, y}, 0.45);
+    PutLabel(image, "interpass max_c", {942, y}, 0.45);
+    PutLabel(image, Printf("%.0f degC", interpass.max_c), {942, y + 13}, 0.35, {90, 90, 90});
   }
   internal::WritePngFile(image, path);
 }
@@ -167,7 +169,8 @@ void WriteTemperatureMapPng(const ThermalLayerField& layer_field, const Eigen::A
     }
   }
   const double a0 = f.origin_mm[along], z0 = f.origin_mm.z();
-  const PlotFrame frame{area, a0, a0 + columns * f.cell_mm, z0, z0 + nz * f.cell_mm};
+  PlotFrame frame{area, a0, a0 + columns * f.cell_mm, z0, z0 + nz * f.cell_mm};
+  frame.grid = false;
   const char* names[] = {"x", "y"};
   frame.DrawAxes(image, std::string(names[along]) + " [mm]", "z [mm]");
   internal::DrawColourBar(image, cv::Rect(area.x + width + 40, area.y, 22, std::max(60, height)), cmap, lo_c, hi_c,

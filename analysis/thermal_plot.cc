@@ -61,7 +61,7 @@ void PlotFrame::DrawAxes(cv::Mat& image, const std::string& x_title, const std::
   for (const double t : NiceTicks(y0, y1, 6)) {
     const cv::Point p = Px(x0, t);
     cv::line(image, p, {p.x + 5, p.y}, black, 1);
-    cv::line(image, {p.x + 6, p.y}, {area.x + area.width, p.y}, grey, 1, cv::LINE_4);
+    if (grid) cv::line(image, {p.x + 6, p.y}, {area.x + area.width, p.y}, grey, 1, cv::LINE_4);
     const std::string text = TickText(t);
     int base = 0;
     const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, &base);

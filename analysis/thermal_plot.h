@@ -17,6 +17,7 @@ std::vector<double> NiceTicks(double lo, double hi, int count);
 struct PlotFrame {
   cv::Rect area;
   double x0 = 0.0, x1 = 1.0, y0 = 0.0, y1 = 1.0;
+  bool grid = true;  // light lines across the plot at the y ticks
   cv::Point Px(double x, double y) const;
   // Draws the frame, ticks with their values, and the axis titles (units in the titles, e.g. "time [s]").
   void DrawAxes(cv::Mat& image, const std::string& x_title, const std::string& y_title) const;

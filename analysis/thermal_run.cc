@@ -25,10 +25,15 @@ Eigen::AlignedBox3d BeadBounds(const planner::Plan& plan) {
       const planner::PathPoint& p = layer.points[i];
       const bool welded = p.weld || (i + 1 < layer.points.size() && layer.points[i + 1].weld);
       if (!welded) continue;
+      // Half a bead width across the build direction, the bead height below the TCP along it.
       const double half = 0.5 * std::max(p.bead_width_mm, 0.0);
-      box.extend(p.p_P + Eigen::Vector3d::Constant(half));
-      box.extend(p.p_P - Eigen::Vector3d::Constant(half));
-      box.extend(p.p_P - p.bead_height_mm * layer.build_dir_P);
+      const Eigen::Vector3d& d = layer.build_dir_P;
+      for (int axis = 0; axis < 3; ++axis) {
+        const Eigen::Vector3d across = Eigen::Vector3d::Unit(axis) - d[axis] * d;
+        box.extend(p.p_P + half * across);
+        box.extend(p.p_P - half * across);
+      }
+      box.extend(p.p_P - p.bead_height_mm * d);
     }
   }
   return box;
@@ -36,7 +41,7 @@ Eigen::AlignedBox3d BeadBounds(const planner::Plan& plan) {
 
 std::string BoxText(const Eigen::AlignedBox3d& box) {
   std::ostringstream s;
-  s << "[" << box.min().x() << ", " << box.min().y() << ", " << box.min().z() << "].. [" << box.max().x() << ", "
+  s << "[" << box.min().x() << ", " << box.min().y() << ", " << box.min().z() << "] .. [" << box.max().x() << ", "
     << box.max().y() << ", " << box.max().z() << "] mm";
   return s.str();
 }
@@ -67,10 +72,10 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - Eigen::Vector3d::Constant(thermal.cell_mm),
                                          beads.max() + Eigen::Vector3d::Constant(thermal.cell_mm));
   for (const ThermalProbe& probe : thermal.probes) {
-    WAAM_THROW_UNLESS(s.substrate_box_mm.contains(probe.p_mm) || beads.contains(probe.p_mm),
+    WAAM_THROW_UNLESS(s.substrate_box_mm.contains(probe.p_mm) || s.deposit_box_mm.contains(probe.p_mm),
                       probe.where << " = [" << probe.p_mm.x() << ", " << probe.p_mm.y() << ", " << probe.p_mm.z()
                                   << "]: outside the plate " << BoxText(s.substrate_box_mm) << " and the part "
-                                  << BoxText(beads) << "; a probe must lie in the metal");
+                                  << BoxText(s.deposit_box_mm) << "; a probe must lie in the metal");
   }
   return s;
 }
