@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "analysis/plan_command.h"
+#include "analysis/plan_timeline.h"
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -54,7 +55,9 @@ planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::Par
   planner::PlanResult result;
   result.plan = std::move(imported.plan);
   if (result.plan.name.empty()) result.plan.name = scenario.name;
-  result.stats = planner::ComputeStats(result.plan, settings.rapid_speed_mm_s);
+  result.stats = planner::ComputeStats(result.plan);
+  result.timeline = CellTimeline(scenario, cell, result.plan);
+  result.stats.estimated_time_s = result.timeline.total_s;
   result.bead_width_mm = settings.bead_width_mm;
   result.bead_area_mm2 = area;
   result.bead_height_mm = settings.bead_height_mm;

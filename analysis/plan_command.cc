@@ -10,6 +10,7 @@
 #include <string>
 
 #include "analysis/import_command.h"
+#include "analysis/plan_timeline.h"
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -145,7 +146,9 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       {"path_elements_per_layer", stats.path_elements_per_layer},
       {"weld_length_mm", stats.weld_length_mm},
       {"travel_length_mm", stats.travel_length_mm},
-      {"estimated_time_s", stats.estimated_time_s},
+      {"estimated_time_s", stats.estimated_time_s},  // = timeline.total_s
+      // Where the build's time goes (docs/TIMELINE.md).
+      {"timeline", TimelineToJson(result.timeline)},
       // What was planned otherwise than asked, one line each (e.g. a region the continuous pattern's decomposition
       // could not split, planned with the hybrid pattern); empty when everything went as asked.
       {"warnings", result.warnings},
@@ -173,6 +176,8 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_
     Progress progress("plan", 0, "layers", options.quiet);
     result = PlanScenarioOrProgram(scenario, &progress, &import);
   }
+  // The timeline on the cell's axes (a program's plan has it from its import already).
+  if (!scenario.program.present) AddCellTimeline(scenario, &result);
 
   RunOutputs outputs(options.out_dir / "plan.json");
   WritePlanFiles(result.plan, options.out_dir, options.layer_images, options.quiet, &outputs);

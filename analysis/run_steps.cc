@@ -54,7 +54,7 @@ StepOutcome RunPlanStep(RunContext& context, const fs::path& step_dir) {
   outcome.metrics = PickMetrics(document, {"/layers", "/passes", "/path_elements", "/weld_length_mm",
                                            "/travel_length_mm", "/estimated_time_s", "/bead_width_mm",
                                            "/bead_height_mm", "/layer_height_mm", "/travel_speed_mm_min",
-                                           "/uncovered/pct"});
+                                           "/uncovered/pct", "/timeline"});
   int max_passes = 0;
   for (int passes : context.planned->stats.passes_per_layer) max_passes = std::max(max_passes, passes);
   outcome.metrics["max_passes_per_layer"] = max_passes;

@@ -6,32 +6,19 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include "analysis/import_command.h"
+#include "analysis/plan_timeline.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
+#include "twin/cell/cell_check.h"
+#include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
-
-nlohmann::json ThermalTimelineJson(const planner::Timeline& timeline) {
-  nlohmann::json layers = nlohmann::json::array();
-  for (const planner::LayerTimes& l : timeline.layers) {
-    layers.push_back({{"layer", l.layer},
-                      {"start_s", l.start_s},
-                      {"end_s", l.end_s},
-                      {"arc_on_s", l.arc_on_s},
-                      {"travel_s", l.travel_s},
-                      {"wait_s", l.wait_s}});
-  }
-  return {{"total_s", timeline.total_s},
-          {"arc_on_s", timeline.arc_on_s},
-          {"travel_s", timeline.travel_s},
-          {"wait_s", timeline.wait_s},
-          {"layers", layers}};
-}
 
 namespace {
 
@@ -85,7 +72,7 @@ nlohmann::json ThermalToJson(const Scenario& scenario, const ThermalRunResult& r
       {"interpass_wait_s", interpass_wait},
       {"max_interpass_c", max_interpass},
       {"peak_c", peak},
-      {"timeline", ThermalTimelineJson(result.timeline)},
+      {"timeline", TimelineToJson(result.timeline)},
       {"interpass", interpass_json},
       {"arc", {{"power_w", arc.power_w}, {"efficiency", arc.efficiency}, {"heat_w", result.heat_w}}},
       {"layers", layers},
@@ -113,6 +100,13 @@ nlohmann::json ThermalToJson(const Scenario& scenario, const ThermalRunResult& r
         {"substrate", {{"name", result.settings.substrate.name}, {"source", result.settings.substrate.source}}}}},
       {"substrate", BoxJson(result.settings.substrate_box_mm)},
       {"deposit_box", BoxJson(result.settings.deposit_box_mm)},
+  };
+}
+
+TimelineBuilder TimelineBuilderFor(const Scenario& scenario, const planner::Plan& plan) {
+  auto cell = std::make_shared<const twin::CellModel>(twin::LoadCell(scenario.cell));
+  return [&scenario, &plan, cell](const std::vector<double>& extra_wait_s) {
+    return CellTimeline(scenario, *cell, plan, extra_wait_s);
   };
 }
 

@@ -37,10 +37,6 @@ TimelineBuilder TimelineBuilderFor(const Scenario& scenario, const planner::Plan
 // The thermal.json document (the public contract, documented in `waam thermal --help` and docs/THERMAL.md).
 nlohmann::json ThermalToJson(const Scenario& scenario, const ThermalRunResult& result);
 
-// The `timeline` object: total_s, arc_on_s, travel_s, wait_s and layers[] {layer, start_s, end_s, arc_on_s,
-// travel_s, wait_s}.
-nlohmann::json ThermalTimelineJson(const planner::Timeline& timeline);
-
 // thermal.h5: /probes/time_s and /probes/<NAME> (degC, NaN while no metal is there), /layers/{layer, start_s, end_s,
 // interpass_c, peak_c, wait_s}, /timeline/{kind, start_s, end_s, layer, point}, and /fields/layer_NNNN (nz x ny x nx
 // float32 degC, NaN where no metal is) with attributes origin_mm, cell_mm, dims [nx, ny, nz], time_s, layer.

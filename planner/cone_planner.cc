@@ -258,7 +258,7 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
   }
   if (progress) progress->Finish();
   WAAM_THROW_UNLESS(!result.plan.layers.empty(), where << ": no layer of the part meets the surfaces");
-  result.stats = ComputeStats(result.plan, process.rapid_speed_mm_min / 60.0);
+  result.stats = ComputeStats(result.plan);
   return result;
 }
 

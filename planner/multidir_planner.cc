@@ -209,7 +209,7 @@ PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* prog
   if (progress) progress->Finish();
   WAAM_THROW_UNLESS(!result.plan.layers.empty(), where << ": no sub-volume gave a layer to weld");
   result.layer_height_mm = height_sum / static_cast<double>(result.plan.layers.size());
-  result.stats = ComputeStats(result.plan, process.rapid_speed_mm_min / 60.0);
+  result.stats = ComputeStats(result.plan);
   return result;
 }
 

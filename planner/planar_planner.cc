@@ -22,6 +22,7 @@
 #include "planner/plan_limits.h"
 #include "planner/skeleton_planner.h"
 #include "planner/slicing/planar_slicer.h"
+#include "planner/timeline/island_order.h"
 
 namespace waam::planner {
 namespace {
@@ -174,7 +175,7 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
     result.plan.layers.push_back(std::move(layer));
   }
   if (progress) progress->Finish();
-  result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
+  result.stats = ComputeStats(result.plan);
   result.layer_height_min_mm = result.layer_height_max_mm = result.layer_height_mm;
   result.speed_min_mm_min = result.speed_max_mm_min = result.travel_speed_mm_min;
   return result;
@@ -184,8 +185,14 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
 
 PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
   PlanResult result = PlanWithoutRetracts(scenario, progress);
+  const TimelineSettings timing = TimelineSettingsOf(scenario.process);
+  // The islands' order (path.island_order) before the travel between passes is built.
+  OrderIslands(scenario.path.island_order, timing, &result.plan);
   result.retract = AddRetracts(scenario.path.retract_mm, &result.plan);
-  result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
+  result.stats = ComputeStats(result.plan);
+  // Without the cell: arc-off moves at the rapid speed (analysis::AddCellTimeline times them on the cell's axes).
+  result.timeline = BuildTimeline(result.plan, {}, AxisLimits{}, timing);
+  result.stats.estimated_time_s = result.timeline.total_s;
   return result;
 }
 

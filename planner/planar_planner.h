@@ -13,6 +13,7 @@
 #include "planner/path/tool_path.h"
 #include "planner/path/void_filling.h"
 #include "planner/scenario/scenario.h"
+#include "planner/timeline/timeline.h"
 
 namespace waam {
 class Progress;
@@ -58,6 +59,7 @@ struct PlanResult {
   std::vector<Eigen::Vector3d> axis_P;  // skeleton: central axis (chain of section centroids), part frame, mm
   std::vector<CornerCorrection> void_corrections;  // junction corners moved by path.void_filling (003 sec. 4.4)
   RetractReport retract;             // the arc-off travels rebuilt by path.retract_mm (planner/path/retract.h)
+  Timeline timeline;                 // where the build's time goes; stats.estimated_time_s is its total_s
 };
 
 // Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's

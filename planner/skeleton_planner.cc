@@ -242,7 +242,7 @@ PlanResult PlanSkeletonScenario(const Scenario& scenario, Progress* progress) {
   path_options.point_spacing_mm = s.point_spacing_mm;
   path_options.spiral = scenario.path.pattern == Pattern::kSpiral;
   result.plan = BuildSkeletonPlan(slicing, speed_height, width_height, path_options, scenario.name);
-  result.stats = ComputeStats(result.plan, scenario.process.rapid_speed_mm_min / 60.0);
+  result.stats = ComputeStats(result.plan);
   result.axis_P = CentroidChain(slicing);
   result.layers_out_of_range = slicing.out_of_range_layers;
 

@@ -276,17 +276,20 @@ d = sys.argv[1]
 rows = [("contour (`rib_web_contour.yaml`)", "contour"),
         ("eulerian, no void filling (`rib_web_eulerian.yaml --set path.void_filling.mode=none`)", "eulerian_none"),
         ("eulerian, lambda = 1 at the junctions of 3-4 ribs (`rib_web_eulerian.yaml`)", "eulerian")]
-print("| path | passes per layer | estimated layer time | weld / travel per layer | corrected turning points |")
-print("| --- | --- | --- | --- | --- |")
+print("| path | passes per layer | layer time (timeline) | arc on / travel per layer | weld / travel per layer | "
+      "corrected turning points |")
+print("| --- | --- | --- | --- | --- | --- |")
 for label, name in rows:
     p = json.load(open(f"{d}/{name}/plan.json"))
     n = p["layers"]
+    t = p["timeline"]
     passes = sorted(set(p["passes_per_layer"]))
     print(f"| {label} | {' - '.join(map(str, passes))} | {p['estimated_time_s'] / n:.1f} s | "
+          f"{t['arc_on_s'] / n:.1f} / {t['travel_s'] / n:.1f} s | "
           f"{p['weld_length_mm'] / n:.0f} / {p['travel_length_mm'] / n:.0f} mm | "
           f"{p['void_filling']['corrected_corners'] / n:g} |")
 # The paper's row, as printed in Nguyen 2022 Table 13 (not computed).
-print("| paper, Table 13 (contour vs Eulerian) | 5 vs 1 | 230 s vs 190 s | | |")
+print("| paper, Table 13 (contour vs Eulerian) | 5 vs 1 | 230 s vs 190 s | | | |")
 PY
   # Junction classes tuned in the twin; the cross also at a ten times lower threshold.
   local j

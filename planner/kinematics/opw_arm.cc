@@ -66,6 +66,7 @@ OpwArm OpwArm::ArcMate100iC12() {
   arm.lower << Deg(-170), Deg(-90), Deg(-180), Deg(-190), Deg(-190), Deg(-360);
   arm.upper << Deg(170), Deg(160), Deg(264), Deg(190), Deg(190), Deg(360);
   arm.max_speed << Deg(210), Deg(190), Deg(210), Deg(400), Deg(400), Deg(600);
+  arm.max_accel = arm.max_speed / kAxisRampTimeS;  // no data-sheet figure: the assumed ramp (opw_arm.h)
   return arm;
 }
 

@@ -15,6 +15,12 @@ namespace waam::planner {
 
 using Joints6 = Eigen::Matrix<double, 6, 1>;  // arm joint angles j1..j6, rad
 
+// The time an axis takes from rest to its rated speed when no acceleration is given, s. Data sheets (FANUC, ABB,
+// KUKA, Yaskawa) list axis speeds only, and controllers keep their acceleration tables to themselves (KUKA's
+// $ACC_MA, FANUC's acceleration time constants); 0.25 s is an assumed typical ramp of a 10-20 kg payload arm's
+// servo axes (docs/TIMELINE.md), which `cell.axis_ramp_s` replaces with a measured one.
+inline constexpr double kAxisRampTimeS = 0.25;
+
 // Geometry, joint convention, limits and speeds of an OPW arm: the parameter set of Brandstoetter, Angerer and
 // Hofbaur 2014 as the ROS-Industrial `opw_parameters_*.yaml` files give it (a1, a2, b, c1, c2, c3, c4, offsets,
 // sign_corrections; lengths here in mm). The OPW model's own joints are q_opw[i] = sign_corrections[i] * q[i] -
@@ -37,6 +43,9 @@ struct OpwArm {
   Joints6 lower = Joints6::Constant(-kPi);      // joint limits, rad
   Joints6 upper = Joints6::Constant(kPi);       // rad
   Joints6 max_speed = Joints6::Constant(1.0);    // rad/s
+  // rad/s^2: arm makers publish joint speeds but not accelerations; the default is each joint's speed reached in
+  // kAxisRampTimeS (twin::CellSettings::axis_ramp_s sets it per cell).
+  Joints6 max_accel = Joints6::Constant(1.0 / 0.25);
 
   // The FANUC ARC Mate 100iC/12 (= M-10iA arm) in FANUC's joint convention (serial j3), flange frame F with x
   // along the flange normal and F parallel to R at q = 0: reach 1420 mm, limits and speeds of its data sheet.

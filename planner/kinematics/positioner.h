@@ -47,6 +47,9 @@ struct Positioner {
   double rotation_upper = 240.0 * kPi / 180.0;
   double tilt_max_speed = 120.0 * kPi / 180.0;             // rad/s (Table 3)
   double rotation_max_speed = 190.0 * kPi / 180.0;         // rad/s (Table 3)
+  // rad/s^2: no data-sheet figure; the speed reached in kAxisRampTimeS = 0.25 s (opw_arm.h), as for the arm.
+  double tilt_max_accel = 120.0 * kPi / 180.0 / 0.25;
+  double rotation_max_accel = 190.0 * kPi / 180.0 / 0.25;
 };
 
 // Part pose in the positioner base frame for the two axis angles (rad), mm.

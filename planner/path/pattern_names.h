@@ -1,5 +1,5 @@
-// The path patterns and overlap models by name (scenario keys path.pattern and path.overlap_model), one table each
-// (models/core/enum_names.h).
+// The path patterns, overlap models and island orders by name (scenario keys path.pattern, path.overlap_model,
+// path.island_order), one table each (models/core/enum_names.h).
 #pragma once
 
 #include <array>
@@ -21,5 +21,12 @@ constexpr std::array<EnumName<OverlapModel>, 2> EnumNames(OverlapModel) {
   return {{{OverlapModel::kProposed, "proposed"}, {OverlapModel::kExisting, "existing"}}};
 }
 WAAM_ENUM_JSON(OverlapModel)
+// path.island_order: the order of a layer's islands (or passes) (planner/timeline/island_order.h)
+enum class IslandOrder { kAsPlanned, kRoundRobin, kCoolestFirst };
+constexpr std::array<EnumName<IslandOrder>, 3> EnumNames(IslandOrder) {
+  return {{{IslandOrder::kAsPlanned, "as_planned"}, {IslandOrder::kRoundRobin, "round_robin"},
+           {IslandOrder::kCoolestFirst, "coolest_first"}}};
+}
+WAAM_ENUM_JSON(IslandOrder)
 
 }  // namespace waam::planner

@@ -3,7 +3,7 @@
 
 namespace waam::planner {
 
-PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s) {
+PathStats ComputeStats(const Plan& plan) {
   PathStats stats;
   stats.layers = plan.layers.size();
   bool arc_on = false;
@@ -23,10 +23,8 @@ PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s) {
         if (!arc_on) ++passes;
         ++elements;
         stats.weld_length_mm += length;
-        if (point.speed_mm_s > 0.0) stats.estimated_time_s += length / point.speed_mm_s;
       } else {
         stats.travel_length_mm += length;
-        if (rapid_speed_mm_s > 0.0) stats.estimated_time_s += length / rapid_speed_mm_s;
       }
       arc_on = point.weld;
     }

@@ -55,7 +55,9 @@ struct PathStats {
   std::vector<std::size_t> path_elements_per_layer;
   double weld_length_mm = 0.0;
   double travel_length_mm = 0.0;
-  double estimated_time_s = 0.0;   // weld at the planned speeds, travel at the rapid speed
+  // The build's duration: the total of its timeline (planner/timeline/timeline.h), set where the timeline is built
+  // (PlanScenario without the cell, analysis::AddCellTimeline with it); ComputeStats leaves it 0. s
+  double estimated_time_s = 0.0;
 };
 
 // A whole planned part.
@@ -64,7 +66,7 @@ struct Plan {
   std::vector<LayerPath> layers;
 };
 
-// Counts passes, path elements and lengths; travel moves are timed at `rapid_speed_mm_s`.
-PathStats ComputeStats(const Plan& plan, double rapid_speed_mm_s);
+// Counts passes, path elements and lengths (estimated_time_s is left 0: the timeline gives it).
+PathStats ComputeStats(const Plan& plan);
 
 }  // namespace waam::planner

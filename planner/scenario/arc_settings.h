@@ -41,7 +41,8 @@ struct InterpassSettings {
   double max_c = std::numeric_limits<double>::quiet_NaN();
   InterpassAt at = InterpassAt::kNextStart;
   std::string probe;                 // the probe's name (thermal.probes) when at = probe
-  double min_layer_time_s = 0.0;     // each layer takes at least this long from its first arc start, s (0 = none)
+  double min_layer_time_s = 0.0;     // a layer lasts at least this long from its first arc start to the next
+                                     // layer's first arc start; the rest is a wait (planner/timeline), s
   std::string where = "process.interpass";        // "file:line: process.interpass"
   std::string max_where = "process.interpass.max_c";  // "file:line: process.interpass.max_c"
   std::string at_where = "process.interpass.at";      // "file:line: process.interpass.at"

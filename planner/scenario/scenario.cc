@@ -200,6 +200,7 @@ Scenario ParsePlannerSections(YamlMap& top) {
     s.alternate_start = path.Bool("alternate_start", true);
     s.seed = static_cast<std::uint64_t>(path.Integer("seed", 0, 2147483647, 1));
     s.retract_mm = path.Number("retract_mm", 0.0, 500.0, s.retract_mm);
+    s.island_order = path.Enum("island_order", s.island_order);
     internal::ParseVoidFillingSection(path, scenario.dir, &s.void_filling);
     path.CheckNoUnknownKeys();
   }
@@ -234,6 +235,8 @@ Scenario ParsePlannerSections(YamlMap& top) {
       *target = file.lexically_normal();
     }
     p.rapid_speed_mm_min = process.Number("rapid_speed_mm_min", 100.0, 100000.0, 6000.0);
+    p.arc_start_s = process.Number("arc_start_s", 0.0, 60.0, p.arc_start_s);
+    p.arc_end_s = process.Number("arc_end_s", 0.0, 60.0, p.arc_end_s);
     ParseArcAndInterpass(process, &p.arc, &p.interpass);
     process.CheckNoUnknownKeys();
   }

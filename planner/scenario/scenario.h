@@ -87,7 +87,11 @@ struct PathSettings {
   double retract_mm = 15.0;            // >= 0: arc-off lift / approach along the torch axis, and the travel's
                                        // clearance over the metal (planner/path/retract.h); 0 = straight rapids
   VoidFillingSettings void_filling;    // optional `void_filling:` junction correction (003 sec. 4.4)
+  // The order of the islands (or passes) of each layer: as planned, round robin (each layer starts at the next
+  // island), or the island whose last deposition is longest ago first (planner/timeline/island_order.h)
+  IslandOrder island_order = IslandOrder::kAsPlanned;
 };
+
 
 struct ProcessSettings {
   double travel_speed_mm_min = 400.0;  // welding travel speed
@@ -104,6 +108,10 @@ struct ProcessSettings {
   std::filesystem::path speed_height_model;  // model JSON (waam fit speed-height); empty = models/data default
   std::filesystem::path width_height_model;  // model JSON (waam fit width-height); empty = models/data default
   double rapid_speed_mm_min = 6000.0;  // arc-off travel moves
+  // Arc start (gas pre-flow, ignition) before each pass and arc end (crater fill, arc off) after it, s; defaults and
+  // their source in docs/TIMELINE.md (Kemppi's start/stop timing with typical gas pre-flow and crater times).
+  double arc_start_s = 0.5;
+  double arc_end_s = 0.3;
   // Curvature radii below this count as this in the CSW speed choice (bead_model csw): the smallest radius the CSW
   // model was fitted to. Its key is the twin's simulation.csw_min_radius_mm (the twin widens beads by the same rule);
   // the full scenario loader (analysis/scenario.h) copies it here.

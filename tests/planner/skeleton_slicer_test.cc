@@ -135,7 +135,7 @@ TEST(SkeletonPlanner, SpiralIsOnePassAndLayersArePerLayerPasses) {
   SkeletonPathOptions options;
   options.spiral = true;
   const Plan spiral = BuildSkeletonPlan(slicing, speed_height, width_height, options, "spiral");
-  const PathStats s = ComputeStats(spiral, 100.0);
+  const PathStats s = ComputeStats(spiral);
   EXPECT_EQ(s.passes, 1u) << "the spiral welds the whole part in one pass";
   EXPECT_EQ(spiral.layers.size(), slicing.layers.size() + 1) << "rise loop, blended loops, closing loop";
   EXPECT_DOUBLE_EQ(s.travel_length_mm, 0.0);
@@ -151,7 +151,7 @@ TEST(SkeletonPlanner, SpiralIsOnePassAndLayersArePerLayerPasses) {
   }
   options.spiral = false;
   const Plan layers = BuildSkeletonPlan(slicing, speed_height, width_height, options, "layers");
-  const PathStats d = ComputeStats(layers, 100.0);
+  const PathStats d = ComputeStats(layers);
   EXPECT_EQ(d.passes, slicing.layers.size()) << "one closed pass per layer";
   // Per point: slower where the layer is thicker (eq. 6.6), wider with it (eq. 6.7), points about 2 mm apart.
   const LayerPath& mid = layers.layers[layers.layers.size() / 2];

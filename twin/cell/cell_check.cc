@@ -168,6 +168,10 @@ planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSe
   planner::CellKinematics kin = cell.kinematics();
   // The part frame P sits on the plate top (part_origin) with the scenario's offset and turn.
   kin.positioner.X_CP = kin.positioner.X_CP * PlacementPose(settings.part_offset_mm, settings.part_yaw_deg);
+  // Accelerations: each axis reaches its rated speed in cell.axis_ramp_s.
+  kin.arm.max_accel = kin.arm.max_speed / settings.axis_ramp_s;
+  kin.positioner.tilt_max_accel = kin.positioner.tilt_max_speed / settings.axis_ramp_s;
+  kin.positioner.rotation_max_accel = kin.positioner.rotation_max_speed / settings.axis_ramp_s;
   return kin;
 }
 

@@ -94,6 +94,7 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
     torch.CheckNoUnknownKeys();
   }
   cell.resolve = map.Enum("resolve", cell.resolve);
+  cell.axis_ramp_s = map.Number("axis_ramp_s", 0.01, 10.0, cell.axis_ramp_s);
   if (map.Has("part")) {
     YamlMap part = map.Map("part");
     cell.part_offset_mm = Xyz(part, "offset_mm", cell.part_offset_mm);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "models/core/enum_names.h"
+#include "planner/kinematics/opw_arm.h"
 #include "planner/kinematics/positioner.h"
 
 namespace waam::twin {
@@ -83,6 +84,9 @@ struct CellSettings {
   CellResolve resolve = CellResolve::kOptimise;
   std::array<double, 3> part_offset_mm = {0.0, 0.0, 0.0};  // part frame P relative to the plate's top centre, mm
   double part_yaw_deg = 0.0;                               // turn of the part on the plate, deg
+  // cell.axis_ramp_s: the time each axis (arm joints and positioner) takes from rest to its rated speed, which gives
+  // its acceleration limit for the build's timeline (planner/timeline), s; default planner::kAxisRampTimeS.
+  double axis_ramp_s = planner::kAxisRampTimeS;
   double joint_margin_deg = 2.0;         // a joint closer than this to its limit is a violation, deg
   double singularity_deg = 5.0;          // |j5| below this is a wrist-singularity violation, deg
   double step_mm = 1.0;                  // path segments are checked at this spacing, mm

@@ -209,6 +209,7 @@ void ReadKinematics(CellModel::Impl* impl) {
     arm.upper[j] = m->jnt_range[2 * impl->jnt[j] + 1];
     arm.max_speed[j] = speed[j] * kPi / 180.0;
   }
+  arm.max_accel = arm.max_speed / planner::kAxisRampTimeS;  // no model gives accelerations (opw_arm.h)
 
   // Tool: the tcp site in the flange frame.
   const int ts = impl->tcp;
@@ -273,6 +274,8 @@ void ReadKinematics(CellModel::Impl* impl) {
   cell.positioner.X_CP = X_WC.inverse() * Pose(d->site_xpos + 3 * po, d->site_xmat + 9 * po);
   cell.positioner.tilt_max_speed = speed[6] * kPi / 180.0;
   cell.positioner.rotation_max_speed = speed[7] * kPi / 180.0;
+  cell.positioner.tilt_max_accel = cell.positioner.tilt_max_speed / planner::kAxisRampTimeS;
+  cell.positioner.rotation_max_accel = cell.positioner.rotation_max_speed / planner::kAxisRampTimeS;
 
   // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
   std::mt19937_64 rng(2024);
