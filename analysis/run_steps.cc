@@ -17,6 +17,7 @@ namespace {
 
 bool Always(const Scenario&) { return true; }
 bool WhenListed(const Scenario&) { return false; }  // only when run.steps or --steps names it
+bool WhenThermal(const Scenario& scenario) { return scenario.thermal.given; }  // the scenario has a thermal: section
 
 }  // namespace
 
@@ -30,6 +31,7 @@ const std::vector<RunStep>& RunSteps() {
       {"simulate", "plan", Always, RunSimulateStep, "simulate.json"},
       {"tune_voids", nullptr, WhenListed, RunTuneVoidsStep, "tune.json"},
       {"compensate", nullptr, WhenListed, RunCompensateStep, "compensate.json"},
+      {"thermal", "plan", WhenThermal, RunThermalStep, "thermal.json"},
   };
   return steps;
 }

@@ -64,6 +64,9 @@ StepOutcome RunSimulateStep(RunContext& context, const std::filesystem::path& st
 // compensate (waam compensate with its default options).
 StepOutcome RunTuneVoidsStep(RunContext& context, const std::filesystem::path& step_dir);
 StepOutcome RunCompensateStep(RunContext& context, const std::filesystem::path& step_dir);
+// The thermal step (analysis/run_thermal_step.cc): waam thermal on the plan step's plan, in the default chain when
+// the scenario has a thermal: section.
+StepOutcome RunThermalStep(RunContext& context, const std::filesystem::path& step_dir);
 
 // Copies the keys listed in `keys` (JSON pointers such as "/deviation/rms_mm") from `document` into a flat object
 // named by the pointers without the leading slash ("deviation/rms_mm"); missing keys are left out.

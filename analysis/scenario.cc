@@ -16,10 +16,13 @@ Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::
   twin::internal::ParseSimulationSection(top, &scenario.simulation, dir);
   internal::ParseRunSection(top, &scenario.run);
   internal::ParsePlaceSection(top, &scenario.place);
+  internal::ParseThermalSection(top, &scenario.thermal);
   scenario.program = planner::internal::ParseProgramSection(top, dir);
   // The CSW radius clamp is one rule for the planner's speed and the twin's bead width (simulation section).
   scenario.process.csw_min_radius_mm = scenario.simulation.csw_min_radius_mm;
   top.CheckNoUnknownKeys();
+  internal::CheckThermalScenario(scenario.process, scenario.thermal);
+  internal::LoadThermalMaterials(dir, &scenario.thermal);
   return scenario;
 }
 

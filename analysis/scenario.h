@@ -7,6 +7,7 @@
 
 #include "analysis/place_settings.h"
 #include "analysis/run_settings.h"
+#include "analysis/thermal_settings.h"
 #include "planner/program/program_settings.h"
 #include "planner/scenario/scenario.h"
 #include "twin/cell/cell_settings.h"
@@ -20,6 +21,7 @@ struct Scenario : planner::Scenario {
   RunSettings run;                      // optional `run:` section (the steps of `waam run`)
   planner::ProgramSettings program;     // optional `program:` section: a program made elsewhere instead of a part
   PlaceSettings place;                  // optional `place:` section: the ranges `waam place` searches
+  ThermalSection thermal;               // optional `thermal:` section: the thermal model (`waam thermal`)
 };
 
 // Loads and validates a whole scenario file: the document is read once (with the `--set` overrides) and each module

@@ -33,6 +33,7 @@ void AddDeviationCommand(CLI::App& app, CommandRunner* runner);   // app/distort
 void AddCompensateCommand(CLI::App& app, CommandRunner* runner);  // app/distortion_cli.cc
 void AddImportCommand(CLI::App& app, CommandRunner* runner);      // app/import_cli.cc
 void AddExportCommand(CLI::App& app, CommandRunner* runner);      // app/export_cli.cc
+void AddThermalCommand(CLI::App& app, CommandRunner* runner);     // app/thermal_cli.cc
 void AddMaterialCommand(CLI::App& app, CommandRunner* runner);    // app/material_cli.cc
 
 }  // namespace waam::app

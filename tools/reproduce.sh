@@ -35,12 +35,15 @@
 #                     the spins chosen, both wall times; CELL.md (ten minutes or more)
 #   place             waam place on the tube part II and the planted clamp fault: layouts, passes, wall time;
 #                     CELL.md (a minute)
+#   thermal_wall      waam thermal on scenarios/thermal/wall_interpass.yaml: per-layer interpass temperature, peak
+#                     and wait, the energy balance; its pictures into docs/images/thermal_wall_*.png; THERMAL.md
+#                     (seconds)
 # Needs a built ./build/waam (bash tools/test.sh --quick builds it); the *_bench tables and twin_tests need their
 # executables (cmake --build build --target NAME).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tables=(ding_table twin_table compensation twin_tests deposition_bench distortion_fit published rib_web model_fits
-        void_length_fit fit_bench check_bench cup_support readme_figures peers threads resolve place)
+        void_length_fit fit_bench check_bench cup_support readme_figures peers threads resolve place thermal_wall)
 only=""
 out="out/reproduce"
 check=0
@@ -542,6 +545,31 @@ for name, path in (("planar_demo", "scenarios/planar_demo.yaml"), ("thruster_con
     dev = s["deviation"]
     print("| `%s` | %d | %.1f / %.1f mm | %.0f mm^3, %.0f mm^3 |" % (
         path, s["layers"], dev["min_mm"], dev["max_mm"], s["voids"]["volume_mm3"], s["valleys"]["volume_mm3"]))
+PY
+}
+
+thermal_wall() {
+  local d="$out/thermal_wall"
+  ./build/waam thermal scenarios/thermal/wall_interpass.yaml -o "$d" -q >/dev/null
+  cp "$d/interpass.png" docs/images/thermal_wall_interpass.png
+  cp "$d/probes.png" docs/images/thermal_wall_probes.png
+  cp "$(ls "$d"/maps/layer_*.png | tail -1)" docs/images/thermal_wall_map.png
+  python3 - "$d/thermal.json" <<'PY' | put thermal_wall
+import json, sys
+j = json.load(open(sys.argv[1]))
+t, e = j["timeline"], j["energy_balance"]
+print("| layer | start [s] | interpass wait before [s] | interpass temperature [degC] | peak [degC] |")
+print("| --- | --- | --- | --- | --- |")
+for l in j["layers"]:
+    ip = "-" if l["interpass_c"] is None else "%.0f" % l["interpass_c"]
+    print("| %d | %.1f | %.0f | %s | %.0f |" % (l["layer"], l["start_s"], l["wait_s"], ip, l["peak_c"]))
+print()
+print("Build %.0f s: arc on %.0f s, travel %.0f s, waits %.0f s. Arc energy %.0f kJ, heat in %.0f kJ = stored %.0f kJ "
+      "+ lost %.0f kJ (relative error %.1e). Probes: %s. Solver: %d cells, %d steps, %.1f s wall." % (
+          t["total_s"], t["arc_on_s"], t["travel_s"], t["wait_s"], e["arc_energy_j"] / 1e3, e["heat_input_j"] / 1e3,
+          e["stored_j"] / 1e3, e["lost_j"] / 1e3, e["relative_error"],
+          ", ".join("%s max %.0f degC at %.0f s" % (n, p["max_c"], p["time_of_max_s"]) for n, p in j["probes"].items()),
+          j["solver"]["cells"], j["solver"]["steps"], j["solver"]["wall_s"]))
 PY
 }
 

@@ -237,11 +237,7 @@ Scenario ParsePlannerSections(YamlMap& top) {
     p.rapid_speed_mm_min = process.Number("rapid_speed_mm_min", 100.0, 100000.0, 6000.0);
     p.arc_start_s = process.Number("arc_start_s", 0.0, 60.0, p.arc_start_s);
     p.arc_end_s = process.Number("arc_end_s", 0.0, 60.0, p.arc_end_s);
-    if (process.Has("interpass")) {
-      YamlMap interpass = process.Map("interpass");
-      p.interpass.min_layer_time_s = interpass.Number("min_layer_time_s", 0.0, 86400.0, p.interpass.min_layer_time_s);
-      interpass.CheckNoUnknownKeys();
-    }
+    ParseArcAndInterpass(process, &p.arc, &p.interpass);
     process.CheckNoUnknownKeys();
   }
 

@@ -10,6 +10,7 @@
 
 #include "models/core/enum_names.h"
 #include "planner/path/pattern_names.h"
+#include "planner/scenario/arc_settings.h"
 #include "planner/scenario/void_filling_settings.h"
 
 namespace waam::planner {
@@ -91,12 +92,6 @@ struct PathSettings {
   IslandOrder island_order = IslandOrder::kAsPlanned;
 };
 
-// process.interpass: what the build waits for between layers (the timeline's waits, planner/timeline).
-struct InterpassSettings {
-  // A layer lasts at least this long from its first arc start to the next layer's first arc start; the rest is a
-  // wait before the next layer's first arc start, s (0: no minimum).
-  double min_layer_time_s = 0.0;
-};
 
 struct ProcessSettings {
   double travel_speed_mm_min = 400.0;  // welding travel speed
@@ -117,11 +112,12 @@ struct ProcessSettings {
   // their source in docs/TIMELINE.md (Kemppi's start/stop timing with typical gas pre-flow and crater times).
   double arc_start_s = 0.5;
   double arc_end_s = 0.3;
-  InterpassSettings interpass;
   // Curvature radii below this count as this in the CSW speed choice (bead_model csw): the smallest radius the CSW
   // model was fitted to. Its key is the twin's simulation.csw_min_radius_mm (the twin widens beads by the same rule);
   // the full scenario loader (analysis/scenario.h) copies it here.
   double csw_min_radius_mm = 30.0;
+  ArcSettings arc;                      // process.arc: arc power and efficiency (the thermal model's heat input)
+  InterpassSettings interpass;          // process.interpass: wait before a layer for a temperature or a layer time
 };
 
 struct Scenario {

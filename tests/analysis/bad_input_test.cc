@@ -89,6 +89,31 @@ std::string CellScenario(const std::string& extra_cell_line) {
          "  positioner: {base_mm: [1050, 0, 0], yaw_deg: 90, rotation_deg: 0}\n";
 }
 
+// A thermal scenario (waam thermal) with every value valid; `from` is replaced by `to` to break it. Lines: 12
+// process.arc, 13 process.interpass, 15 thermal.material, 17 thermal.probes.
+std::string ThermalScenario(const std::string& from, const std::string& to) {
+  std::string text =
+      "name: bad_thermal\n"
+      "part:\n"
+      "  generator: {type: box, size_mm: [60, 8, 4]}\n"
+      "slicing:\n"
+      "  layer_height_mm: 2\n"
+      "path:\n"
+      "  pattern: zigzag\n"
+      "  bead_width_mm: 6\n"
+      "process:\n"
+      "  travel_speed_mm_min: 400\n"
+      "  wire_feed_mm_min: 3200\n"
+      "  arc: {power_w: 2000}\n"
+      "  interpass: {max_c: 200}\n"
+      "thermal:\n"
+      "  material: mild_steel\n"
+      "  substrate: {size_mm: [100, 40, 10]}\n"
+      "  probes: {plate: [0, 10, -2]}\n";
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
 // A six-joint arm in URDF (geometry irrelevant: every case fails before MuJoCo loads it); `mesh` is the filename of
 // link_2's collision mesh, `velocity` the attribute text of every <limit>, `revolute` how many joints are revolute.
 std::string MiniUrdf(const std::string& mesh, const std::string& velocity = "velocity=\"3\"", int revolute = 6) {
@@ -131,7 +156,7 @@ std::string UrdfScenario(const std::string& urdf, const std::string& extra = "")
 // One row of the catalogue (docs/BAD_INPUTS.md has the same rows, by id).
 struct BadInput {
   std::string id;
-  std::string command;                         // "plan", "check", "material" or "fit <model>"
+  std::string command;                         // "plan", "check", "material", "thermal" or "fit <model>"
   std::string input;                           // the file named on the command line, in the case's folder ('@': as is)
   std::map<std::string, std::string> files;    // name -> contents, written into the case's folder
   std::vector<std::string> expected;           // each must appear in the one stderr line
@@ -336,6 +361,20 @@ std::vector<BadInput> Catalogue() {
       {"material-solidus-above-liquidus", "material", "m.csv",
        {{"m.csv", ReplaceAll(material_ok, "solidus_c: 1400", "solidus_c: 1500")}},
        {"m.csv: solidus_c = 1500 is above liquidus_c = 1450: the solidus must not exceed the liquidus"}},
+      {"thermal-unknown-material", "thermal", "s.yaml",
+       {{"s.yaml", ThermalScenario("material: mild_steel", "material: unobtainium")}},
+       {"s.yaml:15: thermal.material: unknown material 'unobtainium': expected one of al5356, mild_steel, ss316l, "
+        "ti6al4v"}},
+      {"thermal-probe-outside-plate-and-part", "thermal", "s.yaml",
+       {{"s.yaml", ThermalScenario("{plate: [0, 10, -2]}", "{air: [0, 0, 50]}")}},
+       {"s.yaml:17: thermal.probes.air = [0, 0, 50]: outside the plate [-50, -20, -10] .. [50, 20, 0] mm and the "
+        "part ", "; a probe must lie in the metal"}},
+      {"thermal-interpass-below-ambient", "thermal", "s.yaml",
+       {{"s.yaml", ThermalScenario("max_c: 200", "max_c: 10")}},
+       {"s.yaml:13: process.interpass.max_c = 10: below the ambient temperature 20 degC (thermal.ambient_c)"}},
+      {"thermal-arc-without-power", "thermal", "s.yaml",
+       {{"s.yaml", ThermalScenario("arc: {power_w: 2000}", "arc: {efficiency: 0.8}")}},
+       {"s.yaml:12: process.arc: the arc has no power: give power_w (W), or voltage_v (V) and current_a (A)"}},
       {"urdf-xacro", "check", "s.yaml",
        {{"s.yaml", UrdfScenario("arm.urdf.xacro")}, {"arm.urdf.xacro", MiniUrdf("m.stl")}},
        {"arm.urdf.xacro: a .xacro file is not read; run `xacro arm.urdf.xacro > arm.urdf` once and name the .urdf"}},

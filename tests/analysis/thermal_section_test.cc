@@ -1,0 +1,126 @@
+// The thermal scenario keys: process.arc, process.interpass and the thermal: section load, take their defaults, and
+// refuse what breaks their rules with the key and line named.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "analysis/scenario.h"
+#include "models/core/error.h"
+
+namespace waam::analysis {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// A valid thermal scenario; `from` is replaced by `to` to break it. Lines: 11 arc, 12 interpass, 13 thermal,
+// 14 material, 15 substrate, 16 probes.
+std::string ThermalText(const std::string& from = "", const std::string& to = "") {
+  std::string text =
+      "name: t\n"
+      "part:\n"
+      "  generator: {type: box, size_mm: [60, 8, 4]}\n"
+      "slicing: {layer_height_mm: 2}\n"
+      "path:\n"
+      "  pattern: zigzag\n"
+      "  bead_width_mm: 6\n"
+      "process:\n"
+      "  travel_speed_mm_min: 400\n"
+      "  wire_feed_mm_min: 3200\n"
+      "  arc: {power_w: 2000}\n"
+      "  interpass: {max_c: 200, at: {probe: plate}}\n"
+      "thermal:\n"
+      "  material: mild_steel\n"
+      "  substrate: {size_mm: [100, 40, 10]}\n"
+      "  probes: {plate: [0, 10, -2], wall: [0, 0, 3]}\n";
+  if (!from.empty()) text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+fs::path WriteScenario(const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("waam_thermal_section_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "s.yaml") << text;
+  return dir / "s.yaml";
+}
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    LoadScenario(WriteScenario(text));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected an InputError for:\n" << text;
+  return "";
+}
+
+TEST(ThermalSection, LoadsWithDefaults) {
+  const Scenario s = LoadScenario(WriteScenario(ThermalText()));
+  EXPECT_TRUE(s.thermal.given);
+  EXPECT_EQ(s.process.arc.power_w, 2000.0);
+  EXPECT_EQ(s.process.arc.efficiency, 0.84);
+  EXPECT_EQ(s.process.interpass.max_c, 200.0);
+  EXPECT_EQ(s.process.interpass.at, planner::InterpassAt::kProbe);
+  EXPECT_EQ(s.process.interpass.probe, "plate");
+  EXPECT_EQ(s.thermal.deposit.material.name, "mild_steel");
+  EXPECT_EQ(s.thermal.substrate.material.name, "mild_steel") << "the plate defaults to the deposit's metal";
+  EXPECT_FALSE(s.thermal.substrate_centre_mm.has_value());
+  EXPECT_EQ(s.thermal.cell_mm, 2.0);
+  EXPECT_EQ(s.thermal.initial_c, s.thermal.ambient_c);
+  EXPECT_EQ(s.thermal.table_conductance_w_m2k, 0.0);
+  ASSERT_EQ(s.thermal.probes.size(), 2u);
+  EXPECT_EQ(s.thermal.probes[0].name, "plate");
+  EXPECT_EQ(s.thermal.probes[1].p_mm, Eigen::Vector3d(0, 0, 3)) << "probes keep the file's order";
+}
+
+TEST(ThermalSection, ArcPowerFromVoltageAndCurrent) {
+  const Scenario s =
+      LoadScenario(WriteScenario(ThermalText("arc: {power_w: 2000}", "arc: {voltage_v: 14.5, current_a: 120, "
+                                                                      "efficiency: 0.8}")));
+  EXPECT_DOUBLE_EQ(s.process.arc.power_w, 14.5 * 120);
+  EXPECT_DOUBLE_EQ(s.process.arc.HeatW(), 0.8 * 14.5 * 120);
+}
+
+TEST(ThermalSection, RefusesBrokenKeysNamingThem) {
+  EXPECT_THAT(ErrorOf(ThermalText("arc: {power_w: 2000}", "arc: {efficiency: 0.8}")),
+              HasSubstr("s.yaml:11: process.arc: the arc has no power"));
+  EXPECT_THAT(ErrorOf(ThermalText("arc: {power_w: 2000}", "arc: {voltage_v: 14}")),
+              HasSubstr("process.arc: the arc has no power: give both voltage_v (V) and current_a (A)"));
+  EXPECT_THAT(ErrorOf(ThermalText("arc: {power_w: 2000}", "arc: {power_w: 2000, current_a: 100}")),
+              HasSubstr("process.arc.power_w: give power_w, or voltage_v and current_a, not both"));
+  EXPECT_THAT(ErrorOf(ThermalText("  arc: {power_w: 2000}\n", "")),
+              HasSubstr("s.yaml:13: thermal: the thermal model needs the arc's power"));
+  EXPECT_THAT(ErrorOf(ThermalText("max_c: 200", "max_c: 15")),
+              HasSubstr("s.yaml:12: process.interpass.max_c = 15: below the ambient temperature 20 degC"));
+  EXPECT_THAT(ErrorOf(ThermalText("{probe: plate}", "{probe: nowhere}")),
+              HasSubstr("process.interpass.at: probe 'nowhere' is not one of thermal.probes"));
+  EXPECT_THAT(ErrorOf(ThermalText("{probe: plate}", "probe")), HasSubstr("name the probe, as at: {probe: NAME}"));
+  EXPECT_THAT(ErrorOf(ThermalText("{probe: plate}", "hottest")),
+              HasSubstr("process.interpass.at = 'hottest': unknown value, expected one of next_start, top_max, probe"));
+  EXPECT_THAT(ErrorOf(ThermalText("max_c: 200, ", "")), HasSubstr("process.interpass has no max_c"));
+  EXPECT_THAT(ErrorOf(ThermalText("material: mild_steel", "material: unobtainium")),
+              HasSubstr("s.yaml:14: thermal.material: unknown material 'unobtainium'"));
+  EXPECT_THAT(ErrorOf(ThermalText("{size_mm: [100, 40, 10]}", "{size_mm: [100, 40, 10], material: tin}")),
+              HasSubstr("thermal.substrate.material: unknown material 'tin'"));
+  EXPECT_THAT(ErrorOf(ThermalText("{size_mm: [100, 40, 10]}", "{centre_mm: [0, 0, -5]}")),
+              HasSubstr("thermal.substrate: give size_mm: [x, y, z] (mm)"));
+  EXPECT_THAT(ErrorOf(ThermalText("  material: mild_steel\n", "")), HasSubstr("thermal.material is missing"));
+  EXPECT_THAT(ErrorOf(ThermalText("  material: mild_steel\n", "  material: mild_steel\n  cell_mm: 0\n")),
+              HasSubstr("thermal.cell_mm = 0: must be in"));
+  EXPECT_THAT(ErrorOf(ThermalText("wall: [0, 0, 3]", "wall: [0, 0]")), HasSubstr("thermal.probes.wall"));
+  EXPECT_THAT(ErrorOf(ThermalText("  material: mild_steel\n", "  material: mild_steel\n  colour: red\n")),
+              HasSubstr("thermal.colour"));
+  // An interpass limit needs the thermal model that measures it.
+  std::string no_thermal = ThermalText("{probe: plate}", "next_start");
+  no_thermal = no_thermal.substr(0, no_thermal.find("thermal:"));
+  no_thermal.replace(no_thermal.find("  arc: {power_w: 2000}\n"), 23, "");
+  EXPECT_THAT(ErrorOf(no_thermal), HasSubstr("process.interpass.max_c: an interpass temperature needs the thermal "
+                                             "model"));
+}
+
+}  // namespace
+}  // namespace waam::analysis
