@@ -33,5 +33,6 @@ void AddDeviationCommand(CLI::App& app, CommandRunner* runner);   // app/distort
 void AddCompensateCommand(CLI::App& app, CommandRunner* runner);  // app/distortion_cli.cc
 void AddImportCommand(CLI::App& app, CommandRunner* runner);      // app/import_cli.cc
 void AddExportCommand(CLI::App& app, CommandRunner* runner);      // app/export_cli.cc
+void AddScenarioKeysCommand(CLI::App& app, CommandRunner* runner);  // app/scenario_keys_cli.cc
 
 }  // namespace waam::app

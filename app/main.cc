@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   AddCompensateCommand(app, &runner);
   AddImportCommand(app, &runner);
   AddExportCommand(app, &runner);
+  AddScenarioKeysCommand(app, &runner);
 
   // Every command takes --threads; the outputs are the same for any number of threads.
   int threads = 0;
