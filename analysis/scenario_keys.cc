@@ -107,6 +107,13 @@ void CheckOverrideKeys(const std::vector<std::string>& overrides) {
     if (eq == std::string::npos || eq == 0) continue;  // the loader names a malformed override
     const std::string key_path = text.substr(0, eq);
     if (IsScenarioKeyPath(key_path)) continue;
+    // Below a key that is not a section: the loader says so ("'name' is not a section").
+    bool below_a_value = false;
+    for (std::size_t dot = key_path.find('.'); dot != std::string::npos; dot = key_path.find('.', dot + 1)) {
+      const std::string prefix = key_path.substr(0, dot);
+      below_a_value = below_a_value || (IsScenarioKeyPath(prefix) && !FindSection(prefix));
+    }
+    if (below_a_value) continue;
     const std::size_t dot = key_path.rfind('.');
     const SectionKeys* section = FindSection(dot == std::string::npos ? "" : key_path.substr(0, dot));
     std::ostringstream known;

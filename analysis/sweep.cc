@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cctype>
 
-#include "analysis/scenario_keys.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 
@@ -28,6 +27,12 @@ std::string SweepValueText(const YAML::Node& node) {
   return out.c_str();
 }
 
+bool IsKeyPath(const std::string& key) {
+  if (key.empty() || key.front() == '.' || key.back() == '.' || key.find("..") != std::string::npos) return false;
+  return std::all_of(key.begin(), key.end(),
+                     [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '.'; });
+}
+
 // A swept or set value: a scalar or a list of scalars (a vector setting such as part.generator.size_mm).
 void CheckSweepValue(const fs::path& file, const std::string& key, const YAML::Node& value) {
   bool ok = value.IsScalar();
@@ -40,10 +45,10 @@ void CheckSweepValue(const fs::path& file, const std::string& key, const YAML::N
 }
 
 std::string SweepKey(const fs::path& file, const YAML::Node& key_node, const char* section) {
-  WAAM_THROW_UNLESS(key_node.IsScalar() && IsScenarioKeyPath(key_node.Scalar()),
+  WAAM_THROW_UNLESS(key_node.IsScalar() && IsKeyPath(key_node.Scalar()),
                     SweepWhere(file, key_node) << ": " << section << ": key '"
                                                << (key_node.IsScalar() ? key_node.Scalar() : std::string("?"))
-                                               << "' is not a setting's key path (e.g. path.bead_width_mm; docs/SCENARIO_KEYS.md)");
+                                               << "' is not a setting's key path (e.g. path.bead_width_mm)");
   return key_node.Scalar();
 }
 

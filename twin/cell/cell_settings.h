@@ -140,7 +140,7 @@ inline constexpr std::array kCellPartFields = {
 };
 inline constexpr std::array kCellChecksFields = {
     NumField<&CellSettings::joint_margin_deg>("joint_margin_deg", "deg", 0.0, 45.0, "closer to a joint limit: violation"),
-    NumField<&CellSettings::singularity_deg>("singularity_deg", "deg", 0.0, 45.0, "|j5| below this: wrist singularity"),
+    NumField<&CellSettings::singularity_deg>("singularity_deg", "deg", 0.0, 45.0, "j5 closer to 0: wrist singularity"),
     NumField<&CellSettings::step_mm>("step_mm", "mm", 0.1, 100.0, "path segments are checked at this spacing"),
     NumField<&CellSettings::collision_tolerance_mm>("collision_tolerance_mm", "mm", 0.0, 50.0,
                                                "contacts penetrating less are ignored"),
