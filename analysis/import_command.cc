@@ -31,7 +31,11 @@ planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::Par
     const std::array<double, 6>& f = *scenario.program.user_frame_mm;
     Eigen::Isometry3d X_WU = Eigen::Isometry3d::Identity();
     X_WU.translation() = Eigen::Vector3d(f[0], f[1], f[2]);
-    X_WU.linear() = planner::internal::RotationZyx(f[5] * kPi / 180.0, f[4] * kPi / 180.0, f[3] * kPi / 180.0);
+    // W P R in degrees about fixed x, y, z: R = Rz(r) Ry(p) Rx(w).
+    X_WU.linear() = (Eigen::AngleAxisd(f[5] * kPi / 180.0, Eigen::Vector3d::UnitZ()) *
+                     Eigen::AngleAxisd(f[4] * kPi / 180.0, Eigen::Vector3d::UnitY()) *
+                     Eigen::AngleAxisd(f[3] * kPi / 180.0, Eigen::Vector3d::UnitX()))
+                        .toRotationMatrix();
     settings.X_WU = X_WU;
   }
   settings.bead_width_mm = scenario.path.bead_width_mm;

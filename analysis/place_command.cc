@@ -18,7 +18,7 @@
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
-#include "planner/scenario/yaml_fields.h"
+#include "planner/scenario/scenario_document.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::analysis {
@@ -102,6 +102,7 @@ twin::CellSettings ApplyLayout(const twin::CellSettings& cell, const Layout& lay
   out.positioner_yaw_deg = layout[kPositionerYaw];
   out.robot_base_mm[0] = layout[kRobotX];
   out.robot_base_mm[1] = layout[kRobotY];
+  twin::ValidateCellSettings(out);
   return out;
 }
 
@@ -262,7 +263,7 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   const std::vector<std::string> best_overrides = LayoutOverrides(best, current, cell.robot_base_mm[2]);
   overrides.insert(overrides.end(), best_overrides.begin(), best_overrides.end());
   if (result.feasible) overrides.push_back("run.expected_exit_code=0");
-  YAML::Node document = planner::internal::LoadScenarioTop(options.scenario, overrides).node();
+  YAML::Node document = planner::LoadScenarioTop(options.scenario, overrides).node();
   std::error_code ec;
   const fs::path out_abs = fs::absolute(options.out_dir, ec).lexically_normal();
   const fs::path base_dir = scenario.dir.lexically_relative(out_abs);

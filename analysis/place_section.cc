@@ -4,13 +4,16 @@
 #include <cmath>
 
 #include "models/core/error.h"
-#include "planner/scenario/yaml_fields.h"
+#include "models/core/yaml_map.h"
+#include "twin/cell/cell_settings.h"
 
 namespace waam::analysis::internal {
 namespace {
 
-std::optional<PlaceRange> Range(YamlMap& map, const char* key, double limit) {
+// A range over the values of the cell key whose row is `cell_field`, within that key's limits.
+std::optional<PlaceRange> Range(YamlMap& map, const char* key, const Field<twin::CellSettings>& cell_field) {
   if (!map.Has(key)) return std::nullopt;
+  const double limit = cell_field.max;
   const YAML::Node node = map.node()[key];
   PlaceRange r;
   if (node.IsScalar()) {
@@ -42,17 +45,19 @@ void ParsePlaceSection(YamlMap& top, PlaceSettings* out) {
   }
   YamlMap place = top.Map("place");
   out->where = place.Where("");
-  out->part_x_mm = Range(place, "part_x_mm", 20000.0);
-  out->part_y_mm = Range(place, "part_y_mm", 20000.0);
-  out->part_z_mm = Range(place, "part_z_mm", 20000.0);
-  out->part_yaw_deg = Range(place, "part_yaw_deg", 360.0);
-  out->table_rotation_deg = Range(place, "table_rotation_deg", 240.0);
-  out->positioner_yaw_deg = Range(place, "positioner_yaw_deg", 360.0);
-  out->robot_x_mm = Range(place, "robot_x_mm", 20000.0);
-  out->robot_y_mm = Range(place, "robot_y_mm", 20000.0);
-  out->coarse_layers = place.Integer("coarse_layers", 2, 100000, out->coarse_layers);
-  out->coarse_step_mm = place.Number("coarse_step_mm", 0.1, 100.0, out->coarse_step_mm);
-  out->finalists = place.Integer("finalists", 1, 1000, out->finalists);
+  using twin::kCellPartFields, twin::kCellPositionerFields, twin::kCellRobotFields;
+  using Cell = twin::CellSettings;
+  const Field<Cell>& offset = FieldOf<Cell>(kCellPartFields, "offset_mm");
+  const Field<Cell>& robot_base = FieldOf<Cell>(kCellRobotFields, "base_mm");
+  out->part_x_mm = Range(place, "part_x_mm", offset);
+  out->part_y_mm = Range(place, "part_y_mm", offset);
+  out->part_z_mm = Range(place, "part_z_mm", offset);
+  out->part_yaw_deg = Range(place, "part_yaw_deg", FieldOf<Cell>(kCellPartFields, "yaw_deg"));
+  out->table_rotation_deg = Range(place, "table_rotation_deg", FieldOf<Cell>(kCellPositionerFields, "rotation_deg"));
+  out->positioner_yaw_deg = Range(place, "positioner_yaw_deg", FieldOf<Cell>(kCellPositionerFields, "yaw_deg"));
+  out->robot_x_mm = Range(place, "robot_x_mm", robot_base);
+  out->robot_y_mm = Range(place, "robot_y_mm", robot_base);
+  ReadFields<PlaceSettings>(place, kPlaceFields, out);
   place.CheckNoUnknownKeys();
   std::size_t layouts = 1;
   for (const auto* r : {&out->part_x_mm, &out->part_y_mm, &out->part_z_mm, &out->part_yaw_deg,

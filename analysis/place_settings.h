@@ -5,9 +5,8 @@
 #include <optional>
 #include <string>
 
-namespace waam::planner::internal {
-class YamlMap;
-}  // namespace waam::planner::internal
+#include "models/core/field_table.h"
+
 
 namespace waam::analysis {
 
@@ -37,13 +36,28 @@ struct PlaceSettings {
 
 inline constexpr PlaceRange kDefaultPartXy{-40.0, 40.0, 20.0};
 inline constexpr PlaceRange kDefaultPartYaw{0.0, 315.0, 45.0};
+// The `place:` section, one row per key (models/core/field_table.h). Each range's limits are those of the cell key
+// it searches (twin/cell/cell_settings.h).
+inline constexpr std::array kPlaceFields = {
+    CustomField<PlaceSettings>("part_x_mm", FieldType::kNumbers, "[min, max, step] or one value of cell.part.offset_mm[0]"),
+    CustomField<PlaceSettings>("part_y_mm", FieldType::kNumbers, "... of cell.part.offset_mm[1]"),
+    CustomField<PlaceSettings>("part_z_mm", FieldType::kNumbers, "... of cell.part.offset_mm[2] (a riser)"),
+    CustomField<PlaceSettings>("part_yaw_deg", FieldType::kNumbers, "... of cell.part.yaw_deg"),
+    CustomField<PlaceSettings>("table_rotation_deg", FieldType::kNumbers, "... of cell.positioner.rotation_deg"),
+    CustomField<PlaceSettings>("positioner_yaw_deg", FieldType::kNumbers, "... of cell.positioner.yaw_deg"),
+    CustomField<PlaceSettings>("robot_x_mm", FieldType::kNumbers, "... of cell.robot.base_mm[0]"),
+    CustomField<PlaceSettings>("robot_y_mm", FieldType::kNumbers, "... of cell.robot.base_mm[1]"),
+    NumField<&PlaceSettings::coarse_layers>("coarse_layers", "", 2, 100000, "layers the coarse pass checks"),
+    NumField<&PlaceSettings::coarse_step_mm>("coarse_step_mm", "mm", 0.1, 100.0, "sample spacing of the coarse pass"),
+    NumField<&PlaceSettings::finalists>("finalists", "", 1, 1000, "layouts that get the full check"),
+};
+
 // Most layouts one search may try.
 inline constexpr std::size_t kMaxPlaceLayouts = 20000;
 
 }  // namespace waam::analysis
 
 namespace waam::analysis::internal {
-using planner::internal::YamlMap;
 // Reads the optional `place:` mapping: each range as [min, max, step] (or one number: that value only). Throws
 // InputError naming file:line and key for a range with min > max, a negative step, or a grid over kMaxPlaceLayouts.
 void ParsePlaceSection(YamlMap& top, PlaceSettings* out);

@@ -2,7 +2,7 @@
 #include "analysis/run_settings.h"
 
 #include "models/core/error.h"
-#include "planner/scenario/yaml_fields.h"
+#include "models/core/yaml_map.h"
 
 namespace waam::analysis::internal {
 
@@ -14,7 +14,7 @@ void ParseRunSection(YamlMap& top, RunSettings* out) {
     out->steps = run.Strings("steps", {});
     WAAM_THROW_UNLESS(!out->steps.empty(), out->where << ": must list at least one step, e.g. [plan, check]");
   }
-  out->expected_exit_code = run.Integer("expected_exit_code", 0, 3, 0);
+  ReadField<RunSettings>(run, kRunFields, "expected_exit_code", out);
   WAAM_THROW_UNLESS(out->expected_exit_code == 0 || out->expected_exit_code == 3,
                     run.Where("expected_exit_code") << " = " << out->expected_exit_code
                     << ": must be 0 (success) or 3 (check violations)");

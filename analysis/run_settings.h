@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "models/core/field_table.h"
+
 namespace waam::analysis {
 
 struct RunSettings {
@@ -16,14 +18,15 @@ struct RunSettings {
   std::string where;                 // "file:line: run.steps" for messages about the steps (empty if absent)
 };
 
+// The `run:` section, one row per key (models/core/field_table.h).
+inline constexpr std::array kRunFields = {
+    CustomField<RunSettings>("steps", FieldType::kList, "steps in order (waam run --help); absent: the default chain"),
+    NumField<&RunSettings::expected_exit_code>("expected_exit_code", "", 0, 3, "0, or 3 for a planted cell fault"),
+};
+
 }  // namespace waam::analysis
 
-namespace waam::planner::internal {
-class YamlMap;
-}  // namespace waam::planner::internal
-
 namespace waam::analysis::internal {
-using planner::internal::YamlMap;
 // Reads the optional `run:` mapping of the scenario's top level into `out`. Step names are checked by the analysis
 // layer (which knows the registered steps); here only types and the exit code range (0 or 3). Throws InputError.
 void ParseRunSection(YamlMap& top, RunSettings* out);

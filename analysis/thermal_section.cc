@@ -4,7 +4,7 @@
 #include "analysis/thermal_material_io.h"
 #include "models/core/error.h"
 #include "planner/scenario/scenario.h"
-#include "planner/scenario/yaml_fields.h"
+#include "models/core/yaml_map.h"
 
 namespace waam::analysis::internal {
 

@@ -11,11 +11,11 @@
 
 #include "models/thermal/material.h"
 
+namespace waam {
+class YamlMap;
+}  // namespace waam
 namespace waam::planner {
 struct ProcessSettings;
-namespace internal {
-class YamlMap;
-}  // namespace internal
 }  // namespace waam::planner
 
 namespace waam::analysis {
@@ -58,7 +58,7 @@ struct ThermalSection {
 }  // namespace waam::analysis
 
 namespace waam::analysis::internal {
-using planner::internal::YamlMap;
+using ::waam::YamlMap;
 // Reads the optional `thermal:` mapping of the scenario's top level into `out` (materials by name only; they are
 // loaded by LoadScenario). Throws InputError naming file:line and key for unknown keys, out-of-range values, a
 // missing material or substrate size, and duplicate probe names.

@@ -35,5 +35,6 @@ void AddImportCommand(CLI::App& app, CommandRunner* runner);      // app/import_
 void AddExportCommand(CLI::App& app, CommandRunner* runner);      // app/export_cli.cc
 void AddThermalCommand(CLI::App& app, CommandRunner* runner);     // app/thermal_cli.cc
 void AddMaterialCommand(CLI::App& app, CommandRunner* runner);    // app/material_cli.cc
+void AddScenarioKeysCommand(CLI::App& app, CommandRunner* runner);  // app/scenario_keys_cli.cc
 
 }  // namespace waam::app

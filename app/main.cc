@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   AddExportCommand(app, &runner);
   AddThermalCommand(app, &runner);
   AddMaterialCommand(app, &runner);
+  AddScenarioKeysCommand(app, &runner);
 
   // Every command takes --threads; the outputs are the same for any number of threads.
   int threads = 0;

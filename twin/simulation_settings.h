@@ -8,6 +8,7 @@
 #include <string>
 
 #include "models/core/enum_names.h"
+#include "models/core/field_table.h"
 
 namespace waam::twin {
 
@@ -83,44 +84,46 @@ struct SimulationSettings {
   double min_void_volume_mm3 = 1.0;
 };
 
-// The range of every numeric setting, written once: the scenario parser reads each key within it and
-// ValidateSimulationSettings checks settings made in code against it.
-struct SimulationNumber {
-  const char* key;                      // key in the `simulation:` section
-  double SimulationSettings::*field;
-  double min, max;                      // inclusive
+// The `simulation:` section, one row per key (models/core/field_table.h).
+inline constexpr std::array kSimulationFields = {
+    NumField<&SimulationSettings::voxel_mm>("voxel_mm", "mm", 0.1, 2.0, "voxel edge"),
+    NumField<&SimulationSettings::max_voxels>("max_voxels", "", 1000.0, 2.0e9,
+                                         "refuse to occupy more voxels than this (about 8.5 bytes each)"),
+    OptField<&SimulationSettings::blend>("blend", "corner blending of the executed path (FANUC CNT): none = FINE"),
+    NumField<&SimulationSettings::blend_radius_mm>("blend_radius_mm", "mm", 0.0, 100.0, "blend radius for blend fixed"),
+    NumField<&SimulationSettings::blend_time_s>("blend_time_s", "s", 0.0, 10.0,
+                                           "blend radius = travel speed x this, for blend speed"),
+    NumField<&SimulationSettings::start_length_mm>("start_length_mm", "mm", 0.0, 200.0, "length of the arc start"),
+    NumField<&SimulationSettings::start_height_factor>("start_height_factor", "", 0.2, 3.0,
+                                                  "x planned bead height at the very start"),
+    NumField<&SimulationSettings::start_width_factor>("start_width_factor", "", 0.2, 3.0,
+                                                 "x planned bead width at the very start"),
+    NumField<&SimulationSettings::stop_length_mm>("stop_length_mm", "mm", 0.0, 200.0, "length of the arc stop"),
+    NumField<&SimulationSettings::stop_height_factor>("stop_height_factor", "", 0.2, 3.0,
+                                                 "x planned bead height at the very end"),
+    NumField<&SimulationSettings::stop_width_factor>("stop_width_factor", "", 0.2, 3.0,
+                                                "x planned bead width at the very end"),
+    OptField<&SimulationSettings::stop_crater>("stop_crater", "where the crater's metal goes: lip = the pool's tail"),
+    OptField<&SimulationSettings::start_wetting>("start_wetting", "hot = levels like the pool; cold = a draped hump"),
+    NumField<&SimulationSettings::edge_sag_factor>("edge_sag_factor", "", 0.0, 10.0,
+                                              "metal past a free edge sags at most (1 + this) x bead height"),
+    NumField<&SimulationSettings::edge_spread_factor>("edge_spread_factor", "", 0.0, 1.0,
+                                                 "metal wets lower ground up to (0.5 + this) x w from the path"),
+    OptField<&SimulationSettings::curvature_width>("curvature_width", "csw = wider, lower beads on curves (Dai et al.)"),
+    CustomField<SimulationSettings>("csw_model", FieldType::kFile, "CSW model JSON (waam fit csw); absent = the default"),
+    NumField<&SimulationSettings::csw_min_radius_mm>("csw_min_radius_mm", "mm", 1.0, 10000.0,
+                                                "radii below this count as this (the CSW fit's smallest)"),
+    NumField<&SimulationSettings::step_mm>("step_mm", "mm", 0.0, 10.0, "deposition step along the path; 0 = one voxel"),
+    NumField<&SimulationSettings::min_void_volume_mm3>("min_void_volume_mm3", "mm3", 0.0, 1.0e6,
+                                                  "smaller voids count as voxel-scale gaps"),
 };
-inline constexpr std::array<SimulationNumber, 14> kSimulationNumbers = {{
-    {"voxel_mm", &SimulationSettings::voxel_mm, 0.1, 2.0},
-    {"blend_radius_mm", &SimulationSettings::blend_radius_mm, 0.0, 100.0},
-    {"blend_time_s", &SimulationSettings::blend_time_s, 0.0, 10.0},
-    {"start_length_mm", &SimulationSettings::start_length_mm, 0.0, 200.0},
-    {"start_height_factor", &SimulationSettings::start_height_factor, 0.2, 3.0},
-    {"start_width_factor", &SimulationSettings::start_width_factor, 0.2, 3.0},
-    {"stop_length_mm", &SimulationSettings::stop_length_mm, 0.0, 200.0},
-    {"stop_height_factor", &SimulationSettings::stop_height_factor, 0.2, 3.0},
-    {"stop_width_factor", &SimulationSettings::stop_width_factor, 0.2, 3.0},
-    {"edge_sag_factor", &SimulationSettings::edge_sag_factor, 0.0, 10.0},
-    {"edge_spread_factor", &SimulationSettings::edge_spread_factor, 0.0, 1.0},
-    {"step_mm", &SimulationSettings::step_mm, 0.0, 10.0},
-    {"min_void_volume_mm3", &SimulationSettings::min_void_volume_mm3, 0.0, 1.0e6},
-    {"csw_min_radius_mm", &SimulationSettings::csw_min_radius_mm, 1.0, 10000.0},
-}};
-inline constexpr double kMaxVoxelsMin = 1000.0, kMaxVoxelsMax = 2.0e9;
 
 // Throws InputError "simulation.<key> = value: must be in [min, max]" for a setting outside its range.
 void ValidateSimulationSettings(const SimulationSettings& settings);
 
-}  // namespace waam::twin
-
-namespace waam::planner::internal {
-class YamlMap;
-}  // namespace waam::planner::internal
-
-namespace waam::twin::internal {
-using planner::internal::YamlMap;
 // Reads the optional `simulation:` mapping of the scenario's top level into `out` (defaults where a key is absent);
 // a relative csw_model path is taken from `base_dir` (the scenario's folder). Throws InputError naming file, line and
 // key for unknown keys, out-of-range values and a model file that does not exist.
 void ParseSimulationSection(YamlMap& top, SimulationSettings* out, const std::filesystem::path& base_dir = {});
-}  // namespace waam::twin::internal
+
+}  // namespace waam::twin

@@ -6,7 +6,6 @@
 
 #include <benchmark/benchmark.h>
 
-#include "planner/geometry/clipper_adapter.h"
 #include "planner/geometry/polygon.h"
 #include "planner/kinematics/opw_arm.h"
 
@@ -37,7 +36,7 @@ void BM_OffsetPlateInward(benchmark::State& state) {
   const double delta_mm = -static_cast<double>(state.range(0));
   std::size_t regions = 0;
   for (auto _ : state) {
-    const auto offset = waam::planner::internal::Offset(plate, delta_mm);
+    const auto offset = waam::planner::OffsetRegions(plate, delta_mm);
     regions = offset.size();
     benchmark::DoNotOptimize(offset.data());
   }

@@ -146,3 +146,11 @@ double Length(const Polyline& line) {
 }
 
 }  // namespace waam::planner::internal
+
+namespace waam::planner {
+
+std::vector<PolygonWithHoles> OffsetRegions(const std::vector<PolygonWithHoles>& regions, double delta_mm) {
+  return internal::Offset(regions, delta_mm);
+}
+
+}  // namespace waam::planner

@@ -33,4 +33,8 @@ bool PointInRing(const Eigen::Vector2d& p, const Ring& ring);
 // Perimeter of a closed ring in mm.
 double Perimeter(const Ring& ring);
 
+// `regions` offset by `delta_mm` (negative: inward) with round joins, as every planner offsets (ClipperLib,
+// planner/geometry/clipper_adapter.h).
+std::vector<PolygonWithHoles> OffsetRegions(const std::vector<PolygonWithHoles>& regions, double delta_mm);
+
 }  // namespace waam::planner

@@ -29,6 +29,10 @@ constexpr bool HasAxis(PositionerType type, int axis) {
   return axis >= 0 && axis < 6;
 }
 
+// The tilt-rotate positioner's table rotation limit, +-deg (dissertation Table 3): its joint range, and the range of
+// the cell's positioner.rotation_deg and of the placement search over it.
+inline constexpr double kRotationLimitDeg = 240.0;
+
 // Kinematic chain of the positioner, from its base frame B (on the floor, z up) to the part frame P:
 //   X_BP = X_BA * Rx(tilt) * X_AC * Rz(rotation) * X_CP
 // where A is the tilt axis frame (tilt about its x) and C the rotating table frame (rotation about its z).
@@ -43,8 +47,8 @@ struct Positioner {
   Eigen::Isometry3d X_CP = Eigen::Isometry3d::Identity();   // part frame on the table, mm
   double tilt_lower = -70.0 * kPi / 180.0;                 // rad (140 deg range, Table 3)
   double tilt_upper = 70.0 * kPi / 180.0;
-  double rotation_lower = -240.0 * kPi / 180.0;            // rad (480 deg range, Table 3)
-  double rotation_upper = 240.0 * kPi / 180.0;
+  double rotation_lower = -kRotationLimitDeg * kPi / 180.0;  // rad (480 deg range, Table 3)
+  double rotation_upper = kRotationLimitDeg * kPi / 180.0;
   double tilt_max_speed = 120.0 * kPi / 180.0;             // rad/s (Table 3)
   double rotation_max_speed = 190.0 * kPi / 180.0;         // rad/s (Table 3)
   // rad/s^2: no data-sheet figure; the speed reached in kAxisRampTimeS = 0.25 s (opw_arm.h), as for the arm.

@@ -4,9 +4,9 @@
 #include <filesystem>
 
 #include "planner/program/program_settings.h"
-#include "planner/scenario/yaml_fields.h"
+#include "models/core/yaml_map.h"
 
-namespace waam::planner::internal {
+namespace waam::planner {
 
 // Reads `program:` from the scenario's top-level map when present (file relative to `scenario_dir`, which must
 // exist; format auto or a dialect name; frame.user_frame_mm; frames.uframe.<n> / frames.utool.<n>; layers;
@@ -14,4 +14,4 @@ namespace waam::planner::internal {
 // yaskawa.station_pulses_per_deg). Throws InputError naming file:line and key.
 ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& scenario_dir);
 
-}  // namespace waam::planner::internal
+}  // namespace waam::planner

@@ -1,9 +1,9 @@
 // The `process.arc` and `process.interpass` scenario keys: the arc's power and efficiency, and the interpass rule.
 #include "models/core/error.h"
 #include "planner/scenario/arc_settings.h"
-#include "planner/scenario/yaml_fields.h"
+#include "models/core/yaml_map.h"
 
-namespace waam::planner::internal {
+namespace waam::planner {
 
 namespace {
 
@@ -67,4 +67,4 @@ void ParseArcAndInterpass(YamlMap& process, ArcSettings* arc, InterpassSettings*
   ParseInterpass(process, interpass);
 }
 
-}  // namespace waam::planner::internal
+}  // namespace waam::planner

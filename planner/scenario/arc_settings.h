@@ -49,12 +49,14 @@ struct InterpassSettings {
   bool HasMax() const { return max_c == max_c; }  // not NaN
 };
 
-namespace internal {
+}  // namespace waam::planner
+namespace waam {
 class YamlMap;
+}  // namespace waam
+namespace waam::planner {
 // Reads the optional `arc:` and `interpass:` mappings of the scenario's `process` map. Throws InputError naming file,
 // line and key for unknown keys, out-of-range values, an arc without power (neither power_w nor voltage_v and
 // current_a) or with both forms, and `at` not one of next_start, top_max, {probe: NAME}.
 void ParseArcAndInterpass(YamlMap& process, ArcSettings* arc, InterpassSettings* interpass);
-}  // namespace internal
 
 }  // namespace waam::planner

@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "models/core/error.h"
-#include "planner/scenario/yaml_fields.h"
+#include "planner/scenario/scenario_document.h"
+#include "planner/scenario/scenario_fields.h"
 
 namespace waam::planner {
 namespace fs = std::filesystem;
-using internal::YamlMap;
 
 namespace {
 
@@ -81,8 +81,6 @@ void ApplyOverride(YAML::Node root, const std::string& override_text) {
 
 }  // namespace
 
-namespace internal {
-
 YamlMap LoadScenarioTop(const fs::path& file, const std::vector<std::string>& overrides) {
   YAML::Node root = LoadYamlFile(file.string());
   for (const std::string& override_text : overrides) ApplyOverride(root, override_text);
@@ -115,36 +113,32 @@ Scenario ParsePlannerSections(YamlMap& top) {
   if (!from_program || top.Has("slicing")) {
     YamlMap slicing = top.Map("slicing");
     SlicingSettings& sl = scenario.slicing;
-    sl.type = slicing.Enum("type", SlicingType::kPlanar);
+    auto read = [&](std::string_view key, bool required = false) {
+      ReadField<SlicingSettings>(slicing, kSlicingFields, key, &sl, required);
+    };
+    read("type");
     if (sl.type == SlicingType::kSkeleton) {
-      sl.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0, 1.5);
-      sl.h_min_mm = slicing.Number("h_min_mm", 0.05, 20.0, 1.0);
-      sl.h_max_mm = slicing.Number("h_max_mm", 0.05, 20.0, 2.0);
+      for (const char* key : {"layer_height_mm", "h_min_mm", "h_max_mm"}) read(key);
       WAAM_THROW_UNLESS(sl.h_max_mm >= sl.h_min_mm, slicing.Where("h_max_mm") << " = " << sl.h_max_mm
                                                      << ": must be >= slicing.h_min_mm = " << sl.h_min_mm);
-      sl.point_spacing_mm = slicing.Number("point_spacing_mm", 0.1, 100.0, 2.0);
-      sl.first_step_mm = slicing.Number("first_step_mm", 0.0, 20.0, 0.0);
-      sl.beta_deg = slicing.Number("beta_deg", 1e-4, 10.0, 0.1);
-      sl.wall_mm = slicing.Number("wall_mm", 0.0, 100.0, 0.0);
+      for (const char* key : {"point_spacing_mm", "first_step_mm", "beta_deg", "wall_mm"}) read(key);
     } else {
-      sl.layer_height_mm = slicing.Number("layer_height_mm", 0.05, 20.0);
+      read("layer_height_mm", true);
     }
     if (sl.type == SlicingType::kCone || sl.type == SlicingType::kCylinder) {
-      SlicingSettings& s = scenario.slicing;
-      s.cone_R_mm = slicing.Number("R_mm", 0.1, 1e5);
-      if (s.type == SlicingType::kCone) {
-        s.cone_H_mm = slicing.Number("H_mm", -1e6, 1e6);
-        WAAM_THROW_UNLESS(std::abs(s.cone_H_mm) >= 1.0, slicing.Where("H_mm") << " = " << s.cone_H_mm
+      read("R_mm", true);
+      if (sl.type == SlicingType::kCone) {
+        read("H_mm", true);
+        WAAM_THROW_UNLESS(std::abs(sl.cone_H_mm) >= 1.0, slicing.Where("H_mm") << " = " << sl.cone_H_mm
                               << ": |H| must be >= 1 mm (a cylinder is slicing.type: cylinder)");
       }
-      const std::vector<double> axis = slicing.Numbers("axis_mm", 3, -1e5, 1e5, {0.0, 0.0, 0.0});
-      std::copy(axis.begin(), axis.end(), s.cone_axis_mm.begin());
-      s.cone_rotation_step_deg = slicing.Number("rotation_step_deg", 1.0, 180.0, 11.0);
+      read("axis_mm");
+      read("rotation_step_deg");
     }
     if (sl.type == SlicingType::kMultiDirectional) {
-      sl.split = slicing.Enum("split", SplitMethod::kPlanes);
+      read("split");
       if (sl.split == SplitMethod::kCentroidShift) {
-        sl.overhang_deg = slicing.Number("overhang_deg", 1.0, 80.0, 15.0);
+        read("overhang_deg");
         WAAM_THROW_UNLESS(!slicing.Has("sub_volumes"), slicing.Where("sub_volumes")
                               << ": split = centroid_shift finds the sub-volumes itself: remove sub_volumes");
       }
@@ -177,7 +171,10 @@ Scenario ParsePlannerSections(YamlMap& top) {
     YamlMap path = top.Map("path");
     PathSettings& s = scenario.path;
     const bool skeleton = scenario.slicing.type == SlicingType::kSkeleton;
-    s.pattern = path.Enum<Pattern>("pattern");
+    auto read = [&](std::string_view key, bool required = false) {
+      ReadField<PathSettings>(path, kPathFields, key, &s, required);
+    };
+    read("pattern", true);
     WAAM_THROW_UNLESS(skeleton || s.pattern != Pattern::kSpiral,
                       path.Where("pattern") << " = spiral: needs slicing.type = skeleton");
     WAAM_THROW_UNLESS(!skeleton || s.pattern == Pattern::kSpiral || s.pattern == Pattern::kContour,
@@ -185,22 +182,18 @@ Scenario ParsePlannerSections(YamlMap& top) {
                                             << ": slicing.type = skeleton plans a single-bead wall: use spiral "
                                                "(one pass) or contour (one closed pass per layer)");
     // Skeleton slicing takes the width at every point from the width-height model (eq. 6.7).
-    s.bead_width_mm = skeleton ? path.Number("bead_width_mm", 0.5, 50.0, s.bead_width_mm)
-                                                          : path.Number("bead_width_mm", 0.5, 50.0);
-    s.overlap_model = path.Enum("overlap_model", OverlapModel::kProposed);
+    read("bead_width_mm", !skeleton);
+    read("overlap_model");
     if (path.Has("zigzag_angle_deg")) {
       const std::string raw = path.String("zigzag_angle_deg");
       if (raw == "auto") {
         s.zigzag_angle_auto = true;
       } else {
         s.zigzag_angle_auto = false;
-        s.zigzag_angle_deg = path.Number("zigzag_angle_deg", -360.0, 360.0);
+        read("zigzag_angle_deg");
       }
     }
-    s.alternate_start = path.Bool("alternate_start", true);
-    s.seed = static_cast<std::uint64_t>(path.Integer("seed", 0, 2147483647, 1));
-    s.retract_mm = path.Number("retract_mm", 0.0, 500.0, s.retract_mm);
-    s.island_order = path.Enum("island_order", s.island_order);
+    for (const char* key : {"alternate_start", "seed", "retract_mm", "island_order"}) read(key);
     internal::ParseVoidFillingSection(path, scenario.dir, &s.void_filling);
     path.CheckNoUnknownKeys();
   }
@@ -210,13 +203,12 @@ Scenario ParsePlannerSections(YamlMap& top) {
     YamlMap process = top.Map("process");
     ProcessSettings& p = scenario.process;
     // Skeleton slicing takes the speed at every point from the speed-height model (eq. 6.6).
-    p.travel_speed_mm_min = scenario.slicing.type == SlicingType::kSkeleton
-                                ? process.Number("travel_speed_mm_min", 10.0, 10000.0, p.travel_speed_mm_min)
-                                : process.Number("travel_speed_mm_min", 10.0, 10000.0);
-    p.wire_feed_mm_min = process.Number("wire_feed_mm_min", 100.0, 30000.0);
-    p.wire_diameter_mm = process.Number("wire_diameter_mm", 0.6, 2.4, 1.0);
-    p.deposition_efficiency = process.Number("deposition_efficiency", 0.05, 1.0, 1.0);
-    p.bead_model = process.Enum("bead_model", BeadModel::kVolumeBalance);
+    auto read = [&](std::string_view key, bool required = false) {
+      ReadField<ProcessSettings>(process, kProcessFields, key, &p, required);
+    };
+    read("travel_speed_mm_min", scenario.slicing.type != SlicingType::kSkeleton);
+    read("wire_feed_mm_min", true);
+    for (const char* key : {"wire_diameter_mm", "deposition_efficiency", "bead_model"}) read(key);
     const bool curved = scenario.slicing.type == SlicingType::kCone || scenario.slicing.type == SlicingType::kCylinder;
     WAAM_THROW_UNLESS(curved || p.bead_model != BeadModel::kCsw, process.Where("bead_model")
                           << " = csw: needs slicing.type cone or cylinder (planar planning has no csw mode)");
@@ -226,17 +218,9 @@ Scenario ParsePlannerSections(YamlMap& top) {
     for (auto [key, target] : {std::pair{"csw_model", &p.csw_model},
                                std::pair{"speed_height_model", &p.speed_height_model},
                                std::pair{"width_height_model", &p.width_height_model}}) {
-      if (!process.Has(key)) continue;
-      fs::path file = process.String(key);
-      if (file.is_relative()) file = scenario.dir / file;
-      std::error_code ec;
-      WAAM_THROW_UNLESS(fs::is_regular_file(file, ec),
-                        process.Where(key) << ": model file " << file.string() << " not found");
-      *target = file.lexically_normal();
+      if (process.Has(key)) *target = process.File(key, scenario.dir, "model file");
     }
-    p.rapid_speed_mm_min = process.Number("rapid_speed_mm_min", 100.0, 100000.0, 6000.0);
-    p.arc_start_s = process.Number("arc_start_s", 0.0, 60.0, p.arc_start_s);
-    p.arc_end_s = process.Number("arc_end_s", 0.0, 60.0, p.arc_end_s);
+    for (const char* key : {"rapid_speed_mm_min", "arc_start_s", "arc_end_s"}) read(key);
     ParseArcAndInterpass(process, &p.arc, &p.interpass);
     process.CheckNoUnknownKeys();
   }
@@ -244,11 +228,9 @@ Scenario ParsePlannerSections(YamlMap& top) {
   return scenario;
 }
 
-}  // namespace internal
-
 Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& overrides) {
-  YamlMap top = internal::LoadScenarioTop(file, overrides);
-  return internal::ParsePlannerSections(top);
+  YamlMap top = LoadScenarioTop(file, overrides);
+  return ParsePlannerSections(top);
 }
 
 }  // namespace waam::planner

@@ -8,6 +8,10 @@
 
 #include "models/core/enum_names.h"
 
+namespace waam {
+class YamlMap;
+}  // namespace waam
+
 namespace waam::planner {
 
 // path.void_filling.mode
@@ -30,7 +34,6 @@ struct VoidFillingSettings {
 };
 
 namespace internal {
-class YamlMap;
 // Reads the optional `void_filling:` mapping of the scenario's `path` map into `out`; relative files are resolved
 // against `scenario_dir`. Throws InputError naming file, line and key for unknown keys, out-of-range values, a
 // missing file, or a mode without what it needs.

@@ -338,6 +338,8 @@ std::vector<BadInput> Catalogue() {
       {"place-range-min-above-max", "place", "s.yaml",
        {{"s.yaml", CellScenario("  part: {yaw_deg: 0}\nplace:\n  part_x_mm: [50, -50, 10]\n")}},
        {"s.yaml:15: place.part_x_mm = [50, -50, 10]: min must not exceed max ([min, max, step])"}},
+      {"set-unknown-key", "plan", "s.yaml --set path.bead_widht_mm=5", {{"s.yaml", ok}, {"part.stl", full}},
+       {"--set 'path.bead_widht_mm=5': unknown key 'path.bead_widht_mm' (keys of path: pattern bead_width_mm"}},
       {"cell-preset-and-urdf", "check", "s.yaml",
        {{"s.yaml", [] {
           std::string text = UrdfScenario("arm.urdf");

@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
-#include "planner/scenario/scenario.h"
+#include "planner/scenario/scenario_document.h"
 #include "tests/twin/test_plans.h"
 #include "twin/cell/cell_section.h"
 #include "twin/cell/mujoco_cell.h"
@@ -251,8 +251,8 @@ class PlantedFaultTest : public ::testing::Test {
  protected:
   static twin::CellSettings Settings(const std::string& name) {
     const fs::path file = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (name + ".yaml");
-    planner::internal::YamlMap top = planner::internal::LoadScenarioTop(file, {});
-    return internal::ParseCellSection(top, file.parent_path());
+    YamlMap top = planner::LoadScenarioTop(file, {});
+    return ParseCellSection(top, file.parent_path());
   }
   CheckReport Check(const twin::CellSettings& settings) {
     return CheckPlan(LoadCell(settings), testing::RectangleWall(10, 100.0, 60.0, 1.5, 400.0 / 60.0), settings, 100.0, nullptr);

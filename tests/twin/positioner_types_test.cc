@@ -14,7 +14,7 @@
 
 #include "models/core/error.h"
 #include "models/core/numbers.h"
-#include "planner/scenario/scenario.h"
+#include "planner/scenario/scenario_document.h"
 #include "tests/twin/test_plans.h"
 #include "twin/cell/cell_check.h"
 #include "twin/cell/cell_compose.h"
@@ -204,8 +204,8 @@ TEST(PositionerTypes, PresetsCarryTheirTypeAndTheScenarioOverridesIt) {
   fs::create_directories(dir);
   const fs::path file = dir / "s.yaml";
   std::ofstream(file) << "name: s\ncell:\n  preset: kuka_kr16_turntable\n  positioner: {type: none}\n";
-  planner::internal::YamlMap top = planner::internal::LoadScenarioTop(file, {});
-  const CellSettings settings = internal::ParseCellSection(top, dir);
+  YamlMap top = planner::LoadScenarioTop(file, {});
+  const CellSettings settings = ParseCellSection(top, dir);
   ASSERT_TRUE(settings.positioner_type.has_value());
   EXPECT_EQ(*settings.positioner_type, PositionerType::kNone);
   EXPECT_EQ(LoadCell(settings).kinematics().positioner.type, PositionerType::kNone);
@@ -223,8 +223,8 @@ class PositionerBadInputTest : public ::testing::Test {
     const fs::path file = dir_ / "bad.yaml";
     std::ofstream(file) << yaml;
     try {
-      planner::internal::YamlMap top = planner::internal::LoadScenarioTop(file, {});
-      LoadCell(internal::ParseCellSection(top, dir_));
+      YamlMap top = planner::LoadScenarioTop(file, {});
+      LoadCell(ParseCellSection(top, dir_));
     } catch (const InputError& e) {
       return e.what();
     }

@@ -95,8 +95,8 @@ std::string PositionerMjcf(planner::PositionerType type, bool degrees) {
     return x.str();
   }
   x << "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"0.01 0.01 0.01\"/>\n"
-    << "      <joint name=\"pos_rot\" axis=\"0 0 1\" limited=\"true\" range=\"" << N(angle(-240)) << " "
-    << N(angle(240)) << "\"/>\n"
+    << "      <joint name=\"pos_rot\" axis=\"0 0 1\" limited=\"true\" range=\""
+    << N(angle(-planner::kRotationLimitDeg)) << " " << N(angle(planner::kRotationLimitDeg)) << "\"/>\n"
     << "      <geom name=\"table_disk\" type=\"cylinder\" fromto=\"0 0 -0.025 0 0 0\" size=\"0.25\" "
        "rgba=\"0.4 0.4 0.45 1\"/>\n"
     << "      <body name=\"substrate\" pos=\"0 0 0\">\n"

@@ -10,6 +10,7 @@
 
 #include "models/core/enum_names.h"
 #include "planner/kinematics/opw_arm.h"
+#include "models/core/field_table.h"
 #include "planner/kinematics/positioner.h"
 
 namespace waam::twin {
@@ -94,5 +95,66 @@ struct CellSettings {
   bool part_collision = true;            // check the torch against the layers deposited so far
   std::string where;                     // "file:line: cell" for messages about the section
 };
+
+// The `cell:` section and its sub-sections, one row per key (models/core/field_table.h).
+inline constexpr double kCellReachMm = 20000.0;  // any position in the cell, +-mm
+inline constexpr std::array kCellFields = {
+    CustomField<CellSettings>("preset", FieldType::kName, "a complete cell (twin/cell/cell_presets.h)"),
+    CustomField<CellSettings>("mjcf", FieldType::kFile, "MuJoCo model of the whole cell; absent = the built-in cell"),
+    CustomField<CellSettings>("robot", FieldType::kMap, "the arm (cell.robot)"),
+    CustomField<CellSettings>("positioner", FieldType::kMap, "the positioner (cell.positioner)"),
+    CustomField<CellSettings>("torch", FieldType::kMap, "the torch of a URDF arm (cell.torch)"),
+    OptField<&CellSettings::resolve>("resolve", "how the torch's spin about its axis is chosen along the path"),
+    NumField<&CellSettings::axis_ramp_s>("axis_ramp_s", "s", 0.01, 10.0,
+                                         "each axis's time from rest to its rated speed (its acceleration limit)"),
+    CustomField<CellSettings>("part", FieldType::kMap, "the part on the plate (cell.part)"),
+    CustomField<CellSettings>("checks", FieldType::kMap, "the margins of waam check (cell.checks)"),
+};
+inline constexpr std::array kCellRobotFields = {
+    CustomField<CellSettings>("urdf", FieldType::kFile, "the arm from a URDF file (twin/cell/urdf_arm.h)"),
+    CustomField<CellSettings>("package_paths", FieldType::kList, "folders: package://NAME/... is DIR/NAME/..."),
+    CustomField<CellSettings>("joints", FieldType::kList, "the six arm joints; absent: root to flange"),
+    OptField<&CellSettings::robot_flange>("flange", "the flange link; empty: tool0 or the chain's end"),
+    NumField<&CellSettings::robot_base_mm>("base_mm", "mm", -kCellReachMm, kCellReachMm, "arm base frame R in the world"),
+    NumField<&CellSettings::robot_yaw_deg>("yaw_deg", "deg", -360.0, 360.0, "turn of R about world z"),
+};
+inline constexpr std::array kCellPositionerFields = {
+    CustomField<CellSettings>("type", FieldType::kName, "none, turntable or tilt_rotate; absent: the cell model's"),
+    NumField<&CellSettings::positioner_base_mm>("base_mm", "mm", -kCellReachMm, kCellReachMm,
+                                           "positioner base frame B in the world"),
+    NumField<&CellSettings::positioner_yaw_deg>("yaw_deg", "deg", -360.0, 360.0, "turn of B about world z"),
+    NumField<&CellSettings::positioner_rotation_deg>("rotation_deg", "deg", -planner::kRotationLimitDeg,
+                                                planner::kRotationLimitDeg,
+                                                "table rotation while the build direction is vertical"),
+    OptField<&CellSettings::positioner_follow>("follow", "layer: angles per layer; point: per point (curved layers)"),
+    NumField<&CellSettings::positioner_tilt_tolerance_deg>("tilt_tolerance_deg", "deg", 0.0, 45.0,
+                                                      "torch angle to gravity the process allows"),
+};
+inline constexpr std::array kTorchFields = {
+    NumField<&TorchSettings::tcp_mm>("tcp_mm", "mm", -2000.0, 2000.0, "TCP in the flange frame, at least 50 mm out"),
+    NumField<&TorchSettings::nozzle_radius_mm>("nozzle_radius_mm", "mm", 1.0, 50.0, "gas nozzle radius"),
+    NumField<&TorchSettings::nozzle_length_mm>("nozzle_length_mm", "mm", 1.0, 500.0, "nozzle length"),
+    NumField<&TorchSettings::spin_range_deg>("spin_range_deg", "deg", 0.0, 180.0, "largest turn about the torch axis"),
+    NumField<&TorchSettings::spin_step_deg>("spin_step_deg", "deg", 1.0, 90.0, "spacing of the turns tried"),
+    NumField<&TorchSettings::max_spin_deg_per_mm>("max_spin_deg_per_mm", "deg/mm", 0.01, 90.0,
+                                             "fastest change of the turn along a weld"),
+};
+inline constexpr std::array kCellPartFields = {
+    NumField<&CellSettings::part_offset_mm>("offset_mm", "mm", -kCellReachMm, kCellReachMm,
+                                       "part frame P from the plate's top centre"),
+    NumField<&CellSettings::part_yaw_deg>("yaw_deg", "deg", -360.0, 360.0, "turn of the part on the plate"),
+};
+inline constexpr std::array kCellChecksFields = {
+    NumField<&CellSettings::joint_margin_deg>("joint_margin_deg", "deg", 0.0, 45.0, "closer to a joint limit: violation"),
+    NumField<&CellSettings::singularity_deg>("singularity_deg", "deg", 0.0, 45.0, "j5 closer to 0: wrist singularity"),
+    NumField<&CellSettings::step_mm>("step_mm", "mm", 0.1, 100.0, "path segments are checked at this spacing"),
+    NumField<&CellSettings::collision_tolerance_mm>("collision_tolerance_mm", "mm", 0.0, 50.0,
+                                               "contacts penetrating less are ignored"),
+    OptField<&CellSettings::part_collision>("part_collision", "check the torch against the layers deposited so far"),
+};
+
+// Throws InputError "cell.<sub>.<key> = value: must be in [min, max]" for a number of `cell` outside the range its
+// scenario key allows (settings built in code: a placement search, a sweep, an API).
+void ValidateCellSettings(const CellSettings& cell);
 
 }  // namespace waam::twin

@@ -1,13 +1,14 @@
 // Strict, typed reading of scenario YAML with messages that name file, line and key.
-#include "planner/scenario/yaml_fields.h"
+#include "models/core/yaml_map.h"
 
 #include <cmath>
 #include <sstream>
+#include <system_error>
 
 #include "models/core/error.h"
 #include "models/core/files.h"
 
-namespace waam::planner::internal {
+namespace waam {
 
 YamlMap::YamlMap(YAML::Node node, std::string key_path, std::string file)
     : node_(std::move(node)), key_path_(std::move(key_path)), file_(std::move(file)) {
@@ -37,6 +38,10 @@ YAML::Node YamlMap::Get(const std::string& key) {
 bool YamlMap::Has(const std::string& key) {
   known_.insert(key);
   return static_cast<bool>(node_[key]) && !node_[key].IsNull();
+}
+
+void YamlMap::Require(const std::string& key) {
+  WAAM_THROW_UNLESS(Has(key), Where("") << ": missing required key '" << key << "'");
 }
 
 double YamlMap::Number(const std::string& key, double min, double max) {
@@ -132,6 +137,16 @@ std::vector<std::string> YamlMap::Strings(const std::string& key, const std::vec
   return strings;
 }
 
+std::filesystem::path YamlMap::File(const std::string& key, const std::filesystem::path& dir,
+                                    const std::string& noun) {
+  std::filesystem::path file = String(key);
+  if (file.is_relative()) file = dir / file;
+  std::error_code ec;
+  WAAM_THROW_UNLESS(std::filesystem::is_regular_file(file, ec),
+                    Where(key) << ": " << noun << " " << file.string() << " not found");
+  return file.lexically_normal();
+}
+
 YamlMap YamlMap::Map(const std::string& key) {
   YAML::Node value = Get(key);
   WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required section '" << key << "'");
@@ -175,4 +190,4 @@ YAML::Node LoadYamlFile(const std::string& path) {
   }
 }
 
-}  // namespace waam::planner::internal
+}  // namespace waam

@@ -1,9 +1,9 @@
-// Strict reading of scenario YAML maps: typed fields, ranges, unknown keys refused, errors naming file:line and key.
-// Internal to the planner (and only included from .cc files): it exposes yaml-cpp.
+// Strict reading of YAML maps (scenario sections, settings files): typed fields, ranges, unknown keys refused, errors
+// naming file:line and key. Every module's section parser reads through it (models/core/field_table.h on top).
 #pragma once
 
-#include <optional>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -11,9 +11,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "models/core/enum_names.h"
-#include "planner/scenario/scenario.h"
 
-namespace waam::planner::internal {
+namespace waam {
 
 // A YAML mapping at a dotted key path (e.g. "path" or "cell.robot"). Every accessor records the key as known;
 // CheckNoUnknownKeys() then refuses any key that was never asked for, naming it.
@@ -23,6 +22,8 @@ class YamlMap {
   YamlMap(YAML::Node node, std::string key_path, std::string file);
 
   bool Has(const std::string& key);
+  // Throws InputError "file:line: section: missing required key 'key'" unless the key is present (not null).
+  void Require(const std::string& key);
   // Numbers: must parse as a finite number within [min, max] (inclusive); `what` completes "must be ...".
   double Number(const std::string& key, double min, double max);
   double Number(const std::string& key, double min, double max, double fallback);
@@ -47,6 +48,9 @@ class YamlMap {
                               const std::vector<double>& fallback);
   // A list of strings (`fallback` when the key is absent).
   std::vector<std::string> Strings(const std::string& key, const std::vector<std::string>& fallback);
+  // A file named by a required string key: relative paths are taken from `dir`; InputError
+  // "file:line: key: <noun> <path> not found" unless it is a regular file. Returns the normalized path.
+  std::filesystem::path File(const std::string& key, const std::filesystem::path& dir, const std::string& noun);
   // A nested mapping.
   YamlMap Map(const std::string& key);
   // A list of mappings.
@@ -81,9 +85,4 @@ class YamlMap {
 // Parses a YAML document from a file, throwing InputError with file:line for syntax errors.
 YAML::Node LoadYamlFile(const std::string& path);
 
-// A scenario file read once, with the `--set` overrides applied (planner/scenario/scenario.h), as its top-level map.
-YamlMap LoadScenarioTop(const std::filesystem::path& file, const std::vector<std::string>& overrides);
-// The planner's sections of a scenario file's top-level map (the sections every module reads from the same map).
-Scenario ParsePlannerSections(YamlMap& top);
-
-}  // namespace waam::planner::internal
+}  // namespace waam

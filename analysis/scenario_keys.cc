@@ -1,0 +1,158 @@
+// The scenario's key paths, docs tables and validation, from each module's field tables.
+#include "analysis/scenario_keys.h"
+
+#include <sstream>
+
+#include "analysis/place_settings.h"
+#include "analysis/run_settings.h"
+#include "models/core/error.h"
+#include "planner/scenario/scenario_fields.h"
+#include "twin/cell/cell_settings.h"
+#include "twin/simulation_settings.h"
+
+namespace waam::analysis {
+namespace {
+
+template <typename S, std::size_t N>
+SectionKeys Section(std::string path, const std::array<Field<S>, N>& fields) {
+  return {std::move(path), Describe<S>(fields)};
+}
+
+// The keys of program.frame and slicing.sub_volumes[], which their parsers read by hand.
+struct FrameKeys {
+  std::array<double, 6> user_frame_mm = {};
+};
+inline constexpr std::array kProgramFrameFields = {
+    NumField<&FrameKeys::user_frame_mm>("user_frame_mm", "mm, deg", -1e6, 1e6, "[x, y, z, w, p, r] of the user frame"),
+};
+struct SubVolumeKeys {};
+inline constexpr std::array kSubVolumeFields = {
+    CustomField<SubVolumeKeys>("name", FieldType::kString, "the sub-volume's name"),
+    CustomField<SubVolumeKeys>("direction", FieldType::kNumbers, "build direction [3], not zero"),
+    CustomField<SubVolumeKeys>("keep", FieldType::kNumbers, "half-spaces n . p <= c, 4 numbers each (nx, ny, nz, c mm)"),
+};
+
+std::vector<SectionKeys> MakeSections() {
+  std::vector<SectionKeys> sections = {
+      Section("", planner::kScenarioTopFields),
+      Section("part", planner::kPartFields),
+      Section("slicing", planner::kSlicingFields),
+      Section("slicing.sub_volumes[]", kSubVolumeFields),
+      Section("path", planner::kPathFields),
+      Section("path.void_filling", planner::kVoidFillingFields),
+      Section("process", planner::kProcessFields),
+      Section("cell", twin::kCellFields),
+      Section("cell.robot", twin::kCellRobotFields),
+      Section("cell.positioner", twin::kCellPositionerFields),
+      Section("cell.torch", twin::kTorchFields),
+      Section("cell.part", twin::kCellPartFields),
+      Section("cell.checks", twin::kCellChecksFields),
+      Section("simulation", twin::kSimulationFields),
+      Section("run", kRunFields),
+      Section("place", kPlaceFields),
+      Section("program", planner::kProgramFields),
+      Section("program.frame", kProgramFrameFields),
+      Section("program.gcode", planner::kProgramGcodeFields),
+      Section("program.yaskawa", planner::kProgramYaskawaFields),
+  };
+  // The top level holds the sections too.
+  for (const SectionKeys& s : sections) {
+    if (s.path.empty() || s.path.find('.') != std::string::npos) continue;
+    bool listed = false;
+    for (const FieldInfo& f : sections.front().fields) listed = listed || f.key == s.path;
+    if (!listed) sections.front().fields.push_back({s.path, FieldType::kMap, "", "", "", "the " + s.path + " section"});
+  }
+  return sections;
+}
+
+const SectionKeys* FindSection(const std::string& path) {
+  for (const SectionKeys& s : ScenarioSections()) {
+    if (s.path == path) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+const std::vector<SectionKeys>& ScenarioSections() {
+  static const std::vector<SectionKeys> sections = MakeSections();
+  return sections;
+}
+
+bool IsScenarioKeyPath(const std::string& key_path) {
+  if (key_path.empty() || FindSection(key_path)) return !key_path.empty();
+  // The longest section that is a prefix, then one key of it.
+  std::string section = key_path;
+  while (true) {
+    const std::size_t dot = section.rfind('.');
+    const std::string parent = dot == std::string::npos ? "" : section.substr(0, dot);
+    const std::string rest = key_path.substr(parent.empty() ? 0 : parent.size() + 1);
+    if (const SectionKeys* s = FindSection(parent)) {
+      const std::string key = rest.substr(0, rest.find('.'));
+      for (const FieldInfo& f : s->fields) {
+        if (f.key != key) continue;
+        // A key itself, or a key below a mapping or list that its parser reads by hand.
+        return rest == key || f.type == FieldType::kMap || f.type == FieldType::kList;
+      }
+      return false;
+    }
+    if (dot == std::string::npos) return false;
+    section = parent;
+  }
+}
+
+void CheckOverrideKeys(const std::vector<std::string>& overrides) {
+  for (const std::string& text : overrides) {
+    const std::size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0) continue;  // the loader names a malformed override
+    const std::string key_path = text.substr(0, eq);
+    if (IsScenarioKeyPath(key_path)) continue;
+    // Below a key that is not a section: the loader says so ("'name' is not a section").
+    bool below_a_value = false;
+    for (std::size_t dot = key_path.find('.'); dot != std::string::npos; dot = key_path.find('.', dot + 1)) {
+      const std::string prefix = key_path.substr(0, dot);
+      below_a_value = below_a_value || (IsScenarioKeyPath(prefix) && !FindSection(prefix));
+    }
+    if (below_a_value) continue;
+    const std::size_t dot = key_path.rfind('.');
+    const SectionKeys* section = FindSection(dot == std::string::npos ? "" : key_path.substr(0, dot));
+    std::ostringstream known;
+    if (section) {
+      known << " (keys of " << (section->path.empty() ? "the top level" : section->path) << ":";
+      for (const FieldInfo& f : section->fields) known << " " << f.key;
+      known << ")";
+    }
+    WAAM_THROW("--set '" << text << "': unknown key '" << key_path << "'" << known.str()
+                         << "; docs/SCENARIO_KEYS.md lists every key");
+  }
+}
+
+std::string ScenarioKeysMarkdown() {
+  std::ostringstream out;
+  out << "# Scenario keys\n\n"
+      << "Every key of a scenario file, by section, generated from the field tables of the code\n"
+      << "(`waam scenario-keys > docs/SCENARIO_KEYS.md`; a test fails when this file differs). Ranges are inclusive;\n"
+      << "a default is the value when the key is absent. `--set key.path=value` and a sweep take these key paths.\n";
+  for (const SectionKeys& s : ScenarioSections()) {
+    out << "\n## " << (s.path.empty() ? "(top level)" : "`" + s.path + "`") << "\n\n"
+        << "| key | type | unit | default | range | meaning |\n| --- | --- | --- | --- | --- | --- |\n";
+    for (const FieldInfo& f : s.fields) {
+      out << "| `" << f.key << "` | " << NameOf(f.type) << " | " << f.unit << " | " << f.default_text << " | "
+          << f.range << " | " << f.doc << " |\n";
+    }
+  }
+  return out.str();
+}
+
+void ValidateScenario(const Scenario& s) {
+  CheckFields<planner::SlicingSettings>(planner::kSlicingFields, s.slicing, "slicing");
+  CheckFields<planner::PathSettings>(planner::kPathFields, s.path, "path");
+  CheckFields<planner::VoidFillingSettings>(planner::kVoidFillingFields, s.path.void_filling, "path.void_filling");
+  CheckFields<planner::ProcessSettings>(planner::kProcessFields, s.process, "process");
+  twin::ValidateCellSettings(s.cell);
+  twin::ValidateSimulationSettings(s.simulation);
+  CheckFields<RunSettings>(kRunFields, s.run, "run");
+  CheckFields<PlaceSettings>(kPlaceFields, s.place, "place");
+}
+
+}  // namespace waam::analysis

@@ -1,0 +1,223 @@
+// Settings sections described once, by a table of fields (key, member, unit, range, one line of doc), which drives
+// the scenario parser and its file:line errors, the validation of settings built in code, the `--set` key paths and
+// the generated key tables of docs/SCENARIO_KEYS.md (in the spirit of MuJoCo's mjxmacro.h and Ceres'
+// Solver::Options::IsValid). The default of a field is the initializer of its member: written once, in the struct.
+//
+// To add a field to a section: give the struct a member with its default, then one row in the section's table,
+//   NumField<&SimulationSettings::voxel_mm>("voxel_mm", "mm", 0.1, 2.0, "voxel edge"),      // a number, int or size_t
+//   NumField<&CellSettings::robot_base_mm>("base_mm", "mm", -2e4, 2e4, "arm base position"),  // std::array<double, N>
+//   OptField<&SimulationSettings::blend>("blend", "corner blending of the executed path"),    // bool, enum, string
+//   CustomField<CellSettings>("mjcf", FieldType::kFile, "MJCF model of the whole cell"),      // read by the section code
+// An enum member must have its EnumNames table (models/core/enum_names.h); its names are listed in the docs and in
+// the parser's error. A Custom row reads nothing itself: the section's parser reads it (a path resolved against the
+// scenario's folder, a value with two forms, a list of maps) and the row documents it and makes it a known key.
+// Then run `waam scenario-keys > docs/SCENARIO_KEYS.md` (a test fails while the committed file differs).
+// To add a section: a table `inline constexpr std::array kXFields = {...}` next to its struct, a parser that calls
+// ReadFields (or ReadField per key where a key exists only for some types), a line in the section list of
+// analysis/scenario_keys.cc (docs, --set key paths, validation), and a call in analysis::LoadScenario.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "models/core/enum_names.h"
+#include "models/core/error.h"
+#include "models/core/yaml_map.h"
+
+namespace waam {
+
+// What a key holds, as the docs name it.
+enum class FieldType { kNumber, kInteger, kBool, kName, kString, kNumbers, kFile, kList, kMap };
+constexpr std::array<EnumName<FieldType>, 9> EnumNames(FieldType) {
+  return {{{FieldType::kNumber, "number"}, {FieldType::kInteger, "integer"}, {FieldType::kBool, "true/false"},
+           {FieldType::kName, "name"}, {FieldType::kString, "string"}, {FieldType::kNumbers, "list of numbers"},
+           {FieldType::kFile, "file"}, {FieldType::kList, "list"}, {FieldType::kMap, "mapping"}}};
+}
+
+// One key of a section of settings S.
+template <typename S>
+struct Field {
+  std::string_view key;
+  FieldType type = FieldType::kNumber;
+  std::string_view unit;       // "mm", "deg", "mm/min", "" for a plain number
+  double min = 0.0, max = 0.0;  // inclusive range of a number (of each number of a list)
+  std::string_view doc;        // one line
+  // Reads the key into `s` when present (keeps the member's value when absent); nullptr for a Custom row.
+  void (*read)(YamlMap& map, const Field& field, S* s) = nullptr;
+  // The member's value as the docs write it; nullptr for a Custom row.
+  std::string (*show)(const S& s) = nullptr;
+  // An enum's names ("none, fixed, speed"); nullptr unless type is kName.
+  std::string (*names)() = nullptr;
+  // The member's values as numbers, for the range check of settings built in code; nullptr if not numeric.
+  std::vector<double> (*numbers)(const S& s) = nullptr;
+};
+
+namespace field_internal {
+
+template <typename M>
+struct MemberOf;
+template <typename C, typename V>
+struct MemberOf<V C::*> {
+  using Class = C;
+  using Value = V;
+};
+template <typename V>
+struct IsArray : std::false_type {};
+template <std::size_t N>
+struct IsArray<std::array<double, N>> : std::true_type {};
+
+std::string ShowNumber(double value);
+
+}  // namespace field_internal
+
+// A numeric field: a double, an integer (a whole number; min and max within int) or std::array<double, N>, each
+// number within [min, max].
+template <auto kMember>
+constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> NumField(std::string_view key,
+                                                                                 std::string_view unit, double min,
+                                                                                 double max, std::string_view doc) {
+  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
+  using V = typename field_internal::MemberOf<decltype(kMember)>::Value;
+  Field<S> f{key, FieldType::kNumber, unit, min, max, doc};
+  if constexpr (field_internal::IsArray<V>::value) {
+    f.type = FieldType::kNumbers;
+    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+      if (!map.Has(std::string(field.key))) return;
+      const std::vector<double> v =
+          map.Numbers(std::string(field.key), static_cast<int>(V().size()), field.min, field.max);
+      std::copy(v.begin(), v.end(), (s->*kMember).begin());
+    };
+    f.numbers = [](const S& s) { return std::vector<double>((s.*kMember).begin(), (s.*kMember).end()); };
+    f.show = [](const S& s) {
+      std::string text = "[";
+      for (double v : s.*kMember) text += (text.size() > 1 ? ", " : "") + field_internal::ShowNumber(v);
+      return text + "]";
+    };
+  } else {
+    static_assert(std::is_arithmetic_v<V> && !std::is_same_v<V, bool>, "NumField<> takes a number or std::array");
+    if constexpr (std::is_integral_v<V>) f.type = FieldType::kInteger;
+    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+      if (!map.Has(std::string(field.key))) return;
+      if constexpr (std::is_integral_v<V>) {
+        s->*kMember = static_cast<V>(
+            map.Integer(std::string(field.key), static_cast<int>(field.min), static_cast<int>(field.max)));
+      } else {
+        s->*kMember = static_cast<V>(map.Number(std::string(field.key), field.min, field.max));
+      }
+    };
+    f.numbers = [](const S& s) { return std::vector<double>{static_cast<double>(s.*kMember)}; };
+    f.show = [](const S& s) { return field_internal::ShowNumber(static_cast<double>(s.*kMember)); };
+  }
+  return f;
+}
+
+// A field without a range: bool, an enum with an EnumNames table, or std::string.
+template <auto kMember>
+constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> OptField(std::string_view key,
+                                                                                 std::string_view doc) {
+  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
+  using V = typename field_internal::MemberOf<decltype(kMember)>::Value;
+  Field<S> f{key, FieldType::kBool, "", 0.0, 0.0, doc};
+  if constexpr (std::is_same_v<V, bool>) {
+    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+      s->*kMember = map.Bool(std::string(field.key), s->*kMember);
+    };
+    f.show = [](const S& s) { return std::string(s.*kMember ? "true" : "false"); };
+  } else if constexpr (std::is_enum_v<V>) {
+    f.type = FieldType::kName;
+    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+      s->*kMember = map.Enum(std::string(field.key), s->*kMember);
+    };
+    f.show = [](const S& s) { return std::string(NameOf(s.*kMember)); };
+    f.names = [] { return EnumNameList<V>(); };
+  } else {
+    static_assert(std::is_same_v<V, std::string>, "OptField<> takes a bool, an enum or a std::string");
+    f.type = FieldType::kString;
+    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+      s->*kMember = map.String(std::string(field.key), s->*kMember);
+    };
+    f.show = [](const S& s) { return s.*kMember; };
+  }
+  return f;
+}
+
+// A key the section's parser reads itself; the row documents it and makes it a known key.
+template <typename S>
+constexpr Field<S> CustomField(std::string_view key, FieldType type, std::string_view doc) {
+  return Field<S>{key, type, "", 0.0, 0.0, doc};
+}
+
+// The row of `key` in `fields` (the code's mistake if there is none).
+template <typename S>
+const Field<S>& FieldOf(std::span<const Field<S>> fields, std::string_view key) {
+  for (const Field<S>& f : fields) {
+    if (f.key == key) return f;
+  }
+  internal::DemandFailed("the key has a row in its field table", __FILE__, __LINE__);
+}
+
+// Reads one key of `fields` into `s` when present; with `required`, a missing key is an InputError
+// "file:line: section: missing required key 'key'".
+template <typename S>
+void ReadField(YamlMap& map, std::span<const Field<S>> fields, std::string_view key, S* s, bool required = false) {
+  const Field<S>& f = FieldOf(fields, key);
+  if (required) map.Require(std::string(key));
+  f.read(map, f, s);
+}
+
+// Reads every key of `fields` that has a reader (Custom rows are the caller's) into `s`, in table order.
+template <typename S>
+void ReadFields(YamlMap& map, std::span<const Field<S>> fields, S* s) {
+  for (const Field<S>& f : fields) {
+    if (f.read) f.read(map, f, s);
+  }
+}
+
+// Throws InputError "<section>.<key> = value: must be in [min, max]" for the first number of `s` outside its row's
+// range: the check of settings built in code (a placement search, a sweep, an API) against the parser's limits.
+template <typename S>
+void CheckFields(std::span<const Field<S>> fields, const S& s, std::string_view section) {
+  for (const Field<S>& f : fields) {
+    if (!f.numbers) continue;
+    for (double v : f.numbers(s)) {
+      WAAM_THROW_UNLESS(std::isfinite(v) && v >= f.min && v <= f.max,
+                        section << "." << f.key << " = " << v << ": must be in [" << f.min << ", " << f.max << "]");
+    }
+  }
+}
+
+// A field as the docs show it: settings-type free, for the key tables and the `--set` key paths.
+struct FieldInfo {
+  std::string key;
+  FieldType type = FieldType::kNumber;
+  std::string unit;
+  std::string default_text;  // the member's initial value; empty for a Custom row
+  std::string range;         // "[min, max]" of a number, the names of an enum, or empty
+  std::string doc;
+};
+
+// Every row of `fields` described, defaults from a default-constructed S.
+template <typename S>
+std::vector<FieldInfo> Describe(std::span<const Field<S>> fields) {
+  const S defaults{};
+  std::vector<FieldInfo> out;
+  for (const Field<S>& f : fields) {
+    FieldInfo info{std::string(f.key), f.type, std::string(f.unit), f.show ? f.show(defaults) : "", "",
+                   std::string(f.doc)};
+    if (f.names) info.range = f.names();
+    if (f.numbers) {
+      info.range = "[" + field_internal::ShowNumber(f.min) + ", " + field_internal::ShowNumber(f.max) + "]";
+    }
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
+}  // namespace waam

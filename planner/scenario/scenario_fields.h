@@ -1,0 +1,108 @@
+// The planner's scenario sections (part, slicing, path, path.void_filling, process, program), one row per key
+// (models/core/field_table.h): read by planner/scenario/scenario.cc, documented in docs/SCENARIO_KEYS.md.
+#pragma once
+
+#include <array>
+
+#include "models/core/field_table.h"
+#include "planner/program/program_settings.h"
+#include "planner/scenario/scenario.h"
+
+namespace waam::planner {
+
+inline constexpr std::array kScenarioTopFields = {
+    CustomField<Scenario>("name", FieldType::kString, "the scenario's name (output folders, reports)"),
+    CustomField<Scenario>("base_dir", FieldType::kString, "folder relative paths are taken from; absent: the file's"),
+    CustomField<Scenario>("part", FieldType::kMap, "the part to plan (or program:, a program made elsewhere)"),
+    CustomField<Scenario>("target", FieldType::kFile, "the intended part of a program made elsewhere (STL)"),
+};
+
+inline constexpr std::array kPartFields = {
+    CustomField<PartSpec>("mesh", FieldType::kFile, "an STL file"),
+    CustomField<PartSpec>("generator", FieldType::kMap, "type: a generator (waam generate --help), then its parameters"),
+};
+
+inline constexpr std::array kSlicingFields = {
+    OptField<&SlicingSettings::type>("type", "how the part is cut into layers"),
+    NumField<&SlicingSettings::layer_height_mm>("layer_height_mm", "mm", 0.05, 20.0,
+                                           "layer height (cone, cylinder: surface distance); required but skeleton"),
+    NumField<&SlicingSettings::cone_R_mm>("R_mm", "mm", 0.1, 1e5, "cone, cylinder (required): radius at axis_mm"),
+    NumField<&SlicingSettings::cone_H_mm>("H_mm", "mm", -1e6, 1e6, "cone (required): axis_mm to apex, at least 1 in size"),
+    NumField<&SlicingSettings::cone_axis_mm>("axis_mm", "mm", -1e5, 1e5, "cone, cylinder: point on the axis"),
+    NumField<&SlicingSettings::cone_rotation_step_deg>("rotation_step_deg", "deg", 1.0, 180.0,
+                                                  "cone, cylinder: rotation step before flattening"),
+    OptField<&SlicingSettings::split>("split", "multi_directional: the user's sub_volumes or the overhang split"),
+    CustomField<SlicingSettings>("sub_volumes", FieldType::kList,
+                            "multi_directional planes: {name, direction [3], keep [n, c]...} in build order"),
+    NumField<&SlicingSettings::overhang_deg>("overhang_deg", "deg", 1.0, 80.0, "centroid_shift: self-supporting overhang"),
+    NumField<&SlicingSettings::h_min_mm>("h_min_mm", "mm", 0.05, 20.0, "skeleton: thinnest layer"),
+    NumField<&SlicingSettings::h_max_mm>("h_max_mm", "mm", 0.05, 20.0, "skeleton: thickest layer, >= h_min_mm"),
+    NumField<&SlicingSettings::point_spacing_mm>("point_spacing_mm", "mm", 0.1, 100.0, "skeleton: path point spacing"),
+    NumField<&SlicingSettings::first_step_mm>("first_step_mm", "mm", 0.0, 20.0,
+                                         "skeleton: initial moving distance; 0 = (h_min + h_max) / 2"),
+    NumField<&SlicingSettings::beta_deg>("beta_deg", "deg", 1e-4, 10.0, "skeleton: plane re-orientation threshold"),
+    NumField<&SlicingSettings::wall_mm>("wall_mm", "mm", 0.0, 100.0, "skeleton: wall width; 0 = measured"),
+};
+
+inline constexpr std::array kPathFields = {
+    OptField<&PathSettings::pattern>("pattern", "the path pattern of each layer (required)"),
+    NumField<&PathSettings::bead_width_mm>("bead_width_mm", "mm", 0.5, 50.0, "bead width; required but skeleton"),
+    OptField<&PathSettings::overlap_model>("overlap_model", "bead spacing: proposed 0.738 w / 0.47 w / 0.5 w"),
+    NumField<&PathSettings::zigzag_angle_deg>("zigzag_angle_deg", "deg", -360.0, 360.0,
+                                         "zigzag direction, or auto (default): the minimum-width direction"),
+    OptField<&PathSettings::alternate_start>("alternate_start", "shift the start point layer to layer"),
+    NumField<&PathSettings::seed>("seed", "", 0, 2147483647, "seed of any random choice in planning"),
+    NumField<&PathSettings::retract_mm>("retract_mm", "mm", 0.0, 500.0, "arc-off lift and travel clearance; 0 = rapids"),
+    OptField<&PathSettings::island_order>("island_order", "order of a layer's islands: as planned, round robin or coolest first"),
+    CustomField<PathSettings>("void_filling", FieldType::kMap, "junction void correction (path.void_filling)"),
+};
+
+inline constexpr std::array kVoidFillingFields = {
+    OptField<&VoidFillingSettings::mode>("mode", "fixed: lambda; model: void-length model; tuned: tune_file"),
+    NumField<&VoidFillingSettings::lambda>("lambda", "", 0.0, 100.0, "weight of eq. 4.5 for mode fixed"),
+    NumField<&VoidFillingSettings::spacing_mm>("spacing_mm", "mm", 0.0, 100.0, "bead centre distance; 0 = overlap d2"),
+    NumField<&VoidFillingSettings::min_ribs>("min_ribs", "", 2, 12, "correct junctions of at least this many ribs"),
+    CustomField<VoidFillingSettings>("model", FieldType::kFile, "void-length model JSON (mode model)"),
+    CustomField<VoidFillingSettings>("tune_file", FieldType::kFile, "tune.json of waam tune-voids (mode tuned)"),
+};
+
+inline constexpr std::array kProcessFields = {
+    NumField<&ProcessSettings::travel_speed_mm_min>("travel_speed_mm_min", "mm/min", 10.0, 10000.0,
+                                               "welding travel speed; required but skeleton"),
+    NumField<&ProcessSettings::wire_feed_mm_min>("wire_feed_mm_min", "mm/min", 100.0, 30000.0,
+                                            "wire feed speed (required)"),
+    NumField<&ProcessSettings::wire_diameter_mm>("wire_diameter_mm", "mm", 0.6, 2.4, "wire diameter"),
+    NumField<&ProcessSettings::deposition_efficiency>("deposition_efficiency", "", 0.05, 1.0,
+                                                 "share of the wire that lands in the bead (eq. 3.4)"),
+    OptField<&ProcessSettings::bead_model>("bead_model", "where the bead comes from"),
+    CustomField<ProcessSettings>("csw_model", FieldType::kFile, "CSW model JSON (waam fit csw)"),
+    CustomField<ProcessSettings>("speed_height_model", FieldType::kFile, "speed-height model JSON"),
+    CustomField<ProcessSettings>("width_height_model", FieldType::kFile, "width-height model JSON"),
+    NumField<&ProcessSettings::rapid_speed_mm_min>("rapid_speed_mm_min", "mm/min", 100.0, 100000.0, "arc-off travel"),
+    NumField<&ProcessSettings::arc_start_s>("arc_start_s", "s", 0.0, 60.0, "ignition before each pass (docs/TIMELINE.md)"),
+    NumField<&ProcessSettings::arc_end_s>("arc_end_s", "s", 0.0, 60.0, "crater fill after each pass (docs/TIMELINE.md)"),
+    CustomField<ProcessSettings>("arc", FieldType::kMap, "the arc's power and efficiency (docs/THERMAL.md)"),
+    CustomField<ProcessSettings>("interpass", FieldType::kMap, "interpass limits: max_c, at, min_layer_time_s"),
+};
+
+inline constexpr std::array kProgramFields = {
+    CustomField<ProgramSettings>("file", FieldType::kFile, "the program (required)"),
+    CustomField<ProgramSettings>("format", FieldType::kName, "auto (default) or a dialect"),
+    CustomField<ProgramSettings>("frame", FieldType::kMap, "user_frame_mm: [x, y, z, w, p, r] of the user frame"),
+    OptField<&ProgramSettings::layers>("layers", "how moves are grouped into layers"),
+    NumField<&ProgramSettings::layer_tolerance_mm>("layer_tolerance_mm", "mm", 0.0, 1000.0,
+                                              "layer grouping tolerance; 0 = half the bead height"),
+    CustomField<ProgramSettings>("gcode", FieldType::kMap, "arc_on_m, arc_off_m"),
+    CustomField<ProgramSettings>("yaskawa", FieldType::kMap, "pulses_per_deg [6], station_pulses_per_deg [2]"),
+};
+inline constexpr std::array kProgramGcodeFields = {
+    NumField<&ProgramSettings::gcode_arc_on_m>("arc_on_m", "", 0, 999, "M code that starts the arc"),
+    NumField<&ProgramSettings::gcode_arc_off_m>("arc_off_m", "", 0, 999, "M code that stops the arc"),
+};
+inline constexpr std::array kProgramYaskawaFields = {
+    NumField<&ProgramSettings::yaskawa_pulses_per_deg>("pulses_per_deg", "", 1e-3, 1e7, "encoder pulses per degree"),
+    NumField<&ProgramSettings::yaskawa_station_pulses_per_deg>("station_pulses_per_deg", "", 1e-3, 1e7,
+                                                          "positioner pulses per degree"),
+};
+
+}  // namespace waam::planner
