@@ -5,7 +5,9 @@
 
 #include "analysis/place_settings.h"
 #include "analysis/run_settings.h"
+#include "analysis/thermal_settings.h"
 #include "models/core/error.h"
+#include "planner/scenario/arc_settings.h"
 #include "planner/scenario/scenario_fields.h"
 #include "twin/cell/cell_settings.h"
 #include "twin/simulation_settings.h"
@@ -32,6 +34,45 @@ inline constexpr std::array kSubVolumeFields = {
     CustomField<SubVolumeKeys>("keep", FieldType::kNumbers, "half-spaces n . p <= c, 4 numbers each (nx, ny, nz, c mm)"),
 };
 
+// The sections their parsers read by hand (analysis/thermal_section.cc, planner/scenario/arc_section.cc,
+// planner/program/program_section.cc): documenting rows, so that --set reaches them and the key tables list them.
+inline constexpr std::array kThermalFields = {
+    CustomField<ThermalSection>("material", FieldType::kName, "the deposit's material: a shipped name or a file"),
+    CustomField<ThermalSection>("substrate", FieldType::kMap, "the plate (thermal.substrate)"),
+    CustomField<ThermalSection>("cell_mm", FieldType::kNumber, "grid spacing near the deposit, mm (default 2)"),
+    CustomField<ThermalSection>("ambient_c", FieldType::kNumber, "air temperature, degC (default 20)"),
+    CustomField<ThermalSection>("initial_c", FieldType::kNumber, "the plate's temperature at the start, degC"),
+    CustomField<ThermalSection>("convection_w_m2k", FieldType::kNumber, "h on every exposed face, W/(m^2 K)"),
+    CustomField<ThermalSection>("emissivity", FieldType::kNumber, "of every exposed face; absent = each material's"),
+    CustomField<ThermalSection>("table", FieldType::kMap, "contact with the table (thermal.table)"),
+    CustomField<ThermalSection>("sample_s", FieldType::kNumber, "interval of the probe histories, s (default 1)"),
+    CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
+};
+inline constexpr std::array kThermalSubstrateFields = {
+    CustomField<ThermalSection>("size_mm", FieldType::kNumbers, "[x, y, z] of the plate, mm (required)"),
+    CustomField<ThermalSection>("centre_mm", FieldType::kNumbers, "its centre; absent = under the part, top at z = 0"),
+    CustomField<ThermalSection>("material", FieldType::kName, "the plate's material (default: the deposit's)"),
+};
+inline constexpr std::array kThermalTableFields = {
+    CustomField<ThermalSection>("conductance_w_m2k", FieldType::kNumber, "plate-table contact, W/(m^2 K)"),
+    CustomField<ThermalSection>("temperature_c", FieldType::kNumber, "the table's temperature, degC"),
+};
+inline constexpr std::array kArcFields = {
+    CustomField<planner::ArcSettings>("power_w", FieldType::kNumber, "arc power, W; or voltage_v and current_a"),
+    CustomField<planner::ArcSettings>("voltage_v", FieldType::kNumber, "arc voltage, V"),
+    CustomField<planner::ArcSettings>("current_a", FieldType::kNumber, "arc current, A"),
+    CustomField<planner::ArcSettings>("efficiency", FieldType::kNumber, "share of the arc power the metal takes"),
+};
+inline constexpr std::array kInterpassFields = {
+    CustomField<planner::InterpassSettings>("max_c", FieldType::kNumber, "the interpass temperature limit, degC"),
+    CustomField<planner::InterpassSettings>("at", FieldType::kName, "next_start, top_max or {probe: NAME}"),
+    CustomField<planner::InterpassSettings>("min_layer_time_s", FieldType::kNumber, "each layer lasts at least, s"),
+};
+inline constexpr std::array kProgramFramesFields = {
+    CustomField<FrameKeys>("uframe", FieldType::kMap, "N: [x, y, z, w, p, r] (mm, deg) of user frame N"),
+    CustomField<FrameKeys>("utool", FieldType::kMap, "N: [x, y, z, w, p, r] of tool N, or torch"),
+};
+
 std::vector<SectionKeys> MakeSections() {
   std::vector<SectionKeys> sections = {
       Section("", planner::kScenarioTopFields),
@@ -41,6 +82,8 @@ std::vector<SectionKeys> MakeSections() {
       Section("path", planner::kPathFields),
       Section("path.void_filling", planner::kVoidFillingFields),
       Section("process", planner::kProcessFields),
+      Section("process.arc", kArcFields),
+      Section("process.interpass", kInterpassFields),
       Section("cell", twin::kCellFields),
       Section("cell.robot", twin::kCellRobotFields),
       Section("cell.positioner", twin::kCellPositionerFields),
@@ -54,6 +97,10 @@ std::vector<SectionKeys> MakeSections() {
       Section("program.frame", kProgramFrameFields),
       Section("program.gcode", planner::kProgramGcodeFields),
       Section("program.yaskawa", planner::kProgramYaskawaFields),
+      Section("program.frames", kProgramFramesFields),
+      Section("thermal", kThermalFields),
+      Section("thermal.substrate", kThermalSubstrateFields),
+      Section("thermal.table", kThermalTableFields),
   };
   // The top level holds the sections too.
   for (const SectionKeys& s : sections) {

@@ -15,6 +15,7 @@
 #include "analysis/check_command.h"
 #include "analysis/import_command.h"
 #include "analysis/plan_command.h"
+#include "analysis/plan_timeline.h"
 #include "analysis/scenario.h"
 #include "analysis/simulate_command.h"
 #include "models/core/error.h"
@@ -119,6 +120,8 @@ std::shared_ptr<PlanHolder> Plan(const std::shared_ptr<const ScenarioHolder>& sc
   py::gil_scoped_release release;
   Progress progress("plan", 0, "layers", /*quiet=*/true);
   h->result = analysis::PlanScenarioOrProgram(scn->scenario, &progress, &h->import);
+  // As `waam plan`: a planned part's timeline on the cell (a program's import builds its own).
+  if (!scn->scenario.program.present) analysis::AddCellTimeline(scn->scenario, &h->result);
   FillTable(h.get());
   return h;
 }
@@ -206,6 +209,9 @@ PYBIND11_MODULE(_core, m) {
              return View(h.table.data() + a * kPlanColumns, b - a, kPlanColumns, self);
            },
            py::arg("i"), "The points of layer i, a view into points.")
+      .def_property_readonly("timeline",
+                             [](const PlanHolder& h) { return ToPython(analysis::TimelineToJson(h.result.timeline)); },
+                             "The build's timeline as plan.json has it: total_s, arc_on_s, travel_s, wait_s, layers.")
       .def_property_readonly("layer_count", [](const PlanHolder& h) { return h.offsets.size() - 1; })
       .def_property_readonly_static("columns", [](py::object) {
         return std::vector<std::string>(kPlanColumnNames, kPlanColumnNames + kPlanColumns);

@@ -89,6 +89,7 @@ inline constexpr std::array kProgramFields = {
     CustomField<ProgramSettings>("file", FieldType::kFile, "the program (required)"),
     CustomField<ProgramSettings>("format", FieldType::kName, "auto (default) or a dialect"),
     CustomField<ProgramSettings>("frame", FieldType::kMap, "user_frame_mm: [x, y, z, w, p, r] of the user frame"),
+    CustomField<ProgramSettings>("frames", FieldType::kMap, "numbered user frames and tools (program.frames)"),
     OptField<&ProgramSettings::layers>("layers", "how moves are grouped into layers"),
     NumField<&ProgramSettings::layer_tolerance_mm>("layer_tolerance_mm", "mm", 0.0, 1000.0,
                                               "layer grouping tolerance; 0 = half the bead height"),
@@ -98,6 +99,7 @@ inline constexpr std::array kProgramFields = {
 inline constexpr std::array kProgramGcodeFields = {
     NumField<&ProgramSettings::gcode_arc_on_m>("arc_on_m", "", 0, 999, "M code that starts the arc"),
     NumField<&ProgramSettings::gcode_arc_off_m>("arc_off_m", "", 0, 999, "M code that stops the arc"),
+    CustomField<ProgramSettings>("feed_unit", FieldType::kName, "unit of F: mm_per_min (default) or mm_per_s"),
 };
 inline constexpr std::array kProgramYaskawaFields = {
     NumField<&ProgramSettings::yaskawa_pulses_per_deg>("pulses_per_deg", "", 1e-3, 1e7, "encoder pulses per degree"),

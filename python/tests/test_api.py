@@ -89,8 +89,11 @@ def test_plan_json_equals_the_command_line(tiny, tmp_path):
     out = tmp_path / "cli"
     subprocess.run([WAAM_BINARY, "plan", str(tiny), "-o", str(out), "-q", "--no-images"], check=True)
     cli = json.loads((out / "plan.json").read_text())
-    ours = wt.plan(wt.load_scenario(tiny)).to_dict()
-    assert ours == cli
+    plan = wt.plan(wt.load_scenario(tiny))
+    assert plan.to_dict() == cli
+    timeline = plan.timeline
+    assert timeline == cli["timeline"]
+    assert timeline["total_s"] == pytest.approx(timeline["arc_on_s"] + timeline["travel_s"] + timeline["wait_s"])
 
 
 def test_random_overrides_never_crash(tiny):
