@@ -421,11 +421,12 @@ void WriteBenchReport(const nlohmann::json& bench, const fs::path& out_dir) {
           "th{background:#eee}.pass{color:#070}.expected_fail{color:#a60}.fail{color:#c00;font-weight:bold}"
           "td.metrics{font-size:12px;max-width:800px}figure{display:inline-block;margin:4px;vertical-align:top}"
           "figcaption{font-size:12px}svg{margin:4px;vertical-align:top}</style></head><body>\n";
+  const auto timing_of = [&timing](const char* key) { return Cell(timing.value(key, nlohmann::json())); };
   html << "<h1>waam bench report</h1>\n<p>" << Cell(counts["total"]) << " scenarios: " << Cell(counts["pass"])
        << " pass, " << Cell(counts["expected_fail"]) << " expected fail (planted faults found), "
-       << Cell(counts["fail"]) << " fail. Scenario wall time " << Cell(timing["scenarios_wall_s"]) << " s ("
-       << Cell(timing["reused_results"]) << " results reused from an earlier run), this invocation "
-       << Cell(timing["total_s"]) << " s on " << Cell(timing["hardware_threads"])
+       << Cell(counts["fail"]) << " fail. Scenario wall time " << timing_of("scenarios_wall_s") << " s ("
+       << timing_of("reused_results") << " results reused from an earlier run), this invocation "
+       << timing_of("total_s") << " s on " << timing_of("hardware_threads")
        << " hardware threads. Each scenario ran as <code>waam run</code> in its own process; peak memory is that "
           "process's maximum resident set.</p>\n";
   if (bench.contains("sweep")) {
