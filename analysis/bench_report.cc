@@ -222,7 +222,7 @@ std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir, bo
   const fs::path dir = out_dir / id;
   std::ostringstream html;
   html << "<h3 id=\"" << HtmlEscape(id) << "\">" << HtmlEscape(id) << " <small>(scenario "
-       << Cell(e.value("scenario", nlohmann::json())) << ", " << Cell(e["file"]) << ", "
+       << Cell(e.value("scenario", nlohmann::json())) << ", " << Cell(e.value("file", nlohmann::json())) << ", "
        << e.value("outcome", "fail") << ")</small></h3>\n";
   if (e.contains("error")) html << "<p class=\"fail\">" << Cell(e["error"]) << "</p>\n";
   std::error_code ec;
@@ -235,10 +235,12 @@ std::string ScenarioSection(const nlohmann::json& e, const fs::path& out_dir, bo
   for (const nlohmann::json& s : e.value("steps", nlohmann::json::array())) {
     const std::string name = s.value("name", "");
     const nlohmann::json t = timing.value(name, nlohmann::json::object());
-    html << "<tr><td>" << HtmlEscape(name) << "</td><td>" << Cell(s["status"]) << "</td><td>" << Cell(s["exit_code"])
+    html << "<tr><td>" << HtmlEscape(name) << "</td><td>" << Cell(s.value("status", nlohmann::json())) << "</td><td>"
+         << Cell(s.value("exit_code", nlohmann::json()))
          << "</td><td>" << Cell(t.value("wall_s", nlohmann::json())) << "</td><td>"
          << Cell(t.value("peak_rss_mb", nlohmann::json())) << "</td><td class=\"metrics\">";
-    for (auto it = s["metrics"].begin(); it != s["metrics"].end(); ++it) {
+    const nlohmann::json metrics = s.value("metrics", nlohmann::json::object());
+    for (auto it = metrics.begin(); it != metrics.end(); ++it) {
       if (it.key() == "not_applicable" || it.key() == "notes") continue;  // listed below the table
       html << HtmlEscape(it.key()) << " = " << Cell(it.value()) << "; ";
     }
