@@ -11,24 +11,12 @@ namespace waam::analysis {
 planner::Timeline CellTimeline(const Scenario& scenario, const twin::CellModel& cell, const planner::Plan& plan,
                                const std::vector<double>& extra_wait_before_layer_s) {
   const twin::CellSettings& settings = scenario.cell;
-  const planner::CellKinematics kin = twin::PartKinematics(cell, settings);
+  planner::CellKinematics kin = twin::PartKinematics(cell, settings);
+  if (plan.X_FT) kin.X_FT = *plan.X_FT;  // an imported program's own tool is the TCP that moves, as in the check
   // The motion `waam check` plans with the fixed spin rule: the positioner kept the joint margin inside its limits.
-  planner::CellKinematics solve = kin;
-  const double margin_rad = settings.joint_margin_deg / kDeg;
-  if (solve.positioner.tilt_upper - solve.positioner.tilt_lower > 2.0 * margin_rad) {
-    solve.positioner.tilt_lower += margin_rad;
-    solve.positioner.tilt_upper -= margin_rad;
-  }
-  if (solve.positioner.rotation_upper - solve.positioner.rotation_lower > 2.0 * margin_rad) {
-    solve.positioner.rotation_lower += margin_rad;
-    solve.positioner.rotation_upper -= margin_rad;
-  }
-  planner::MotionOptions options;
-  options.step_mm = settings.step_mm;
-  options.rapid_speed_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
-  options.rotation_rad = settings.positioner_rotation_deg / kDeg;
-  options.positioner_per_point = settings.positioner_follow == twin::PositionerFollow::kPoint;
-  options.tilt_tolerance_rad = settings.positioner_tilt_tolerance_deg / kDeg;
+  const planner::CellKinematics solve = twin::MarginKinematics(kin, settings);
+  const planner::MotionOptions options =
+      twin::MotionOptionsOf(settings, scenario.process.rapid_speed_mm_min / 60.0);
   const std::vector<planner::CellSample> motion = planner::PlanCellMotion(solve, plan, options, {});
   planner::TimelineSettings timing = planner::TimelineSettingsOf(scenario.process);
   timing.extra_wait_before_layer_s = extra_wait_before_layer_s;

@@ -339,13 +339,8 @@ double CheckMargin(const CheckMargins& m, const twin::CellSettings& settings) {
                    m.min_clearance_mm / CellModel::kClearanceMarginMm});
 }
 
-CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
-                      double rapid_speed_mm_s, Progress* progress) {
-  planner::CellKinematics kin = PartKinematics(cell, settings);
-  if (plan.X_FT) kin.X_FT = *plan.X_FT;  // an imported program's own tool is the TCP that moves
+planner::CellKinematics MarginKinematics(const planner::CellKinematics& kin, const twin::CellSettings& settings) {
   const double margin_rad = settings.joint_margin_deg / kDeg;
-
-  // The positioner solution keeps the joint margin: where it must hold a limit, it holds it `margin` inside.
   planner::CellKinematics solve = kin;
   if (solve.positioner.tilt_upper - solve.positioner.tilt_lower > 2.0 * margin_rad) {
     solve.positioner.tilt_lower += margin_rad;
@@ -355,12 +350,26 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
     solve.positioner.rotation_lower += margin_rad;
     solve.positioner.rotation_upper -= margin_rad;
   }
+  return solve;
+}
+
+planner::MotionOptions MotionOptionsOf(const twin::CellSettings& settings, double rapid_speed_mm_s) {
   planner::MotionOptions options;
   options.step_mm = settings.step_mm;
   options.rapid_speed_mm_s = rapid_speed_mm_s;
   options.rotation_rad = settings.positioner_rotation_deg / kDeg;
   options.positioner_per_point = settings.positioner_follow == twin::PositionerFollow::kPoint;
   options.tilt_tolerance_rad = settings.positioner_tilt_tolerance_deg / kDeg;
+  return options;
+}
+
+CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
+                      double rapid_speed_mm_s, Progress* progress) {
+  planner::CellKinematics kin = PartKinematics(cell, settings);
+  if (plan.X_FT) kin.X_FT = *plan.X_FT;  // an imported program's own tool is the TCP that moves
+  // The positioner solution keeps the joint margin: where it must hold a limit, it holds it `margin` inside.
+  const planner::CellKinematics solve = MarginKinematics(kin, settings);
+  planner::MotionOptions options = MotionOptionsOf(settings, rapid_speed_mm_s);  // the spins are set below
   if (settings.resolve == CellResolve::kFixed) {
     return CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
   }

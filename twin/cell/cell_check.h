@@ -99,6 +99,12 @@ CellModel LoadCell(const twin::CellSettings& settings);
 
 // The kinematics of `cell` (made by LoadCell(settings)) with the part placed on the plate as `settings` says.
 planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings);
+// The kinematics the motion is solved with: the positioner's tilt and rotation ranges pulled in by the settings'
+// joint margin on each side (where the range is wider than twice the margin).
+planner::CellKinematics MarginKinematics(const planner::CellKinematics& kin, const twin::CellSettings& settings);
+// The motion options of the cell settings (sample step, positioner rotation, follow mode, tilt tolerance) with
+// arc-off moves at `rapid_speed_mm_s`.
+planner::MotionOptions MotionOptionsOf(const twin::CellSettings& settings, double rapid_speed_mm_s);
 
 // Checks `plan` (part frame P) on `cell`, which LoadCell(settings) made. Arc-off moves run at `rapid_speed_mm_s`.
 // With settings.resolve optimise (the default) the fixed rule's motion is checked first; unless it passes with every
