@@ -124,10 +124,7 @@ planner::JbiReadOptions JbiOptionsOf(const Scenario& scenario, const std::vector
 
 planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report) {
   if (!scenario.program.present) return planner::PlanScenario(scenario, progress);
-  planner::GcodeReadOptions gcode;
-  gcode.arc_on_m = scenario.program.gcode_arc_on_m;
-  gcode.arc_off_m = scenario.program.gcode_arc_off_m;
-  gcode.feed_unit = scenario.program.gcode_feed_unit;
+  const planner::GcodeReadOptions gcode = planner::GcodeOptionsOf(scenario.program);
   const planner::ParsedProgram program = planner::ReadProgramFile(scenario.program.file, scenario.program.format,
                                                                   gcode, JbiOptionsOf(scenario), scenario.program.frames);
   ImportReport local;
@@ -160,10 +157,7 @@ nlohmann::json RunImport(const ImportOptions& options) {
     WAAM_THROW_UNLESS(options.overrides.empty(), "--set needs --scenario");
   }
   if (scenario.name.empty()) scenario.name = options.program.stem().string();
-  planner::GcodeReadOptions gcode;
-  gcode.arc_on_m = scenario.program.gcode_arc_on_m;
-  gcode.arc_off_m = scenario.program.gcode_arc_off_m;
-  gcode.feed_unit = scenario.program.gcode_feed_unit;
+  const planner::GcodeReadOptions gcode = planner::GcodeOptionsOf(scenario.program);
   const planner::ParsedProgram program =
       planner::ReadProgramFile(options.program, options.format, gcode,
                                JbiOptionsOf(scenario, options.pulses_per_deg, options.station_pulses_per_deg),

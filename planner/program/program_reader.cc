@@ -47,7 +47,7 @@ ParsedProgram ReadProgramText(std::string_view text, const std::string& file, Pr
       return ReadKukaKrl(text, dat == std::string_view::npos ? std::string_view() : text.substr(dat + 1), file, file,
                          frames);
     }
-    case ProgramFormat::kYaskawaJbi: return ReadYaskawaJbi(text, file, jbi);
+    case ProgramFormat::kYaskawaJbi: return ReadYaskawaJbi(text, file, jbi, frames);
   }
   WAAM_DEMAND(false);
   return {};

@@ -84,6 +84,13 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
     WAAM_THROW_UNLESS(s.gcode_arc_on_m != s.gcode_arc_off_m,
                       gcode.Where("arc_off_m") << " = " << s.gcode_arc_off_m << ": must differ from arc_on_m");
     s.gcode_feed_unit = gcode.Enum("feed_unit", GcodeFeedUnit::kMmPerMin);
+    s.gcode_dwell_p_unit = gcode.Enum("dwell_p_unit", GcodeDwellUnit::kMs);
+    for (const char* key : {"arc_on", "arc_off"}) {
+      std::vector<std::string>& list = std::string(key) == "arc_on" ? s.gcode_arc_on : s.gcode_arc_off;
+      list = gcode.Strings(key, {});
+      WAAM_THROW_UNLESS(!gcode.Has(key) || !list.empty(), gcode.Where(key) << ": must list at least one signal");
+      for (const std::string& signal : list) CheckGcodeSignal(signal, gcode.Where(key));
+    }
     gcode.CheckNoUnknownKeys();
   }
   if (section.Has("frames")) {
@@ -99,6 +106,18 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
   }
   section.CheckNoUnknownKeys();
   return s;
+}
+
+GcodeReadOptions GcodeOptionsOf(const ProgramSettings& settings) {
+  GcodeReadOptions options;
+  options.arc_on = settings.gcode_arc_on.empty() ? std::vector<std::string>{"M" + std::to_string(settings.gcode_arc_on_m)}
+                                                 : settings.gcode_arc_on;
+  options.arc_off = settings.gcode_arc_off.empty()
+                        ? std::vector<std::string>{"M" + std::to_string(settings.gcode_arc_off_m)}
+                        : settings.gcode_arc_off;
+  options.feed_unit = settings.gcode_feed_unit;
+  options.dwell_p_unit = settings.gcode_dwell_p_unit;
+  return options;
 }
 
 }  // namespace waam::planner

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "models/core/enum_names.h"
 #include "planner/program/program_motion.h"
@@ -26,9 +27,12 @@ struct ProgramSettings {
   std::optional<std::array<double, 6>> user_frame_mm;
   ProgramLayers layers = ProgramLayers::kAuto;
   double layer_tolerance_mm = 0.0;            // >= 0; 0 = half the bead height
-  int gcode_arc_on_m = 3;                     // gcode.arc_on_m
-  int gcode_arc_off_m = 5;                    // gcode.arc_off_m
+  int gcode_arc_on_m = 3;                     // gcode.arc_on_m (when gcode.arc_on is not given)
+  int gcode_arc_off_m = 5;                    // gcode.arc_off_m (when gcode.arc_off is not given)
+  // gcode.arc_on / arc_off: the signals that switch the arc ("M3", "G82", "M62 P1"); empty = arc_on_m / arc_off_m
+  std::vector<std::string> gcode_arc_on, gcode_arc_off;
   GcodeFeedUnit gcode_feed_unit = GcodeFeedUnit::kMmPerMin;  // gcode.feed_unit: mm_per_min | mm_per_s
+  GcodeDwellUnit gcode_dwell_p_unit = GcodeDwellUnit::kMs;   // gcode.dwell_p_unit: ms | s
   // frames.uframe.<n> / frames.utool.<n>: frames and tools the program names by number without defining them
   // (FANUC UFRAME / UTOOL, KUKA BASE_DATA / TOOL_DATA), [x, y, z mm, three angles deg]; a tool may be `torch`.
   ProgramFrames frames;
@@ -41,5 +45,8 @@ struct ProgramSettings {
   std::filesystem::path target;
   std::string where;                          // "file:line: program" for messages
 };
+
+// The G-code reader's options of these settings: gcode.arc_on (else M<arc_on_m>), arc_off, feed_unit, dwell_p_unit.
+GcodeReadOptions GcodeOptionsOf(const ProgramSettings& settings);
 
 }  // namespace waam::planner

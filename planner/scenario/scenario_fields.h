@@ -93,13 +93,16 @@ inline constexpr std::array kProgramFields = {
     OptField<&ProgramSettings::layers>("layers", "how moves are grouped into layers"),
     NumField<&ProgramSettings::layer_tolerance_mm>("layer_tolerance_mm", "mm", 0.0, 1000.0,
                                               "layer grouping tolerance; 0 = half the bead height"),
-    CustomField<ProgramSettings>("gcode", FieldType::kMap, "arc_on_m, arc_off_m"),
+    CustomField<ProgramSettings>("gcode", FieldType::kMap, "arc signals, feed and dwell units (docs/PROGRAMS.md)"),
     CustomField<ProgramSettings>("yaskawa", FieldType::kMap, "pulses_per_deg [6], station_pulses_per_deg [2]"),
 };
 inline constexpr std::array kProgramGcodeFields = {
     NumField<&ProgramSettings::gcode_arc_on_m>("arc_on_m", "", 0, 999, "M code that starts the arc"),
     NumField<&ProgramSettings::gcode_arc_off_m>("arc_off_m", "", 0, 999, "M code that stops the arc"),
+    CustomField<ProgramSettings>("arc_on", FieldType::kList, "signals that start the arc: [M3], [G82], [M62 P1]..."),
+    CustomField<ProgramSettings>("arc_off", FieldType::kList, "signals that stop the arc: [M5], [G83], [M63 P1]..."),
     CustomField<ProgramSettings>("feed_unit", FieldType::kName, "unit of F: mm_per_min (default) or mm_per_s"),
+    CustomField<ProgramSettings>("dwell_p_unit", FieldType::kName, "unit of G4 P: ms (default) or s"),
 };
 inline constexpr std::array kProgramYaskawaFields = {
     NumField<&ProgramSettings::yaskawa_pulses_per_deg>("pulses_per_deg", "", 1e-3, 1e7, "encoder pulses per degree"),

@@ -234,6 +234,19 @@ std::vector<BadInput> Catalogue() {
                          jbi_inst + "END\n"}},
        {"prog.JBI:7: a pulse position and the robot's pulses per degree are unknown (axis S): give "
         "program.yaskawa.pulses_per_deg [S, L, U, R, B, T] or --pulses-per-deg"}},
+      {"program-gcode-arc-without-centre", "import", "prog.nc", {{"prog.nc", "G0 X0 Y0 Z2\nG2 X10 Y0 F400\n"}},
+       {"prog.nc:2: G2 needs its centre (I J) or a radius R in the plane of G17"}},
+      {"program-gcode-arc-off-its-circle", "import", "prog.nc", {{"prog.nc", "G0 X0 Y0 Z2\nG3 X10 Y1 I5 J0 F400\n"}},
+       {"prog.nc:2: G3: the end point is 0.0990195 mm off the circle about the centre (radius 5)"}},
+      {"program-rapid-wobj-not-declared", "import", "prog.mod",
+       {{"prog.mod", "MODULE T\n  CONST robtarget p1:=[[1000,0,180],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,"
+                     "9E+09]];\n  PROC main()\n    MoveL p1,v100,fine,tool0\\WObj:=wobjTable;\n  ENDPROC\nENDMODULE\n"}},
+       {"prog.mod:4: wobjTable is used but not declared as a wobjdata"}},
+      {"program-jbi-user-frame-not-defined", "import", "prog.JBI",
+       {{"prog.JBI", ReplaceAll(ReplaceAll(jbi_pos, "NPOS 3", "NPOS 2"), "POSTYPE ROBOT", "USER 2\n///POSTYPE USER") +
+                         jbi_inst + "END\n"}},
+       {"prog.JBI:13: a position taught in user frame 2, which the job does not define: give program.frames.uframe.2 = "
+        "[x, y, z, rx, ry, rz] (mm, deg, in the robot frame)"}},
       {"stl-truncated-mid-facet", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", full.substr(0, 84 + 50 + 20)}},
        {"part.stl: truncated binary STL: header says 4 facets", "it ends inside facet 2"}},
       {"stl-wrong-facet-count", "plan", "s.yaml", {{"s.yaml", ok}, {"part.stl", BinaryStl(tetra, 3)}},

@@ -120,12 +120,17 @@ TEST(ProgramReaderTest, RapidWallWeldsTheSamePathAsTheFanucWall) {
   EXPECT_EQ(mod.format, ProgramFormat::kAbbRapid);
   EXPECT_EQ(mod.name, "WALL");
   EXPECT_EQ(mod.motions.size(), ls.motions.size()) << "Offs(pEnd2, 0, 0, 40) is followed";
-  EXPECT_NE(FindWarning(mod, "TORCHCLEAN"), nullptr);
+  EXPECT_EQ(FindWarning(mod, "TORCHCLEAN"), nullptr) << "main calls TorchClean, a PROC of the module";
   EXPECT_NE(FindWarning(mod, "\\WEAVE"), nullptr);
-  // WaitTime 1 after the retract Offs(pEnd2, 0, 0, 40); the 0.5 s of TorchClean (not called) is read in file order.
+  // WaitTime 1 after the retract Offs(pEnd2, 0, 0, 40); TorchClean's WaitTime 0.5 runs before the first motion.
   EXPECT_EQ(FindWarning(mod, "WAITTIME"), nullptr);
+  EXPECT_NE(FindWarning(mod, "wait before the first motion"), nullptr);
   EXPECT_NEAR(mod.motions[mod.motions.size() - 2].dwell_s, 1.0, 1e-12);
-  EXPECT_NEAR(mod.motions.back().dwell_s, 0.5, 1e-12);
+  EXPECT_NEAR(mod.motions.back().dwell_s, 0.0, 1e-12);
+  // The program's tool: tWeldGun, 400 mm out of the flange.
+  ASSERT_TRUE(mod.motions[0].has_tool);
+  EXPECT_EQ(mod.motions[0].tool_name, "tWeldGun");
+  EXPECT_LT((mod.motions[0].X_FT.translation() - Eigen::Vector3d(0, 0, 400)).norm(), 1e-12);
   const CellKinematics cell = ReaderTestCell();
   const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
   const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(mod, cell, ImportSettings{}));
@@ -163,11 +168,20 @@ JbiReadOptions WallJbiPulses() {
   return jbi;
 }
 
+// wall.JBI's ///USER 1, as wall_jbi.yaml gives it: the robot frame lifted to the L axis (the FANUC world frame of
+// the wall.ls it matches).
+ProgramFrames WallJbiFrames() {
+  ProgramFrames frames;
+  frames.uframe[1] = {0.0, 0.0, 450.0, 0.0, 0.0, 0.0};
+  return frames;
+}
+
 TEST(ProgramReaderTest, JbiWallWeldsTheSamePathAsTheFanucWall) {
   // ///POSTYPE USER positions in the scenario's user frame; the MOVC circle's first point is where the robot stands;
   // the pulse position C00009 through forward kinematics.
   const ParsedProgram ls = ReadWallLs();
-  const ParsedProgram jbi = ReadProgramFile(Fixture("wall.JBI"), std::nullopt, GcodeReadOptions{}, WallJbiPulses());
+  const ParsedProgram jbi = ReadProgramFile(Fixture("wall.JBI"), std::nullopt, GcodeReadOptions{}, WallJbiPulses(),
+                                               WallJbiFrames());
   EXPECT_EQ(jbi.format, ProgramFormat::kYaskawaJbi);
   EXPECT_EQ(jbi.name, "WALL");
   ASSERT_EQ(jbi.motions.size(), ls.motions.size());
@@ -180,7 +194,7 @@ TEST(ProgramReaderTest, JbiWallWeldsTheSamePathAsTheFanucWall) {
   EXPECT_EQ(jbi.motions[1].config, 0);  // ///RCONF 1,0,0: no flip, upper arm, front
   double timer = 0.0;
   for (const ProgramMotion& m : jbi.motions) timer += m.dwell_s;
-  EXPECT_NEAR(timer, 1.0, 1e-12) << "TIMER T=1.00";
+  EXPECT_NEAR(timer, 0.3 + 1.0, 1e-12) << "ARCON T=0.30 (the time at the start point), TIMER T=1.00";
   for (const char* what : {"CALL", "WVON", "WVOF", "JUMP"}) {
     EXPECT_NE(FindWarning(jbi, what), nullptr) << what;
   }
@@ -199,7 +213,7 @@ TEST(ProgramReaderTest, JbiWallWeldsTheSamePathAsTheFanucWall) {
 TEST(ProgramReaderTest, GcodeWallHasItsArcAndWeldsBetweenTheMCodes) {
   const ParsedProgram program = ReadProgramFile(Fixture("wall.nc"), std::nullopt);
   EXPECT_EQ(program.format, ProgramFormat::kGcode);
-  EXPECT_EQ(program.MotionsByKind().at("circular"), 1u);
+  EXPECT_EQ(program.MotionsByKind().at("circular"), 2u) << "the G3 of about 143 degrees, in two pieces of at most 90";
   // N140 G4 P1: one millisecond at the end of the second layer (N120 G1 X-30), in the plan too.
   EXPECT_EQ(FindWarning(program, "G4"), nullptr);
   double dwell = 0.0;
@@ -302,7 +316,7 @@ TEST(ProgramReaderTest, JbiStationAxesArePositionerAnglesThroughTheirPulsesPerDe
   jbi = ReplaceOnce(jbi, "MOVL C00004 V=100.0", "MOVL C00004 EC00001 V=100.0");
   JbiReadOptions options = WallJbiPulses();
   options.station_pulses_per_deg = {1500.0, 1000.0};
-  const ParsedProgram program = ReadYaskawaJbi(jbi, "wall.JBI", options);
+  const ParsedProgram program = ReadYaskawaJbi(jbi, "wall.JBI", options, WallJbiFrames());
   ASSERT_TRUE(program.motions[1].has_positioner);
   EXPECT_EQ(program.motions[1].tilt_rad, 0.0);
   ASSERT_TRUE(program.motions[4].has_positioner);
@@ -310,7 +324,7 @@ TEST(ProgramReaderTest, JbiStationAxesArePositionerAnglesThroughTheirPulsesPerDe
   EXPECT_NEAR(program.motions[4].rotation_rad * kDeg, 90.0, 1e-12);
   // Without the station's pulses per degree the EC position is refused, naming the setting.
   try {
-    (void)ReadYaskawaJbi(jbi, "wall.JBI", WallJbiPulses());
+    (void)ReadYaskawaJbi(jbi, "wall.JBI", WallJbiPulses(), WallJbiFrames());
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("wall.JBI:22: station positions are encoder pulses and the station's pulses per "
@@ -322,7 +336,7 @@ TEST(ProgramReaderTest, JbiBadInputsNameTheLine) {
   const std::string jbi = ReadFile(Fixture("wall.JBI"));
   auto error = [](const std::string& text, const JbiReadOptions& options) {
     try {
-      (void)ReadYaskawaJbi(text, "bad.JBI", options);
+      (void)ReadYaskawaJbi(text, "bad.JBI", options, WallJbiFrames());
     } catch (const InputError& e) {
       return std::string(e.what());
     }
