@@ -457,9 +457,10 @@ void SetRapidTool(RapidRun& run, const RapidExpr& tool, int line, ProgramMotion*
 double RapidSpeed(RapidRun& run, const RapidArgs& args, std::size_t speed_at, bool welded, int line) {
   double v = 0.0;
   const RapidExpr& speed = args.positional[speed_at];
-  const RapidExpr* weld = welded ? &args.positional[speed_at + 2] : nullptr;
-  if (weld != nullptr) {
-    const RapidData* wd = FindRapidData(run, weld->name, "WELDDATA");
+  const RapidData* wd = welded ? FindRapidData(run, args.positional[speed_at + 2].name, "WELDDATA") : nullptr;
+  const RapidData* sd = FindRapidData(run, speed.name, "SPEEDDATA");
+  const RapidValue* value = sd != nullptr ? &sd->value : (speed.kind == RapidExpr::Kind::kValue ? &speed.value : nullptr);
+  if (welded) {
     if (wd != nullptr && wd->value.kind == RapidValue::Kind::kList && !wd->value.items.empty() &&
         wd->value.items[0].kind == RapidValue::Kind::kNumber) {
       v = wd->value.items[0].number;
@@ -467,21 +468,17 @@ double RapidSpeed(RapidRun& run, const RapidArgs& args, std::size_t speed_at, bo
     } else {
       run.warnings.Add("welddata not declared in the module: the scenario's weld speed used", line);
     }
-    return v;
-  }
-  const RapidData* sd = FindRapidData(run, speed.name, "SPEEDDATA");
-  const RapidValue* value = sd != nullptr ? &sd->value : (speed.kind == RapidExpr::Kind::kValue ? &speed.value : nullptr);
-  if (value != nullptr) {
+  } else if (value != nullptr) {
     v = RapidNumbers(*value, 4, run.file, sd != nullptr ? sd->line : line, "speeddata")[0];
     WAAM_THROW_UNLESS(v > 0.0, run.file << ":" << (sd != nullptr ? sd->line : line) << ": speeddata v_tcp must be > 0");
   } else if (speed.kind == RapidExpr::Kind::kName && speed.name.size() > 1 && speed.name[0] == 'V' &&
-             speed.name.find_first_not_of("0123456789", 1) == std::string::npos) {
+             speed.name.find_first_not_of("0123456789.", 1) == std::string::npos) {
     v = internal::ParseProgramNumber(speed.name.substr(1), run.file, line, "speed");
   } else if (speed.name != "VMAX") {
     run.warnings.Add("speeddata not declared in the module: the scenario's speed used", line);
   }
   const auto vv = args.options.find("V");
-  if (vv != args.options.end() && vv->second) v = RapidNumber(run, *vv->second).value_or(v);
+  if (!welded && vv != args.options.end() && vv->second) v = RapidNumber(run, *vv->second).value_or(v);
   if (args.options.count("T")) run.warnings.Add("\\T move time not followed: the move's speed used", line);
   if (v > 0.0) v *= run.velset_override;
   if (v > 0.0 && run.velset_max > 0.0) v = std::min(v, run.velset_max);
@@ -589,7 +586,10 @@ void ExecRapidStatement(RapidRun& run, const RapidStatement& st, int depth) {
   }
   const std::string first = ts.ExpectWord("an instruction");
   if (IsRapidBlockWord(first)) {
-    run.warnings.Add("RAPID " + first + " not followed (its statements run in order)", st.line);
+    // IF / FOR / WHILE / TEST are not evaluated; their END lines close nothing the reader opened.
+    if (first.compare(0, 3, "END") != 0) {
+      run.warnings.Add("RAPID " + first + " not followed (its statements run in order)", st.line);
+    }
     return;
   }
   if (ts.Is(":") && ts.Is("=", 1)) {

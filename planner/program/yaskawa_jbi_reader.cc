@@ -323,8 +323,8 @@ void SetJbiStation(const JbiRun& run, const JbiPosition& station, ProgramMotion*
   m->rotation_rad = station.values[1] / rp / kDeg;
 }
 
-// A move's tag: a position variable, a speed (V=, VJ=, VR=...) or a condition. Returns false for a word that is
-// neither; `robot` / `station` receive the positions named.
+// A move's tags: position variables, speeds (V=, VJ=, VR=...), blending and conditions; `robot` / `station`
+// receive the positions named.
 void ReadJbiMoveTags(JbiRun& run, TokenCursor& ts, const std::string& word, const JbiPosition** robot,
                      const JbiPosition** station) {
   while (!ts.AtEnd()) {
@@ -357,8 +357,9 @@ void ReadJbiMoveTags(JbiRun& run, TokenCursor& ts, const std::string& word, cons
     } else if (tag.front() == 'L' && tag.size() > 1 && std::isalpha(static_cast<unsigned char>(tag[1]))) {
       ts.Fail(word + " to a local position variable " + tag + ", which the job does not define");
     } else {
+      // UNTIL IN#(n)=ON, ENWAIT, a condition: not executed, with the rest of the line.
       run.warnings.Add(word + " option " + tag.substr(0, 16) + " not executed", ts.line());
-      if (ts.Accept("=")) ts.Next();
+      break;
     }
   }
 }
