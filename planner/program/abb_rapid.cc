@@ -31,9 +31,10 @@ std::string ProgramToAbbRapid(const RobotProgram& program, const AbbRapidOptions
   std::string data, proc;
   // ABB's flange frame has z along the flange normal, x down at the zero pose; the twin's has x along the normal:
   // x_abb = -z_F, y_abb = y_F, z_abb = x_F.
-  Eigen::Isometry3d X_FabbF = Eigen::Isometry3d::Identity();
-  X_FabbF.linear() << 0, 0, 1, 0, 1, 0, -1, 0, 0;
-  data += "  PERS tooldata tWAAM:=[TRUE," + RapidPose(X_FabbF * options.X_FT) +
+  // X_F_Fabb has ABB's axes as columns in F; the tool's tframe is in Fabb: X_Fabb_T = X_F_Fabb^-1 X_FT.
+  Eigen::Isometry3d X_F_Fabb = Eigen::Isometry3d::Identity();
+  X_F_Fabb.linear() << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  data += "  PERS tooldata tWAAM:=[TRUE," + RapidPose(X_F_Fabb.inverse() * options.X_FT) +
           ",[5,[0,0,100],[1,0,0,0],0,0,0]];\n";
   data += "  TASK PERS wobjdata wobjWAAM:=[FALSE,TRUE,\"\"," + RapidPose(options.X_RU) +
           ",[[0,0,0],[1,0,0,0]]];\n";

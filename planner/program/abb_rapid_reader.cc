@@ -425,7 +425,15 @@ Eigen::Isometry3d RapidWorkObject(RapidRun& run, const RapidArgs& args, int line
          RapidPose(v.items[4].items[0], v.items[4].items[1], run.file, d->line);
 }
 
-// The tool argument: a tooldata the module declares (its tframe in the flange frame), tool0 (the flange), or one
+// ABB's flange frame Fabb in the twin's flange frame F (X_F_Fabb): ABB's z along the flange normal, x down at the zero
+// pose; the twin's x along the normal (x_abb = -z_F, y_abb = y_F, z_abb = x_F).
+Eigen::Isometry3d AbbFlangeInTwinFlange() {
+  Eigen::Isometry3d X_F_Fabb = Eigen::Isometry3d::Identity();
+  X_F_Fabb.linear() << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  return X_F_Fabb;
+}
+
+// The tool argument: a tooldata the module declares (its tframe in ABB's flange frame), tool0 (the flange), or one
 // kept on the controller (the cell's torch, warned).
 void SetRapidTool(RapidRun& run, const RapidExpr& tool, int line, ProgramMotion* m) {
   if (tool.kind != RapidExpr::Kind::kName) {
@@ -435,7 +443,7 @@ void SetRapidTool(RapidRun& run, const RapidExpr& tool, int line, ProgramMotion*
   m->tool_name = tool.text;
   if (tool.name == "TOOL0") {
     m->has_tool = true;
-    m->X_FT = Eigen::Isometry3d::Identity();
+    m->X_FT = AbbFlangeInTwinFlange();
     return;
   }
   const RapidData* d = FindRapidData(run, tool.name, "TOOLDATA");
@@ -448,7 +456,7 @@ void SetRapidTool(RapidRun& run, const RapidExpr& tool, int line, ProgramMotion*
     return;
   }
   m->has_tool = true;
-  m->X_FT = RapidPose(d->value.items[1].items[0], d->value.items[1].items[1], run.file, d->line);
+  m->X_FT = AbbFlangeInTwinFlange() * RapidPose(d->value.items[1].items[0], d->value.items[1].items[1], run.file, d->line);
 }
 
 // The TCP speed of a move (mm/s; 0: the scenario's): welded Arc moves at their welddata's weld_speed, others at their

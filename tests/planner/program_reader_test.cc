@@ -130,7 +130,8 @@ TEST(ProgramReaderTest, RapidWallWeldsTheSamePathAsTheFanucWall) {
   // The program's tool: tWeldGun, 400 mm out of the flange.
   ASSERT_TRUE(mod.motions[0].has_tool);
   EXPECT_EQ(mod.motions[0].tool_name, "tWeldGun");
-  EXPECT_LT((mod.motions[0].X_FT.translation() - Eigen::Vector3d(0, 0, 400)).norm(), 1e-12);
+  EXPECT_LT((mod.motions[0].X_FT.translation() - Eigen::Vector3d(400, 0, 0)).norm(), 1e-9) << "400 mm along the "
+                                                                                          "flange normal";
   const CellKinematics cell = ReaderTestCell();
   const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
   const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(mod, cell, ImportSettings{}));
