@@ -124,7 +124,7 @@ TEST(RapidGrammarTest, WhatTheControllerRefusesIsRefusedOnOneLine) {
               HasSubstr("bad.mod:33: ARCLEND needs 6 arguments, got 4"));
   EXPECT_THAT(read(replace("  PROC Layer()", "  PROC Layer()\n    Layer;")),
               HasSubstr("procedure calls nested deeper than 16 (LAYER calls itself?)"));
-  EXPECT_THAT(read(replace("MoveJ Offs(pA,0,0,nLift)", "MoveJ Offs(pA,0,0,nLift")), HasSubstr("bad.mod:22: OFFS( without its ')'"));
+  EXPECT_THAT(read(replace("MoveJ Offs(pA,0,0,nLift)", "MoveJ Offs(pA,0,0,nLift")), HasSubstr("bad.mod:20: OFFS( without its ')'"));
 }
 
 // A bar in user frame 3 with tool 2, as a Yaskawa controller saves it: arc start and crater times, a dwell, a circle.
