@@ -238,6 +238,11 @@ std::vector<BadInput> Catalogue() {
        {"prog.nc:2: G2 needs its centre (I J) or a radius R in the plane of G17"}},
       {"program-gcode-arc-off-its-circle", "import", "prog.nc", {{"prog.nc", "G0 X0 Y0 Z2\nG3 X10 Y1 I5 J0 F400\n"}},
        {"prog.nc:2: G3: the end point is 0.0990195 mm off the circle about the centre (radius 5)"}},
+      {"program-gcode-bad-arc-signal", "plan", "s.yaml",
+       {{"s.yaml", "name: s\nprogram:\n  file: prog.nc\n  gcode: {arc_on: [X3]}\n"
+                   "process: {travel_speed_mm_min: 400, wire_feed_mm_min: 3200}\n"},
+        {"prog.nc", "G0 X0 Y0 Z2\nM3\nG1 X10 F400\nM5\n"}},
+       {"s.yaml:4: program.gcode.arc_on 'X3': an arc signal is a G or M code and parameter words, as M3, G82 or M62 P1"}},
       {"program-rapid-wobj-not-declared", "import", "prog.mod",
        {{"prog.mod", "MODULE T\n  CONST robtarget p1:=[[1000,0,180],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,"
                      "9E+09]];\n  PROC main()\n    MoveL p1,v100,fine,tool0\\WObj:=wobjTable;\n  ENDPROC\nENDMODULE\n"}},

@@ -129,6 +129,13 @@ TEST(ProgramCliTest, ProgramSectionIsCheckedWhereItIsWritten) {
   EXPECT_EQ(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {feed_unit: mm_per_s}\n  frames: {uframe: {2: [0, 0, "
                   "0, 0, 0, 90]}, utool: {1: torch, 3: [0, 0, 400, 0, 0, 0]}}\n" + process),
             "no error");
+  EXPECT_EQ(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {arc_on: [M62 P1, G82], arc_off: [M63 P1], "
+                  "dwell_p_unit: s}\n" + process),
+            "no error");
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {dwell_p_unit: minutes}\n" + process),
+              HasSubstr("program.gcode.dwell_p_unit = 'minutes'"));
+  EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {arc_off: []}\n" + process),
+              HasSubstr("program.gcode.arc_off: must list at least one signal"));
   EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  gcode: {feed_unit: mm_per_hour}\n" + process),
               HasSubstr("program.gcode.feed_unit = 'mm_per_hour'"));
   EXPECT_THAT(error("name: s\nprogram:\n  file: wall.nc\n  frames: {uframe: {six: [0, 0, 0, 0, 0, 0]}}\n" + process),
@@ -178,6 +185,29 @@ TEST(ProgramCliTest, TargetGivesAProgramItsDeviationMeasures) {
   const nlohmann::json without = ReadJson(dir / "without" / "simulate.json");
   EXPECT_GT(with.at("deviation").at("samples").get<int>(), 0);
   EXPECT_EQ(without.at("deviation").at("samples").get<int>(), 0);
+}
+
+TEST(ProgramCliTest, BarOnPlateGcodeTimelineHasItsArcTimesAndDwells) {
+  // A bar-on-plate build's G-code with mm/s feeds and interlayer dwells (tests/data/programs/bar_on_plate.gcode),
+  // planned through a scenario: each layer's arc time is its 120 mm over F8 (mm/s), the waits are the four 60 s dwells.
+  const fs::path dir = TempDir("program_bar_on_plate");
+  fs::copy_file(ProgramFixture("bar_on_plate.gcode"), dir / "bar_on_plate.gcode");
+  WriteFileAtomic(dir / "s.yaml",
+                  "name: bar\nprogram:\n  file: bar_on_plate.gcode\n  layer_tolerance_mm: 0.5\n"
+                  "  gcode: {arc_on: [M3], arc_off: [M5], feed_unit: mm_per_s, dwell_p_unit: ms}\n"
+                  "process: {travel_speed_mm_min: 480, wire_feed_mm_min: 3200, arc_start_s: 0, arc_end_s: 0}\n");
+  std::string err;
+  ASSERT_EQ(RunWaam("plan " + (dir / "s.yaml").string() + " -o " + (dir / "plan").string() + " -q --no-images", &err),
+            0)
+      << err;
+  const nlohmann::json timeline = ReadJson(dir / "plan" / "plan.json")["timeline"];
+  ASSERT_EQ(timeline["layers"].size(), 5u);
+  for (const nlohmann::json& layer : timeline["layers"]) {
+    EXPECT_NEAR(layer["arc_on_s"].get<double>(), 120.0 / 8.0, 1e-6) << layer.dump();
+    EXPECT_NEAR(layer["end_s"].get<double>() - layer["start_s"].get<double>(), 15.0, 1e-6) << layer.dump();
+  }
+  EXPECT_NEAR(timeline["wait_s"].get<double>(), 4 * 60.0, 1e-6);
+  EXPECT_NEAR(timeline["arc_on_s"].get<double>(), 5 * 15.0, 1e-6);
 }
 
 TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {
