@@ -79,6 +79,8 @@ void BM_ThermalBuildHour(benchmark::State& state) {
 }
 BENCHMARK(BM_ThermalBuildHour)
     ->Args({10, 1})
+    ->Args({10, 2})
+    ->Args({40, 1})
     ->Args({255, 1})
     ->Args({255, 2})
     ->UseManualTime()
