@@ -157,6 +157,25 @@ std::vector<SampleContacts> SweptContacts(const CellModel& cell, const CellColli
   return contacts;
 }
 
+// The cell bodies' contacts in the mode `settings` asks for: continuous where every geom has a distance bound, else
+// discrete with the reason in report->mode_fallback. Sets the report's mode and collision figures.
+std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const std::vector<planner::CellSample>& motion,
+                                           const twin::CellSettings& settings, CheckReport* report) {
+  report->mode = settings.check_mode;
+  if (report->mode == CheckMode::kContinuous) {
+    const CellCollisionGeometry geometry = cell.CollisionGeometry();
+    if (geometry.unsupported.empty()) {
+      return SweptContacts(cell, geometry, motion, settings.collision_tolerance_mm, report);
+    }
+    report->mode = CheckMode::kDiscrete;
+    report->mode_fallback = geometry.unsupported;
+  }
+  std::vector<SampleContacts> contacts = CellContacts(cell, motion, settings.collision_tolerance_mm,
+                                                      &report->min_clearance_mm, &report->distance_queries);
+  report->certified_clearance_mm = report->min_clearance_mm;
+  return contacts;
+}
+
 // Continuous mode: where the joint-space line from sample i - 1 to sample i passes j5 = 0 (or 180) deg while both
 // samples keep the singularity margin, the time it comes within `singularity_deg` of it (-1 when it does not), s.
 double SingularityCrossing(const planner::CellSample& a, const planner::CellSample& b, double singularity_deg) {
@@ -271,22 +290,8 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
   report.min_arm_margin_deg = std::numeric_limits<double>::infinity();
   report.min_j5_deg = std::numeric_limits<double>::infinity();
   int min_margin_sample = 0;
-  // Continuous mode where every geom has a distance bound; else discrete, with the reason.
-  report.mode = settings.check_mode;
-  CellCollisionGeometry geometry;
-  if (report.mode == CheckMode::kContinuous) {
-    geometry = cell.CollisionGeometry();
-    if (!geometry.unsupported.empty()) {
-      report.mode = CheckMode::kDiscrete;
-      report.mode_fallback = geometry.unsupported;
-    }
-  }
+  const std::vector<SampleContacts> cell_contacts = ContactsInMode(cell, motion, settings, &report);
   const bool continuous = report.mode == CheckMode::kContinuous;
-  const std::vector<SampleContacts> cell_contacts =
-      continuous ? SweptContacts(cell, geometry, motion, settings.collision_tolerance_mm, &report)
-                 : CellContacts(cell, motion, settings.collision_tolerance_mm, &report.min_clearance_mm,
-                                &report.distance_queries);
-  if (!continuous) report.certified_clearance_mm = report.min_clearance_mm;
   std::size_t next_contact = 0;  // first entry of cell_contacts at or after the current sample
   Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
   bool have_velocity = false;
