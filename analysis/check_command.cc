@@ -39,6 +39,10 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
     } else if (!v.joint.empty()) {
       j["joint"] = v.joint;
     }
+    if (v.t_s >= 0.0) {
+      j["t_s"] = v.t_s;
+      j["between_samples"] = v.between_samples;
+    }
     violations.push_back(j);
   }
   // Positioner angles and torch tilt where each layer's welding starts.
@@ -81,7 +85,23 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
     resolve["layer_spin_deg"] = report.resolve.layer_spin_deg;
   }
   const int worst_point = report.motion.empty() ? 0 : report.motion[report.worst_sample].point;
+  // What the mode covered: the sweep's figures in continuous mode, why it fell back otherwise.
+  nlohmann::json sweep = nullptr;
+  if (report.mode == twin::CheckMode::kContinuous) {
+    sweep = {{"certified_clearance_mm", Finite(report.certified_clearance_mm)},
+             {"min_distance_mm", Finite(report.sweep_min_distance_mm)},
+             {"closest_bodies", {report.closest_body1, report.closest_body2}},
+             {"closest_t_s", Finite(report.closest_t_s)},
+             {"first_contact_s", report.first_contact_s >= 0.0 ? nlohmann::json(report.first_contact_s) : nullptr},
+             {"gjk_queries", report.gjk_queries},
+             {"poses", report.poses},
+             {"refinements", report.refinements}};
+  }
   return {
+      {"mode", report.mode},
+      {"mode_fallback", report.mode_fallback},
+      {"distance_queries", report.distance_queries},
+      {"continuous", sweep},
       {"scenario", scenario.name},
       {"ok", report.ok},
       {"ik", report.ik},

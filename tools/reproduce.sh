@@ -497,18 +497,27 @@ PY
 check_bench() {
   local bench=build/analysis/benchmarks/waam_check_bench
   [ -x "$bench" ] || { echo "reproduce.sh: $bench is missing" >&2; exit 2; }
-  "$bench" --benchmark_format=json --benchmark_out="$out/check_bench.json" >/dev/null
+  # One core: the check's parallel loops get one thread.
+  local one=()
+  command -v taskset >/dev/null && one=(taskset -c 0)
+  "${one[@]}" "$bench" --benchmark_format=json --benchmark_out="$out/check_bench.json" >/dev/null
   python3 - "$out/check_bench.json" <<'PY' | put check_bench
 import json, sys
 what = {"BM_CheckBuildHour": "every check (motion, limits, speeds, MuJoCo collisions, torch against the deposit)",
         "BM_MotionBuildHour": "the kinematics alone (positioner angles, closed-form IK, time stamps)",
-        "BM_CheckBuildHourUrdfArm": "every check, on the URDF arm of scenarios/cell/robots/waam_kr16_support"}
-print("| benchmark | what | samples | CPU time per run | samples/s |")
-print("| --- | --- | --- | --- | --- |")
+        "BM_CheckBuildHourUrdfArm/0": "every check, on the URDF arm of scenarios/cell/robots/waam_kr16_support, "
+                                      "discrete (MuJoCo at the samples)",
+        "BM_CheckBuildHourUrdfArm/1": "the same, continuous (certified between the samples)"}
+print("| benchmark | what | samples | distance queries | clearance (mm) | CPU time per run | samples/s |")
+print("| --- | --- | --- | --- | --- | --- | --- |")
 for r in json.load(open(sys.argv[1]))["benchmarks"]:
-    name = r["name"].split("/")[0]
-    print("| `%s` | %s | %s | %.0f %s | %s |" % (name, what.get(name, ""), format(r["samples"], ",.0f"),
-                                              r["cpu_time"], r["time_unit"], format(r["samples_per_s"], ",.0f")))
+    parts = r["name"].split("/")
+    name = "/".join(parts[:2]) if len(parts) > 1 and parts[1].isdigit() else parts[0]
+    queries = format(r["queries"], ",.0f") if "queries" in r else ""
+    clearance = "%.1f" % r["clearance_mm"] if "clearance_mm" in r else ""
+    print("| `%s` | %s | %s | %s | %s | %.0f %s | %s |" % (name, what.get(name, ""), format(r["samples"], ",.0f"),
+                                                        queries, clearance, r["cpu_time"], r["time_unit"],
+                                                        format(r["samples_per_s"], ",.0f")))
 PY
 }
 

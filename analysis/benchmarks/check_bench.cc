@@ -38,29 +38,40 @@ BENCHMARK(BM_CheckBuildHour)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 // The same build hour on an arm read from URDF with mesh collision geometry: the KUKA KR 16-2 class arm of
 // scenarios/cell/robots/waam_kr16_support (binary STL meshes on three links, primitives on the others).
+// Argument 0: discrete mode (MuJoCo at the samples), 1: continuous (conservative advancement between samples).
 void BM_CheckBuildHourUrdfArm(benchmark::State& state) {
   const planner::Plan plan = BuildHour();
   twin::CellSettings settings;
+  settings.check_mode = state.range(0) == 1 ? twin::CheckMode::kContinuous : twin::CheckMode::kDiscrete;
   const std::filesystem::path robots = std::filesystem::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "robots";
   settings.robot_urdf = robots / "waam_kr16_support" / "urdf" / "kr16_2.urdf";
   settings.robot_package_paths = {robots};
   settings.positioner_base_mm = {1150.0, 0.0, 0.0};
   const twin::CellModel cell = twin::LoadCell(settings);
-  std::size_t samples = 0;
+  std::size_t samples = 0, queries = 0;
   bool ok = true;
+  double clearance = 0.0;
   for (auto _ : state) {
     const twin::CheckReport report = twin::CheckPlan(cell, plan, settings, 100.0, nullptr);
     samples = report.samples;
     ok = report.ok;
+    queries = report.distance_queries;
+    clearance = report.certified_clearance_mm;
+    state.counters["poses"] = static_cast<double>(report.poses);
+    state.counters["gjk"] = static_cast<double>(report.gjk_queries);
+    state.counters["refine"] = static_cast<double>(report.refinements);
+    state.counters["min_mm"] = report.sweep_min_distance_mm;
     benchmark::DoNotOptimize(report.violations.data());
   }
   state.counters["samples"] = static_cast<double>(samples);
   state.counters["ok"] = ok ? 1.0 : 0.0;
   state.counters["closed_form"] = cell.closed_form() ? 1.0 : 0.0;
+  state.counters["queries"] = static_cast<double>(queries);
+  state.counters["clearance_mm"] = clearance;
   state.counters["samples_per_s"] =
       benchmark::Counter(static_cast<double>(samples) * state.iterations(), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_CheckBuildHourUrdfArm)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_CheckBuildHourUrdfArm)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 // The kinematics alone: positioner angles and closed-form IK with branch continuity for every sample.
 void BM_MotionBuildHour(benchmark::State& state) {

@@ -14,6 +14,7 @@
 #include "models/core/progress.h"
 #include "twin/cell/cell_compose.h"
 #include "twin/cell/cell_presets.h"
+#include "twin/cell/cell_sweep.h"
 #include "twin/cell/deposit_map.h"
 #include "twin/cell/mujoco_cell.h"
 
@@ -31,12 +32,16 @@ Eigen::Isometry3d PlacementPose(const std::array<double, 3>& p_mm, double yaw_de
 class ViolationLog {
  public:
   // `worse_if_larger`: whether a larger value is a worse violation.
+  // `t_s`: when the contact or crossing begins (continuous mode; -1 unknown); `between`: strictly between samples.
   void Add(const std::string& kind, const std::string& subject1, const std::string& subject2,
-           const planner::CellSample& s, int sample, double value, const std::string& unit, bool worse_if_larger) {
+           const planner::CellSample& s, int sample, double value, const std::string& unit, bool worse_if_larger,
+           double t_s = -1.0, bool between = false) {
     const auto key = std::make_tuple(kind, subject1, subject2);
     auto it = open_.find(key);
     if (it != open_.end() && violations_[it->second].layer == s.layer) {
       CheckViolation& v = violations_[it->second];
+      if (t_s >= 0.0 && (v.t_s < 0.0 || t_s < v.t_s)) v.t_s = t_s;
+      v.between_samples = v.between_samples || between;
       v.last_point = s.point;
       ++v.samples;
       if (worse_if_larger ? value > v.value : value < v.value) {
@@ -61,6 +66,8 @@ class ViolationLog {
     v.value = value;
     v.unit = unit;
     v.sample = sample;
+    v.t_s = t_s;
+    v.between_samples = between;
     open_[key] = violations_.size();
     violations_.push_back(v);
   }
@@ -76,6 +83,8 @@ class ViolationLog {
 struct SampleContacts {
   std::size_t sample = 0;
   CellContact contact;
+  double t_s = -1.0;     // continuous mode: time of first contact, s
+  bool between = false;  // continuous mode: first contact strictly between samples
 };
 
 // Samples per chunk of the parallel collision pass: a fixed number, so the chunks do not depend on the threads.
@@ -89,11 +98,13 @@ constexpr std::size_t kCollisionChunk = 1024;
 // is skipped while no geom has moved by half the clearance found at the last one (conservative advancement: no
 // contact can have appeared); each chunk starts with a detection, so the contacts are those a detection at every
 // sample would find, whatever the chunks and the threads.
+// `*detections` counts the collision detections run.
 std::vector<SampleContacts> CellContacts(const CellModel& cell, const std::vector<planner::CellSample>& motion,
-                                         double tolerance_mm, double* min_clearance_mm) {
+                                         double tolerance_mm, double* min_clearance_mm, std::size_t* detections) {
   const std::size_t chunks = (motion.size() + kCollisionChunk - 1) / kCollisionChunk;
   std::vector<std::vector<SampleContacts>> found(chunks);
   std::vector<double> chunk_clearance(chunks, CellModel::kClearanceMarginMm);
+  std::vector<std::size_t> chunk_detections(chunks, 0);
   ParallelFor(chunks, [&](std::size_t c) {
     CellState state(cell);
     std::vector<CellContact> contacts;
@@ -105,17 +116,77 @@ std::vector<SampleContacts> CellContacts(const CellModel& cell, const std::vecto
       if (clearance > 0.0 && 2.0 * state.MotionSinceCollide() < clearance) continue;
       contacts.clear();
       state.Collide(tolerance_mm, &contacts, &clearance);
+      ++chunk_detections[c];
       chunk_clearance[c] = std::min(chunk_clearance[c], clearance);
-      for (CellContact& contact : contacts) found[c].push_back({i, std::move(contact)});
+      for (CellContact& contact : contacts) found[c].push_back({i, std::move(contact), -1.0, false});
     }
   });
   *min_clearance_mm = CellModel::kClearanceMarginMm;
   for (double c : chunk_clearance) *min_clearance_mm = std::min(*min_clearance_mm, c);
+  *detections = 0;
+  for (std::size_t n : chunk_detections) *detections += n;
   std::vector<SampleContacts> all;
   for (std::vector<SampleContacts>& chunk : found) {
     all.insert(all.end(), std::make_move_iterator(chunk.begin()), std::make_move_iterator(chunk.end()));
   }
   return all;
+}
+
+// The continuous mode's contacts (twin/cell/cell_sweep.h), with its figures written into `report`.
+std::vector<SampleContacts> SweptContacts(const CellModel& cell, const CellCollisionGeometry& geometry,
+                                          const std::vector<planner::CellSample>& motion, double tolerance_mm,
+                                          CheckReport* report) {
+  SweepOptions options;
+  options.tolerance_mm = tolerance_mm;
+  SweepResult sweep = SweepMotion(cell, geometry, motion, options);
+  report->certified_clearance_mm = sweep.certified_clearance_mm;
+  report->min_clearance_mm = std::min(sweep.certified_clearance_mm, CellModel::kClearanceMarginMm);
+  report->sweep_min_distance_mm = sweep.min_distance_mm;
+  report->closest_body1 = sweep.closest_body1;
+  report->closest_body2 = sweep.closest_body2;
+  report->closest_t_s = sweep.closest_t_s;
+  report->first_contact_s = sweep.first_contact_s;
+  report->distance_queries = sweep.distance_queries;
+  report->gjk_queries = sweep.gjk_queries;
+  report->poses = sweep.poses;
+  report->refinements = sweep.refinements;
+  std::vector<SampleContacts> contacts;
+  for (SweepContact& c : sweep.contacts) {
+    contacts.push_back({c.sample, std::move(c.contact), c.t_s, c.between_samples});
+  }
+  return contacts;
+}
+
+// The cell bodies' contacts in the mode `settings` asks for: continuous where every geom has a distance bound, else
+// discrete with the reason in report->mode_fallback. Sets the report's mode and collision figures.
+std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const std::vector<planner::CellSample>& motion,
+                                           const twin::CellSettings& settings, CheckReport* report) {
+  report->mode = settings.check_mode;
+  if (report->mode == CheckMode::kContinuous) {
+    const CellCollisionGeometry geometry = cell.CollisionGeometry();
+    if (geometry.unsupported.empty()) {
+      return SweptContacts(cell, geometry, motion, settings.collision_tolerance_mm, report);
+    }
+    report->mode = CheckMode::kDiscrete;
+    report->mode_fallback = geometry.unsupported;
+  }
+  std::vector<SampleContacts> contacts = CellContacts(cell, motion, settings.collision_tolerance_mm,
+                                                      &report->min_clearance_mm, &report->distance_queries);
+  report->certified_clearance_mm = report->min_clearance_mm;
+  return contacts;
+}
+
+// Continuous mode: where the joint-space line from sample i - 1 to sample i passes j5 = 0 (or 180) deg while both
+// samples keep the singularity margin, the time it comes within `singularity_deg` of it (-1 when it does not), s.
+double SingularityCrossing(const planner::CellSample& a, const planner::CellSample& b, double singularity_deg) {
+  const double margin = singularity_deg / kDeg;
+  const double lo = std::min(a.q[4], b.q[4]), hi = std::max(a.q[4], b.q[4]);
+  const double k = std::ceil(lo / kPi);
+  if (k * kPi > hi) return -1.0;
+  // Moving up: the line enters at k pi - margin; moving down, at k pi + margin.
+  const double enter = a.q[4] <= b.q[4] ? k * kPi - margin : k * kPi + margin;
+  const double f = std::clamp((enter - a.q[4]) / (b.q[4] - a.q[4]), 0.0, 1.0);
+  return a.t_s + f * (b.t_s - a.t_s);
 }
 
 int KindRank(const std::string& kind) {
@@ -219,7 +290,8 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
   report.min_arm_margin_deg = std::numeric_limits<double>::infinity();
   report.min_j5_deg = std::numeric_limits<double>::infinity();
   int min_margin_sample = 0;
-  const std::vector<SampleContacts> cell_contacts = CellContacts(cell, motion, settings.collision_tolerance_mm, &report.min_clearance_mm);
+  const std::vector<SampleContacts> cell_contacts = ContactsInMode(cell, motion, settings, &report);
+  const bool continuous = report.mode == CheckMode::kContinuous;
   std::size_t next_contact = 0;  // first entry of cell_contacts at or after the current sample
   Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
   bool have_velocity = false;
@@ -259,6 +331,14 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
     const double j5_deg = std::asin(std::min(1.0, std::abs(std::sin(s.q[4])))) * kDeg;
     report.min_j5_deg = std::min(report.min_j5_deg, j5_deg);
     if (j5_deg < settings.singularity_deg) log.Add("singularity", "j5", "", s, si, j5_deg, "j5_deg", false);
+    if (continuous && i > 0 && motion[i - 1].reachable && j5_deg >= settings.singularity_deg) {
+      // Between the samples: the joint-space line may pass j5 = 0 while both ends keep the margin.
+      const double t = SingularityCrossing(motion[i - 1], s, settings.singularity_deg);
+      if (t >= 0.0) {
+        report.min_j5_deg = 0.0;
+        log.Add("singularity", "j5", "", s, si, 0.0, "j5_deg", false, t, true);
+      }
+    }
 
     // Joint speeds and accelerations while welding, at the planned travel speed.
     if (s.weld && i > 0 && s.dt_s > 0.0 && motion[i - 1].reachable) {
@@ -288,7 +368,7 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
       const CellContact& c = cell_contacts[next_contact].contact;
       const bool ordered = c.body1 < c.body2;
       log.Add("collision", ordered ? c.body1 : c.body2, ordered ? c.body2 : c.body1, s, si, c.penetration_mm,
-              "penetration_mm", true);
+              "penetration_mm", true, cell_contacts[next_contact].t_s, cell_contacts[next_contact].between);
     }
 
     // Torch against the layers deposited before this sample.

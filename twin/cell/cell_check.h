@@ -35,6 +35,11 @@ struct CheckViolation {
   double value = 0.0;      // worst value: see `unit`
   std::string unit;        // reach_excess_mm | margin_deg | speed_ratio | j5_deg | penetration_mm
   int sample = 0;          // index into CheckReport::motion where it is worst
+  // Continuous mode: the earliest time this entry's contact (collision) or crossing (singularity) begins, -1 when
+  // not known (discrete mode), s; and whether one of its samples' contacts or crossings lies strictly between two
+  // samples (a discrete check at the samples does not see it there).
+  double t_s = -1.0;
+  bool between_samples = false;
 };
 
 // The figures of a check the redundancy resolution compares.
@@ -73,7 +78,8 @@ struct CheckReport {
   std::string max_speed_joint;
   double min_j5_deg = 0.0;             // closest approach to the wrist singularity, deg
   // Smallest distance between two cell bodies that may collide (negative: penetrating), capped at
-  // CellModel::kClearanceMarginMm; the torch against the deposited part is not included, mm.
+  // CellModel::kClearanceMarginMm; the torch against the deposited part is not included, mm. Discrete mode: over
+  // the samples; continuous mode: the certified clearance over the whole motion.
   double min_clearance_mm = 0.0;
   Eigen::Matrix<double, 8, 1> max_accel_deg_s2 = Eigen::Matrix<double, 8, 1>::Zero();  // per axis, weld moves
   double duration_s = 0.0;             // motion time of the whole path, s
@@ -82,6 +88,17 @@ struct CheckReport {
   int worst_sample = 0;                // index into `motion` of the worst sample (for the picture)
   std::vector<planner::CellSample> motion;  // the eight-axis trajectory
   ResolveSummary resolve;                    // optimise: what was chosen, margins before and after
+  CheckMode mode = CheckMode::kDiscrete;     // the mode that ran
+  std::string mode_fallback;                 // why continuous was asked for but discrete ran (empty otherwise)
+  // Distance queries: discrete, MuJoCo's collision detections; continuous, pair distance bounds (spheres or GJK).
+  std::size_t distance_queries = 0;
+  // Continuous mode: the sweep's figures (certified clearance over the whole motion, uncapped; first contact).
+  double certified_clearance_mm = 0.0;
+  double sweep_min_distance_mm = 0.0;        // the smallest distance found between two points of a pair, mm
+  std::string closest_body1, closest_body2;  // that pair
+  double closest_t_s = 0.0;                  // and when, s
+  double first_contact_s = -1.0;             // the first contact found, -1 when none, s
+  std::size_t gjk_queries = 0, poses = 0, refinements = 0;
 };
 
 // The figures of `report` the resolution and `waam place` compare.

@@ -29,6 +29,13 @@ constexpr std::array<EnumName<CellResolve>, 2> EnumNames(CellResolve) {
 }
 WAAM_ENUM_JSON(CellResolve)
 
+// cell.checks.mode: how the check covers the motion between its samples.
+enum class CheckMode { kDiscrete, kContinuous };
+constexpr std::array<EnumName<CheckMode>, 2> EnumNames(CheckMode) {
+  return {{{CheckMode::kDiscrete, "discrete"}, {CheckMode::kContinuous, "continuous"}}};
+}
+WAAM_ENUM_JSON(CheckMode)
+
 // cell.preset: a complete cell (arm, torch, positioner, plate, clamps, placement); see twin/cell/cell_presets.h.
 enum class CellPreset { kFanucArcMate100ic, kAbbIrb1600, kKukaKr16, kYaskawaMh12, kKukaKr16Turntable, kAbbIrb1600Table };
 constexpr std::array<EnumName<CellPreset>, 6> EnumNames(CellPreset) {
@@ -93,6 +100,9 @@ struct CellSettings {
   double step_mm = 1.0;                  // path segments are checked at this spacing, mm
   double collision_tolerance_mm = 0.0;   // contacts penetrating less than this are ignored, mm
   bool part_collision = true;            // check the torch against the layers deposited so far
+  // cell.checks.mode: discrete = MuJoCo's collision detection at every sample; continuous = conservative advancement
+  // over the joint-space lines between samples as well (twin/cell/cell_sweep.h), with a certified clearance.
+  CheckMode check_mode = CheckMode::kDiscrete;
   std::string where;                     // "file:line: cell" for messages about the section
 };
 
@@ -151,6 +161,7 @@ inline constexpr std::array kCellChecksFields = {
     NumField<&CellSettings::collision_tolerance_mm>("collision_tolerance_mm", "mm", 0.0, 50.0,
                                                "contacts penetrating less are ignored"),
     OptField<&CellSettings::part_collision>("part_collision", "check the torch against the layers deposited so far"),
+    OptField<&CellSettings::check_mode>("mode", "discrete: collisions at the samples; continuous: between them too"),
 };
 
 // Throws InputError "cell.<sub>.<key> = value: must be in [min, max]" for a number of `cell` outside the range its

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "planner/kinematics/cell_motion.h"
+#include "twin/cell/convex_distance.h"
 
 namespace waam::twin {
 
@@ -42,6 +43,23 @@ struct CellBody {
   // For each geom (same index): a mesh geom's vertices in the geom frame (mm) and its triangles; empty otherwise.
   std::vector<std::vector<Eigen::Vector3f>> mesh_vertices_mm;
   std::vector<std::vector<Eigen::Vector3i>> mesh_triangles;
+};
+
+// The cell's collision geometry for distance queries (twin/cell/cell_sweep.h): MuJoCo's geoms as convex shapes (a
+// mesh as its convex hull, as MuJoCo collides it), the pairs its collision detection tests, and how far from each
+// of the eight axes any point of each shape can lie.
+struct CellCollisionGeometry {
+  std::vector<ConvexShape> shapes;  // one per geom that may collide (contype or conaffinity set)
+  std::vector<int> geom;            // the model's geom index of each shape
+  std::vector<std::string> body;    // the name of each shape's body ("world" for the world body)
+  // Per shape, per axis (j1..j6, pos_tilt, pos_rot): when the axis moves the shape, a bound on the distance from the
+  // axis's anchor to any point of the shape in every configuration (the lengths along the chain of bodies between
+  // them plus the shape's bounding radius), mm; 0 when it does not move it.
+  std::vector<Eigen::Matrix<double, 8, 1>> lever_mm;
+  std::vector<std::array<int, 2>> pairs;  // indices into `shapes`: the pairs MuJoCo's collision detection tests
+  // Why distances cannot be bounded on this model (names the geom), empty when they can: a height field, or a
+  // plane that an axis moves.
+  std::string unsupported;
 };
 
 // The cell model, after MuJoCo's model/data split: the MJCF loaded and placed once, then immutable. It owns the
@@ -100,6 +118,8 @@ class CellModel {
   const std::filesystem::path& file() const;
   // Every body that has collision geoms (the world body with the floor included), in the model's order.
   std::vector<CellBody> Bodies() const;
+  // The collision geometry for distance queries (twin/cell/mujoco_geometry.cc).
+  CellCollisionGeometry CollisionGeometry() const;
 
   // Every geom is reported in contact up to this distance apart, which gives CellState::Collide its clearance.
   static constexpr double kClearanceMarginMm = 10.0;
@@ -135,6 +155,9 @@ class CellState {
   // its centre plus its rotation angle times its bounding radius. While twice this stays below the clearance of
   // the last Collide(), no new contact can have appeared.
   double MotionSinceCollide() const;
+  // The world pose (mm) of each shape of `geometry` (made by this model's CollisionGeometry()) at the joints set
+  // last, into `X_WG` (resized to the shapes' number).
+  void ShapePoses(const CellCollisionGeometry& geometry, std::vector<Eigen::Isometry3d>* X_WG) const;
   // All collision shapes at the joints set last.
   std::vector<CellShape> Shapes() const;
   // Pose in the world (mm) of each body of CellModel::Bodies(), same order, at the joints set last.

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "planner/path/tool_path.h"
+#include "twin/compensation/compensation.h"
 #include "twin/distortion/distortion.h"
 #include "twin/scanner/mesh_distance.h"
 #include "twin/scanner/scan_deviation.h"

@@ -1,0 +1,157 @@
+// Tests of the continuous cell check: a thin plate the torch sweeps through between two samples (a positioner turn
+// over a 1 mm move) is found with its time by the continuous mode and missed by the discrete one; the certified
+// clearance is a lower bound of the distances along the joint-space lines and close to their minimum.
+#include "twin/cell/cell_sweep.h"
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "models/core/numbers.h"
+#include "planner/scenario/scenario_document.h"
+#include "tests/twin/test_plans.h"
+#include "twin/cell/cell_check.h"
+#include "twin/cell/cell_section.h"
+
+namespace waam::twin {
+namespace {
+namespace fs = std::filesystem;
+
+twin::CellSettings OkSettings() {
+  const fs::path file = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "cell_ok.yaml";
+  YamlMap top = planner::LoadScenarioTop(file, {});
+  twin::CellSettings settings = ParseCellSection(top, file.parent_path());
+  settings.part_collision = false;           // the cell bodies only
+  settings.resolve = CellResolve::kFixed;    // the motion as planned
+  return settings;
+}
+
+planner::PathPoint Point(double x, double y, double rotation_rad, bool weld) {
+  planner::PathPoint p;
+  p.p_P = Eigen::Vector3d(x, y, 1.5);
+  p.bead_width_mm = 6.0;
+  p.bead_height_mm = 1.5;
+  p.speed_mm_s = 5.0;
+  p.weld = weld;
+  p.positioner_rad = Eigen::Vector2d(0.0, rotation_rad);
+  return p;
+}
+
+// A program's pass near the plate's edge, then a 1 mm arc-off move over which its own positioner angles turn the
+// table by 70 deg, then a second pass: the torch swings about 120 mm through the cell between two samples.
+planner::Plan SwingPlan() {
+  planner::Plan plan;
+  planner::LayerPath layer;
+  layer.points = {Point(100.0, -10.0, 0.0, false), Point(100.0, 10.0, 0.0, true), Point(100.0, 11.0, 1.22, false),
+                  Point(100.0, 30.0, 1.22, true)};
+  plan.layers.push_back(layer);
+  return plan;
+}
+
+// The built-in cell (placed as cell_ok places it) with a 1 mm thin plate, 80 x 80 mm, fixed in the world with its
+// centre at p_W (mm) and its normal along n_W.
+CellModel CellWithPlate(const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W) {
+  std::ifstream in(CellModel::BuiltinModelPath());
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Eigen::Vector3d p = p_W / 1000.0;
+  const std::string oriented = "<geom name=\"planted_plate\" type=\"box\" size=\"0.04 0.04 0.0005\" pos=\"" +
+                               std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) +
+                               "\" zaxis=\"" + std::to_string(n_W.x()) + " " + std::to_string(n_W.y()) + " " +
+                               std::to_string(n_W.z()) + "\"/>";
+  const std::string anchor = "<worldbody>";
+  xml.insert(xml.find(anchor) + anchor.size(), "\n    " + oriented);
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  X_WB.translate(Eigen::Vector3d(1050.0, 0.0, 0.0));
+  X_WB.rotate(Eigen::AngleAxisd(kPi / 2.0, Eigen::Vector3d::UnitZ()));
+  const CellModel::RobotInfo info{"FANUC ARC Mate 100iC/12", "builtin"};
+  return CellModel::FromXml(xml, info, Eigen::Isometry3d::Identity(), X_WB, CellModel::BuiltinModelPath());
+}
+
+int Collisions(const CheckReport& r, bool* between, double* t_s) {
+  int n = 0;
+  for (const CheckViolation& v : r.violations) {
+    if (v.kind != "collision") continue;
+    ++n;
+    *between = *between || v.between_samples;
+    if (v.t_s >= 0.0) *t_s = v.t_s;
+  }
+  return n;
+}
+
+TEST(CellSweepTest, ThinPlateBetweenTwoSamplesIsFoundOnlyByTheContinuousCheck) {
+  twin::CellSettings settings = OkSettings();
+  const planner::Plan plan = SwingPlan();
+  const CheckReport plain = CheckPlan(LoadCell(settings), plan, settings, 100.0, nullptr);
+  // The swing: the largest TCP move between two samples.
+  std::size_t k = 1;
+  double largest = 0.0;
+  for (std::size_t i = 1; i < plain.motion.size(); ++i) {
+    const double move = (plain.motion[i].X_WT.translation() - plain.motion[i - 1].X_WT.translation()).norm();
+    if (move > largest) {
+      largest = move;
+      k = i;
+    }
+  }
+  ASSERT_GT(largest, 60.0) << "the positioner turn must swing the torch far between two samples";
+  const Eigen::Vector3d a = plain.motion[k - 1].X_WT.translation(), b = plain.motion[k].X_WT.translation();
+  const Eigen::Vector3d up = -plain.motion[k].X_WT.linear().col(2);
+  // The plate across the swing's chord, 100 mm up the torch from the TCP: both samples lie 60 mm or more from it.
+  const CellModel cell = CellWithPlate(0.5 * (a + b) + 100.0 * up, (b - a).normalized());
+
+  settings.check_mode = CheckMode::kDiscrete;
+  const CheckReport discrete = CheckPlan(cell, plan, settings, 100.0, nullptr);
+  settings.check_mode = CheckMode::kContinuous;
+  const CheckReport continuous = CheckPlan(cell, plan, settings, 100.0, nullptr);
+
+  bool between = false;
+  double t_s = -1.0;
+  EXPECT_EQ(Collisions(discrete, &between, &t_s), 0) << "the discrete check steps over the plate (the known miss)";
+  EXPECT_EQ(discrete.mode, CheckMode::kDiscrete);
+  EXPECT_GE(Collisions(continuous, &between, &t_s), 1) << "the continuous check must find the plate";
+  EXPECT_EQ(continuous.mode, CheckMode::kContinuous);
+  EXPECT_TRUE(between) << "the contact lies strictly between two samples";
+  EXPECT_GT(t_s, plain.motion[k - 1].t_s) << "first contact after the sample before the swing";
+  EXPECT_LT(t_s, plain.motion[k].t_s) << "first contact before the sample after it";
+  EXPECT_NEAR(continuous.first_contact_s, t_s, 1e-12);
+  EXPECT_LT(continuous.certified_clearance_mm, 0.0) << "a penetrating contact: minus its depth";
+  // Without the plate the continuous check passes and certifies a clearance.
+  const CheckReport clear = CheckPlan(LoadCell(settings), plan, settings, 100.0, nullptr);
+  EXPECT_TRUE(clear.ok);
+  EXPECT_GT(clear.certified_clearance_mm, 0.0);
+}
+
+TEST(CellSweepTest, CertifiedClearanceBoundsTheDistancesAlongTheLines) {
+  const twin::CellSettings settings = OkSettings();
+  const CellModel cell = LoadCell(settings);
+  const CellCollisionGeometry geometry = cell.CollisionGeometry();
+  ASSERT_TRUE(geometry.unsupported.empty()) << geometry.unsupported;
+  const CheckReport r = CheckPlan(cell, SwingPlan(), settings, 100.0, nullptr);
+  const SweepResult sweep = SweepMotion(cell, geometry, r.motion, SweepOptions{});
+  ASSERT_TRUE(sweep.contacts.empty());
+  // Every pair at 8 points along every joint-space line, by GJK.
+  CellState state(cell);
+  std::vector<Eigen::Isometry3d> X;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < r.motion.size(); ++i) {
+    for (int k = 0; k < 8; ++k) {
+      const double f = k / 8.0;
+      state.SetJoints(r.motion[i - 1].q + f * (r.motion[i].q - r.motion[i - 1].q));
+      state.ShapePoses(geometry, &X);
+      for (const std::array<int, 2>& p : geometry.pairs) {
+        const ConvexDistance d = ShapeDistance(geometry.shapes[p[0]], X[p[0]], geometry.shapes[p[1]], X[p[1]], 0.01);
+        smallest = std::min(smallest, d.upper_mm);
+      }
+    }
+  }
+  EXPECT_LE(sweep.certified_clearance_mm, smallest) << "certified: no distance along the motion is smaller";
+  EXPECT_GE(sweep.certified_clearance_mm, smallest - std::max(0.1, 0.05 * smallest) - 0.01)
+      << "and within the resolution of the smallest";
+  EXPECT_LT(sweep.distance_queries, geometry.pairs.size() * r.motion.size())
+      << "advancement skips most of the queries a check of every pair at every sample makes";
+}
+
+}  // namespace
+}  // namespace waam::twin

@@ -1,0 +1,147 @@
+// The cell's MuJoCo geoms as convex shapes for distance queries: their pairs as MuJoCo 2.2's collision detection
+// filters them, the lever arm of every axis over every shape, and the shapes' poses.
+#include <cmath>
+#include <string>
+
+#include "twin/cell/mujoco_cell.h"
+#include "twin/cell/mujoco_cell_internal.h"
+
+namespace waam::twin {
+namespace {
+
+constexpr double kGeomMm = 1000.0;  // model metres -> mm
+
+double Norm3(const mjtNum* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// Whether MuJoCo's collision detection tests geoms g1 and g2 (engine_collision_driver.c of MuJoCo 2.2: contype and
+// conaffinity, the same weld body, the weld-parent filter, <contact><exclude> body pairs; explicit <pair> elements
+// are added by the caller).
+bool MujocoTestsPair(const mjModel* m, int g1, int g2) {
+  if (!((m->geom_contype[g1] & m->geom_conaffinity[g2]) || (m->geom_contype[g2] & m->geom_conaffinity[g1]))) {
+    return false;
+  }
+  const int b1 = m->geom_bodyid[g1], b2 = m->geom_bodyid[g2];
+  const int w1 = m->body_weldid[b1], w2 = m->body_weldid[b2];
+  if (w1 == w2) return false;
+  const bool filter_parent = !(m->opt.disableflags & mjDSBL_FILTERPARENT);
+  if (filter_parent && w1 != 0 && w2 != 0 &&
+      (w1 == m->body_weldid[m->body_parentid[w2]] || w2 == m->body_weldid[m->body_parentid[w1]])) {
+    return false;
+  }
+  for (int i = 0; i < m->nexclude; ++i) {
+    if (m->exclude_signature[i] == (b1 << 16) + b2 || m->exclude_signature[i] == (b2 << 16) + b1) return false;
+  }
+  return m->geom_type[g1] != mjGEOM_PLANE || m->geom_type[g2] != mjGEOM_PLANE;
+}
+
+// Bound on the distance from joint `jnt`'s anchor to any point of geom g, when the joint's body is g's body or an
+// ancestor of it; 0 otherwise, mm. Along the chain each body's origin lies within |body_pos| + 2 |jnt_pos| of its
+// parent's (a hinge turns the body about its anchor), the joint's anchor within |jnt_pos| of its body's origin.
+double LeverBound(const mjModel* m, int jnt, int g) {
+  const int joint_body = m->jnt_bodyid[jnt];
+  double length = Norm3(m->geom_pos + 3 * g) + m->geom_rbound[g];
+  for (int b = m->geom_bodyid[g]; b != joint_body; b = m->body_parentid[b]) {
+    if (b == 0) return 0.0;  // reached the world: the joint does not move g
+    length += Norm3(m->body_pos + 3 * b);
+    for (int k = m->body_jntadr[b]; k >= 0 && k < m->body_jntadr[b] + m->body_jntnum[b]; ++k) {
+      length += 2.0 * Norm3(m->jnt_pos + 3 * k);
+    }
+  }
+  return (length + Norm3(m->jnt_pos + 3 * jnt)) * kGeomMm;
+}
+
+// Geom g as a convex shape, or the reason it cannot be one.
+bool ShapeOf(const mjModel* m, int g, ConvexShape* shape, std::string* why) {
+  shape->size_mm = Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]) * kGeomMm;
+  shape->rbound_mm = m->geom_rbound[g] * kGeomMm;
+  switch (m->geom_type[g]) {
+    case mjGEOM_PLANE: shape->type = ConvexShape::Type::kPlane; return true;
+    case mjGEOM_SPHERE: shape->type = ConvexShape::Type::kSphere; return true;
+    case mjGEOM_CAPSULE: shape->type = ConvexShape::Type::kCapsule; return true;
+    case mjGEOM_CYLINDER: shape->type = ConvexShape::Type::kCylinder; return true;
+    case mjGEOM_BOX: shape->type = ConvexShape::Type::kBox; return true;
+    case mjGEOM_ELLIPSOID: shape->type = ConvexShape::Type::kEllipsoid; return true;
+    case mjGEOM_MESH: {
+      shape->type = ConvexShape::Type::kMesh;
+      const int mesh = m->geom_dataid[g];
+      if (mesh < 0 || m->mesh_vertnum[mesh] == 0) break;
+      const float* vert = m->mesh_vert + 3 * m->mesh_vertadr[mesh];
+      const auto add = [&](int i) {
+        shape->hull_mm.emplace_back(vert[3 * i] * kGeomMm, vert[3 * i + 1] * kGeomMm, vert[3 * i + 2] * kGeomMm);
+      };
+      const int graph = m->mesh_graphadr[mesh];
+      if (graph >= 0) {
+        // MuJoCo's convex hull: numvert, numface, vert_edgeadr[numvert], vert_globalid[numvert], ...
+        const int* data = m->mesh_graph + graph;
+        const int hull_vertices = data[0];
+        for (int i = 0; i < hull_vertices; ++i) add(data[2 + hull_vertices + i]);
+      } else {
+        for (int i = 0; i < m->mesh_vertnum[mesh]; ++i) add(i);
+      }
+      return true;
+    }
+    default:
+      break;
+  }
+  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
+  *why = "geom " + (name ? std::string(name) : "#" + std::to_string(g)) +
+         " is a height field or an empty mesh: no distance bound for it";
+  return false;
+}
+
+}  // namespace
+
+CellCollisionGeometry CellModel::CollisionGeometry() const {
+  const mjModel* m = impl_->m;
+  CellCollisionGeometry geometry;
+  std::vector<int> shape_of(m->ngeom, -1);
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
+    ConvexShape shape;
+    std::string why;
+    if (!ShapeOf(m, g, &shape, &why)) {
+      if (geometry.unsupported.empty()) geometry.unsupported = why;
+      continue;
+    }
+    Eigen::Matrix<double, 8, 1> lever = Eigen::Matrix<double, 8, 1>::Zero();
+    for (int j = 0; j < 8; ++j) {
+      if (impl_->jnt[j] >= 0) lever[j] = LeverBound(m, impl_->jnt[j], g);
+    }
+    const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
+    if (shape.type == ConvexShape::Type::kPlane && lever.maxCoeff() > 0.0 && geometry.unsupported.empty()) {
+      geometry.unsupported = "geom " + std::string(mj_id2name(m, mjOBJ_GEOM, g) ? mj_id2name(m, mjOBJ_GEOM, g) : "?") +
+                             " is a plane on a moving body: no bound on how fast it moves";
+    }
+    shape_of[g] = static_cast<int>(geometry.shapes.size());
+    geometry.shapes.push_back(std::move(shape));
+    geometry.geom.push_back(g);
+    geometry.body.push_back(body ? body : "world");
+    geometry.lever_mm.push_back(lever);
+  }
+  for (int g1 = 0; g1 < m->ngeom; ++g1) {
+    for (int g2 = g1 + 1; g2 < m->ngeom; ++g2) {
+      if (shape_of[g1] >= 0 && shape_of[g2] >= 0 && MujocoTestsPair(m, g1, g2)) {
+        geometry.pairs.push_back({shape_of[g1], shape_of[g2]});
+      }
+    }
+  }
+  for (int p = 0; p < m->npair; ++p) {
+    const int a = shape_of[m->pair_geom1[p]], b = shape_of[m->pair_geom2[p]];
+    if (a >= 0 && b >= 0) geometry.pairs.push_back({a, b});
+  }
+  return geometry;
+}
+
+void CellState::ShapePoses(const CellCollisionGeometry& geometry, std::vector<Eigen::Isometry3d>* X_WG) const {
+  const mjData* d = data_->d.get();
+  X_WG->resize(geometry.geom.size());
+  for (std::size_t i = 0; i < geometry.geom.size(); ++i) {
+    const int g = geometry.geom[i];
+    Eigen::Isometry3d& X = (*X_WG)[i];
+    X.setIdentity();
+    X.translation() = Eigen::Vector3d(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]) * kGeomMm;
+    X.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->geom_xmat + 9 * g);
+  }
+}
+
+}  // namespace waam::twin
