@@ -33,13 +33,15 @@ void Place(const ScenarioHolder& scn, const fs::path& out_dir, bool images, cons
 
 // Runs `waam compensate` on the scenario into out_dir; returns {converged, status, message}.
 py::dict Compensate(const ScenarioHolder& scn, const fs::path& out_dir, int max_iterations, double tolerance_mm,
-                    const std::string& correction, bool images, const py::object& progress) {
+                    const std::string& correction, const fs::path& model, bool images, const py::object& progress) {
   analysis::CompensateOptions options;
   options.scenario = ScenarioFileFor(scn, out_dir / ".input", &options.overrides);
   options.out_dir = out_dir;
   options.max_iterations = max_iterations;
   options.tolerance_mm = tolerance_mm;
   options.correction = correction;
+  options.model = model;
+  options.program = images;  // the compensated program with the pictures
   options.quiet = true;
   options.images = images;
   const twin::CompensationResult r = RunLong(progress, [&] { return analysis::RunCompensate(options); });
@@ -83,8 +85,10 @@ py::tuple Fit(const std::string& model, const fs::path& data, const fs::path& ou
     else if (key == "max_points") options.max_points = item.second.cast<std::size_t>();
     else if (key == "max_iterations") options.max_iterations = item.second.cast<int>();
     else if (key == "mode") options.mode = item.second.cast<std::string>();
+    else if (key == "start") options.start = item.second.cast<fs::path>();
+    else if (key == "free") options.free = item.second.cast<std::vector<std::string>>();
     else WAAM_THROW("fit: unknown option '" << key << "' (degree, space, speed_range, seed, max_points, "
-                                               "max_iterations, mode)");
+                                               "max_iterations, mode, start, free)");
   }
   std::ostringstream printed;
   const analysis::FitOutcome outcome = RunLong(progress, [&] { return analysis::RunFit(options, printed); });
@@ -140,7 +144,7 @@ py::dict ExportProgram(const std::shared_ptr<const ScenarioHolder>& scn, std::sh
 void BindCommands(py::module_& m) {
   m.def("_place", &Place, py::arg("scenario"), py::arg("out_dir"), py::arg("images"), py::arg("progress"));
   m.def("_compensate", &Compensate, py::arg("scenario"), py::arg("out_dir"), py::arg("max_iterations"),
-        py::arg("tolerance_mm"), py::arg("correction"), py::arg("images"), py::arg("progress"));
+        py::arg("tolerance_mm"), py::arg("correction"), py::arg("model"), py::arg("images"), py::arg("progress"));
   m.def("_run", &Run, py::arg("scenario"), py::arg("out_dir"), py::arg("steps"), py::arg("images"),
         py::arg("progress"));
   m.def("_fit", &Fit, py::arg("model"), py::arg("data"), py::arg("output"), py::arg("columns"), py::arg("options"),

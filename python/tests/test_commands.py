@@ -71,3 +71,29 @@ def test_export_then_import_the_program(tiny, tmp_path):
     assert np.allclose(back[[0, -1], :3], weld[[0, -1], :3], atol=1e-3), "the program reaches the plan's points"
     with pytest.raises(wt.InputError, match="unknown program format"):
         wt.export_program(scn, plan, format="punched_cards")
+
+
+def read_scan_ply(data):
+    """The points of the twin's binary scan PLY (x, y, z, deviation_mm as float32)."""
+    header, body = data.split(b"end_header\n", 1)
+    count = int(header.split(b"element vertex ")[1].split(b"\n")[0])
+    return np.frombuffer(body, dtype="<f4", count=4 * count).reshape(count, 4)[:, :3].astype(float)
+
+
+def test_compensate_scan_then_fit_distortion(scenarios, tmp_path):
+    """The twin's scan of a distorted tube (compensate with no iteration) fitted back from a perturbed start."""
+    scn = wt.load_scenario(scenarios / "distortion" / "small_bent_tube.yaml")
+    truth = SOURCE_DIR / "models" / "data" / "distortion_part1_demo.json"
+    twin = wt.compensate(scn, max_iterations=0, tolerance_mm=1.0, model=truth)
+    assert twin.status["status"] in ("max_iterations", "converged") and "scan_before.ply" in twin.files
+    assert twin.to_dict()["correction"] == "axis"
+    points = read_scan_ply(twin.files["scan_before.ply"])
+    start = json.loads(truth.read_text())
+    start["params"]["strain"] *= 0.5
+    (tmp_path / "start.json").write_text(json.dumps(start))
+    fitted = wt.fit_distortion(points, scn, start=tmp_path / "start.json", max_points=300)
+    assert fitted.ok, fitted.message
+    assert fitted.model["fit"]["scenario"] == "small_bent_tube"
+    assert fitted.model["params"]["strain"] == pytest.approx(0.03, rel=0.05), "the known strain recovered"
+    with pytest.raises(wt.InputError, match=r"expected \(N x 3\)"):
+        wt.fit_distortion(points[:, :2], scn)

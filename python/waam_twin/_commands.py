@@ -55,12 +55,15 @@ def place(scenario, images=False, progress=None):
         return CommandResult("place", "place.json", tmp)
 
 
-def compensate(scenario, max_iterations=3, tolerance_mm=0.0, correction="axis", images=False, progress=None):
-    """Runs the offline compensation loop against the twin, as `waam compensate` does. Returns a CommandResult with
-    to_dict() = compensate.json and `status` ({converged, status, message}); non-convergence is a status, not an
-    exception."""
+def compensate(scenario, max_iterations=3, tolerance_mm=0.0, correction="axis", model=None, images=False,
+               progress=None):
+    """Runs the offline compensation loop against the twin, as `waam compensate` does (model: a distortion model
+    JSON, None = models/data/distortion.json; images: the pictures and the compensated program too). Returns a
+    CommandResult with to_dict() = compensate.json, the scans (scan_before.ply, scan_after.ply) and the compensated
+    path in `files`, and `status` ({converged, status, message}); non-convergence is a status, not an exception."""
     with tempfile.TemporaryDirectory(prefix="waam_compensate_") as tmp:
-        status = _core._compensate(scenario, tmp, max_iterations, tolerance_mm, correction, images, progress)
+        status = _core._compensate(scenario, tmp, max_iterations, tolerance_mm, correction,
+                                   "" if model is None else model, images, progress)
         result = CommandResult("compensate", "compensate.json", tmp)
     result.status = status
     return result
@@ -157,8 +160,8 @@ def fit(model, table, columns=None, progress=None, **options):
 
 def fit_distortion(scan_points, scenario, progress=None, **options):
     """Fits the distortion model to a scan of a part built from `scenario`, as `waam fit distortion` does:
-    scan_points is an (N x 3) array of points in the part frame, mm. options: max_points, max_iterations, mode.
-    Returns a FitResult."""
+    scan_points is an (N x 3) array of points in the part frame, mm. options: start (a distortion model JSON to
+    start from), free (the parameters fitted), max_points, max_iterations, mode. Returns a FitResult."""
     points = np.asarray(scan_points, dtype=float)
     if points.ndim != 2 or points.shape[1] != 3 or len(points) == 0:
         raise _core.InputError(f"scan_points: an array of shape {points.shape}, expected (N x 3) points in mm")
