@@ -146,14 +146,40 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
 twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& plan,
                                  const CheckOptions& options) {
   ClaimOutputDirectory(options.out_dir);
+  RemoveEarlierSummary(options.out_dir / "check.json");
   const twin::CellModel cell = twin::LoadCell(scenario.cell);
-  RunOutputs outputs(options.out_dir / "check.json");
   twin::CheckReport report;
   {
     Progress progress("check", 0, "samples", options.quiet);
     report = twin::CheckPlan(cell, plan, scenario.cell, scenario.process.rapid_speed_mm_min / 60.0, &progress);
     progress.Finish();
   }
+  WriteCheckOutputs(scenario, plan, cell, report, options);
+  return report;
+}
+
+nlohmann::json CheckPlanToJson(const Scenario& scenario, const twin::CellModel& cell, const planner::Plan& plan,
+                               const twin::CheckReport& report) {
+  nlohmann::json document = CheckToJson(scenario, cell.file(), report);
+  if (plan.X_FT) {
+    // The program's own tool moved instead of the cell's torch: how far apart the two TCPs are.
+    const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
+    const Eigen::Isometry3d X_TT = kin.X_FT.inverse() * *plan.X_FT;
+    const double offset_mm = X_TT.translation().norm();
+    const double angle_deg = Eigen::AngleAxisd(X_TT.linear()).angle() * kDeg;
+    document["tool"] = {{"source", "program"},
+                        {"name", plan.tool_name},
+                        {"offset_from_torch_mm", offset_mm},
+                        {"angle_from_torch_deg", angle_deg},
+                        {"differs_from_torch", offset_mm > 0.01 || angle_deg > 0.01}};
+  }
+  return document;
+}
+
+nlohmann::json WriteCheckOutputs(const Scenario& scenario, const planner::Plan& plan, const twin::CellModel& cell,
+                                 const twin::CheckReport& report, const CheckOptions& options) {
+  ClaimOutputDirectory(options.out_dir);
+  RunOutputs outputs(options.out_dir / "check.json");
   const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
   if (options.program) {
     const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
@@ -165,18 +191,7 @@ twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& 
     WriteCellPng(cell, kin, plan, report, outputs.Add(options.out_dir / "cell_worst.png"));
     WriteJointPlots(kin, report, outputs.Add(options.out_dir / "joints.png"));
   }
-  nlohmann::json document = CheckToJson(scenario, cell.file(), report);
-  if (plan.X_FT) {
-    // The program's own tool moved instead of the cell's torch: how far apart the two TCPs are.
-    const Eigen::Isometry3d X_TT = kin.X_FT.inverse() * *plan.X_FT;
-    const double offset_mm = X_TT.translation().norm();
-    const double angle_deg = Eigen::AngleAxisd(X_TT.linear()).angle() * kDeg;
-    document["tool"] = {{"source", "program"},
-                        {"name", plan.tool_name},
-                        {"offset_from_torch_mm", offset_mm},
-                        {"angle_from_torch_deg", angle_deg},
-                        {"differs_from_torch", offset_mm > 0.01 || angle_deg > 0.01}};
-  }
+  nlohmann::json document = CheckPlanToJson(scenario, cell, plan, report);
   if (options.images && options.viewer) {
     const ViewerSummary viewer = WriteViewer(scenario.name, cell, kin, plan, options.target, report,
                                              outputs.Add(options.out_dir / "viewer.html"));
@@ -188,7 +203,7 @@ twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& 
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   WriteFileAtomic(options.out_dir / "check.json", document.dump(2) + "\n");
   outputs.Complete();
-  return report;
+  return document;
 }
 
 }  // namespace waam::analysis

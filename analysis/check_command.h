@@ -34,6 +34,17 @@ twin::CheckReport RunCheck(const CheckOptions& options);
 twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& plan,
                                  const CheckOptions& options);
 
+// Writes what `waam check` writes for a check already made of `plan` on `cell` into options.out_dir (claimed first;
+// program.csv/.ls with options.program, cell_worst.png, joints.png and viewer.html with options.images, check.json
+// last) and returns the check.json document. Throws InputError and OutputError.
+nlohmann::json WriteCheckOutputs(const Scenario& scenario, const planner::Plan& plan, const twin::CellModel& cell,
+                                 const twin::CheckReport& report, const CheckOptions& options);
+
+// check.json without the viewer section: CheckToJson, and the `tool` section when the plan moves a program's own
+// tool instead of the cell's torch.
+nlohmann::json CheckPlanToJson(const Scenario& scenario, const twin::CellModel& cell, const planner::Plan& plan,
+                               const twin::CheckReport& report);
+
 // The check.json document (field names are the public contract documented in docs/CELL.md).
 nlohmann::json CheckToJson(const Scenario& scenario, const std::filesystem::path& mjcf,
                            const twin::CheckReport& report);

@@ -50,46 +50,62 @@ std::string WriteProgramText(planner::ProgramFormat format, const planner::Robot
   return {};
 }
 
+ProgramFiles ExportPlan(const Scenario& scenario, const planner::Plan& plan,
+                        std::optional<planner::ProgramFormat> format,
+                        const std::vector<double>& station_pulses_per_deg, bool quiet) {
+  ProgramFiles out;
+  out.format = format ? *format
+                      : scenario.cell.preset ? twin::PresetDialect(*scenario.cell.preset)
+                                             : planner::ProgramFormat::kFanucLs;
+  const planner::JbiReadOptions jbi = JbiOptionsOf(scenario, {}, station_pulses_per_deg);
+  const twin::CellModel cell = twin::LoadCell(scenario.cell);
+  twin::CheckReport report;
+  {
+    Progress progress("check", 0, "samples", quiet);
+    report = twin::CheckPlan(cell, plan, scenario.cell, scenario.process.rapid_speed_mm_min / 60.0, &progress);
+    progress.Finish();
+  }
+  const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
+  const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
+  if (out.format == planner::ProgramFormat::kKukaKrl) {
+    // <name>.src and <name>.dat side by side.
+    planner::KukaKrlOptions krl;
+    krl.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
+    const planner::KukaKrlFiles files = planner::ProgramToKukaKrl(program, krl);
+    out.files = {{".src", files.src}, {".dat", files.dat}};
+  } else {
+    out.files = {{"", WriteProgramText(out.format, program, kin, jbi)}};
+  }
+  out.points = program.points.size();
+  out.violations = report.violations.size();
+  return out;
+}
+
 ExportResult RunExport(const ExportOptions& options) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
-  ExportResult result;
-  if (options.format) {
-    result.format = *options.format;
-  } else if (const auto by_extension = planner::ProgramFormatOfExtension(options.out_file)) {
-    result.format = *by_extension;
-  } else {
-    result.format = scenario.cell.preset ? twin::PresetDialect(*scenario.cell.preset) : planner::ProgramFormat::kFanucLs;
-  }
-  const planner::JbiReadOptions jbi = JbiOptionsOf(scenario, {}, options.station_pulses_per_deg);
+  std::optional<planner::ProgramFormat> format = options.format;
+  if (!format) format = planner::ProgramFormatOfExtension(options.out_file);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);
     planned = PlanScenarioOrProgram(scenario, &progress);
   }
-  const twin::CellModel cell = twin::LoadCell(scenario.cell);
-  twin::CheckReport report;
-  {
-    Progress progress("check", 0, "samples", options.quiet);
-    report = twin::CheckPlan(cell, planned.plan, scenario.cell, scenario.process.rapid_speed_mm_min / 60.0, &progress);
-    progress.Finish();
-  }
-  const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
-  const planner::RobotProgram program = planner::BuildProgram(kin, report.motion, scenario.name);
-  if (result.format == planner::ProgramFormat::kKukaKrl) {
-    // <name>.src and <name>.dat side by side.
-    planner::KukaKrlOptions krl;
-    krl.X_RU = kin.X_WR.inverse() * planner::ProgramUserFrame(kin);
-    const planner::KukaKrlFiles files = planner::ProgramToKukaKrl(program, krl);
+  const ProgramFiles program =
+      ExportPlan(scenario, planned.plan, format, options.station_pulses_per_deg, options.quiet);
+  if (program.files.size() == 2) {
+    // KUKA KRL: <name>.src and <name>.dat side by side, the .dat first.
     fs::path src = options.out_file, dat = options.out_file;
     src.replace_extension(".src");
     dat.replace_extension(".dat");
-    WriteFileAtomic(dat, files.dat);
-    WriteFileAtomic(src, files.src);
+    WriteFileAtomic(dat, program.files[1].second);
+    WriteFileAtomic(src, program.files[0].second);
   } else {
-    WriteFileAtomic(options.out_file, WriteProgramText(result.format, program, kin, jbi));
+    WriteFileAtomic(options.out_file, program.files[0].second);
   }
-  result.points = program.points.size();
-  result.violations = report.violations.size();
+  ExportResult result;
+  result.format = program.format;
+  result.points = program.points;
+  result.violations = program.violations;
   return result;
 }
 

@@ -37,6 +37,20 @@ struct ExportResult {
 std::string WriteProgramText(planner::ProgramFormat format, const planner::RobotProgram& program,
                              const planner::CellKinematics& kin, const planner::JbiReadOptions& jbi = {});
 
+// A program's files: the extension (".ls", ".src", ...) and the text of each (two for KUKA KRL: .src and .dat).
+struct ProgramFiles {
+  planner::ProgramFormat format = planner::ProgramFormat::kFanucLs;
+  std::vector<std::pair<std::string, std::string>> files;
+  std::size_t points = 0;
+  std::size_t violations = 0;  // what the cell check found on the way (the program is written all the same)
+};
+
+// The program of an already planned `plan` of `scenario` in `format` (empty: the cell preset's dialect, fanuc_ls
+// without a preset), as the cell check moves the cell along it. Throws InputError as WriteProgramText does.
+ProgramFiles ExportPlan(const Scenario& scenario, const planner::Plan& plan,
+                        std::optional<planner::ProgramFormat> format,
+                        const std::vector<double>& station_pulses_per_deg, bool quiet);
+
 // Plans the scenario (or reads its program), moves the cell along it as `waam check` does and writes the program
 // atomically to out_file.
 ExportResult RunExport(const ExportOptions& options);

@@ -149,6 +149,26 @@ nlohmann::json ImportToJson(const ImportReport& report) {
           {"warnings", warnings}};
 }
 
+planner::PlanResult ImportProgramInto(const ImportOptions& options, Scenario* scenario, ImportReport* report) {
+  if (scenario->name.empty()) scenario->name = options.program.stem().string();
+  const planner::GcodeReadOptions gcode = planner::GcodeOptionsOf(scenario->program);
+  const planner::ParsedProgram program =
+      planner::ReadProgramFile(options.program, options.format, gcode,
+                               JbiOptionsOf(*scenario, options.pulses_per_deg, options.station_pulses_per_deg),
+                               scenario->program.frames);
+  return PlanFromProgram(*scenario, program, report);
+}
+
+nlohmann::json ImportedPlanToJson(const Scenario& scenario, const planner::PlanResult& result,
+                                  const ImportReport& report, const fs::path& program) {
+  nlohmann::json summary = PlanToJson(scenario, result);
+  summary["slicing"] = "program";
+  summary["pattern"] = "program";
+  summary["import"] = ImportToJson(report);
+  summary["import"]["file"] = program.string();
+  return summary;
+}
+
 nlohmann::json RunImport(const ImportOptions& options) {
   Scenario scenario;
   if (!options.scenario.empty()) {
@@ -156,26 +176,11 @@ nlohmann::json RunImport(const ImportOptions& options) {
   } else {
     WAAM_THROW_UNLESS(options.overrides.empty(), "--set needs --scenario");
   }
-  if (scenario.name.empty()) scenario.name = options.program.stem().string();
-  const planner::GcodeReadOptions gcode = planner::GcodeOptionsOf(scenario.program);
-  const planner::ParsedProgram program =
-      planner::ReadProgramFile(options.program, options.format, gcode,
-                               JbiOptionsOf(scenario, options.pulses_per_deg, options.station_pulses_per_deg),
-                               scenario.program.frames);
   ImportReport report;
-  const planner::PlanResult result = PlanFromProgram(scenario, program, &report);
+  const planner::PlanResult result = ImportProgramInto(options, &scenario, &report);
 
-  ClaimOutputDirectory(options.out_dir);
-  RunOutputs outputs(options.out_dir / "plan.json");
-  WritePlanFiles(result.plan, options.out_dir, options.layer_images, options.quiet, &outputs);
-  CheckInterrupt();
-  nlohmann::json summary = PlanToJson(scenario, result);
-  summary["slicing"] = "program";
-  summary["pattern"] = "program";
-  summary["import"] = ImportToJson(report);
-  summary["import"]["file"] = options.program.string();
-  WriteFileAtomic(options.out_dir / "plan.json", summary.dump(2) + "\n");
-  outputs.Complete();
+  const nlohmann::json summary = ImportedPlanToJson(scenario, result, report, options.program);
+  WritePlanOutputs(result.plan, summary, options.out_dir, options.layer_images, options.quiet);
   for (const std::string& warning : result.warnings) std::cerr << "waam: warning: " << warning << "\n";
   return summary;
 }

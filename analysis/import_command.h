@@ -58,6 +58,16 @@ planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* pr
 // first_line).
 nlohmann::json ImportToJson(const ImportReport& report);
 
+// Reads options.program (options.format, or from its extension and first lines; options.scenario is not read) and
+// plans it with the cell and process of `scenario` (PlanFromProgram), which is named after the program file when it
+// has no name. Throws InputError for a bad program (naming file and line).
+planner::PlanResult ImportProgramInto(const ImportOptions& options, Scenario* scenario, ImportReport* report);
+
+// plan.json of an imported program: PlanToJson with slicing and pattern "program" and the `import` section naming
+// the program file.
+nlohmann::json ImportedPlanToJson(const Scenario& scenario, const planner::PlanResult& result,
+                                  const ImportReport& report, const std::filesystem::path& program);
+
 // Reads the program, writes plan.h5, the layer pictures and plan.json (last). Returns the plan.json document.
 nlohmann::json RunImport(const ImportOptions& options);
 

@@ -166,6 +166,22 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
   };
 }
 
+nlohmann::json PlanDocument(const Scenario& scenario, const planner::PlanResult& result, const ImportReport& import) {
+  nlohmann::json document = PlanToJson(scenario, result);
+  if (scenario.program.present) document["import"] = ImportToJson(import);
+  return document;
+}
+
+void WritePlanOutputs(const planner::Plan& plan, const nlohmann::json& document, const fs::path& out_dir,
+                      bool layer_images, bool quiet) {
+  ClaimOutputDirectory(out_dir);
+  RunOutputs outputs(out_dir / "plan.json");
+  WritePlanFiles(plan, out_dir, layer_images, quiet, &outputs);
+  CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
+  WriteFileAtomic(out_dir / "plan.json", document.dump(2) + "\n");
+  outputs.Complete();
+}
+
 planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_out) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   ClaimOutputDirectory(options.out_dir);
@@ -180,13 +196,8 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary_
   // The timeline on the cell's axes (a program's plan has it from its import already).
   if (!scenario.program.present) AddCellTimeline(scenario, &result);
 
-  RunOutputs outputs(options.out_dir / "plan.json");
-  WritePlanFiles(result.plan, options.out_dir, options.layer_images, options.quiet, &outputs);
-  CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  nlohmann::json summary = PlanToJson(scenario, result);
-  if (scenario.program.present) summary["import"] = ImportToJson(import);
-  WriteFileAtomic(options.out_dir / "plan.json", summary.dump(2) + "\n");
-  outputs.Complete();
+  const nlohmann::json summary = PlanDocument(scenario, result, import);
+  WritePlanOutputs(result.plan, summary, options.out_dir, options.layer_images, options.quiet);
   // A pattern that does not suit the part is not an error (the plan is written) but worth a line even when quiet.
   // Over the whole part, so a last sliver of a slice (a handle's tip) does not raise it.
   const nlohmann::json& uncovered = summary["uncovered"];

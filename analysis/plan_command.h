@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/import_command.h"
 #include "analysis/scenario.h"
 #include "planner/planar_planner.h"
 
@@ -31,6 +32,15 @@ planner::PlanResult RunPlan(const PlanOptions& options, nlohmann::json* summary 
 
 // The plan.json document (the public contract: field names are documented in docs/OUTPUTS.md).
 nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& result);
+
+// plan.json of a planned scenario: PlanToJson, with the `import` section when the plan came from its program.
+nlohmann::json PlanDocument(const Scenario& scenario, const planner::PlanResult& result, const ImportReport& import);
+
+// Writes what `waam plan` (and `waam import`) writes for a plan already made into `out_dir` (claimed first; plan.h5,
+// layers/*.png with `layer_images`, then `document` as plan.json, last, all atomically). Throws InputError (the
+// folder is held by another process) and OutputError.
+void WritePlanOutputs(const planner::Plan& plan, const nlohmann::json& document, const std::filesystem::path& out_dir,
+                      bool layer_images, bool quiet);
 
 // Writes every layer's path points to an HDF5 file (see docs/OUTPUTS.md for the layout).
 void WritePlanH5(const planner::Plan& plan, const std::filesystem::path& path);

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "analysis/place_settings.h"
 #include "analysis/run_settings.h"
 #include "analysis/thermal_settings.h"
@@ -28,5 +30,14 @@ struct Scenario : planner::Scenario {
 // parses its own sections from it; a top-level key that no module reads is refused. Throws InputError naming the
 // file, line and key path, as planner::LoadScenario does.
 Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+
+// The name a scenario given as a document (ScenarioFromJson) has in messages, in the folder it was given.
+inline constexpr const char* kScenarioDocumentName = "<dict>";
+
+// Builds a scenario from a JSON document with the YAML file's structure (e.g. a Python dict), with the same checks
+// and messages as LoadScenario; relative paths in it (meshes, programs, materials) are taken from `base_dir`, and
+// messages name `base_dir`/<dict> and the key path (a document has no lines). Throws InputError.
+Scenario ScenarioFromJson(const nlohmann::json& document, const std::filesystem::path& base_dir,
+                          const std::vector<std::string>& overrides = {});
 
 }  // namespace waam::analysis

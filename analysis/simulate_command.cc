@@ -23,6 +23,7 @@
 #include "twin/scanner/voxel_surface.h"
 
 namespace waam::analysis {
+namespace fs = std::filesystem;
 
 std::vector<std::string> SimulationNotes(const Scenario& scenario, const planner::PlanResult& planned) {
   std::vector<std::string> notes;
@@ -141,22 +142,9 @@ nlohmann::json SimulationToJson(const Scenario& scenario, const planner::PlanRes
 twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanResult& planned,
                                  const SimulateOptions& options) {
   ClaimOutputDirectory(options.out_dir);
-  RunOutputs outputs(options.out_dir / "simulate.json");
+  RemoveEarlierSummary(options.out_dir / "simulate.json");
   const twin::SimulationSettings& settings = scenario.simulation;
-  // Refuse up front what cannot fit: the expected bead volume in voxels against the limit.
-  double weld_mm3 = 0.0;
-  for (const planner::LayerPath& layer : planned.plan.layers) {
-    for (std::size_t i = 1; i < layer.points.size(); ++i) {
-      const planner::PathPoint& p = layer.points[i];
-      if (!p.weld) continue;
-      weld_mm3 += 2.0 / 3.0 * p.bead_width_mm * p.bead_height_mm * (p.p_P - layer.points[i - 1].p_P).norm();
-    }
-  }
-  const double estimate = weld_mm3 / std::pow(settings.voxel_mm, 3);
-  WAAM_THROW_UNLESS(estimate <= static_cast<double>(settings.max_voxels),
-                    options.scenario.string() << ": simulation needs about " << static_cast<long long>(estimate)
-                    << " voxels at simulation.voxel_mm = " << settings.voxel_mm << " mm, more than "
-                    << "simulation.max_voxels = " << settings.max_voxels << "; use a coarser voxel_mm");
+  CheckVoxelBudget(scenario, planned.plan);
   twin::TwinResult result = [&] {
     std::optional<Progress> progress;  // created once the number of passes is known
     twin::TwinResult r = twin::SimulateBuild(
@@ -169,6 +157,31 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
     if (progress) progress->Finish();
     return r;
   }();
+  WriteSimulateOutputs(scenario, planned, result, options.out_dir, options.images);
+  return result;
+}
+
+void CheckVoxelBudget(const Scenario& scenario, const planner::Plan& plan) {
+  const twin::SimulationSettings& settings = scenario.simulation;
+  double weld_mm3 = 0.0;
+  for (const planner::LayerPath& layer : plan.layers) {
+    for (std::size_t i = 1; i < layer.points.size(); ++i) {
+      const planner::PathPoint& p = layer.points[i];
+      if (!p.weld) continue;
+      weld_mm3 += 2.0 / 3.0 * p.bead_width_mm * p.bead_height_mm * (p.p_P - layer.points[i - 1].p_P).norm();
+    }
+  }
+  const double estimate = weld_mm3 / std::pow(settings.voxel_mm, 3);
+  WAAM_THROW_UNLESS(estimate <= static_cast<double>(settings.max_voxels),
+                    scenario.file.string() << ": simulation needs about " << static_cast<long long>(estimate)
+                    << " voxels at simulation.voxel_mm = " << settings.voxel_mm << " mm, more than "
+                    << "simulation.max_voxels = " << settings.max_voxels << "; use a coarser voxel_mm");
+}
+
+nlohmann::json WriteSimulateOutputs(const Scenario& scenario, const planner::PlanResult& planned,
+                                    const twin::TwinResult& result, const fs::path& out_dir, bool images) {
+  ClaimOutputDirectory(out_dir);
+  RunOutputs outputs(out_dir / "simulate.json");
 
   // The part's surface: coplanar voxel faces merged (twin::ExtractVoxelSurface). Past kMaxStlFacets exposed voxel
   // faces or facets it is exported from a coarser copy of the grid (majority of the fine voxels), reported as
@@ -181,24 +194,24 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
          result.depositor.grid().occupied() > 0) {
     surface = twin::ExtractVoxelSurface(twin::Coarsen(result.depositor.grid(), ++factor), kMaxStlFacets);
   }
-  planner::WriteStlBinary(surface, outputs.Add(options.out_dir / "part.stl"), "waam simulate: " + scenario.name);
+  planner::WriteStlBinary(surface, outputs.Add(out_dir / "part.stl"), "waam simulate: " + scenario.name);
   const double surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surface_start).count();
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
-  WriteSimulationH5(result, outputs.Add(options.out_dir / "part.h5"));
-  if (options.images) {
-    WriteHeightMapPng(result.top, scenario.name, outputs.Add(options.out_dir / "top_height.png"));
-    WriteSectionPng(result, 0, scenario.name, outputs.Add(options.out_dir / "section_xz.png"));
-    WriteSectionPng(result, 1, scenario.name, outputs.Add(options.out_dir / "section_yz.png"));
-    WriteDeviationPng(result, scenario.name, outputs.Add(options.out_dir / "deviation_map.png"));
+  WriteSimulationH5(result, outputs.Add(out_dir / "part.h5"));
+  if (images) {
+    WriteHeightMapPng(result.top, scenario.name, outputs.Add(out_dir / "top_height.png"));
+    WriteSectionPng(result, 0, scenario.name, outputs.Add(out_dir / "section_xz.png"));
+    WriteSectionPng(result, 1, scenario.name, outputs.Add(out_dir / "section_yz.png"));
+    WriteDeviationPng(result, scenario.name, outputs.Add(out_dir / "deviation_map.png"));
   }
   nlohmann::json json = SimulationToJson(scenario, planned, result);
   json["stl_voxel_mm"] = stl_voxel_mm;
   json["stl_facets"] = surface.facets.size();
   json["performance"]["surface_s"] = surface_s;
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(options.out_dir / "simulate.json", json.dump(2) + "\n");
+  WriteFileAtomic(out_dir / "simulate.json", json.dump(2) + "\n");
   outputs.Complete();
-  return result;
+  return json;
 }
 
 }  // namespace waam::analysis

@@ -34,6 +34,18 @@ twin::TwinMeasures RunSimulate(const SimulateOptions& options);
 twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanResult& planned,
                                  const SimulateOptions& options);
 
+// Refuses a build that cannot fit in simulation.max_voxels: the planned bead volume in voxels against the limit.
+// Throws InputError naming the scenario file and both keys.
+void CheckVoxelBudget(const Scenario& scenario, const planner::Plan& plan);
+
+// Writes what `waam simulate` writes for a build already simulated into `out_dir` (claimed first; part.stl,
+// part.h5, the PNGs with `images`, simulate.json last, all atomically) and returns the simulate.json document
+// (SimulationToJson with the part.stl fields stl_voxel_mm, stl_facets and performance.surface_s). Throws InputError
+// and OutputError.
+nlohmann::json WriteSimulateOutputs(const Scenario& scenario, const planner::PlanResult& planned,
+                                    const twin::TwinResult& result, const std::filesystem::path& out_dir,
+                                    bool images);
+
 // The simulate.json document (the public contract; fields documented in `waam simulate --help`).
 nlohmann::json SimulationToJson(const Scenario& scenario, const planner::PlanResult& planned,
                                 const twin::TwinResult& result);

@@ -13,6 +13,7 @@
 #include "analysis/plan_timeline.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
 #include "twin/cell/cell_check.h"
@@ -112,14 +113,22 @@ TimelineBuilder TimelineBuilderFor(const Scenario& scenario, const planner::Plan
 
 ThermalRunResult ThermalPlanned(const Scenario& scenario, const planner::Plan& plan, const ThermalOptions& options) {
   ThermalSettingsFor(scenario, plan);  // bad input (a probe outside the metal) before anything is written
-  EnsureOutputDirectory(options.out_dir);
-  RunOutputs outputs(options.out_dir / "thermal.json");
+  ClaimOutputDirectory(options.out_dir);
+  RemoveEarlierSummary(options.out_dir / "thermal.json");
   ThermalRunResult result = [&] {
     Progress progress("thermal", 0, "spans", options.quiet);
     ThermalRunResult r = RunThermalModel(scenario, plan, TimelineBuilderFor(scenario, plan), &progress);
     progress.Finish();
     return r;
   }();
+  WriteThermalOutputs(scenario, result, options);
+  return result;
+}
+
+nlohmann::json WriteThermalOutputs(const Scenario& scenario, const ThermalRunResult& result,
+                                   const ThermalOptions& options) {
+  ClaimOutputDirectory(options.out_dir);
+  RunOutputs outputs(options.out_dir / "thermal.json");
   WriteThermalH5(result, outputs.Add(options.out_dir / "thermal.h5"));
   if (options.images) {
     WriteInterpassPng(result, scenario.process.interpass, outputs.Add(options.out_dir / "interpass.png"));
@@ -140,9 +149,10 @@ ThermalRunResult ThermalPlanned(const Scenario& scenario, const planner::Plan& p
     }
   }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(options.out_dir / "thermal.json", ThermalToJson(scenario, result).dump(2) + "\n");
+  nlohmann::json document = ThermalToJson(scenario, result);
+  WriteFileAtomic(options.out_dir / "thermal.json", document.dump(2) + "\n");
   outputs.Complete();
-  return result;
+  return document;
 }
 
 ThermalRunResult RunThermal(const ThermalOptions& options) {

@@ -30,6 +30,12 @@ ThermalRunResult RunThermal(const ThermalOptions& options);
 // interpass.png, probes.png, maps/layer_NNNN.png, and thermal.json last (its presence marks a complete run).
 ThermalRunResult ThermalPlanned(const Scenario& scenario, const planner::Plan& plan, const ThermalOptions& options);
 
+// Writes what `waam thermal` writes for a thermal run already made into options.out_dir (claimed first; thermal.h5,
+// the PNGs with options.images, thermal.json last, all atomically) and returns the thermal.json document. Throws
+// InputError and OutputError.
+nlohmann::json WriteThermalOutputs(const Scenario& scenario, const ThermalRunResult& result,
+                                   const ThermalOptions& options);
+
 // The timeline of `plan` with extra interpass waits before layers (planner::BuildTimeline with the scenario's
 // process and cell settings).
 TimelineBuilder TimelineBuilderFor(const Scenario& scenario, const planner::Plan& plan);

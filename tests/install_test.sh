@@ -27,4 +27,16 @@ if [ -f /usr/share/javascript/three/three.min.js ]; then
     || { echo "FAIL: the installed waam could not write the viewer"; exit 1; }
   test -s viewer/viewer.html || { echo "FAIL: no viewer.html"; exit 1; }
 fi
+# The Python package, when it was built: imported from the moved prefix, it finds the data there too.
+package="$work/moved/lib/python3/dist-packages"
+if [ -d "$package/waam_twin" ]; then
+  test -f "$package/waam_twin/py.typed" -a -f "$package/waam_twin/_core.pyi" || { echo "FAIL: no stubs"; exit 1; }
+  PYTHONPATH="$package" /usr/bin/python3 -c "
+import sys, waam_twin as wt
+assert wt.__file__.startswith('$work/moved/'), wt.__file__
+assert wt.data_dir() == '$work/moved/share/waam-twin', wt.data_dir()
+plan = wt.plan(wt.load_scenario('$work/moved/share/waam-twin/scenarios/cell/cell_ok.yaml'))
+assert plan.layer_count > 0
+" || { echo "FAIL: the installed Python package"; exit 1; }
+fi
 echo "installed, moved and ran from $work/elsewhere"

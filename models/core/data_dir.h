@@ -9,7 +9,8 @@ namespace waam {
 
 // The data root, laid out like the source tree (DataDir() / "models" / "data", DataDir() / "twin" / "data"):
 //   1. the environment variable WAAM_DATA_DIR, when set and not empty;
-//   2. <prefix>/share/waam-twin when the running executable is <prefix>/bin/<name> and that folder exists (an
+//   2. <prefix>/share/waam-twin when the binary holding this code (the executable <prefix>/bin/waam, or the Python
+//      module <prefix>/lib/python3/dist-packages/waam_twin/_core.so) lies under <prefix> and that folder exists (an
 //      installed waam, wherever the prefix was moved: nothing of the build's paths is used);
 //   3. else the source tree the build came from (running from the build tree, and the tests).
 std::filesystem::path DataDir();

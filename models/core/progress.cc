@@ -13,7 +13,14 @@ namespace waam {
 namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void OnSignal(int) { g_interrupted = 1; }
+thread_local const ProgressObserver* t_observer = nullptr;
 }  // namespace
+
+const ProgressObserver* SetProgressObserver(const ProgressObserver* observer) {
+  const ProgressObserver* previous = t_observer;
+  t_observer = observer;
+  return previous;
+}
 
 void InstallInterruptHandler() {
   std::signal(SIGINT, OnSignal);
@@ -27,9 +34,18 @@ void CheckInterrupt() {
 }
 
 Progress::Progress(std::string label, std::size_t total, std::string unit, bool quiet)
-    : label_(std::move(label)), total_(total), unit_(std::move(unit)), quiet_(quiet) {
+    : observer_(t_observer), label_(std::move(label)), total_(total), unit_(std::move(unit)), quiet_(quiet) {
   start_ = std::chrono::steady_clock::now();
   last_draw_ = start_ - std::chrono::seconds(1);
+  last_notify_ = last_draw_;
+}
+
+void Progress::Notify(std::size_t done) {
+  if (observer_ == nullptr) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_notify_ < std::chrono::milliseconds(50) && !finished_) return;
+  last_notify_ = now;
+  if (!(*observer_)(label_, done, total_)) throw Interrupted();
 }
 
 Progress::~Progress() {
@@ -38,6 +54,7 @@ Progress::~Progress() {
 
 void Progress::Update(std::size_t done) {
   CheckInterrupt();
+  Notify(done);
   if (quiet_) return;
   const auto now = std::chrono::steady_clock::now();
   if (now - last_draw_ < std::chrono::milliseconds(100) && done < total_) return;
@@ -52,6 +69,7 @@ void Progress::Finish() {
     std::fputc('\n', stderr);
   }
   finished_ = true;
+  Notify(total_);
 }
 
 void Progress::Draw(std::size_t done) {

@@ -6,9 +6,13 @@
 namespace waam {
 namespace fs = std::filesystem;
 
-RunOutputs::RunOutputs(fs::path summary) {
+void RemoveEarlierSummary(const fs::path& summary) {
   std::error_code ec;
   fs::remove(summary, ec);
+}
+
+RunOutputs::RunOutputs(fs::path summary) {
+  RemoveEarlierSummary(summary);
   outputs_.push_back(std::move(summary));
 }
 

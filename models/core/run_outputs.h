@@ -11,6 +11,10 @@ namespace waam {
 // it; the command writes the summary last and then calls Complete(). If the object is destroyed before
 // Complete() (Ctrl-C, a bad input found late, a write error), the summary and every file recorded with Add() are
 // removed: a run leaves either its complete outputs or none of them, never a truncated set that looks complete.
+// Removes the summary of an earlier run (if any) before a long computation whose outputs are written afterwards, so
+// an interrupted run does not leave it looking like its own.
+void RemoveEarlierSummary(const std::filesystem::path& summary);
+
 class RunOutputs {
  public:
   explicit RunOutputs(std::filesystem::path summary);

@@ -82,7 +82,10 @@ void ApplyOverride(YAML::Node root, const std::string& override_text) {
 }  // namespace
 
 YamlMap LoadScenarioTop(const fs::path& file, const std::vector<std::string>& overrides) {
-  YAML::Node root = LoadYamlFile(file.string());
+  return ScenarioTop(LoadYamlFile(file.string()), file, overrides);
+}
+
+YamlMap ScenarioTop(YAML::Node root, const fs::path& file, const std::vector<std::string>& overrides) {
   for (const std::string& override_text : overrides) ApplyOverride(root, override_text);
   return YamlMap(root, "", file.string());
 }
