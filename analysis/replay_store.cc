@@ -123,7 +123,7 @@ void WriteReplayPng(const ReplayModel& model, const ReplaySimulation& simulation
     std::snprintf(text, sizeof(text), "%s (column %s) at (%.0f, %.0f, %.0f) mm", model.probes[p].name.c_str(),
                   model.probes[p].column.c_str(), model.probes[p].at_mm.x(), model.probes[p].at_mm.y(),
                   model.probes[p].at_mm.z());
-    internal::PutLabel(image, text, {90, y0 + 22}, 0.5);
+    internal::PutLabel(image, text, {330, y0 + 22}, 0.5);
     const int lx = 925, ly = y0 + 50;
     cv::line(image, {lx, ly - 5}, {lx + 30, ly - 5}, cv::Scalar(0, 0, 0), 2);
     internal::PutLabel(image, "measured", {lx + 36, ly});
