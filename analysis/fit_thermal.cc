@@ -256,6 +256,12 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   doc["set"] = SetLines(fitted);
   doc["free"] = nlohmann::json::array();
   for (const FreeParameter& f : free) doc["free"].push_back(f.name);
+  // A value that ended on its bound is a fit the bounds decided, not the data: listed, and said on stdout.
+  doc["at_bound"] = nlohmann::json::array();
+  for (const FreeParameter& f : free) {
+    const double v = fitted.*(f.member);
+    if (v <= f.lo + 1e-9 * f.scale || v >= f.hi - 1e-9 * f.scale) doc["at_bound"].push_back(f.name);
+  }
   doc["start"] = ThermalValuesJson(free, start);
   doc["fitted"] = ThermalValuesJson(free, fitted);
   doc["window"] = ReplayErrorsJson(model, fitted_run, window.first, window.second);
@@ -278,6 +284,9 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   for (const FreeParameter& f : free) {
     out << "  " << std::left << std::setw(11) << f.name << std::right << " start " << start.*(f.member)
         << "  fitted " << fitted.*(f.member) << "\n";
+  }
+  for (const auto& name : doc["at_bound"]) {
+    out << "  note: " << name.get<std::string>() << " ended on its bound: the data would move it further\n";
   }
   auto rmse = [](const nlohmann::json& j) { return j["overall"]["rmse_c"].dump(); };
   out << "  window   rmse " << rmse(doc["window"]) << " degC (start " << doc["start_window"]["rmse_c"].dump()
