@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "analysis/fit_internal.h"
+#include "analysis/replay_command.h"
 #include "models/bead/csw_model.h"
 #include "models/bead/speed_height_model.h"
 #include "models/bead/width_height_model.h"
@@ -206,6 +207,7 @@ std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::st
 
 FitOutcome RunFit(const FitOptions& options, std::ostream& out) {
   if (options.model == "distortion") return internal::RunFitDistortion(options, out);
+  if (options.model == "thermal") return internal::RunFitThermal(options, out);
   DefaultFitColumns(options.model);  // rejects an unknown model before reading anything
   WAAM_THROW_UNLESS(!options.output.empty(), "-o/--output: the model JSON file to write is required");
   const CsvTable table = CsvTable::Read(options.data);

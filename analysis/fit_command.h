@@ -14,7 +14,7 @@ namespace waam::analysis {
 
 // Everything `waam fit` accepts; the CLI fills it, tests build it directly.
 struct FitOptions {
-  std::string model;                      // csw | speed-height | width-height | void-length | distortion
+  std::string model;                      // csw | speed-height | width-height | void-length | distortion | thermal
   std::filesystem::path data;             // CSV input (distortion: the scan, .ply, .xyz or .stl, part frame, mm)
   std::filesystem::path output;           // model JSON output
   std::vector<std::string> columns;       // "role=column" overrides of the default column names
@@ -43,6 +43,9 @@ struct FitOptions {
   int groups = 4;                         // fe activation groups
   std::size_t max_points = 3000;          // scan points used (every k-th), >= 10
   int max_iterations = 30;                // Ceres iterations, 1-1000
+  // thermal: `data` is the scenario (with replay:), `free` of efficiency, convection, contact, emissivity, `start`
+  // an optional fitted file to start from, `window` the part of the log fitted
+  std::string window;                     // "START:END", s from the log's first row
   bool quiet = false;                     // no progress bar
 };
 

@@ -52,6 +52,7 @@ Scenario ParseScenario(YamlMap& top) {
   internal::ParseRunSection(top, &scenario.run);
   internal::ParsePlaceSection(top, &scenario.place);
   internal::ParseThermalSection(top, &scenario.thermal);
+  internal::ParseReplaySection(top, dir, &scenario.replay);
   scenario.program = planner::ParseProgramSection(top, dir);
   // The CSW radius clamp is one rule for the planner's speed and the twin's bead width (simulation section).
   scenario.process.csw_min_radius_mm = scenario.simulation.csw_min_radius_mm;

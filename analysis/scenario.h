@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/place_settings.h"
+#include "analysis/replay_settings.h"
 #include "analysis/run_settings.h"
 #include "analysis/thermal_settings.h"
 #include "planner/program/program_settings.h"
@@ -24,6 +25,7 @@ struct Scenario : planner::Scenario {
   planner::ProgramSettings program;     // optional `program:` section: a program made elsewhere instead of a part
   PlaceSettings place;                  // optional `place:` section: the ranges `waam place` searches
   ThermalSection thermal;               // optional `thermal:` section: the thermal model (`waam thermal`)
+  ReplaySection replay;                 // optional `replay:` section: a process log (`waam thermal replay`)
 };
 
 // Loads and validates a whole scenario file: the document is read once (with the `--set` overrides) and each module

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "analysis/place_settings.h"
+#include "analysis/replay_settings.h"
 #include "analysis/run_settings.h"
 #include "analysis/thermal_settings.h"
 #include "models/core/error.h"
@@ -101,6 +102,10 @@ std::vector<SectionKeys> MakeSections() {
       Section("thermal", kThermalFields),
       Section("thermal.substrate", kThermalSubstrateFields),
       Section("thermal.table", kThermalTableFields),
+      Section("replay", kReplayFields),
+      Section("replay.columns", kReplayColumnFields),
+      Section("replay.frame", kReplayFrameFields),
+      Section("replay.bead", kReplayBeadFields),
   };
   // The top level holds the sections too.
   for (const SectionKeys& s : sections) {
@@ -200,6 +205,9 @@ void ValidateScenario(const Scenario& s) {
   twin::ValidateSimulationSettings(s.simulation);
   CheckFields<RunSettings>(kRunFields, s.run, "run");
   CheckFields<PlaceSettings>(kPlaceFields, s.place, "place");
+  CheckFields<ReplaySection>(kReplayFields, s.replay, "replay");
+  CheckFields<ReplaySection>(kReplayFrameFields, s.replay, "replay.frame");
+  CheckFields<ReplaySection>(kReplayBeadFields, s.replay, "replay.bead");
 }
 
 }  // namespace waam::analysis

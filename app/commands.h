@@ -34,6 +34,8 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner);  // app/distort
 void AddImportCommand(CLI::App& app, CommandRunner* runner);      // app/import_cli.cc
 void AddExportCommand(CLI::App& app, CommandRunner* runner);      // app/export_cli.cc
 void AddThermalCommand(CLI::App& app, CommandRunner* runner);     // app/thermal_cli.cc
+// `waam thermal replay`, below `thermal` (app/replay_cli.cc); returns the subcommand.
+CLI::App* AddThermalReplayCommand(CLI::App& thermal, CommandRunner* runner);
 void AddMaterialCommand(CLI::App& app, CommandRunner* runner);    // app/material_cli.cc
 void AddScenarioKeysCommand(CLI::App& app, CommandRunner* runner);  // app/scenario_keys_cli.cc
 

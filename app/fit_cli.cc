@@ -39,10 +39,19 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       "                JSON gets a \"fit\" record (scan, scenario, free, start, rms_start_mm, rms_mm, solver).\n"
       "                A twin scan at known parameters: `waam compensate <part.yaml> --model known.json --max-iter 0\n"
       "                --no-program -o dir` writes dir/scan_before.ply (side faces, top end face left out).\n"
+      "  thermal       the thermal model's uncertain parameters from a build's process log (docs/REPLAY.md):\n"
+      "                `waam fit thermal <scenario.yaml> --free efficiency,convection,contact[,emissivity] --window\n"
+      "                START:END -o fitted.json`. The data is the scenario (its replay: section names the log). Ceres\n"
+      "                moves the --free parameters (default efficiency,convection,contact; from the scenario or --start,\n"
+      "                a fitted file) until the replayed thermocouples match the measured ones inside --window (s from\n"
+      "                the log's first row); the rest of the log is predicted. Writes parameters, set (the --set lines\n"
+      "                for any scenario), start, fitted, window and held_out {probes.NAME, overall: rmse_c, mae_c,\n"
+      "                mape_pct, max_error_c, peaks}, solver, time_s. `waam thermal replay --parameters fitted.json`\n"
+      "                replays with them. A fit Ceres did not converge is not written (exit 2).\n"
       "Exit code 2 for bad input or a fit the solver could not make usable (the message says why).");
   fit->add_option("model", options->model, "csw | speed-height | width-height | void-length | distortion")
       ->required()
-      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "void-length", "distortion"}));
+      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "void-length", "distortion", "thermal"}));
   fit->add_option("data", options->data, "CSV file with a header row (distortion: the scan, .ply, .xyz or .stl)")
       ->required();
   fit->add_option("-o,--output", options->output, "model JSON to write (atomically)")->required();
@@ -77,10 +86,12 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
   fit->add_option("--set", options->overrides, "distortion: override a scenario setting, key.path=value (repeatable)");
   fit->add_option("--start", options->start,
                   "distortion: start parameters, a distortion model JSON (default models/data/distortion.json); the\n"
-                  "parameters not in --free keep its values");
-  fit->add_option("--free", options->free,
+                  "parameters not in --free keep its values; thermal: a fitted file to start from");
+  fit->add_option("--window", options->window, "thermal: START:END, the part of the log fitted, s from its first row");
+  CLI::Option* free = fit->add_option("--free", options->free,
                   "distortion: parameters fitted, any of strain [1], vertical_ratio [1], heat_exponent [1],\n"
-                  "substrate_stiffness_n_mm3 [N/mm^3] (fe mode only)")
+                  "substrate_stiffness_n_mm3 [N/mm^3] (fe mode only); thermal: any of efficiency, convection,\n"
+                  "contact, emissivity (default efficiency,convection,contact)")
       ->delimiter(',')
       ->default_str("strain,vertical_ratio");
   fit->add_option("--mode", options->mode, "distortion: fe | reduced (default: the --start file's mode)");
@@ -92,7 +103,8 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
                   "distortion: Ceres iterations (1-1000); a fit that has not converged by then is not written")
       ->capture_default_str();
   fit->add_flag("-q,--quiet", options->quiet, "no progress bar");
-  fit->callback([runner, options, speed_range] {
+  fit->callback([runner, options, speed_range, free] {
+    if (options->model == "thermal" && free->count() == 0) options->free = {"efficiency", "convection", "contact"};
     if (speed_range->size() == 2) options->speed_range = std::make_pair((*speed_range)[0], (*speed_range)[1]);
     *runner = [options] {
       const analysis::FitOutcome outcome = analysis::RunFit(*options, std::cout);

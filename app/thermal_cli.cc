@@ -30,13 +30,17 @@ void AddThermalCommand(CLI::App& app, CommandRunner* runner) {
       "                 temperature at each layer's end, nz x ny x nx degC, attributes origin_mm, cell_mm, dims)\n"
       "  interpass.png, probes.png, maps/layer_NNNN.png (vertical section of the temperature at each layer's end)\n"
       "thermal.json is written last: its presence marks a complete run.");
-  command->add_option("scenario", options->scenario, "Scenario YAML file with a thermal: section")->required();
-  command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
+  command->add_option("scenario", options->scenario, "Scenario YAML file with a thermal: section (required)");
+  command->add_option("-o,--out", options->out_dir, "Output directory (created if missing) (required)");
   command->add_option("--set", options->overrides,
                       "Override a scenario setting, key.path=value (repeatable), e.g. --set process.interpass.max_c=150");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw the PNGs");
-  command->callback([options, runner] {
+  CLI::App* replay = AddThermalReplayCommand(*command, runner);
+  command->callback([command, replay, options, runner] {
+    if (command->got_subcommand(replay)) return;  // `waam thermal replay` set the runner
+    if (options->scenario.empty()) throw CLI::RequiredError("scenario");
+    if (options->out_dir.empty()) throw CLI::RequiredError("--out");
     *runner = [options] {
       const analysis::ThermalRunResult r = analysis::RunThermal(*options);
       double waits = 0.0, peak = 0.0;

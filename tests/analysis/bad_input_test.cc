@@ -114,6 +114,25 @@ std::string ThermalScenario(const std::string& from, const std::string& to) {
   return text;
 }
 
+// A replay scenario (waam thermal replay, waam fit thermal) and its log, every value valid; `from` is replaced by
+// `to` in the scenario. Lines: 20 replay.probes.tc; log rows on lines 2-6.
+std::string ReplayScenario(const std::string& from = "", const std::string& to = "") {
+  std::string text =
+      "name: bad_replay\npart:\n  generator: {type: box, size_mm: [40, 6, 4]}\nslicing:\n  layer_height_mm: 2\n"
+      "path:\n  pattern: zigzag\n  bead_width_mm: 6\nprocess:\n  travel_speed_mm_min: 400\n"
+      "  wire_feed_mm_min: 3200\n  arc: {power_w: 2000}\nthermal:\n  material: mild_steel\n"
+      "  substrate: {size_mm: [100, 40, 10]}\nreplay:\n  log: log.csv\n  columns: {power_w: power_w}\n"
+      "  probes:\n    tc: {column: T1, at_mm: [0, 5, -2]}\n";
+  if (!from.empty()) text.replace(text.find(from), from.size(), to);
+  return text;
+}
+std::string ReplayLogText(const std::string& from = "", const std::string& to = "") {
+  std::string text = "time,power_w,arc_on,x,y,z,T1\n0,2000,1,-10,0,2,20\n1,2000,1,-2,0,2,25\n2,2000,1,6,0,2,30\n"
+                     "3,0,0,6,0,2,40\n4,0,0,6,0,2,38\n";
+  if (!from.empty()) text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
 // A six-joint arm in URDF (geometry irrelevant: every case fails before MuJoCo loads it); `mesh` is the filename of
 // link_2's collision mesh, `velocity` the attribute text of every <limit>, `revolute` how many joints are revolute.
 std::string MiniUrdf(const std::string& mesh, const std::string& velocity = "velocity=\"3\"", int revolute = 6) {
@@ -395,6 +414,27 @@ std::vector<BadInput> Catalogue() {
       {"thermal-arc-without-power", "thermal", "s.yaml",
        {{"s.yaml", ThermalScenario("arc: {power_w: 2000}", "arc: {efficiency: 0.8}")}},
        {"s.yaml:12: process.arc: the arc has no power: give power_w (W), or voltage_v (V) and current_a (A)"}},
+      {"replay-missing-column", "thermal replay", "s.yaml",
+       {{"s.yaml", ReplayScenario()}, {"log.csv", ReplayLogText("x,y,z", "x,y,height")}},
+       {"log.csv:1: no column 'z' (replay.columns.z); the log's columns: time, power_w, arc_on, x, y, height, T1"}},
+      {"replay-time-backwards", "thermal replay", "s.yaml",
+       {{"s.yaml", ReplayScenario()}, {"log.csv", ReplayLogText("3,0,0", "1.5,0,0")}},
+       {"log.csv:5: time 1.5 s is before the previous row's 2 s (line 4): time must not go backwards"}},
+      {"replay-row-not-numbers", "thermal replay", "s.yaml",
+       {{"s.yaml", ReplayScenario()}, {"log.csv", ReplayLogText("1,2000", "1,2k")}},
+       {"log.csv:3:2: column 'power_w': '2k' is not a number"}},
+      {"replay-negative-power", "thermal replay", "s.yaml",
+       {{"s.yaml", ReplayScenario()}, {"log.csv", ReplayLogText("1,2000", "1,-2000")}},
+       {"log.csv:3:2: column 'power_w': negative power -2000 W; arc power must be >= 0"}},
+      {"replay-probe-outside-plate-and-part", "thermal replay", "s.yaml",
+       {{"s.yaml", ReplayScenario("[0, 5, -2]", "[0, 5, 80]")}, {"log.csv", ReplayLogText()}},
+       {"s.yaml:20: replay.probes.tc.at_mm = [0, 5, 80]: outside the plate", "a probe must lie in the metal"}},
+      {"replay-window-outside-log", "thermal replay", "s.yaml",
+       {{"s.yaml", ReplayScenario()}, {"log.csv", ReplayLogText()}},
+       {"--windows '2:60': outside the log", "log.csv, which runs from 0 to 4 s"}, {}, "--windows 0:2,2:60"},
+      {"fit-thermal-window-outside-log", "fit thermal", "s.yaml",
+       {{"s.yaml", ReplayScenario()}, {"log.csv", ReplayLogText()}},
+       {"--window '0:60': outside the log", "log.csv, which runs from 0 to 4 s"}, {}, "--window 0:60"},
       {"urdf-xacro", "check", "s.yaml",
        {{"s.yaml", UrdfScenario("arm.urdf.xacro")}, {"arm.urdf.xacro", MiniUrdf("m.stl")}},
        {"arm.urdf.xacro: a .xacro file is not read; run `xacro arm.urdf.xacro > arm.urdf` once and name the .urdf"}},

@@ -249,6 +249,17 @@ void ThermalSimulation::Cool(double seconds) {
   }
 }
 
+void ThermalSimulation::SetBoundaryTemperatures(double ambient_c, double table_c) {
+  WAAM_THROW_UNLESS(std::isfinite(ambient_c) && ambient_c > -273.15,
+                    "thermal ambient_c = " << ambient_c << ": must be above absolute zero");
+  WAAM_THROW_UNLESS(std::isfinite(table_c) && table_c > -273.15,
+                    "thermal table_c = " << table_c << ": must be above absolute zero");
+  ThermalState& s = impl_->s;
+  Pump(s, true);  // the arc motion held back is solved with the temperatures it burnt under
+  s.settings.ambient_c = ambient_c;
+  s.settings.table_c = table_c;
+}
+
 double ThermalSimulation::time_s() const { return impl_->s.time_s + impl_->s.pieces_seconds; }
 
 // The queries first solve the arc motion held back for the next batch, so that they see the state at time_s().

@@ -93,6 +93,9 @@ class ThermalSimulation {
             double heat_w, double seconds);
   // Advances `seconds` with no heat input (travel, waits).
   void Cool(double seconds);
+  // Sets the air temperature (convection, radiation) and the table's temperature from now on, degC (a measured
+  // ambient drives the losses). Throws InputError unless both are finite and above absolute zero.
+  void SetBoundaryTemperatures(double ambient_c, double table_c);
 
   double time_s() const;
   // Temperature at a point of the metal (plate or deposit), degC; NaN where no metal is (yet).

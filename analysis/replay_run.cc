@@ -1,0 +1,215 @@
+// The replay of a process log through the thermal model, and the comparison with its thermocouples.
+#include "analysis/replay_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "models/core/error.h"
+#include "models/core/progress.h"
+
+namespace waam::analysis {
+
+namespace {
+
+constexpr double kReplayNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string ReplayBoxText(const Eigen::AlignedBox3d& box) {
+  std::ostringstream s;
+  s << "[" << box.min().x() << ", " << box.min().y() << ", " << box.min().z() << "] .. [" << box.max().x() << ", "
+    << box.max().y() << ", " << box.max().z() << "] mm";
+  return s.str();
+}
+
+}  // namespace
+
+ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log) {
+  const ThermalSection& thermal = scenario.thermal;
+  const ReplaySection& replay = scenario.replay;
+  WAAM_THROW_UNLESS(thermal.given, scenario.file.string() << ": a replay needs the thermal model: add a thermal: "
+                                                             "section (docs/THERMAL.md)");
+  WAAM_THROW_UNLESS(replay.given, scenario.file.string() << ": no replay: section: name the process log and its "
+                                                            "columns (docs/REPLAY.md)");
+  ReplayModel model;
+  model.bead_width_mm = replay.bead_width_mm;
+  model.bead_height_mm = replay.bead_height_mm;
+  model.probes = replay.probes;
+  // The deposit: the bead below every arc-on move, half its width around the head.
+  Eigen::AlignedBox3d beads;
+  const Eigen::Vector3d half(0.5 * replay.bead_width_mm, 0.5 * replay.bead_width_mm, 0.0);
+  for (std::size_t i = 0; i + 1 < log.time_s.size(); ++i) {
+    if (!log.arc_on[i] || log.gap_before[i + 1]) continue;
+    for (const Eigen::Vector3d& p : {log.head_mm[i], log.head_mm[i + 1]}) {
+      beads.extend(p + half);
+      beads.extend(p - half - Eigen::Vector3d(0, 0, replay.bead_height_mm));
+    }
+  }
+  WAAM_THROW_UNLESS(!beads.isEmpty(), log.file << ": the arc never burns between two rows: nothing to replay");
+  twin::ThermalSettings& s = model.settings;
+  s.deposit = thermal.deposit.material;
+  s.substrate = thermal.substrate.material;
+  s.cell_mm = thermal.cell_mm;
+  s.initial_c = thermal.initial_c;
+  s.ambient_c = log.ambient_c.empty() ? thermal.ambient_c : log.ambient_c.front();
+  s.table_c = log.table_c.empty() ? thermal.table_c : log.table_c.front();
+  s.convection_w_m2k = thermal.convection_w_m2k;
+  s.emissivity = thermal.emissivity;
+  s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
+  const Eigen::Vector3d size = thermal.substrate_size_mm;
+  Eigen::Vector3d centre(beads.center().x(), beads.center().y(), -0.5 * size.z());
+  if (thermal.substrate_centre_mm) centre = *thermal.substrate_centre_mm;
+  s.substrate_box_mm = Eigen::AlignedBox3d(centre - 0.5 * size, centre + 0.5 * size);
+  const Eigen::Vector3d cell = Eigen::Vector3d::Constant(thermal.cell_mm);
+  s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - cell, beads.max() + cell);
+  for (const ReplayProbe& probe : model.probes) {
+    WAAM_THROW_UNLESS(s.substrate_box_mm.contains(probe.at_mm) || s.deposit_box_mm.contains(probe.at_mm),
+                      probe.where << " = [" << probe.at_mm.x() << ", " << probe.at_mm.y() << ", " << probe.at_mm.z()
+                                  << "]: outside the plate " << ReplayBoxText(s.substrate_box_mm) << " and the part "
+                                  << ReplayBoxText(s.deposit_box_mm) << "; a probe must lie in the metal");
+  }
+  model.parameters = {scenario.process.arc.efficiency, s.convection_w_m2k, s.table_conductance_w_m2k, s.emissivity};
+  model.log = std::move(log);
+  return model;
+}
+
+ReplaySimulation SimulateReplay(const ReplayModel& model, const ThermalParameters& parameters, double end_s) {
+  const ReplayLog& log = model.log;
+  WAAM_THROW_UNLESS(std::isfinite(parameters.efficiency) && parameters.efficiency > 0.0 &&
+                        parameters.efficiency <= 1.0,
+                    "arc efficiency = " << parameters.efficiency << ": must be in (0, 1]");
+  twin::ThermalSettings settings = model.settings;
+  settings.convection_w_m2k = parameters.convection_w_m2k;
+  settings.table_conductance_w_m2k = parameters.table_conductance_w_m2k;
+  settings.emissivity = parameters.emissivity;
+  const auto start = std::chrono::steady_clock::now();
+  twin::ThermalSimulation sim(settings);
+  ReplaySimulation out;
+  const std::size_t rows = log.time_s.size();
+  out.probe_c.assign(model.probes.size(), std::vector<double>(rows, kReplayNaN));
+  const bool boundaries = !log.ambient_c.empty() || !log.table_c.empty();
+  for (std::size_t i = 0; i < rows && log.time_s[i] <= end_s; ++i) {
+    if (i > 0) {
+      const double seconds = log.time_s[i] - log.time_s[i - 1];
+      if (log.arc_on[i - 1] && !log.gap_before[i]) {
+        const double heat_w = parameters.efficiency * log.power_w[i - 1];
+        sim.Weld(log.head_mm[i - 1], log.head_mm[i], model.bead_width_mm, model.bead_height_mm, heat_w, seconds);
+        out.heat_input_j += heat_w * seconds;
+      } else {
+        sim.Cool(seconds);
+      }
+    }
+    if (boundaries) {
+      sim.SetBoundaryTemperatures(log.ambient_c.empty() ? settings.ambient_c : log.ambient_c[i],
+                                  log.table_c.empty() ? settings.table_c : log.table_c[i]);
+    }
+    for (std::size_t p = 0; p < model.probes.size(); ++p) out.probe_c[p][i] = sim.TemperatureAt(model.probes[p].at_mm);
+    if (i % 64 == 0) CheckInterrupt();
+  }
+  out.energy = sim.Energy();
+  out.stats = sim.Stats();
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+ReplayErrors CompareProbe(const std::vector<double>& time_s, const std::vector<double>& measured,
+                          const std::vector<double>& simulated, double from_s, double to_s, bool outside) {
+  ReplayErrors e;
+  double sum_sq = 0.0, sum_abs = 0.0, sum_rel = 0.0;
+  std::size_t n_rel = 0;
+  e.peak_measured_c = e.peak_simulated_c = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < time_s.size(); ++i) {
+    const double t = time_s[i];
+    if ((t < from_s || t > to_s) != outside || std::isnan(measured[i]) || std::isnan(simulated[i])) continue;
+    const double error = simulated[i] - measured[i];
+    ++e.n;
+    sum_sq += error * error;
+    sum_abs += std::abs(error);
+    if (std::abs(measured[i]) >= 1.0) {
+      sum_rel += std::abs(error) / std::abs(measured[i]);
+      ++n_rel;
+    }
+    if (std::abs(error) > e.max_error_c) {
+      e.max_error_c = std::abs(error);
+      e.max_error_time_s = t;
+    }
+    if (measured[i] > e.peak_measured_c) {
+      e.peak_measured_c = measured[i];
+      e.peak_measured_time_s = t;
+    }
+    if (simulated[i] > e.peak_simulated_c) {
+      e.peak_simulated_c = simulated[i];
+      e.peak_simulated_time_s = t;
+    }
+  }
+  if (e.n == 0) {
+    e.rmse_c = e.mae_c = e.mape_pct = e.peak_measured_c = e.peak_simulated_c = kReplayNaN;
+    return e;
+  }
+  e.rmse_c = std::sqrt(sum_sq / static_cast<double>(e.n));
+  e.mae_c = sum_abs / static_cast<double>(e.n);
+  e.mape_pct = n_rel > 0 ? 100.0 * sum_rel / static_cast<double>(n_rel) : kReplayNaN;
+  return e;
+}
+
+namespace {
+
+nlohmann::json ErrorsJson(const ReplayErrors& e) {
+  // NaN (no row compared) is written as null.
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"n", e.n},
+          {"rmse_c", number(e.rmse_c)},
+          {"mae_c", number(e.mae_c)},
+          {"mape_pct", number(e.mape_pct)},
+          {"max_error_c", number(e.n ? e.max_error_c : kReplayNaN)},
+          {"max_error_time_s", number(e.n ? e.max_error_time_s : kReplayNaN)},
+          {"peak_measured_c", number(e.peak_measured_c)},
+          {"peak_measured_time_s", number(e.n ? e.peak_measured_time_s : kReplayNaN)},
+          {"peak_simulated_c", number(e.peak_simulated_c)},
+          {"peak_simulated_time_s", number(e.n ? e.peak_simulated_time_s : kReplayNaN)}};
+}
+
+}  // namespace
+
+nlohmann::json ReplayErrorsJson(const ReplayModel& model, const ReplaySimulation& simulation, double from_s,
+                                double to_s, bool outside) {
+  nlohmann::json probes = nlohmann::json::object();
+  // Overall: every probe's rows, one after the other, as one series.
+  std::vector<double> time, measured, simulated;
+  for (std::size_t p = 0; p < model.probes.size(); ++p) {
+    const ReplayErrors e = CompareProbe(model.log.time_s, model.log.probe_c[p], simulation.probe_c[p], from_s, to_s, outside);
+    nlohmann::json j = ErrorsJson(e);
+    j["column"] = model.probes[p].column;
+    j["at_mm"] = {model.probes[p].at_mm.x(), model.probes[p].at_mm.y(), model.probes[p].at_mm.z()};
+    probes[model.probes[p].name] = j;
+    time.insert(time.end(), model.log.time_s.begin(), model.log.time_s.end());
+    measured.insert(measured.end(), model.log.probe_c[p].begin(), model.log.probe_c[p].end());
+    simulated.insert(simulated.end(), simulation.probe_c[p].begin(), simulation.probe_c[p].end());
+  }
+  nlohmann::json doc = {{"probes", probes},
+                        {"overall", ErrorsJson(CompareProbe(time, measured, simulated, from_s, to_s, outside))}};
+  if (!outside) doc["from_s"] = from_s, doc["to_s"] = to_s;
+  return doc;
+}
+
+std::pair<double, double> ParseLogWindow(const std::string& text, const ReplayLog& log, const std::string& what) {
+  const std::size_t colon = text.find(':');
+  double a = kReplayNaN, b = kReplayNaN;
+  if (colon != std::string::npos) {
+    const std::string first = text.substr(0, colon), second = text.substr(colon + 1);
+    char* end = nullptr;
+    a = std::strtod(first.c_str(), &end);
+    if (first.empty() || end != first.c_str() + first.size()) a = kReplayNaN;
+    b = std::strtod(second.c_str(), &end);
+    if (second.empty() || end != second.c_str() + second.size()) b = kReplayNaN;
+  }
+  WAAM_THROW_UNLESS(std::isfinite(a) && std::isfinite(b) && a < b,
+                    what << " '" << text << "': expected START:END in seconds from the log's first row, START < END");
+  const double last = log.time_s.back();
+  WAAM_THROW_UNLESS(a >= 0.0 && b <= last, what << " '" << text << "': outside the log " << log.file << ", which runs "
+                                                << "from 0 to " << last << " s");
+  return {a, b};
+}
+
+}  // namespace waam::analysis

@@ -1,0 +1,78 @@
+// The replay of a process log: the logged arc drives the thermal model (twin::ThermalSimulation) row by row, the
+// thermocouples are compared with the simulated temperatures at their places (docs/REPLAY.md).
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/replay_log.h"
+#include "analysis/scenario.h"
+#include "twin/thermal/thermal_simulation.h"
+
+namespace waam::analysis {
+
+// The uncertain parameters of the thermal model, those `waam fit thermal` may move.
+struct ThermalParameters {
+  double efficiency = 0.84;               // arc efficiency: heat into the metal / electrical power, 1
+  double convection_w_m2k = 10.0;         // h on every exposed face, W/(m^2 K)
+  double table_conductance_w_m2k = 0.0;   // plate-table contact, W/(m^2 K)
+  double emissivity = -1.0;               // of every exposed face; < 0 = each material's own
+};
+
+// Everything a replay needs, resolved from the scenario and the log.
+struct ReplayModel {
+  twin::ThermalSettings settings;   // plate, deposit box (from the arc-on head path), materials, losses
+  ThermalParameters parameters;     // the scenario's values (process.arc.efficiency, thermal.*)
+  ReplayLog log;
+  std::vector<ReplayProbe> probes;  // replay.probes, in file order
+  double bead_width_mm = 6.0;
+  double bead_height_mm = 2.0;
+};
+
+// The solver's settings and the log together. The deposit box is what the arc-on moves lay (the bead below the
+// head, half its width around it) plus one cell; the plate is thermal.substrate (centred under that box with its top
+// at z = 0 unless centre_mm is given). Throws InputError for a probe outside both the plate and that box (naming
+// replay.probes.NAME.at_mm).
+ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log);
+
+// The simulated temperature of each probe at each row's time, degC (NaN where no metal is yet, and after end_s).
+struct ReplaySimulation {
+  std::vector<std::vector<double>> probe_c;  // [probe][row]
+  twin::EnergyBalance energy;
+  twin::ThermalStats stats;
+  double heat_input_j = 0.0;                 // efficiency x logged arc energy replayed, J
+  double wall_s = 0.0;
+};
+
+// Drives the model through the rows with time_s <= end_s: between two rows the arc (when the first row has it on
+// and no gap follows) welds along the head's straight move with power x efficiency of the first row, else the part
+// cools; measured ambient and table temperatures (when logged) hold from their row. Throws InputError for
+// parameters out of range (naming them) and Interrupted on Ctrl-C.
+ReplaySimulation SimulateReplay(const ReplayModel& model, const ThermalParameters& parameters,
+                                double end_s = std::numeric_limits<double>::infinity());
+
+// Measured against simulated over the rows with time in [from_s, to_s]; rows where either is NaN are left out.
+struct ReplayErrors {
+  std::size_t n = 0;                 // rows compared
+  double rmse_c = 0.0, mae_c = 0.0;  // degC
+  double mape_pct = 0.0;             // mean |error| / |measured| in percent (rows with |measured| >= 1 degC)
+  double max_error_c = 0.0, max_error_time_s = 0.0;  // largest |simulated - measured| and when, degC, s
+  double peak_measured_c = 0.0, peak_measured_time_s = 0.0;
+  double peak_simulated_c = 0.0, peak_simulated_time_s = 0.0;
+};
+
+// The errors of every probe (probes.<NAME>) and of all of them together (overall) over [from_s, to_s] (with
+// `outside`, over the rows outside it: a fit's held-out rows), as replay.json and the fitted file write them.
+nlohmann::json ReplayErrorsJson(const ReplayModel& model, const ReplaySimulation& simulation, double from_s,
+                                double to_s, bool outside = false);
+ReplayErrors CompareProbe(const std::vector<double>& time_s, const std::vector<double>& measured,
+                          const std::vector<double>& simulated, double from_s, double to_s, bool outside = false);
+
+// A window "A:B" of seconds from the log's first row. Throws InputError naming `what` (e.g. "--window") unless
+// A < B and both lie within [0, the log's last time].
+std::pair<double, double> ParseLogWindow(const std::string& text, const ReplayLog& log, const std::string& what);
+
+}  // namespace waam::analysis

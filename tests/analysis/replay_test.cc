@@ -1,0 +1,195 @@
+// The process-log reader (dialects, reported rows, refused rows), the replay's metrics, and the round trip: a log
+// made by the thermal model with seeded noise and known parameters, replayed and fitted back.
+#include <cmath>
+#include <iostream>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "analysis/fit_command.h"
+#include "analysis/replay_command.h"
+#include "analysis/replay_synthetic.h"
+#include "models/core/error.h"
+#include "tests/analysis/cli_test_util.h"
+
+namespace waam::analysis {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+ReplaySection Section() {
+  ReplaySection s;
+  s.columns.power_w = "P";
+  s.probes.push_back({"tc1", "T1", Eigen::Vector3d::Zero(), "replay.probes.tc1"});
+  return s;
+}
+
+std::string Error(const std::string& text, const ReplaySection& section) {
+  try {
+    ParseReplayLog(text, section, "log.csv");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReplayLog, ReadsASemicolonLogWithDecimalCommasClockTimesAcrossMidnightAndAFrame) {
+  ReplaySection s = Section();
+  s.header_rows = 2;
+  s.time_unit = LogTimeUnit::kClock;
+  s.frame_offset_mm = {100.0, 0.0, 5.0};
+  s.frame_rotation_deg = 90.0;
+  const std::string text =
+      "\xEF\xBB\xBFMachine;Cell 3\r\nExported;2024-05-01\r\n"
+      "time;P;arc_on;x;y;z;T1\r\n"
+      "2024-05-01 23:59:58;2100,5;1;10;0;2;25,5\r\n"
+      "23:59:59;\"2000\";ON;11;0;2;26\r\n"
+      "\r\n"
+      "00:00:00,5;0;off;12;0;2;\r\n";
+  const ReplayLog log = ParseReplayLog(text, s, "log.csv");
+  ASSERT_EQ(log.time_s.size(), 3u);
+  EXPECT_DOUBLE_EQ(log.time_s[1], 1.0);
+  EXPECT_DOUBLE_EQ(log.time_s[2], 2.5) << "midnight is crossed, not time going backwards";
+  EXPECT_DOUBLE_EQ(log.power_w[0], 2100.5) << "decimal comma with a semicolon delimiter";
+  EXPECT_EQ(log.arc_on[1], 1);
+  EXPECT_EQ(log.arc_on[2], 0);
+  // Rotated 90 deg about z then offset: (10, 0, 2) -> (100, 10, 7).
+  EXPECT_NEAR(log.head_mm[0].x(), 100.0, 1e-9);
+  EXPECT_NEAR(log.head_mm[0].y(), 10.0, 1e-9);
+  EXPECT_NEAR(log.head_mm[0].z(), 7.0, 1e-9);
+  EXPECT_TRUE(std::isnan(log.probe_c[0][2]));
+  ASSERT_EQ(log.issues.size(), 1u);
+  EXPECT_EQ(log.issues[0].kind, "empty_probe_cell");
+  EXPECT_EQ(log.issues[0].line, 7);
+}
+
+TEST(ReplayLog, ReportsAZeroFirstRowARepeatedTimeAndAGapWithoutUsingThem) {
+  ReplaySection s = Section();
+  s.columns.power_w.clear();
+  s.columns.voltage_v = "U";
+  s.columns.current_a = "I";
+  s.time_unit = LogTimeUnit::kDayFraction;
+  std::ostringstream text;
+  text.precision(15);
+  text << "time,U,I,arc_on,x,y,z,T1\n0,0,0,0,0,0,0,0\n";
+  const double day = 86400.0;
+  for (int t : {100, 101, 101, 102, 110, 111}) text << (45000.0 + t / day) << ",20,150,1,0,0,0,30\n";
+  const ReplayLog log = ParseReplayLog(text.str(), s, "log.csv");
+  ASSERT_EQ(log.time_s.size(), 5u) << "the zero row and the repeated time are left out";
+  EXPECT_NEAR(log.time_s[4], 11.0, 1e-3) << "a spreadsheet date serial: times from the first row";
+  EXPECT_DOUBLE_EQ(log.power_w[0], 3000.0);
+  ASSERT_EQ(log.issues.size(), 3u);
+  EXPECT_EQ(log.issues[0].kind, "zero_first_row");
+  EXPECT_EQ(log.issues[1].kind, "repeated_time");
+  EXPECT_EQ(log.issues[2].kind, "gap");
+  EXPECT_EQ(log.gap_before[3], 1) << "102 s -> 110 s is longer than 3 x the median step";
+}
+
+TEST(ReplayLog, RefusesBadRowsNamingFileLineAndCell) {
+  const ReplaySection s = Section();
+  const std::string head = "time,P,arc_on,x,y,z,T1\n0,1000,1,0,0,0,20\n";
+  EXPECT_THAT(Error("time,P,arc_on,x,y,T1\n0,1,1,0,0,20\n", s),
+              HasSubstr("log.csv:1: no column 'z' (replay.columns.z)"));
+  EXPECT_THAT(Error(head + "2,1000,1,0,0,0,20\n1,1000,1,0,0,0,20\n", s),
+              HasSubstr("log.csv:4: time 1 s is before the previous row's 2 s (line 3)"));
+  EXPECT_THAT(Error(head + "1,12a,1,0,0,0,20\n", s), HasSubstr("log.csv:3:2: column 'P': '12a' is not a number"));
+  EXPECT_THAT(Error(head + "1,-5,1,0,0,0,20\n", s), HasSubstr("log.csv:3:2: column 'P': negative power -5 W"));
+  EXPECT_THAT(Error(head + "1,5,maybe,0,0,0,20\n", s), HasSubstr("log.csv:3:3: column 'arc_on': 'maybe'"));
+  EXPECT_THAT(Error(head + "1,5,1,0\n", s), HasSubstr("log.csv:3:5: the row has 4 cells"));
+  EXPECT_THAT(Error(head, s), HasSubstr("1 data rows"));
+}
+
+TEST(ReplayErrors, MatchHandComputedValuesAndLeaveOutMissingRows) {
+  const std::vector<double> t = {0, 1, 2, 3};
+  const std::vector<double> measured = {10, 20, NAN, 40};
+  const std::vector<double> simulated = {12, 17, 5, 40};
+  const ReplayErrors e = CompareProbe(t, measured, simulated, 0.0, 3.0);
+  EXPECT_EQ(e.n, 3u);
+  EXPECT_NEAR(e.rmse_c, std::sqrt((4.0 + 9.0) / 3.0), 1e-12);
+  EXPECT_NEAR(e.mae_c, 5.0 / 3.0, 1e-12);
+  EXPECT_NEAR(e.mape_pct, 100.0 * (0.2 + 0.15) / 3.0, 1e-12);
+  EXPECT_DOUBLE_EQ(e.max_error_c, 3.0);
+  EXPECT_DOUBLE_EQ(e.max_error_time_s, 1.0);
+  EXPECT_DOUBLE_EQ(e.peak_measured_c, 40.0);
+  const ReplayErrors held = CompareProbe(t, measured, simulated, 0.5, 3.0, true);
+  EXPECT_EQ(held.n, 1u) << "outside [0.5, 3]: only t = 0";
+}
+
+// A replay scenario for the round trip: a 40 mm wall on a 70 x 30 x 6 mm mild-steel plate, two thermocouples.
+std::string RoundTripScenario() {
+  return "name: replay_round_trip\n"
+         "part:\n  generator: {type: box, size_mm: [40, 6, 4]}\n"
+         "slicing:\n  layer_height_mm: 2\npath:\n  pattern: zigzag\n  bead_width_mm: 6\n"
+         "process:\n  travel_speed_mm_min: 480\n  wire_feed_mm_min: 3200\n"
+         "  arc: {power_w: 2000, efficiency: 0.84}\n"
+         "thermal:\n  material: mild_steel\n  substrate: {size_mm: [70, 30, 6]}\n  cell_mm: 2\n"
+         "  convection_w_m2k: 10\n"
+         "replay:\n  log: wall.csv\n  columns: {power_w: power_w}\n  bead: {width_mm: 6, height_mm: 2}\n"
+         "  probes:\n    near: {column: T1, at_mm: [0, 7, -1]}\n    far: {column: T2, at_mm: [25, -10, -4]}\n";
+}
+
+// Writes the scenario and a log the model made with `truth` (noise 1 degC, seed 7); returns the scenario path.
+fs::path WriteRoundTrip(const fs::path& dir, const ThermalParameters& truth) {
+  const fs::path scenario = dir / "scenario.yaml";
+  std::ofstream(scenario) << RoundTripScenario();
+  WallBuildSpec spec;
+  spec.layers = 2;
+  spec.length_mm = 40.0;
+  spec.dwell_s = 20.0;
+  spec.tail_s = 90.0;
+  ReplayLog rows = WallBuildLog(spec);
+  const std::vector<std::string> columns = {"T1", "T2"};
+  const std::vector<std::vector<double>> blank(2, std::vector<double>(rows.time_s.size(), NAN));
+  std::ofstream(dir / "wall.csv") << ReplayLogCsv(rows, columns, blank, 0.0, 1);
+  const Scenario loaded = LoadScenario(scenario);
+  const ReplayModel model = MakeReplayModel(loaded, rows);
+  const ReplaySimulation sim = SimulateReplay(model, truth);
+  std::ofstream(dir / "wall.csv") << ReplayLogCsv(rows, columns, sim.probe_c, 1.0, 7);
+  return scenario;
+}
+
+TEST(ReplayRoundTrip, AReplayAtTheTrueParametersMatchesTheLogToItsNoise) {
+  const fs::path dir = cli_test::TempDir("replay_truth");
+  ThermalParameters truth;
+  truth.efficiency = 0.7;
+  truth.convection_w_m2k = 25.0;
+  const fs::path scenario = WriteRoundTrip(dir, truth);
+  ReplayModel model = LoadReplayModel(scenario, {});
+  const ReplaySimulation sim = SimulateReplay(model, truth);
+  const nlohmann::json errors = ReplayErrorsJson(model, sim, 0.0, model.log.time_s.back());
+  // The log holds the model's own temperatures (written to 0.01 degC) plus N(0, 1 degC) noise.
+  EXPECT_NEAR(errors["overall"]["rmse_c"].get<double>(), 1.0, 0.1);
+  EXPECT_GT(errors["probes"]["near"]["peak_measured_c"].get<double>(), 100.0) << "the probe must see the welds";
+}
+
+TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
+  const fs::path dir = cli_test::TempDir("replay_fit");
+  ThermalParameters truth;
+  truth.efficiency = 0.7;
+  truth.convection_w_m2k = 25.0;
+  const fs::path scenario = WriteRoundTrip(dir, truth);
+  FitOptions options;
+  options.model = "thermal";
+  options.data = scenario;
+  options.output = dir / "fitted.json";
+  options.free = {"efficiency", "convection"};
+  options.window = "0:60";
+  std::ostringstream out;
+  const FitOutcome outcome = RunFit(options, out);
+  ASSERT_TRUE(outcome.ok) << out.str();
+  std::cout << out.str();
+  const nlohmann::json fitted = cli_test::ReadJson(options.output);
+  EXPECT_NEAR(fitted["fitted"]["efficiency"].get<double>(), 0.7, 0.01) << out.str();
+  EXPECT_NEAR(fitted["fitted"]["convection"].get<double>(), 25.0, 5.0) << out.str();
+  EXPECT_LT(fitted["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << "the held-out rows are predicted";
+  EXPECT_GT(fitted["start_held_out"]["rmse_c"].get<double>(), 5.0) << "and the start values did not predict them";
+  // The fitted file replays: its parameters replace the scenario's.
+  const ReplayModel model = LoadReplayModel(scenario, {}, options.output);
+  EXPECT_NEAR(model.parameters.efficiency, fitted["parameters"]["efficiency"].get<double>(), 1e-12);
+}
+
+}  // namespace
+}  // namespace waam::analysis
