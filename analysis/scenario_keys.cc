@@ -48,6 +48,16 @@ inline constexpr std::array kThermalFields = {
     CustomField<ThermalSection>("table", FieldType::kMap, "contact with the table (thermal.table)"),
     CustomField<ThermalSection>("sample_s", FieldType::kNumber, "interval of the probe histories, s (default 1)"),
     CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
+    CustomField<ThermalSection>("heat_source", FieldType::kName,
+                                "double_ellipsoid (Goldak's pool, default) or uniform_bead (docs/THERMAL.md)"),
+    CustomField<ThermalSection>("pool", FieldType::kMap, "the double ellipsoid's semi-axes (thermal.pool)"),
+    CustomField<ThermalSection>("liquid_conductivity_factor", FieldType::kNumber,
+                                "k above the liquidus times this, 1-100 (default 5)"),
+};
+inline constexpr std::array kThermalPoolFields = {
+    CustomField<ThermalSection>("depth_beads", FieldType::kNumber, "depth b over the bead height (default 2)"),
+    CustomField<ThermalSection>("front_widths", FieldType::kNumber, "c_f ahead of the arc over the bead width (0.5)"),
+    CustomField<ThermalSection>("rear_widths", FieldType::kNumber, "c_r behind the arc over the bead width (2)"),
 };
 inline constexpr std::array kThermalSubstrateFields = {
     CustomField<ThermalSection>("size_mm", FieldType::kNumbers, "[x, y, z] of the plate, mm (required)"),
@@ -106,6 +116,7 @@ std::vector<SectionKeys> MakeSections() {
       Section("replay.columns", kReplayColumnFields),
       Section("replay.frame", kReplayFrameFields),
       Section("replay.bead", kReplayBeadFields),
+      Section("thermal.pool", kThermalPoolFields),
   };
   // The top level holds the sections too.
   for (const SectionKeys& s : sections) {

@@ -64,6 +64,11 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   s.emissivity = thermal.emissivity;
   s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
   s.table_c = thermal.table_c;
+  s.heat_source = thermal.heat_source;
+  s.pool_depth_beads = thermal.pool_depth_beads;
+  s.pool_front_widths = thermal.pool_front_widths;
+  s.pool_rear_widths = thermal.pool_rear_widths;
+  s.liquid_conductivity_factor = thermal.liquid_conductivity_factor;
   const Eigen::Vector3d size = thermal.substrate_size_mm;
   Eigen::Vector3d centre(beads.center().x(), beads.center().y(), -0.5 * size.z());
   if (thermal.substrate_centre_mm) centre = *thermal.substrate_centre_mm;
@@ -105,8 +110,9 @@ class ThermalDriver {
  private:
   void Sample();
   // Advances `seconds` with the arc going from a to b (weld) or not (cool), sampling on the way.
+  // `travel` orients a standing arc's pool (a = b).
   void Advance(double seconds, bool weld, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double width_mm,
-               double height_mm);
+               double height_mm, const Eigen::Vector3d& travel = Eigen::Vector3d::Zero());
   void RunSpan(const planner::TimedSpan& span);
   // The temperature process.interpass.at names, before `layer` starts at `start_P`.
   double InterpassTemperature(int layer, const Eigen::Vector3d& start_P) const;
@@ -144,7 +150,7 @@ void ThermalDriver::Sample() {
 }
 
 void ThermalDriver::Advance(double seconds, bool weld, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                            double width_mm, double height_mm) {
+                            double width_mm, double height_mm, const Eigen::Vector3d& travel) {
   const double eps = 1e-9 * std::max(1.0, seconds);
   double done = 0.0;
   while (seconds - done > eps) {
@@ -157,7 +163,7 @@ void ThermalDriver::Advance(double seconds, bool weld, const Eigen::Vector3d& a,
     if (weld) {
       const Eigen::Vector3d p0 = a + (b - a) * (done / seconds);
       const Eigen::Vector3d p1 = a + (b - a) * ((done + step) / seconds);
-      sim_.Weld(p0, p1, width_mm, height_mm, heat_w_, step);
+      sim_.Weld(p0, p1, width_mm, height_mm, heat_w_, step, travel);
     } else {
       sim_.Cool(step);
     }
@@ -183,7 +189,8 @@ void ThermalDriver::RunSpan(const planner::TimedSpan& span) {
     }
     case planner::SpanKind::kArcStart:
     case planner::SpanKind::kArcEnd: {
-      // The arc burns where the torch stands: a weld of zero length, with the bead of the nearest weld move.
+      // The arc burns where the torch stands: a weld of zero length, with the bead of the nearest weld move, its
+      // heat spread over that move's pool (oriented along the move).
       std::size_t w = span.point;
       if (span.kind == planner::SpanKind::kArcStart) {
         while (w + 1 < n && !layer.points[w].weld) ++w;
@@ -191,7 +198,9 @@ void ThermalDriver::RunSpan(const planner::TimedSpan& span) {
         while (w > 0 && !layer.points[w].weld) --w;
       }
       const planner::PathPoint& bead = layer.points[w];
-      Advance(seconds, true, at.p_P, at.p_P, bead.bead_width_mm, bead.bead_height_mm);
+      const Eigen::Vector3d travel = w > 0 ? Eigen::Vector3d(bead.p_P - layer.points[w - 1].p_P)
+                                           : Eigen::Vector3d::Zero();
+      Advance(seconds, true, at.p_P, at.p_P, bead.bead_width_mm, bead.bead_height_mm, travel);
       out_->arc_energy_j += scenario_.process.arc.power_w * seconds;
       break;
     }

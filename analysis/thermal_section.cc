@@ -76,6 +76,16 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
     table.CheckNoUnknownKeys();
   }
   out->sample_s = thermal.Number("sample_s", 0.01, 600.0, out->sample_s);
+  out->heat_source = thermal.Enum("heat_source", out->heat_source);
+  if (thermal.Has("pool")) {
+    YamlMap pool = thermal.Map("pool");
+    out->pool_depth_beads = pool.Number("depth_beads", 0.1, 20.0, out->pool_depth_beads);
+    out->pool_front_widths = pool.Number("front_widths", 0.05, 20.0, out->pool_front_widths);
+    out->pool_rear_widths = pool.Number("rear_widths", 0.05, 20.0, out->pool_rear_widths);
+    pool.CheckNoUnknownKeys();
+  }
+  out->liquid_conductivity_factor =
+      thermal.Number("liquid_conductivity_factor", 1.0, 100.0, out->liquid_conductivity_factor);
   ParseProbes(thermal, out);
   thermal.CheckNoUnknownKeys();
 }

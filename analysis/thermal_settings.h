@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "models/thermal/material.h"
+#include "twin/thermal/heat_source.h"
 
 namespace waam {
 class YamlMap;
@@ -52,6 +53,13 @@ struct ThermalSection {
   double table_conductance_w_m2k = 0.0;  // thermal.table.conductance_w_m2k: plate-table contact (0 = no table)
   double table_c = 20.0;             // thermal.table.temperature_c (default ambient), degC
   double sample_s = 1.0;             // thermal.sample_s: interval of the probe histories and interpass checks, s
+  // thermal.heat_source and thermal.pool.*: the arc's heat source and its pool's semi-axes over the bead's size
+  // (twin::ThermalSettings documents each); thermal.liquid_conductivity_factor: k above the liquidus times this.
+  twin::HeatSourceShape heat_source = twin::HeatSourceShape::kDoubleEllipsoid;
+  double pool_depth_beads = 2.0;
+  double pool_front_widths = 0.5;
+  double pool_rear_widths = 2.0;
+  double liquid_conductivity_factor = 5.0;
   std::vector<ThermalProbe> probes;  // thermal.probes, in file order
 };
 

@@ -68,6 +68,20 @@ inline constexpr std::string_view kViewerDepositMarker = "<!--WAAM_DEPOSIT-->";
 std::size_t AddDepositToViewer(const std::filesystem::path& page, const twin::Depositor& depositor,
                                const twin::DeviationReport* deviation = nullptr, std::size_t max_cells = 150000);
 
+// Where a written viewer.html keeps room for the thermal model's temperatures (AddThermalToViewer).
+inline constexpr std::string_view kViewerThermalMarker = "<!--WAAM_THERMAL-->";
+
+struct ThermalRunResult;
+
+// Adds the thermal run's temperatures to the viewer.html at `page` (written by WriteViewer for the same plan): the
+// metal cells of the model's grid on the surface of the part and the plate at the last layer's end, and each one's
+// temperature at every layer's end (1 byte each, on one scale from the ambient temperature to the hottest; every
+// k-th layer when cells x layers exceed `max_values`); the page colours the part by temperature at the slider's time,
+// interpolating between layer ends, with a colour bar in degC. Rewrites the page atomically; returns the number of
+// cells. Throws InputError when the page has no room for them (not a viewer, or added already).
+std::size_t AddThermalToViewer(const std::filesystem::path& page, const ThermalRunResult& result,
+                               std::size_t max_values = 8000000);
+
 namespace internal {
 // Standard base64 (RFC 4648 alphabet, '=' padding) of `bytes`.
 std::string Base64(std::string_view bytes);

@@ -51,6 +51,9 @@ json Run(const json& spec, const std::string& far_step_s) {
   st.convection_w_m2k = spec.at("convection_w_m2k").get<double>();
   st.emissivity = 0.0;
   st.table_conductance_w_m2k = 0.0;
+  // The problem FEniCSx solves: the bead rule's cell-wise constant source, constant properties (no liquid).
+  st.heat_source = waam::twin::HeatSourceShape::kUniformBead;
+  st.liquid_conductivity_factor = 1.0;
   if (!far_step_s.empty()) st.far_step_s = std::stod(far_step_s);
   const double dt = spec.at("step_s").get<double>();
   const double width = spec.at("bead_width_mm").get<double>(), height = spec.at("bead_height_mm").get<double>();

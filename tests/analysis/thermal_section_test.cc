@@ -77,6 +77,29 @@ TEST(ThermalSection, LoadsWithDefaults) {
   EXPECT_EQ(s.thermal.probes[1].p_mm, Eigen::Vector3d(0, 0, 3)) << "probes keep the file's order";
 }
 
+TEST(ThermalSection, HeatSourceKeysTakeTheirDefaultsAndValues) {
+  const Scenario d = LoadScenario(WriteScenario(ThermalText()));
+  EXPECT_EQ(d.thermal.heat_source, twin::HeatSourceShape::kDoubleEllipsoid);
+  EXPECT_EQ(d.thermal.pool_depth_beads, 2.0);
+  EXPECT_EQ(d.thermal.pool_front_widths, 0.5);
+  EXPECT_EQ(d.thermal.pool_rear_widths, 2.0);
+  EXPECT_EQ(d.thermal.liquid_conductivity_factor, 5.0);
+  const Scenario s = LoadScenario(WriteScenario(ThermalText(
+      "  material: mild_steel\n", "  material: mild_steel\n  heat_source: uniform_bead\n"
+                                   "  pool: {depth_beads: 1.5, front_widths: 1, rear_widths: 3}\n"
+                                   "  liquid_conductivity_factor: 1\n")));
+  EXPECT_EQ(s.thermal.heat_source, twin::HeatSourceShape::kUniformBead);
+  EXPECT_EQ(s.thermal.pool_depth_beads, 1.5);
+  EXPECT_EQ(s.thermal.pool_front_widths, 1.0);
+  EXPECT_EQ(s.thermal.pool_rear_widths, 3.0);
+  EXPECT_EQ(s.thermal.liquid_conductivity_factor, 1.0);
+  EXPECT_THAT(ErrorOf(ThermalText("  material: mild_steel\n", "  material: mild_steel\n  pool: {depth: 2}\n")),
+              HasSubstr("thermal.pool.depth"));
+  EXPECT_THAT(ErrorOf(ThermalText("  material: mild_steel\n",
+                                  "  material: mild_steel\n  liquid_conductivity_factor: 0.5\n")),
+              HasSubstr("s.yaml:15: thermal.liquid_conductivity_factor"));
+}
+
 TEST(ThermalSection, ArcPowerFromVoltageAndCurrent) {
   const Scenario s =
       LoadScenario(WriteScenario(ThermalText("arc: {power_w: 2000}", "arc: {voltage_v: 14.5, current_a: 120, "

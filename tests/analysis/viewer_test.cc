@@ -21,6 +21,7 @@
 #include "analysis/bench_command.h"
 #include "analysis/check_command.h"
 #include "analysis/scenario.h"
+#include "analysis/thermal_run.h"
 #include "planner/planar_planner.h"
 #include "tests/analysis/cli_test_util.h"
 #include "twin/cell/mujoco_cell.h"
@@ -201,6 +202,42 @@ TEST(ViewerTest, DepositIsCoarsenedToItsBudgetAndAddedOnce) {
   }
 }
 
+// A thermal run of a 3 x 3 x 3 cell block whose top row of cells is laid by the second layer: the page takes the 26
+// cells with a face outside (not the centre), each layer's temperatures on one scale, once.
+TEST(ViewerTest, ThermalIsAddedOnceWithItsSurfaceCells) {
+  const fs::path dir = cli_test::TempDir("viewer_thermal");
+  CheckScenario("cell/cell_joint_limit.yaml", dir);
+  ThermalRunResult result;
+  result.settings.ambient_c = 20.0;
+  for (int layer = 0; layer < 2; ++layer) {
+    twin::TemperatureField f;
+    f.origin_mm = Eigen::Vector3d(-3, -3, -4);
+    f.cell_mm = 2.0;
+    f.size = Eigen::Vector3i(3, 3, 3);
+    f.temperature_c.assign(27, 100.0f + 500.0f * layer);
+    if (layer == 0) std::fill(f.temperature_c.begin() + 18, f.temperature_c.end(), NAN);
+    result.fields.push_back({layer, 10.0 * (layer + 1), f});
+    result.layers.push_back({layer, 10.0 * layer, 10.0 * (layer + 1), 20.0, 600.0, 0.0, true});
+  }
+  EXPECT_EQ(AddThermalToViewer(dir / "viewer.html", result), 26u);
+  const std::string page = cli_test::Slurp(dir / "viewer.html");
+  const std::size_t at = page.find("<script type=\"application/json\" id=\"waam-thermal\">");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t from = page.find('>', at) + 1;
+  const nlohmann::json thermal = nlohmann::json::parse(page.substr(from, page.find("</script>", from) - from));
+  EXPECT_EQ(thermal["count"], 26);
+  EXPECT_EQ(thermal["snapshots"], 2);
+  EXPECT_DOUBLE_EQ(thermal["low_c"].get<double>(), 20.0);
+  EXPECT_DOUBLE_EQ(thermal["high_c"].get<double>(), 600.0);
+  EXPECT_EQ(page.find(std::string(kViewerThermalMarker)), std::string::npos) << "the room for them is used";
+  try {
+    AddThermalToViewer(dir / "viewer.html", result);
+    FAIL() << "a second add must be refused";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("its temperatures were added already"));
+  }
+}
+
 TEST(ViewerTest, BenchReportLinksEachScenarioViewer) {
   const fs::path dir = cli_test::TempDir("viewer_bench");
   fs::create_directories(dir / "scenarios");
@@ -347,6 +384,46 @@ TEST(ViewerBrowserTest, PageOfARunWithSimulateShowsTheDeposit) {
   EXPECT_EQ(BodyAttribute(dom, "data-errors"), "0");
   EXPECT_NE(dom.find("deposited part:"), std::string::npos) << "the page says what it holds of the deposit";
   EXPECT_NE(dom.find("(rms "), std::string::npos) << "the deviation colour scale is shown";
+}
+
+// With the thermal step after check, the page colours the part by temperature at the slider's time: a small wall of
+// the thermal scenario (30 x 8 x 4 mm on a 60 x 40 x 6 mm plate), opened at the middle and at the end of the build.
+TEST(ViewerBrowserTest, PageOfARunWithThermalColoursThePartByTemperature) {
+  const fs::path dir = cli_test::TempDir("viewer_browser_thermal");
+  std::string err;
+  ASSERT_EQ(cli_test::RunWaam("run " + kScenarios + "thermal/wall_interpass.yaml -o " + (dir / "out").string() +
+                                  " -q --steps plan check thermal --set 'part.generator.size_mm=[30, 8, 4]' "
+                                  "--set 'thermal.substrate.size_mm=[60, 40, 6]'",
+                              &err),
+            0)
+      << err;
+  const fs::path viewer = dir / "out" / "check" / "viewer.html";
+  const std::string page = cli_test::Slurp(viewer);
+  ASSERT_NE(page.find("id=\"waam-thermal\""), std::string::npos) << "the thermal step adds the temperatures";
+  const double peak = cli_test::ReadJson(dir / "out" / "thermal" / "thermal.json")["peak_c"].get<double>();
+  if (!HaveChromium()) GTEST_SKIP() << "chromium is not installed (tools/install_deps.sh installs it)";
+  double hottest[2] = {0.0, 0.0};
+  for (int end = 0; end < 2; ++end) {
+    const std::string dom = Chromium(viewer, "--dump-dom", end ? "#t=1&view=part" : "#t=0.5&view=part");
+    EXPECT_EQ(BodyAttribute(dom, "data-viewer-ready"), "1");
+    EXPECT_EQ(BodyAttribute(dom, "data-errors"), "0");
+    const int cells = std::stoi(BodyAttribute(dom, "data-thermal-cells"));
+    const int shown = std::stoi(BodyAttribute(dom, "data-thermal-shown"));
+    EXPECT_GT(shown, 0);
+    EXPECT_LE(shown, cells);
+    if (end) EXPECT_EQ(shown, cells) << "at the end every cell is there";
+    const std::size_t at = dom.find("id=\"clock\"");
+    ASSERT_NE(at, std::string::npos);
+    std::smatch m;
+    const std::string clock = dom.substr(at, 200);
+    ASSERT_TRUE(std::regex_search(clock, m, std::regex("hottest ([0-9.]+) degC"))) << clock;
+    hottest[end] = std::stod(m[1].str());
+    // Layer ends are colder than the run's sampled peak (taken while the arc burns), hotter than the air.
+    EXPECT_GT(hottest[end], 20.0);
+    EXPECT_LE(hottest[end], peak + 1.0);
+    EXPECT_THAT(dom, HasSubstr("id=\"thermal-high\">")) << "a colour bar with its scale";
+    EXPECT_THAT(dom, HasSubstr(" degC</span>"));
+  }
 }
 
 TEST(ViewerBrowserTest, EmptyMotionGivesAPageThatSaysSo) {

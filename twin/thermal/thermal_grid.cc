@@ -1,5 +1,5 @@
 // The thermal model's grid: which cells hold plate or deposit, switching cells on as beads are laid, and the cells
-// each piece of bead heats.
+// each piece of bead heats (the uniform bead rule, or Goldak's double ellipsoid of heat_source.h).
 #include <algorithm>
 #include <cmath>
 
@@ -177,6 +177,65 @@ std::vector<int> LayPiece(ThermalState& s, const ArcPiece& piece, int step) {
     }
   }
   return heated;
+}
+
+std::vector<std::pair<int, double>> HeatPiece(ThermalState& s, const ArcPiece& piece, int step,
+                                              Eigen::AlignedBox3d* heated_mm) {
+  const std::vector<int> bead = LayPiece(s, piece, step);
+  std::vector<std::pair<int, double>> shares;
+  if (bead.empty()) return shares;
+  const ThermalSettings& st = s.settings;
+  if (st.heat_source == HeatSourceShape::kDoubleEllipsoid) {
+    // Goldak's double ellipsoid at the piece's midpoint, travelling along it (a standing arc: as told), each active
+    // cell of its support taking its exact integral, renormalised over the metal there (the part of the ellipsoid
+    // in air or in metal not laid yet goes to the metal), so the cells take exactly the power.
+    const double floor_mm = 0.25 * s.dx_mm;  // a bead of no width or height still heats a pool
+    DoubleEllipsoid pool;
+    pool.half_width_mm = 0.5 * std::max(piece.width_mm, 2.0 * floor_mm);
+    pool.depth_mm = st.pool_depth_beads * std::max(piece.height_mm, floor_mm);
+    pool.front_mm = st.pool_front_widths * std::max(piece.width_mm, 2.0 * floor_mm);
+    pool.rear_mm = st.pool_rear_widths * std::max(piece.width_mm, 2.0 * floor_mm);
+    const Eigen::Vector3d arc = 0.5 * (piece.p0_mm + piece.p1_mm);
+    Eigen::Vector2d travel = (piece.p1_mm - piece.p0_mm).head<2>();
+    if (travel.norm() <= 1e-9) travel = piece.travel;
+    const Eigen::AlignedBox3d support = DoubleEllipsoidSupport(pool, arc, travel);
+    Eigen::Vector3i lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max(0, static_cast<int>(std::floor((support.min()[a] - s.origin_mm[a]) / s.dx_mm)));
+      hi[a] = std::min(s.size[a] - 1, static_cast<int>(std::floor((support.max()[a] - s.origin_mm[a]) / s.dx_mm)));
+    }
+    double sum = 0.0;
+    const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * s.dx_mm);
+    for (int k = lo.z(); k <= hi.z(); ++k) {
+      for (int j = lo.y(); j <= hi.y(); ++j) {
+        for (int i = lo.x(); i <= hi.x(); ++i) {
+          const int id = s.active_of[s.GridIndex(i, j, k)];
+          if (id == kNoCell) continue;
+          const Eigen::Vector3d c = s.Centre(i, j, k);
+          const double share = DoubleEllipsoidCellShare(pool, arc, travel, Eigen::AlignedBox3d(c - half, c + half));
+          if (!(share > 0.0)) continue;
+          shares.emplace_back(id, share);
+          sum += share;
+          heated_mm->extend(Eigen::AlignedBox3d(c - half, c + half));
+        }
+      }
+    }
+    // A pool whose support holds no metal (a bead far narrower than a cell off the cell centres): the bead rule.
+    if (sum > 1e-12) {
+      for (auto& [id, share] : shares) share /= sum;
+      return shares;
+    }
+    shares.clear();
+  }
+  const double each = 1.0 / static_cast<double>(bead.size());
+  for (int id : bead) {
+    shares.emplace_back(id, each);
+    const Eigen::Vector3i g = s.CellIndex(s.grid_of[id]);
+    const Eigen::Vector3d c = s.Centre(g.x(), g.y(), g.z());
+    heated_mm->extend(Eigen::AlignedBox3d(c - Eigen::Vector3d::Constant(0.5 * s.dx_mm),
+                                          c + Eigen::Vector3d::Constant(0.5 * s.dx_mm)));
+  }
+  return shares;
 }
 
 }  // namespace waam::twin::internal

@@ -53,16 +53,19 @@ internal::ArcStep LayStep(ThermalState& s, std::size_t first, std::size_t last, 
   for (std::size_t p = first; p < last; ++p) {
     const internal::ArcPiece& piece = s.pieces[p];
     if (piece.pause) continue;
-    const std::vector<int> heated = internal::LayPiece(s, piece, step);
+    // The region of the micro steps follows the bead laid and the cells the source heats.
+    Eigen::AlignedBox3d heated_mm;
+    const std::vector<std::pair<int, double>> shares = internal::HeatPiece(s, piece, step, &heated_mm);
     const double half = 0.5 * std::max(piece.width_mm, s.dx_mm);
     Eigen::AlignedBox3d swept(piece.p0_mm);
     swept.extend(piece.p1_mm);
     swept.min() -= Eigen::Vector3d(half, half, piece.height_mm + s.dx_mm);
     swept.max() += Eigen::Vector3d(half, half, 0.0);
     arc.swept_mm.extend(swept);
-    if (heated.empty() || piece.heat_w <= 0.0) continue;
-    const double watts = piece.heat_w * piece.seconds / arc.seconds / static_cast<double>(heated.size());
-    for (int c : heated) arc.heat_w.emplace_back(c, watts);
+    if (!heated_mm.isEmpty()) arc.swept_mm.extend(heated_mm);
+    if (shares.empty() || piece.heat_w <= 0.0) continue;
+    const double watts = piece.heat_w * piece.seconds / arc.seconds;
+    for (const auto& [c, share] : shares) arc.heat_w.emplace_back(c, watts * share);
   }
   return arc;
 }
@@ -149,6 +152,14 @@ void CheckThermalSettings(const ThermalSettings& st) {
              st.near_radius_mm, "must be >= arc_radius_mm");
   CheckRange(std::isfinite(st.max_step_s) && st.max_step_s > 0.0, "max_step_s", st.max_step_s, "must be > 0");
   CheckRange(std::isfinite(st.step_growth) && st.step_growth >= 1.0, "step_growth", st.step_growth, "must be >= 1");
+  CheckRange(std::isfinite(st.pool_depth_beads) && st.pool_depth_beads > 0.0, "pool_depth_beads",
+             st.pool_depth_beads, "must be > 0");
+  CheckRange(std::isfinite(st.pool_front_widths) && st.pool_front_widths > 0.0, "pool_front_widths",
+             st.pool_front_widths, "must be > 0");
+  CheckRange(std::isfinite(st.pool_rear_widths) && st.pool_rear_widths > 0.0, "pool_rear_widths",
+             st.pool_rear_widths, "must be > 0");
+  CheckRange(std::isfinite(st.liquid_conductivity_factor) && st.liquid_conductivity_factor >= 1.0,
+             "liquid_conductivity_factor", st.liquid_conductivity_factor, "must be >= 1 (1: none)");
   CheckRange(std::isfinite(st.solver_tolerance_c) && st.solver_tolerance_c > 0.0, "solver_tolerance_c",
              st.solver_tolerance_c, "must be > 0");
 }
@@ -168,7 +179,8 @@ ThermalSimulation::ThermalSimulation(const ThermalSettings& settings) : impl_(st
     const models::ThermalMaterial& material = m == internal::kDeposit ? settings.deposit : settings.substrate;
     const double high = std::max({4000.0, material.liquidus_c + 1500.0, material.temperature_c.back()});
     const double reference = m == internal::kDeposit ? settings.ambient_c : settings.initial_c;
-    s.table[m] = internal::ThermalPropertyTable(material, low, high, 1.0, reference);
+    s.table[m] = internal::ThermalPropertyTable(material, low, high, 1.0, reference,
+                                                settings.liquid_conductivity_factor);
     s.emissivity[m] = settings.emissivity >= 0.0 ? settings.emissivity : material.emissivity;
     s.reference_h[m] = 0.0;
     s.hot_c[m] = material.solidus_c - 100.0;
@@ -195,7 +207,8 @@ ThermalSimulation::ThermalSimulation(ThermalSimulation&&) noexcept = default;
 ThermalSimulation& ThermalSimulation::operator=(ThermalSimulation&&) noexcept = default;
 
 void ThermalSimulation::Weld(const Eigen::Vector3d& p0_mm, const Eigen::Vector3d& p1_mm, double width_mm,
-                             double height_mm, double heat_w, double seconds) {
+                             double height_mm, double heat_w, double seconds, const Eigen::Vector3d& travel) {
+  WAAM_THROW_UNLESS(travel.allFinite(), "thermal weld: the travel direction is not finite");
   WAAM_THROW_UNLESS(p0_mm.allFinite() && p1_mm.allFinite(), "thermal weld: a path point is not finite");
   WAAM_THROW_UNLESS(std::isfinite(width_mm) && width_mm >= 0.0, "thermal weld width_mm = " << width_mm
                                                                                            << ": must be >= 0");
@@ -207,6 +220,7 @@ void ThermalSimulation::Weld(const Eigen::Vector3d& p0_mm, const Eigen::Vector3d
   if (seconds == 0.0) return;
   ThermalState& s = impl_->s;
   internal::ArcPiece weld{p0_mm, p1_mm, width_mm, height_mm, heat_w, seconds};
+  weld.travel = travel.head<2>();
   for (const internal::ArcPiece& piece : CutIntoPieces(s, weld)) {
     s.pieces.push_back(piece);
     s.pieces_seconds += piece.seconds;

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "models/thermal/material.h"
+#include "twin/thermal/heat_source.h"
 
 namespace waam::twin {
 
@@ -29,6 +30,19 @@ struct ThermalSettings {
   // and radiation there instead).
   double table_conductance_w_m2k = 0.0;     // W/(m^2 K)
   double table_c = 20.0;                    // table temperature, degC
+
+  // The arc's heat source (docs/THERMAL.md, "Heat source and activation"). The double ellipsoid's semi-axes follow
+  // each bead: a = width / 2, b = pool_depth_beads x height, c_f = pool_front_widths x width, c_r =
+  // pool_rear_widths x width (Goldak et al. 1984: "one half the weld width" ahead and "two times the weld width"
+  // behind when no measured pool is at hand).
+  HeatSourceShape heat_source = HeatSourceShape::kDoubleEllipsoid;
+  double pool_depth_beads = 2.0;            // b over the bead height: the new bead and the layer below it
+  double pool_front_widths = 0.5;           // c_f over the bead width
+  double pool_rear_widths = 2.0;            // c_r over the bead width
+  // The liquid's conductivity is multiplied by this above the liquidus, ramped from 1 across the mushy zone: the
+  // heat the pool's stirring carries, which conduction alone lacks (Goldak et al. 1986, Metall. Trans. B 17B 587);
+  // 1 = none.
+  double liquid_conductivity_factor = 5.0;
 
   // Time stepping and the solver (docs/THERMAL.md). While the arc burns, each micro step moves it arc_step_cells
   // cells (and lasts at most max_arc_step_s). Multirate: the whole model steps every far_step_s, the cells within
@@ -88,9 +102,11 @@ class ThermalSimulation {
   ThermalSimulation& operator=(ThermalSimulation&&) noexcept;
 
   // Moves the arc from p0 to p1 (part frame, mm) over `seconds`, switching on the bead of width x height (mm)
-  // laid along it and putting `heat_w` (W, the arc power times its efficiency) into it.
+  // laid along it and putting `heat_w` (W, the arc power times its efficiency) into it. `travel` (need not be unit)
+  // orients the pool of a standing arc (p0 = p1 in x and y: arc start and end) as the pass's pool; zero: a round
+  // pool. Throws InputError for a non-finite point or a negative size, heat or time.
   void Weld(const Eigen::Vector3d& p0_mm, const Eigen::Vector3d& p1_mm, double width_mm, double height_mm,
-            double heat_w, double seconds);
+            double heat_w, double seconds, const Eigen::Vector3d& travel = Eigen::Vector3d::Zero());
   // Advances `seconds` with no heat input (travel, waits).
   void Cool(double seconds);
   // Sets the air temperature (convection, radiation) and the table's temperature from now on, degC (a measured

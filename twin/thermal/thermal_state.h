@@ -60,6 +60,7 @@ struct ArcPiece {
   Eigen::Vector3d p0_mm, p1_mm;
   double width_mm = 0.0, height_mm = 0.0, heat_w = 0.0, seconds = 0.0;
   bool pause = false;
+  Eigen::Vector2d travel = Eigen::Vector2d::Zero();  // a standing arc's pool orientation (zero: round)
 };
 
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
@@ -137,6 +138,11 @@ void InitialiseThermalState(ThermalState& s);
 // Lays the bead of `piece` (cells whose centre lies in it switch on at the ambient temperature, born at micro step
 // `step`) and returns the cells that receive its heat (the new ones and those under the arc).
 std::vector<int> LayPiece(ThermalState& s, const ArcPiece& piece, int step);
+
+// Lays the bead of `piece` (LayPiece) and returns the share (summing to 1) of its heat each cell takes, by
+// settings.heat_source; empty when no metal lies in or under the piece. Adds the cells heated to `heated_mm`.
+std::vector<std::pair<int, double>> HeatPiece(ThermalState& s, const ArcPiece& piece, int step,
+                                              Eigen::AlignedBox3d* heated_mm);
 
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
 void SolveBatch(ThermalState& s);

@@ -51,7 +51,7 @@ void CheckThermalMaterial(const models::ThermalMaterial& m, const char* what) {
 }
 
 ThermalPropertyTable::ThermalPropertyTable(const models::ThermalMaterial& material, double low_c, double high_c,
-                                           double step_c, double reference_c)
+                                           double step_c, double reference_c, double liquid_conductivity_factor)
     : low_c_(low_c), step_c_(step_c), emissivity_(material.emissivity) {
   const int nodes = static_cast<int>(std::ceil((high_c - low_c) / step_c)) + 1;
   conductivity_.resize(nodes);
@@ -59,7 +59,13 @@ ThermalPropertyTable::ThermalPropertyTable(const models::ThermalMaterial& materi
   enthalpy_[0] = 0.0;
   for (int i = 0; i < nodes; ++i) {
     const double t = low_c + i * step_c;
-    conductivity_[i] = material.Conductivity(t);
+    // The enhanced conductivity of the stirred pool: the factor in full above the liquidus, ramped from 1 over the
+    // mushy zone.
+    const double range = material.liquidus_c - material.solidus_c;
+    const double liquid = t >= material.liquidus_c ? 1.0
+                          : t <= material.solidus_c ? 0.0
+                                                    : (t - material.solidus_c) / std::max(range, 1e-12);
+    conductivity_[i] = material.Conductivity(t) * (1.0 + (liquid_conductivity_factor - 1.0) * liquid);
     if (i == 0) continue;
     // Trapezoid rule on substeps of the segment [t - step, t].
     const double h = step_c / kEnthalpySubsteps;

@@ -13,9 +13,10 @@ namespace waam::twin::internal {
 class ThermalPropertyTable {
  public:
   ThermalPropertyTable() = default;
-  // Throws nothing; the material must already be valid (CheckThermalMaterial).
+  // Throws nothing; the material must already be valid (CheckThermalMaterial). The conductivity is multiplied by
+  // `liquid_conductivity_factor` above the liquidus (ramped from 1 across the mushy zone).
   ThermalPropertyTable(const models::ThermalMaterial& material, double low_c, double high_c, double step_c,
-                       double reference_c);
+                       double reference_c, double liquid_conductivity_factor = 1.0);
 
   double Conductivity(double t_c) const;  // W/(m K)
   double Enthalpy(double t_c) const;      // J/m^3, 0 at the reference temperature

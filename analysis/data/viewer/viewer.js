@@ -1,6 +1,6 @@
 // viewer.js: the 3D view of viewer.html (three.js r111). Reads the JSON of #waam-data (arrays as base64 typed
-// arrays, mm and s), draws the cell's bodies, the part frame's path, beads, target and violation markers, and plays
-// the frames. Once loaded, <body> carries data-viewer-ready, data-frames, data-bodies, data-violations, data-errors.
+// arrays, mm and s), draws the cell's bodies, the part frame's path, beads, target and violation markers (and the
+// deposit and the temperatures a run adds), and plays the frames. Once loaded, <body> carries data-viewer-ready, data-frames, data-bodies, data-violations, data-errors.
 (function () {
   'use strict';
   var body = document.body;
@@ -154,6 +154,17 @@
       part.add(target);
     }
 
+    // Each layer's welding span on this page's clock: [first weld move's start, last weld move's end], s.
+    function layerWeldSpans() {
+      var spans = {};
+      for (var w = 1; w < n; ++w) {
+        if (!weld[w]) continue;
+        var span = spans[pathLayer[w]] = spans[pathLayer[w]] || [pathT[w - 1], pathT[w]];
+        span[0] = Math.min(span[0], pathT[w - 1]); span[1] = Math.max(span[1], pathT[w]);
+      }
+      return spans;
+    }
+
     // The deposited part of `waam simulate` (when the run had it): cubes grown on the check's clock. The twin has
     // its own clock: each layer's span of deposition times is mapped onto that layer's welding span here.
     var depositNode = document.getElementById('waam-deposit'), depositMeshes = [], deposit = new THREE.Group();
@@ -162,12 +173,7 @@
       var dep = JSON.parse(depositNode.textContent);
       var centres = decode(dep.centres, Float32Array), simT = decode(dep.time_s, Float32Array);
       var depLayer = decode(dep.layer, Int32Array);
-      var weldSpan = {}, simSpan = {};
-      for (i = 1; i < n; ++i) {
-        if (!weld[i]) continue;
-        var ws = weldSpan[pathLayer[i]] = weldSpan[pathLayer[i]] || [pathT[i - 1], pathT[i]];
-        ws[0] = Math.min(ws[0], pathT[i - 1]); ws[1] = Math.max(ws[1], pathT[i]);
-      }
+      var weldSpan = layerWeldSpans(), simSpan = {};
       var byLayerCells = {};
       for (i = 0; i < dep.count; ++i) {
         var ss = simSpan[depLayer[i]] = simSpan[depLayer[i]] || [simT[i], simT[i]];
@@ -240,6 +246,98 @@
       document.getElementById('sampling').textContent += ' ' + dep.note + '.';
     }
 
+    // The thermal model's temperatures (when the run had them): its grid's surface cells coloured by temperature at
+    // the slider's time, interpolated between layer ends. A layer's end on the thermal timeline (which holds the
+    // interpass waits) is mapped onto the end of that layer's welding on this page's clock; a layer's cells appear
+    // when its welding starts.
+    var thermalNode = document.getElementById('waam-thermal'), thermal = null;
+    if (thermalNode) thermal = thermalView(JSON.parse(thermalNode.textContent));
+
+    function thermalView(th) {
+      var nc = th.count, ns = th.snapshots, centres = decode(th.centres, Float32Array);
+      var levels = decode(th.levels, Uint8Array), snapLayer = decode(th.layer, Int32Array);
+      var snapT = decode(th.time_s, Float32Array), spans = layerWeldSpans(), lastT = Math.max(snapT[ns - 1], 1e-9);
+      var snapPage = new Float32Array(ns), startPage = new Float32Array(ns);
+      for (var s = 0; s < ns; ++s) {
+        var span = spans[snapLayer[s]];
+        snapPage[s] = span ? span[1] : snapT[s] / lastT * frameT[nFrames - 1];
+        startPage[s] = span ? span[0] : (s ? snapPage[s - 1] : 0);
+      }
+      // Cells in the order they appear (their first snapshot with metal).
+      var first = new Int32Array(nc), order = [];
+      for (var c = 0; c < nc; ++c) {
+        for (s = 0; s < ns && levels[s * nc + c] === 255; ++s) {}
+        first[c] = s;
+        order.push(c);
+      }
+      order.sort(function (p, q) { return first[p] - first[q] || p - q; });
+      var appear = new Float32Array(nc);
+      var unit = new THREE.BoxBufferGeometry(th.cell_mm, th.cell_mm, th.cell_mm);
+      var up = unit.attributes.position.array, un = unit.attributes.normal.array, ui = unit.index.array;
+      var nv = up.length / 3, positions = new Float32Array(nc * up.length), normals = new Float32Array(nc * up.length);
+      var colours = new Float32Array(nc * up.length), index = new Uint32Array(nc * ui.length);
+      order.forEach(function (cell, slot) {
+        appear[slot] = first[cell] < ns ? startPage[first[cell]] : Infinity;
+        for (var v = 0; v < up.length; v += 3) {
+          for (var a = 0; a < 3; ++a) {
+            positions[slot * up.length + v + a] = up[v + a] + centres[3 * cell + a];
+            normals[slot * up.length + v + a] = un[v + a];
+          }
+        }
+        for (var k = 0; k < ui.length; ++k) index[slot * ui.length + k] = ui[k] + slot * nv;
+      });
+      var geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+      geometry.setAttribute('normal', new THREE.BufferAttribute(normals, 3));
+      geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+      geometry.setIndex(new THREE.BufferAttribute(index, 1));
+      // Drawn in front of a coplanar table or plate of the cell.
+      var mesh = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors,
+        polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4 }));
+      part.add(mesh);
+      // Blue (ambient) through yellow to dark red (the hottest), 255 steps.
+      var stops = [0x313695, 0x4575b4, 0x74add1, 0xfee090, 0xf46d43, 0xd73027, 0xa50026], lut = [];
+      for (var l = 0; l <= 254; ++l) {
+        var f = l / 254 * (stops.length - 1), j = Math.min(stops.length - 2, Math.floor(f));
+        lut.push(new THREE.Color(stops[j]).lerp(new THREE.Color(stops[j + 1]), f - j));
+      }
+      var bar = stops.map(function (h, q) {
+        return '#' + ('00000' + h.toString(16)).slice(-6) + ' ' + (100 * q / (stops.length - 1)).toFixed(0) + '%';
+      });
+      document.getElementById('thermal-bar').style.background = 'linear-gradient(to right, ' + bar.join(', ') + ')';
+      document.getElementById('thermal-low').textContent = th.low_c.toFixed(0) + ' degC';
+      document.getElementById('thermal-mid').textContent = (0.5 * (th.low_c + th.high_c)).toFixed(0) + ' degC';
+      document.getElementById('thermal-high').textContent = th.high_c.toFixed(0) + ' degC';
+      document.getElementById('thermal-scale').style.display = '';
+      document.getElementById('thermal-toggle').style.display = '';
+      document.getElementById('sampling').textContent += ' ' + th.note + '.';
+      body.setAttribute('data-thermal-cells', String(nc));
+      var view = { mesh: mesh, hottest: NaN };
+      // Colours at page time t: between the snapshots around t (a cell not there yet at the earlier one takes the
+      // later one's temperature).
+      view.update = function (t) {
+        var next = Math.min(ns - 1, upperIndex(snapPage, t) + 1), prev = next - 1;
+        var alpha = prev < 0 ? 1 : Math.min(1, Math.max(0, (t - snapPage[prev]) / Math.max(1e-9, snapPage[next] -
+                                                                                                 snapPage[prev])));
+        var shown = upperIndex(appear, t) + 1, hottest = -1;
+        for (var q = 0; q < shown; ++q) {
+          var cell = order[q], b2 = levels[next * nc + cell], a2 = prev < 0 ? 255 : levels[prev * nc + cell];
+          var level = a2 === 255 ? b2 : Math.round(a2 + alpha * (b2 - a2));
+          if (level === 255) level = levels[first[cell] * nc + cell];
+          hottest = Math.max(hottest, level);
+          var colour = lut[level], o = q * up.length;
+          for (var v = 0; v < up.length; v += 3) {
+            colours[o + v] = colour.r; colours[o + v + 1] = colour.g; colours[o + v + 2] = colour.b;
+          }
+        }
+        geometry.setDrawRange(0, shown * ui.length);
+        geometry.attributes.color.needsUpdate = true;
+        view.hottest = hottest < 0 ? NaN : th.low_c + hottest / 254 * (th.high_c - th.low_c);
+        body.setAttribute('data-thermal-shown', String(shown));
+      };
+      return view;
+    }
+
     // Violation markers and their list.
     var list = document.getElementById('violations'), markers = [], items = [];
     var markerGeometry = new THREE.SphereBufferGeometry(8, 16, 12);
@@ -293,10 +391,12 @@
       for (var j = 0; j < nb; ++j) pose(bodies[j], bodyPoses, 7 * (f * nb + j), 7 * (f2 * nb + j), alpha);
       pose(part, partPoses, 7 * f, 7 * f2, alpha);
       beadMeshes.forEach(function (mesh) { mesh.count = upperIndex(mesh.userData.times, time) + 1; });
+      if (thermal) thermal.update(time);
       document.getElementById('time').value = String(Math.round(1000 * time / Math.max(duration, 1e-9)));
       requestRender();
       document.getElementById('clock').textContent = 't = ' + time.toFixed(1) + ' s of ' + duration.toFixed(1) +
-          ' s, layer ' + frameLayer[f] + ', ' + (frameWeld[f] ? 'welding' : 'travel');
+          ' s, layer ' + frameLayer[f] + ', ' + (frameWeld[f] ? 'welding' : 'travel') +
+          (thermal && !isNaN(thermal.hottest) ? ', hottest ' + thermal.hottest.toFixed(0) + ' degC' : '');
     }
 
     function setHighlight(names) {
@@ -334,6 +434,18 @@
     document.getElementById('show-beads').addEventListener('change', function (ev) {
       beads.visible = ev.target.checked;
     });
+    if (thermal) {
+      // The temperatures stand in for the beads and the deposit while shown.
+      var showThermal = function (on) {
+        thermal.mesh.visible = on;
+        beads.visible = !on && document.getElementById('show-beads').checked;
+        deposit.visible = !on && document.getElementById('show-deposit').checked;
+      };
+      document.getElementById('show-thermal').addEventListener('change', function (ev) {
+        showThermal(ev.target.checked);
+      });
+      showThermal(true);
+    }
     document.getElementById('show-target').addEventListener('change', function (ev) {
       if (target) target.visible = ev.target.checked;
     });
@@ -401,7 +513,7 @@
     };
     controls.addEventListener('change', requestRender);
     ['play', 'speed', 'time', 'colour', 'show-path', 'show-beads', 'show-deposit', 'show-deviation', 'show-target',
-     'frame-cell', 'frame-part']
+     'show-thermal', 'frame-cell', 'frame-part']
         .forEach(function (id) {
           document.getElementById(id).addEventListener(id === 'time' ? 'input' : 'change', requestRender);
           document.getElementById(id).addEventListener('click', requestRender);
