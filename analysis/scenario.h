@@ -1,4 +1,5 @@
-// A whole scenario file: the planner's sections and those the twin and the analysis own, read from one document.
+// The scenario: every section of a scenario file (the planner's, the twin's and the analysis's), read from one
+// document, with the files it names loaded.
 #pragma once
 
 #include <filesystem>
@@ -9,13 +10,16 @@
 #include "analysis/run_settings.h"
 #include "analysis/thermal_settings.h"
 #include "planner/program/program_settings.h"
+#include "models/core/yaml_map.h"
 #include "planner/scenario/scenario.h"
 #include "twin/cell/cell_settings.h"
 #include "twin/simulation_settings.h"
 
 namespace waam::analysis {
 
-struct Scenario : planner::Scenario {
+// The one scenario type. Its planner sections are its planner::PlannerSections base, so that the planner is handed
+// the scenario itself; the twin's and the analysis's sections follow.
+struct Scenario : planner::PlannerSections {
   twin::CellSettings cell;              // optional `cell:` section (docs/CELL.md)
   twin::SimulationSettings simulation;  // optional `simulation:` section (the voxel twin)
   RunSettings run;                      // optional `run:` section (the steps of `waam run`)
@@ -24,9 +28,19 @@ struct Scenario : planner::Scenario {
   ThermalSection thermal;               // optional `thermal:` section: the thermal model (`waam thermal`)
 };
 
-// Loads and validates a whole scenario file: the document is read once (with the `--set` overrides) and each module
-// parses its own sections from it; a top-level key that no module reads is refused. Throws InputError naming the
-// file, line and key path, as planner::LoadScenario does.
+// Loads and validates a whole scenario file: the document is read once (with the `--set` overrides, "key.path=value"
+// strings, checked against the field tables) and each module parses its own sections from it; a top-level key that no
+// module reads is refused; then LoadScenarioFiles reads what it names. Throws InputError naming the file, line and
+// key path (e.g. "s.yaml:7: slicing.layer_height_mm = -1: must be in [0.05, 20]"), or the file that cannot be read.
 Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+
+// Reads the files a scenario names into it: the part's STL bytes (part.mesh_data), the process's CSW, speed-height
+// and width-height models, the void-length model and a tuned void filling's tune.json shifts, and the twin's CSW model
+// (each the named file or the default in models/data). Throws InputError naming a file that is missing or malformed.
+void LoadScenarioFiles(Scenario* scenario);
+
+// A scenario file read once, with the `--set` overrides ("key.path=value") applied, as its top-level map. Throws
+// InputError for a YAML syntax error (file:line) or a malformed override (naming it).
+YamlMap LoadScenarioTop(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
 }  // namespace waam::analysis

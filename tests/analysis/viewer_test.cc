@@ -21,7 +21,7 @@
 #include "analysis/bench_command.h"
 #include "analysis/check_command.h"
 #include "analysis/scenario.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "tests/analysis/cli_test_util.h"
 #include "twin/cell/mujoco_cell.h"
 #include "twin/deposition/bead_deposition.h"

@@ -1,4 +1,5 @@
 // The exported surface mesh is closed, faces outward and encloses the deposited volume.
+#include "tests/twin/twin_settings.h"
 #include "twin/scanner/surface_mesh.h"
 
 #include <gtest/gtest.h>
@@ -28,7 +29,7 @@ TEST(SurfaceMesh, DepositedBeadsGiveAClosedSurface) {
   planner::LayerPath layer;
   testing::AddPass(&layer, {{0, 0}, {30, 0}, {30, 20}}, 2.0, 6.0, 2.0, 8.0);
   plan.layers.push_back(layer);
-  const Depositor d = DepositPlan(plan, twin::SimulationSettings{}, 100.0, nullptr);
+  const Depositor d = DepositPlan(plan, twin::TestSimulationSettings(), 100.0, nullptr);
   const planner::TriangleMesh mesh = ExtractSurface(d.grid());
   EXPECT_EQ(OpenEdges(mesh), 0u);
   EXPECT_NEAR(EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.1 * d.grid().OccupiedVolume());

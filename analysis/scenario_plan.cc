@@ -1,0 +1,30 @@
+// The plan of a scenario: its part planned, or its program read.
+#include "analysis/scenario_plan.h"
+
+#include "analysis/program_file.h"
+
+#include "analysis/stl_file.h"
+#include "models/core/progress.h"
+#include "planner/plan_scenario.h"
+
+namespace waam::analysis {
+
+planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report) {
+  if (!scenario.program.present) return planner::PlanScenario(scenario, progress);
+  planner::GcodeReadOptions gcode;
+  gcode.arc_on_m = scenario.program.gcode_arc_on_m;
+  gcode.arc_off_m = scenario.program.gcode_arc_off_m;
+  gcode.feed_unit = scenario.program.gcode_feed_unit;
+  const planner::ParsedProgram program = ReadProgramFile(scenario.program.file, scenario.program.format,
+                                                                  gcode, JbiOptionsOf(scenario), scenario.program.frames);
+  ImportReport local;
+  planner::PlanResult result = PlanFromProgram(scenario, program, report != nullptr ? report : &local);
+  if (!scenario.program.target.empty()) {
+    // The intended part, for the viewer and simulate's deviation measures (welded as a planned part's mesh is).
+    result.mesh = ReadStl(scenario.program.target, 1e-4, &result.mesh_report);
+  }
+  if (progress != nullptr) progress->Finish();
+  return result;
+}
+
+}  // namespace waam::analysis
