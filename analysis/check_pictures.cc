@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "analysis/check_command.h"
+#include "analysis/picture_frame.h"
 #include "analysis/png_file.h"
 #include "models/core/files.h"
 #include "models/core/numbers.h"
@@ -78,7 +79,7 @@ struct View {
 
 void DrawView(cv::Mat& img, const View& view, const std::vector<twin::CellShape>& shapes,
               const std::vector<std::vector<Eigen::Vector3d>>& surfaces, const std::vector<std::string>& marked,
-              const std::vector<Eigen::Vector3d>& path_W, const Eigen::Vector3d& tcp_W, const char* title) {
+              const std::vector<Eigen::Vector3d>& path_W, const Eigen::Vector3d& tcp_W) {
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < shapes.size(); ++i) {
     if (!surfaces[i].empty()) order.push_back(i);
@@ -101,7 +102,22 @@ void DrawView(cv::Mat& img, const View& view, const std::vector<twin::CellShape>
     cv::line(img, view.Px(path_W[i - 1]), view.Px(path_W[i]), cv::Scalar(0, 140, 255), 1, cv::LINE_AA);
   }
   cv::drawMarker(img, view.Px(tcp_W), cv::Scalar(0, 0, 255), cv::MARKER_CROSS, 16, 2);
-  cv::putText(img, title, {view.area.x + 10, view.area.y + 25}, cv::FONT_HERSHEY_SIMPLEX, 0.7, cv::Scalar(0, 0, 0), 2);
+}
+
+// One view drawn and framed: axes in mm (world frame) and the title.
+cv::Mat FramedView(View view, const std::vector<twin::CellShape>& shapes,
+                   const std::vector<std::vector<Eigen::Vector3d>>& surfaces, const std::vector<std::string>& marked,
+                   const std::vector<Eigen::Vector3d>& path_W, const Eigen::Vector3d& tcp_W,
+                   const std::vector<Eigen::Vector3d>& all, const std::string& title) {
+  static const char* const kAxis[3] = {"x [mm]", "y [mm]", "z [mm]"};
+  view.Fit(all);
+  cv::Mat plot(view.area.height, view.area.width, CV_8UC3, cv::Scalar(255, 255, 255));
+  DrawView(plot, view, shapes, surfaces, marked, path_W, tcp_W);
+  // Px puts lo at 20 px from the left and bottom edges, at `scale` px per mm.
+  const double x_lo = view.lo.x() - 20.0 / view.scale, y_lo = view.lo.y() - 20.0 / view.scale;
+  return FramePicture(plot, x_lo, x_lo + plot.cols / view.scale, y_lo, y_lo + plot.rows / view.scale, title,
+                      kAxis[view.u], kAxis[view.v], nullptr)
+      .image;
 }
 
 }  // namespace
@@ -137,14 +153,16 @@ void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& ki
     caption = text;
     break;
   }
-  cv::Mat img(900, 1800, CV_8UC3, cv::Scalar(255, 255, 255));
   // Side view from -y (x right, z up: nearer = smaller y); top view from +z.
-  View side{0, 2, 1, -1.0, cv::Rect(0, 40, 900, 860), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), 1.0};
-  View top{0, 1, 2, 1.0, cv::Rect(900, 40, 900, 860), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), 1.0};
-  side.Fit(all);
-  top.Fit(all);
-  DrawView(img, side, shapes, surfaces, marked, path_W, s.X_WT.translation(), "side (x right, z up)");
-  DrawView(img, top, shapes, surfaces, marked, path_W, s.X_WT.translation(), "top (x right, y up)");
+  const View side{0, 2, 1, -1.0, cv::Rect(0, 0, 820, 780), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), 1.0};
+  const View top{0, 1, 2, 1.0, cv::Rect(0, 0, 820, 780), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), 1.0};
+  const Eigen::Vector3d tcp_W = s.X_WT.translation();
+  const cv::Mat a = FramedView(side, shapes, surfaces, marked, path_W, tcp_W, all, "cell at the worst sample, side (from -y)");
+  const cv::Mat b = FramedView(top, shapes, surfaces, marked, path_W, tcp_W, all, "cell at the worst sample, top (from +z)");
+  const int header = 40;
+  cv::Mat img(header + std::max(a.rows, b.rows), a.cols + b.cols, CV_8UC3, cv::Scalar(255, 255, 255));
+  a.copyTo(img(cv::Rect(0, header, a.cols, a.rows)));
+  b.copyTo(img(cv::Rect(a.cols, header, b.cols, b.rows)));
   cv::putText(img, caption, {10, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 180), 2);
   internal::WritePngAtomic(img, path);
 }
@@ -153,43 +171,50 @@ void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport
   Eigen::Matrix<double, 8, 1> lo, hi;
   lo << kin.arm.lower, kin.positioner.tilt_lower, kin.positioner.rotation_lower;
   hi << kin.arm.upper, kin.positioner.tilt_upper, kin.positioner.rotation_upper;
-  const int panel_w = 800, panel_h = 260, cols = 2, rows = 4;
-  cv::Mat img(rows * panel_h, cols * panel_w, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int plot_w = 640, plot_h = 170, cols = 2;
   const double t_end = std::max(1e-9, report.motion.back().t_s);
+  std::vector<cv::Mat> panels;
   for (int a = 0; a < 8; ++a) {
-    const cv::Rect r((a % cols) * panel_w, (a / cols) * panel_h, panel_w, panel_h);
     double vmin = 1e300, vmax = -1e300;
     for (const planner::CellSample& s : report.motion) {
       vmin = std::min(vmin, s.q[a] * kDeg);
       vmax = std::max(vmax, s.q[a] * kDeg);
     }
     const double pad = std::max(5.0, 0.1 * (vmax - vmin));
-    vmin -= pad;
-    vmax += pad;
+    const double y_lo = vmin - pad, y_hi = vmax + pad;
+    cv::Mat plot(plot_h, plot_w, CV_8UC3, cv::Scalar(255, 255, 255));
     auto px = [&](double t, double deg) {
-      return cv::Point(r.x + 70 + static_cast<int>((t / t_end) * (r.width - 90)),
-                       r.y + r.height - 30 - static_cast<int>((deg - vmin) / (vmax - vmin) * (r.height - 60)));
+      return cv::Point(static_cast<int>(std::lround(t / t_end * (plot_w - 1))),
+                       static_cast<int>(std::lround((y_hi - deg) / (y_hi - y_lo) * (plot_h - 1))));
     };
-    cv::rectangle(img, {px(0, vmin), px(t_end, vmax)}, cv::Scalar(180, 180, 180), 1);
     for (const double limit : {lo[a] * kDeg, hi[a] * kDeg}) {
-      if (limit > vmin && limit < vmax) cv::line(img, px(0, limit), px(t_end, limit), cv::Scalar(0, 0, 255), 1);
+      if (limit > y_lo && limit < y_hi) cv::line(plot, px(0, limit), px(t_end, limit), cv::Scalar(0, 0, 255), 1);
     }
     std::vector<cv::Point> line;
     line.reserve(report.motion.size());
     for (const planner::CellSample& s : report.motion) line.push_back(px(s.t_s, s.q[a] * kDeg));
-    cv::polylines(img, line, false, cv::Scalar(160, 60, 0), 1, cv::LINE_AA);
+    cv::polylines(plot, line, false, cv::Scalar(160, 60, 0), 1, cv::LINE_AA);
     for (const twin::CheckViolation& v : report.violations) {
       if (v.joint != twin::AxisName(a)) continue;
       const planner::CellSample& s = report.motion[v.sample];
-      cv::circle(img, px(s.t_s, s.q[a] * kDeg), 5, cv::Scalar(0, 0, 255), 2);
+      cv::circle(plot, px(s.t_s, s.q[a] * kDeg), 5, cv::Scalar(0, 0, 255), 2);
     }
-    char text[128];
-    std::snprintf(text, sizeof(text), "%s [deg]  %.1f .. %.1f  (limits %.0f .. %.0f)", twin::AxisName(a),
-                  vmin + pad, vmax - pad, lo[a] * kDeg, hi[a] * kDeg);
-    cv::putText(img, text, {r.x + 70, r.y + 22}, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1);
-    std::snprintf(text, sizeof(text), "t = 0 .. %.1f s", t_end);
-    cv::putText(img, text, {r.x + r.width - 200, r.y + r.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                cv::Scalar(80, 80, 80), 1);
+    char title[160];
+    std::snprintf(title, sizeof(title), "axis %s: %.1f .. %.1f deg (limits %.0f .. %.0f, red)", twin::AxisName(a),
+                  vmin, vmax, lo[a] * kDeg, hi[a] * kDeg);
+    const std::string y_label = std::string(twin::AxisName(a)) + " [deg]";
+    panels.push_back(FramePicture(plot, 0.0, t_end, y_lo, y_hi, title, "time [s]", y_label, nullptr).image);
+  }
+  int panel_w = 0, panel_h = 0;
+  for (const cv::Mat& p : panels) {
+    panel_w = std::max(panel_w, p.cols);
+    panel_h = std::max(panel_h, p.rows);
+  }
+  const int rows = (static_cast<int>(panels.size()) + cols - 1) / cols;
+  cv::Mat img(rows * panel_h, cols * panel_w, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    const int c = static_cast<int>(i) % cols, r = static_cast<int>(i) / cols;
+    panels[i].copyTo(img(cv::Rect(c * panel_w, r * panel_h, panels[i].cols, panels[i].rows)));
   }
   internal::WritePngAtomic(img, path);
 }

@@ -7,7 +7,8 @@
 #    build) against waam's closed-form IK on the same arm;
 #  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py) against waam's thermal model
 #    (build/analysis/benchmarks/waam_thermal_peer) on the wall of tools/peers/thermal_wall.json: probe temperatures
-#    (target: within 2 % of the peak rise) and the time ratio.
+#    (target: within 2 % of the peak rise) and the time ratio; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
+#    problem refined twice (tools/peers/thermal_wall_1mm.json: 1 mm cells, 0.2 s steps; FEniCSx takes ~15x longer).
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
 # Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam). Times are wall clock, one run each;
 # a ratio above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
@@ -107,3 +108,11 @@ build/analysis/benchmarks/waam_thermal_peer "$thermal" > "$out/thermal_waam.json
 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" > "$out/thermal_fenicsx.json" 2> "$out/thermal_fenicsx.log" ||
   { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx.log)" >&2; exit 1; }
 /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam.json" "$out/thermal_fenicsx.json" "$thermal"
+if [ "${WAAM_PEERS_THERMAL_FINE:-0}" = 1 ]; then
+  fine="$repo/tools/peers/thermal_wall_1mm.json"
+  build/analysis/benchmarks/waam_thermal_peer "$fine" > "$out/thermal_waam_1mm.json" ||
+    { echo "peers: waam_thermal_peer failed on the 1 mm problem" >&2; exit 1; }
+  /usr/bin/python3 tools/peers/thermal_fenicsx.py "$fine" > "$out/thermal_fenicsx_1mm.json" \
+    2> "$out/thermal_fenicsx_1mm.log" || { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx_1mm.log)" >&2; exit 1; }
+  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json" "$fine"
+fi

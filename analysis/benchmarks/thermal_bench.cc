@@ -31,6 +31,23 @@ ThermalMaterial AluminiumLike() {
   return m;
 }
 
+// A low-carbon steel shaped like EN 1993-1-2's tables (k 53-27 W/(m K), cp 440-650 J/(kg K) with the 735 degC
+// peak smoothed, rho 7850 kg/m^3, solidus 1495 degC, liquidus 1535 degC, L 2.47e5 J/kg): a benchmark fixture.
+ThermalMaterial SteelLike() {
+  ThermalMaterial m;
+  m.name = "steel_like";
+  m.source = "benchmark fixture";
+  m.temperature_c = {20.0, 400.0, 700.0, 735.0, 800.0, 1200.0, 1495.0, 1535.0, 2000.0};
+  m.conductivity_w_mk = {53.3, 42.7, 32.7, 31.5, 27.3, 27.3, 27.3, 27.3, 27.3};
+  m.density_kg_m3 = {7850.0, 7850.0, 7850.0, 7850.0, 7850.0, 7850.0, 7850.0, 7850.0, 7850.0};
+  m.specific_heat_j_kgk = {440.0, 606.0, 1008.0, 2500.0, 803.0, 650.0, 650.0, 650.0, 650.0};
+  m.solidus_c = 1495.0;
+  m.liquidus_c = 1535.0;
+  m.latent_heat_j_kg = 2.47e5;
+  m.emissivity = 0.7;
+  return m;
+}
+
 double PeakRssMb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -44,8 +61,9 @@ void BM_ThermalBuildHour(benchmark::State& state) {
   const int layers = static_cast<int>(state.range(0));
   waam::SetThreadCount(static_cast<int>(state.range(1)));
   waam::twin::ThermalSettings settings;
-  settings.deposit = AluminiumLike();
-  settings.substrate = AluminiumLike();
+  const bool steel = state.range(2) != 0;
+  settings.deposit = steel ? SteelLike() : AluminiumLike();
+  settings.substrate = settings.deposit;
   settings.substrate_box_mm = Eigen::AlignedBox3d(Eigen::Vector3d(-125, -50, -15), Eigen::Vector3d(125, 50, 0));
   settings.deposit_box_mm = Eigen::AlignedBox3d(Eigen::Vector3d(-105, -5, 0), Eigen::Vector3d(105, 5, 2.0 * layers));
   settings.table_conductance_w_m2k = 200.0;
@@ -78,9 +96,16 @@ void BM_ThermalBuildHour(benchmark::State& state) {
   waam::SetThreadCount(0);
 }
 BENCHMARK(BM_ThermalBuildHour)
-    ->Args({10, 1})
-    ->Args({255, 1})
-    ->Args({255, 2})
+    ->ArgNames({"layers", "threads", "steel"})
+    ->Args({10, 1, 0})
+    ->Args({10, 2, 0})
+    ->Args({40, 1, 0})
+    ->Args({255, 1, 0})
+    ->Args({255, 2, 0})
+    ->Args({10, 1, 1})
+    ->Args({40, 1, 1})
+    ->Args({255, 1, 1})
+    ->Args({255, 2, 1})
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kSecond);

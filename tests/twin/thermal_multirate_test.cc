@@ -10,7 +10,7 @@ namespace waam::twin {
 namespace {
 
 // The small build twice: every micro step solving the whole model (far_step_s = 0), and the default multirate levels
-// (8 s for the whole model, 1 s within 40 mm of the arc, micro steps within 12 mm and in every cell above the
+// (8 s for the whole model, 1 s within 24 mm of the arc, micro steps within 12 mm and in every cell above the
 // solidus - 100 K). Expected: the plate probe 10 mm beside the wall within 2 % of its rise (the far field is smooth,
 // so its 8 s backward-Euler steps err by ~1 %); the hottest cell of the top layer right after it is laid within 8 %
 // (cells that left the micro-step region take 1 s steps while cooling from ~1400 degC: measured up to ~4 %); the

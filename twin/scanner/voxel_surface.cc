@@ -9,6 +9,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "models/core/error.h"
 #include "models/core/progress.h"
 #include "twin/scanner/point_hash.h"
 
@@ -87,7 +88,7 @@ struct Quad {
 
 // Greedy rectangles of one plane's faces (sorted by v, u): from the first face not yet taken, the longest run along
 // u, then as many following rows as hold that whole run untaken. Appends the rectangles to `quads`.
-void MergePlane(const Face* faces, std::size_t count, std::vector<Quad>* quads) {
+void MergeRuns(const Face* faces, std::size_t count, std::vector<Quad>* quads) {
   auto key = [](int u, int v) {
     return static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v);
   };
@@ -111,30 +112,86 @@ void MergePlane(const Face* faces, std::size_t count, std::vector<Quad>* quads) 
   }
 }
 
-// The rectangles of every plane of `faces` (sorted by d, plane, v, u): each plane merged with rows along u and along
-// v, keeping the fewer rectangles.
+// Greedy rectangles of one plane's faces (sorted by v, u): from the first face not yet taken (a corner: nothing free
+// before it in its row or in any row below), the rectangle of largest area anchored there (the run along u shrinks row
+// by row to the shortest so far; ties keep the wider one). Appends the rectangles to `quads`.
+void MergeLargest(const Face* faces, std::size_t count, std::vector<Quad>* quads) {
+  auto key = [](int u, int v) {
+    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v);
+  };
+  std::unordered_set<std::uint64_t> free;  // faces not yet in a rectangle
+  free.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) free.insert(key(faces[i].u, faces[i].v));
+  for (std::size_t i = 0; i < count; ++i) {
+    const Face& f = faces[i];
+    if (free.count(key(f.u, f.v)) == 0) continue;
+    int width = 0;  // the run of free faces from f.u along u in the current row, no longer than in the rows before
+    while (free.count(key(f.u + width, f.v)) != 0) ++width;
+    int best_area = width, best_u1 = f.u + width - 1, best_v1 = f.v;
+    for (int v = f.v + 1;; ++v) {
+      int w = 0;
+      while (w < width && free.count(key(f.u + w, v)) != 0) ++w;
+      if (w == 0) break;
+      width = w;
+      if (width * (v - f.v + 1) > best_area) {
+        best_area = width * (v - f.v + 1);
+        best_u1 = f.u + width - 1;
+        best_v1 = v;
+      }
+    }
+    for (int v = f.v; v <= best_v1; ++v) {
+      for (int u = f.u; u <= best_u1; ++u) free.erase(key(u, v));
+    }
+    quads->push_back({f.d, f.plane, f.u, best_u1, f.v, best_v1});
+  }
+}
+
+// The distinct corners of a plane's rectangles. A closed triangle mesh has about twice as many facets as vertices
+// (Euler: F = 2V - 4 for a sphere), so the partition with the fewest corners gives the fewest facets.
+std::size_t CornerCount(const std::vector<Quad>& quads) {
+  std::unordered_set<std::uint64_t> corners;
+  for (const Quad& q : quads) {
+    for (int c = 0; c < 4; ++c) {
+      const int u = c & 1 ? q.u1 + 1 : q.u0, v = c & 2 ? q.v1 + 1 : q.v0;
+      corners.insert(static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v));
+    }
+  }
+  return corners.size();
+}
+
+// The rectangles of every plane of `faces` (sorted by d, plane, v, u): each plane merged four ways (rows along u or
+// along v, each by longest runs or by largest rectangles), keeping the partition with the fewest distinct corners
+// (then the fewest rectangles, then the first).
 std::vector<Quad> MergeFaces(const std::vector<Face>& faces) {
-  std::vector<Quad> quads, by_u, by_v;
+  std::vector<Quad> quads, best, candidate;
   std::vector<Face> swapped;
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i;
     while (j < faces.size() && faces[j].d == faces[i].d && faces[j].plane == faces[i].plane) ++j;
-    by_u.clear();
-    by_v.clear();
-    MergePlane(&faces[i], j - i, &by_u);
     swapped.assign(faces.begin() + static_cast<std::ptrdiff_t>(i), faces.begin() + static_cast<std::ptrdiff_t>(j));
     for (Face& f : swapped) std::swap(f.u, f.v);
     std::sort(swapped.begin(), swapped.end());
-    MergePlane(swapped.data(), swapped.size(), &by_v);
-    if (by_v.size() < by_u.size()) {
-      for (Quad& q : by_v) {
-        std::swap(q.u0, q.v0);
-        std::swap(q.u1, q.v1);
+    std::size_t best_corners = 0;
+    best.clear();
+    for (int way = 0; way < 4; ++way) {
+      candidate.clear();
+      const bool along_v = way >= 2;
+      const Face* plane = along_v ? swapped.data() : &faces[i];
+      if (way % 2 == 0) MergeRuns(plane, j - i, &candidate);
+      else MergeLargest(plane, j - i, &candidate);
+      if (along_v) {
+        for (Quad& q : candidate) {
+          std::swap(q.u0, q.v0);
+          std::swap(q.u1, q.v1);
+        }
       }
-      quads.insert(quads.end(), by_v.begin(), by_v.end());
-    } else {
-      quads.insert(quads.end(), by_u.begin(), by_u.end());
+      const std::size_t corners = CornerCount(candidate);
+      if (best.empty() || corners < best_corners || (corners == best_corners && candidate.size() < best.size())) {
+        best.swap(candidate);
+        best_corners = corners;
+      }
     }
+    quads.insert(quads.end(), best.begin(), best.end());
     i = j;
   }
   return quads;
@@ -159,6 +216,48 @@ struct LineIndex {
   }
   bool Less(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const { return Key(a) < Key(b); }
 };
+
+// Triangulates a rectangle whose boundary `ring` (vertex ids, counter-clockwise) carries the corners of the
+// rectangles touching it; `points` are the ring's positions. Ear clipping on a convex polygon with collinear vertices:
+// a vertex is clipped only where it is a strict corner (off the line of its two neighbours) and the polygon left still
+// has three strict corners (else it would collapse onto a line). A polygon of n vertices becomes n - 2 triangles,
+// none degenerate, and every ring vertex stays on the boundary, so the neighbours' edges meet it (no T-junction
+// cracks). Such an ear always exists: with four strict corners or more any of them will do; with three, the one next
+// to a side carrying a point turns that point into a strict corner.
+void Triangulate(std::vector<int> ring, std::vector<Eigen::Vector3i> points, std::vector<std::array<int, 3>>* facets) {
+  auto strict = [](const Eigen::Vector3i& a, const Eigen::Vector3i& b, const Eigen::Vector3i& c) {
+    return !(b - a).cross(c - b).isZero();
+  };
+  std::size_t n = ring.size();
+  auto at = [&](std::size_t i, std::ptrdiff_t step) { return (i + n + static_cast<std::size_t>(n + step)) % n; };
+  std::vector<bool> corner(n);
+  int corners = 0;
+  for (std::size_t i = 0; i < n; ++i) corners += (corner[i] = strict(points[at(i, -1)], points[i], points[at(i, 1)]));
+  std::size_t k = 0;
+  while (n > 3) {
+    std::size_t tried = 0;
+    for (;; k = at(k, 1), ++tried) {
+      WAAM_DEMAND(tried <= n);
+      if (!corner[k]) continue;
+      const std::size_t p = at(k, -1), q = at(k, 1);
+      const bool p_after = strict(points[at(p, -1)], points[p], points[q]);
+      const bool q_after = strict(points[p], points[q], points[at(q, 1)]);
+      const int left = corners - 1 - corner[p] - corner[q] + p_after + q_after;
+      if (left < 3) continue;
+      facets->push_back({ring[p], ring[k], ring[q]});
+      corner[p] = p_after;
+      corner[q] = q_after;
+      corners = left;
+      break;
+    }
+    ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+    points.erase(points.begin() + static_cast<std::ptrdiff_t>(k));
+    corner.erase(corner.begin() + static_cast<std::ptrdiff_t>(k));
+    --n;
+    k %= n;
+  }
+  facets->push_back({ring[0], ring[1], ring[2]});
+}
 
 }  // namespace
 
@@ -209,7 +308,7 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
     return it->second;
   };
   std::vector<int> ring;
-  std::vector<bool> is_corner;
+  std::vector<Eigen::Vector3i> corner_points;  // the ring's points, doubled coordinates
   for (const Quad& q : quads) {
     const int axis = q.d / 2;
     // The rectangle's corners counter-clockwise seen from outside: e_(a+1) x e_(a+2) = e_a for the + faces.
@@ -218,14 +317,14 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
                                         Corner(axis, q.plane, q.u0, q.v1 + 1)};
     if (q.d % 2 == 1) std::swap(c[1], c[3]);
     ring.clear();
-    is_corner.clear();
+    corner_points.clear();
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector3i& a = c[k];
       const Eigen::Vector3i& b = c[(k + 1) % 4];
       int along = 0;
       while (a[along] == b[along]) ++along;
       ring.push_back(vertex(2 * a));
-      is_corner.push_back(true);
+      corner_points.push_back(2 * a);
       const LineIndex& line = lines[along];
       const auto less = [&](const Eigen::Vector3i& p, const Eigen::Vector3i& q) { return line.Less(p, q); };
       const Eigen::Vector3i& lo = a[along] < b[along] ? a : b;
@@ -235,23 +334,14 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
       const std::size_t start = ring.size();
       for (auto it = first; it != last; ++it) {
         ring.push_back(vertex(2 * *it));
-        is_corner.push_back(false);
+        corner_points.push_back(2 * *it);
       }
-      if (a[along] > b[along]) std::reverse(ring.begin() + start, ring.end());
+      if (a[along] > b[along]) {
+        std::reverse(ring.begin() + static_cast<std::ptrdiff_t>(start), ring.end());
+        std::reverse(corner_points.begin() + static_cast<std::ptrdiff_t>(start), corner_points.end());
+      }
     }
-    // Fan from a rectangle corner whose two edges are not split (n - 2 triangles, none degenerate), else from the
-    // rectangle's centre (n triangles).
-    const int n = static_cast<int>(ring.size());
-    int apex = -1;
-    for (int k = 0; k < n && apex < 0; ++k) {
-      if (is_corner[k] && is_corner[(k + 1) % n] && is_corner[(k + n - 1) % n]) apex = k;
-    }
-    if (apex >= 0) {
-      for (int k = 1; k + 1 < n; ++k) mesh.facets.push_back({ring[apex], ring[(apex + k) % n], ring[(apex + k + 1) % n]});
-    } else {
-      const int centre = vertex(c[0] + c[2]);
-      for (int k = 0; k < n; ++k) mesh.facets.push_back({centre, ring[k], ring[(k + 1) % n]});
-    }
+    Triangulate(ring, corner_points, &mesh.facets);
   }
   return mesh;
 }

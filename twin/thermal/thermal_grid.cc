@@ -68,6 +68,7 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   born.push_back(born_step);
   enthalpy.push_back(h);
   temperature.push_back(table[material_index].Temperature(h));
+  conductivity.push_back(table[material_index].Conductivity(temperature.back()));
   inflow_j.push_back(0.0);
   rate.push_back(0.0);
   guess.push_back(0.0);

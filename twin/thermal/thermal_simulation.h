@@ -38,7 +38,7 @@ struct ThermalSettings {
   double max_arc_step_s = 0.5;              // longest micro step (a slow or standing arc), s
   double far_step_s = 8.0;                  // step of the whole model while welding, s
   double near_step_s = 1.0;                 // step of the region near the arc, s
-  double near_radius_mm = 40.0;             // that region's reach from the bead laid in a far step, mm
+  double near_radius_mm = 24.0;             // that region's reach from the bead laid in a far step, mm
   double arc_radius_mm = 12.0;              // reach of the micro steps' region from the bead laid in a near step, mm
   double max_step_s = 10.0;                 // longest step while no arc burns, s
   double step_growth = 1.5;                 // each step with no arc at most this times the previous one

@@ -12,12 +12,9 @@
 namespace waam::twin::internal {
 namespace {
 
-// Cells per chunk of the deterministic parallel loops: every reduction sums per-chunk partials in chunk order, and
-// the chunks do not depend on the thread count, so the results are bit-identical on any number of threads.
-constexpr std::size_t kChunk = 4096;
-// Below this many cells a loop runs on the calling thread (the pool's dispatch would cost more than it saves).
-constexpr std::size_t kParallelCells = 24576;
 constexpr int kMaxIterations = 2000;
+// Systems of at least this many cells are preconditioned by multigrid, smaller ones by their diagonal.
+constexpr std::size_t kMultigridCells = 512;
 // The nonlinear (chord) iteration of a step stops when every cell's enthalpy maps back to within this + 10 % of its
 // temperature change, or after kChordRounds re-solves: it exists to keep big steps from jumping the latent heat
 // (hundreds of K of mismatch), not to polish micro steps.
@@ -25,20 +22,6 @@ constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
-
-// Runs body(begin, end, chunk) over the chunks of [0, n), in parallel when n is large.
-template <typename Body>
-void ForChunks(std::size_t n, const Body& body) {
-  const std::size_t chunks = (n + kChunk - 1) / kChunk;
-  auto run = [&](std::size_t c) { body(c * kChunk, std::min(n, (c + 1) * kChunk), c); };
-  if (n >= kParallelCells) {
-    ParallelFor(chunks, run);
-  } else {
-    for (std::size_t c = 0; c < chunks; ++c) run(c);
-  }
-}
-
-std::size_t Chunks(std::size_t n) { return (n + kChunk - 1) / kChunk; }
 
 double Sum(const std::vector<double>& partial) {
   double total = 0.0;
@@ -115,7 +98,7 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
       const int c = L.cells[i];
       const double t = s.temperature[c];
       const ThermalPropertyTable& table = s.table[s.material[c]];
-      const double k = table.Conductivity(t);
+      const double k = s.conductivity[c];
       double capacity = table.Capacity(t);
       if (chord_c != nullptr && std::abs((*chord_c)[c] - t) > 1e-3) {
         capacity = (table.Enthalpy((*chord_c)[c]) - s.enthalpy[c]) / ((*chord_c)[c] - t);
@@ -130,7 +113,7 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
         if (j != kNoCell && s.born[j] < m1 && finer_apart && s.depth[j] > level) {
           L.neighbour[i][f] = kFinerCell;
         } else if (j != kNoCell && s.born[j] < m1) {
-          const double kj = s.table[s.material[j]].Conductivity(s.temperature[j]);
+          const double kj = s.conductivity[j];
           // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2.
           const double g = 2.0 * k * kj / (k + kj) * s.dx_m;
           L.conductance[i][f] = g;
@@ -154,14 +137,25 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
   for (int c : L.cells) local_of[c] = kNoCell;
 }
 
-// Solves the level's system by conjugate gradients with the Jacobi preconditioner, from `guess` (degC by active
-// cell), until every preconditioned residual |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is
-// below the tolerance. Returns the iterations.
+// Solves the level's system by preconditioned conjugate gradients from `guess` (degC by active cell), until every
+// Jacobi correction |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below the tolerance.
+// Systems of kMultigridCells cells or more are preconditioned by one additive-correction multigrid V-cycle
+// (thermal_multigrid.h), smaller ones by the diagonal. Returns the iterations.
 int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess) {
   const std::size_t n = L.cells.size();
+  if (n == 0) return 0;
   std::vector<double>& x = L.t_new;
   std::vector<double> r(n), z(n), p(n), ap(n);
-  std::vector<double> part_a(Chunks(n)), part_b(Chunks(n)), part_max(Chunks(n));
+  std::vector<double> part_a(Chunks(n)), part_max(Chunks(n));
+  const bool multigrid = n >= kMultigridCells;
+  if (multigrid) {
+    L.ijk.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
+      L.ijk[i] = {g.x(), g.y(), g.z()};
+    }
+    L.multigrid.Setup(L, L.ijk);
+  }
   auto apply = [&](const std::vector<double>& v, std::size_t i) {
     double y = L.diagonal[i] * v[i];
     for (int f = 0; f < 6; ++f) {
@@ -170,23 +164,33 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
     }
     return y;
   };
-  if (n == 0) return 0;
+  // z = B r and the sum of r.z.
+  auto precondition = [&]() {
+    if (multigrid) L.multigrid.Apply(r, z);
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
+      double rz = 0.0;
+      for (std::size_t i = begin; i < end; ++i) {
+        if (!multigrid) z[i] = r[i] / L.diagonal[i];
+        rz += r[i] * z[i];
+      }
+      part_a[c] = rz;
+    });
+    return Sum(part_a);
+  };
   for (std::size_t i = 0; i < n; ++i) x[i] = guess[L.cells[i]];
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-    double rz = 0.0, worst = 0.0;
+    double worst = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
       r[i] = L.rhs[i] - apply(x, i);
-      z[i] = r[i] / L.diagonal[i];
-      p[i] = z[i];
-      rz += r[i] * z[i];
-      worst = std::max(worst, std::abs(z[i]));
+      worst = std::max(worst, std::abs(r[i] / L.diagonal[i]));
     }
-    part_a[c] = rz;
     part_max[c] = worst;
   });
-  double rz = Sum(part_a);
   double worst = *std::max_element(part_max.begin(), part_max.end());
   const double tolerance = s.settings.solver_tolerance_c;
+  if (worst <= tolerance) return 0;
+  double rz = precondition();
+  p = z;
   int iterations = 0;
   while (worst > tolerance && iterations < kMaxIterations) {
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
@@ -199,25 +203,23 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
     });
     const double alpha = rz / Sum(part_a);
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double rz_new = 0.0, w = 0.0;
+      double w = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
         x[i] += alpha * p[i];
         r[i] -= alpha * ap[i];
-        z[i] = r[i] / L.diagonal[i];
-        rz_new += r[i] * z[i];
-        w = std::max(w, std::abs(z[i]));
+        w = std::max(w, std::abs(r[i] / L.diagonal[i]));
       }
-      part_b[c] = rz_new;
       part_max[c] = w;
     });
-    const double rz_new = Sum(part_b);
     worst = *std::max_element(part_max.begin(), part_max.end());
+    ++iterations;
+    if (worst <= tolerance) break;
+    const double rz_new = precondition();
     const double beta = rz_new / rz;
     rz = rz_new;
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
     });
-    ++iterations;
   }
   return iterations;
 }
@@ -313,6 +315,7 @@ void Update(ThermalState& s, int level) {
       const double t = s.table[s.material[c]].Temperature(s.enthalpy[c]);
       s.rate[c] = (t - s.temperature[c]) / dt;
       s.temperature[c] = t;
+      s.conductivity[c] = s.table[s.material[c]].Conductivity(t);
     }
   });
 }

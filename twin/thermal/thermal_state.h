@@ -2,13 +2,17 @@
 // the solver's entry points shared by the files of twin/thermal/ (internal to the module).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "models/core/parallel.h"
+#include "twin/thermal/thermal_multigrid.h"
 #include "twin/thermal/thermal_simulation.h"
 #include "twin/thermal/thermal_tables.h"
 
@@ -19,6 +23,26 @@ constexpr double kKelvin = 273.15;
 constexpr int kNoCell = -1;
 constexpr int kDeposit = 0;    // material index of the deposit
 constexpr int kSubstrate = 1;  // material index of the plate
+
+// Cells per chunk of the deterministic parallel loops: every reduction sums per-chunk partials in chunk order, and
+// the chunks do not depend on the thread count, so the results are bit-identical on any number of threads.
+constexpr std::size_t kChunk = 4096;
+// Below this many cells a loop runs on the calling thread (the pool's dispatch would cost more than it saves).
+constexpr std::size_t kParallelCells = 24576;
+
+inline std::size_t Chunks(std::size_t n) { return (n + kChunk - 1) / kChunk; }
+
+// Runs body(begin, end, chunk) over the chunks of [0, n), in parallel when n is large.
+template <typename Body>
+void ForChunks(std::size_t n, const Body& body) {
+  const std::size_t chunks = Chunks(n);
+  auto run = [&](std::size_t c) { body(c * kChunk, std::min(n, (c + 1) * kChunk), c); };
+  if (n >= kParallelCells) {
+    ParallelFor(chunks, run);
+  } else {
+    for (std::size_t c = 0; c < chunks; ++c) run(c);
+  }
+}
 
 // What a grid cell can hold.
 enum class CellKind : std::uint8_t { kEmpty, kPlate, kDeposit };
@@ -39,11 +63,13 @@ struct ArcPiece {
 };
 
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
-struct LevelSystem {
+// StencilSystem: the local index of each face's neighbour in the region (or kNoCell, or a finer level's cell), the
+// conductance W/K through each face to a present neighbour (else 0), the diagonal W/K.
+struct LevelSystem : StencilSystem {
   std::vector<int> cells;                     // active-cell ids of the region, present in the level's interval
-  std::vector<std::array<int, 6>> neighbour;  // local index of each face's neighbour in the region, or kNoCell
-  std::vector<std::array<double, 6>> conductance;  // W/K through each face to a present neighbour, else 0
-  std::vector<double> diagonal, rhs, source_w, t_new;  // W/K, W, W, degC (the step's solution)
+  std::vector<double> rhs, source_w, t_new;   // W, W, degC (the step's solution)
+  std::vector<std::array<int, 3>> ijk;        // grid coordinates of the cells (for the multigrid's blocks)
+  AdditiveCorrectionMultigrid multigrid;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
   double seconds = 0.0;
   double end_time_s = 0.0;
@@ -71,6 +97,7 @@ struct ThermalState {
   std::vector<int> born;            // index of the micro step of the pending batch that lays it; -1 = present
   std::vector<double> enthalpy;     // J/m^3 (relative to each table's reference temperature)
   std::vector<double> temperature;  // degC, the state's temperature (from the enthalpy)
+  std::vector<double> conductivity; // W/(m K) at that temperature
   std::vector<double> rate;         // dT/dt over the cell's last step, K/s (extrapolated for the solver's first guess)
   std::vector<double> guess;        // scratch: the solver's first guess, degC
   std::vector<double> chord;        // scratch: the temperatures of the nonlinear iteration's chords, degC
