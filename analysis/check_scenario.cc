@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "analysis/import_command.h"
+#include "analysis/scenario_plan.h"
 #include "analysis/scenario.h"
 #include "models/core/progress.h"
 #include "planner/planar_planner.h"

@@ -10,7 +10,7 @@
 #include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "planner/scenario/scenario.h"
 #include "twin/scanner/point_cloud_io.h"
 

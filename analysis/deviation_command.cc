@@ -12,6 +12,7 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/output_lock.h"
+#include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
 #include "twin/scanner/point_cloud_io.h"
 
@@ -101,7 +102,7 @@ void WriteScanDeviationPng(const twin::ScanDeviation& scan, const std::string& t
 nlohmann::json RunDeviation(const DeviationOptions& options) {
   WAAM_THROW_UNLESS(options.axis_step_mm > 0.0, "deviation --axis-step-mm = " << options.axis_step_mm << ": must be > 0");
   planner::MeshReport report;
-  const planner::TriangleMesh target = planner::ReadStl(options.target, 0.0, &report);
+  const planner::TriangleMesh target = ReadStl(options.target, 0.0, &report);
   const std::vector<Eigen::Vector3d> points = twin::ReadPointCloud(options.scan, 0.5);
   ClaimOutputDirectory(options.out_dir);
   const twin::MeshDistance distance(target);

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "analysis/import_command.h"
+#include "analysis/scenario_plan.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/progress.h"

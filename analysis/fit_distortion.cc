@@ -11,7 +11,7 @@
 #include "models/core/progress.h"
 #include "models/distortion/distortion_params.h"
 #include "models/fit/model_file.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "planner/scenario/scenario.h"
 #include "twin/compensation/compensation.h"
 #include "twin/distortion/deposit_history.h"

@@ -1,10 +1,11 @@
-// `waam import` and the plan of a scenario's program: section.
+// `waam import`: a program read into the twin's plan.
 #include "analysis/import_command.h"
 
 #include <cmath>
 #include <iostream>
 
 #include "analysis/plan_command.h"
+#include "analysis/program_file.h"
 #include "analysis/plan_timeline.h"
 #include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
@@ -13,7 +14,6 @@
 #include "models/core/numbers.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
-#include "planner/mesh/stl_io.h"
 #include "planner/program/program_motion.h"
 #include "twin/cell/cell_check.h"
 #include "twin/cell/mujoco_cell.h"
@@ -122,21 +122,6 @@ planner::JbiReadOptions JbiOptionsOf(const Scenario& scenario, const std::vector
   return jbi;
 }
 
-planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report) {
-  if (!scenario.program.present) return planner::PlanScenario(scenario, progress);
-  const planner::GcodeReadOptions gcode = planner::GcodeOptionsOf(scenario.program);
-  const planner::ParsedProgram program = planner::ReadProgramFile(scenario.program.file, scenario.program.format,
-                                                                  gcode, JbiOptionsOf(scenario), scenario.program.frames);
-  ImportReport local;
-  planner::PlanResult result = PlanFromProgram(scenario, program, report != nullptr ? report : &local);
-  if (!scenario.program.target.empty()) {
-    // The intended part, for the viewer and simulate's deviation measures (welded as a planned part's mesh is).
-    result.mesh = planner::ReadStl(scenario.program.target, 1e-4, &result.mesh_report);
-  }
-  if (progress != nullptr) progress->Finish();
-  return result;
-}
-
 nlohmann::json ImportToJson(const ImportReport& report) {
   nlohmann::json warnings = nlohmann::json::array();
   for (const planner::ProgramWarning& w : report.warnings) {
@@ -153,7 +138,7 @@ planner::PlanResult ImportProgramInto(const ImportOptions& options, Scenario* sc
   if (scenario->name.empty()) scenario->name = options.program.stem().string();
   const planner::GcodeReadOptions gcode = planner::GcodeOptionsOf(scenario->program);
   const planner::ParsedProgram program =
-      planner::ReadProgramFile(options.program, options.format, gcode,
+      ReadProgramFile(options.program, options.format, gcode,
                                JbiOptionsOf(*scenario, options.pulses_per_deg, options.station_pulses_per_deg),
                                scenario->program.frames);
   return PlanFromProgram(*scenario, program, report);

@@ -50,10 +50,6 @@ planner::JbiReadOptions JbiOptionsOf(const Scenario& scenario, const std::vector
 planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::ParsedProgram& program,
                                     ImportReport* report);
 
-// The plan of the scenario: from its program: section when it has one, else planned from its part (PlanScenario).
-// `report` (may be null) is filled for a program.
-planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report = nullptr);
-
 // The `import` section of plan.json: format, motions (count and by kind), points, warnings (what, count,
 // first_line).
 nlohmann::json ImportToJson(const ImportReport& report);

@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "analysis/import_command.h"
+#include "analysis/scenario_plan.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/core/output_lock.h"
@@ -263,7 +264,7 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   const std::vector<std::string> best_overrides = LayoutOverrides(best, current, cell.robot_base_mm[2]);
   overrides.insert(overrides.end(), best_overrides.begin(), best_overrides.end());
   if (result.feasible) overrides.push_back("run.expected_exit_code=0");
-  YAML::Node document = planner::LoadScenarioTop(options.scenario, overrides).node();
+  YAML::Node document = LoadScenarioTop(options.scenario, overrides).node();
   std::error_code ec;
   const fs::path out_abs = fs::absolute(options.out_dir, ec).lexically_normal();
   const fs::path base_dir = scenario.dir.lexically_relative(out_abs);

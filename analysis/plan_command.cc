@@ -10,6 +10,7 @@
 #include <string>
 
 #include "analysis/import_command.h"
+#include "analysis/scenario_plan.h"
 #include "analysis/plan_timeline.h"
 #include "analysis/scenario.h"
 #include "models/core/error.h"

@@ -1,15 +1,107 @@
-// The whole scenario, composed from each module's section parsers.
+// The whole scenario: the document read once with its overrides, each module's sections parsed from it, and the files
+// they name (the part's STL, the fitted models, a tune file) read here, so that the planner and the twin read none.
 #include "analysis/scenario.h"
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "analysis/scenario_keys.h"
 #include "models/core/error.h"
+#include "models/core/files.h"
+#include "models/fit/model_file.h"
 #include "planner/program/program_section.h"
 #include "planner/scenario/scenario_document.h"
 #include "twin/cell/cell_section.h"
 
 namespace waam::analysis {
+namespace {
+
+// Applies one "key.path=value" override to the document, creating intermediate maps as needed.
+void ApplyOverride(YAML::Node root, const std::string& override_text) {
+  const std::size_t eq = override_text.find('=');
+  WAAM_THROW_UNLESS(eq != std::string::npos && eq > 0,
+                    "--set '" << override_text << "': expected key.path=value, e.g. path.pattern=hybrid");
+  const std::string key_path = override_text.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(override_text.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    WAAM_THROW("--set '" << override_text << "': value is not valid YAML: " << e.msg);
+  }
+  YAML::Node node;
+  node.reset(root);
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t dot = key_path.find('.', start);
+    const std::string key = key_path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    WAAM_THROW_UNLESS(!key.empty(), "--set '" << override_text << "': empty key in '" << key_path << "'");
+    WAAM_THROW_UNLESS(node.IsMap() || node.IsNull(),
+                      "--set '" << override_text << "': '" << key_path.substr(0, start) << "' is not a section");
+    if (dot == std::string::npos) {
+      node[key] = value;
+      return;
+    }
+    if (!node[key].IsDefined()) node[key] = YAML::Node(YAML::NodeType::Map);  // an absent optional section
+    YAML::Node child = node[key];
+    node.reset(child);
+    start = dot + 1;
+  }
+}
+
+// The model at `path`, or the default fitted model `name` when the path is empty.
+template <class Model>
+std::shared_ptr<const Model> LoadModel(const std::filesystem::path& path, const char* name) {
+  return std::make_shared<const Model>(Model::Load(path.empty() ? models::DefaultModelPath(name) : path));
+}
+
+// The shifts by junction class of a tune.json of `waam tune-voids`.
+void ReadTuneFile(planner::VoidFillingSettings* settings) {
+  const std::string& where = settings->where;
+  std::string text;
+  try {
+    text = ReadFile(settings->tune_file);
+  } catch (const InputError&) {
+    WAAM_THROW(where << ".tune_file: cannot read " << settings->tune_file.string());
+  }
+  try {
+    const nlohmann::json doc = nlohmann::json::parse(text);
+    for (const nlohmann::json& j : doc.at("junctions")) {
+      settings->shift_by_class_mm[j.at("class").get<std::string>()] = j.at("shift_mm").get<double>();
+    }
+  } catch (const nlohmann::json::exception& e) {
+    WAAM_THROW(where << ".tune_file: " << settings->tune_file.string()
+                     << " is not a tune.json of waam tune-voids (junctions[].class, shift_mm): " << e.what());
+  }
+}
+
+}  // namespace
+
+YamlMap LoadScenarioTop(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return ScenarioTop(LoadYamlFile(file.string()), file, overrides);
+}
+
+YamlMap ScenarioTop(YAML::Node root, const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  for (const std::string& override_text : overrides) ApplyOverride(root, override_text);
+  return YamlMap(root, "", file.string());
+}
+
+void LoadScenarioFiles(Scenario* scenario) {
+  planner::PartSpec& part = scenario->part;
+  if (!part.mesh_path.empty()) part.mesh_data = std::make_shared<const std::string>(ReadFile(part.mesh_path));
+  planner::ProcessSettings& process = scenario->process;
+  process.csw = LoadModel<models::CswModel>(process.csw_model, "csw");
+  process.speed_height = LoadModel<models::SpeedHeightModel>(process.speed_height_model, "speed_height");
+  process.width_height = LoadModel<models::WidthHeightModel>(process.width_height_model, "width_height");
+  planner::VoidFillingSettings& voids = scenario->path.void_filling;
+  voids.void_length = models::LoadVoidLengthModel(voids.model.empty() ? models::DefaultModelPath("void_length")
+                                                                      : voids.model);
+  if (voids.mode == planner::VoidFillingMode::kTuned && voids.shift_by_class_mm.empty()) ReadTuneFile(&voids);
+  twin::SimulationSettings& simulation = scenario->simulation;
+  simulation.csw = simulation.csw_model == process.csw_model
+                       ? process.csw
+                       : LoadModel<models::CswModel>(simulation.csw_model, "csw");
+}
 
 namespace {
 
@@ -45,7 +137,7 @@ YAML::Node ToYaml(const nlohmann::json& value) {
 // Every module parses its own sections from the scenario's top-level map.
 Scenario ParseScenario(YamlMap& top) {
   Scenario scenario;
-  static_cast<planner::Scenario&>(scenario) = planner::ParsePlannerSections(top);
+  static_cast<planner::PlannerSections&>(scenario) = planner::ParsePlannerSections(top);
   const std::filesystem::path dir = scenario.dir;
   scenario.cell = twin::ParseCellSection(top, dir);
   twin::ParseSimulationSection(top, &scenario.simulation, dir);
@@ -59,6 +151,7 @@ Scenario ParseScenario(YamlMap& top) {
   top.CheckNoUnknownKeys();
   internal::CheckThermalScenario(scenario.process, scenario.thermal);
   internal::LoadThermalMaterials(dir, &scenario.thermal);
+  LoadScenarioFiles(&scenario);
   return scenario;
 }
 
@@ -66,7 +159,7 @@ Scenario ParseScenario(YamlMap& top) {
 
 Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   CheckOverrideKeys(overrides);
-  YamlMap top = planner::LoadScenarioTop(file, overrides);
+  YamlMap top = LoadScenarioTop(file, overrides);
   return ParseScenario(top);
 }
 
@@ -79,7 +172,7 @@ Scenario ScenarioFromJson(const nlohmann::json& document, const std::filesystem:
   WAAM_THROW_UNLESS(std::filesystem::is_directory(base_dir, ec),
                     "base_dir: folder " << base_dir.string() << " not found");
   CheckOverrideKeys(overrides);
-  YamlMap top = planner::ScenarioTop(ToYaml(document), name, overrides);
+  YamlMap top = ScenarioTop(ToYaml(document), name, overrides);
   return ParseScenario(top);
 }
 

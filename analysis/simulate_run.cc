@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "analysis/import_command.h"
+#include "analysis/scenario_plan.h"
 #include "analysis/scenario.h"
 #include "analysis/simulate_command.h"
 #include "models/core/progress.h"

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "analysis/import_command.h"
+#include "analysis/scenario_plan.h"
 #include "analysis/plan_timeline.h"
 #include "models/core/error.h"
 #include "models/core/files.h"

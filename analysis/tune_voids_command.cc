@@ -19,7 +19,7 @@
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
 #include "planner/path/junctions.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "planner/scenario/scenario.h"
 
 namespace waam::analysis {

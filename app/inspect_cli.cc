@@ -4,6 +4,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
 
 namespace waam::app {
@@ -28,7 +29,7 @@ void AddInspectCommand(CLI::App& app, CommandRunner* runner) {
   command->callback([runner, options] {
     *runner = [options] {
       planner::MeshReport report;
-      planner::ReadStl(options->mesh, options->weld_tol_mm, &report);
+      analysis::ReadStl(options->mesh, options->weld_tol_mm, &report);
       std::cout << planner::MeshReportJson(report) << std::endl;
       planner::CheckSliceable(report);  // exit 2 with the reason on stderr
       return kExitOk;

@@ -14,12 +14,11 @@
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
-#include "models/fit/model_file.h"
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/geometry/polygon.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/mesh_ops.h"
-#include "planner/mesh/stl_io.h"
+#include "planner/plan_scenario.h"
 #include "planner/path/layer_pattern.h"
 #include "planner/slicing/cone_slicer.h"
 
@@ -57,25 +56,13 @@ std::vector<double> PassRadii(const std::vector<Eigen::Vector2d>& pass, double w
   return radii;
 }
 
-TriangleMesh LoadPart(const Scenario& scenario, MeshReport* report) {
-  TriangleMesh mesh;
-  if (!scenario.part.mesh_path.empty()) {
-    mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, report);
-  } else {
-    mesh = GeneratePart(scenario.part.generator, scenario.part.params, scenario.part.where);
-    *report = InspectMesh(mesh, kWeldToleranceMm, scenario.part.generator);
-  }
-  CheckSliceable(*report);
-  return mesh;
-}
-
 }  // namespace
 
-PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
+PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress) {
   const SlicingSettings& slicing = scenario.slicing;
   const std::string where = scenario.file.filename().string() + ": slicing";
   PlanResult result;
-  result.mesh = LoadPart(scenario, &result.mesh_report);
+  result.mesh = PartMesh(scenario.part, kWeldToleranceMm, &result.mesh_report);
 
   ConeSurface base;
   base.axis_P = Eigen::Vector3d(slicing.cone_axis_mm[0], slicing.cone_axis_mm[1], slicing.cone_axis_mm[2]);
@@ -105,11 +92,8 @@ PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress) {
   const ProcessSettings& process = scenario.process;
   const double width = scenario.path.bead_width_mm;
   const bool csw = process.bead_model == BeadModel::kCsw;
-  std::optional<models::CswModel> csw_model;
-  if (csw) {
-    csw_model = models::CswModel::Load(process.csw_model.empty() ? models::DefaultModelPath("csw")
-                                                                 : process.csw_model);
-  }
+  const models::CswModel* csw_model = process.csw.get();
+  WAAM_DEMAND(!csw || csw_model != nullptr);
   // The model is used only where it describes the bead: corners count as straight and tight curves as the
   // smallest radius of its data (CswModel::ApplicableRadius, the twin's rule too).
   auto model_radius = [&](double radius_mm) {

@@ -13,6 +13,6 @@ namespace waam::planner {
 // onto the substrate: the spindle or shaft the layers grow on is the substrate). Travel speed per point from the
 // CSW model when process.bead_model = csw. Throws InputError for a part that cannot be sliced this way (past the
 // apex, inside the first surface, a contour winding round the axis). `progress` may be null.
-PlanResult PlanConeScenario(const Scenario& scenario, Progress* progress);
+PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress);
 
 }  // namespace waam::planner

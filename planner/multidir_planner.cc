@@ -18,7 +18,7 @@
 #include "planner/geometry/clipper_adapter.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/mesh_ops.h"
-#include "planner/mesh/stl_io.h"
+#include "planner/plan_scenario.h"
 #include "planner/path/layer_pattern.h"
 #include "planner/slicing/centroid_decomposition.h"
 #include "planner/slicing/planar_slicer.h"
@@ -54,20 +54,14 @@ PolygonWithHoles HalfPlane(const Eigen::Vector2d& ab, double c) {
 
 }  // namespace
 
-PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* progress) {
+PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progress* progress) {
   const std::string where = scenario.file.filename().string() + ": slicing";
   const ProcessSettings& process = scenario.process;
   WAAM_THROW_UNLESS(process.bead_model == BeadModel::kVolumeBalance,
                     scenario.file.filename().string() << ": process.bead_model = " << NameOf(process.bead_model)
                                                       << ": multi_directional plans with volume_balance only");
   PlanResult result;
-  if (!scenario.part.mesh_path.empty()) {
-    result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);
-  } else {
-    result.mesh = GeneratePart(scenario.part.generator, scenario.part.params, scenario.part.where);
-    result.mesh_report = InspectMesh(result.mesh, kWeldToleranceMm, scenario.part.generator);
-  }
-  CheckSliceable(result.mesh_report);
+  result.mesh = PartMesh(scenario.part, kWeldToleranceMm, &result.mesh_report);
 
   // The sub-volumes: the user's split planes, or those of the centroid-shift decomposition (003 sec. 5.4).
   std::vector<SubVolumeSpec> specs = scenario.slicing.sub_volumes;

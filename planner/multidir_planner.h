@@ -13,6 +13,6 @@ namespace waam::planner {
 // (PlanResult::sub_volumes). With slicing.split centroid_shift the sub-volumes come from DecomposeByCentroidShift
 // (planner/slicing/centroid_decomposition.h) at the layer height instead. The part stays in its own frame. Throws
 // InputError for a sub-volume with no metal or a bead model other than volume_balance. `progress` may be null.
-PlanResult PlanMultiDirectionalScenario(const Scenario& scenario, Progress* progress);
+PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progress* progress);
 
 }  // namespace waam::planner

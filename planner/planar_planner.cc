@@ -1,4 +1,4 @@
-// The planar planning pipeline: load or generate the part, slice it, plan each layer, count the result.
+// The planar planning pipeline: the part's mesh, sliced, each layer planned, the result counted.
 #include "planner/planar_planner.h"
 
 #include <cmath>
@@ -6,23 +6,14 @@
 
 #include "models/core/error.h"
 #include "models/bead/parabolic_bead.h"
-#include "models/bead/speed_height_model.h"
-#include "models/bead/width_height_model.h"
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
-#include "models/fit/model_file.h"
-#include "planner/cone_planner.h"
 #include "planner/geometry/simplify.h"
-#include "planner/multidir_planner.h"
-#include "planner/mesh/generators.h"
-#include "planner/mesh/stl_io.h"
+#include "planner/plan_scenario.h"
 #include "planner/path/layer_pattern.h"
-#include "planner/path/retract.h"
 #include "planner/plan_limits.h"
-#include "planner/skeleton_planner.h"
 #include "planner/slicing/planar_slicer.h"
-#include "planner/timeline/island_order.h"
 
 namespace waam::planner {
 namespace {
@@ -42,7 +33,7 @@ void PlaceOnSubstrate(TriangleMesh* mesh, MeshReport* report) {
 
 }  // namespace
 
-PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm) {
+PatternOptions PatternOptionsFor(const PlannerSections& scenario, double bead_width_mm) {
   PatternOptions options;
   options.pattern = scenario.path.pattern;
   options.bead_width_mm = bead_width_mm;
@@ -57,23 +48,11 @@ PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm)
 
 namespace {
 
-// The plan with the planners' own arc-off moves (straight, on the layer).
-PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
-  switch (scenario.slicing.type) {
-    case SlicingType::kCone:
-    case SlicingType::kCylinder: return PlanConeScenario(scenario, progress);
-    case SlicingType::kMultiDirectional: return PlanMultiDirectionalScenario(scenario, progress);
-    case SlicingType::kSkeleton: return PlanSkeletonScenario(scenario, progress);
-    case SlicingType::kPlanar: break;
-  }
+}  // namespace
+
+PlanResult PlanPlanarScenario(const PlannerSections& scenario, Progress* progress) {
   PlanResult result;
-  if (!scenario.part.mesh_path.empty()) {
-    result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);
-  } else {
-    result.mesh = GeneratePart(scenario.part.generator, scenario.part.params, scenario.part.where);
-    result.mesh_report = InspectMesh(result.mesh, kWeldToleranceMm, scenario.part.generator);
-  }
-  CheckSliceable(result.mesh_report);
+  result.mesh = PartMesh(scenario.part, kWeldToleranceMm, &result.mesh_report);
   PlaceOnSubstrate(&result.mesh, &result.mesh_report);
 
   // Layer i fills [i h, (i + 1) h]; it is sliced at its mid-height and the TCP runs on its top, z = (i + 1) h.
@@ -96,11 +75,9 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
   result.travel_speed_mm_min = process.travel_speed_mm_min;
   result.bead_width_mm = scenario.path.bead_width_mm;
   if (process.bead_model == BeadModel::kSpeedHeight) {
-    const auto speed_height = models::SpeedHeightModel::Load(
-        process.speed_height_model.empty() ? models::DefaultModelPath("speed_height") : process.speed_height_model);
-    const auto width_height = models::WidthHeightModel::Load(
-        process.width_height_model.empty() ? models::DefaultModelPath("width_height") : process.width_height_model);
-    const models::BeadSetpoint setpoint = models::SetpointForHeight(speed_height, width_height, layer_height);
+    WAAM_DEMAND(process.speed_height != nullptr && process.width_height != nullptr);
+    const models::BeadSetpoint setpoint =
+        models::SetpointForHeight(*process.speed_height, *process.width_height, layer_height);
     result.travel_speed_mm_min = setpoint.speed.speed_mm_per_min;
     result.bead_width_mm = setpoint.width_mm;
     result.speed_clamp = models::ToString(setpoint.speed.clamp);
@@ -178,21 +155,6 @@ PlanResult PlanWithoutRetracts(const Scenario& scenario, Progress* progress) {
   result.stats = ComputeStats(result.plan);
   result.layer_height_min_mm = result.layer_height_max_mm = result.layer_height_mm;
   result.speed_min_mm_min = result.speed_max_mm_min = result.travel_speed_mm_min;
-  return result;
-}
-
-}  // namespace
-
-PlanResult PlanScenario(const Scenario& scenario, Progress* progress) {
-  PlanResult result = PlanWithoutRetracts(scenario, progress);
-  const TimelineSettings timing = TimelineSettingsOf(scenario.process);
-  // The islands' order (path.island_order) before the travel between passes is built.
-  OrderIslands(scenario.path.island_order, timing, &result.plan);
-  result.retract = AddRetracts(scenario.path.retract_mm, &result.plan);
-  result.stats = ComputeStats(result.plan);
-  // Without the cell: arc-off moves at the rapid speed (analysis::AddCellTimeline times them on the cell's axes).
-  result.timeline = BuildTimeline(result.plan, {}, AxisLimits{}, timing);
-  result.stats.estimated_time_s = result.timeline.total_s;
   return result;
 }
 

@@ -1,4 +1,4 @@
-// The planar planning pipeline: scenario -> mesh -> slices -> one path per layer -> statistics.
+// The planar planning pipeline: scenario -> mesh -> slices -> one path per layer -> statistics; the plan's result type.
 #pragma once
 
 #include <array>
@@ -62,13 +62,13 @@ struct PlanResult {
   Timeline timeline;                 // where the build's time goes; stats.estimated_time_s is its total_s
 };
 
-// Loads or generates the part, slices it at the scenario's layer height and plans every layer with the scenario's
-// pattern. Throws InputError for a mesh that cannot be sliced or settings that cannot be planned.
-// `progress` may be null.
-PlanResult PlanScenario(const Scenario& scenario, Progress* progress);
+// The planar branch of PlanScenario (planner/plan_scenario.h): the part's mesh sliced at the scenario's layer height
+// and every layer planned with the scenario's pattern, arc-off moves straight on the layer. Throws InputError for a
+// mesh that cannot be sliced or settings that cannot be planned. `progress` may be null.
+PlanResult PlanPlanarScenario(const PlannerSections& scenario, Progress* progress);
 
 // The layer-pattern options of the scenario's `path` section for beads `bead_width_mm` wide (layer index 0), slices
 // simplified to kContourToleranceFraction of the width; shared by the planar, cone and multi-directional planners.
-PatternOptions PatternOptionsFor(const Scenario& scenario, double bead_width_mm);
+PatternOptions PatternOptionsFor(const PlannerSections& scenario, double bead_width_mm);
 
 }  // namespace waam::planner

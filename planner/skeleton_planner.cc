@@ -13,10 +13,9 @@
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
-#include "models/fit/model_file.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/mesh_ops.h"
-#include "planner/mesh/stl_io.h"
+#include "planner/plan_scenario.h"
 #include "planner/mesh/tube_generators.h"
 
 namespace waam::planner {
@@ -190,24 +189,18 @@ Plan BuildSkeletonPlan(const SkeletonSlicing& slicing, const models::SpeedHeight
   return plan;
 }
 
-PlanResult PlanSkeletonScenario(const Scenario& scenario, Progress* progress) {
+PlanResult PlanSkeletonScenario(const PlannerSections& scenario, Progress* progress) {
   const SlicingSettings& s = scenario.slicing;
   PlanResult result;
-  if (!scenario.part.mesh_path.empty()) {
-    result.mesh = ReadStl(scenario.part.mesh_path, kWeldToleranceMm, &result.mesh_report);
-  } else {
-    if (scenario.part.generator == "bent_tube") {
-      // eq. 6.4 on the generator's own numbers, before any slicing.
-      const BentTubeSpec spec = BentTubeSpecFromParams(
-          ResolveGeneratorParams(scenario.part.generator, scenario.part.params, scenario.part.where));
-      const TubePart tube = BuildBentTube(spec, scenario.part.where);
-      CheckBendRule(spec.bend_radius_mm, tube.extent_in_bend_plane_mm, s.h_min_mm, s.h_max_mm,
-                    scenario.part.where + " bent_tube.bend_radius_mm");
-    }
-    result.mesh = GeneratePart(scenario.part.generator, scenario.part.params, scenario.part.where);
-    result.mesh_report = InspectMesh(result.mesh, kWeldToleranceMm, scenario.part.generator);
+  if (scenario.part.mesh_path.empty() && scenario.part.generator == "bent_tube") {
+    // eq. 6.4 on the generator's own numbers, before any slicing.
+    const BentTubeSpec spec = BentTubeSpecFromParams(
+        ResolveGeneratorParams(scenario.part.generator, scenario.part.params, scenario.part.where));
+    const TubePart tube = BuildBentTube(spec, scenario.part.where);
+    CheckBendRule(spec.bend_radius_mm, tube.extent_in_bend_plane_mm, s.h_min_mm, s.h_max_mm,
+                  scenario.part.where + " bent_tube.bend_radius_mm");
   }
-  CheckSliceable(result.mesh_report);
+  result.mesh = PartMesh(scenario.part, kWeldToleranceMm, &result.mesh_report);
   const double shift = PlaceOnBuildPlate(&result.mesh);
   result.mesh_report.bbox_min.z() += shift;
   result.mesh_report.bbox_max.z() += shift;
@@ -232,12 +225,9 @@ PlanResult PlanSkeletonScenario(const Scenario& scenario, Progress* progress) {
     }
   }
 
-  const auto speed_height = models::SpeedHeightModel::Load(scenario.process.speed_height_model.empty()
-                                                               ? models::DefaultModelPath("speed_height")
-                                                               : scenario.process.speed_height_model);
-  const auto width_height = models::WidthHeightModel::Load(scenario.process.width_height_model.empty()
-                                                               ? models::DefaultModelPath("width_height")
-                                                               : scenario.process.width_height_model);
+  WAAM_DEMAND(scenario.process.speed_height != nullptr && scenario.process.width_height != nullptr);
+  const models::SpeedHeightModel& speed_height = *scenario.process.speed_height;
+  const models::WidthHeightModel& width_height = *scenario.process.width_height;
   SkeletonPathOptions path_options;
   path_options.point_spacing_mm = s.point_spacing_mm;
   path_options.spiral = scenario.path.pattern == Pattern::kSpiral;

@@ -34,6 +34,6 @@ void CheckBendRule(double bend_radius_mm, double extent_mm, double h_min_mm, dou
 // The `slicing.type: skeleton` branch of PlanScenario: loads or generates the part (for a `bent_tube` generator the
 // eq. 6.4 rule is checked on its parameters before slicing; for a mesh on the bend measured along the centroid chain),
 // slices it along its skeleton and plans the path with `path.pattern` spiral or contour. Throws InputError.
-PlanResult PlanSkeletonScenario(const Scenario& scenario, Progress* progress);
+PlanResult PlanSkeletonScenario(const PlannerSections& scenario, Progress* progress);
 
 }  // namespace waam::planner

@@ -5,6 +5,7 @@
 
 #include "analysis/check_command.h"
 #include "analysis/import_command.h"
+#include "analysis/scenario_plan.h"
 #include "analysis/plan_command.h"
 #include "analysis/plan_timeline.h"
 #include "analysis/simulate_command.h"

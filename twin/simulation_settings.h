@@ -5,8 +5,10 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <string>
 
+#include "models/bead/csw_model.h"
 #include "models/core/enum_names.h"
 #include "models/core/field_table.h"
 
@@ -77,6 +79,9 @@ struct SimulationSettings {
   CurvatureWidth curvature_width = CurvatureWidth::kCsw;
   std::filesystem::path csw_model;
   double csw_min_radius_mm = 30.0;
+  // The model of csw_model (or the default), loaded by the scenario loader (analysis::LoadScenario; the twin reads no
+  // file); needed when curvature_width is csw.
+  std::shared_ptr<const models::CswModel> csw;
   // Deposition step along the path, mm (0 = one voxel).
   double step_mm = 0.0;
   // Voids and valleys smaller than this are voxel-scale gaps between beads, counted apart from the voids (mm3; the

@@ -6,6 +6,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "models/bead/csw_model.h"
+#include "models/fit/model_file.h"
+
 #include "planner/path/tool_path.h"
 #include "twin/deposition/bead_deposition.h"
 
@@ -67,6 +70,8 @@ void Report(benchmark::State& state, const waam::twin::Depositor& d, double seco
 // time. Argument: voxel size in 1/100 mm.
 void BM_DepositBuildHour(benchmark::State& state) {
   waam::twin::SimulationSettings settings;
+  settings.csw = std::make_shared<const waam::models::CswModel>(
+      waam::models::CswModel::Load(waam::models::DefaultModelPath("csw")));  // as the scenario loader does
   settings.voxel_mm = state.range(0) / 100.0;
   const Plan plan = SerpentineBlock(100.0, 24, 6.0, 2.0, 8.0);
   for (auto _ : state) {
@@ -83,6 +88,8 @@ BENCHMARK(BM_DepositBuildHour)->Arg(100)->Arg(50)->Arg(25)->UseManualTime()->Ite
 // the peak memory.
 void BM_DepositLargePart(benchmark::State& state) {
   waam::twin::SimulationSettings settings;
+  settings.csw = std::make_shared<const waam::models::CswModel>(
+      waam::models::CswModel::Load(waam::models::DefaultModelPath("csw")));  // as the scenario loader does
   settings.voxel_mm = 0.5;
   const Plan plan = SerpentineBlock(200.0, 56, 6.0, 2.0, 8.0);
   for (auto _ : state) {

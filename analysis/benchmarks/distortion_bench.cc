@@ -9,10 +9,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include "models/bead/csw_model.h"
+#include "models/fit/model_file.h"
+
 #include "analysis/scenario.h"
 #include "models/core/numbers.h"
 #include "planner/path/tool_path.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "planner/scenario/scenario.h"
 #include "twin/deposition/bead_deposition.h"
 #include "twin/distortion/deposit_history.h"
@@ -73,6 +76,8 @@ void BM_DistortionSolvePartI(benchmark::State& state) {
   // Part I: 100 mm tube; bent axis of radius 150 mm over 90 degrees is about 235 mm long; layers 1-2 mm (Table 16).
   const waam::planner::Plan plan = Tube(50.0, 157, 5.0, 1.5, 8.0);
   waam::twin::SimulationSettings settings;  // default voxel_mm 0.5
+  settings.csw = std::make_shared<const waam::models::CswModel>(
+      waam::models::CswModel::Load(waam::models::DefaultModelPath("csw")));  // as the scenario loader does
   const waam::twin::Depositor depositor = waam::twin::DepositPlan(plan, settings, 100.0, nullptr);
   const waam::twin::DepositHistory history(plan, depositor, settings, 100.0, 53.3);
   SolveAndReport(state, depositor, history);

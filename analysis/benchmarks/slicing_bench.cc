@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include "planner/mesh/generators.h"
+#include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/slicing/planar_slicer.h"
 
@@ -47,7 +48,7 @@ void BM_ReadStlBinarySphere1M(benchmark::State& state) {
   waam::planner::WriteStlBinary(BigSphere(), path);
   for (auto _ : state) {
     waam::planner::MeshReport report;
-    auto mesh = waam::planner::ReadStl(path, 1e-4, &report);
+    auto mesh = waam::analysis::ReadStl(path, 1e-4, &report);
     benchmark::DoNotOptimize(mesh);
   }
   state.counters["facets_per_s"] = benchmark::Counter(static_cast<double>(BigSphere().facets.size()),

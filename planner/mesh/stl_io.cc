@@ -1,4 +1,4 @@
-// STL reader (binary and ASCII, with welding and validation) and writers.
+// STL parser (binary and ASCII, with welding and validation) and writers.
 #include "planner/mesh/stl_io.h"
 
 #include <algorithm>
@@ -187,10 +187,10 @@ void WriteOrThrow(std::ofstream& out, const std::filesystem::path& path) {
 
 }  // namespace
 
-TriangleMesh ReadStl(const std::filesystem::path& path, double weld_tolerance_mm, MeshReport* report) {
+TriangleMesh ParseStl(const std::string& data, const std::filesystem::path& path, double weld_tolerance_mm,
+                      MeshReport* report) {
   WAAM_THROW_UNLESS(std::isfinite(weld_tolerance_mm) && weld_tolerance_mm >= 0.0 && weld_tolerance_mm <= 10.0,
                     Name(path) << ": weld tolerance " << weld_tolerance_mm << " mm: must be between 0 and 10 mm");
-  const std::string data = ReadFile(path);
   WAAM_THROW_UNLESS(!data.empty(), Name(path) << ": the file is empty (0 bytes); expected a binary or ASCII STL");
 
   std::uint64_t header_count = 0;

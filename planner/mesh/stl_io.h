@@ -1,4 +1,4 @@
-// Reading and writing STL meshes (binary and ASCII) with welding and a health report.
+// Parsing and writing STL meshes (binary and ASCII) with welding and a health report.
 #pragma once
 
 #include <cstddef>
@@ -18,13 +18,15 @@ inline constexpr std::size_t kMaxStlFacets = 20'000'000;
 // corrupt file or wrong units.
 inline constexpr double kMaxStlCoordinateMm = 1e6;
 
-// Reads a binary or ASCII STL file (coordinates in mm). A file is binary when its size is exactly
+// Parses the bytes `data` of a binary or ASCII STL file `path` (coordinates in mm; the file is read by
+// analysis::ReadStl, `path` names it in messages). A file is binary when its size is exactly
 // 84 + 50 n bytes with n the facet count in its header (binary files may begin with "solid" too); otherwise it
 // must be ASCII. Vertices within `weld_tolerance_mm` (0 to 10 mm; 0 welds only identical points) are merged,
 // degenerate facets are dropped, and `*report` (may be null) is filled. Throws InputError naming the file and the
 // place (facet number or line) for an empty file, a truncated or inconsistent binary file, a facet count above
 // kMaxStlFacets, a NaN/inf coordinate or one beyond kMaxStlCoordinateMm, an ASCII syntax error, or a file with no usable facet.
-TriangleMesh ReadStl(const std::filesystem::path& path, double weld_tolerance_mm, MeshReport* report);
+TriangleMesh ParseStl(const std::string& data, const std::filesystem::path& path, double weld_tolerance_mm,
+                      MeshReport* report);
 
 // Throws InputError naming `report.source` if the mesh cannot be sliced into closed contours: no facets, open
 // (boundary edges left after welding) or non-manifold edges. Misoriented facets are accepted (the slicer orients

@@ -4,14 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "models/core/error.h"
 #include "models/core/numbers.h"
-#include "models/fit/model_file.h"
 
 namespace waam::planner {
 namespace {
@@ -77,22 +73,10 @@ VoidFiller::VoidFiller(const VoidFillingSettings& settings, double bead_width_mm
       l_mm_(settings.spacing_mm > 0.0 ? settings.spacing_mm : l_mm) {
   const std::string& where = settings_.where;
   WAAM_THROW_UNLESS(std::isfinite(l_mm_) && l_mm_ > 0.0, where << ": bead spacing l = " << l_mm_ << " mm: must be > 0");
+  // The model and the tune file's shifts come loaded with the scenario (analysis::LoadScenario).
   if (settings_.mode == VoidFillingMode::kModel) {
-    model_ = models::LoadVoidLengthModel(settings_.model.empty() ? models::DefaultModelPath("void_length")
-                                                                 : settings_.model);
-  } else if (settings_.mode == VoidFillingMode::kTuned && settings_.shift_by_class_mm.empty()) {
-    std::ifstream in(settings_.tune_file);
-    WAAM_THROW_UNLESS(in.good(), where << ".tune_file: cannot read " << settings_.tune_file.string());
-    nlohmann::json doc;
-    try {
-      in >> doc;
-      for (const nlohmann::json& j : doc.at("junctions")) {
-        settings_.shift_by_class_mm[j.at("class").get<std::string>()] = j.at("shift_mm").get<double>();
-      }
-    } catch (const nlohmann::json::exception& e) {
-      WAAM_THROW(where << ".tune_file: " << settings_.tune_file.string()
-                       << " is not a tune.json of waam tune-voids (junctions[].class, shift_mm): " << e.what());
-    }
+    model_ = settings_.void_length;
+    WAAM_DEMAND(model_ != nullptr);
   }
 }
 

@@ -2,7 +2,6 @@
 #include "planner/program/program_reader.h"
 
 #include "models/core/error.h"
-#include "models/core/files.h"
 
 namespace waam::planner {
 
@@ -51,41 +50,6 @@ ParsedProgram ReadProgramText(std::string_view text, const std::string& file, Pr
   }
   WAAM_DEMAND(false);
   return {};
-}
-
-ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
-                              const GcodeReadOptions& gcode, const JbiReadOptions& jbi, const ProgramFrames& frames) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  WAAM_THROW_UNLESS(!ec, path.string() << ": cannot read the program: " << ec.message());
-  WAAM_THROW_UNLESS(size <= kMaxProgramBytes, path.string() << ": the program has " << size
-                                                            << " bytes, more than the limit of " << kMaxProgramBytes);
-  const std::string text = ReadFile(path);
-  const ProgramFormat f = format ? *format : DetectProgramFormat(path, text);
-  ParsedProgram program;
-  if (f == ProgramFormat::kKukaKrl) {
-    // The .src and its .dat beside it (same name), whichever of the two was given.
-    const bool given_dat = internal::Upper(path.extension().string()) == ".DAT";
-    auto sibling = [&](const char* lower, const char* upper) {
-      std::filesystem::path p = path;
-      p.replace_extension(lower);
-      if (!std::filesystem::exists(p)) p.replace_extension(upper);
-      return p;
-    };
-    const std::filesystem::path src = given_dat ? sibling(".src", ".SRC") : path;
-    const std::filesystem::path dat = given_dat ? path : sibling(".dat", ".DAT");
-    WAAM_THROW_UNLESS(std::filesystem::is_regular_file(src), path.string() << ": no " << src.filename().string()
-                                                                            << " beside the .dat");
-    const std::string src_text = given_dat ? ReadFile(src) : text;
-    const std::string dat_text = given_dat ? text : (std::filesystem::is_regular_file(dat) ? ReadFile(dat) : "");
-    WAAM_THROW_UNLESS(src_text.size() <= kMaxProgramBytes && dat_text.size() <= kMaxProgramBytes,
-                      src.string() << ": the program is more than the limit of " << kMaxProgramBytes << " bytes");
-    program = ReadKukaKrl(src_text, dat_text, src.string(), dat.string(), frames);
-  } else {
-    program = ReadProgramText(text, path.string(), f, gcode, jbi, frames);
-  }
-  if (program.name.empty()) program.name = path.stem().string();
-  return program;
 }
 
 }  // namespace waam::planner

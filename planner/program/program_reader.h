@@ -1,5 +1,5 @@
 // Readers of robot programs and G-code into the reading model (program_motion.h), one per dialect, each in its own
-// file; ReadProgramFile picks one by the format or the file's extension and content.
+// file; ReadProgramText picks one by the format (analysis::ReadProgramFile reads the file and detects it).
 #pragma once
 
 #include <array>
@@ -94,10 +94,6 @@ ParsedProgram ReadProgramCsv(std::string_view text, const std::string& file);
 // lines. Throws InputError when neither tells.
 ProgramFormat DetectProgramFormat(const std::filesystem::path& path, std::string_view text);
 
-// Reads `path` (at most kMaxProgramBytes) with the reader of `format` (empty: detected).
-ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::optional<ProgramFormat> format,
-                              const GcodeReadOptions& gcode = {}, const JbiReadOptions& jbi = {},
-                              const ProgramFrames& frames = {});
 
 // Reads `text` with the reader of `format`; `file` names it in messages. KRL: the .src text followed by its .dat.
 ParsedProgram ReadProgramText(std::string_view text, const std::string& file, ProgramFormat format,

@@ -1,4 +1,4 @@
-// Scenario loading: every section validated up front, with the key path in each message.
+// The planner's sections of a scenario document: every section validated up front, with the key path in each message.
 #include "planner/scenario/scenario.h"
 
 #include <algorithm>
@@ -47,51 +47,10 @@ PartSpec ParsePart(YamlMap part, const YAML::Node& node, const fs::path& scenari
   return spec;
 }
 
-// Applies one "key.path=value" override to the document, creating intermediate maps as needed.
-void ApplyOverride(YAML::Node root, const std::string& override_text) {
-  const std::size_t eq = override_text.find('=');
-  WAAM_THROW_UNLESS(eq != std::string::npos && eq > 0,
-                    "--set '" << override_text << "': expected key.path=value, e.g. path.pattern=hybrid");
-  const std::string key_path = override_text.substr(0, eq);
-  YAML::Node value;
-  try {
-    value = YAML::Load(override_text.substr(eq + 1));
-  } catch (const YAML::Exception& e) {
-    WAAM_THROW("--set '" << override_text << "': value is not valid YAML: " << e.msg);
-  }
-  YAML::Node node;
-  node.reset(root);
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = key_path.find('.', start);
-    const std::string key = key_path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    WAAM_THROW_UNLESS(!key.empty(), "--set '" << override_text << "': empty key in '" << key_path << "'");
-    WAAM_THROW_UNLESS(node.IsMap() || node.IsNull(),
-                      "--set '" << override_text << "': '" << key_path.substr(0, start) << "' is not a section");
-    if (dot == std::string::npos) {
-      node[key] = value;
-      return;
-    }
-    if (!node[key].IsDefined()) node[key] = YAML::Node(YAML::NodeType::Map);  // an absent optional section
-    YAML::Node child = node[key];
-    node.reset(child);
-    start = dot + 1;
-  }
-}
-
 }  // namespace
 
-YamlMap LoadScenarioTop(const fs::path& file, const std::vector<std::string>& overrides) {
-  return ScenarioTop(LoadYamlFile(file.string()), file, overrides);
-}
-
-YamlMap ScenarioTop(YAML::Node root, const fs::path& file, const std::vector<std::string>& overrides) {
-  for (const std::string& override_text : overrides) ApplyOverride(root, override_text);
-  return YamlMap(root, "", file.string());
-}
-
-Scenario ParsePlannerSections(YamlMap& top) {
-  Scenario scenario;
+PlannerSections ParsePlannerSections(YamlMap& top) {
+  PlannerSections scenario;
   std::error_code ec;
   scenario.file = fs::absolute(top.file(), ec).lexically_normal();
   scenario.dir = scenario.file.parent_path();
@@ -229,11 +188,6 @@ Scenario ParsePlannerSections(YamlMap& top) {
   }
 
   return scenario;
-}
-
-Scenario LoadScenario(const fs::path& file, const std::vector<std::string>& overrides) {
-  YamlMap top = LoadScenarioTop(file, overrides);
-  return ParsePlannerSections(top);
 }
 
 }  // namespace waam::planner

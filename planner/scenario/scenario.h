@@ -1,13 +1,18 @@
-// A scenario: the part, how to slice it, which path pattern, which process settings (loaded from YAML).
+// The planner's sections of a scenario: the part, how to slice it, which path pattern, which process settings, and
+// the data they name (the part's STL bytes, the fitted models), loaded by the scenario loader (analysis/scenario.h).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "models/bead/csw_model.h"
+#include "models/bead/speed_height_model.h"
+#include "models/bead/width_height_model.h"
 #include "models/core/enum_names.h"
 #include "planner/path/pattern_names.h"
 #include "planner/scenario/arc_settings.h"
@@ -43,6 +48,8 @@ struct PartSpec {
   std::string generator;             // generator name (see planner/mesh/generators.h); empty for a mesh
   std::map<std::string, std::vector<double>> params;  // generator parameters, each a number or list of numbers
   std::string where;                 // "file:line: part" for messages about the part
+  // The bytes of the mesh file, read by the scenario loader (the planner reads no file); null for a generator.
+  std::shared_ptr<const std::string> mesh_data;
 };
 
 // A sub-volume of a multi-directional decomposition (Lim & Soh): the part's metal inside every `keep` half-space
@@ -107,6 +114,11 @@ struct ProcessSettings {
   std::filesystem::path csw_model;           // model JSON (waam fit csw); empty = models/data default
   std::filesystem::path speed_height_model;  // model JSON (waam fit speed-height); empty = models/data default
   std::filesystem::path width_height_model;  // model JSON (waam fit width-height); empty = models/data default
+  // The three models above (the named files or the defaults), loaded by the scenario loader; the planners take them
+  // from here (one they need and do not find is the caller's mistake: WAAM_DEMAND).
+  std::shared_ptr<const models::CswModel> csw;
+  std::shared_ptr<const models::SpeedHeightModel> speed_height;
+  std::shared_ptr<const models::WidthHeightModel> width_height;
   double rapid_speed_mm_min = 6000.0;  // arc-off travel moves
   // Arc start (gas pre-flow, ignition) before each pass and arc end (crater fill, arc off) after it, s; defaults and
   // their source in docs/TIMELINE.md (Kemppi's start/stop timing with typical gas pre-flow and crater times).
@@ -120,7 +132,9 @@ struct ProcessSettings {
   InterpassSettings interpass;          // process.interpass: wait before a layer for a temperature or a layer time
 };
 
-struct Scenario {
+// What the planner reads of a scenario. The one scenario type, analysis::Scenario, holds these sections with those
+// of the twin and the analysis, and is passed to the planner as this.
+struct PlannerSections {
   std::filesystem::path file;        // the scenario file (absolute)
   // The folder relative file paths of the scenario are resolved against (absolute): the top-level `base_dir` (itself
   // relative to the file's folder), or the file's folder. A scenario written elsewhere (`waam place`) keeps pointing
@@ -132,13 +146,5 @@ struct Scenario {
   PathSettings path;
   ProcessSettings process;
 };
-
-// Loads and validates the planner's sections of a scenario file (name, part, slicing, path, process). Unknown keys,
-// wrong types and out-of-range values in them throw InputError naming the file, line and key path (e.g.
-// "s.yaml:7: slicing.layer_height_mm = -1: must be in [0.05, 20]"). The sections other modules own (cell,
-// simulation, run) are left to them: analysis::LoadScenario reads the whole file and refuses unknown top-level keys.
-// `overrides` are "key.path=value" strings (the CLI's --set) applied to the YAML before validation, so a sweep can
-// vary one setting without editing the file; a malformed override throws InputError naming it.
-Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
 }  // namespace waam::planner

@@ -11,10 +11,10 @@
 namespace waam::planner {
 
 inline constexpr std::array kScenarioTopFields = {
-    CustomField<Scenario>("name", FieldType::kString, "the scenario's name (output folders, reports)"),
-    CustomField<Scenario>("base_dir", FieldType::kString, "folder relative paths are taken from; absent: the file's"),
-    CustomField<Scenario>("part", FieldType::kMap, "the part to plan (or program:, a program made elsewhere)"),
-    CustomField<Scenario>("target", FieldType::kFile, "the intended part of a program made elsewhere (STL)"),
+    CustomField<PlannerSections>("name", FieldType::kString, "the scenario's name (output folders, reports)"),
+    CustomField<PlannerSections>("base_dir", FieldType::kString, "folder relative paths are taken from; absent: the file's"),
+    CustomField<PlannerSections>("part", FieldType::kMap, "the part to plan (or program:, a program made elsewhere)"),
+    CustomField<PlannerSections>("target", FieldType::kFile, "the intended part of a program made elsewhere (STL)"),
 };
 
 inline constexpr std::array kPartFields = {

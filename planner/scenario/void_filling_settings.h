@@ -4,9 +4,11 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "models/core/enum_names.h"
+#include "models/voids/void_length_model.h"
 
 namespace waam {
 class YamlMap;
@@ -29,7 +31,10 @@ struct VoidFillingSettings {
   int min_ribs = 3;              // correct junctions of at least this many ribs (2-rib corners are left as they are)
   std::filesystem::path model;   // void-length model JSON (mode model); empty = models/data/void_length.json
   std::filesystem::path tune_file;  // tune.json of `waam tune-voids` (mode tuned), absolute
-  std::map<std::string, double> shift_by_class_mm;  // shift PP_N* (mm) by junction class (mode tuned, from tune_file)
+  // shift PP_N* (mm) by junction class (mode tuned): read from tune_file by the scenario loader, or set in code
+  std::map<std::string, double> shift_by_class_mm;
+  // The void-length model of `model` (or the default), loaded by the scenario loader; needed by mode model
+  std::shared_ptr<const models::VoidLengthModel> void_length;
   std::string where = "path.void_filling";  // "file:line: path.void_filling" for messages
 };
 

@@ -14,6 +14,7 @@
 #include "models/core/csv.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
@@ -51,7 +52,7 @@ void Replay(const std::string& target, Read read) {
 TEST(FuzzRegressions, StlInputsGiveAMeshOrAnInputError) {
   Replay("stl", [](const fs::path& input) {
     MeshReport report;
-    ReadStl(input, 0.01, &report);
+    analysis::ReadStl(input, 0.01, &report);
     (void)MeshReportJson(report);
     CheckSliceable(report);
   });

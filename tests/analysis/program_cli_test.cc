@@ -1,13 +1,17 @@
 // Tests of `waam import`, `waam export` and a scenario's program: section through the CLI: a scenario exported in
 // every dialect imports back to the plan `waam plan` makes of it, check runs on a program scenario, and a bad
 // program exits 2 writing nothing.
+#include <unistd.h>
+
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "analysis/import_command.h"
+#include "analysis/program_file.h"
 #include "analysis/plan_command.h"
 #include "cli_test_util.h"
 #include "models/core/error.h"
@@ -221,6 +225,22 @@ TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {
   EXPECT_EQ(RunWaam("import " + bad.string() + " --format yaskawa_jbi -o " + (dir / "out").string() + " -q", &err), 2);
   EXPECT_THAT(err, HasSubstr("bad.nc:1: a JBI job starts with /JOB, not 'G21'"));
   EXPECT_FALSE(fs::exists(dir / "out" / "plan.json"));
+}
+
+// analysis::ReadProgramFile checks the size before it reads.
+TEST(ProgramFile, FilesPastTheSizeLimitAreRefusedBeforeReading) {
+  const fs::path dir = fs::temp_directory_path() / ("waam_program_limit_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path big = dir / "big.nc";
+  { std::ofstream(big) << "G1 X0\n"; }
+  fs::resize_file(big, planner::kMaxProgramBytes + 1);  // sparse: no disk used
+  try {
+    (void)ReadProgramFile(big, std::nullopt);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("more than the limit of"));
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

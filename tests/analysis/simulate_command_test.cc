@@ -36,6 +36,7 @@ Fixture SmallBlock() {
   const double w = 6.0, h = 2.0, l = 0.738 * w;
   f.scenario.name = "small block";
   f.scenario.path.bead_width_mm = w;
+  LoadScenarioFiles(&f.scenario);  // the default models, as LoadScenario loads them
   f.planned.plan = twin::testing::ParallelBlock(twin::testing::BlockPositions(0.5 * w, 0.47 * w, l, 3), 30.0, 3,
                                                 2.0 / 3.0 * w * h / l, w, h, 8.0);
   const auto& ring = f.planned.plan.layers.back().slice.front().outer;

@@ -10,7 +10,7 @@
 
 #include "analysis/scenario.h"
 #include "models/core/error.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 
 namespace waam::analysis {
 namespace {

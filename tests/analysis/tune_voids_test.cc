@@ -15,7 +15,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/parallel.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "planner/scenario/scenario.h"
 
 namespace waam::analysis {

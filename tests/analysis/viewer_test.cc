@@ -22,6 +22,7 @@
 #include "analysis/check_command.h"
 #include "analysis/scenario.h"
 #include "analysis/thermal_run.h"
+#include "planner/plan_scenario.h"
 #include "planner/planar_planner.h"
 #include "tests/analysis/cli_test_util.h"
 #include "twin/cell/mujoco_cell.h"

@@ -1,5 +1,6 @@
-// The house's rules on the sources themselves: no module names another module's `internal` namespace, and no file
-// includes a header of a layer above its own (models <- planner <- twin <- analysis <- app).
+// The house's rules on the sources themselves: no module names another module's `internal` namespace, no file
+// includes a header of a layer above its own (models <- planner <- twin <- analysis <- app), and the planner reads no
+// file (readers are called from analysis/).
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -71,6 +72,32 @@ TEST(SourceRules, NoFileIncludesAHigherLayer) {
     }
   }
   EXPECT_THAT(offences, ::testing::IsEmpty()) << "layers are models <- planner <- twin <- analysis <- app";
+}
+
+// What reads a file: a stream or C file opened, a whole file read, a YAML, model or parameter file loaded, a folder
+// listed. Comments are not code.
+const std::regex kFileRead(
+    R"re(^[^/]*?\b(std::ifstream|std::fstream|fopen|ReadFile\(|LoadYamlFile|YAML::LoadFile|Model::Load\(|::Load\(|LoadVoidLengthModel|ReadModelJson|ReadDistortionParams|DefaultModelPath|directory_iterator))re");
+
+// The modules that compute on data handed to them and never read a file.
+const std::vector<std::string> kReadNoFile = {"planner"};
+
+TEST(SourceRules, PlannerReadsNoFile) {
+  std::vector<std::string> offences;
+  for (const std::string& module : kReadNoFile) {
+    for (const Hit& hit : Grep(module, kFileRead)) offences.push_back(hit.where);
+  }
+  EXPECT_THAT(offences, ::testing::IsEmpty())
+      << "the planner computes on data: read the file in analysis/ (or the scenario loader) and hand over its "
+         "bytes or what was parsed from it";
+}
+
+TEST(SourceRules, TheFileReadPatternMatchesAReadAndSkipsAComment) {
+  for (const std::string line : {"  std::ifstream in(path);", "  const std::string text = ReadFile(path);",
+                                 "  auto m = models::CswModel::Load(p);", "  YAML::Node n = LoadYamlFile(f);"}) {
+    EXPECT_TRUE(std::regex_search(line, kFileRead)) << line;
+  }
+  EXPECT_FALSE(std::regex_search(std::string("  // the loader calls ReadFile(path) for us"), kFileRead));
 }
 
 // The check itself finds what it looks for (a rule that cannot fail is no rule).

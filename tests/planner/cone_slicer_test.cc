@@ -13,6 +13,8 @@
 #include "models/core/error.h"
 #include "models/fit/model_file.h"
 #include "planner/cone_planner.h"
+#include "planner/plan_scenario.h"
+#include "tests/planner/test_scenarios.h"
 #include "planner/mesh/generators.h"
 
 namespace waam::planner {
@@ -121,8 +123,8 @@ TEST(ConeSlicerTest, AContourRoundTheAxisCannotBeFlattened) {
   EXPECT_THAT(flat.message, HasSubstr("winds round the surface axis"));
 }
 
-Scenario BladeScenario() {
-  Scenario s;
+PlannerSections BladeScenario() {
+  PlannerSections s;
   s.name = "blades";
   s.part.generator = "thruster_blades";
   s.part.params = {{"blades", {3.0}}, {"span_mm", {12.0}}, {"chord_mm", {30.0}}, {"thickness_mm", {14.0, 10.0}}};
@@ -140,9 +142,9 @@ Scenario BladeScenario() {
 }
 
 TEST(ConePlannerTest, PathLiesOnTheLayerTopsWithTheToolAlongTheNormal) {
-  Scenario scenario = BladeScenario();
+  PlannerSections scenario = BladeScenario();
   scenario.path.retract_mm = 0.0;  // the planner's own travel, on the surface (retracts: retract_test.cc)
-  const PlanResult result = PlanScenario(scenario, nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(scenario), nullptr);
   ASSERT_EQ(result.plan.layers.size(), 5u) << "12 mm span at 2.5 mm layers";
   const ConeSurface base = Cone(60, 200);
   for (const LayerPath& layer : result.plan.layers) {
@@ -159,7 +161,7 @@ TEST(ConePlannerTest, PathLiesOnTheLayerTopsWithTheToolAlongTheNormal) {
 }
 
 TEST(ConePlannerTest, CswSpeedsUpOnTighterCurves) {
-  const PlanResult result = PlanScenario(BladeScenario(), nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(BladeScenario()), nullptr);
   double lo = 1e9, hi = 0;
   for (const LayerPath& layer : result.plan.layers) {
     for (const PathPoint& p : layer.points) {
@@ -180,8 +182,8 @@ TEST(ConePlannerTest, CswIsNotUsedBeyondItsData) {
   // The blade sections' rounded ends turn on radii below one bead width: corners, where p/r (p = 52.7 mm^2) would
   // plan beads twice as wide and a tenth as high. Corners keep the straight-line speed and width; curves below the
   // smallest radius of Dai's Table 1 (30 mm) are planned as 30 mm (CswModel::ApplicableRadius).
-  const Scenario scenario = BladeScenario();
-  const PlanResult result = PlanScenario(scenario, nullptr);
+  const PlannerSections scenario = BladeScenario();
+  const PlanResult result = PlanScenario(testing::WithFiles(scenario), nullptr);
   const models::CswModel csw = models::CswModel::Load(models::DefaultModelPath("csw"));
   const double widest = csw.Width(csw.feasible().min_mm_per_min, scenario.process.csw_min_radius_mm);
   std::size_t weld_points = 0;
@@ -199,13 +201,13 @@ TEST(ConePlannerTest, CswIsNotUsedBeyondItsData) {
 TEST(ConePlannerTest, PathStaysOnTheSurfaceAcrossAWideDevelopment) {
   // R = 80, H = 70: the development is a sector of 270 deg, wider than pi; weld and travel moves between the nine
   // blades must stay on the surface, consecutive points a step apart (no jump across the cutting line).
-  Scenario s = BladeScenario();
+  PlannerSections s = BladeScenario();
   s.part.params = {{"blades", {9.0}}, {"R_mm", {80.0}}, {"H_mm", {70.0}}, {"root_z_mm", {20.0}}, {"span_mm", {6.0}},
                    {"chord_mm", {30.0}}, {"thickness_mm", {12.0, 10.0}}, {"pitch_deg", {20.0, 30.0}}};
   s.slicing.cone_R_mm = 80;
   s.slicing.cone_H_mm = 70;
   s.path.retract_mm = 0.0;  // the planner's own travel, on the surface (retracts: retract_test.cc)
-  const PlanResult result = PlanScenario(s, nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
   ASSERT_FALSE(result.plan.layers.empty());
   for (const LayerPath& layer : result.plan.layers) {
     EXPECT_EQ(result.stats.passes_per_layer[layer.index], 9u) << "one contour pass per blade";
@@ -217,12 +219,12 @@ TEST(ConePlannerTest, PathStaysOnTheSurfaceAcrossAWideDevelopment) {
 }
 
 TEST(ConePlannerTest, PartPastTheApexIsRefused) {
-  Scenario s = BladeScenario();
+  PlannerSections s = BladeScenario();
   s.slicing.cone_H_mm = 70;
   EXPECT_THROW(
       {
         try {
-          PlanScenario(s, nullptr);
+          PlanScenario(testing::WithFiles(s), nullptr);
         } catch (const InputError& e) {
           EXPECT_THAT(e.what(), HasSubstr("past the cone apex"));
           throw;
@@ -232,10 +234,10 @@ TEST(ConePlannerTest, PartPastTheApexIsRefused) {
 }
 
 TEST(ConePlannerTest, PartInsideTheFirstSurfaceIsRefused) {
-  Scenario s = BladeScenario();
+  PlannerSections s = BladeScenario();
   s.slicing.cone_R_mm = 200;  // every blade lies inside this cone
   try {
-    PlanScenario(s, nullptr);
+    PlanScenario(testing::WithFiles(s), nullptr);
     FAIL() << "expected an InputError for a part inside the first surface";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("lies inside the first surface"));
@@ -244,13 +246,13 @@ TEST(ConePlannerTest, PartInsideTheFirstSurfaceIsRefused) {
 
 TEST(ConePlannerTest, ALayerRoundTheAxisIsRefusedWithItsIndex) {
   // A tube round the cylinder's axis: every layer is a full ring that no cutting line can miss.
-  Scenario s = BladeScenario();
+  PlannerSections s = BladeScenario();
   s.part.generator = "cylinder";
   s.part.params = {{"radius_mm", {50.0}}, {"height_mm", {20.0}}};
   s.slicing.type = SlicingType::kCylinder;
   s.slicing.cone_R_mm = 40;
   try {
-    PlanScenario(s, nullptr);
+    PlanScenario(testing::WithFiles(s), nullptr);
     FAIL() << "expected an InputError for a contour winding round the axis";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("layer 0"));
@@ -262,10 +264,10 @@ TEST(ConePlannerTest, NoLayerIsDroppedSilentlyWhateverThePattern) {
   // Every pattern either welds all five layers of the blades or stops naming the layer it could not fill: a slice
   // wider than a bead that ends without a weld path must never vanish from the plan, the cell check and the twin.
   for (const char* pattern : {"contour", "zigzag", "hybrid", "continuous"}) {
-    Scenario s = BladeScenario();
+    PlannerSections s = BladeScenario();
     s.path.pattern = ParseEnum<Pattern>(pattern).value();
     try {
-      const PlanResult result = PlanScenario(s, nullptr);
+      const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
       EXPECT_EQ(result.plan.layers.size(), 5u) << pattern << ": 12 mm span at 2.5 mm layers";
       for (const LayerPath& layer : result.plan.layers) {
         EXPECT_TRUE(std::any_of(layer.points.begin(), layer.points.end(), [](const PathPoint& p) { return p.weld; }))

@@ -17,6 +17,8 @@
 #include "planner/mesh/generators.h"
 #include "planner/mesh/mesh_ops.h"
 #include "planner/multidir_planner.h"
+#include "planner/plan_scenario.h"
+#include "tests/planner/test_scenarios.h"
 
 namespace waam::planner {
 namespace {
@@ -126,8 +128,8 @@ TEST(CentroidDecompositionTest, BadOptionsAreNamed) {
   }
 }
 
-Scenario CupScenario() {
-  Scenario s;
+PlannerSections CupScenario() {
+  PlannerSections s;
   s.name = "cup";
   s.part.generator = "cup_two_handles";
   s.part.where = "test: part.generator";
@@ -140,7 +142,7 @@ Scenario CupScenario() {
 }
 
 TEST(CentroidDecompositionTest, PlannedSubVolumesAddUpToThePart) {
-  const PlanResult result = PlanScenario(CupScenario(), nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(CupScenario()), nullptr);
   ASSERT_EQ(result.sub_volumes.size(), 3u);
   double sum = 0.0;
   for (const SubVolumeReport& sub : result.sub_volumes) {
@@ -165,41 +167,6 @@ TEST(CentroidDecompositionTest, PlannedSubVolumesAddUpToThePart) {
   }
   EXPECT_LT(result.sub_volumes[0].support_mm3, 0.01 * result.sub_volumes[0].volume_mm3)
       << "the cup body built upwards stands on its bottom";
-}
-
-class CentroidScenarioTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("waam_cup_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string ErrorOf(const std::string& slicing) {
-    const fs::path file = dir_ / "cup.yaml";
-    std::ofstream(file) << "name: cup\npart:\n  generator: {type: cup_two_handles}\nslicing:\n" << slicing
-                        << "path: {pattern: contour, bead_width_mm: 5}\n"
-                           "process: {travel_speed_mm_min: 600, wire_feed_mm_min: 2200, wire_diameter_mm: 1.2}\n";
-    try {
-      LoadScenario(file);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "expected an InputError for:\n" << slicing;
-    return "";
-  }
-
-  fs::path dir_;
-};
-
-TEST_F(CentroidScenarioTest, BadSplitSettingsAreNamed) {
-  const std::string head = "  type: multi_directional\n  layer_height_mm: 1.1\n";
-  EXPECT_THAT(ErrorOf(head + "  split: centroid\n"), HasSubstr("slicing.split"));
-  EXPECT_THAT(ErrorOf(head + "  split: centroid_shift\n  overhang_deg: 85\n"), HasSubstr("slicing.overhang_deg"));
-  EXPECT_THAT(ErrorOf(head + "  split: centroid_shift\n  sub_volumes: [{name: a, direction: [0, 0, 1]}]\n"),
-              HasSubstr("split = centroid_shift finds the sub-volumes itself"));
-  EXPECT_THAT(ErrorOf(head + "  sub_volumes: [{name: a, direction: [0, 0, 1]}]\n  overhang_deg: 20\n"),
-              HasSubstr("overhang_deg"));
 }
 
 }  // namespace

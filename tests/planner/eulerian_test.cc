@@ -127,21 +127,6 @@ TEST(Eulerian, ContoursNeedOnePassPerCurve) {
       << "the 2x2 grid of Fig. 47: outer wall and four cells, five contours (003 Table 13)";
 }
 
-// Every rib-web scenario plans; the Eulerian ones with one pass per layer.
-TEST(Eulerian, RibWebScenariosPlan) {
-  int eulerian = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(WAAM_SOURCE_DIR) + "/scenarios/ribweb")) {
-    if (entry.path().extension() != ".yaml") continue;
-    const Scenario scenario = LoadScenario(entry.path());
-    const PlanResult result = PlanScenario(scenario, nullptr);
-    ASSERT_FALSE(result.plan.layers.empty()) << entry.path();
-    if (scenario.path.pattern != Pattern::kEulerian) continue;
-    ++eulerian;
-    for (std::size_t n : result.stats.passes_per_layer) EXPECT_EQ(n, 1u) << entry.path();
-  }
-  EXPECT_GE(eulerian, 4) << "rib web, cross, k-shaped and three-rib junction";
-}
-
 TEST(Eulerian, RegionThatIsNotARibWebIsRefused) {
   // A plate with a small round hole: the hole's curve has no straight stretch to put connectors on.
   PolygonWithHoles plate{Rect(0, 0, 80, 80), {testing::Circle(40, 40, 3, 12, true)}};

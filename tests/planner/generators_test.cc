@@ -11,12 +11,14 @@
 #include "models/core/error.h"
 #include "planner/mesh/mesh_ops.h"
 #include "planner/mesh/stl_io.h"
+#include "tests/planner/mesh_test_util.h"
 #include "planner/slicing/planar_slicer.h"
 
 namespace waam::planner {
 namespace {
 
 using ::testing::HasSubstr;
+using testing::ReadStl;
 
 // Area of a regular n-gon inscribed in a circle of radius r.
 double PolygonArea(double r, int n) { return 0.5 * n * r * r * std::sin(2 * kPi / n); }

@@ -1,4 +1,4 @@
-// Helpers for the mesh tests: a fresh temporary folder per test and raw file writing.
+// Helpers for the mesh tests: a fresh temporary folder per test, raw file writing, and an STL file read and parsed.
 #pragma once
 
 #include <filesystem>
@@ -7,7 +7,15 @@
 
 #include <gtest/gtest.h>
 
+#include "models/core/files.h"
+#include "planner/mesh/stl_io.h"
+
 namespace waam::planner::testing {
+
+// The STL file `path` read and parsed as analysis::ReadStl does (the planner's parser on the file's bytes).
+inline TriangleMesh ReadStl(const std::filesystem::path& path, double weld_tolerance_mm, MeshReport* report) {
+  return ParseStl(ReadFile(path), path, weld_tolerance_mm, report);
+}
 
 // A folder unique to the running test, emptied on creation.
 inline std::filesystem::path TestDir() {

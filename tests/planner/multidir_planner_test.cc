@@ -1,5 +1,6 @@
 // Tests of the multi-directional hub-and-blade planning (Lim & Soh, seed 002).
 #include "planner/multidir_planner.h"
+#include "planner/plan_scenario.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,7 +15,7 @@ using ::testing::HasSubstr;
 using testing::SmallPropeller;
 
 TEST(MultiDirectionalTest, SubVolumesAddUpToThePartAndWeldAlongTheirDirection) {
-  const PlanResult result = PlanScenario(SmallPropeller(30, 50), nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(SmallPropeller(30, 50)), nullptr);
   ASSERT_EQ(result.sub_volumes.size(), 5u);
   double sum = 0.0;
   for (const SubVolumeReport& sub : result.sub_volumes) {
@@ -39,7 +40,7 @@ TEST(MultiDirectionalTest, SubVolumesAddUpToThePartAndWeldAlongTheirDirection) {
 
 TEST(MultiDirectionalTest, UnpitchedTaperedBladesNeedNoSupport) {
   // With zero pitch every blade section lies inside the one below it (the thickness only shrinks).
-  const PlanResult result = PlanScenario(SmallPropeller(0, 0), nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(SmallPropeller(0, 0)), nullptr);
   for (std::size_t k = 1; k < result.sub_volumes.size(); ++k) {
     EXPECT_LT(result.sub_volumes[k].support_mm3, 1e-3 * result.sub_volumes[k].volume_mm3)
         << result.sub_volumes[k].name;
@@ -47,10 +48,10 @@ TEST(MultiDirectionalTest, UnpitchedTaperedBladesNeedNoSupport) {
 }
 
 TEST(MultiDirectionalTest, ASubVolumeWithoutMetalIsNamed) {
-  Scenario s = SmallPropeller(30, 50);
+  PlannerSections s = SmallPropeller(30, 50);
   s.slicing.sub_volumes.push_back({"nothing", {0, 0, 1}, {{0, 0, -1, -500}}});
   try {
-    PlanScenario(s, nullptr);
+    PlanScenario(testing::WithFiles(s), nullptr);
     FAIL() << "expected an InputError for a sub-volume above the part";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("'nothing' holds no metal"));

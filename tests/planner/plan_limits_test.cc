@@ -9,14 +9,15 @@
 #include "models/core/error.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/stl_io.h"
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
+#include "tests/planner/test_scenarios.h"
 
 namespace waam::planner {
 namespace {
 using ::testing::HasSubstr;
 
-Scenario LimitsBox(double x, double y, double z, double layer_height_mm) {
-  Scenario s;
+PlannerSections LimitsBox(double x, double y, double z, double layer_height_mm) {
+  PlannerSections s;
   s.name = "limits";
   s.part.generator = "box";
   s.part.params["size_mm"] = {x, y, z};
@@ -27,9 +28,9 @@ Scenario LimitsBox(double x, double y, double z, double layer_height_mm) {
   return s;
 }
 
-std::string LimitsErrorOf(const Scenario& s) {
+std::string LimitsErrorOf(const PlannerSections& s) {
   try {
-    PlanScenario(s, nullptr);
+    PlanScenario(testing::WithFiles(s), nullptr);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -42,7 +43,7 @@ TEST(PlanLimitsTest, TooManyLayersIsRefusedBeforeSlicing) {
   for (Eigen::Vector3d& v : column.vertices) v.z() *= 2.0;
   const std::filesystem::path stl = std::filesystem::temp_directory_path() / "waam_plan_limits_column.stl";
   WriteStlBinary(column, stl);
-  Scenario s = LimitsBox(10, 10, 10, 0.05);
+  PlannerSections s = LimitsBox(10, 10, 10, 0.05);
   s.part.generator.clear();
   s.part.params.clear();
   s.part.mesh_path = stl;

@@ -1,5 +1,6 @@
 // Tests of the planning pipeline PlanScenario: layers, heights, bead from the volume balance, mesh errors.
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
+#include "tests/planner/test_scenarios.h"
 
 #include <cmath>
 #include <filesystem>
@@ -16,8 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-Scenario BoxScenario() {
-  Scenario s;
+PlannerSections BoxScenario() {
+  PlannerSections s;
   s.name = "box";
   s.part.generator = "box";
   s.part.params["size_mm"] = {60, 40, 12};
@@ -29,9 +30,9 @@ Scenario BoxScenario() {
 }
 
 TEST(PlanScenarioTest, LayersSitOnTheirTopsAndCountMatchesHeight) {
-  Scenario s = BoxScenario();
+  PlannerSections s = BoxScenario();
   s.path.retract_mm = 0.0;  // every point on its layer (the retracts leave it: retract_test.cc)
-  const PlanResult result = PlanScenario(s, nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
   ASSERT_EQ(result.plan.layers.size(), 8u) << "12 mm at 1.5 mm layers";
   for (const LayerPath& layer : result.plan.layers) {
     EXPECT_NEAR(layer.z_mm, 1.5 * (layer.index + 1), 1e-9);
@@ -42,12 +43,12 @@ TEST(PlanScenarioTest, LayersSitOnTheirTopsAndCountMatchesHeight) {
 }
 
 TEST(PlanScenarioTest, BeadComesFromTheWireFeedVolumeBalance) {
-  Scenario s = BoxScenario();
+  PlannerSections s = BoxScenario();
   s.process.wire_diameter_mm = 1.2;
   s.process.wire_feed_mm_min = 6000;
   s.process.travel_speed_mm_min = 500;
   s.process.deposition_efficiency = 0.9;
-  const PlanResult result = PlanScenario(s, nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
   // eq. 3.4: A v_t = eta * pi d^2 / 4 * v_w.
   const double wire_area = std::numbers::pi * 1.2 * 1.2 / 4.0;
   EXPECT_NEAR(result.bead_area_mm2 * 500.0, 0.9 * wire_area * 6000.0, 1e-9);
@@ -60,10 +61,10 @@ TEST(PlanScenarioTest, BeadComesFromTheWireFeedVolumeBalance) {
 }
 
 TEST(PlanScenarioTest, SpeedHeightModeTakesSpeedAndWidthFromTheFittedModels) {
-  Scenario s = BoxScenario();
+  PlannerSections s = BoxScenario();
   s.process.bead_model = BeadModel::kSpeedHeight;
   s.slicing.layer_height_mm = 1.5;
-  const PlanResult result = PlanScenario(s, nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
   // The default fits (models/data, dissertation Table 18 rows 2-17): v = 673.8 h^-2.069, w(1.5 mm) about 5.1 mm.
   EXPECT_NEAR(result.travel_speed_mm_min, 673.847 * std::pow(1.5, -2.06916), 1.0);
   EXPECT_NEAR(result.bead_width_mm, 5.08, 0.1);
@@ -75,10 +76,10 @@ TEST(PlanScenarioTest, SpeedHeightModeTakesSpeedAndWidthFromTheFittedModels) {
 }
 
 TEST(PlanScenarioTest, SpeedHeightModeClampsAHeightOutsideTheWindow) {
-  Scenario s = BoxScenario();
+  PlannerSections s = BoxScenario();
   s.process.bead_model = BeadModel::kSpeedHeight;
   s.slicing.layer_height_mm = 3.0;  // would need ~70 mm/min, below the 150 mm/min feasible minimum
-  const PlanResult result = PlanScenario(s, nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
   EXPECT_EQ(result.speed_clamp, "at_minimum");
   EXPECT_DOUBLE_EQ(result.travel_speed_mm_min, 150.0);
 }
@@ -100,10 +101,10 @@ TEST(PlanScenarioTest, PartIsPutOnTheSubstrate) {
   }
   stl << "endsolid raised\n";
   stl.close();
-  Scenario s = BoxScenario();
+  PlannerSections s = BoxScenario();
   s.part.generator.clear();
   s.part.mesh_path = dir / "raised.stl";
-  const PlanResult result = PlanScenario(s, nullptr);
+  const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
   EXPECT_EQ(result.plan.layers.size(), 4u);
   EXPECT_NEAR(result.plan.layers.front().z_mm, 1.5, 1e-9);
   EXPECT_NEAR(result.mesh_report.bbox_min.z(), 0.0, 1e-9);
@@ -111,10 +112,10 @@ TEST(PlanScenarioTest, PartIsPutOnTheSubstrate) {
 }
 
 TEST(PlanScenarioTest, UnknownGeneratorIsNamed) {
-  Scenario s = BoxScenario();
+  PlannerSections s = BoxScenario();
   s.part.generator = "dodecahedron";
   try {
-    PlanScenario(s, nullptr);
+    PlanScenario(testing::WithFiles(s), nullptr);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("dodecahedron"));

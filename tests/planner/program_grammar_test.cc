@@ -13,11 +13,13 @@
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
 #include "planner/program/robot_program.h"
+#include "tests/planner/program_files.h"
 
 namespace waam::planner {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using testing::ReadProgramFile;
 
 fs::path GrammarFixture(const char* name) { return fs::path(WAAM_SOURCE_DIR) / "tests" / "data" / "programs" / name; }
 

@@ -15,11 +15,13 @@
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
 #include "planner/program/robot_program.h"
+#include "tests/planner/program_files.h"
 
 namespace waam::planner {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using testing::ReadProgramFile;
 
 fs::path Fixture(const char* name) { return fs::path(WAAM_SOURCE_DIR) / "tests" / "data" / "programs" / name; }
 
@@ -377,21 +379,6 @@ TEST(ProgramReaderTest, GcodeBadInputsNameTheLine) {
               HasSubstr("bad:1: tool direction A3 B3 C3 of length 0"));
   EXPECT_THAT(ErrorOf(ProgramFormat::kGcode, "G1 X1 F-5\n"), HasSubstr("bad:1: F-5 must be > 0"));
   EXPECT_THAT(ErrorOf(ProgramFormat::kGcode, "G1 X1 (open comment\n"), HasSubstr("bad:1: comment '('"));
-}
-
-TEST(ProgramReaderTest, FilesPastTheSizeLimitAreRefusedBeforeReading) {
-  const fs::path dir = fs::temp_directory_path() / ("waam_program_limit_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path big = dir / "big.nc";
-  { std::ofstream(big) << "G1 X0\n"; }
-  fs::resize_file(big, kMaxProgramBytes + 1);  // sparse: no disk used
-  try {
-    (void)ReadProgramFile(big, std::nullopt);
-    ADD_FAILURE() << "expected an InputError";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("more than the limit of"));
-  }
-  fs::remove_all(dir);
 }
 
 TEST(ProgramReaderTest, UnknownFormatAsksForFormat) {

@@ -9,7 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "tests/planner/test_scenarios.h"
 
 namespace waam::planner {
@@ -128,7 +128,7 @@ TEST(RetractTest, ZeroClearanceLeavesThePlanAlone) {
 
 TEST(RetractTest, SubVolumesBuiltSidewaysAreReachedOverThePart) {
   // Straight from the hub's top to a blade's root would cut the hub's edge: those travels go over the top.
-  PlanResult planned = PlanScenario(SmallPropellerWithRetract(0.0), nullptr);
+  PlanResult planned = PlanScenario(testing::WithFiles(SmallPropellerWithRetract(0.0)), nullptr);
   const RetractReport report = AddRetracts(kClearance, &planned.plan);
   EXPECT_GE(report.via_top, 4u) << "at least hub -> blade_0 and blade to blade go over the top";
   EXPECT_LT(report.via_top, report.travels) << "travels inside a sub-volume stay straight";
@@ -136,8 +136,8 @@ TEST(RetractTest, SubVolumesBuiltSidewaysAreReachedOverThePart) {
 }
 
 TEST(RetractTest, WeldMovesAreUnchangedAndOnlyTravelGrows) {
-  const PlanResult without = PlanScenario(SmallPropellerWithRetract(0.0), nullptr);
-  const PlanResult with = PlanScenario(SmallPropellerWithRetract(kClearance), nullptr);
+  const PlanResult without = PlanScenario(testing::WithFiles(SmallPropellerWithRetract(0.0)), nullptr);
+  const PlanResult with = PlanScenario(testing::WithFiles(SmallPropellerWithRetract(kClearance)), nullptr);
   // The weld moves, in order: (from, to) of every arc-on move.
   auto weld_moves = [](const Plan& plan) {
     std::vector<std::pair<Vector3d, Vector3d>> moves;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "planner/mesh/stl_io.h"
+#include "tests/planner/mesh_test_util.h"
 #include "planner/path/layer_pattern.h"
 #include "planner/slicing/planar_slicer.h"
 #include "pattern_checks.h"
@@ -34,7 +35,7 @@ TEST(SlicedParts, ContinuousOnePassAndCovered) {
   for (const Part& part : parts) {
     MeshReport report;
     const TriangleMesh mesh =
-        ReadStl(std::string(WAAM_SOURCE_DIR) + "/scenarios/meshes/" + part.mesh + ".stl", 1e-4, &report);  // as PlanScenario
+        testing::ReadStl(std::string(WAAM_SOURCE_DIR) + "/scenarios/meshes/" + part.mesh + ".stl", 1e-4, &report);  // as PlanScenario
     double z_min = mesh.vertices.front().z();
     for (const Eigen::Vector3d& v : mesh.vertices) z_min = std::min(z_min, v.z());
     std::vector<double> heights;

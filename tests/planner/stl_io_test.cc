@@ -26,6 +26,7 @@ namespace {
 using ::testing::HasSubstr;
 using testing::TestDir;
 using testing::WriteBytes;
+using testing::ReadStl;
 
 // A binary STL image: `header` (up to 80 bytes), a facet count and the facets (9 floats each).
 std::string BinaryStl(const std::vector<std::array<float, 9>>& facets, std::uint32_t count, const std::string& header) {

@@ -131,55 +131,6 @@ TEST(VoidFilling, FixedLambdaCorrectsOneCornerPerJunctionAndKeepsOnePass) {
   }
 }
 
-TEST(VoidFilling, ScenarioSectionErrors) {
-  const auto dir = std::filesystem::temp_directory_path() / ("waam_void_filling_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  auto error_of = [&](const std::string& section) -> std::string {
-    std::ofstream(dir / "s.yaml") << "name: t\npart:\n  generator: {type: box}\nslicing:\n  layer_height_mm: 2\n"
-                                     "path:\n  pattern: eulerian\n  bead_width_mm: 6\n"
-                                  << section << "process:\n  travel_speed_mm_min: 400\n  wire_feed_mm_min: 3200\n";
-    try {
-      LoadScenario(dir / "s.yaml");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  };
-  EXPECT_THAT(error_of("  void_filling: {mode: tuned}\n"), HasSubstr("mode tuned needs tune_file"));
-  EXPECT_THAT(error_of("  void_filling: {mode: fixed, lambda: -1}\n"), HasSubstr("path.void_filling.lambda = -1"));
-  EXPECT_THAT(error_of("  void_filling: {mode: guess}\n"), HasSubstr("path.void_filling.mode = 'guess'"));
-  EXPECT_THAT(error_of("  void_filling: {mode: fixed, lamda: 1}\n"), HasSubstr("path.void_filling.lamda: unknown key"));
-  EXPECT_THAT(error_of("  void_filling: {mode: tuned, tune_file: none.json}\n"), HasSubstr("none.json not found"));
-  EXPECT_EQ(error_of("  void_filling: {mode: fixed, lambda: 1.5}\n"), "");
-  std::filesystem::remove_all(dir);
-}
-
-// The junction generator's parts (cross, k-shaped, three-rib) are found as one junction of the class they are built as.
-TEST(Junctions, GeneratedJunctionsHaveTheirClass) {
-  const std::map<std::string, std::string> expected = {{"0,90,180,270", "4 ribs 90/90/90/90"},
-                                                       {"90,270,30,330", "4 ribs 180/60/60/60"},
-                                                       {"90,210,330", "3 ribs 120/120/120"}};
-  for (const auto& [arms, name] : expected) {
-    const auto dir = std::filesystem::temp_directory_path() / ("waam_junction_gen_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir / "j.yaml") << "name: j\npart:\n  generator: {type: junction, arm_angles_deg: [" << arms
-                                  << "], arm_mm: 40, wall_mm: 9, height_mm: 3.6}\nslicing:\n  layer_height_mm: 1.8\n"
-                                     "path:\n  pattern: eulerian\n  bead_width_mm: 5.3\n  overlap_model: existing\n"
-                                     "process:\n  travel_speed_mm_min: 400\n  wire_feed_mm_min: 5200\n";
-    const PlanResult plan = PlanScenario(LoadScenario(dir / "j.yaml"), nullptr);
-    std::filesystem::remove_all(dir);
-    std::vector<Move2D> moves;
-    for (const PathPoint& p : plan.plan.layers[0].points) moves.push_back({p.p_P.head<2>(), p.weld});
-    const std::vector<Junction> found = FindJunctions(plan.plan.layers[0].slice, moves, 5.3, 3);
-    ASSERT_EQ(found.size(), 1u) << arms;
-    EXPECT_EQ(found[0].ClassName(), name) << arms;
-    // The generator centres the bounding box, which for the symmetric cross is the junction itself.
-    if (name.rfind("4 ribs 90", 0) == 0) {
-      EXPECT_LT(found[0].centre.norm(), 1e-6) << "the cross's centre";
-    }
-  }
-}
-
 TEST(Junctions, GeneratorRefusesArmsTooClose) {
   try {
     GeneratePart("junction", {{"arm_angles_deg", {0, 10, 180}}}, "s.yaml:3: part.generator");

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/twin/twin_settings.h"
 #include "tests/twin/test_paths.h"
 #include "twin/deposition/bead_deposition.h"
 
@@ -16,7 +17,7 @@ constexpr double kH = 2.0;      // bead height, mm (area 2wh/3 = 8 mm^2)
 constexpr double kVoxel = 0.25; // mm
 
 twin::SimulationSettings Settings(const std::string& stop_crater, const std::string& start_wetting) {
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = kVoxel;
   s.stop_crater = ParseEnum<twin::StopCrater>(stop_crater).value();
   s.start_wetting = ParseEnum<twin::StartWetting>(start_wetting).value();
@@ -58,7 +59,7 @@ TEST(ArcStop, CraterMetalFreezesInItsLipAndIsNotLost) {
   Depositor lost(Settings("lost", "cold"));
   lip.DepositPass(pass);
   lost.DepositPass(pass);
-  const twin::SimulationSettings s;
+  const twin::SimulationSettings s = twin::TestSimulationSettings();
   // The crater's mean deficit for the default stop factors: -(a + b)/2 - ab/3 of the section over stop_length_mm.
   const double a = s.stop_height_factor - 1.0, b = s.stop_width_factor - 1.0;
   const double crater_mm3 = (-(a + b) / 2.0 - a * b / 3.0) * 8.0 * s.stop_length_mm;

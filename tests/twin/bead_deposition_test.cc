@@ -1,4 +1,5 @@
 // Tests of the deposition twin: volume balance, bead shape, blending, start/stop and settings validation.
+#include "tests/twin/twin_settings.h"
 #include "models/core/numbers.h"
 #include "twin/deposition/bead_deposition.h"
 
@@ -15,7 +16,7 @@ using ::testing::HasSubstr;
 using testing::AddPass;
 
 twin::SimulationSettings Settings(double voxel) {
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = voxel;
   return s;
 }

@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
-#include "planner/scenario/scenario_document.h"
+#include "models/core/yaml_map.h"
 #include "tests/twin/test_plans.h"
 #include "twin/cell/cell_section.h"
 #include "twin/cell/mujoco_cell.h"
@@ -251,7 +251,7 @@ class PlantedFaultTest : public ::testing::Test {
  protected:
   static twin::CellSettings Settings(const std::string& name) {
     const fs::path file = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (name + ".yaml");
-    YamlMap top = planner::LoadScenarioTop(file, {});
+    YamlMap top = YamlMap(LoadYamlFile(file.string()), "", file.string());
     return ParseCellSection(top, file.parent_path());
   }
   CheckReport Check(const twin::CellSettings& settings) {

@@ -1,6 +1,7 @@
 // Tests of the compensation loop on a short tube that bends towards its hot side (reduced distortion mode): the
 // loop converges from the scan alone, the axis correction sees the bend, and a loop that cannot converge says so;
 // the default tolerance is the maximum side-wall waviness.
+#include "tests/twin/twin_settings.h"
 #include "models/core/numbers.h"
 #include "twin/compensation/compensation.h"
 
@@ -51,7 +52,7 @@ planner::Plan HotSideTube(double r, int layers) {
 }
 
 twin::SimulationSettings Coarse() {
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = 0.5;
   s.start_length_mm = 0.0;
   s.stop_length_mm = 0.0;

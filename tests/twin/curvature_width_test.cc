@@ -1,4 +1,5 @@
 // Tests of the CSW curvature widening along executed passes: the radius estimate, the model's ratio, its limits.
+#include "tests/twin/twin_settings.h"
 #include "twin/deposition/curvature_width.h"
 
 #include <cmath>
@@ -59,7 +60,7 @@ TEST(CurvatureWidth, CircleWidensByTheModelsRatioAndKeepsTheArea) {
   ASSERT_GT(expected, 1.01) << "the default CSW model should widen beads on a 50 mm radius";
   const std::size_t mid = pass.points.size() / 2;
   EXPECT_NEAR(pass.points[mid].width_factor, expected, 0.01 * expected);
-  twin::SimulationSettings settings;
+  twin::SimulationSettings settings = twin::TestSimulationSettings();
   settings.start_length_mm = 0.0;
   settings.stop_length_mm = 0.0;
   const BeadSection section = SectionAt(pass, mid, pass.points[mid].s_mm, settings);

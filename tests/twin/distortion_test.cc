@@ -1,5 +1,6 @@
 // Tests of the distortion twin: FE invariants (linearity, symmetry, free shrinkage), heat-input scaling, the reduced
 // mode's bending direction, and the Ceres fit recovering known parameters from a twin-generated scan.
+#include "tests/twin/twin_settings.h"
 #include "twin/distortion/distortion.h"
 
 #include <cmath>
@@ -65,13 +66,13 @@ planner::Plan SpiralTube(int layers, double hot_speed) {
 }
 
 struct Build {
-  twin::SimulationSettings settings;
+  twin::SimulationSettings settings = twin::TestSimulationSettings();
   planner::Plan plan;
   Depositor depositor;
   DepositHistory history;
   Build(planner::Plan p, double voxel)
       : settings([&] {
-          twin::SimulationSettings s;
+          twin::SimulationSettings s = twin::TestSimulationSettings();
           s.voxel_mm = voxel;
           s.start_length_mm = 0.0;
           s.stop_length_mm = 0.0;

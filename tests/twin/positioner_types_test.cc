@@ -14,7 +14,7 @@
 
 #include "models/core/error.h"
 #include "models/core/numbers.h"
-#include "planner/scenario/scenario_document.h"
+#include "models/core/yaml_map.h"
 #include "tests/twin/test_plans.h"
 #include "twin/cell/cell_check.h"
 #include "twin/cell/cell_compose.h"
@@ -204,7 +204,7 @@ TEST(PositionerTypes, PresetsCarryTheirTypeAndTheScenarioOverridesIt) {
   fs::create_directories(dir);
   const fs::path file = dir / "s.yaml";
   std::ofstream(file) << "name: s\ncell:\n  preset: kuka_kr16_turntable\n  positioner: {type: none}\n";
-  YamlMap top = planner::LoadScenarioTop(file, {});
+  YamlMap top = YamlMap(LoadYamlFile(file.string()), "", file.string());
   const CellSettings settings = ParseCellSection(top, dir);
   ASSERT_TRUE(settings.positioner_type.has_value());
   EXPECT_EQ(*settings.positioner_type, PositionerType::kNone);
@@ -223,7 +223,7 @@ class PositionerBadInputTest : public ::testing::Test {
     const fs::path file = dir_ / "bad.yaml";
     std::ofstream(file) << yaml;
     try {
-      YamlMap top = planner::LoadScenarioTop(file, {});
+      YamlMap top = YamlMap(LoadYamlFile(file.string()), "", file.string());
       LoadCell(ParseCellSection(top, dir_));
     } catch (const InputError& e) {
       return e.what();

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "planner/planar_planner.h"
+#include "planner/plan_scenario.h"
 #include "tests/planner/test_scenarios.h"
 #include "twin/cell/cell_check.h"
 #include "twin/cell/mujoco_cell.h"
@@ -22,7 +22,7 @@ struct PartHits {
 // with `retract_mm` mm retracts and checks it on the built-in cell.
 PartHits CheckPart(double retract_mm) {
   const planner::PlanResult planned =
-      planner::PlanScenario(planner::testing::SmallPropellerWithRetract(retract_mm), nullptr);
+      planner::PlanScenario(planner::testing::WithFiles(planner::testing::SmallPropellerWithRetract(retract_mm)), nullptr);
   twin::CellSettings settings;  // the built-in cell, part_collision on
   const CheckReport r = CheckPlan(LoadCell(settings), planned.plan, settings, 100.0, nullptr);
   PartHits hits;

@@ -1,4 +1,5 @@
 // SimulateBuild end to end on a small block: volume balance, measures filled in, deviation against the box target.
+#include "tests/twin/twin_settings.h"
 #include "twin/simulation.h"
 
 #include <gtest/gtest.h>
@@ -15,7 +16,7 @@ TEST(Simulation, BlockAgainstItsBoxTarget) {
   const auto& region = plan.layers.back().slice.front().outer;
   const planner::TriangleMesh box = testing::BoxMesh({region[0].x(), 0, 0}, {region[1].x(), 40.0, plan.layers.back().z_mm});
   std::size_t calls = 0;
-  const TwinResult r = SimulateBuild(plan, &box, twin::SimulationSettings{}, 100.0, w,
+  const TwinResult r = SimulateBuild(plan, &box, twin::TestSimulationSettings(), 100.0, w,
                                      [&](std::size_t done, std::size_t total) {
                                        ++calls;
                                        EXPECT_LE(done, total);

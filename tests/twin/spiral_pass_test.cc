@@ -1,6 +1,7 @@
 // A continuous spiral (a layer whose first move is a weld move) runs as one pass across layers in the twin.
 #include <gtest/gtest.h>
 
+#include "tests/twin/twin_settings.h"
 #include "twin/deposition/bead_deposition.h"
 #include "twin/deposition/executed_path.h"
 
@@ -29,7 +30,7 @@ planner::Plan TwoLoops(bool spiral, double second_speed_mm_s = 5.0) {
 }
 
 TEST(SpiralPass, ContinuesAcrossLayers) {
-  twin::SimulationSettings settings;
+  twin::SimulationSettings settings = twin::TestSimulationSettings();
   settings.blend = twin::Blend::kNone;
   const std::vector<ExecutedPass> spiral = ExecutePlan(TwoLoops(true), settings, 100.0);
   ASSERT_EQ(spiral.size(), 1u) << "a weld move into the next layer continues the pass";
@@ -46,7 +47,7 @@ TEST(SpiralPass, VoxelsKnowTheirLayerAndTime) {
   // One pass through two layers, the second at twice the speed: 80 mm at 5 mm/s (16 s), then 81.5 mm at 10 mm/s
   // (8.15 s). Voxels are stamped with the time the torch laid them (the sum of length / speed along the pass) and
   // belong to the layer of the move that laid them, not to the pass's first layer.
-  twin::SimulationSettings settings;
+  twin::SimulationSettings settings = twin::TestSimulationSettings();
   settings.blend = twin::Blend::kNone;
   settings.voxel_mm = 0.5;
   const std::vector<ExecutedPass> passes = ExecutePlan(TwoLoops(true, 10.0), settings, 100.0);

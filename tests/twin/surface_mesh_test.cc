@@ -1,4 +1,5 @@
 // The exported surface mesh is closed, faces outward and encloses the deposited volume.
+#include "tests/twin/twin_settings.h"
 #include "twin/scanner/surface_mesh.h"
 
 #include <gtest/gtest.h>
@@ -18,7 +19,7 @@ TEST(SurfaceMesh, BlockIsClosedWithTheRightVolume) {
   const planner::TriangleMesh mesh = ExtractSurface(grid);
   EXPECT_EQ(OpenEdges(mesh), 0u) << "the surface must be closed";
   // Iso-surface through the edge midpoints: faces are flat on the block's faces, edges and corners are chamfered.
-  const double volume = EnclosedVolume(mesh);
+  const double volume = twin::EnclosedVolume(mesh);
   EXPECT_GT(volume, 0.0) << "facets must face outward";
   EXPECT_NEAR(volume, grid.OccupiedVolume(), 0.05 * grid.OccupiedVolume());
 }
@@ -28,10 +29,10 @@ TEST(SurfaceMesh, DepositedBeadsGiveAClosedSurface) {
   planner::LayerPath layer;
   testing::AddPass(&layer, {{0, 0}, {30, 0}, {30, 20}}, 2.0, 6.0, 2.0, 8.0);
   plan.layers.push_back(layer);
-  const Depositor d = DepositPlan(plan, twin::SimulationSettings{}, 100.0, nullptr);
+  const Depositor d = DepositPlan(plan, twin::TestSimulationSettings(), 100.0, nullptr);
   const planner::TriangleMesh mesh = ExtractSurface(d.grid());
   EXPECT_EQ(OpenEdges(mesh), 0u);
-  EXPECT_NEAR(EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.1 * d.grid().OccupiedVolume());
+  EXPECT_NEAR(twin::EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.1 * d.grid().OccupiedVolume());
 }
 
 TEST(SurfaceMesh, CoarsenKeepsAlignedBlocksAndCountsFaces) {

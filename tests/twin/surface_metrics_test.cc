@@ -1,4 +1,5 @@
 // Surface measures and the reproductions of the block experiment (003 Table 9, Fig. 24) and Ding's Ra comparison.
+#include "tests/twin/twin_settings.h"
 #include "models/core/numbers.h"
 #include "twin/scanner/surface_metrics.h"
 
@@ -86,7 +87,7 @@ BlockResult SimulateBlock(const Table9Row& row, double d2, double d1, double l) 
   const double length = 60.0;
   const std::vector<double> xs = testing::BlockPositions(d2, d1, l, 6);
   const planner::Plan plan = testing::ParallelBlock(xs, length, 7, 2.0 / 3.0 * w * h / l, w, h, vt);
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = 0.5;
   const Depositor d = DepositPlan(plan, s, 100.0, nullptr);
   const HeightMap map = TopHeightMap(d.grid());
@@ -120,7 +121,7 @@ TEST(SurfaceMetrics, BlockExperimentBoundaryLag) {
 // path with its many starts and stops. Same square, same beads, same spacings; only the number of passes differs.
 TEST(SurfaceMetrics, ContinuousPathIsSmootherThanManyStarts) {
   const double w = 6.0, h = 2.0, a = 50.0;
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = 0.25;
   double ra[2] = {0, 0};
   std::size_t passes[2] = {0, 0};

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "tests/twin/twin_settings.h"
 #include "models/core/numbers.h"
 #include "tests/twin/test_paths.h"
 #include "twin/deposition/bead_deposition.h"
@@ -69,7 +70,7 @@ int CountPinholes(const VoxelGrid& grid) {
 }
 
 twin::SimulationSettings Settings() {
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = kVoxel;
   return s;
 }

@@ -1,4 +1,5 @@
 // Voids: a known cavity, and the junction voids of double-bead X junctions against 003 Appendix A1.
+#include "tests/twin/twin_settings.h"
 #include "models/core/numbers.h"
 #include "twin/scanner/voids.h"
 
@@ -96,7 +97,7 @@ double JunctionVoidLength(double theta_deg) {
   const double h = 3.0 * kPi * 5200.0 * 1.0 / (8.0 * w * 400.0);  // eq. 3.4, Appendix A1 parameters
   const double dz = 2.0 / 3.0 * w * h / l;
   const planner::Plan plan = testing::CrossJunction(theta_deg * kPi / 180.0, 40.0, 5, w, h, l, dz, 400.0 / 60.0);
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = 0.5;
   const Depositor d = DepositPlan(plan, s, 100.0, nullptr);
   EXPECT_NEAR(d.grid().OccupiedVolume(), d.expected_volume_mm3(), 0.02 * d.expected_volume_mm3());

@@ -1,4 +1,6 @@
 // The greedy-meshed part surface: closed and manifold as the STL reader sees it, the occupied volume, few facets.
+#include "tests/twin/twin_settings.h"
+#include "models/core/files.h"
 #include "twin/scanner/voxel_surface.h"
 
 #include <filesystem>
@@ -20,7 +22,7 @@ planner::MeshReport ReadBack(const planner::TriangleMesh& mesh, const std::strin
   const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / (name + ".stl");
   planner::WriteStlBinary(mesh, path, name);
   planner::MeshReport report;
-  planner::ReadStl(path, 1e-4, &report);
+  planner::ParseStl(ReadFile(path), path, 1e-4, &report);
   return report;
 }
 
@@ -84,7 +86,7 @@ TEST(VoxelSurface, DepositedBeadsGiveAClosedSurfaceWithFewFacets) {
     testing::AddPass(&layer, {{0, 0}, {40, 0}, {40, 30}, {0, 30}}, 2.0 + 1.8 * l, 6.0, 2.0, 8.0);
     plan.layers.push_back(layer);
   }
-  const Depositor d = DepositPlan(plan, twin::SimulationSettings{}, 100.0, nullptr);
+  const Depositor d = DepositPlan(plan, twin::TestSimulationSettings(), 100.0, nullptr);
   const planner::TriangleMesh mesh = ExtractVoxelSurface(d.grid());
   ExpectClosedManifold(mesh, "beads");
   EXPECT_NEAR(twin::EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.01 * d.grid().OccupiedVolume());

@@ -10,7 +10,6 @@
 #include "models/bead/csw_model.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
-#include "models/fit/model_file.h"
 #include "twin/deposition/curvature_width.h"
 
 namespace waam::twin {
@@ -105,9 +104,10 @@ ExecutedPass BlendPass(const std::vector<ExecutedPoint>& raw, const twin::Simula
 std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const twin::SimulationSettings& settings,
                                       double rapid_speed_mm_s) {
   WAAM_THROW_UNLESS(rapid_speed_mm_s > 0.0, "simulate: rapid speed = " << rapid_speed_mm_s << " mm/s: must be > 0");
-  std::optional<models::CswModel> csw;
+  const models::CswModel* csw = nullptr;
   if (settings.curvature_width == twin::CurvatureWidth::kCsw) {
-    csw = models::CswModel::Load(settings.csw_model.empty() ? models::DefaultModelPath("csw") : settings.csw_model);
+    csw = settings.csw.get();
+    WAAM_DEMAND(csw != nullptr);  // loaded with the scenario
   }
   std::vector<ExecutedPass> passes;
   double time_s = 0.0;

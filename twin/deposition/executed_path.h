@@ -44,8 +44,8 @@ using BeadSection = models::ParabolicBead;
 // Splits every layer of `plan` into weld passes and blends their corners as `settings.blend` says (the TCP does not
 // reach a sharp vertex; the arc is tangent to both segments and at most half of each). Travel moves are timed at
 // `rapid_speed_mm_s` (> 0). With settings.curvature_width = "csw" the beads widen on curves as the CSW model says
-// (curvature_width.h). Throws InputError for a weld move with a non-positive speed, width or height, or a CSW model
-// file that cannot be read.
+// (curvature_width.h; the model is settings.csw, which must then be loaded). Throws InputError for a weld move with a
+// non-positive speed, width or height.
 std::vector<ExecutedPass> ExecutePlan(const planner::Plan& plan, const twin::SimulationSettings& settings,
                                       double rapid_speed_mm_s);
 

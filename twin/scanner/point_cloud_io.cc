@@ -255,7 +255,7 @@ std::vector<Eigen::Vector3d> ReadPointCloud(const std::filesystem::path& path, d
   const std::string ext = Lower(path.extension().string());
   if (ext == ".ply") return ReadPly(path);
   if (ext == ".xyz" || ext == ".txt" || ext == ".asc") return ReadXyz(path);
-  if (ext == ".stl") return SampleSurface(planner::ReadStl(path, 0.0, nullptr), stl_spacing_mm);
+  if (ext == ".stl") return SampleSurface(planner::ParseStl(ReadFile(path), path, 0.0, nullptr), stl_spacing_mm);
   WAAM_THROW(path.string() << ": unknown scan format '" << ext << "': must be .ply, .xyz or .stl");
 }
 
