@@ -25,6 +25,7 @@ Scenario LoadScenario(const std::filesystem::path& file, const std::vector<std::
   top.CheckNoUnknownKeys();
   internal::CheckThermalScenario(scenario.process, scenario.thermal);
   internal::LoadThermalMaterials(dir, &scenario.thermal);
+  internal::LoadThermalShape(dir, &scenario.thermal);
   return scenario;
 }
 

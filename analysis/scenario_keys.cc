@@ -47,6 +47,13 @@ inline constexpr std::array kThermalFields = {
     CustomField<ThermalSection>("table", FieldType::kMap, "contact with the table (thermal.table)"),
     CustomField<ThermalSection>("sample_s", FieldType::kNumber, "interval of the probe histories, s (default 1)"),
     CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
+    CustomField<ThermalSection>("shape", FieldType::kMap, "the heat shapes bead and distortion (thermal.shape)"),
+};
+inline constexpr std::array kThermalShapeFields = {
+    CustomField<ThermalShape>("bead_model", FieldType::kFile,
+                              "bead-temperature model file (waam fit bead-temperature); absent = planned beads"),
+    CustomField<ThermalShape>("distortion", FieldType::kBool,
+                              "inherent strains follow the layers' interpass and peak temperatures (default false)"),
 };
 inline constexpr std::array kThermalSubstrateFields = {
     CustomField<ThermalSection>("size_mm", FieldType::kNumbers, "[x, y, z] of the plate, mm (required)"),
@@ -101,6 +108,7 @@ std::vector<SectionKeys> MakeSections() {
       Section("thermal", kThermalFields),
       Section("thermal.substrate", kThermalSubstrateFields),
       Section("thermal.table", kThermalTableFields),
+      Section("thermal.shape", kThermalShapeFields),
   };
   // The top level holds the sections too.
   for (const SectionKeys& s : sections) {

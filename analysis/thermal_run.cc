@@ -176,8 +176,12 @@ void ThermalDriver::RunSpan(const planner::TimedSpan& span) {
   const planner::PathPoint& at = layer.points[span.point];
   switch (span.kind) {
     case planner::SpanKind::kArcOn: {
-      WAAM_DEMAND(span.point > 0);
-      Advance(seconds, true, layer.points[span.point - 1].p_P, at.p_P, at.bead_width_mm, at.bead_height_mm);
+      // A continuous spiral carries its weld from one layer into the next: the move into a layer's first point
+      // starts at the previous layer's last point.
+      WAAM_DEMAND(span.point > 0 || (span.layer > 0 && !plan_.layers[span.layer - 1].points.empty()));
+      const Eigen::Vector3d& from =
+          span.point > 0 ? layer.points[span.point - 1].p_P : plan_.layers[span.layer - 1].points.back().p_P;
+      Advance(seconds, true, from, at.p_P, at.bead_width_mm, at.bead_height_mm);
       out_->arc_energy_j += scenario_.process.arc.power_w * seconds;
       break;
     }
