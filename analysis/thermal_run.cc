@@ -290,9 +290,14 @@ std::vector<double> ThermalDriver::Run(const planner::Timeline& timeline, Progre
       // The layer's first arc start: wait for the interpass rule, then weld.
       started[span.layer] = true;
       const planner::LayerPath& layer = plan_.layers[span.layer];
-      const std::size_t from = span.kind == planner::SpanKind::kArcOn ? span.point - 1 : span.point;
+      // Where the arc starts: the move's first point; a spiral's layer begins at the previous layer's last point.
+      const Eigen::Vector3d start_P =
+          span.kind != planner::SpanKind::kArcOn ? layer.points[span.point].p_P
+          : span.point > 0                       ? layer.points[span.point - 1].p_P
+          : span.layer > 0                       ? plan_.layers[span.layer - 1].points.back().p_P
+                                                 : layer.points.front().p_P;
       ThermalLayer& record = out_->layers[span.layer];
-      waits[span.layer] = WaitForInterpass(span.layer, layer.points[from].p_P, &record);
+      waits[span.layer] = WaitForInterpass(span.layer, start_P, &record);
       record.wait_s = waits[span.layer];
       record.start_s = sim_.time_s();
       current_layer_ = span.layer;
