@@ -2,7 +2,6 @@
 #include "analysis/compensate_heat.h"
 
 #include <cmath>
-#include <cstdint>
 
 #include "analysis/thermal_command.h"
 #include "analysis/thermal_run.h"
@@ -23,43 +22,6 @@ std::vector<twin::LayerHeat> LayerHeatOf(const std::vector<double>& interpass_c,
   return heat;
 }
 
-std::vector<double> LaidOnTemperatures(const ThermalRunResult& run, std::size_t layers) {
-  std::vector<double> out(layers, NAN);
-  std::vector<const twin::TemperatureField*> field(layers, nullptr);
-  for (const ThermalLayerField& f : run.fields) {
-    if (f.layer >= 0 && static_cast<std::size_t>(f.layer) < layers) field[f.layer] = &f.field;
-  }
-  // Cells active before a layer: the plate's at first, then each field's metal.
-  std::vector<std::uint8_t> before;
-  for (std::size_t l = 0; l + 1 < layers; ++l) {
-    const twin::TemperatureField* f = field[l];
-    if (f == nullptr) continue;
-    const std::size_t n = f->temperature_c.size();
-    if (before.size() != n) {
-      before.assign(n, 0);
-      for (std::size_t c = 0; c < n; ++c) {
-        const long i = static_cast<long>(c % f->size.x()), j = static_cast<long>(c / f->size.x() % f->size.y()),
-                   k = static_cast<long>(c / (static_cast<std::size_t>(f->size.x()) * f->size.y()));
-        const Eigen::Vector3d centre = f->origin_mm + (Eigen::Vector3d(i, j, k) + Eigen::Vector3d::Constant(0.5)) * f->cell_mm;
-        before[c] = run.settings.substrate_box_mm.contains(centre) ? 1 : 0;
-      }
-    }
-    // Layer l's metal: active in its field and not before it; its mean temperature is what layer l + 1 meets.
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (std::size_t c = 0; c < n; ++c) {
-      if (std::isnan(f->temperature_c[c])) continue;
-      if (!before[c]) {
-        sum += f->temperature_c[c];
-        ++count;
-        before[c] = 1;
-      }
-    }
-    if (count > 0) out[l + 1] = sum / static_cast<double>(count);
-  }
-  return out;
-}
-
 nlohmann::json PrepareHeatShape(const Scenario& scenario, const planner::Plan& plan, bool quiet,
                                 twin::CompensationOptions* loop) {
   const ThermalShape& shape = scenario.thermal.shape;
@@ -71,13 +33,12 @@ nlohmann::json PrepareHeatShape(const Scenario& scenario, const planner::Plan& p
     progress.Finish();
     return r;
   }();
-  // A layer laid after an interpass wait meets the temperature the rule measured after the wait; one laid straight
-  // after the layer below (no wait: a continuous spiral, a short travel) meets that layer's metal as it was laid.
-  std::vector<double> interpass = LaidOnTemperatures(run, plan.layers.size());
-  std::vector<double> peak(plan.layers.size(), NAN);
+  // A layer laid after an interpass wait meets the temperature the rule measured after the wait; one laid without a
+  // wait (a continuous spiral) meets what the run sampled under its weld moves as they went (laid_on_c).
+  std::vector<double> interpass(plan.layers.size(), NAN), peak(plan.layers.size(), NAN);
   for (const ThermalLayer& layer : run.layers) {
     if (layer.layer < 0 || static_cast<std::size_t>(layer.layer) >= plan.layers.size()) continue;
-    if (layer.wait_s > 0.0 || std::isnan(interpass[layer.layer])) interpass[layer.layer] = layer.interpass_c;
+    interpass[layer.layer] = layer.wait_s > 0.0 || std::isnan(layer.laid_on_c) ? layer.interpass_c : layer.laid_on_c;
     peak[layer.layer] = layer.peak_c;
   }
   const std::vector<twin::LayerHeat> heat = LayerHeatOf(interpass, peak, scenario.thermal.initial_c);

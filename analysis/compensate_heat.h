@@ -18,10 +18,6 @@ namespace waam::analysis {
 std::vector<twin::LayerHeat> LayerHeatOf(const std::vector<double>& interpass_c, const std::vector<double>& peak_c,
                                          double initial_c);
 
-// Per plan layer, the mean temperature of the layer below's metal in the field at that layer's end (degC): what a
-// layer laid without a wait meets. NaN for layer 0 and where the run has no field.
-std::vector<double> LaidOnTemperatures(const ThermalRunResult& run, std::size_t layers);
-
 // With thermal.shape in the scenario: runs the thermal model along `plan` (the scenario's cell timeline) and fills
 // loop->bead_heat (thermal.shape.bead_model) and loop->distortion.layer_heat (thermal.shape.distortion; a model
 // without reference_interpass_c takes the mean of the layers' interpass temperatures as its reference, i.e. it is

@@ -226,7 +226,8 @@ std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::st
   const auto it = AllDefaults().find(model);
   WAAM_THROW_UNLESS(it != AllDefaults().end(),
                     "unknown model '" << model
-                                     << "': must be csw, speed-height, width-height, bead-temperature, void-length or distortion");
+                                     << "': must be csw, speed-height, width-height, bead-temperature, void-length "
+                                        "or distortion");
   return it->second;
 }
 

@@ -121,6 +121,8 @@ class ThermalDriver {
   double heat_w_ = 0.0;
   Eigen::AlignedBox3d everything_;
   int current_layer_ = -1;             // the layer whose arc burnt last (for peak_c)
+  std::vector<double> laid_on_sum_;    // per layer: sum and count of the metal temperatures under its weld moves
+  std::vector<int> laid_on_n_;
   bool in_layer_ = false;              // between a layer's first arc start and its last arc end
 };
 
@@ -176,6 +178,19 @@ void ThermalDriver::RunSpan(const planner::TimedSpan& span) {
   const planner::PathPoint& at = layer.points[span.point];
   switch (span.kind) {
     case planner::SpanKind::kArcOn: {
+      // The metal the move lays its bead on, just before: the first metal found one cell below the new bead's bottom
+      // (nearer, the cell the arc heats right now); the grid resolves no less.
+      if (span.layer > 0) {
+        const double cell = scenario_.thermal.cell_mm;
+        const double height = std::max(0.5, at.bead_height_mm);
+        for (double d = height + cell; d <= 3.0 * height + 3.0 * cell; d += 0.25 * cell) {
+          const double t = sim_.TemperatureAt(at.p_P - d * layer.build_dir_P);
+          if (std::isnan(t)) continue;
+          laid_on_sum_[span.layer] += t;
+          laid_on_n_[span.layer] += 1;
+          break;
+        }
+      }
       // A continuous spiral carries its weld from one layer into the next: the move into a layer's first point
       // starts at the previous layer's last point.
       WAAM_DEMAND(span.point > 0 || (span.layer > 0 && !plan_.layers[span.layer - 1].points.empty()));
@@ -281,8 +296,10 @@ std::vector<double> ThermalDriver::Run(const planner::Timeline& timeline, Progre
   out_->layers.resize(layers);
   for (std::size_t l = 0; l < layers; ++l) {
     out_->layers[l].layer = static_cast<int>(l);
-    out_->layers[l].interpass_c = out_->layers[l].peak_c = kNaN;
+    out_->layers[l].interpass_c = out_->layers[l].peak_c = out_->layers[l].laid_on_c = kNaN;
   }
+  laid_on_sum_.assign(layers, 0.0);
+  laid_on_n_.assign(layers, 0);
   for (std::size_t i = 0; i < timeline.spans.size(); ++i) {
     const planner::TimedSpan& span = timeline.spans[i];
     const bool arc = span.kind == planner::SpanKind::kArcStart || span.kind == planner::SpanKind::kArcOn;
@@ -318,6 +335,9 @@ std::vector<double> ThermalDriver::Run(const planner::Timeline& timeline, Progre
   }
   // A last sample at the end of the build when it fell between two sample times.
   if (out_->sample_time_s.back() < sim_.time_s() - 1e-9) Sample();
+  for (std::size_t l = 0; l < layers; ++l) {
+    if (laid_on_n_[l] > 0) out_->layers[l].laid_on_c = laid_on_sum_[l] / laid_on_n_[l];
+  }
   return waits;
 }
 

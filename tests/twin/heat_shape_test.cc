@@ -100,7 +100,8 @@ TEST(HeatShape, StrainsAtTheFittedThermalHistoryAreTodays) {
     heat.layer_heat.assign(b.history.layers(), LayerHeat{200.0, 1600.0});
     const DistortionField a = ComputeDistortion(b.depositor.grid(), b.history, Params(), today);
     const DistortionField c = ComputeDistortion(b.depositor.grid(), b.history, Params(), heat);
-    for (const Eigen::Vector3d& p : {Eigen::Vector3d(14, 9, 5), Eigen::Vector3d(-14, -9, 2), Eigen::Vector3d(0, 10, 6)}) {
+    for (const Eigen::Vector3d& p :
+         {Eigen::Vector3d(14, 9, 5), Eigen::Vector3d(-14, -9, 2), Eigen::Vector3d(0, 10, 6)}) {
       const Eigen::Vector3d ua = a.Displacement(p), uc = c.Displacement(p);
       EXPECT_EQ(ua.x(), uc.x()) << NameOf(mode);
       EXPECT_EQ(ua.y(), uc.y()) << NameOf(mode);

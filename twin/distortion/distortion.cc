@@ -101,8 +101,8 @@ DistortionField ComputeDistortion(const VoxelGrid& grid, const DepositHistory& h
   WAAM_THROW_UNLESS(grid.occupied() > 0, "distortion: the deposited part is empty");
   const auto start = std::chrono::steady_clock::now();
   const int factor = std::max(1, static_cast<int>(std::lround(options.element_mm / grid.voxel_mm())));
-  const internal::HexMesh mesh =
-      internal::BuildHexMesh(grid, history, params, factor, options.groups, LayerStrainFactors(history, params, options));
+  const std::vector<double> layer_factor = LayerStrainFactors(history, params, options);
+  const internal::HexMesh mesh = internal::BuildHexMesh(grid, history, params, factor, options.groups, layer_factor);
   WAAM_THROW_UNLESS(!mesh.elements.empty(),
                     "distortion.element_mm = " << options.element_mm << ": no element is half full of metal; the "
                     "part is thinner than two elements, use a smaller element_mm");
