@@ -153,16 +153,20 @@ PY
 compensation_heat() {
   local d="$out/compensation_heat"
   mkdir -p "$d"
+  # The heat run with the beads only: the strain law refuses this continuous spiral (docs/compensation.md).
   for s in part_3 part_3_heat; do
+    local extra=(); [ "$s" = part_3_heat ] && extra=(--set thermal.shape.distortion=false)
     /usr/bin/time -f '%e %U %M' -o "$d/$s.time" ./build/waam compensate "scenarios/tubes/$s.yaml" -o "$d/$s" \
-      --model models/data/distortion_part1_demo.json --mode reduced --no-program --no-images -q --max-iter 2 >/dev/null
+      "${extra[@]}" --model models/data/distortion_part1_demo.json --mode reduced --no-program --no-images -q \
+      --max-iter 2 >/dev/null
   done
   python3 - "$d" <<'PY' | put compensation_heat
 import json, sys
 d = sys.argv[1]
 print("| part III | tolerance | build 0 max / p99 / axis | build 1 max / p99 / axis | build 0 vs target | status | user CPU |")
 print("| --- | --- | --- | --- | --- | --- | --- |")
-for s, label in (("part_3", "today (`part_3.yaml`)"), ("part_3_heat", "heat into shape (`part_3_heat.yaml`)")):
+for s, label in (("part_3", "today (`part_3.yaml`)"),
+                 ("part_3_heat", "heat-shaped beads (`part_3_heat.yaml`, `--set thermal.shape.distortion=false`)")):
     j = json.load(open(f"{d}/{s}/compensate.json"))
     it = j["iterations"]
     cell = lambda b: "%.2f / %.2f / %.2f" % (b["max_abs_deviation_mm"], b["p99_abs_deviation_mm"], b["axis_deviation_mm"])
@@ -176,9 +180,7 @@ print()
 print(f"Heat run: build {h['build_time_s']:.0f} s, thermal model {h['thermal_wall_s']:.1f} s wall; the temperature a "
       f"layer is laid on {min(ip):.0f}-{max(ip):.0f} degC (mean {sum(ip) / len(ip):.0f}, layers 1-{len(ip)}); "
       f"bead height factor {min(h['bead_height_factor']):.3f}-{max(h['bead_height_factor']):.3f}, width factor "
-      f"{min(h['bead_width_factor']):.3f}-{max(h['bead_width_factor']):.3f}; strain factor "
-      f"{min(h['strain_factor']):.3f}-{max(h['strain_factor']):.3f} (reference {h['reference_interpass_c']:.0f} degC, "
-      f"mechanical melting {h['mechanical_melting_c']:.0f} degC).")
+      f"{min(h['bead_width_factor']):.3f}-{max(h['bead_width_factor']):.3f}.")
 PY
 }
 
