@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "analysis/check_command.h"
+#include "analysis/compensate_heat.h"
 #include "analysis/distortion_command.h"
 #include "analysis/plan_command.h"
 #include "analysis/scenario.h"
@@ -72,6 +73,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   }
   WAAM_THROW_UNLESS(!planned.mesh.facets.empty(), options.scenario.string() << ": compensate needs a target part mesh");
   ClaimOutputDirectory(options.out_dir);
+  const nlohmann::json heat = PrepareHeatShape(scenario, planned.plan, options.quiet, &loop);
   Progress progress("compensate", static_cast<std::size_t>(options.max_iterations) + 1, "builds", options.quiet);
   const twin::CompensationResult result =
       twin::Compensate(planned.plan, planned.mesh, scenario.simulation, loop,
@@ -120,6 +122,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
       {"message", result.message},
       {"first_scan", options.first_scan.empty() ? "" : options.first_scan.string()},
       {"iterations", iterations},
+      {"heat", heat},
       {"program", program},
   };
   WriteFileAtomic(options.out_dir / "compensate.json", json.dump(2) + "\n");

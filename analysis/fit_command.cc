@@ -1,6 +1,7 @@
 // `waam fit`: CSV columns -> samples -> Ceres fit -> summary on stdout and model JSON on disk.
 #include "analysis/fit_command.h"
 
+#include <cmath>
 #include <iomanip>
 #include <map>
 #include <ostream>
@@ -8,6 +9,7 @@
 
 #include "analysis/fit_internal.h"
 #include "analysis/replay_command.h"
+#include "models/bead/bead_temperature_model.h"
 #include "models/bead/csw_model.h"
 #include "models/bead/speed_height_model.h"
 #include "models/bead/width_height_model.h"
@@ -25,6 +27,7 @@ const std::map<std::string, Columns>& AllDefaults() {
       {"csw", {{"speed", "travel_speed_mm_per_min"}, {"radius", "curvature_radius_mm"}, {"width", "width_mm"}}},
       {"speed-height", {{"speed", "travel_speed_mm_per_min"}, {"height", "height_mm"}}},
       {"width-height", {{"height", "height_mm"}, {"width", "width_mm"}, {"speed", "travel_speed_mm_per_min"}}},
+      {"bead-temperature", {{"temperature", "interpass_c"}, {"height", "height_mm"}, {"width", "width_mm"}}},
       {"void-length",
        {{"eta", "eta"},
         {"theta1", "theta1_deg"},
@@ -195,13 +198,37 @@ FitOutcome RunWidthHeight(const FitOptions& options, const CsvTable& table, std:
   return Finish(fit.ok, fit.message, fit.model.ToJson(), options, out);
 }
 
+FitOutcome RunBeadTemperature(const FitOptions& options, const CsvTable& table, std::ostream& out) {
+  const auto cols = ResolveColumns(options);
+  WAAM_THROW_UNLESS(std::isfinite(options.reference_c) && options.reference_c >= -50.0 && options.reference_c <= 2000.0,
+                    "--reference-c " << options.reference_c << ": must be in [-50, 2000] degC");
+  const m::DataSource source = MakeSource(options, table, cols);
+  const m::BeadTemperatureSamples s{table.Numbers(cols.at("temperature")), table.Numbers(cols.at("height")),
+                                    table.Numbers(cols.at("width"))};
+  const m::BeadTemperatureFit fit = m::FitBeadTemperature(s, source, options.reference_c, options.volume_conserving);
+  const m::BeadTemperatureParams& p = fit.model.params();
+  out << "bead-temperature model h = h_ref (1 + k_h (T - T_ref)), "
+      << (p.volume_conserving ? "w = w_ref / (1 + k_h (T - T_ref))" : "w = w_ref (1 + k_w (T - T_ref))")
+      << "  (h, w mm; T degC), T_ref = " << p.reference_c << " degC\n"
+      << std::setprecision(6) << "  params   : h_ref = " << fit.model.h_ref_mm() << " mm, k_h = " << p.height_per_k
+      << " 1/K, w_ref = " << fit.model.w_ref_mm() << " mm";
+  if (!p.volume_conserving) out << ", k_w = " << p.width_per_k << " 1/K";
+  out << "\n  range    : [" << p.min_c << ", " << p.max_c << "] degC\n  height:\n";
+  PrintStats(out, fit.model.fit().stats, "mm");
+  out << "  width:\n";
+  PrintStats(out, fit.model.width_stats(), "mm");
+  PrintSolver(out, fit.model.fit().solver);
+  return Finish(fit.ok, fit.message, fit.model.ToJson(), options, out);
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::string& model) {
   const auto it = AllDefaults().find(model);
   WAAM_THROW_UNLESS(it != AllDefaults().end(),
                     "unknown model '" << model
-                                     << "': must be csw, speed-height, width-height, void-length or distortion");
+                                     << "': must be csw, speed-height, width-height, bead-temperature, void-length "
+                                        "or distortion");
   return it->second;
 }
 
@@ -220,6 +247,7 @@ FitOutcome RunFit(const FitOptions& options, std::ostream& out) {
   if (options.model == "csw") return RunCsw(options, table, out);
   if (options.model == "speed-height") return RunSpeedHeight(options, table, out);
   if (options.model == "width-height") return RunWidthHeight(options, table, out);
+  if (options.model == "bead-temperature") return RunBeadTemperature(options, table, out);
   return internal::RunVoidLength(options, table, out);
 }
 

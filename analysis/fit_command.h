@@ -14,13 +14,17 @@ namespace waam::analysis {
 
 // Everything `waam fit` accepts; the CLI fills it, tests build it directly.
 struct FitOptions {
-  std::string model;                      // csw | speed-height | width-height | void-length | distortion | thermal
+  // csw | speed-height | width-height | bead-temperature | void-length | distortion | thermal
+  std::string model;
   std::filesystem::path data;             // CSV input (distortion: the scan, .ply, .xyz or .stl, part frame, mm)
   std::filesystem::path output;           // model JSON output
   std::vector<std::string> columns;       // "role=column" overrides of the default column names
   std::optional<std::pair<double, double>> speed_range;  // feasible travel speeds [mm/min]; default: the data's
   int degree = 4;                         // width-height polynomial degree
   std::string space = "linear";           // speed-height residual space: linear | log
+  // bead-temperature
+  double reference_c = 20.0;              // T_ref: interpass temperature the bead models were measured at, degC
+  bool volume_conserving = false;         // width from w h = const instead of its own slope
   // void-length
   std::string kind = "network";           // network | baseline (the model written; both are cross-validated)
   std::vector<int> hidden = {7, 7};

@@ -151,6 +151,7 @@ Scenario ParseScenario(YamlMap& top) {
   top.CheckNoUnknownKeys();
   internal::CheckThermalScenario(scenario.process, scenario.thermal);
   internal::LoadThermalMaterials(dir, &scenario.thermal);
+  internal::LoadThermalShape(dir, &scenario.thermal);
   LoadScenarioFiles(&scenario);
   return scenario;
 }

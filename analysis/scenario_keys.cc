@@ -53,11 +53,18 @@ inline constexpr std::array kThermalFields = {
     CustomField<ThermalSection>("pool", FieldType::kMap, "the double ellipsoid's semi-axes (thermal.pool)"),
     CustomField<ThermalSection>("liquid_conductivity_factor", FieldType::kNumber,
                                 "k above the liquidus times this, 1-100 (default 5)"),
+    CustomField<ThermalSection>("shape", FieldType::kMap, "the heat shapes bead and distortion (thermal.shape)"),
 };
 inline constexpr std::array kThermalPoolFields = {
     CustomField<ThermalSection>("depth_beads", FieldType::kNumber, "depth b over the bead height (default 2)"),
     CustomField<ThermalSection>("front_widths", FieldType::kNumber, "c_f ahead of the arc over the bead width (0.5)"),
     CustomField<ThermalSection>("rear_widths", FieldType::kNumber, "c_r behind the arc over the bead width (2)"),
+};
+inline constexpr std::array kThermalShapeFields = {
+    CustomField<ThermalShape>("bead_model", FieldType::kFile,
+                              "bead-temperature model file (waam fit bead-temperature); absent = planned beads"),
+    CustomField<ThermalShape>("distortion", FieldType::kBool,
+                              "inherent strains follow the layers' interpass and peak temperatures (default false)"),
 };
 inline constexpr std::array kThermalSubstrateFields = {
     CustomField<ThermalSection>("size_mm", FieldType::kNumbers, "[x, y, z] of the plate, mm (required)"),
@@ -117,6 +124,7 @@ std::vector<SectionKeys> MakeSections() {
       Section("replay.frame", kReplayFrameFields),
       Section("replay.bead", kReplayBeadFields),
       Section("thermal.pool", kThermalPoolFields),
+      Section("thermal.shape", kThermalShapeFields),
   };
   // The top level holds the sections too.
   for (const SectionKeys& s : sections) {

@@ -127,6 +127,8 @@ class ThermalDriver {
   double heat_w_ = 0.0;
   Eigen::AlignedBox3d everything_;
   int current_layer_ = -1;             // the layer whose arc burnt last (for peak_c)
+  std::vector<double> laid_on_sum_;    // per layer: sum and count of the metal temperatures under its weld moves
+  std::vector<int> laid_on_n_;
   bool in_layer_ = false;              // between a layer's first arc start and its last arc end
 };
 
@@ -182,8 +184,25 @@ void ThermalDriver::RunSpan(const planner::TimedSpan& span) {
   const planner::PathPoint& at = layer.points[span.point];
   switch (span.kind) {
     case planner::SpanKind::kArcOn: {
-      WAAM_DEMAND(span.point > 0);
-      Advance(seconds, true, layer.points[span.point - 1].p_P, at.p_P, at.bead_width_mm, at.bead_height_mm);
+      // The metal the move lays its bead on, just before: the first metal found one cell below the new bead's bottom
+      // (nearer, the cell the arc heats right now); the grid resolves no less.
+      if (span.layer > 0) {
+        const double cell = scenario_.thermal.cell_mm;
+        const double height = std::max(0.5, at.bead_height_mm);
+        for (double d = height + cell; d <= 3.0 * height + 3.0 * cell; d += 0.25 * cell) {
+          const double t = sim_.TemperatureAt(at.p_P - d * layer.build_dir_P);
+          if (std::isnan(t)) continue;
+          laid_on_sum_[span.layer] += t;
+          laid_on_n_[span.layer] += 1;
+          break;
+        }
+      }
+      // A continuous spiral carries its weld from one layer into the next: the move into a layer's first point
+      // starts at the previous layer's last point.
+      WAAM_DEMAND(span.point > 0 || (span.layer > 0 && !plan_.layers[span.layer - 1].points.empty()));
+      const Eigen::Vector3d& from =
+          span.point > 0 ? layer.points[span.point - 1].p_P : plan_.layers[span.layer - 1].points.back().p_P;
+      Advance(seconds, true, from, at.p_P, at.bead_width_mm, at.bead_height_mm);
       out_->arc_energy_j += scenario_.process.arc.power_w * seconds;
       break;
     }
@@ -286,8 +305,10 @@ std::vector<double> ThermalDriver::Run(const planner::Timeline& timeline, Progre
   out_->layers.resize(layers);
   for (std::size_t l = 0; l < layers; ++l) {
     out_->layers[l].layer = static_cast<int>(l);
-    out_->layers[l].interpass_c = out_->layers[l].peak_c = kNaN;
+    out_->layers[l].interpass_c = out_->layers[l].peak_c = out_->layers[l].laid_on_c = kNaN;
   }
+  laid_on_sum_.assign(layers, 0.0);
+  laid_on_n_.assign(layers, 0);
   for (std::size_t i = 0; i < timeline.spans.size(); ++i) {
     const planner::TimedSpan& span = timeline.spans[i];
     const bool arc = span.kind == planner::SpanKind::kArcStart || span.kind == planner::SpanKind::kArcOn;
@@ -295,9 +316,14 @@ std::vector<double> ThermalDriver::Run(const planner::Timeline& timeline, Progre
       // The layer's first arc start: wait for the interpass rule, then weld.
       started[span.layer] = true;
       const planner::LayerPath& layer = plan_.layers[span.layer];
-      const std::size_t from = span.kind == planner::SpanKind::kArcOn ? span.point - 1 : span.point;
+      // Where the arc starts: the move's first point; a spiral's layer begins at the previous layer's last point.
+      const Eigen::Vector3d start_P =
+          span.kind != planner::SpanKind::kArcOn ? layer.points[span.point].p_P
+          : span.point > 0                       ? layer.points[span.point - 1].p_P
+          : span.layer > 0                       ? plan_.layers[span.layer - 1].points.back().p_P
+                                                 : layer.points.front().p_P;
       ThermalLayer& record = out_->layers[span.layer];
-      waits[span.layer] = WaitForInterpass(span.layer, layer.points[from].p_P, &record);
+      waits[span.layer] = WaitForInterpass(span.layer, start_P, &record);
       record.wait_s = waits[span.layer];
       record.start_s = sim_.time_s();
       current_layer_ = span.layer;
@@ -318,6 +344,9 @@ std::vector<double> ThermalDriver::Run(const planner::Timeline& timeline, Progre
   }
   // A last sample at the end of the build when it fell between two sample times.
   if (out_->sample_time_s.back() < sim_.time_s() - 1e-9) Sample();
+  for (std::size_t l = 0; l < layers; ++l) {
+    if (laid_on_n_[l] > 0) out_->layers[l].laid_on_c = laid_on_sum_[l] / laid_on_n_[l];
+  }
   return waits;
 }
 

@@ -28,6 +28,9 @@ struct ThermalLayer {
   // no metal is there (top_max before the first layer).
   double interpass_c = 0.0;
   double peak_c = 0.0;       // hottest metal from the layer's first arc start to its last arc end (sampled), degC
+  // Mean over the layer's weld moves of the metal one grid cell under each move's bead just before the move is welded
+  // (the local interpass temperature where its beads are laid), degC; NaN for the first layer and where no metal is.
+  double laid_on_c = 0.0;
   double wait_s = 0.0;       // interpass wait added before the layer, s
   bool interpass_reached = true;  // false: the wait was cut at kMaxInterpassWaitS before the limit was reached
 };

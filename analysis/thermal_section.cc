@@ -51,6 +51,17 @@ void ParseProbes(YamlMap& thermal, ThermalSection* out) {
   probes.CheckNoUnknownKeys();
 }
 
+void ParseShape(YamlMap& thermal, ThermalSection* out) {
+  if (!thermal.Has("shape")) return;
+  YamlMap shape = thermal.Map("shape");
+  if (shape.Has("bead_model")) {
+    out->shape.bead_model_where = shape.Where("bead_model");
+    out->shape.bead_model_path = shape.String("bead_model");
+  }
+  out->shape.distortion = shape.Bool("distortion", false);
+  shape.CheckNoUnknownKeys();
+}
+
 }  // namespace
 
 void ParseThermalSection(YamlMap& top, ThermalSection* out) {
@@ -87,6 +98,7 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
   out->liquid_conductivity_factor =
       thermal.Number("liquid_conductivity_factor", 1.0, 100.0, out->liquid_conductivity_factor);
   ParseProbes(thermal, out);
+  ParseShape(thermal, out);
   thermal.CheckNoUnknownKeys();
 }
 
@@ -98,6 +110,17 @@ void LoadThermalMaterials(const std::filesystem::path& scenario_dir, ThermalSect
     } catch (const InputError& e) {
       WAAM_THROW(choice->where << ": " << e.what());
     }
+  }
+}
+
+void LoadThermalShape(const std::filesystem::path& scenario_dir, ThermalSection* thermal) {
+  if (thermal->shape.bead_model_path.empty()) return;
+  std::filesystem::path path(thermal->shape.bead_model_path);
+  if (path.is_relative()) path = scenario_dir / path;
+  try {
+    thermal->shape.bead_model = models::BeadTemperatureModel::Load(path);
+  } catch (const InputError& e) {
+    WAAM_THROW(thermal->shape.bead_model_where << ": " << e.what());
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "models/bead/bead_temperature_model.h"
 #include "models/thermal/material.h"
 #include "twin/thermal/heat_source.h"
 
@@ -36,6 +37,15 @@ struct ThermalMaterialChoice {
   models::ThermalMaterial material;  // filled when the scenario is loaded
 };
 
+// thermal.shape: the heat shapes the part (docs/compensation.md, "Heat into shape").
+struct ThermalShape {
+  std::string bead_model_path;  // thermal.shape.bead_model: a bead-temperature model file; empty = planned beads
+  std::string bead_model_where; // "file:line: thermal.shape.bead_model"
+  std::optional<models::BeadTemperatureModel> bead_model;  // loaded by LoadScenario
+  bool distortion = false;      // thermal.shape.distortion: the inherent strains follow the layers' temperatures
+  bool Any() const { return !bead_model_path.empty() || distortion; }
+};
+
 struct ThermalSection {
   bool given = false;                // the scenario has a thermal: section
   std::string where;                 // "file:line: thermal"
@@ -61,6 +71,7 @@ struct ThermalSection {
   double pool_rear_widths = 2.0;
   double liquid_conductivity_factor = 5.0;
   std::vector<ThermalProbe> probes;  // thermal.probes, in file order
+  ThermalShape shape;                // thermal.shape
 };
 
 }  // namespace waam::analysis
@@ -74,6 +85,9 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out);
 // Loads the deposit's and the substrate's materials (LoadThermalMaterial, relative paths against `scenario_dir`).
 // Throws InputError naming the scenario key, then the material's own message (an unknown name lists the known ones).
 void LoadThermalMaterials(const std::filesystem::path& scenario_dir, ThermalSection* thermal);
+// Loads thermal.shape.bead_model (relative paths against `scenario_dir`). Throws InputError naming the key, then
+// the model file's own message.
+void LoadThermalShape(const std::filesystem::path& scenario_dir, ThermalSection* thermal);
 // The rules across the process and thermal sections: an interpass max_c needs a thermal section and must lie above
 // thermal.ambient_c; interpass.at: {probe: NAME} names one of thermal.probes; a thermal section needs process.arc.
 // Throws InputError naming the key.

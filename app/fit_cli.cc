@@ -22,6 +22,11 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       "                [speed=travel_speed_mm_per_min height=height_mm]\n"
       "  width-height  w = sum c_k h^k, --degree (4 in Nguyen eq. 6.7): bead width w [mm] from height h [mm]\n"
       "                [height=height_mm width=width_mm speed=travel_speed_mm_per_min (only with --speed-range)]\n"
+      "  bead-temperature  h = h_ref (1 + k_h (T - T_ref)), w = w_ref (1 + k_w (T - T_ref)) (w = w_ref / (1 + k_h\n"
+      "                (T - T_ref)) with --volume-conserving): bead height h and width w [mm] against the interpass\n"
+      "                temperature T [degC] where the bead was laid; T_ref = --reference-c, the temperature today's\n"
+      "                bead models were measured at (docs/compensation.md) [temperature=interpass_c height=height_mm\n"
+      "                width=width_mm]\n"
       "  void-length   junction void length L [mm] from eta (turning points) and the four angles theta1..4 [deg]\n"
       "                (Nguyen ch. 4.4, Appendix A1): a tanh network (--hidden, L2/Bayesian penalty, seeded\n"
       "                restarts, averaged) or the baseline L = a + b (1/sin(theta_min/2) - 1); both are cross-validated\n"
@@ -49,9 +54,10 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       "                mape_pct, max_error_c, peaks}, solver, time_s. `waam thermal replay --parameters fitted.json`\n"
       "                replays with them. A fit Ceres did not converge is not written (exit 2).\n"
       "Exit code 2 for bad input or a fit the solver could not make usable (the message says why).");
-  fit->add_option("model", options->model, "csw | speed-height | width-height | void-length | distortion")
+  fit->add_option("model", options->model,
+                  "csw | speed-height | width-height | bead-temperature | void-length | distortion")
       ->required()
-      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "void-length", "distortion", "thermal"}));
+      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "bead-temperature", "void-length", "distortion", "thermal"}));
   fit->add_option("data", options->data, "CSV file with a header row (distortion: the scan, .ply, .xyz or .stl)")
       ->required();
   fit->add_option("-o,--output", options->output, "model JSON to write (atomically)")->required();
@@ -66,6 +72,11 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
   fit->add_option("--degree", options->degree, "width-height polynomial degree (1-8)")->capture_default_str();
   fit->add_option("--space", options->space, "speed-height residuals in v (linear) or ln v (log)")
       ->capture_default_str();
+  fit->add_option("--reference-c", options->reference_c,
+                  "bead-temperature: T_ref, the interpass temperature the bead models were measured at [degC]")
+      ->capture_default_str();
+  fit->add_flag("--volume-conserving", options->volume_conserving,
+                "bead-temperature: the width follows the height so that w h stays (k_w not fitted)");
   fit->add_option("--kind", options->kind, "void-length model written: network | baseline")->capture_default_str();
   fit->add_option("--hidden", options->hidden, "void-length hidden layer sizes, e.g. 7,7")->delimiter(',');
   fit->add_option("--l2", options->l2, "void-length L2 penalty weight on normalised weights (start value)")

@@ -1,9 +1,9 @@
 // Distortion parameters: heat input per length, inherent strain law, validation and the model file.
 #include "models/distortion/distortion_params.h"
 
-#include <optional>
-
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "models/core/error.h"
@@ -24,6 +24,16 @@ double DistortionParams::StrainAt(double q_j_mm) const {
   return strain * std::pow(std::max(q_j_mm, 1e-9) / reference_heat_input_j_mm, heat_exponent);
 }
 
+double DistortionParams::ThermalFactor(double peak_c, double interpass_c) const {
+  WAAM_DEMAND(std::isfinite(reference_interpass_c) && reference_interpass_c < mechanical_melting_c);
+  // Inherent strain as the thermal strain a restrained fibre keeps (Ueda's inherent strain; Murakawa, Luo, Ueda
+  // 1996, J. Soc. Nav. Archit. Jpn 180, 739): alpha (min(T_peak, T_mm) - T_0), where T_0 is the temperature it
+  // cools back to before the next layer restrains it (its interpass temperature) and T_mm caps what a hot, soft fibre
+  // can hold. The fitted strain fixes alpha at the reference history, so only the ratio enters.
+  const double effective_peak = std::min(peak_c, mechanical_melting_c);
+  return std::max(0.0, effective_peak - interpass_c) / (mechanical_melting_c - reference_interpass_c);
+}
+
 std::string DistortionParamsProblem(const DistortionParams& p, const std::string& where) {
   std::ostringstream problem;
   auto range = [&](const char* name, double v, double lo, double hi) {
@@ -38,6 +48,10 @@ std::string DistortionParamsProblem(const DistortionParams& p, const std::string
   range("substrate_stiffness_n_mm3", p.substrate_stiffness_n_mm3, 1e-3, 1e9);
   range("youngs_modulus_mpa", p.youngs_modulus_mpa, 1.0, 1e7);
   range("poisson", p.poisson, 0.0, 0.49);
+  range("mechanical_melting_c", p.mechanical_melting_c, 100.0, 3000.0);
+  if (!std::isnan(p.reference_interpass_c)) {
+    range("reference_interpass_c", p.reference_interpass_c, -50.0, p.mechanical_melting_c - 1.0);
+  }
   return problem.str();
 }
 
@@ -68,7 +82,8 @@ nlohmann::json DistortionParamsToJson(const DistortionParams& p, const nlohmann:
         {"arc_energy_per_wire_j_mm", p.arc_energy_per_wire_j_mm},
         {"substrate_stiffness_n_mm3", p.substrate_stiffness_n_mm3},
         {"youngs_modulus_mpa", p.youngs_modulus_mpa},
-        {"poisson", p.poisson}}},
+        {"poisson", p.poisson},
+        {"mechanical_melting_c", p.mechanical_melting_c}}},
       {"units",
        {{"strain", "1"},
         {"vertical_ratio", "1"},
@@ -77,8 +92,11 @@ nlohmann::json DistortionParamsToJson(const DistortionParams& p, const nlohmann:
         {"arc_energy_per_wire_j_mm", "J/mm of wire"},
         {"substrate_stiffness_n_mm3", "N/mm^3"},
         {"youngs_modulus_mpa", "MPa"},
-        {"poisson", "1"}}},
+        {"poisson", "1"},
+        {"mechanical_melting_c", "degC"},
+        {"reference_interpass_c", "degC"}}},
   };
+  if (!std::isnan(p.reference_interpass_c)) j["params"]["reference_interpass_c"] = p.reference_interpass_c;
   if (fit != nullptr) j["fit"] = *fit;
   return j;
 }
@@ -95,6 +113,13 @@ DistortionParams ReadDistortionParams(const std::filesystem::path& path) {
   p.substrate_stiffness_n_mm3 = JsonNumber(j, "/params/substrate_stiffness_n_mm3", where);
   p.youngs_modulus_mpa = JsonNumber(j, "/params/youngs_modulus_mpa", where);
   p.poisson = JsonNumber(j, "/params/poisson", where);
+  // The thermal law's two parameters are optional (files written before it keep their meaning).
+  if (j.contains(nlohmann::json::json_pointer("/params/mechanical_melting_c"))) {
+    p.mechanical_melting_c = JsonNumber(j, "/params/mechanical_melting_c", where);
+  }
+  if (j.contains(nlohmann::json::json_pointer("/params/reference_interpass_c"))) {
+    p.reference_interpass_c = JsonNumber(j, "/params/reference_interpass_c", where);
+  }
   WAAM_THROW_UNLESS(j.contains("mode") && j["mode"].is_string(), where << ": mode is missing or not a string");
   p.mode = ParseDistortionMode(j["mode"].get<std::string>(), where + ": mode");
   ValidateDistortionParams(p, where);

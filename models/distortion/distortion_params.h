@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 
 #include <filesystem>
 #include <string>
@@ -33,11 +34,21 @@ struct DistortionParams {
   double youngs_modulus_mpa = 200000.0;  // E of the deposited metal at room temperature, MPa
   double poisson = 0.3;                  // nu, 1
   DistortionMode mode = DistortionMode::kFe;  // model the parameters were fitted for
+  // The thermal law (used only when a thermal history is given, docs/compensation.md "Heat into shape"):
+  // temperature above which the metal carries no stress (mechanical melting), degC. 800 degC: EN 1993-1-2 Table 3.1
+  // leaves carbon steel 11 % of its yield strength there (k_y = 0.11).
+  double mechanical_melting_c = 800.0;
+  // Interpass temperature the strains were fitted at, degC; NaN = not recorded (the caller supplies the build's).
+  double reference_interpass_c = std::numeric_limits<double>::quiet_NaN();
 
   // Heat input per length of a bead laid at `speed_mm_s` with wire feed `wire_feed_mm_s` (both > 0), J/mm.
   double HeatInput(double wire_feed_mm_s, double speed_mm_s) const;
   // In-layer inherent strain at heat input `q_j_mm` (> 0), 1.
   double StrainAt(double q_j_mm) const;
+  // Factor on StrainAt for metal that peaked at `peak_c` and was laid on metal at `interpass_c` (degC):
+  // (min(T_peak, T_mm) - T_ip) / (T_mm - T_ref), at least 0; exactly 1 at T_ip = T_ref with T_peak >= T_mm.
+  // reference_interpass_c must be finite and below mechanical_melting_c (WAAM_DEMAND).
+  double ThermalFactor(double peak_c, double interpass_c) const;
 };
 
 // The first parameter of `params` outside its valid range, as "<where>: <name> = <value>: must be in [lo, hi]",

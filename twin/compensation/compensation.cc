@@ -18,6 +18,7 @@
 #include <deque>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "models/core/error.h"
@@ -259,6 +260,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
 
   CompensationResult result;
   planner::Plan current = nominal;
+  const bool shaped = !options.bead_heat.height.empty();
   // The reference the loop drives the part to. "twin": the nominal path deposited without distortion (what the
   // process makes of the target; bead-shape errors no path shift can fix, such as arc starts and corners, are left
   // out). "target": the target mesh itself, as 003 compares scans with the CAD model (always so with a real scan).
@@ -280,17 +282,24 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     std::vector<Eigen::Vector3d> points;
     DistortionField field;
     bool simulated = true;
-    const Depositor depositor = DepositPlan(current, settings, options.rapid_speed_mm_s, nullptr);
+    // What the build lays: the path's beads, shaped by the heat where they are laid when a thermal history is given.
+    const planner::Plan built = shaped ? ShapeBeadsByHeat(current, options.bead_heat) : planner::Plan{};
+    const planner::Plan& laid = shaped ? built : current;
+    const Depositor depositor = DepositPlan(laid, settings, options.rapid_speed_mm_s, nullptr);
     if (iter == 0) {
+      // The reference and the tolerance come from the nominal path with its planned beads.
+      std::optional<Depositor> planned;
+      if (shaped) planned.emplace(DepositPlan(current, settings, options.rapid_speed_mm_s, nullptr));
+      const Depositor& nominal_deposit = shaped ? *planned : depositor;
       const ScanDeviation undistorted =
-          MeasureScanDeviation(ScanDistortedPart(depositor.grid(), DistortionField()), distance);
+          MeasureScanDeviation(ScanDistortedPart(nominal_deposit.grid(), DistortionField()), distance);
       const internal::Waviness waviness = internal::WallWaviness(undistorted, 2.0 * options.reference_spacing_mm,
                                                                                options.debug_level);
       result.waviness_mm = waviness.max_mm;
       result.waviness_median_mm = waviness.median_mm;
       result.tolerance_mm = internal::StopTolerance(options.tolerance_mm, waviness);
       if (twin_reference) {
-        reference_mesh = ExtractSurface(depositor.grid());
+        reference_mesh = ExtractSurface(nominal_deposit.grid());
         reference = std::make_unique<MeshDistance>(reference_mesh);
         reference_points = undistorted.points;
       }
@@ -301,7 +310,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
       }
     }
     if (simulated) {
-      const DepositHistory history(current, depositor, settings, options.rapid_speed_mm_s, options.wire_feed_mm_s);
+      const DepositHistory history(laid, depositor, settings, options.rapid_speed_mm_s, options.wire_feed_mm_s);
       field = ComputeDistortion(depositor.grid(), history, options.params, options.distortion, &it.distortion);
       points = ScanDistortedPart(depositor.grid(), field);
     }

@@ -12,6 +12,7 @@
 #include "planner/mesh/triangle_mesh.h"
 #include "planner/path/tool_path.h"
 #include "twin/simulation_settings.h"
+#include "twin/deposition/heat_bead.h"
 #include "twin/distortion/distortion.h"
 #include "twin/scanner/scan_deviation.h"
 
@@ -45,6 +46,10 @@ struct CompensationOptions {
   CompensationReference reference = CompensationReference::kTwin;
   CorrectionMethod correction = CorrectionMethod::kAxis;
   std::vector<Eigen::Vector3d> first_scan;  // a real scan of the first part (part frame, mm); empty = simulate it
+  // Heat into shape (docs/compensation.md): per plan layer, factors on the bead height and width every build lays
+  // (the twin reference keeps the planned beads). Empty = the planned beads. distortion.layer_heat drives the
+  // strains by the same thermal history.
+  BeadHeatFactors bead_heat;
   // Diagnostics on stderr: 0 none, 1 the waviness, top band and correction error every tenth layer, 2 every layer.
   int debug_level = 0;
 };

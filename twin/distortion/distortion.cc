@@ -68,6 +68,31 @@ Eigen::Vector3d DistortionField::Displacement(const Eigen::Vector3d& p_P) const 
   return u;
 }
 
+namespace {
+
+// The thermal law's factor per plan layer (empty without a thermal history).
+std::vector<double> LayerStrainFactors(const DepositHistory& history, const models::DistortionParams& params,
+                                       const DistortionOptions& options) {
+  if (options.layer_heat.empty()) return {};
+  WAAM_THROW_UNLESS(static_cast<int>(options.layer_heat.size()) >= history.layers(),
+                    "distortion: the thermal history has " << options.layer_heat.size() << " layers, the build "
+                                                           << history.layers() << ": one entry per layer is needed");
+  WAAM_THROW_UNLESS(std::isfinite(params.reference_interpass_c),
+                    "distortion model: reference_interpass_c is not given: the thermal law needs the interpass "
+                    "temperature the strains were fitted at");
+  std::vector<double> factors;
+  factors.reserve(options.layer_heat.size());
+  for (const LayerHeat& heat : options.layer_heat) {
+    WAAM_THROW_UNLESS(std::isfinite(heat.interpass_c) && std::isfinite(heat.peak_c),
+                      "distortion: a layer's interpass " << heat.interpass_c << " or peak " << heat.peak_c
+                                                          << " degC is not a number");
+    factors.push_back(params.ThermalFactor(heat.peak_c, heat.interpass_c));
+  }
+  return factors;
+}
+
+}  // namespace
+
 DistortionField ComputeDistortion(const VoxelGrid& grid, const DepositHistory& history,
                                   const models::DistortionParams& params, const DistortionOptions& options,
                                   DistortionStats* stats) {
@@ -76,7 +101,8 @@ DistortionField ComputeDistortion(const VoxelGrid& grid, const DepositHistory& h
   WAAM_THROW_UNLESS(grid.occupied() > 0, "distortion: the deposited part is empty");
   const auto start = std::chrono::steady_clock::now();
   const int factor = std::max(1, static_cast<int>(std::lround(options.element_mm / grid.voxel_mm())));
-  const internal::HexMesh mesh = internal::BuildHexMesh(grid, history, params, factor, options.groups);
+  const std::vector<double> layer_factor = LayerStrainFactors(history, params, options);
+  const internal::HexMesh mesh = internal::BuildHexMesh(grid, history, params, factor, options.groups, layer_factor);
   WAAM_THROW_UNLESS(!mesh.elements.empty(),
                     "distortion.element_mm = " << options.element_mm << ": no element is half full of metal; the "
                     "part is thinner than two elements, use a smaller element_mm");

@@ -23,11 +23,20 @@ constexpr std::array<EnumName<FeSolver>, 2> EnumNames(FeSolver) {
 }
 WAAM_ENUM_JSON(FeSolver)
 
+// What the thermal model computed for one plan layer (analysis/thermal_run), the data the thermal strain law reads.
+struct LayerHeat {
+  double interpass_c = 0.0;  // temperature of the metal the layer is laid on, just before its first arc, degC
+  double peak_c = 0.0;       // hottest metal while the layer is welded, degC
+};
+
 struct DistortionOptions {
   models::DistortionMode mode = models::DistortionMode::kFe;
   double element_mm = 2.0;      // edge of the hexahedral elements, mm (rounded to a whole number of voxels)
   int groups = 4;               // layer groups activated one after the other (fe), >= 1
   FeSolver solver = FeSolver::kCg;
+  // The build's thermal history, one entry per plan layer: each voxel's strain is scaled by
+  // DistortionParams::ThermalFactor of its layer. Empty = the strains as fitted.
+  std::vector<LayerHeat> layer_heat;
 };
 
 // Throws InputError "distortion.<field> = value: must be ..." for an option out of range.
@@ -69,7 +78,8 @@ class DistortionField {
 };
 
 // Computes the distortion of the part in `grid` whose voxels were deposited as `history` records, with the
-// inherent strains of `params`. Throws InputError for invalid params or options, or an empty grid.
+// inherent strains of `params` (scaled by the thermal law when options.layer_heat is given). Throws InputError for
+// invalid params or options, an empty grid, or a thermal history with too few layers or no reference temperature.
 DistortionField ComputeDistortion(const VoxelGrid& grid, const DepositHistory& history,
                                   const models::DistortionParams& params, const DistortionOptions& options,
                                   DistortionStats* stats = nullptr);

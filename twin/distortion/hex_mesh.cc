@@ -25,7 +25,7 @@ struct Accum {
 }  // namespace
 
 HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const models::DistortionParams& params,
-                     int factor, int groups) {
+                     int factor, int groups, const std::vector<double>& layer_factor) {
   HexMesh mesh;
   mesh.h_mm = factor * grid.voxel_mm();
   std::unordered_map<std::uint64_t, Accum> bins;
@@ -46,7 +46,7 @@ HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const
     const double q = params.HeatInput(history.wire_feed_mm_s(), deposit.speed_mm_s);
     a.count += 1;
     a.layer += layer;
-    a.strain += params.StrainAt(q);
+    a.strain += layer_factor.empty() ? params.StrainAt(q) : params.StrainAt(q) * layer_factor[layer];
     a.dir += history.LayerDir(layer);
   });
   const int full = factor * factor * factor;

@@ -34,9 +34,10 @@ struct HexMesh {
 };
 
 // Elements of `factor` voxels per edge: active where at least half the fine voxels are metal. Groups split the
-// layers into `groups` equal ranges.
+// layers into `groups` equal ranges. A voxel's strain is params.StrainAt(q) times layer_factor[its layer] when
+// `layer_factor` is not empty (one per plan layer).
 HexMesh BuildHexMesh(const VoxelGrid& grid, const DepositHistory& history, const models::DistortionParams& params,
-                     int factor, int groups);
+                     int factor, int groups, const std::vector<double>& layer_factor = {});
 
 // Element ids of `active` (mask over mesh.elements) connected through shared nodes to an element on the substrate
 // (K = 0). Others are cleared in `active`; returns how many were cleared.
