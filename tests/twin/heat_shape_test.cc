@@ -9,6 +9,7 @@
 
 #include "models/core/error.h"
 #include "tests/twin/test_plans.h"
+#include "tests/twin/twin_settings.h"
 #include "twin/deposition/bead_deposition.h"
 #include "twin/deposition/heat_bead.h"
 #include "twin/distortion/distortion.h"
@@ -19,7 +20,7 @@ namespace {
 using ::testing::HasSubstr;
 
 twin::SimulationSettings Settings() {
-  twin::SimulationSettings s;
+  twin::SimulationSettings s = twin::TestSimulationSettings();
   s.voxel_mm = 0.5;
   s.start_length_mm = 0.0;
   s.stop_length_mm = 0.0;
