@@ -38,12 +38,14 @@
 #   thermal_wall      waam thermal on scenarios/thermal/wall_interpass.yaml: per-layer interpass temperature, peak
 #                     and wait, the energy balance; its pictures into docs/images/thermal_wall_*.png; THERMAL.md
 #                     (seconds)
+#   notebooks         the example notebooks of python/examples/notebooks run with nbclient; their plots into
+#                     docs/images/notebook_*.png; README.md (under a minute; needs the Python module in build/python)
 # Needs a built ./build/waam (bash tools/test.sh --quick builds it); the *_bench tables and twin_tests need their
 # executables (cmake --build build --target NAME).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tables=(ding_table twin_table compensation compensation_heat twin_tests deposition_bench distortion_fit published rib_web model_fits
-        void_length_fit fit_bench check_bench cup_support readme_figures peers threads resolve place thermal_wall)
+        void_length_fit fit_bench check_bench cup_support readme_figures peers threads resolve place thermal_wall notebooks)
 only=""
 out="out/reproduce"
 check=0
@@ -615,6 +617,28 @@ print("Build %.0f s: arc on %.0f s, travel %.0f s, waits %.0f s. Arc energy %.0f
           ", ".join("%s max %.0f degC at %.0f s" % (n, p["max_c"], p["time_of_max_s"]) for n, p in j["probes"].items()),
           j["solver"]["cells"], j["solver"]["steps"], j["solver"]["wall_s"]))
 PY
+}
+
+notebooks() {
+  local d="$out/notebooks"
+  mkdir -p "$d"
+  PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}" PYDEVD_DISABLE_FILE_VALIDATION=1 /usr/bin/python3 - "$d" <<'PY'
+import pathlib, sys
+import nbclient, nbformat
+out = pathlib.Path(sys.argv[1]).resolve()
+for path in sorted(pathlib.Path("python/examples/notebooks").glob("*.ipynb")):
+    work = out / path.stem
+    work.mkdir(parents=True, exist_ok=True)
+    notebook = nbformat.read(path, as_version=4)
+    nbclient.NotebookClient(notebook, timeout=300, kernel_name="python3",
+                            resources={"metadata": {"path": str(work)}}).execute()
+PY
+  cp "$d/pattern_sweep/sweep_deviation.png" docs/images/notebook_sweep_deviation.png
+  cp "$d/csw_fit/csw_fit.png" docs/images/notebook_csw_fit.png
+  cat <<'MD' | put notebooks
+![python/examples/notebooks/pattern_sweep.ipynb: a sweep of the path pattern and bead width, plotted with matplotlib](docs/images/notebook_sweep_deviation.png)
+![python/examples/notebooks/csw_fit.ipynb: the CSW model fitted from a DataFrame](docs/images/notebook_csw_fit.png)
+MD
 }
 
 peers() {
