@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "analysis/thermal_run.h"
 #include "models/core/error.h"
 #include "models/core/progress.h"
 
@@ -15,13 +16,6 @@ namespace waam::analysis {
 namespace {
 
 constexpr double kReplayNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string ReplayBoxText(const Eigen::AlignedBox3d& box) {
-  std::ostringstream s;
-  s << "[" << box.min().x() << ", " << box.min().y() << ", " << box.min().z() << "] .. [" << box.max().x() << ", "
-    << box.max().y() << ", " << box.max().z() << "] mm";
-  return s.str();
-}
 
 }  // namespace
 
@@ -63,12 +57,7 @@ ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log) {
   s.substrate_box_mm = Eigen::AlignedBox3d(centre - 0.5 * size, centre + 0.5 * size);
   const Eigen::Vector3d cell = Eigen::Vector3d::Constant(thermal.cell_mm);
   s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - cell, beads.max() + cell);
-  for (const ReplayProbe& probe : model.probes) {
-    WAAM_THROW_UNLESS(s.substrate_box_mm.contains(probe.at_mm) || s.deposit_box_mm.contains(probe.at_mm),
-                      probe.where << " = [" << probe.at_mm.x() << ", " << probe.at_mm.y() << ", " << probe.at_mm.z()
-                                  << "]: outside the plate " << ReplayBoxText(s.substrate_box_mm) << " and the part "
-                                  << ReplayBoxText(s.deposit_box_mm) << "; a probe must lie in the metal");
-  }
+  for (const ReplayProbe& probe : model.probes) CheckProbeInMetal(s, probe.at_mm, probe.where);
   model.parameters = {scenario.process.arc.efficiency, s.convection_w_m2k, s.table_conductance_w_m2k, s.emissivity};
   model.log = std::move(log);
   return model;

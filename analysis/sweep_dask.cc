@@ -51,10 +51,15 @@ nlohmann::json RunSweepOnDask(const Sweep& sweep, const BenchOptions& options, c
   WAAM_THROW_UNLESS(fs::is_regular_file(driver), driver.string() << ": the Dask driver is missing from the data");
   const std::size_t shards = sweep.runs.size();
   const fs::path shard_root = options.out_dir / "dask_shards";  // the driver makes it once the scheduler answers
-  char error_file[] = "/tmp/waam_dask_error_XXXXXX";
-  const int fd = mkstemp(error_file);
-  WAAM_THROW_UNLESS(fd >= 0, "cannot create a temporary file in /tmp: " << std::strerror(errno));
+  // The driver's error text goes to a fresh file in the system's temporary folder ($TMPDIR, else /tmp).
+  std::error_code tmp_ec;
+  const fs::path tmp_dir = fs::temp_directory_path(tmp_ec);
+  WAAM_THROW_UNLESS(!tmp_ec, "no temporary folder for the Dask driver's errors: " << tmp_ec.message());
+  std::string error_template = (tmp_dir / "waam_dask_error_XXXXXX").string();
+  const int fd = mkstemp(error_template.data());
+  WAAM_THROW_UNLESS(fd >= 0, "cannot create a temporary file in " << tmp_dir.string() << ": " << std::strerror(errno));
   close(fd);
+  const char* const error_file = error_template.c_str();
 
   std::vector<std::string> args = {python, driver.string(), "--scheduler", scheduler, "--waam", options.waam_binary,
                                    "--sweep", sweep.file.string(), "--cwd", fs::current_path().string(),

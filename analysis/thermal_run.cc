@@ -76,13 +76,15 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   // The deposit may grow one cell beyond its planned beads (the solver snaps beads to its cells).
   s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - Eigen::Vector3d::Constant(thermal.cell_mm),
                                          beads.max() + Eigen::Vector3d::Constant(thermal.cell_mm));
-  for (const ThermalProbe& probe : thermal.probes) {
-    WAAM_THROW_UNLESS(s.substrate_box_mm.contains(probe.p_mm) || s.deposit_box_mm.contains(probe.p_mm),
-                      probe.where << " = [" << probe.p_mm.x() << ", " << probe.p_mm.y() << ", " << probe.p_mm.z()
-                                  << "]: outside the plate " << BoxText(s.substrate_box_mm) << " and the part "
-                                  << BoxText(s.deposit_box_mm) << "; a probe must lie in the metal");
-  }
+  for (const ThermalProbe& probe : thermal.probes) CheckProbeInMetal(s, probe.p_mm, probe.where);
   return s;
+}
+
+void CheckProbeInMetal(const twin::ThermalSettings& settings, const Eigen::Vector3d& p_mm, const std::string& where) {
+  WAAM_THROW_UNLESS(settings.substrate_box_mm.contains(p_mm) || settings.deposit_box_mm.contains(p_mm),
+                    where << " = [" << p_mm.x() << ", " << p_mm.y() << ", " << p_mm.z() << "]: outside the plate "
+                          << BoxText(settings.substrate_box_mm) << " and the part " << BoxText(settings.deposit_box_mm)
+                          << "; a probe must lie in the metal");
 }
 
 namespace {

@@ -77,6 +77,10 @@ using TimelineBuilder = std::function<planner::Timeline(const std::vector<double
 // plan's beads. Throws InputError for a probe outside both the plate and the part.
 twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner::Plan& plan);
 
+// Throws InputError naming `where` (a scenario key) when the probe at `p_mm` lies in neither the plate nor the deposit
+// box of `settings`: "KEY = [x, y, z]: outside the plate [...] and the part [...]; a probe must lie in the metal".
+void CheckProbeInMetal(const twin::ThermalSettings& settings, const Eigen::Vector3d& p_mm, const std::string& where);
+
 // Runs the thermal model along the plan's timeline: Weld for arc-on spans (heat = process.arc efficiency x power),
 // a zero-length Weld for arc start and arc end (the arc burns where the torch stands), Cool for travel, positioner
 // and wait spans; before each layer after the first, cools until process.interpass holds. Returns the timeline

@@ -12,28 +12,13 @@
 #include "models/core/numbers.h"
 #include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
+#include "tests/planner/program_files.h"
 #include "planner/timeline/timeline.h"
 
 namespace waam::planner {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-CellKinematics GcodeTestCell() {
-  CellKinematics cell;
-  cell.arm = OpwArm::ArcMate100iC12();
-  cell.X_FT.translation() = Eigen::Vector3d(400.0, 0.0, 0.0);
-  cell.X_FT.linear() << 0, 0, 1, 0, -1, 0, 1, 0, 0;
-  cell.X_WB.translation() = Eigen::Vector3d(1050.0, 0.0, 0.0);
-  return cell;
-}
-
-const ProgramWarning* GcodeWarning(const ParsedProgram& program, const std::string& text) {
-  for (const ProgramWarning& w : program.warnings) {
-    if (w.what.find(text) != std::string::npos) return &w;
-  }
-  return nullptr;
-}
 
 std::string GcodeError(const std::string& text, const GcodeReadOptions& options = {}) {
   try {
@@ -53,10 +38,10 @@ GcodeReadOptions PerSecond() {
 TEST(GcodeGrammarTest, BarOnPlateTimelineIsPathOverFeedPlusDwells) {
   const std::string text = ReadFile(fs::path(WAAM_SOURCE_DIR) / "tests/data/programs/bar_on_plate.gcode");
   const ParsedProgram program = ReadGcode(text, "bar_on_plate.gcode", PerSecond());
-  EXPECT_EQ(GcodeWarning(program, "look like"), nullptr) << "F8 read as mm/s";
+  EXPECT_EQ(testing::FindProgramWarning(program, "look like"), nullptr) << "F8 read as mm/s";
   ImportSettings import;
   import.bead_height_mm = 1.8;
-  const ImportedPlan imported = ProgramToPlan(program, GcodeTestCell(), import);
+  const ImportedPlan imported = ProgramToPlan(program, testing::ProgramTestCell(), import);
   ASSERT_EQ(imported.plan.layers.size(), 5u);
   TimelineSettings settings;
   settings.arc_start_s = 0.0;
@@ -79,7 +64,7 @@ TEST(GcodeGrammarTest, BarOnPlateTimelineIsPathOverFeedPlusDwells) {
   }
   // Read as mm/min the same program welds 60 times slower, and says the feeds look like mm/s.
   const ParsedProgram per_min = ReadGcode(text, "bar_on_plate.gcode");
-  EXPECT_NE(GcodeWarning(per_min, "look like mm/s"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(per_min, "look like mm/s"), nullptr);
 }
 
 TEST(GcodeGrammarTest, WordsCommentsLineNumbersAndChecksums) {
@@ -96,7 +81,7 @@ TEST(GcodeGrammarTest, WordsCommentsLineNumbersAndChecksums) {
   EXPECT_EQ(p.motions[1].line, 4);
   EXPECT_EQ(p.motions[2].X_UT.translation(), Eigen::Vector3d(5, 6, 3)) << "ISG's X= and modal G1 and F";
   EXPECT_NEAR(p.motions[2].speed_mm_s, 10.0, 1e-12);
-  EXPECT_NE(GcodeWarning(p, "block delete"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(p, "block delete"), nullptr);
   EXPECT_TRUE(p.warnings.size() == 1u) << p.warnings.size() << " warnings; M117's text is a message";
 }
 
@@ -111,11 +96,11 @@ TEST(GcodeGrammarTest, ModesUnitsRelativeAndG92) {
   EXPECT_NEAR(p.motions[1].X_UT.translation().x(), 50.8, 1e-12) << "G91: one inch on";
   EXPECT_NEAR(p.motions[2].X_UT.translation().x(), 60.8, 1e-12) << "G92 X0 at 50.8 mm: X10 is 60.8 mm";
   EXPECT_NEAR(p.motions[3].X_UT.translation().x(), 10.0, 1e-12) << "G92.1 clears the offset";
-  const ProgramWarning* t = GcodeWarning(p, "T1 tool select");
+  const ProgramWarning* t = testing::FindProgramWarning(p, "T1 tool select");
   ASSERT_NE(t, nullptr);
   EXPECT_EQ(t->count, 2) << "one warning, counted";
-  EXPECT_NE(GcodeWarning(p, "word B not executed"), nullptr);
-  EXPECT_NE(GcodeWarning(p, "after the program's end"), nullptr) << "M30 ends the program";
+  EXPECT_NE(testing::FindProgramWarning(p, "word B not executed"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(p, "after the program's end"), nullptr) << "M30 ends the program";
 }
 
 // The centre of the circle through three points (in their plane).
@@ -191,7 +176,7 @@ TEST(GcodeGrammarTest, ArcSignalsOfTheWaamDialects) {
     EXPECT_FALSE(p.motions[0].weld) << d.text;
     EXPECT_TRUE(p.motions[1].weld) << d.text;
     EXPECT_FALSE(p.motions[2].weld) << d.text;
-    EXPECT_EQ(GcodeWarning(p, d.on[0].substr(0, d.on[0].find(' ')) + " not executed"), nullptr) << d.text;
+    EXPECT_EQ(testing::FindProgramWarning(p, d.on[0].substr(0, d.on[0].find(' ')) + " not executed"), nullptr) << d.text;
   }
   // M62 P2 is another output: warned, the arc stays off.
   GcodeReadOptions m62;
@@ -213,15 +198,15 @@ TEST(GcodeGrammarTest, DwellUnitsAndStatementsTheTwinDoesNotRun) {
   const std::string text = "G0 X0 Y0 Z1\nG4 P30\nG4 X1.5\nG4 F2\n#TRAFO ON\nTRAORI\nO100 SUB\nG1 X1 F60\n";
   const ParsedProgram ms = ReadGcode(text, "dwell.nc");
   EXPECT_NEAR(ms.motions[0].dwell_s, 0.03 + 1.5 + 2.0, 1e-12) << "P ms, FANUC X s, Sinumerik F s";
-  EXPECT_NE(GcodeWarning(ms, "dwell_p_unit: s"), nullptr) << "P30 as 30 ms looks like seconds";
+  EXPECT_NE(testing::FindProgramWarning(ms, "dwell_p_unit: s"), nullptr) << "P30 as 30 ms looks like seconds";
   for (const char* what : {"statement #TRAFO", "statement TRAORI", "statement O"}) {
-    EXPECT_NE(GcodeWarning(ms, what), nullptr) << what;
+    EXPECT_NE(testing::FindProgramWarning(ms, what), nullptr) << what;
   }
   GcodeReadOptions seconds;
   seconds.dwell_p_unit = GcodeDwellUnit::kS;
   const ParsedProgram s = ReadGcode(text, "dwell.nc", seconds);
   EXPECT_NEAR(s.motions[0].dwell_s, 30.0 + 1.5 + 2.0, 1e-12);
-  EXPECT_EQ(GcodeWarning(s, "dwell_p_unit"), nullptr);
+  EXPECT_EQ(testing::FindProgramWarning(s, "dwell_p_unit"), nullptr);
 }
 
 TEST(GcodeGrammarTest, WhatTheControllerRefusesIsRefusedOnOneLine) {

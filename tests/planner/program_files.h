@@ -7,6 +7,7 @@
 #include <string>
 
 #include "models/core/files.h"
+#include "planner/program/program_plan.h"
 #include "planner/program/program_reader.h"
 
 namespace waam::planner::testing {
@@ -28,6 +29,25 @@ inline ParsedProgram ReadProgramFile(const std::filesystem::path& path, std::opt
   }
   if (program.name.empty()) program.name = path.stem().string();
   return program;
+}
+
+// The FANUC ARC Mate 100iC/12 cell the reader tests plan programs on: the torch 400 mm along the flange, pointing
+// along the flange's x, the robot base 1050 mm from the world origin.
+inline CellKinematics ProgramTestCell() {
+  CellKinematics cell;
+  cell.arm = OpwArm::ArcMate100iC12();
+  cell.X_FT.translation() = Eigen::Vector3d(400.0, 0.0, 0.0);
+  cell.X_FT.linear() << 0, 0, 1, 0, -1, 0, 1, 0, 0;
+  cell.X_WB.translation() = Eigen::Vector3d(1050.0, 0.0, 0.0);
+  return cell;
+}
+
+// The first warning of `program` whose text contains `text`, or null.
+inline const ProgramWarning* FindProgramWarning(const ParsedProgram& program, const std::string& text) {
+  for (const ProgramWarning& w : program.warnings) {
+    if (w.what.find(text) != std::string::npos) return &w;
+  }
+  return nullptr;
 }
 
 }  // namespace waam::planner::testing

@@ -23,22 +23,6 @@ using testing::ReadProgramFile;
 
 fs::path GrammarFixture(const char* name) { return fs::path(WAAM_SOURCE_DIR) / "tests" / "data" / "programs" / name; }
 
-CellKinematics GrammarTestCell() {
-  CellKinematics cell;
-  cell.arm = OpwArm::ArcMate100iC12();
-  cell.X_FT.translation() = Eigen::Vector3d(400.0, 0.0, 0.0);
-  cell.X_FT.linear() << 0, 0, 1, 0, -1, 0, 1, 0, 0;
-  cell.X_WB.translation() = Eigen::Vector3d(1050.0, 0.0, 0.0);
-  return cell;
-}
-
-const ProgramWarning* GrammarWarning(const ParsedProgram& program, const std::string& text) {
-  for (const ProgramWarning& w : program.warnings) {
-    if (w.what.find(text) != std::string::npos) return &w;
-  }
-  return nullptr;
-}
-
 std::string GrammarReplace(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
@@ -84,12 +68,12 @@ TEST(ProgramGrammarTest, FanucArcToolExportWithWeldScheduleSpeedsAndUnnumberedSt
   EXPECT_EQ(program.motions[2].speed_mm_s, 0.0) << "WELD_SPEED: the weld schedule's, not in the program";
   EXPECT_NEAR(program.motions[6].speed_mm_s, 12.0, 1e-12);
   EXPECT_EQ(program.motions[6].kind, MotionKind::kCircular);
-  const ProgramWarning* schedule = GrammarWarning(program, "WELD_SPEED");
+  const ProgramWarning* schedule = testing::FindProgramWarning(program, "WELD_SPEED");
   ASSERT_NE(schedule, nullptr);
   EXPECT_EQ(schedule->count, 4);
-  ASSERT_NE(GrammarWarning(program, "WEAVE"), nullptr);
-  EXPECT_EQ(GrammarWarning(program, "WEAVE")->count, 2);
-  EXPECT_NE(GrammarWarning(program, "R[4]"), nullptr);
+  ASSERT_NE(testing::FindProgramWarning(program, "WEAVE"), nullptr);
+  EXPECT_EQ(testing::FindProgramWarning(program, "WEAVE")->count, 2);
+  EXPECT_NE(testing::FindProgramWarning(program, "R[4]"), nullptr);
   // WAIT 45.00(sec) after the bead's end P[4]; WAIT 1.50(sec) after P[9].
   EXPECT_NEAR(program.motions[3].dwell_s, 45.0, 1e-12);
   EXPECT_NEAR(program.motions[7].dwell_s, 1.5, 1e-12);
@@ -104,7 +88,7 @@ TEST(ProgramGrammarTest, FanucArcToolExportWithWeldScheduleSpeedsAndUnnumberedSt
   // The plan: the weld schedule's speed is the scenario's, the waits are on the points, the tool is UT 5.
   ImportSettings settings;
   settings.weld_speed_mm_s = 5.0;
-  const ImportedPlan imported = ProgramToPlan(program, GrammarTestCell(), settings);
+  const ImportedPlan imported = ProgramToPlan(program, testing::ProgramTestCell(), settings);
   ASSERT_TRUE(imported.plan.X_FT.has_value());
   EXPECT_EQ(imported.plan.tool_name, "UT 5");
   double dwell = 0.0;
@@ -154,10 +138,10 @@ TEST(ProgramGrammarTest, KrlPositionsAreTakenInTheBaseAndToolTheProgramSets) {
   EXPECT_NEAR(program.motions[2].speed_mm_s, 8.0, 1e-9) << "BAS(#CP_PARAMS,0.008): m/s";
   EXPECT_TRUE(program.motions[2].weld);
   EXPECT_NEAR(program.motions[3].dwell_s, 30.0, 1e-12) << "WAIT SEC 30.0 after XP3";
-  EXPECT_NE(GrammarWarning(program, "INTERRUPT"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(program, "INTERRUPT"), nullptr);
 
   // The check moves TOOL_DATA[4]; the home position (joints, FDAT tool 0) is found again with it.
-  const CellKinematics cell = GrammarTestCell();
+  const CellKinematics cell = testing::ProgramTestCell();
   const ImportedPlan imported = ProgramToPlan(program, cell, ImportSettings{});
   ASSERT_TRUE(imported.plan.X_FT.has_value());
   EXPECT_TRUE(imported.plan.X_FT->isApprox(X_FT, 1e-12));
@@ -185,16 +169,16 @@ TEST(ProgramGrammarTest, GcodeDwellsAndFeedUnits) {
   const std::string mm_s = "G21\nG0 X0 Y0 Z2\nM3\nG1 X40 F8\nG4 P1500\nG1 X80 F8\nM5\nG4 S12\nG0 Z30\n";
   const ParsedProgram per_min = ReadGcode(mm_s, "bar.nc");
   EXPECT_NEAR(per_min.motions[1].speed_mm_s, 8.0 / 60.0, 1e-12);
-  ASSERT_NE(GrammarWarning(per_min, "look like mm/s"), nullptr) << "F8 on weld moves: mm/s written as mm/min";
+  ASSERT_NE(testing::FindProgramWarning(per_min, "look like mm/s"), nullptr) << "F8 on weld moves: mm/s written as mm/min";
   GcodeReadOptions options;
   options.feed_unit = GcodeFeedUnit::kMmPerS;
   const ParsedProgram per_s = ReadGcode(mm_s, "bar.nc", options);
-  EXPECT_EQ(GrammarWarning(per_s, "look like"), nullptr);
+  EXPECT_EQ(testing::FindProgramWarning(per_s, "look like"), nullptr);
   ASSERT_EQ(per_s.motions.size(), 4u);
   EXPECT_NEAR(per_s.motions[1].speed_mm_s, 8.0, 1e-12);
   EXPECT_NEAR(per_s.motions[1].dwell_s, 1.5, 1e-12) << "G4 P1500: milliseconds";
   EXPECT_NEAR(per_s.motions[2].dwell_s, 12.0, 1e-12) << "G4 S12: seconds";
-  EXPECT_NE(GrammarWarning(ReadGcode("G1 X1 F400\nM3\nG1 X2 F400\n", "a.nc", options), "look like mm/min"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(ReadGcode("G1 X1 F400\nM3\nG1 X2 F400\n", "a.nc", options), "look like mm/min"), nullptr);
 }
 
 }  // namespace

@@ -25,22 +25,6 @@ using testing::ReadProgramFile;
 
 fs::path Fixture(const char* name) { return fs::path(WAAM_SOURCE_DIR) / "tests" / "data" / "programs" / name; }
 
-CellKinematics ReaderTestCell() {
-  CellKinematics cell;
-  cell.arm = OpwArm::ArcMate100iC12();
-  cell.X_FT.translation() = Eigen::Vector3d(400.0, 0.0, 0.0);
-  cell.X_FT.linear() << 0, 0, 1, 0, -1, 0, 1, 0, 0;
-  cell.X_WB.translation() = Eigen::Vector3d(1050.0, 0.0, 0.0);
-  return cell;
-}
-
-const ProgramWarning* FindWarning(const ParsedProgram& program, const std::string& text) {
-  for (const ProgramWarning& w : program.warnings) {
-    if (w.what.find(text) != std::string::npos) return &w;
-  }
-  return nullptr;
-}
-
 // wall.ls is taught in UF 1, which sits on the FANUC world frame.
 ProgramFrames WallLsFrames() {
   ProgramFrames frames;
@@ -74,23 +58,23 @@ TEST(ProgramReaderTest, FanucLsWallIsReadWithItsWarnings) {
   EXPECT_NEAR(program.motions[8].q[4], -80.0 * kPi / 180.0, 1e-12);
   EXPECT_NEAR(program.motions[2].speed_mm_s, 400.0 / 60.0, 1e-12) << "40cm/min";
   EXPECT_EQ(program.motions[5].speed_mm_s, 0.0) << "R[5]mm/sec: a register, the scenario's speed";
-  const ProgramWarning* call = FindWarning(program, "CALL");
+  const ProgramWarning* call = testing::FindProgramWarning(program, "CALL");
   ASSERT_NE(call, nullptr);
   EXPECT_EQ(call->count, 1);
   EXPECT_EQ(call->first_line, 27);
-  const ProgramWarning* weave = FindWarning(program, "WEAVE");
+  const ProgramWarning* weave = testing::FindProgramWarning(program, "WEAVE");
   ASSERT_NE(weave, nullptr);
   EXPECT_EQ(weave->count, 2);
-  EXPECT_NE(FindWarning(program, "OFFSET"), nullptr);
-  EXPECT_NE(FindWarning(program, "IF"), nullptr);
-  EXPECT_NE(FindWarning(program, "register"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(program, "OFFSET"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(program, "IF"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(program, "register"), nullptr);
 }
 
 TEST(ProgramReaderTest, CircularMovesAreCutIntoChordsOnTheCircle) {
   const ParsedProgram program = ReadWallLs();
   ImportSettings settings;
   settings.arc_step_mm = 1.0;
-  const CellKinematics cell = ReaderTestCell();
+  const CellKinematics cell = testing::ProgramTestCell();
   const ImportedPlan imported = ProgramToPlan(program, cell, settings);
   EXPECT_GT(imported.points, program.motions.size() + 20) << "a 30 mm arc at 1 mm chords";
   // The circle through P[5], P[6], P[7] (user frame): every arc point lies on it, in the plane z = 153.
@@ -122,11 +106,11 @@ TEST(ProgramReaderTest, RapidWallWeldsTheSamePathAsTheFanucWall) {
   EXPECT_EQ(mod.format, ProgramFormat::kAbbRapid);
   EXPECT_EQ(mod.name, "WALL");
   EXPECT_EQ(mod.motions.size(), ls.motions.size()) << "Offs(pEnd2, 0, 0, 40) is followed";
-  EXPECT_EQ(FindWarning(mod, "TORCHCLEAN"), nullptr) << "main calls TorchClean, a PROC of the module";
-  EXPECT_NE(FindWarning(mod, "\\WEAVE"), nullptr);
+  EXPECT_EQ(testing::FindProgramWarning(mod, "TORCHCLEAN"), nullptr) << "main calls TorchClean, a PROC of the module";
+  EXPECT_NE(testing::FindProgramWarning(mod, "\\WEAVE"), nullptr);
   // WaitTime 1 after the retract Offs(pEnd2, 0, 0, 40); TorchClean's WaitTime 0.5 runs before the first motion.
-  EXPECT_EQ(FindWarning(mod, "WAITTIME"), nullptr);
-  EXPECT_NE(FindWarning(mod, "wait before the first motion"), nullptr);
+  EXPECT_EQ(testing::FindProgramWarning(mod, "WAITTIME"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(mod, "wait before the first motion"), nullptr);
   EXPECT_NEAR(mod.motions[mod.motions.size() - 2].dwell_s, 1.0, 1e-12);
   EXPECT_NEAR(mod.motions.back().dwell_s, 0.0, 1e-12);
   // The program's tool: tWeldGun, 400 mm out of the flange.
@@ -134,7 +118,7 @@ TEST(ProgramReaderTest, RapidWallWeldsTheSamePathAsTheFanucWall) {
   EXPECT_EQ(mod.motions[0].tool_name, "tWeldGun");
   EXPECT_LT((mod.motions[0].X_FT.translation() - Eigen::Vector3d(400, 0, 0)).norm(), 1e-9) << "400 mm along the "
                                                                                           "flange normal";
-  const CellKinematics cell = ReaderTestCell();
+  const CellKinematics cell = testing::ProgramTestCell();
   const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
   const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(mod, cell, ImportSettings{}));
   ASSERT_EQ(a.size(), b.size());
@@ -151,11 +135,11 @@ TEST(ProgramReaderTest, KrlWallWeldsTheSamePathAsTheFanucWall) {
   EXPECT_EQ(krl.format, ProgramFormat::kKukaKrl);
   EXPECT_EQ(krl.motions.size(), ls.motions.size());
   // WAIT SEC 1.0 (line 30): the torch waits at XP8, the end of the second layer.
-  EXPECT_EQ(FindWarning(krl, "WAIT"), nullptr);
+  EXPECT_EQ(testing::FindProgramWarning(krl, "WAIT"), nullptr);
   ASSERT_EQ(krl.motions.size(), 9u);
   EXPECT_EQ(krl.motions[6].line, 28);
   EXPECT_NEAR(krl.motions[6].dwell_s, 1.0, 1e-12);
-  const CellKinematics cell = ReaderTestCell();
+  const CellKinematics cell = testing::ProgramTestCell();
   const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
   const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(krl, cell, ImportSettings{}));
   ASSERT_EQ(a.size(), b.size());
@@ -199,10 +183,10 @@ TEST(ProgramReaderTest, JbiWallWeldsTheSamePathAsTheFanucWall) {
   for (const ProgramMotion& m : jbi.motions) timer += m.dwell_s;
   EXPECT_NEAR(timer, 0.3 + 1.0, 1e-12) << "ARCON T=0.30 (the time at the start point), TIMER T=1.00";
   for (const char* what : {"CALL", "WVON", "WVOF", "JUMP"}) {
-    EXPECT_NE(FindWarning(jbi, what), nullptr) << what;
+    EXPECT_NE(testing::FindProgramWarning(jbi, what), nullptr) << what;
   }
-  EXPECT_EQ(FindWarning(jbi, "CALL")->first_line, 29);
-  const CellKinematics cell = ReaderTestCell();
+  EXPECT_EQ(testing::FindProgramWarning(jbi, "CALL")->first_line, 29);
+  const CellKinematics cell = testing::ProgramTestCell();
   const std::vector<PathPoint> a = WeldPoints(ProgramToPlan(ls, cell, ImportSettings{}));
   const std::vector<PathPoint> b = WeldPoints(ProgramToPlan(jbi, cell, ImportSettings{}));
   ASSERT_EQ(a.size(), b.size());
@@ -218,11 +202,11 @@ TEST(ProgramReaderTest, GcodeWallHasItsArcAndWeldsBetweenTheMCodes) {
   EXPECT_EQ(program.format, ProgramFormat::kGcode);
   EXPECT_EQ(program.MotionsByKind().at("circular"), 2u) << "the G3 of about 143 degrees, in two pieces of at most 90";
   // N140 G4 P1: one millisecond at the end of the second layer (N120 G1 X-30), in the plan too.
-  EXPECT_EQ(FindWarning(program, "G4"), nullptr);
+  EXPECT_EQ(testing::FindProgramWarning(program, "G4"), nullptr);
   double dwell = 0.0;
   for (const ProgramMotion& m : program.motions) dwell += m.dwell_s;
   EXPECT_NEAR(dwell, 0.001, 1e-12);
-  const ImportedPlan imported = ProgramToPlan(program, ReaderTestCell(), ImportSettings{});
+  const ImportedPlan imported = ProgramToPlan(program, testing::ProgramTestCell(), ImportSettings{});
   double plan_dwell = 0.0;
   for (const LayerPath& layer : imported.plan.layers) {
     for (const PathPoint& p : layer.points) plan_dwell += p.dwell_s;

@@ -10,17 +10,11 @@
 #include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "planner/program/program_reader.h"
+#include "tests/planner/program_files.h"
 
 namespace waam::planner {
 namespace {
 using ::testing::HasSubstr;
-
-const ProgramWarning* Warned(const ParsedProgram& program, const std::string& text) {
-  for (const ProgramWarning& w : program.warnings) {
-    if (w.what.find(text) != std::string::npos) return &w;
-  }
-  return nullptr;
-}
 
 std::string ErrorOf(const std::function<void()>& read) {
   try {
@@ -90,7 +84,7 @@ TEST(RapidGrammarTest, MainRunsItsProceduresWithTheModulesToolWorkObjectAndData)
   // Set doWeldOn / Reset: the arc on for the MoveL at vBead (8 mm/s, VelSet 4 mm/s); IF's statements run, warned.
   EXPECT_TRUE(p.motions[3].weld);
   EXPECT_NEAR(p.motions[3].speed_mm_s, 4.0, 1e-12);
-  EXPECT_NE(Warned(p, "RAPID IF not followed"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(p, "RAPID IF not followed"), nullptr);
   // RelTool(pA, 0, 0, -10 \Rz:=90): 10 mm back along the tool's z (pA's z points down: 10 mm up), turned about z;
   // \V:=50 in place of v100's speed, VelSet applied.
   const Eigen::Isometry3d& X = p.motions[4].X_UT;
@@ -192,8 +186,8 @@ TEST(InformGrammarTest, UserFramesToolsArcTimesAndCircles) {
   EXPECT_NEAR(p.motions[3].dwell_s, 61.0, 1e-12);
   EXPECT_FALSE(p.motions[4].weld);
   EXPECT_LE(p.motions[4].speed_mm_s, 0.0) << "V=I000: a variable, the scenario's speed";
-  EXPECT_NE(Warned(p, "V=I000"), nullptr);
-  EXPECT_NE(Warned(p, "UNTIL"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(p, "V=I000"), nullptr);
+  EXPECT_NE(testing::FindProgramWarning(p, "UNTIL"), nullptr);
 }
 
 TEST(InformGrammarTest, WhatTheControllerRefusesIsRefusedOnOneLine) {

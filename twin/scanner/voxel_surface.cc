@@ -86,36 +86,12 @@ struct Quad {
   int d, plane, u0, u1, v0, v1;
 };
 
-// Greedy rectangles of one plane's faces (sorted by v, u): from the first face not yet taken, the longest run along
-// u, then as many following rows as hold that whole run untaken. Appends the rectangles to `quads`.
-void MergeRuns(const Face* faces, std::size_t count, std::vector<Quad>* quads) {
-  auto key = [](int u, int v) {
-    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v);
-  };
-  std::unordered_set<std::uint64_t> free;  // faces not yet in a rectangle
-  free.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) free.insert(key(faces[i].u, faces[i].v));
-  for (std::size_t i = 0; i < count; ++i) {
-    const Face& f = faces[i];
-    if (free.erase(key(f.u, f.v)) == 0) continue;
-    int u1 = f.u;
-    while (free.erase(key(u1 + 1, f.v)) != 0) ++u1;
-    int v1 = f.v;
-    for (;;) {
-      bool whole = true;
-      for (int u = f.u; u <= u1 && whole; ++u) whole = free.count(key(u, v1 + 1)) != 0;
-      if (!whole) break;
-      ++v1;
-      for (int u = f.u; u <= u1; ++u) free.erase(key(u, v1));
-    }
-    quads->push_back({f.d, f.plane, f.u, u1, f.v, v1});
-  }
-}
-
-// Greedy rectangles of one plane's faces (sorted by v, u): from the first face not yet taken (a corner: nothing free
-// before it in its row or in any row below), the rectangle of largest area anchored there (the run along u shrinks row
-// by row to the shortest so far; ties keep the wider one). Appends the rectangles to `quads`.
-void MergeLargest(const Face* faces, std::size_t count, std::vector<Quad>* quads) {
+// Greedy rectangles of one plane's faces (sorted by v, u). From the first face not yet taken (a corner: nothing free
+// before it in its row or in any row below) a rectangle anchored there, grown row by row along v over the run of free
+// faces along u: with `largest` false the first row's whole run, for as many rows as hold all of it; with `largest`
+// true the rectangle of largest area, the run shrinking row by row to the shortest so far (ties keep the wider one).
+// Appends the rectangles to `quads`.
+void MergePlane(const Face* faces, std::size_t count, bool largest, std::vector<Quad>* quads) {
   auto key = [](int u, int v) {
     return static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v);
   };
@@ -125,13 +101,13 @@ void MergeLargest(const Face* faces, std::size_t count, std::vector<Quad>* quads
   for (std::size_t i = 0; i < count; ++i) {
     const Face& f = faces[i];
     if (free.count(key(f.u, f.v)) == 0) continue;
-    int width = 0;  // the run of free faces from f.u along u in the current row, no longer than in the rows before
+    int width = 0;  // the run of free faces from f.u along u, no longer than in the rows before
     while (free.count(key(f.u + width, f.v)) != 0) ++width;
     int best_area = width, best_u1 = f.u + width - 1, best_v1 = f.v;
     for (int v = f.v + 1;; ++v) {
       int w = 0;
       while (w < width && free.count(key(f.u + w, v)) != 0) ++w;
-      if (w == 0) break;
+      if (w == 0 || (!largest && w < width)) break;
       width = w;
       if (width * (v - f.v + 1) > best_area) {
         best_area = width * (v - f.v + 1);
@@ -177,8 +153,7 @@ std::vector<Quad> MergeFaces(const std::vector<Face>& faces) {
       candidate.clear();
       const bool along_v = way >= 2;
       const Face* plane = along_v ? swapped.data() : &faces[i];
-      if (way % 2 == 0) MergeRuns(plane, j - i, &candidate);
-      else MergeLargest(plane, j - i, &candidate);
+      MergePlane(plane, j - i, /*largest=*/way % 2 == 1, &candidate);
       if (along_v) {
         for (Quad& q : candidate) {
           std::swap(q.u0, q.v0);
