@@ -5,10 +5,10 @@
 #    and torus PrusaSlicer's package ships (/usr/share/PrusaSlicer/shapes);
 #  - KDL's numerical IK (Debian liborocos-kdl-dev, tools/peers/kdl_vs_opw.cc compiled here, not in the project
 #    build) against waam's closed-form IK on the same arm;
-#  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py) against waam's thermal model
+#  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py, one process) against waam's thermal model
 #    (build/analysis/benchmarks/waam_thermal_peer) on the wall of tools/peers/thermal_wall.json: probe temperatures
-#    (target: within 2 % of the peak rise) and the time ratio; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
-#    problem refined twice (tools/peers/thermal_wall_1mm.json: 1 mm cells, 0.2 s steps; FEniCSx takes ~15x longer).
+#    (target: within 2 % of the peak rise) and the time ratios; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
+#    problem on cells refined twice (1 mm, the same source and 0.4 s steps; FEniCSx takes some 30x longer there).
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
 # Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam). Times are wall clock, one run each;
 # a ratio above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
@@ -100,19 +100,20 @@ g++ -O2 -std=c++20 -I"$repo" -isystem /usr/include/eigen3 tools/peers/kdl_vs_opw
 "$out/kdl_vs_opw" 20000
 
 # FEniCSx and waam's thermal model on the same wall (same cells, step, source, losses; constant properties). The
-# FEniCSx time includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
+# FEniCSx setup includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
 thermal="$repo/tools/peers/thermal_wall.json"
 [ -x build/analysis/benchmarks/waam_thermal_peer ] || cmake --build build --target waam_thermal_peer > /dev/null
 build/analysis/benchmarks/waam_thermal_peer "$thermal" > "$out/thermal_waam.json" ||
   { echo "peers: waam_thermal_peer failed" >&2; exit 1; }
-/usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" > "$out/thermal_fenicsx.json" 2> "$out/thermal_fenicsx.log" ||
-  { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx.log)" >&2; exit 1; }
+OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" > "$out/thermal_fenicsx.json" \
+  2> "$out/thermal_fenicsx.log" || { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx.log)" >&2; exit 1; }
 /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam.json" "$out/thermal_fenicsx.json" "$thermal"
 if [ "${WAAM_PEERS_THERMAL_FINE:-0}" = 1 ]; then
-  fine="$repo/tools/peers/thermal_wall_1mm.json"
-  build/analysis/benchmarks/waam_thermal_peer "$fine" > "$out/thermal_waam_1mm.json" ||
-    { echo "peers: waam_thermal_peer failed on the 1 mm problem" >&2; exit 1; }
-  /usr/bin/python3 tools/peers/thermal_fenicsx.py "$fine" > "$out/thermal_fenicsx_1mm.json" \
-    2> "$out/thermal_fenicsx_1mm.log" || { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx_1mm.log)" >&2; exit 1; }
-  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json" "$fine"
+  echo "the same problem on 1 mm cells (refine 2):"
+  build/analysis/benchmarks/waam_thermal_peer "$thermal" - 2 > "$out/thermal_waam_1mm.json" ||
+    { echo "peers: waam_thermal_peer failed on 1 mm cells" >&2; exit 1; }
+  OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" --refine 2 \
+    > "$out/thermal_fenicsx_1mm.json" 2> "$out/thermal_fenicsx_1mm.log" ||
+    { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx_1mm.log)" >&2; exit 1; }
+  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json" "$thermal"
 fi

@@ -2,12 +2,16 @@
 """FEniCSx peer of waam's thermal model: solves tools/peers/thermal_wall.json and prints probe histories as JSON.
 
 Transient conduction rho cp dT/dt = div(k grad T) + q on the plate + wall (one hexahedral mesh of the problem's
-cell size, trilinear Q1 elements), convection -k dT/dn = h (T - T_ambient) on every boundary face, backward Euler
-with the problem's step (consistent mass matrix, or row-sum lumped with --lumped). The heat source q is the one waam's solver uses: in each step the arc's heat is spread
-evenly over the cells whose centres lie in the bead cross-section (width x height, plus one cell below) along the
-piece of path the arc covers in that step (a DG0 field, so its integral is exactly the arc's power).
-Run with Debian's python3-dolfinx (0.5): /usr/bin/python3 tools/peers/thermal_fenicsx.py tools/peers/thermal_wall.json
-[--lumped]
+cell size, or of that size / --refine; Lagrange elements of --degree, trilinear Q1 by default), convection
+-k dT/dn = h (T - T_ambient) on every boundary face, backward Euler with the problem's step (or --substeps steps in
+each, the source held), consistent mass matrix (row-sum lumped with --lumped). The matrices are assembled once; a step
+is b = M T_old + B q + c and one CG solve (Jacobi by default, --pc; relative tolerance --rtol). The heat source q is
+the one waam's solver uses: in each step the arc's heat is spread evenly over the problem's cells whose centres lie
+in the bead cross-section (width x height, plus one cell below) along the piece of path the arc covers in that step
+(a field constant on each problem cell, so its integral is exactly the arc's power; a refined cell takes the density
+of the problem cell that holds it). Probes are evaluated at their points.
+Run with Debian's python3-dolfinx (0.5), one process:
+OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py tools/peers/thermal_wall.json [options]
 """
 import argparse
 import json
