@@ -10,7 +10,8 @@
 #    (target: within 2 % of the peak rise) and the time ratios; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
 #    problem on cells refined twice (1 mm, the same source and 0.4 s steps; FEniCSx takes some 30x longer there).
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
-# Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam). Times are wall clock, one run each;
+# Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam); WAAM_PEERS_ONLY=thermal runs the
+# FEniCSx comparison alone. Times are wall clock, one run each;
 # a ratio above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,14 +20,17 @@ out="${1:-out/peers}"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 waam="$repo/build/waam"
-[ -x "$waam" ] || { echo "peers: build waam first (build/waam)" >&2; exit 1; }
+only="${WAAM_PEERS_ONLY:-}"
+[ -z "$only" ] || [ "$only" = thermal ] || { echo "peers: WAAM_PEERS_ONLY=$only: must be thermal or unset" >&2; exit 2; }
+[ -n "$only" ] || [ -x "$waam" ] || { echo "peers: build waam first (build/waam)" >&2; exit 1; }
 
 # The peers, installed once.
-if ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ] ||
+if { [ -z "$only" ] && { ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ]; }; } ||
   ! /usr/bin/python3 -c "import dolfinx" 2> /dev/null; then
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  peers=(prusa-slicer liborocos-kdl-dev python3-dolfinx)
+  peers=(python3-dolfinx)
+  [ -n "$only" ] || peers+=(prusa-slicer liborocos-kdl-dev)
   $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1 ||
     { $sudo apt-get update > /dev/null && $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1; }
 fi
@@ -70,6 +74,9 @@ process:
 YAML
 }
 
+echo "peers: $(nproc) hardware threads, load average $(cut -d' ' -f1-3 /proc/loadavg); wall seconds, one run each"
+# PrusaSlicer and KDL (not with WAAM_PEERS_ONLY=thermal).
+if [ -z "$only" ]; then
 "$waam" generate torus --param major_radius_mm=120 --param minor_radius_mm=40 --param major_segments=1224 \
   --param minor_segments=408 -o "$out/torus_1m.stl" > /dev/null
 models=("$out/torus_1m.stl")
@@ -78,7 +85,6 @@ for shape in bunny torus; do
   [ -f "$f" ] && models+=("$f")
 done
 
-echo "peers: $(nproc) hardware threads, load average $(cut -d' ' -f1-3 /proc/loadavg); wall seconds, one run each"
 printf "%-16s %10s" model prusa_s
 for p in continuous hybrid contour zigzag; do printf " %11s %7s" "${p:0:11}_s" ratio; done
 echo
@@ -98,6 +104,7 @@ done
 g++ -O2 -std=c++20 -I"$repo" -isystem /usr/include/eigen3 tools/peers/kdl_vs_opw.cc planner/kinematics/opw_arm.cc \
   planner/kinematics/angles.cc -o "$out/kdl_vs_opw" -lorocos-kdl
 "$out/kdl_vs_opw" 20000
+fi
 
 # FEniCSx and waam's thermal model on the same wall (same cells, step, source, losses; constant properties). The
 # FEniCSx setup includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
