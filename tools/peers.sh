@@ -8,11 +8,11 @@
 #  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py, one process) against waam's thermal model
 #    (build/analysis/benchmarks/waam_thermal_peer) on the wall of tools/peers/thermal_wall.json: probe temperatures
 #    (target: within 2 % of the peak rise) and the time ratios; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
-#    problem on cells refined twice (1 mm, the same source and 0.4 s steps; FEniCSx takes some 30x longer there).
+#    problem on cells refined twice (1 mm, the same source and 0.4 s steps; docs/THERMAL.md, "FEniCSx comparison").
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
 # Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam); WAAM_PEERS_ONLY=thermal runs the
-# FEniCSx comparison alone. Times are wall clock, one run each;
-# a ratio above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
+# FEniCSx comparison alone. Times are wall clock (the thermal comparison also prints CPU time), one run each; a ratio
+# above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo="$PWD"
