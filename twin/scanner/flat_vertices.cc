@@ -4,8 +4,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <numeric>
-#include <unordered_map>
-#include <unordered_set>
+#include <algorithm>
 #include <utility>
 
 namespace waam::twin {
@@ -60,13 +59,12 @@ bool ClipEars(std::vector<int> ring, const std::vector<P3>& p, const P3& n, std:
   return false;
 }
 
-// The mesh being thinned: facets (dead ones flagged), the facets at each vertex, and the set of edges.
+// The mesh being thinned: facets (dead ones flagged) and the live facets at each vertex.
 struct Mesh {
   std::vector<P3> p;
   std::vector<Facet>* facets;
   std::vector<char> dead;
   std::vector<std::vector<int>> at;  // live facets at each vertex
-  std::unordered_set<std::uint64_t> edges;
 };
 
 // The hole vertex v leaves, triangulated in its plane(s): the fan's link as one polygon when its facets are
@@ -75,22 +73,28 @@ struct Mesh {
 std::vector<Facet> Refill(const Mesh& m, int v) {
   const std::vector<Facet>& f = *m.facets;
   // The link: facet (v, a, b) goes a -> b (counter-clockwise round v seen from outside).
-  std::unordered_map<int, std::pair<int, int>> next;  // a -> (b, facet)
+  std::vector<std::array<int, 3>> link;  // (a, b, facet)
   for (int i : m.at[v]) {
     const Facet& t = f[static_cast<std::size_t>(i)];
     const int k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-    if (!next.emplace(t[(k + 1) % 3], std::make_pair(t[(k + 2) % 3], i)).second) return {};  // not one fan
+    const int a = t[(k + 1) % 3];
+    for (const auto& l : link) {
+      if (l[0] == a) return {};  // not one fan
+    }
+    link.push_back({a, t[(k + 2) % 3], i});
   }
   std::vector<int> ring, ring_facet;
-  for (int a = next.begin()->first; ring.size() <= next.size();) {
-    ring.push_back(a);
-    const auto it = next.find(a);
-    if (it == next.end()) return {};
-    ring_facet.push_back(it->second.second);
-    a = it->second.first;
-    if (a == ring.front()) break;
+  for (std::size_t at = 0;;) {
+    ring.push_back(link[at][0]);
+    ring_facet.push_back(link[at][2]);
+    const int b = link[at][1];
+    if (b == ring.front()) break;
+    if (ring.size() == link.size()) return {};
+    at = 0;
+    while (at < link.size() && link[at][0] != b) ++at;
+    if (at == link.size()) return {};
   }
-  if (ring.size() != next.size()) return {};  // two fans meet at v
+  if (ring.size() != link.size()) return {};  // two fans meet at v
   const std::size_t n = ring.size();
   std::vector<P3> normal(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -118,22 +122,34 @@ std::vector<Facet> Refill(const Mesh& m, int v) {
   return fill;
 }
 
-// True when `fill` replaces v's fan without repeating an edge: every edge it adds is new to the mesh and used twice
-// within it (the link's edges are kept, once each).
-bool FitsMesh(const Mesh& m, int v, const std::vector<Facet>& fill) {
-  std::unordered_map<std::uint64_t, int> uses;
-  for (const Facet& t : fill) {
-    for (int c = 0; c < 3; ++c) ++uses[EdgeKey(t[c], t[(c + 1) % 3])];
-  }
-  std::unordered_set<std::uint64_t> link;
-  for (int i : m.at[v]) {
+// True when vertices a and b share a live facet (an edge of the mesh).
+bool Adjacent(const Mesh& m, int a, int b) {
+  for (int i : m.at[static_cast<std::size_t>(a)]) {
     const Facet& t = (*m.facets)[static_cast<std::size_t>(i)];
+    if (t[0] == b || t[1] == b || t[2] == b) return true;
+  }
+  return false;
+}
+
+// True when `fill` replaces a fan without repeating an edge: every edge it adds is new to the mesh and used twice
+// within it (the link's edges are kept, once each).
+bool FitsMesh(const Mesh& m, const std::vector<Facet>& fill) {
+  std::vector<std::pair<std::uint64_t, int>> uses;  // edge, facets of `fill` using it
+  for (const Facet& t : fill) {
     for (int c = 0; c < 3; ++c) {
-      if (t[c] != v && t[(c + 1) % 3] != v) link.insert(EdgeKey(t[c], t[(c + 1) % 3]));
+      const std::uint64_t e = EdgeKey(t[c], t[(c + 1) % 3]);
+      auto it = std::find_if(uses.begin(), uses.end(), [&](const auto& u) { return u.first == e; });
+      if (it == uses.end()) {
+        uses.emplace_back(e, 1);
+      } else {
+        ++it->second;
+      }
     }
   }
   for (const auto& [edge, count] : uses) {
-    if (link.count(edge) != 0 ? count != 1 : (count != 2 || m.edges.count(edge) != 0)) return false;
+    const int a = static_cast<int>(edge >> 32), b = static_cast<int>(edge & 0xffffffffu);
+    // An edge of the link is an edge of the mesh not through v; any other must be new.
+    if (Adjacent(m, a, b) ? count != 1 : count != 2) return false;
   }
   return true;
 }
@@ -143,9 +159,6 @@ void Replace(Mesh* m, int v, const std::vector<Facet>& fill) {
   std::vector<Facet>& f = *m->facets;
   for (int i : m->at[v]) {
     m->dead[static_cast<std::size_t>(i)] = 1;
-    for (int c : f[static_cast<std::size_t>(i)]) {
-      if (c != v) m->edges.erase(EdgeKey(v, c));
-    }
   }
   for (int i : m->at[v]) {
     for (int c : f[static_cast<std::size_t>(i)]) {
@@ -159,10 +172,7 @@ void Replace(Mesh* m, int v, const std::vector<Facet>& fill) {
     const int id = static_cast<int>(f.size());
     f.push_back(t);
     m->dead.push_back(0);
-    for (int c = 0; c < 3; ++c) {
-      m->at[static_cast<std::size_t>(t[c])].push_back(id);
-      m->edges.insert(EdgeKey(t[c], t[(c + 1) % 3]));
-    }
+    for (int c : t) m->at[static_cast<std::size_t>(c)].push_back(id);
   }
 }
 
@@ -175,19 +185,14 @@ std::size_t RemoveFlatVertices(const std::vector<Eigen::Vector3i>& points, std::
   for (const Eigen::Vector3i& q : points) m.p.push_back(q.cast<std::int64_t>());
   m.dead.assign(facets->size(), 0);
   m.at.resize(points.size());
-  m.edges.reserve(2 * facets->size());
   for (std::size_t i = 0; i < facets->size(); ++i) {
-    const Facet& t = (*facets)[i];
-    for (int c = 0; c < 3; ++c) {
-      m.at[static_cast<std::size_t>(t[c])].push_back(static_cast<int>(i));
-      m.edges.insert(EdgeKey(t[c], t[(c + 1) % 3]));
-    }
+    for (int c : (*facets)[i]) m.at[static_cast<std::size_t>(c)].push_back(static_cast<int>(i));
   }
   std::size_t removed = 0;
   for (int v = 0; v < static_cast<int>(points.size()); ++v) {
     if (m.at[static_cast<std::size_t>(v)].size() < 3) continue;
     const std::vector<Facet> fill = Refill(m, v);
-    if (fill.empty() || !FitsMesh(m, v, fill)) continue;
+    if (fill.empty() || !FitsMesh(m, fill)) continue;
     Replace(&m, v, fill);
     ++removed;
   }
