@@ -188,8 +188,8 @@ nlohmann::json WriteCheckOutputs(const Scenario& scenario, const planner::Plan& 
                     planner::ProgramToFanucLs(program, planner::FanucLsOptions{}));
   }
   if (options.images && !report.motion.empty()) {
-    WriteCellPng(cell, kin, plan, report, outputs.Add(options.out_dir / "cell_worst.png"));
-    WriteJointPlots(kin, report, outputs.Add(options.out_dir / "joints.png"));
+    WriteCellPng(cell, kin, plan, report, scenario.name, outputs.Add(options.out_dir / "cell_worst.png"));
+    WriteJointPlots(kin, report, scenario.name, outputs.Add(options.out_dir / "joints.png"));
   }
   nlohmann::json document = CheckPlanToJson(scenario, cell, plan, report);
   if (options.images && options.viewer) {
