@@ -28,7 +28,7 @@ case "$target" in
   program_csv) seeds=$(find tests/data/programs -name '*.csv'); max_len=16384 ;;
   thermal_material) seeds=$(find models/data/materials fuzz/regressions/thermal_material -name '*.csv'); max_len=8192 ;;
   replay_log) seeds=$(find fuzz/seeds/replay_log fuzz/regressions/replay_log -type f ! -name README.md); max_len=8192 ;;
-  *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, urdf, sweep, fanuc_ls, abb_rapid, gcode, program_csv, kuka_krl, yaskawa_jbi, thermal_material)" >&2; exit 2 ;;
+  *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, urdf, sweep, fanuc_ls, abb_rapid, gcode, program_csv, kuka_krl, yaskawa_jbi, thermal_material, replay_log)" >&2; exit 2 ;;
 esac
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
