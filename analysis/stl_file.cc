@@ -29,7 +29,8 @@ void WriteOrThrow(std::ofstream& out, const std::filesystem::path& path) {
 
 }  // namespace
 
-planner::TriangleMesh ReadStl(const std::filesystem::path& path, double weld_tolerance_mm, planner::MeshReport* report) {
+planner::TriangleMesh ReadStl(const std::filesystem::path& path, double weld_tolerance_mm,
+                              planner::MeshReport* report) {
   return planner::ParseStl(ReadFile(path), path, weld_tolerance_mm, report);
 }
 
