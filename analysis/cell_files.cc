@@ -33,16 +33,21 @@ std::string Lower(std::string s) {
 // The assets of one MJCF model, gathered from the model file and the files it includes.
 class MjcfAssets {
  public:
-  explicit MjcfAssets(const fs::path& model) : model_(model), dir_(model.parent_path()) {}
+  explicit MjcfAssets(const fs::path& model) : dir_(model.parent_path()) {}
 
-  // Every file `doc` (the text of `file`) names, read into `out`.
-  void Collect(const tinyxml2::XMLElement* e, const fs::path& file, twin::MjcfSource* out) {
-    const std::string tag = e->Name();
-    if (tag == "compiler") {
+  // The compiler's folders (meshdir, texturedir, assetdir) wherever its element stands in `e`.
+  void Folders(const tinyxml2::XMLElement* e) {
+    if (std::string(e->Name()) == "compiler") {
       for (const char* key : {"meshdir", "texturedir", "assetdir"}) {
         if (const char* v = e->Attribute(key)) dirs_[key] = v;
       }
     }
+    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) Folders(c);
+  }
+
+  // Every file element `e` of `file` (and its children) names, read into `out`.
+  void Collect(const tinyxml2::XMLElement* e, const fs::path& file, twin::MjcfSource* out) {
+    const std::string tag = e->Name();
     static const char* const kTextureFiles[] = {"file",     "fileright", "fileleft", "fileup",
                                                 "filedown", "filefront", "fileback"};
     if (tag == "mesh" || tag == "skin" || tag == "hfield") {
@@ -108,7 +113,7 @@ class MjcfAssets {
     return path;
   }
 
-  fs::path model_, dir_;
+  fs::path dir_;  // the model's folder
   std::map<std::string, std::string> dirs_;  // the compiler's meshdir, texturedir, assetdir
   std::map<std::string, fs::path> seen_;     // lower-case file name -> the file read under it
 };
@@ -193,7 +198,9 @@ twin::MjcfSource ReadMjcf(const fs::path& file) {
   source.xml = ReadFile(source.file);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(source.xml.data(), source.xml.size()) == tinyxml2::XML_SUCCESS && doc.RootElement()) {
-    MjcfAssets(source.file).Collect(doc.RootElement(), source.file, &source);
+    MjcfAssets assets(source.file);
+    assets.Folders(doc.RootElement());
+    assets.Collect(doc.RootElement(), source.file, &source);
   }
   return source;
 }
