@@ -152,7 +152,7 @@ std::vector<double> NativeStepSeconds(const std::string& step, const std::shared
       planner::PlanResult result = analysis::PlanScenarioOrProgram(s, nullptr, &import);
       if (!s.program.present) analysis::AddCellTimeline(s, &result);
     } else {
-      const twin::CellModel cell = twin::LoadCell(s.cell);
+      const twin::CellModel cell = waam::analysis::LoadCell(s.cell);
       const twin::CheckReport report =
           twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, nullptr);
       const nlohmann::json document = analysis::CheckPlanToJson(s, cell, plan->result.plan, report);

@@ -74,7 +74,7 @@ class Vfs {
     const std::string base = fs::path(name).filename().string();
     WAAM_THROW_UNLESS(!base.empty() && base.size() < mjMAXVFSNAME,
                       model.string() << ": the cell model names a file '" << name << "' MuJoCo cannot hold");
-    // MuJoCo refuses an empty file; an empty asset is given one byte of nothing, which no format reads as valid.
+    // MuJoCo's VFS holds no empty file: an empty asset becomes one zero byte, which MuJoCo then refuses to read.
     const int size = std::max<int>(1, static_cast<int>(bytes.size()));
     const int added = mj_makeEmptyFileVFS(vfs_.get(), base.c_str(), size);
     WAAM_THROW_UNLESS(added != 2, model.string() << ": two files the cell model names are called '" << base
