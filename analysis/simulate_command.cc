@@ -2,7 +2,7 @@
 #include "analysis/simulate_command.h"
 
 #include "analysis/scenario.h"
-#include "planner/mesh/stl_io.h"
+#include "analysis/stl_file.h"
 
 #include <sys/resource.h>
 
@@ -199,7 +199,7 @@ nlohmann::json WriteSimulateOutputs(const Scenario& scenario, const planner::Pla
   const auto surface_start = std::chrono::steady_clock::now();
   int factor = 1;
   const planner::TriangleMesh surface = PartSurface(result.depositor.grid(), &factor);
-  planner::WriteStlBinary(surface, outputs.Add(out_dir / "part.stl"), "waam simulate: " + scenario.name);
+  WriteStlBinary(surface, outputs.Add(out_dir / "part.stl"), "waam simulate: " + scenario.name);
   const double surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surface_start).count();
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
   WriteSimulationH5(result, outputs.Add(out_dir / "part.h5"));

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "analysis/cell_files.h"
 #include "analysis/import_command.h"
 #include "analysis/scenario_plan.h"
 #include "analysis/plan_timeline.h"
@@ -106,7 +107,7 @@ nlohmann::json ThermalToJson(const Scenario& scenario, const ThermalRunResult& r
 }
 
 TimelineBuilder TimelineBuilderFor(const Scenario& scenario, const planner::Plan& plan) {
-  auto cell = std::make_shared<const twin::CellModel>(twin::LoadCell(scenario.cell));
+  auto cell = std::make_shared<const twin::CellModel>(LoadCell(scenario.cell));
   return [&scenario, &plan, cell](const std::vector<double>& extra_wait_s) {
     return CellTimeline(scenario, *cell, plan, extra_wait_s);
   };

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "planner/mesh/mesh_ops.h"
+#include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
 #include "tests/twin/test_paths.h"
 #include "twin/deposition/bead_deposition.h"
@@ -23,7 +24,7 @@ namespace {
 // The report the slicer's STL reader gives for `mesh` written to and read back from a binary STL.
 planner::MeshReport ReadBack(const planner::TriangleMesh& mesh, const std::string& name) {
   const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / (name + ".stl");
-  planner::WriteStlBinary(mesh, path, name);
+  analysis::WriteStlBinary(mesh, path, name);
   planner::MeshReport report;
   planner::ParseStl(ReadFile(path), path, 1e-4, &report);
   return report;
@@ -47,7 +48,7 @@ TEST(VoxelSurface, BlockIsTwelveTrianglesWithItsExactVolume) {
   const planner::TriangleMesh mesh = ExtractVoxelSurface(grid);
   EXPECT_EQ(mesh.facets.size(), 12u) << "six faces, two triangles each";
   ExpectClosedManifold(mesh, "block");
-  EXPECT_NEAR(twin::EnclosedVolume(mesh), grid.OccupiedVolume(), 1e-9) << "faces outward around exactly the voxels";
+  EXPECT_NEAR(planner::EnclosedVolume(mesh), grid.OccupiedVolume(), 1e-9) << "faces outward around exactly the voxels";
 }
 
 // A step on the top face puts corners of the upper block on the edges of the lower block's rectangles: T-junctions
@@ -61,7 +62,7 @@ TEST(VoxelSurface, StepsAreSplitWithoutCracks) {
       }
   const planner::TriangleMesh mesh = ExtractVoxelSurface(grid);
   ExpectClosedManifold(mesh, "steps");
-  EXPECT_NEAR(twin::EnclosedVolume(mesh), grid.OccupiedVolume(), 1e-9);
+  EXPECT_NEAR(planner::EnclosedVolume(mesh), grid.OccupiedVolume(), 1e-9);
 }
 
 // Voxels touching along an edge only (a chessboard) would give edges of four facets: filled until manifold.
@@ -76,7 +77,7 @@ TEST(VoxelSurface, EdgeContactsAreMadeManifold) {
       }
   const planner::TriangleMesh mesh = ExtractVoxelSurface(grid);
   ExpectClosedManifold(mesh, "chessboard");
-  EXPECT_GE(twin::EnclosedVolume(mesh), grid.OccupiedVolume() - 1e-9) << "filling only adds voxels";
+  EXPECT_GE(planner::EnclosedVolume(mesh), grid.OccupiedVolume() - 1e-9) << "filling only adds voxels";
 }
 
 // Deposited beads: closed, the voxels' volume within the few filled voxels, and far fewer facets than the
@@ -92,7 +93,7 @@ TEST(VoxelSurface, DepositedBeadsGiveAClosedSurfaceWithFewFacets) {
   const Depositor d = DepositPlan(plan, twin::TestSimulationSettings(), 100.0, nullptr);
   const planner::TriangleMesh mesh = ExtractVoxelSurface(d.grid());
   ExpectClosedManifold(mesh, "beads");
-  EXPECT_NEAR(twin::EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.01 * d.grid().OccupiedVolume());
+  EXPECT_NEAR(planner::EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.01 * d.grid().OccupiedVolume());
   const std::size_t tetra_facets = ExtractSurface(d.grid()).facets.size();
   EXPECT_LT(mesh.facets.size(), tetra_facets / 4) << "greedy mesh " << mesh.facets.size() << " facets, marching "
                                                   << "tetrahedra " << tetra_facets;
