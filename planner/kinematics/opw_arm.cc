@@ -196,7 +196,7 @@ bool SolveWrist(const OpwArm& arm, const IkPose& p, const ShoulderIk& sh, const 
   Joints6 t;
   t << sh.t1, e.t2, e.t3, t4, t5, t6;
   for (int j = 0; j < 6; ++j) sol->q[j] = arm.sign_corrections[j] * (t[j] + arm.offsets[j]);
-  const bool j5_positive = std::remainder(sol->q[4], 2.0 * kPi) > 0.0;
+  const bool j5_positive = (std::abs(sol->q[4]) <= kPi ? sol->q[4] : std::remainder(sol->q[4], 2.0 * kPi)) > 0.0;
   sol->within_limits = true;
   for (int j = 0; j < 6; ++j) {
     const double target = p.seed ? (*p.seed)[j] : 0.0;
@@ -208,7 +208,7 @@ bool SolveWrist(const OpwArm& arm, const IkPose& p, const ShoulderIk& sh, const 
 }
 
 // Distance between two angles modulo 2 pi, in [0, pi], rad.
-double AngleGap(double a) { return std::abs(std::remainder(a, 2.0 * kPi)); }
+double AngleGap(double a) { return std::abs(std::abs(a) <= kPi ? a : std::remainder(a, 2.0 * kPi)); }
 
 }  // namespace
 
