@@ -73,6 +73,7 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   rate.push_back(0.0);
   guess.push_back(0.0);
   chord.push_back(0.0);
+  iterate_h.push_back(0.0);
   depth.push_back(-1);
   bound_start.push_back(0.0);
   bound_end.push_back(0.0);

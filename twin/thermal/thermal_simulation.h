@@ -81,6 +81,9 @@ struct ThermalStats {
   std::size_t active_cells = 0;
   std::size_t steps = 0;          // time steps taken
   std::size_t iterations = 0;     // linear-solver iterations, summed (0 for an explicit method)
+  // Per multirate level (0: the whole model, then finer): linear systems solved (predictor, corrector and chord
+  // re-solves each count) and their cells summed over those solves (cell-solves), and CG iterations.
+  std::vector<std::size_t> level_solves, level_cell_solves, level_iterations;
 };
 
 // The temperature field on the solver's grid (for thermal.h5 and the pictures): cell (i, j, k) is centred at

@@ -69,6 +69,7 @@ struct ArcPiece {
 struct LevelSystem : StencilSystem {
   std::vector<int> cells;                     // active-cell ids of the region, present in the level's interval
   std::vector<double> rhs, source_w, t_new;   // W, W, degC (the step's solution)
+  std::vector<double> base_diagonal, base_rhs; // W/K, W: the diagonal and right-hand side without the capacity's terms
   std::vector<std::array<int, 3>> ijk;        // grid coordinates of the cells (for the multigrid's blocks)
   AdditiveCorrectionMultigrid multigrid;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
@@ -101,7 +102,8 @@ struct ThermalState {
   std::vector<double> conductivity; // W/(m K) at that temperature
   std::vector<double> rate;         // dT/dt over the cell's last step, K/s (extrapolated for the solver's first guess)
   std::vector<double> guess;        // scratch: the solver's first guess, degC
-  std::vector<double> chord;        // scratch: the temperatures of the nonlinear iteration's chords, degC
+  std::vector<double> chord;        // scratch: the nonlinear iteration's temperature T_k = T(H_k), degC
+  std::vector<double> iterate_h;    // scratch: the nonlinear iteration's enthalpy H_k, J/m^3
   std::vector<double> inflow_j;     // energy received through faces solved at finer levels, J, not yet applied
   std::vector<int> depth;           // deepest multirate level whose region holds the cell (-1: none)
   std::vector<double> bound_start, bound_end;  // Dirichlet line in time seen by finer levels, degC
