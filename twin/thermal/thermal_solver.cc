@@ -291,7 +291,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
         const double t_k = round == 0 ? s.temperature[c] : s.chord[c];
         const double h_k = round == 0 ? s.enthalpy[c] : s.iterate_h[c];
         const double h = h_k + L.capacity[i] * (L.t_new[i] - t_k);
-        const double t = s.table[s.material[c]].Temperature(h);
+        const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
         const double change = L.t_new[i] - s.temperature[c];
         converged = converged && (finer || std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change));
         s.iterate_h[c] = h;
@@ -367,7 +367,7 @@ void Update(ThermalState& s, int level) {
       const int c = L.cells[i];
       s.enthalpy[c] += dh[i];
       s.inflow_j[c] = 0.0;
-      const double t = s.table[s.material[c]].Temperature(s.enthalpy[c]);
+      const double t = s.table[s.material[c]].Temperature(s.enthalpy[c], L.t_new[i]);
       s.rate[c] = (t - s.temperature[c]) / dt;
       s.temperature[c] = t;
       s.conductivity[c] = s.table[s.material[c]].Conductivity(t);
