@@ -305,6 +305,20 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   }
 }
 
+// Fills the probe records wanted of `cell` at the batch boundaries in (m0, m1] of the level's step, which takes the
+// cell from t_start to t_end (degC): linear in time in between, as the finer levels see the coarser ones' cells.
+// Each request has its own slot, so chunks running in parallel write different values.
+void RecordSamples(ThermalState& s, const LevelSystem& L, int cell, double t_start, double t_end) {
+  const double start = s.batch_start_s[L.m0];
+  const double length = s.batch_start_s[L.m1] - start;
+  for (int r = s.sample_head[cell]; r >= 0; r = s.requests[r].next) {
+    const SampleRequest& q = s.requests[r];
+    if (q.boundary <= L.m0 || q.boundary > L.m1) continue;
+    const double f = q.boundary == L.m1 ? 1.0 : (s.batch_start_s[q.boundary] - start) / length;
+    s.records[q.record][q.probe] = t_start + f * (t_end - t_start);
+  }
+}
+
 // Per-chunk energy accounts of an update, J.
 struct UpdateAccount {
   double input = 0.0, convection = 0.0, radiation = 0.0, table = 0.0;
@@ -368,6 +382,7 @@ void Update(ThermalState& s, int level) {
       s.enthalpy[c] += dh[i];
       s.inflow_j[c] = 0.0;
       const double t = s.table[s.material[c]].Temperature(s.enthalpy[c], L.t_new[i]);
+      if (s.sample_head[c] >= 0) RecordSamples(s, L, c, s.temperature[c], t);
       s.rate[c] = (t - s.temperature[c]) / dt;
       s.temperature[c] = t;
       s.conductivity[c] = s.table[s.material[c]].Conductivity(t);
@@ -408,6 +423,8 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   for (int m = m0; m < m1; ++m) L.seconds += s.batch[m].seconds;
   const double start = s.time_s + s.batch_start_s[m0];
   L.end_time_s = start + L.seconds;
+  L.m0 = m0;
+  L.m1 = m1;
   s.level_interval[level] = {start, L.end_time_s};
   // First guess: each cell's last rate of change carried over the step (the far field changes smoothly).
   for (int c : candidates) s.guess[c] = s.temperature[c] + s.rate[c] * L.seconds;
@@ -469,7 +486,21 @@ void SolveBatch(ThermalState& s) {
   std::vector<int> all(s.grid_of.size());
   for (std::size_t c = 0; c < all.size(); ++c) all[c] = static_cast<int>(c);
   std::vector<int> local_of(all.size(), kNoCell);
+  // The probe records wanted inside the batch: the cell each reads at its time, and its requests.
+  s.requests.clear();
+  for (const auto& [boundary, record] : s.batch_marks) {
+    for (std::size_t p = 0; p < s.probe_mm.size(); ++p) {
+      const int cell = ProbeCell(s, s.probe_mm[p], boundary);
+      if (cell == kNoCell) continue;  // no metal there yet: the record keeps NaN
+      s.requests.push_back({cell, boundary, record, static_cast<int>(p), s.sample_head[cell]});
+      s.sample_head[cell] = static_cast<int>(s.requests.size()) - 1;
+    }
+    s.record_done[record] = 1;
+  }
+  s.batch_marks.clear();
   Advance(s, 0, all, 0, steps, local_of);
+  for (const SampleRequest& q : s.requests) s.sample_head[q.cell] = -1;
+  s.requests.clear();
   for (int& b : s.born) b = -1;
   s.time_s += s.batch_start_s[steps];
   s.last_step_s = s.batch.back().seconds;
