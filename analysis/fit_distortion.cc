@@ -83,11 +83,8 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   const double rapid_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
   const twin::TwinResult build = [&] {
     Progress progress("deposit", 0, "passes", options.quiet);
-    return twin::SimulateBuild(plan, nullptr, scenario.simulation, rapid_mm_s, scenario.path.bead_width_mm,
-                               [&](std::size_t done, std::size_t total) {
-                                 progress.SetTotal(total);
-                                 progress.Update(done);
-                               });
+    return twin::MeasureBuild(plan, twin::DepositPlan(plan, scenario.simulation, rapid_mm_s, &progress), nullptr,
+                              scenario.path.bead_width_mm);
   }();
   const twin::DepositHistory history(plan, build.depositor, scenario.simulation, rapid_mm_s,
                                      scenario.process.wire_feed_mm_min / 60.0);
