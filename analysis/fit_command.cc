@@ -82,7 +82,7 @@ void internal::PrintStats(std::ostream& out, const m::FitStats& s, const std::st
 }
 
 void internal::PrintSolver(std::ostream& out, const m::SolverReport& r) {
-  out << "  solver   = Ceres " << r.termination << ", " << r.iterations << " iterations, "
+  out << "  solver   = Ceres " << NameOf(r.termination) << ", " << r.iterations << " iterations, "
       << std::setprecision(3) << r.seconds * 1e3 << " ms\n";
 }
 

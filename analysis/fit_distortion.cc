@@ -129,11 +129,11 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
       {"solver", models::ToJson(result.solver)},
   };
   // A fit Ceres stopped short of convergence (iteration limit, failure) is not written: its parameters are not a fit.
-  bool ok = result.solver.usable && result.solver.termination == "CONVERGENCE";
+  bool ok = result.solver.usable && result.solver.termination == models::SolverTermination::kConvergence;
   std::string message;
   if (!ok) {
     std::ostringstream why;
-    why << "Ceres " << result.solver.termination << " after " << result.solver.iterations << " iterations ("
+    why << "Ceres " << NameOf(result.solver.termination) << " after " << result.solver.iterations << " iterations ("
         << result.solver.message << "); rms " << result.rms_mm
         << " mm. Check that the scan is of this scenario's part, aligned in its part frame, or raise --max-iter";
     message = why.str();

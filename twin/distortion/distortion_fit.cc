@@ -183,7 +183,7 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   DistortionFitResult result;
   result.points = used.size();
   result.solver.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
-  result.solver.termination = ceres::TerminationTypeToString(summary.termination_type);
+  result.solver.termination = models::TerminationNamed(ceres::TerminationTypeToString(summary.termination_type));
   result.solver.message = summary.message;
   result.solver.iterations = static_cast<int>(summary.iterations.size());
   result.solver.initial_cost = summary.initial_cost;
