@@ -28,16 +28,9 @@ constexpr double kStlSpacingMm = 0.5;
 // written by `waam compensate` is of the very part this fit deposits.
 constexpr double kReferenceSpacingMm = 2.0;
 
-double Value(const models::DistortionParams& p, const std::string& name) {
-  if (name == "strain") return p.strain;
-  if (name == "heat_exponent") return p.heat_exponent;
-  if (name == "vertical_ratio") return p.vertical_ratio;
-  return p.substrate_stiffness_n_mm3;
-}
-
-std::string Join(const std::vector<std::string>& items) {
+std::string Join(const std::vector<models::DistortionParam>& items) {
   std::string s;
-  for (const std::string& item : items) s += (s.empty() ? "" : ",") + item;
+  for (const models::DistortionParam item : items) s += (s.empty() ? "" : ",") + std::string(NameOf(item));
   return s;
 }
 
@@ -62,7 +55,10 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   twin::ValidateDistortionOptions(distortion);
   start.mode = distortion.mode;
   twin::DistortionFitOptions fit;
-  fit.free = options.free;
+  fit.free.clear();
+  for (const std::string& name : options.free) {
+    fit.free.push_back(models::ParseDistortionParam(name, "distortion fit: free parameter"));
+  }
   fit.max_points = options.max_points;
   fit.max_iterations = options.max_iterations;
   twin::ValidateDistortionFitOptions(fit, distortion.mode);
@@ -98,8 +94,9 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
 
   out << std::setprecision(6);
   nlohmann::json start_json, fitted_json;
-  for (const std::string& name : fit.free) {
-    const double a = Value(start, name), b = Value(result.params, name);
+  for (const models::DistortionParam param : fit.free) {
+    const std::string name(NameOf(param));
+    const double a = models::ParamValue(start, param), b = models::ParamValue(result.params, param);
     start_json[name] = a;
     fitted_json[name] = b;
     out << "  " << std::left << std::setw(26) << name << std::right << " = " << b << "  (start " << a << ")\n";
