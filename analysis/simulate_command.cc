@@ -146,16 +146,12 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
   const twin::SimulationSettings& settings = scenario.simulation;
   CheckVoxelBudget(scenario, planned.plan);
   twin::TwinResult result = [&] {
-    std::optional<Progress> progress;  // created once the number of passes is known
-    twin::TwinResult r = twin::SimulateBuild(
-        planned.plan, planned.mesh.facets.empty() ? nullptr : &planned.mesh, settings,
-        scenario.process.rapid_speed_mm_min / 60.0, scenario.path.bead_width_mm,
-        [&](std::size_t done, std::size_t total) {
-          if (!progress) progress.emplace("deposit", total, "passes", options.quiet);
-          progress->Update(done);
-        });
-    if (progress) progress->Finish();
-    return r;
+    Progress progress("deposit", 0, "passes", options.quiet);
+    twin::Depositor depositor =
+        twin::DepositPlan(planned.plan, settings, scenario.process.rapid_speed_mm_min / 60.0, &progress);
+    progress.Finish();
+    return twin::MeasureBuild(planned.plan, std::move(depositor), planned.mesh.facets.empty() ? nullptr : &planned.mesh,
+                              scenario.path.bead_width_mm);
   }();
   WriteSimulateOutputs(scenario, planned, result, options.out_dir, options.images);
   return result;

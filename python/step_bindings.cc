@@ -118,13 +118,10 @@ std::shared_ptr<SimulateHolder> Simulate(const std::shared_ptr<const ScenarioHol
     const analysis::Scenario& s = scn->scenario;
     const planner::PlanResult& planned = plan->result;
     analysis::CheckVoxelBudget(s, planned.plan);
-    std::optional<Progress> bar;
-    h->result.emplace(twin::SimulateBuild(planned.plan, planned.mesh.facets.empty() ? nullptr : &planned.mesh,
-                                    s.simulation, s.process.rapid_speed_mm_min / 60.0, s.path.bead_width_mm,
-                                    [&](std::size_t done, std::size_t total) {
-                                      if (!bar) bar.emplace("deposit", total, "passes", /*quiet=*/true);
-                                      bar->Update(done);
-                                    }));
+    Progress bar("deposit", 0, "passes", /*quiet=*/true);
+    twin::Depositor depositor = twin::DepositPlan(planned.plan, s.simulation, s.process.rapid_speed_mm_min / 60.0, &bar);
+    h->result.emplace(twin::MeasureBuild(planned.plan, std::move(depositor),
+                                         planned.mesh.facets.empty() ? nullptr : &planned.mesh, s.path.bead_width_mm));
     h->document = analysis::SimulationToJson(s, planned, *h->result);
     const twin::VoxelGrid& grid = h->result->depositor.grid();
     h->voxel_mm = grid.voxel_mm();
