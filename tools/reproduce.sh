@@ -547,8 +547,16 @@ check_bench() {
   # One core: the check's parallel loops get one thread.
   local one=()
   command -v taskset >/dev/null && one=(taskset -c 0)
-  "${one[@]}" "$bench" --benchmark_format=json --benchmark_out="$out/check_bench.json" >/dev/null
-  python3 - "$out/check_bench.json" <<'PY' | put check_bench
+  WAAM_CHECK_EXPORT="$out/check_fcl" "${one[@]}" "$bench" --benchmark_format=json \
+    --benchmark_out="$out/check_bench.json" >/dev/null
+  # FCL's discrete check of the same motion (tools/peers/fcl_check.cc) when Debian's libfcl-dev is installed
+  # (tools/peers.sh installs it).
+  local fcl=""
+  if [ -f /usr/include/fcl/fcl.h ]; then
+    g++ -O2 -std=c++20 -isystem /usr/include/eigen3 tools/peers/fcl_check.cc -o "$out/fcl_check" -lfcl -lccd
+    fcl=$("${one[@]}" "$out/fcl_check" "$out/check_fcl" 3)
+  fi
+  python3 - "$out/check_bench.json" "$fcl" <<'PY' | put check_bench
 import json, sys
 what = {"BM_CheckBuildHour": "every check (motion, limits, speeds, MuJoCo collisions, torch against the deposit)",
         "BM_MotionBuildHour": "the kinematics alone (positioner angles, closed-form IK, time stamps)",
@@ -565,6 +573,12 @@ for r in json.load(open(sys.argv[1]))["benchmarks"]:
     print("| `%s` | %s | %s | %s | %s | %.0f %s | %s |" % (name, what.get(name, ""), format(r["samples"], ",.0f"),
                                                         queries, clearance, r["cpu_time"], r["time_unit"],
                                                         format(r["samples_per_s"], ",.0f")))
+if sys.argv[2]:
+    f = dict(kv.split("=") for kv in sys.argv[2].split()[1:])
+    n, s = int(f["samples"]), float(f["cpu_s"])
+    print("| `fcl_check` | FCL 0.7's discrete check of the same motion (tools/peers/fcl_check.cc: broadphase, boolean "
+          "narrow phase on the same pairs; poses given, no IK or kinematics) | %s | %s | | %.0f ms | %s |"
+          % (format(n, ",.0f"), format(int(f["narrow_phase"]), ",.0f"), 1000 * s, format(n / s, ",.0f")))
 PY
 }
 
