@@ -155,8 +155,9 @@ PY
 compensation_heat() {
   local d="$out/compensation_heat"
   mkdir -p "$d"
-  # The heat run with the beads only: the strain law refuses this continuous spiral (docs/compensation.md).
-  for s in part_3 part_3_heat; do
+  # part_3_heat with the beads only (its continuous spiral stays above mechanical melting: the strain law refuses
+  # it), part_3_interpass with beads and strains after a 250 degC interpass wait (docs/compensation.md).
+  for s in part_3 part_3_heat part_3_interpass; do
     local extra=(); [ "$s" = part_3_heat ] && extra=(--set thermal.shape.distortion=false)
     /usr/bin/time -f '%e %U %M' -o "$d/$s.time" ./build/waam compensate "scenarios/tubes/$s.yaml" -o "$d/$s" \
       "${extra[@]}" --model models/data/distortion_part1_demo.json --mode reduced --no-program --no-images -q \
@@ -168,7 +169,8 @@ d = sys.argv[1]
 print("| part III | tolerance | build 0 max / p99 / axis | build 1 max / p99 / axis | build 0 vs target | status | user CPU |")
 print("| --- | --- | --- | --- | --- | --- | --- |")
 for s, label in (("part_3", "today (`part_3.yaml`)"),
-                 ("part_3_heat", "heat-shaped beads (`part_3_heat.yaml`, `--set thermal.shape.distortion=false`)")):
+                 ("part_3_heat", "heat-shaped beads (`part_3_heat.yaml`, `--set thermal.shape.distortion=false`)"),
+                 ("part_3_interpass", "heat-shaped beads and strains, 250 degC interpass (`part_3_interpass.yaml`)")):
     j = json.load(open(f"{d}/{s}/compensate.json"))
     it = j["iterations"]
     cell = lambda b: "%.2f / %.2f / %.2f" % (b["max_abs_deviation_mm"], b["p99_abs_deviation_mm"], b["axis_deviation_mm"])
@@ -183,6 +185,14 @@ print(f"Heat run: build {h['build_time_s']:.0f} s, thermal model {h['thermal_wal
       f"layer is laid on {min(ip):.0f}-{max(ip):.0f} degC (mean {sum(ip) / len(ip):.0f}, layers 1-{len(ip)}); "
       f"bead height factor {min(h['bead_height_factor']):.3f}-{max(h['bead_height_factor']):.3f}, width factor "
       f"{min(h['bead_width_factor']):.3f}-{max(h['bead_width_factor']):.3f}.")
+h = json.load(open(f"{d}/part_3_interpass/compensate.json"))["heat"]
+ip, f = h["interpass_c"][1:], h["strain_factor"]
+print()
+print(f"Interpass run: build {h['build_time_s']:.0f} s, thermal model {h['thermal_wall_s']:.1f} s wall; the temperature "
+      f"a layer is laid on {min(ip):.0f}-{max(ip):.0f} degC (mean {sum(ip) / len(ip):.0f}, layers 1-{len(ip)}; "
+      f"reference {h['reference_interpass_c']:.0f} degC, mechanical melting {h['mechanical_melting_c']:.0f} degC); "
+      f"strain factor {min(f):.3f}-{max(f):.3f} (mean {sum(f) / len(f):.3f}); bead height factor "
+      f"{min(h['bead_height_factor']):.3f}-{max(h['bead_height_factor']):.3f}.")
 PY
 }
 

@@ -11,6 +11,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "analysis/cell_files.h"
 #include "planner/kinematics/cell_motion.h"
 #include "models/core/files.h"
 #include "tests/twin/test_plans.h"
@@ -27,7 +28,7 @@ planner::Plan BuildHour() { return twin::testing::RectangleWall(73, 200.0, 150.0
 void BM_CheckBuildHour(benchmark::State& state) {
   const planner::Plan plan = BuildHour();
   const twin::CellSettings settings;
-  const twin::CellModel cell = twin::LoadCell(settings);
+  const twin::CellModel cell = waam::analysis::LoadCell(settings);
   std::size_t samples = 0;
   bool ok = true;
   for (auto _ : state) {
@@ -112,7 +113,7 @@ void BM_CheckBuildHourUrdfArm(benchmark::State& state) {
   settings.robot_urdf = robots / "waam_kr16_support" / "urdf" / "kr16_2.urdf";
   settings.robot_package_paths = {robots};
   settings.positioner_base_mm = {1150.0, 0.0, 0.0};
-  const twin::CellModel cell = twin::LoadCell(settings);
+  const twin::CellModel cell = waam::analysis::LoadCell(settings);
   std::size_t samples = 0, queries = 0;
   bool ok = true;
   double clearance = 0.0;
@@ -144,7 +145,7 @@ BENCHMARK(BM_CheckBuildHourUrdfArm)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecon
 // The kinematics alone: positioner angles and closed-form IK with branch continuity for every sample.
 void BM_MotionBuildHour(benchmark::State& state) {
   const planner::Plan plan = BuildHour();
-  const twin::CellModel cell = twin::LoadCell(twin::CellSettings{});
+  const twin::CellModel cell = waam::analysis::LoadCell(twin::CellSettings{});
   const planner::CellKinematics kin = twin::PartKinematics(cell, twin::CellSettings{});
   planner::MotionOptions options;
   std::size_t samples = 0;
