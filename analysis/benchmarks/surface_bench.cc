@@ -9,7 +9,7 @@
 #include "analysis/scenario.h"
 #include "analysis/scenario_plan.h"
 #include "analysis/simulate_command.h"
-#include "planner/mesh/stl_io.h"
+#include "analysis/stl_file.h"
 #include "twin/scanner/surface_mesh.h"
 #include "twin/scanner/voxel_surface.h"
 #include "twin/simulation.h"
@@ -89,7 +89,7 @@ void BM_PerFaceStl(benchmark::State& state, const std::string& scenario) {
   TriangleMesh mesh;
   for (auto _ : state) {
     mesh = PerFaceMesh(grid);
-    waam::planner::WriteStlBinary(mesh, OutFile());
+    waam::analysis::WriteStlBinary(mesh, OutFile());
   }
   Report(state, mesh);
 }
@@ -101,7 +101,7 @@ void BM_VoxelSurfaceStl(benchmark::State& state, const std::string& scenario) {
   int factor = 1;
   for (auto _ : state) {
     mesh = waam::analysis::PartSurface(grid, &factor);
-    waam::planner::WriteStlBinary(mesh, OutFile());
+    waam::analysis::WriteStlBinary(mesh, OutFile());
   }
   state.counters["voxel_mm"] = factor * grid.voxel_mm();
   Report(state, mesh);
@@ -118,7 +118,7 @@ void BM_TetraStl(benchmark::State& state, const std::string& scenario) {
     factor = 1;
     while (10.0 * faces / (factor * factor) > 5.0e6 && factor < 8) ++factor;
     mesh = factor == 1 ? waam::twin::ExtractSurface(grid) : waam::twin::ExtractSurface(waam::twin::Coarsen(grid, factor));
-    waam::planner::WriteStlBinary(mesh, OutFile());
+    waam::analysis::WriteStlBinary(mesh, OutFile());
   }
   state.counters["voxel_mm"] = factor * grid.voxel_mm();
   Report(state, mesh);
