@@ -5,6 +5,9 @@
 #    and torus PrusaSlicer's package ships (/usr/share/PrusaSlicer/shapes);
 #  - KDL's numerical IK (Debian liborocos-kdl-dev, tools/peers/kdl_vs_opw.cc compiled here, not in the project
 #    build) against waam's closed-form IK on the same arm;
+#  - FCL 0.7 (Debian libfcl-dev, tools/peers/fcl_check.cc compiled here) against `waam check` on the build hour of
+#    BM_CheckBuildHourUrdfArm (URDF mesh arm): the benchmark exports the cell's shapes and the motion's poses, FCL
+#    checks every sample (broadphase + boolean narrow phase, poses given); CPU times of the same run;
 #  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py, one process) against waam's thermal model
 #    (build/analysis/benchmarks/waam_thermal_peer) on the wall of tools/peers/thermal_wall.json: probe temperatures
 #    (target: within 2 % of the peak rise) and the time ratios; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
@@ -25,12 +28,13 @@ only="${WAAM_PEERS_ONLY:-}"
 [ -n "$only" ] || [ -x "$waam" ] || { echo "peers: build waam first (build/waam)" >&2; exit 1; }
 
 # The peers, installed once.
-if { [ -z "$only" ] && { ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ]; }; } ||
+if { [ -z "$only" ] && { ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ] ||
+  [ ! -f /usr/include/fcl/fcl.h ]; }; } ||
   ! /usr/bin/python3 -c "import dolfinx" 2> /dev/null; then
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
   peers=(python3-dolfinx)
-  [ -n "$only" ] || peers+=(prusa-slicer liborocos-kdl-dev)
+  [ -n "$only" ] || peers+=(prusa-slicer liborocos-kdl-dev libfcl-dev)
   $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1 ||
     { $sudo apt-get update > /dev/null && $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1; }
 fi
@@ -104,6 +108,26 @@ done
 g++ -O2 -std=c++20 -I"$repo" -isystem /usr/include/eigen3 tools/peers/kdl_vs_opw.cc planner/kinematics/opw_arm.cc \
   planner/kinematics/angles.cc -o "$out/kdl_vs_opw" -lorocos-kdl
 "$out/kdl_vs_opw" 20000
+
+# FCL's discrete check against waam's (discrete and continuous) on the same motion, CPU times on one core.
+[ -x build/analysis/benchmarks/waam_check_bench ] || cmake --build build --target waam_check_bench > /dev/null
+g++ -O2 -std=c++20 -isystem /usr/include/eigen3 tools/peers/fcl_check.cc -o "$out/fcl_check" -lfcl -lccd
+WAAM_CHECK_EXPORT="$out/fcl" taskset -c 0 build/analysis/benchmarks/waam_check_bench \
+  --benchmark_filter='BM_CheckBuildHourUrdfArm' --benchmark_format=json > "$out/check_bench.json" 2> /dev/null
+fcl_line=$(taskset -c 0 "$out/fcl_check" "$out/fcl" 3)
+/usr/bin/python3 - "$out/check_bench.json" "$fcl_line" << 'PY'
+import json, sys
+runs = {b["name"].split("/")[1]: b for b in json.load(open(sys.argv[1]))["benchmarks"]}
+fcl = dict(kv.split("=") for kv in sys.argv[2].split()[1:])
+fcl_ms, samples = 1000 * float(fcl["cpu_s"]), int(fcl["samples"])
+print(f"check peer: FCL 0.7 discrete {fcl_ms:.0f} ms per build hour ({float(fcl['us_per_sample']):.2f} us/sample, "
+      f"{samples} samples, {fcl['narrow_phase']} narrow-phase pairs, {fcl['contacts']} contacts; poses given)")
+for arg, mode in (("0", "discrete"), ("1", "continuous")):
+    b = runs[arg]
+    ms = b["cpu_time"] if b["time_unit"] == "ms" else b["cpu_time"] / 1e6
+    print(f"check peer: waam {mode:10s} {ms:.0f} ms per build hour ({1000 * ms / b['samples']:.2f} us/sample, "
+          f"IK and every check included), FCL / waam = {fcl_ms / ms:.1f}")
+PY
 fi
 
 # FEniCSx and waam's thermal model on the same wall (same cells, step, source, losses; constant properties). The
