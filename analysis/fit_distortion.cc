@@ -16,7 +16,7 @@
 #include "twin/compensation/compensation.h"
 #include "twin/distortion/deposit_history.h"
 #include "twin/distortion/distortion_fit.h"
-#include "twin/scanner/point_cloud_io.h"
+#include "analysis/point_cloud_file.h"
 #include "twin/simulation.h"
 
 namespace waam::analysis {
@@ -62,7 +62,7 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   fit.max_points = options.max_points;
   fit.max_iterations = options.max_iterations;
   twin::ValidateDistortionFitOptions(fit, distortion.mode);
-  const std::vector<Eigen::Vector3d> scan = twin::ReadPointCloud(options.data, kStlSpacingMm);
+  const std::vector<Eigen::Vector3d> scan = ReadPointCloud(options.data, kStlSpacingMm);
   WAAM_THROW_UNLESS(scan.size() >= 10, options.data.string() << ": the scan has " << scan.size()
                                                              << " points: the fit needs at least 10");
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);

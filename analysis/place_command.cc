@@ -11,6 +11,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "analysis/cell_files.h"
 #include "analysis/import_command.h"
 #include "analysis/scenario_plan.h"
 #include "models/core/error.h"
@@ -322,7 +323,7 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   // One cell model per arm base and positioner yaw (MuJoCo compiles a model per placement), loaded in order.
   CellModels models;
   for (const Layout& layout : result.layouts) {
-    if (!models.count(ModelKey(layout))) models.emplace(ModelKey(layout), twin::LoadCell(ApplyLayout(cell, layout)));
+    if (!models.count(ModelKey(layout))) models.emplace(ModelKey(layout), LoadCell(ApplyLayout(cell, layout)));
   }
 
   // Coarse pass: a subset of the layers at a coarser step, every layout, in parallel over layouts.

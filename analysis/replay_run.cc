@@ -78,6 +78,9 @@ ReplaySimulation SimulateReplay(const ReplayModel& model, const ThermalParameter
   const std::size_t rows = log.time_s.size();
   out.probe_c.assign(model.probes.size(), std::vector<double>(rows, kReplayNaN));
   const bool boundaries = !log.ambient_c.empty() || !log.table_c.empty();
+  // The probes are recorded inside the solver's batches (a TemperatureAt query would end the batch at every row).
+  for (const ReplayProbe& probe : model.probes) sim.AddProbe(probe.at_mm);
+  std::vector<std::size_t> records;
   for (std::size_t i = 0; i < rows && log.time_s[i] <= end_s; ++i) {
     if (i > 0) {
       const double seconds = log.time_s[i] - log.time_s[i - 1];
@@ -93,8 +96,12 @@ ReplaySimulation SimulateReplay(const ReplayModel& model, const ThermalParameter
       sim.SetBoundaryTemperatures(log.ambient_c.empty() ? settings.ambient_c : log.ambient_c[i],
                                   log.table_c.empty() ? settings.table_c : log.table_c[i]);
     }
-    for (std::size_t p = 0; p < model.probes.size(); ++p) out.probe_c[p][i] = sim.TemperatureAt(model.probes[p].at_mm);
+    records.push_back(sim.RecordProbes());
     if (i % 64 == 0) CheckInterrupt();
+  }
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const std::vector<double> values = sim.ProbeRecord(records[i]);
+    for (std::size_t p = 0; p < model.probes.size(); ++p) out.probe_c[p][i] = values[p];
   }
   out.energy = sim.Energy();
   out.stats = sim.Stats();

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "analysis/cell_files.h"
 #include "analysis/check_command.h"
 #include "analysis/import_command.h"
 #include "analysis/scenario_plan.h"
@@ -72,7 +73,7 @@ void SaveCheck(const CheckHolder& check, const fs::path& dir, bool images) {
   options.quiet = true;
   options.images = images;
   options.target = &check.plan->result.mesh;
-  const twin::CellModel cell = twin::LoadCell(check.scenario->scenario.cell);
+  const twin::CellModel cell = waam::analysis::LoadCell(check.scenario->scenario.cell);
   analysis::WriteCheckOutputs(check.scenario->scenario, check.plan->result.plan, cell, check.report, options);
 }
 
@@ -95,7 +96,7 @@ std::shared_ptr<CheckHolder> Check(const std::shared_ptr<const ScenarioHolder>& 
     h->scenario = scn;
     h->plan = plan;
     const analysis::Scenario& s = scn->scenario;
-    const twin::CellModel cell = twin::LoadCell(s.cell);
+    const twin::CellModel cell = waam::analysis::LoadCell(s.cell);
     Progress bar("check", 0, "samples", /*quiet=*/true);
     h->report = twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, &bar);
     h->document = analysis::CheckPlanToJson(s, cell, plan->result.plan, h->report);
@@ -148,7 +149,7 @@ std::vector<double> NativeStepSeconds(const std::string& step, const std::shared
       planner::PlanResult result = analysis::PlanScenarioOrProgram(s, nullptr, &import);
       if (!s.program.present) analysis::AddCellTimeline(s, &result);
     } else {
-      const twin::CellModel cell = twin::LoadCell(s.cell);
+      const twin::CellModel cell = waam::analysis::LoadCell(s.cell);
       const twin::CheckReport report =
           twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, nullptr);
       const nlohmann::json document = analysis::CheckPlanToJson(s, cell, plan->result.plan, report);

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include <benchmark/benchmark.h>
 
@@ -88,6 +89,14 @@ void BM_ThermalBuildHour(benchmark::State& state) {
     state.counters["active_cells"] = static_cast<double>(stats.active_cells);
     state.counters["steps"] = static_cast<double>(stats.steps);
     state.counters["iterations"] = static_cast<double>(stats.iterations);
+    // Per multirate level: cells x solves (millions), solves, and CG iterations per solve.
+    for (std::size_t l = 0; l < stats.level_solves.size(); ++l) {
+      const std::string level = "L" + std::to_string(l);
+      const double solves = static_cast<double>(stats.level_solves[l]);
+      state.counters[level + "_Mcell_solves"] = static_cast<double>(stats.level_cell_solves[l]) * 1e-6;
+      state.counters[level + "_solves"] = solves;
+      state.counters[level + "_it_per_solve"] = solves > 0 ? static_cast<double>(stats.level_iterations[l]) / solves : 0.0;
+    }
     state.counters["wall_s"] = seconds;
     state.counters["peak_rss_mb"] = PeakRssMb();
     state.counters["energy_error"] = energy.RelativeError();

@@ -27,7 +27,7 @@
 #include "twin/distortion/deposit_history.h"
 #include "twin/scanner/mesh_distance.h"
 #include "twin/scanner/point_hash.h"
-#include "twin/scanner/point_cloud_io.h"
+#include "twin/scanner/surface_sample.h"
 #include "twin/scanner/surface_mesh.h"
 #include "twin/compensation/compensation_internal.h"
 

@@ -1,6 +1,7 @@
 // The thermal model's grid: which cells hold plate or deposit, switching cells on as beads are laid, and the cells
 // each piece of bead heats (the uniform bead rule, or Goldak's double ellipsoid of heat_source.h).
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include "models/core/error.h"
@@ -73,10 +74,12 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   rate.push_back(0.0);
   guess.push_back(0.0);
   chord.push_back(0.0);
+  iterate_h.push_back(0.0);
   depth.push_back(-1);
   bound_start.push_back(0.0);
   bound_end.push_back(0.0);
   bound_level.push_back(0);
+  sample_head.push_back(-1);
   active_of[grid] = id;
   std::array<int, 6> links;
   const Eigen::Vector3i c = CellIndex(grid);
@@ -236,6 +239,28 @@ std::vector<std::pair<int, double>> HeatPiece(ThermalState& s, const ArcPiece& p
                                           c + Eigen::Vector3d::Constant(0.5 * s.dx_mm)));
   }
   return shares;
+}
+
+int ProbeCell(const ThermalState& s, const Eigen::Vector3d& p_mm, int boundary) {
+  const Eigen::Vector3d x = (p_mm - s.origin_mm) / s.dx_mm;
+  if (!x.allFinite()) return kNoCell;
+  const Eigen::Vector3i cell = x.array().floor().cast<int>();
+  // The cell holding the point, else (a point of a box edge whose cell's centre lies outside the box) the metal
+  // cell of the 3 x 3 x 3 around it whose centre is nearest.
+  double best = std::numeric_limits<double>::infinity();
+  int found = kNoCell;
+  for (int r = 0; r < 27; ++r) {
+    const Eigen::Vector3i c = cell + Eigen::Vector3i(r % 3 - 1, (r / 3) % 3 - 1, r / 9 - 1);
+    if ((c.array() < 0).any() || (c.array() >= s.size.array()).any()) continue;
+    const int id = s.active_of[s.GridIndex(c.x(), c.y(), c.z())];
+    if (id == kNoCell || s.born[id] >= boundary) continue;
+    const double d = (s.Centre(c.x(), c.y(), c.z()) - p_mm).squaredNorm() + (r == 13 ? -1e300 : 0.0);
+    if (d < best) {
+      best = d;
+      found = id;
+    }
+  }
+  return found;
 }
 
 }  // namespace waam::twin::internal

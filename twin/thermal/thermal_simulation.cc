@@ -89,11 +89,11 @@ void Pump(ThermalState& s, bool flush) {
         while (q < s.pieces.size() && !s.pieces[q].pause && length < micro_length && seconds < micro_time) {
           length += (s.pieces[q].p1_mm - s.pieces[q].p0_mm).norm();
           seconds += s.pieces[q].seconds;
-          ++q;
+          if (!s.pieces[q++].records.empty()) break;  // a probe record ends the micro step at its time
         }
       }
       const bool closed = s.pieces[p].pause || (q < s.pieces.size() && s.pieces[q].pause) || length >= micro_length ||
-                          seconds >= micro_time;
+                          seconds >= micro_time || !s.pieces[q - 1].records.empty();
       if (!flush && !closed) break;  // an unfinished micro step
       steps.emplace_back(p, q);
       time += seconds;
@@ -102,6 +102,7 @@ void Pump(ThermalState& s, bool flush) {
     if (steps.empty() || (!flush && time < batch_time)) return;
     for (std::size_t m = 0; m < steps.size(); ++m) {
       s.batch.push_back(LayStep(s, steps[m].first, steps[m].second, static_cast<int>(m)));
+      for (int record : s.pieces[steps[m].second - 1].records) s.batch_marks.emplace_back(m + 1, record);
     }
     s.pieces.erase(s.pieces.begin(), s.pieces.begin() + static_cast<std::ptrdiff_t>(p));
     s.pieces_seconds = 0.0;
@@ -280,25 +281,42 @@ double ThermalSimulation::time_s() const { return impl_->s.time_s + impl_->s.pie
 double ThermalSimulation::TemperatureAt(const Eigen::Vector3d& p_mm) const {
   ThermalState& s = impl_->s;
   Pump(s, true);
-  const Eigen::Vector3d x = (p_mm - s.origin_mm) / s.dx_mm;
-  if (!x.allFinite()) return std::numeric_limits<double>::quiet_NaN();
-  const Eigen::Vector3i cell = x.array().floor().cast<int>();
-  // The cell holding the point, else (a point of a box edge whose cell's centre lies outside the box) the metal
-  // cell of the 3 x 3 x 3 around it whose centre is nearest.
-  double best = std::numeric_limits<double>::infinity();
-  double value = std::numeric_limits<double>::quiet_NaN();
-  for (int r = 0; r < 27; ++r) {
-    const Eigen::Vector3i c = cell + Eigen::Vector3i(r % 3 - 1, (r / 3) % 3 - 1, r / 9 - 1);
-    if ((c.array() < 0).any() || (c.array() >= s.size.array()).any()) continue;
-    const int id = s.active_of[s.GridIndex(c.x(), c.y(), c.z())];
-    if (id == internal::kNoCell) continue;
-    const double d = (s.Centre(c.x(), c.y(), c.z()) - p_mm).squaredNorm() + (r == 13 ? -1e300 : 0.0);
-    if (d < best) {
-      best = d;
-      value = s.temperature[id];
-    }
+  const int cell = internal::ProbeCell(s, p_mm, std::numeric_limits<int>::max());
+  return cell == internal::kNoCell ? std::numeric_limits<double>::quiet_NaN() : s.temperature[cell];
+}
+
+std::size_t ThermalSimulation::AddProbe(const Eigen::Vector3d& p_mm) {
+  WAAM_THROW_UNLESS(p_mm.allFinite(), "thermal probe: the point is not finite");
+  ThermalState& s = impl_->s;
+  WAAM_THROW_UNLESS(s.records.empty(), "thermal probe: probes must be added before the first RecordProbes");
+  s.probe_mm.push_back(p_mm);
+  return s.probe_mm.size() - 1;
+}
+
+std::size_t ThermalSimulation::RecordProbes() {
+  ThermalState& s = impl_->s;
+  const int record = static_cast<int>(s.records.size());
+  s.records.emplace_back(s.probe_mm.size(), std::numeric_limits<double>::quiet_NaN());
+  s.record_done.push_back(0);
+  if (!s.pieces.empty()) {
+    s.pieces.back().records.push_back(record);  // filled when the batch holding that time is solved
+    return static_cast<std::size_t>(record);
   }
-  return value;
+  for (std::size_t p = 0; p < s.probe_mm.size(); ++p) {
+    const int cell = internal::ProbeCell(s, s.probe_mm[p], std::numeric_limits<int>::max());
+    if (cell != internal::kNoCell) s.records[record][p] = s.temperature[cell];
+  }
+  s.record_done[record] = 1;
+  return static_cast<std::size_t>(record);
+}
+
+std::vector<double> ThermalSimulation::ProbeRecord(std::size_t index) const {
+  ThermalState& s = impl_->s;
+  WAAM_THROW_UNLESS(index < s.records.size(), "thermal probe record " << index << ": only " << s.records.size()
+                                                                      << " were recorded");
+  if (!s.record_done[index]) Pump(s, true);
+  WAAM_DEMAND(s.record_done[index]);
+  return s.records[index];
 }
 
 double ThermalSimulation::MaxTemperatureIn(const Eigen::AlignedBox3d& box_mm) const {

@@ -81,6 +81,9 @@ struct ThermalStats {
   std::size_t active_cells = 0;
   std::size_t steps = 0;          // time steps taken
   std::size_t iterations = 0;     // linear-solver iterations, summed (0 for an explicit method)
+  // Per multirate level (0: the whole model, then finer): linear systems solved (predictor, corrector and chord
+  // re-solves each count) and their cells summed over those solves (cell-solves), and CG iterations.
+  std::vector<std::size_t> level_solves, level_cell_solves, level_iterations;
 };
 
 // The temperature field on the solver's grid (for thermal.h5 and the pictures): cell (i, j, k) is centred at
@@ -118,6 +121,18 @@ class ThermalSimulation {
   double TemperatureAt(const Eigen::Vector3d& p_mm) const;
   // Highest temperature of the metal inside `box` (mm), degC; NaN when the box holds no metal.
   double MaxTemperatureIn(const Eigen::AlignedBox3d& box_mm) const;
+  // Probes recorded without ending the solver's batch (a TemperatureAt query solves the arc motion held back, so
+  // querying every second makes every batch one second long). AddProbe registers a point (part frame, mm) and
+  // returns its index; every probe must be added before the first RecordProbes. Throws InputError for a non-finite
+  // point or a probe added after a record.
+  std::size_t AddProbe(const Eigen::Vector3d& p_mm);
+  // Records every probe's temperature at time_s() and returns the record's index. The value is that of the cell
+  // TemperatureAt would read at that time, from the multirate level that solves the cell then: exact where micro
+  // steps run, else linear in time over that level's step (as finer levels see coarser ones). Throws nothing.
+  std::size_t RecordProbes();
+  // The probes' temperatures of record `index` (degC by probe, NaN where no metal was), solving the arc motion held
+  // back first if the record is not filled yet. Throws InputError for an index RecordProbes did not return.
+  std::vector<double> ProbeRecord(std::size_t index) const;
   EnergyBalance Energy() const;
   ThermalStats Stats() const;
   TemperatureField Field() const;

@@ -68,11 +68,10 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
 // Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
 // (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of
 // docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`, faces towards cells of a
-// finer level (depth > level) carry no flux.
-// The capacity is the chord slope of H between T_old and chord_c[cell] when `chord_c` is given (the nonlinear
-// iteration), else the tangent at T_old.
+// finer level (depth > level) carry no flux. The terms without the capacity are kept in base_diagonal and base_rhs,
+// so that the nonlinear iteration changes only the capacity (Relinearise).
 void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
-              const std::vector<double>* chord_c, std::vector<int>& local_of) {
+              std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   L.cells.clear();
   for (int c : candidates) {
@@ -84,6 +83,8 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
   L.conductance.resize(n);
   L.diagonal.resize(n);
   L.rhs.resize(n);
+  L.base_diagonal.resize(n);
+  L.base_rhs.resize(n);
   L.source_w.assign(n, 0.0);
   L.t_new.resize(n);
   L.capacity.resize(n);
@@ -97,15 +98,9 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
     for (std::size_t i = begin; i < end; ++i) {
       const int c = L.cells[i];
       const double t = s.temperature[c];
-      const ThermalPropertyTable& table = s.table[s.material[c]];
       const double k = s.conductivity[c];
-      double capacity = table.Capacity(t);
-      if (chord_c != nullptr && std::abs((*chord_c)[c] - t) > 1e-3) {
-        capacity = (table.Enthalpy((*chord_c)[c]) - s.enthalpy[c]) / ((*chord_c)[c] - t);
-      }
-      L.capacity[i] = capacity;
-      double diagonal = capacity * volume / L.seconds;
-      double rhs = diagonal * t + L.source_w[i] + s.inflow_j[c] / L.seconds;
+      double diagonal = 0.0;
+      double rhs = L.source_w[i] + s.inflow_j[c] / L.seconds;
       for (int f = 0; f < 6; ++f) {
         const int j = s.neighbour[c][f];
         L.neighbour[i][f] = kNoCell;
@@ -130,8 +125,13 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
           rhs -= offset;
         }
       }
-      L.diagonal[i] = diagonal;
-      L.rhs[i] = rhs;
+      L.base_diagonal[i] = diagonal;
+      L.base_rhs[i] = rhs;
+      const double capacity = s.table[s.material[c]].Capacity(t);
+      L.capacity[i] = capacity;
+      const double storage = capacity * volume / L.seconds;
+      L.diagonal[i] = diagonal + storage;
+      L.rhs[i] = rhs + storage * t;
     }
   });
   for (int c : L.cells) local_of[c] = kNoCell;
@@ -224,29 +224,98 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
   return iterations;
 }
 
-// Solves the level's backward-Euler step over the candidates: the linearised system, then, while some cell's
-// enthalpy after the step (H_old + C (T - T_old)) maps back to a temperature more than kChordToleranceK + 10 % of its
-// change away from the solved one (a cell melting or freezing in the step), again with the chord capacities
-// (H(T) - H_old) / (T - T_old) of the last solution: the nonlinear step converged, so that the latent heat cannot be
-// jumped over. `guess` is the first guess by active cell.
+// Adds one solve of `cells` cells taking `iterations` CG iterations at `level` to the statistics.
+void Count(ThermalState& s, int level, std::size_t cells, int iterations) {
+  ThermalStats& st = s.stats;
+  const std::size_t need = static_cast<std::size_t>(level) + 1;
+  if (st.level_solves.size() < need) {
+    st.level_solves.resize(need, 0);
+    st.level_cell_solves.resize(need, 0);
+    st.level_iterations.resize(need, 0);
+  }
+  st.iterations += static_cast<std::size_t>(iterations);
+  st.level_solves[level] += 1;
+  st.level_cell_solves[level] += cells;
+  st.level_iterations[level] += static_cast<std::size_t>(iterations);
+}
+
+// The nonlinear iteration's next linearisation (Swaminathan & Voller 1992, Metall. Trans. B 23B 651, eq. 14):
+// with the iterate H_k, T_k = T(H_k) and C_k = dH/dT at T_k, the step's equation
+// V/dt (H_k + C_k (T - T_k) - H_old) = Q + E/dt + sum_faces G (T_nb - T) - losses(T)
+// changes from the first linearisation only in the capacity's terms of the diagonal and the right-hand side.
+void Relinearise(ThermalState& s, LevelSystem& L) {
+  const double storage_per_capacity = s.CellVolume() / L.seconds;
+  ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const int c = L.cells[i];
+      const double capacity = s.table[s.material[c]].Capacity(s.chord[c]);
+      const double storage = capacity * storage_per_capacity;
+      L.capacity[i] = capacity;
+      L.diagonal[i] = L.base_diagonal[i] + storage;
+      L.rhs[i] = L.base_rhs[i] + storage * s.chord[c] - storage_per_capacity * (s.iterate_h[c] - s.enthalpy[c]);
+    }
+  });
+}
+
+// Whether cell i of the level's system and all its neighbours in the system lie in the finer levels' region (depth >
+// level): a finer level solves them again, and no cell this level keeps touches them.
+bool InsideFinerRegion(const ThermalState& s, const LevelSystem& L, int level, std::size_t i) {
+  if (s.depth[L.cells[i]] <= level) return false;
+  for (int f = 0; f < 6; ++f) {
+    const int j = L.neighbour[i][f];
+    if (j >= 0 ? s.depth[L.cells[j]] <= level : L.conductance[i][f] > 0.0) return false;
+  }
+  return true;
+}
+
+// Solves the level's backward-Euler step over the candidates: the system linearised at T_old, then, while some
+// cell's linearised enthalpy H_k + C_k (T - T_k) maps back to a temperature more than kChordToleranceK + 10 % of its
+// change over the step away from the solved T (a cell melting or freezing in the step), again linearised at that
+// enthalpy (Relinearise): the nonlinear step converged, so that the latent heat cannot be jumped over. `guess` is
+// the first guess by active cell. Only the capacity changes between the rounds, so the conductances and losses are
+// assembled once.
 void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
                const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
-  Assemble(s, level, candidates, m0, m1, finer_apart, nullptr, local_of);
-  s.stats.iterations += static_cast<std::size_t>(SolveLevel(s, L, guess));
+  Assemble(s, level, candidates, m0, m1, finer_apart, local_of);
+  Count(s, level, L.cells.size(), SolveLevel(s, L, guess));
+  const std::size_t n = L.cells.size();
+  std::vector<std::uint8_t> part_converged(Chunks(n));
   for (int round = 0; round < kChordRounds; ++round) {
-    bool converged = true;
-    for (std::size_t i = 0; i < L.cells.size() && converged; ++i) {
-      const int c = L.cells[i];
-      const double change = L.t_new[i] - s.temperature[c];
-      const double h = s.enthalpy[c] + L.capacity[i] * change;
-      const double mismatch = std::abs(s.table[s.material[c]].Temperature(h) - L.t_new[i]);
-      converged = mismatch <= kChordToleranceK + 0.1 * std::abs(change);
-    }
-    if (converged) return;
-    for (std::size_t i = 0; i < L.cells.size(); ++i) s.chord[L.cells[i]] = L.t_new[i];
-    Assemble(s, level, candidates, m0, m1, finer_apart, &s.chord, local_of);
-    s.stats.iterations += static_cast<std::size_t>(SolveLevel(s, L, s.chord));
+    // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t chunk) {
+      bool converged = true;
+      for (std::size_t i = begin; i < end; ++i) {
+        const int c = L.cells[i];
+        const bool finer = InsideFinerRegion(s, L, level, i);
+        const double t_k = round == 0 ? s.temperature[c] : s.chord[c];
+        const double h_k = round == 0 ? s.enthalpy[c] : s.iterate_h[c];
+        const double h = h_k + L.capacity[i] * (L.t_new[i] - t_k);
+        const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
+        const double change = L.t_new[i] - s.temperature[c];
+        converged = converged && (finer || std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change));
+        s.iterate_h[c] = h;
+        s.chord[c] = t;
+      }
+      part_converged[chunk] = converged ? 1 : 0;
+    });
+    if (std::all_of(part_converged.begin(), part_converged.end(), [](std::uint8_t v) { return v != 0; })) return;
+    Relinearise(s, L);
+    Count(s, level, n, SolveLevel(s, L, s.chord));
+  }
+}
+
+// Fills the probe records wanted of `cell` at the batch boundaries in (m0, m1] of the level's step, which takes the
+// cell from t_start to t_end (degC): linear in time in between, as the finer levels see the coarser ones' cells.
+// Each request has its own slot, so chunks running in parallel write different values.
+void RecordSamples(ThermalState& s, const LevelSystem& L, int cell, double t_start, double t_end) {
+  const double start = s.batch_start_s[L.m0];
+  const double length = s.batch_start_s[L.m1] - start;
+  for (int r = s.sample_head[cell]; r >= 0; r = s.requests[r].next) {
+    const SampleRequest& q = s.requests[r];
+    if (q.boundary <= L.m0 || q.boundary > L.m1) continue;
+    const double f = q.boundary == L.m1 ? 1.0 : (s.batch_start_s[q.boundary] - start) / length;
+    s.records[q.record][q.probe] = t_start + f * (t_end - t_start);
   }
 }
 
@@ -312,7 +381,8 @@ void Update(ThermalState& s, int level) {
       const int c = L.cells[i];
       s.enthalpy[c] += dh[i];
       s.inflow_j[c] = 0.0;
-      const double t = s.table[s.material[c]].Temperature(s.enthalpy[c]);
+      const double t = s.table[s.material[c]].Temperature(s.enthalpy[c], L.t_new[i]);
+      if (s.sample_head[c] >= 0) RecordSamples(s, L, c, s.temperature[c], t);
       s.rate[c] = (t - s.temperature[c]) / dt;
       s.temperature[c] = t;
       s.conductivity[c] = s.table[s.material[c]].Conductivity(t);
@@ -353,14 +423,23 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   for (int m = m0; m < m1; ++m) L.seconds += s.batch[m].seconds;
   const double start = s.time_s + s.batch_start_s[m0];
   L.end_time_s = start + L.seconds;
+  L.m0 = m0;
+  L.m1 = m1;
   s.level_interval[level] = {start, L.end_time_s};
   // First guess: each cell's last rate of change carried over the step (the far field changes smoothly).
   for (int c : candidates) s.guess[c] = s.temperature[c] + s.rate[c] * L.seconds;
-  SolveStep(s, level, candidates, m0, m1, false, s.guess, local_of);
-  for (int c : L.cells) s.depth[c] = level;
+  std::vector<int> present;
+  for (int c : candidates) {
+    if (s.born[c] < m1) present.push_back(c);
+  }
   const bool finest = level + 1 >= static_cast<int>(s.levels.size()) || m1 - m0 <= 1;
   std::vector<int> near;
-  if (!finest) near = NearArc(s, L.cells, m0, m1, s.level_radius_mm[level + 1]);
+  if (!finest) near = NearArc(s, present, m0, m1, s.level_radius_mm[level + 1]);
+  // The predictor's nonlinear iteration need not converge in the finer region: the finer levels solve it again.
+  for (int c : present) s.depth[c] = level;
+  for (int c : near) s.depth[c] = level + 1;
+  SolveStep(s, level, candidates, m0, m1, false, s.guess, local_of);
+  for (int c : L.cells) s.depth[c] = level;
   if (near.empty()) {
     Update(s, level);
     for (int c : L.cells) s.depth[c] = level - 1;
@@ -407,7 +486,21 @@ void SolveBatch(ThermalState& s) {
   std::vector<int> all(s.grid_of.size());
   for (std::size_t c = 0; c < all.size(); ++c) all[c] = static_cast<int>(c);
   std::vector<int> local_of(all.size(), kNoCell);
+  // The probe records wanted inside the batch: the cell each reads at its time, and its requests.
+  s.requests.clear();
+  for (const auto& [boundary, record] : s.batch_marks) {
+    for (std::size_t p = 0; p < s.probe_mm.size(); ++p) {
+      const int cell = ProbeCell(s, s.probe_mm[p], boundary);
+      if (cell == kNoCell) continue;  // no metal there yet: the record keeps NaN
+      s.requests.push_back({cell, boundary, record, static_cast<int>(p), s.sample_head[cell]});
+      s.sample_head[cell] = static_cast<int>(s.requests.size()) - 1;
+    }
+    s.record_done[record] = 1;
+  }
+  s.batch_marks.clear();
   Advance(s, 0, all, 0, steps, local_of);
+  for (const SampleRequest& q : s.requests) s.sample_head[q.cell] = -1;
+  s.requests.clear();
   for (int& b : s.born) b = -1;
   s.time_s += s.batch_start_s[steps];
   s.last_step_s = s.batch.back().seconds;

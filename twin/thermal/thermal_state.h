@@ -61,6 +61,16 @@ struct ArcPiece {
   double width_mm = 0.0, height_mm = 0.0, heat_w = 0.0, seconds = 0.0;
   bool pause = false;
   Eigen::Vector2d travel = Eigen::Vector2d::Zero();  // a standing arc's pool orientation (zero: round)
+  std::vector<int> records;  // probe records taken at this piece's end (ThermalSimulation::RecordProbes)
+};
+
+// One probe's temperature wanted at the end of micro step `boundary - 1` of the batch: written into
+// records[record][probe] by the level that finishes `cell` over an interval holding that time.
+struct SampleRequest {
+  int cell = kNoCell;
+  int boundary = 0;  // index into batch_start_s
+  int record = 0, probe = 0;
+  int next = -1;     // the next request of the same cell, or -1
 };
 
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
@@ -69,11 +79,13 @@ struct ArcPiece {
 struct LevelSystem : StencilSystem {
   std::vector<int> cells;                     // active-cell ids of the region, present in the level's interval
   std::vector<double> rhs, source_w, t_new;   // W, W, degC (the step's solution)
+  std::vector<double> base_diagonal, base_rhs; // W/K, W: the diagonal and right-hand side without the capacity's terms
   std::vector<std::array<int, 3>> ijk;        // grid coordinates of the cells (for the multigrid's blocks)
   AdditiveCorrectionMultigrid multigrid;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
   double seconds = 0.0;
   double end_time_s = 0.0;
+  int m0 = 0, m1 = 0;                                  // the micro steps [m0, m1) of the batch the step spans
 };
 
 struct ThermalState {
@@ -101,11 +113,13 @@ struct ThermalState {
   std::vector<double> conductivity; // W/(m K) at that temperature
   std::vector<double> rate;         // dT/dt over the cell's last step, K/s (extrapolated for the solver's first guess)
   std::vector<double> guess;        // scratch: the solver's first guess, degC
-  std::vector<double> chord;        // scratch: the temperatures of the nonlinear iteration's chords, degC
+  std::vector<double> chord;        // scratch: the nonlinear iteration's temperature T_k = T(H_k), degC
+  std::vector<double> iterate_h;    // scratch: the nonlinear iteration's enthalpy H_k, J/m^3
   std::vector<double> inflow_j;     // energy received through faces solved at finer levels, J, not yet applied
   std::vector<int> depth;           // deepest multirate level whose region holds the cell (-1: none)
   std::vector<double> bound_start, bound_end;  // Dirichlet line in time seen by finer levels, degC
   std::vector<int> bound_level;     // the level whose interval the line spans
+  std::vector<int> sample_head;     // the cell's first SampleRequest of the batch, or -1
 
   // Pending arc motion, and the batch of micro steps being solved.
   std::vector<ArcPiece> pieces;
@@ -117,6 +131,14 @@ struct ThermalState {
   std::vector<double> level_step_s, level_radius_mm;
   std::vector<LevelSystem> levels;
   std::vector<std::pair<double, double>> level_interval;  // [start, end] time of each level's current interval
+
+  // Probes recorded inside batches: their points (mm), the records (degC per probe, NaN where no metal is), whether
+  // each record is filled, the pending batch's record marks (boundary index into batch_start_s, record) and requests.
+  std::vector<Eigen::Vector3d> probe_mm;
+  std::vector<std::vector<double>> records;
+  std::vector<std::uint8_t> record_done;
+  std::vector<std::pair<int, int>> batch_marks;
+  std::vector<SampleRequest> requests;
 
   double time_s = 0.0;
   double last_step_s = 0.0;  // length of the last step, s (the next cooling step grows from it)
@@ -131,6 +153,11 @@ struct ThermalState {
   int Activate(int grid, int material_index, double h, int born_step);
   bool IsTableFace(int cell, int face) const;
 };
+
+// The active cell whose temperature TemperatureAt(p_mm) reads among the cells present at batch boundary `boundary`
+// (born before it; INT_MAX: every active cell): the cell holding the point, else the nearest-centred active cell of
+// the 3 x 3 x 3 around it; kNoCell when none.
+int ProbeCell(const ThermalState& s, const Eigen::Vector3d& p_mm, int boundary);
 
 // Builds the grid and switches on the plate (settings already checked).
 void InitialiseThermalState(ThermalState& s);

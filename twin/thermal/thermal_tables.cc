@@ -112,4 +112,19 @@ double ThermalPropertyTable::Temperature(double h_j_m3) const {
   return low_c_ + (i - 1 + s) * step_c_;
 }
 
+double ThermalPropertyTable::Temperature(double h_j_m3, double hint_c) const {
+  // The first node above h in [1, last] (the same node as the binary search above), walked to from the hint's.
+  constexpr int kWalk = 8;
+  const int last = static_cast<int>(enthalpy_.size()) - 1;
+  int i = 0;
+  Position(hint_c, &i);
+  i = std::clamp(i + 1, 1, last);
+  int steps = 0;
+  while (i > 1 && enthalpy_[i - 1] > h_j_m3 && steps++ < kWalk) --i;
+  while (i < last && enthalpy_[i] <= h_j_m3 && steps++ < kWalk) ++i;
+  if (steps > kWalk) return Temperature(h_j_m3);
+  const double s = (h_j_m3 - enthalpy_[i - 1]) / (enthalpy_[i] - enthalpy_[i - 1]);
+  return low_c_ + (i - 1 + s) * step_c_;
+}
+
 }  // namespace waam::twin::internal

@@ -22,6 +22,9 @@ class ThermalPropertyTable {
   double Enthalpy(double t_c) const;      // J/m^3, 0 at the reference temperature
   double Capacity(double t_c) const;      // dH/dT of the table's segment holding t_c, J/(m^3 K)
   double Temperature(double h_j_m3) const;  // inverse of Enthalpy, degC
+  // The same, searching the table from the segment of `hint_c` (a temperature near the answer, degC): the result is
+  // identical to Temperature(h_j_m3), found in a few steps when the hint is close.
+  double Temperature(double h_j_m3, double hint_c) const;
   double emissivity() const { return emissivity_; }
 
  private:
