@@ -17,11 +17,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// How a row's `compare` column turns the bench's metric into the published quantity: as it is (an empty cell), per
-// layer (divided by the plan's layers), or as the reduction in % against another scenario ("reduction_pct_vs:NAME").
+// How a row's `compare` column turns the bench's metric into the published quantity: as it is (value), per layer
+// (divided by the plan's layers), or as the reduction in % against another scenario ("reduction_pct_vs:NAME").
 enum class CompareMode { kValue, kPerLayer, kReductionPctVs };
 constexpr std::array<EnumName<CompareMode>, 3> EnumNames(CompareMode) {
-  return {{{CompareMode::kValue, ""}, {CompareMode::kPerLayer, "per_layer"},
+  return {{{CompareMode::kValue, "value"}, {CompareMode::kPerLayer, "per_layer"},
            {CompareMode::kReductionPctVs, "reduction_pct_vs"}}};
 }
 
@@ -32,7 +32,7 @@ std::pair<CompareMode, std::string> ParseCompare(const std::string& cell, const 
   const std::optional<CompareMode> mode = ParseEnum<CompareMode>(std::string_view(cell).substr(0, colon));
   WAAM_THROW_UNLESS(mode && (*mode == CompareMode::kReductionPctVs) == (colon != std::string::npos),
                     where << ": compare = '" << cell
-                          << "': must be empty, per_layer or reduction_pct_vs:SCENARIO");
+                          << "': must be value, per_layer or reduction_pct_vs:SCENARIO");
   return {*mode, colon == std::string::npos ? std::string() : cell.substr(colon + 1)};
 }
 
