@@ -1,8 +1,13 @@
 // The papers' published figures (models/data/reference_figures.csv) next to the bench's own results.
+#include <array>
 #include <cmath>
+#include <optional>
+#include <string_view>
+#include <utility>
 
 #include "analysis/bench_command.h"
 #include "models/core/csv.h"
+#include "models/core/enum_names.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "models/fit/model_file.h"
@@ -11,6 +16,25 @@ namespace waam::analysis {
 namespace fs = std::filesystem;
 
 namespace {
+
+// How a row's `compare` column turns the bench's metric into the published quantity: as it is (an empty cell), per
+// layer (divided by the plan's layers), or as the reduction in % against another scenario ("reduction_pct_vs:NAME").
+enum class CompareMode { kValue, kPerLayer, kReductionPctVs };
+constexpr std::array<EnumName<CompareMode>, 3> EnumNames(CompareMode) {
+  return {{{CompareMode::kValue, ""}, {CompareMode::kPerLayer, "per_layer"},
+           {CompareMode::kReductionPctVs, "reduction_pct_vs"}}};
+}
+
+// A row's `compare` cell: the mode and, for reduction_pct_vs, the other scenario's name. Throws InputError naming the
+// file and line for another mode.
+std::pair<CompareMode, std::string> ParseCompare(const std::string& cell, const std::string& where) {
+  const std::size_t colon = cell.find(':');
+  const std::optional<CompareMode> mode = ParseEnum<CompareMode>(std::string_view(cell).substr(0, colon));
+  WAAM_THROW_UNLESS(mode && (*mode == CompareMode::kReductionPctVs) == (colon != std::string::npos),
+                    where << ": compare = '" << cell
+                          << "': must be empty, per_layer or reduction_pct_vs:SCENARIO");
+  return {*mode, colon == std::string::npos ? std::string() : cell.substr(colon + 1)};
+}
 
 // The bench entry of scenario `name` (by scenario name or id), or nullptr.
 const nlohmann::json* FindEntry(const nlohmann::json& scenarios, const std::string& name) {
@@ -53,13 +77,14 @@ nlohmann::json ReferenceComparison(const nlohmann::json& scenarios) {
       }
     } else if (const nlohmann::json* entry = FindEntry(scenarios, names[i])) {
       ours = StepMetric(*entry, step, metrics[i]);
-      const std::string& compare = compares[i];
-      if (ours.is_number() && compare == "per_layer") {
+      const auto [compare, other_name] =
+          ParseCompare(compares[i], table.source() + ":" + std::to_string(table.line(i)));
+      if (ours.is_number() && compare == CompareMode::kPerLayer) {
         const nlohmann::json layers = StepMetric(*entry, "plan", "layers");
         ours = layers.is_number() && layers.get<double>() > 0 ? nlohmann::json(ours.get<double>() / layers.get<double>())
                                                               : nlohmann::json(nullptr);
-      } else if (ours.is_number() && compare.rfind("reduction_pct_vs:", 0) == 0) {
-        const nlohmann::json* other = FindEntry(scenarios, compare.substr(17));
+      } else if (ours.is_number() && compare == CompareMode::kReductionPctVs) {
+        const nlohmann::json* other = FindEntry(scenarios, other_name);
         const nlohmann::json theirs = other ? StepMetric(*other, step, metrics[i]) : nlohmann::json(nullptr);
         ours = theirs.is_number() && theirs.get<double>() != 0.0
                    ? nlohmann::json(100.0 * (1.0 - ours.get<double>() / theirs.get<double>()))

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "analysis/cell_files.h"
 #include "analysis/scenario.h"
 #include "analysis/viewer.h"
 #include "models/core/error.h"
@@ -147,7 +148,7 @@ twin::CheckReport RunCheckOnPlan(const Scenario& scenario, const planner::Plan& 
                                  const CheckOptions& options) {
   ClaimOutputDirectory(options.out_dir);
   RemoveEarlierSummary(options.out_dir / "check.json");
-  const twin::CellModel cell = twin::LoadCell(scenario.cell);
+  const twin::CellModel cell = LoadCell(scenario.cell);
   twin::CheckReport report;
   {
     Progress progress("check", 0, "samples", options.quiet);
@@ -188,8 +189,8 @@ nlohmann::json WriteCheckOutputs(const Scenario& scenario, const planner::Plan& 
                     planner::ProgramToFanucLs(program, planner::FanucLsOptions{}));
   }
   if (options.images && !report.motion.empty()) {
-    WriteCellPng(cell, kin, plan, report, outputs.Add(options.out_dir / "cell_worst.png"));
-    WriteJointPlots(kin, report, outputs.Add(options.out_dir / "joints.png"));
+    WriteCellPng(cell, kin, plan, report, scenario.name, outputs.Add(options.out_dir / "cell_worst.png"));
+    WriteJointPlots(kin, report, scenario.name, outputs.Add(options.out_dir / "joints.png"));
   }
   nlohmann::json document = CheckPlanToJson(scenario, cell, plan, report);
   if (options.images && options.viewer) {

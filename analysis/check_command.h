@@ -50,12 +50,12 @@ nlohmann::json CheckToJson(const Scenario& scenario, const std::filesystem::path
                            const twin::CheckReport& report);
 
 // Draws the cell's collision shapes at the report's worst sample (side and top views) with the path and the
-// violation marked.
+// violation marked, under a title naming the part (`part_name`) and the sample shown.
 void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& kin, const planner::Plan& plan,
-                  const twin::CheckReport& report, const std::filesystem::path& path);
+                  const twin::CheckReport& report, const std::string& part_name, const std::filesystem::path& path);
 
-// Plots the eight axis angles (deg) against time (s) with their limits, and the joint speed ratios.
-void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport& report,
+// Plots the eight axis angles (deg) against time (s) with their limits, under a title naming the part (`part_name`).
+void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport& report, const std::string& part_name,
                      const std::filesystem::path& path);
 
 }  // namespace waam::analysis

@@ -123,7 +123,7 @@ cv::Mat FramedView(View view, const std::vector<twin::CellShape>& shapes,
 }  // namespace
 
 void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& kin, const planner::Plan& plan,
-                  const twin::CheckReport& report, const fs::path& path) {
+                  const twin::CheckReport& report, const std::string& part_name, const fs::path& path) {
   const planner::CellSample& s = report.motion[report.worst_sample];
   twin::CellState state(cell);
   state.SetJoints(s.q);
@@ -163,11 +163,12 @@ void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& ki
   cv::Mat img(header + std::max(a.rows, b.rows), a.cols + b.cols, CV_8UC3, cv::Scalar(255, 255, 255));
   a.copyTo(img(cv::Rect(0, header, a.cols, a.rows)));
   b.copyTo(img(cv::Rect(a.cols, header, b.cols, b.rows)));
-  cv::putText(img, caption, {10, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 180), 2);
+  cv::putText(img, part_name + ": robot cell, " + caption, {10, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 180), 2);
   internal::WritePngAtomic(img, path);
 }
 
-void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport& report, const fs::path& path) {
+void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport& report, const std::string& part_name,
+                     const fs::path& path) {
   Eigen::Matrix<double, 8, 1> lo, hi;
   lo << kin.arm.lower, kin.positioner.tilt_lower, kin.positioner.rotation_lower;
   hi << kin.arm.upper, kin.positioner.tilt_upper, kin.positioner.rotation_upper;
@@ -210,12 +211,14 @@ void WriteJointPlots(const planner::CellKinematics& kin, const twin::CheckReport
     panel_w = std::max(panel_w, p.cols);
     panel_h = std::max(panel_h, p.rows);
   }
-  const int rows = (static_cast<int>(panels.size()) + cols - 1) / cols;
-  cv::Mat img(rows * panel_h, cols * panel_w, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int rows = (static_cast<int>(panels.size()) + cols - 1) / cols, header = 40;
+  cv::Mat img(header + rows * panel_h, cols * panel_w, CV_8UC3, cv::Scalar(255, 255, 255));
   for (std::size_t i = 0; i < panels.size(); ++i) {
     const int c = static_cast<int>(i) % cols, r = static_cast<int>(i) / cols;
-    panels[i].copyTo(img(cv::Rect(c * panel_w, r * panel_h, panels[i].cols, panels[i].rows)));
+    panels[i].copyTo(img(cv::Rect(c * panel_w, header + r * panel_h, panels[i].cols, panels[i].rows)));
   }
+  cv::putText(img, part_name + ": robot and positioner axis angles along the path (limits in red)", {10, 28},
+              cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 0), 2);
   internal::WritePngAtomic(img, path);
 }
 

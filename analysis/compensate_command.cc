@@ -13,7 +13,7 @@
 #include "models/fit/model_file.h"
 #include "planner/plan_scenario.h"
 #include "planner/scenario/scenario.h"
-#include "twin/scanner/point_cloud_io.h"
+#include "analysis/point_cloud_file.h"
 
 namespace waam::analysis {
 namespace {
@@ -65,7 +65,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   loop.correction = *correction;
   loop.debug_level = options.debug_level;
   twin::ValidateDistortionOptions(loop.distortion);
-  if (!options.first_scan.empty()) loop.first_scan = twin::ReadPointCloud(options.first_scan, 0.5);
+  if (!options.first_scan.empty()) loop.first_scan = ReadPointCloud(options.first_scan, 0.5);
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);
@@ -81,9 +81,9 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   progress.Finish();
 
   WritePlanH5(result.plan, options.out_dir / "compensated_path.h5");
-  twin::WritePlyWithDeviation(options.out_dir / "scan_before.ply", result.first_scan.points,
+  WritePlyWithDeviation(options.out_dir / "scan_before.ply", result.first_scan.points,
                               result.first_scan.deviation_mm);
-  twin::WritePlyWithDeviation(options.out_dir / "scan_after.ply", result.last_scan.points,
+  WritePlyWithDeviation(options.out_dir / "scan_after.ply", result.last_scan.points,
                               result.last_scan.deviation_mm);
   if (options.images) {
     const double range = std::max(result.first_scan.max_abs_mm, result.last_scan.max_abs_mm);

@@ -14,7 +14,8 @@
 #include "models/core/output_lock.h"
 #include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
-#include "twin/scanner/point_cloud_io.h"
+#include "analysis/point_cloud_file.h"
+#include "twin/scanner/surface_sample.h"
 
 namespace waam::analysis {
 namespace {
@@ -103,13 +104,13 @@ nlohmann::json RunDeviation(const DeviationOptions& options) {
   WAAM_THROW_UNLESS(options.axis_step_mm > 0.0, "deviation --axis-step-mm = " << options.axis_step_mm << ": must be > 0");
   planner::MeshReport report;
   const planner::TriangleMesh target = ReadStl(options.target, 0.0, &report);
-  const std::vector<Eigen::Vector3d> points = twin::ReadPointCloud(options.scan, 0.5);
+  const std::vector<Eigen::Vector3d> points = ReadPointCloud(options.scan, 0.5);
   ClaimOutputDirectory(options.out_dir);
   const twin::MeshDistance distance(target);
   const twin::ScanDeviation scan = twin::MeasureScanDeviation(points, distance);
   const twin::AxisComparison axis = twin::CompareAxis(twin::SampleSurface(target, 0.5 * options.axis_step_mm),
                                                       scan.points, options.axis_step_mm, 0.5 * options.axis_step_mm);
-  twin::WritePlyWithDeviation(options.out_dir / "deviation.ply", scan.points, scan.deviation_mm);
+  WritePlyWithDeviation(options.out_dir / "deviation.ply", scan.points, scan.deviation_mm);
   if (options.images) WriteScanDeviationPng(scan, "scan - target", 0.0, options.out_dir / "deviation_map.png");
   nlohmann::json json = DeviationToJson(scan, axis);
   json["target"] = options.target.string();

@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "analysis/cell_files.h"
 #include "analysis/import_command.h"
 #include "analysis/scenario_plan.h"
 #include "models/core/error.h"
@@ -59,7 +60,7 @@ ProgramFiles ExportPlan(const Scenario& scenario, const planner::Plan& plan,
                       : scenario.cell.preset ? twin::PresetDialect(*scenario.cell.preset)
                                              : planner::ProgramFormat::kFanucLs;
   const planner::JbiReadOptions jbi = JbiOptionsOf(scenario, {}, station_pulses_per_deg);
-  const twin::CellModel cell = twin::LoadCell(scenario.cell);
+  const twin::CellModel cell = LoadCell(scenario.cell);
   twin::CheckReport report;
   {
     Progress progress("check", 0, "samples", quiet);

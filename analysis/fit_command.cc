@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -22,22 +23,22 @@ namespace {
 namespace m = waam::models;
 using Columns = std::vector<std::pair<std::string, std::string>>;
 
-const std::map<std::string, Columns>& AllDefaults() {
-  static const std::map<std::string, Columns> defaults = {
-      {"csw", {{"speed", "travel_speed_mm_per_min"}, {"radius", "curvature_radius_mm"}, {"width", "width_mm"}}},
-      {"speed-height", {{"speed", "travel_speed_mm_per_min"}, {"height", "height_mm"}}},
-      {"width-height", {{"height", "height_mm"}, {"width", "width_mm"}, {"speed", "travel_speed_mm_per_min"}}},
-      {"bead-temperature", {{"temperature", "interpass_c"}, {"height", "height_mm"}, {"width", "width_mm"}}},
-      {"void-length",
-       {{"eta", "eta"},
-        {"theta1", "theta1_deg"},
-        {"theta2", "theta2_deg"},
-        {"theta3", "theta3_deg"},
-        {"theta4", "theta4_deg"},
-        {"void", "void_length_mm"},
-        {"label", "group"}}},
-      {"distortion", {}}};  // reads a scan, not a CSV
-  return defaults;
+// The role -> default column table of each model read from a CSV (distortion reads a scan, thermal a scenario).
+Columns DefaultColumns(FitModel model) {
+  switch (model) {
+    case FitModel::kCsw:
+      return {{"speed", "travel_speed_mm_per_min"}, {"radius", "curvature_radius_mm"}, {"width", "width_mm"}};
+    case FitModel::kSpeedHeight: return {{"speed", "travel_speed_mm_per_min"}, {"height", "height_mm"}};
+    case FitModel::kWidthHeight:
+      return {{"height", "height_mm"}, {"width", "width_mm"}, {"speed", "travel_speed_mm_per_min"}};
+    case FitModel::kBeadTemperature: return {{"temperature", "interpass_c"}, {"height", "height_mm"}, {"width", "width_mm"}};
+    case FitModel::kVoidLength:
+      return {{"eta", "eta"},           {"theta1", "theta1_deg"},      {"theta2", "theta2_deg"}, {"theta3", "theta3_deg"},
+              {"theta4", "theta4_deg"}, {"void", "void_length_mm"}, {"label", "group"}};
+    case FitModel::kDistortion:
+    case FitModel::kThermal: return {};
+  }
+  return {};
 }
 
 }  // namespace
@@ -53,7 +54,7 @@ std::map<std::string, std::string> internal::ResolveColumns(const FitOptions& op
     if (!resolved.count(role)) {
       std::string roles;
       for (const auto& [r, c] : defaults) roles += (roles.empty() ? "" : ", ") + r;
-      WAAM_THROW("--columns '" << item << "': unknown role '" << role << "' for " << options.model
+      WAAM_THROW("--columns '" << item << "': unknown role '" << role << "' for " << NameOf(options.model)
                                << " (roles: " << roles << ")");
     }
     resolved[role] = item.substr(eq + 1);
@@ -81,7 +82,7 @@ void internal::PrintStats(std::ostream& out, const m::FitStats& s, const std::st
 }
 
 void internal::PrintSolver(std::ostream& out, const m::SolverReport& r) {
-  out << "  solver   = Ceres " << r.termination << ", " << r.iterations << " iterations, "
+  out << "  solver   = Ceres " << NameOf(r.termination) << ", " << r.iterations << " iterations, "
       << std::setprecision(3) << r.seconds * 1e3 << " ms\n";
 }
 
@@ -161,17 +162,14 @@ FitOutcome RunCsw(const FitOptions& options, const CsvTable& table, std::ostream
 
 FitOutcome RunSpeedHeight(const FitOptions& options, const CsvTable& table, std::ostream& out) {
   const auto cols = ResolveColumns(options);
-  WAAM_THROW_UNLESS(options.space == "linear" || options.space == "log",
-                    "--space '" << options.space << "': must be linear or log");
   m::DataSource source = MakeSource(options, table, cols);
   const auto keep = SelectRows(options, table, cols.at("speed"), &source, out);
   m::SpeedHeightSamples s{Subset(table.Numbers(cols.at("speed")), keep), Subset(table.Numbers(cols.at("height")), keep)};
   m::SpeedRange storage;
   const m::SpeedHeightFit fit =
       m::FitSpeedHeight(s, source,
-                        options.space == "log" ? m::PowerLawSpace::kLog : m::PowerLawSpace::kLinear,
-                        RangeOption(options, &storage));
-  out << "speed-height power law v = a h^b  (v mm/min, h mm), residuals in " << options.space << " v\n"
+                        options.space, RangeOption(options, &storage));
+  out << "speed-height power law v = a h^b  (v mm/min, h mm), residuals in " << NameOf(options.space) << " v\n"
       << std::setprecision(6) << "  params   : a = " << fit.model.params().a << ", b = " << fit.model.params().b
       << "\n";
   PrintStats(out, fit.model.fit().stats, "mm/min");
@@ -223,31 +221,34 @@ FitOutcome RunBeadTemperature(const FitOptions& options, const CsvTable& table, 
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::string& model) {
-  const auto it = AllDefaults().find(model);
-  WAAM_THROW_UNLESS(it != AllDefaults().end(),
-                    "unknown model '" << model
-                                     << "': must be csw, speed-height, width-height, bead-temperature, void-length "
-                                        "or distortion");
-  return it->second;
+FitModel ParseFitModel(const std::string& name) {
+  const std::optional<FitModel> model = ParseEnum<FitModel>(name);
+  WAAM_THROW_UNLESS(model, "unknown model '" << name << "': must be one of " << EnumNameList<FitModel>());
+  return *model;
 }
 
+std::vector<std::pair<std::string, std::string>> DefaultFitColumns(FitModel model) { return DefaultColumns(model); }
+
 FitOutcome RunFit(const FitOptions& options, std::ostream& out) {
-  if (options.model == "distortion") return internal::RunFitDistortion(options, out);
-  if (options.model == "thermal") return internal::RunFitThermal(options, out);
-  DefaultFitColumns(options.model);  // rejects an unknown model before reading anything
+  if (options.model == FitModel::kDistortion) return internal::RunFitDistortion(options, out);
+  if (options.model == FitModel::kThermal) return internal::RunFitThermal(options, out);
   WAAM_THROW_UNLESS(!options.output.empty(), "-o/--output: the model JSON file to write is required");
   const CsvTable table = CsvTable::Read(options.data);
   // Every required column must exist before any value is read, so a misnamed column is reported as such.
   for (const auto& [role, column] : internal::ResolveColumns(options)) {
-    const bool optional = role == "label" || (role == "speed" && options.model == "width-height");
+    const bool optional = role == "label" || (role == "speed" && options.model == FitModel::kWidthHeight);
     if (!optional) table.ColumnIndex(column);
   }
-  out << "waam fit " << options.model << ": " << options.data.string() << " (" << table.rows() << " rows)\n";
-  if (options.model == "csw") return RunCsw(options, table, out);
-  if (options.model == "speed-height") return RunSpeedHeight(options, table, out);
-  if (options.model == "width-height") return RunWidthHeight(options, table, out);
-  if (options.model == "bead-temperature") return RunBeadTemperature(options, table, out);
+  out << "waam fit " << NameOf(options.model) << ": " << options.data.string() << " (" << table.rows() << " rows)\n";
+  switch (options.model) {
+    case FitModel::kCsw: return RunCsw(options, table, out);
+    case FitModel::kSpeedHeight: return RunSpeedHeight(options, table, out);
+    case FitModel::kWidthHeight: return RunWidthHeight(options, table, out);
+    case FitModel::kBeadTemperature: return RunBeadTemperature(options, table, out);
+    case FitModel::kVoidLength:
+    case FitModel::kDistortion:
+    case FitModel::kThermal: break;
+  }
   return internal::RunVoidLength(options, table, out);
 }
 

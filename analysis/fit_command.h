@@ -1,6 +1,7 @@
 // `waam fit`: fits one process model to a CSV table, prints a summary and writes the model JSON atomically.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
@@ -10,23 +11,45 @@
 
 #include <nlohmann/json.hpp>
 
+#include "models/bead/speed_height_model.h"
+#include "models/core/enum_names.h"
+
 namespace waam::analysis {
+
+// The models `waam fit` fits.
+enum class FitModel { kCsw, kSpeedHeight, kWidthHeight, kBeadTemperature, kVoidLength, kDistortion, kThermal };
+constexpr std::array<EnumName<FitModel>, 7> EnumNames(FitModel) {
+  return {{{FitModel::kCsw, "csw"},
+           {FitModel::kSpeedHeight, "speed-height"},
+           {FitModel::kWidthHeight, "width-height"},
+           {FitModel::kBeadTemperature, "bead-temperature"},
+           {FitModel::kVoidLength, "void-length"},
+           {FitModel::kDistortion, "distortion"},
+           {FitModel::kThermal, "thermal"}}};
+}
+// The model named `name`; throws InputError "unknown model 'name': must be one of csw, ..." for another name.
+FitModel ParseFitModel(const std::string& name);
+
+// The void-length model `waam fit void-length` writes (both are cross-validated).
+enum class VoidModelKind { kNetwork, kBaseline };
+constexpr std::array<EnumName<VoidModelKind>, 2> EnumNames(VoidModelKind) {
+  return {{{VoidModelKind::kNetwork, "network"}, {VoidModelKind::kBaseline, "baseline"}}};
+}
 
 // Everything `waam fit` accepts; the CLI fills it, tests build it directly.
 struct FitOptions {
-  // csw | speed-height | width-height | bead-temperature | void-length | distortion | thermal
-  std::string model;
+  FitModel model = FitModel::kCsw;
   std::filesystem::path data;             // CSV input (distortion: the scan, .ply, .xyz or .stl, part frame, mm)
   std::filesystem::path output;           // model JSON output
   std::vector<std::string> columns;       // "role=column" overrides of the default column names
   std::optional<std::pair<double, double>> speed_range;  // feasible travel speeds [mm/min]; default: the data's
   int degree = 4;                         // width-height polynomial degree
-  std::string space = "linear";           // speed-height residual space: linear | log
+  models::PowerLawSpace space = models::PowerLawSpace::kLinear;  // speed-height residuals in v or ln v
   // bead-temperature
   double reference_c = 20.0;              // T_ref: interpass temperature the bead models were measured at, degC
   bool volume_conserving = false;         // width from w h = const instead of its own slope
   // void-length
-  std::string kind = "network";           // network | baseline (the model written; both are cross-validated)
+  VoidModelKind kind = VoidModelKind::kNetwork;  // the model written (both are cross-validated)
   std::vector<int> hidden = {7, 7};
   double l2 = 0.01;
   bool bayesian = true;
@@ -66,6 +89,6 @@ struct FitOutcome {
 FitOutcome RunFit(const FitOptions& options, std::ostream& out);
 
 // The role=default-column table of `model` (for --help and errors).
-std::vector<std::pair<std::string, std::string>> DefaultFitColumns(const std::string& model);
+std::vector<std::pair<std::string, std::string>> DefaultFitColumns(FitModel model);
 
 }  // namespace waam::analysis

@@ -16,7 +16,7 @@
 #include "twin/compensation/compensation.h"
 #include "twin/distortion/deposit_history.h"
 #include "twin/distortion/distortion_fit.h"
-#include "twin/scanner/point_cloud_io.h"
+#include "analysis/point_cloud_file.h"
 #include "twin/simulation.h"
 
 namespace waam::analysis {
@@ -28,16 +28,9 @@ constexpr double kStlSpacingMm = 0.5;
 // written by `waam compensate` is of the very part this fit deposits.
 constexpr double kReferenceSpacingMm = 2.0;
 
-double Value(const models::DistortionParams& p, const std::string& name) {
-  if (name == "strain") return p.strain;
-  if (name == "heat_exponent") return p.heat_exponent;
-  if (name == "vertical_ratio") return p.vertical_ratio;
-  return p.substrate_stiffness_n_mm3;
-}
-
-std::string Join(const std::vector<std::string>& items) {
+std::string Join(const std::vector<models::DistortionParam>& items) {
   std::string s;
-  for (const std::string& item : items) s += (s.empty() ? "" : ",") + item;
+  for (const models::DistortionParam item : items) s += (s.empty() ? "" : ",") + std::string(NameOf(item));
   return s;
 }
 
@@ -62,11 +55,14 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   twin::ValidateDistortionOptions(distortion);
   start.mode = distortion.mode;
   twin::DistortionFitOptions fit;
-  fit.free = options.free;
+  fit.free.clear();
+  for (const std::string& name : options.free) {
+    fit.free.push_back(models::ParseDistortionParam(name, "distortion fit: free parameter"));
+  }
   fit.max_points = options.max_points;
   fit.max_iterations = options.max_iterations;
   twin::ValidateDistortionFitOptions(fit, distortion.mode);
-  const std::vector<Eigen::Vector3d> scan = twin::ReadPointCloud(options.data, kStlSpacingMm);
+  const std::vector<Eigen::Vector3d> scan = ReadPointCloud(options.data, kStlSpacingMm);
   WAAM_THROW_UNLESS(scan.size() >= 10, options.data.string() << ": the scan has " << scan.size()
                                                              << " points: the fit needs at least 10");
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
@@ -83,11 +79,8 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   const double rapid_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
   const twin::TwinResult build = [&] {
     Progress progress("deposit", 0, "passes", options.quiet);
-    return twin::SimulateBuild(plan, nullptr, scenario.simulation, rapid_mm_s, scenario.path.bead_width_mm,
-                               [&](std::size_t done, std::size_t total) {
-                                 progress.SetTotal(total);
-                                 progress.Update(done);
-                               });
+    return twin::MeasureBuild(plan, twin::DepositPlan(plan, scenario.simulation, rapid_mm_s, &progress), nullptr,
+                              scenario.path.bead_width_mm);
   }();
   const twin::DepositHistory history(plan, build.depositor, scenario.simulation, rapid_mm_s,
                                      scenario.process.wire_feed_mm_min / 60.0);
@@ -101,8 +94,9 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
 
   out << std::setprecision(6);
   nlohmann::json start_json, fitted_json;
-  for (const std::string& name : fit.free) {
-    const double a = Value(start, name), b = Value(result.params, name);
+  for (const models::DistortionParam param : fit.free) {
+    const std::string name(NameOf(param));
+    const double a = models::ParamValue(start, param), b = models::ParamValue(result.params, param);
     start_json[name] = a;
     fitted_json[name] = b;
     out << "  " << std::left << std::setw(26) << name << std::right << " = " << b << "  (start " << a << ")\n";
@@ -132,11 +126,11 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
       {"solver", models::ToJson(result.solver)},
   };
   // A fit Ceres stopped short of convergence (iteration limit, failure) is not written: its parameters are not a fit.
-  bool ok = result.solver.usable && result.solver.termination == "CONVERGENCE";
+  bool ok = result.solver.usable && result.solver.termination == models::SolverTermination::kConvergence;
   std::string message;
   if (!ok) {
     std::ostringstream why;
-    why << "Ceres " << result.solver.termination << " after " << result.solver.iterations << " iterations ("
+    why << "Ceres " << NameOf(result.solver.termination) << " after " << result.solver.iterations << " iterations ("
         << result.solver.message << "); rms " << result.rms_mm
         << " mm. Check that the scan is of this scenario's part, aligned in its part frame, or raise --max-iter";
     message = why.str();

@@ -240,11 +240,13 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   CheckInterrupt();
 
   const ThermalParameters fitted = residuals.Parameters(x.data());
-  const bool converged = summary.IsSolutionUsable() && summary.termination_type == ceres::CONVERGENCE;
+  const models::SolverTermination termination =
+      models::TerminationNamed(ceres::TerminationTypeToString(summary.termination_type));
+  const bool converged = summary.IsSolutionUsable() && termination == models::SolverTermination::kConvergence;
   std::string message = summary.message;
   if (!cost->error().empty()) message = cost->error();
   if (!converged) {
-    message = std::string(ceres::TerminationTypeToString(summary.termination_type)) + " after " +
+    message = std::string(NameOf(termination)) + " after " +
               std::to_string(summary.iterations.size()) + " iterations: " + message;
   }
   // The whole log replayed with the fitted values: the window's fit and the held-out prediction.
@@ -268,7 +270,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   doc["held_out"] = ReplayErrorsJson(model, fitted_run, window.first, window.second, true);
   doc["start_window"] = ReplayErrorsJson(model, start_run, window.first, window.second)["overall"];
   doc["start_held_out"] = ReplayErrorsJson(model, start_run, window.first, window.second, true)["overall"];
-  doc["solver"] = {{"termination", ceres::TerminationTypeToString(summary.termination_type)},
+  doc["solver"] = {{"termination", termination},
                    {"message", summary.message},
                    {"iterations", summary.iterations.size()},
                    {"initial_cost", summary.initial_cost},

@@ -74,8 +74,6 @@ std::vector<m::JunctionSample> ReadJunctions(const FitOptions& options, const Cs
 }
 
 FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::ostream& out) {
-  WAAM_THROW_UNLESS(options.kind == "network" || options.kind == "baseline",
-                    "--kind '" << options.kind << "': must be network or baseline");
   const m::VoidNetworkOptions net_options = NetworkOptions(options);
   const std::vector<m::JunctionSample> samples = ReadJunctions(options, table);
   const m::DataSource source = MakeSource(options, table, ResolveColumns(options));
@@ -112,7 +110,7 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
   // The model written: trained on every row.
   std::unique_ptr<m::VoidLengthModel> model;
   std::string fail_message;
-  if (options.kind == "network") {
+  if (options.kind == VoidModelKind::kNetwork) {
     m::VoidNetworkFit fit = m::TrainVoidLengthNetwork(samples, source, net_options);
     if (fit.ok) model = std::move(fit.model);
     fail_message = fit.message;
@@ -155,7 +153,7 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
       << ", angles " << options.angle_order << "\n";
   if (model) {
     out << "model written: " << model->kind() << "\n";
-    if (options.kind == "baseline") {
+    if (options.kind == VoidModelKind::kBaseline) {
       const auto* b = static_cast<const m::VoidLengthBaseline*>(model.get());
       out << std::setprecision(6) << "  params   : a = " << b->a_mm() << " mm, b = " << b->b_mm()
           << " mm  (L = a + b (1/sin(theta_min/2) - 1))\n";

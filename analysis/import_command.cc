@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "analysis/cell_files.h"
 #include "analysis/plan_command.h"
 #include "analysis/program_file.h"
 #include "analysis/plan_timeline.h"
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 
 planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::ParsedProgram& program,
                                     ImportReport* report) {
-  const twin::CellModel cell = twin::LoadCell(scenario.cell);
+  const twin::CellModel cell = LoadCell(scenario.cell);
   const planner::CellKinematics kin = twin::PartKinematics(cell, scenario.cell);
   const planner::ProcessSettings& process = scenario.process;
   planner::ImportSettings settings;

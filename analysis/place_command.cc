@@ -11,6 +11,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "analysis/cell_files.h"
 #include "analysis/import_command.h"
 #include "analysis/scenario_plan.h"
 #include "models/core/error.h"
@@ -158,6 +159,143 @@ bool BetterLayout(const LayoutScore& a, const LayoutScore& b) {
 
 void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path);  // place_picture.cc
 
+namespace {
+
+using CellModels = std::map<std::array<double, 3>, twin::CellModel>;
+
+// Every layout of the grid over `values` (per variable the values searched), the last variable varying fastest.
+std::vector<Layout> LayoutGrid(const std::vector<std::vector<double>>& values) {
+  std::size_t count = 1;
+  for (const std::vector<double>& v : values) count *= v.size();
+  std::vector<Layout> layouts(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t rest = i;
+    for (int v = kPlaceVars - 1; v >= 0; --v) {
+      const std::size_t n = values[v].size();
+      layouts[i][v] = values[v][rest % n];
+      rest /= n;
+    }
+  }
+  return layouts;
+}
+
+// Coarse pass: `coarse_plan` at a step of at least `coarse_step_mm` with cell.resolve fixed, every layout of
+// `result`, in parallel over layouts; fills result->coarse and coarse_s.
+void CheckCoarse(const planner::Plan& coarse_plan, const twin::CellSettings& cell, double coarse_step_mm,
+                 double rapid_mm_s, const CellModels& models, bool quiet, PlaceResult* result) {
+  const std::size_t count = result->layouts.size();
+  result->coarse.resize(count);
+  const auto start = std::chrono::steady_clock::now();
+  Progress progress("place", count, "layouts", quiet);
+  std::mutex mutex;
+  std::size_t done = 0;
+  ParallelFor(count, [&](std::size_t i) {
+    twin::CellSettings settings = ApplyLayout(cell, result->layouts[i]);
+    settings.step_mm = std::max(settings.step_mm, coarse_step_mm);
+    settings.resolve = twin::CellResolve::kFixed;  // the ranking needs the layout's effect, not the resolution's
+    const twin::CheckReport report =
+        twin::CheckPlan(models.at(ModelKey(result->layouts[i])), coarse_plan, settings, rapid_mm_s, nullptr);
+    result->coarse[i] = ScoreLayout(report, settings, false);
+    const std::lock_guard<std::mutex> lock(mutex);
+    progress.Update(++done);
+  });
+  progress.Finish();
+  result->coarse_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Full checks of `plan`: the best of the coarse pass, `finalists` at a time, until one passes or the coarse pass's
+// passing layouts are used up (at most 4 batches); fills result->full, full_index, best, best_score, feasible and
+// full_s.
+void CheckFinalists(const planner::Plan& plan, const twin::CellSettings& cell, int finalists, double rapid_mm_s,
+                    const CellModels& models, bool quiet, PlaceResult* result) {
+  const std::size_t count = result->layouts.size();
+  std::vector<int> order(count);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return BetterLayout(result->coarse[a], result->coarse[b]); });
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t cap = std::min<std::size_t>(count, 4 * static_cast<std::size_t>(finalists));
+  Progress progress("full", 0, "layouts", quiet);
+  for (std::size_t next = 0; next < cap && !result->feasible;) {
+    const std::size_t batch = std::min<std::size_t>(finalists, cap - next);
+    // Past the first batch only layouts that passed the coarse pass are worth the whole path.
+    if (next > 0 && result->coarse[order[next]].violating_samples > 0) break;
+    std::vector<LayoutScore> scores(batch);
+    ParallelFor(batch, [&](std::size_t k) {
+      const Layout& layout = result->layouts[order[next + k]];
+      const twin::CellSettings settings = ApplyLayout(cell, layout);
+      const twin::CheckReport report = twin::CheckPlan(models.at(ModelKey(layout)), plan, settings, rapid_mm_s, nullptr);
+      scores[k] = ScoreLayout(report, settings, true);
+    });
+    for (std::size_t k = 0; k < batch; ++k) {
+      result->full_index.push_back(order[next + k]);
+      result->full.push_back(scores[k]);
+      if (result->best < 0 || BetterLayout(scores[k], result->best_score)) {
+        result->best = order[next + k];
+        result->best_score = scores[k];
+      }
+      result->feasible = result->feasible || scores[k].violating_samples == 0;
+    }
+    next += batch;
+    progress.SetTotal(cap);
+    progress.Update(next);
+  }
+  progress.Finish();
+  result->full_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The text of scenario.yaml: the scenario with `overrides` (the best layout's among them) and `base_dir` pointing back
+// at its files, under a comment saying whether it passes.
+std::string PlacedScenarioYaml(const PlaceOptions& options, const Scenario& scenario,
+                               const std::vector<std::string>& overrides, bool feasible) {
+  YAML::Node document = LoadScenarioTop(options.scenario, overrides).node();
+  std::error_code ec;
+  const fs::path out_abs = fs::absolute(options.out_dir, ec).lexically_normal();
+  const fs::path base_dir = scenario.dir.lexically_relative(out_abs);
+  document["base_dir"] = base_dir.empty() ? scenario.dir.string() : base_dir.string();
+  YAML::Emitter emitter;
+  emitter << document;
+  std::ostringstream text;
+  text << "# " << (feasible ? "The layout waam place found" : "The nearest miss waam place found (it does not pass)")
+       << " for " << options.scenario.string() << "; place.json has every layout tried.\n"
+       << "# base_dir: relative paths below are resolved against the original scenario's folder.\n"
+       << emitter.c_str() << "\n";
+  return text.str();
+}
+
+// place.json: every layout tried with its coarse (and full) score, the best one as `best_json`.
+nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_name, const nlohmann::json& best_json,
+                         std::size_t coarse_layers, double coarse_step_mm) {
+  const std::size_t count = result.layouts.size();
+  nlohmann::json variables = nlohmann::json::array();
+  for (int v = 0; v < kPlaceVars; ++v) variables.push_back({{"name", PlaceVariableName(v)}, {"values", result.values[v]}});
+  nlohmann::json tried = nlohmann::json::array();
+  std::vector<int> full_of(count, -1);
+  for (std::size_t k = 0; k < result.full_index.size(); ++k) full_of[result.full_index[k]] = static_cast<int>(k);
+  for (std::size_t i = 0; i < count; ++i) {
+    nlohmann::json entry = {{"layout", LayoutJson(result.layouts[i])}, {"coarse", ScoreJson(result.coarse[i])}};
+    if (full_of[i] >= 0) entry["full"] = ScoreJson(result.full[full_of[i]]);
+    tried.push_back(entry);
+  }
+  return {
+      {"scenario", scenario_name},
+      {"feasible", result.feasible},
+      {"best", best_json},
+      {"scenario_file", "scenario.yaml"},
+      {"variables", variables},
+      {"layouts", count},
+      {"coarse_layers", coarse_layers},
+      {"coarse_step_mm", coarse_step_mm},
+      {"full_checks", result.full.size()},
+      {"tried", tried},
+      {"timing", {{"coarse_s", result.coarse_s},
+                  {"full_s", result.full_s},
+                  {"coarse_layouts_per_s", result.coarse_s > 0.0 ? count / result.coarse_s : 0.0}}},
+  };
+}
+
+}  // namespace
+
 PlaceResult RunPlace(const PlaceOptions& options) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   ClaimOutputDirectory(options.out_dir);
@@ -180,82 +318,19 @@ PlaceResult RunPlace(const PlaceOptions& options) {
       &place.part_x_mm,          &place.part_y_mm,          &place.part_z_mm,  &place.part_yaw_deg,
       &place.table_rotation_deg, &place.positioner_yaw_deg, &place.robot_x_mm, &place.robot_y_mm};
   for (int v = 0; v < kPlaceVars; ++v) result.values.push_back(RangeValues(*ranges[v], current[v]));
-  // The grid, the last variable varying fastest.
-  std::size_t count = 1;
-  for (const std::vector<double>& values : result.values) count *= values.size();
-  result.layouts.resize(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    std::size_t rest = i;
-    for (int v = kPlaceVars - 1; v >= 0; --v) {
-      const std::size_t n = result.values[v].size();
-      result.layouts[i][v] = result.values[v][rest % n];
-      rest /= n;
-    }
-  }
+  result.layouts = LayoutGrid(result.values);
 
   // One cell model per arm base and positioner yaw (MuJoCo compiles a model per placement), loaded in order.
-  std::map<std::array<double, 3>, twin::CellModel> models;
+  CellModels models;
   for (const Layout& layout : result.layouts) {
-    if (!models.count(ModelKey(layout))) models.emplace(ModelKey(layout), twin::LoadCell(ApplyLayout(cell, layout)));
+    if (!models.count(ModelKey(layout))) models.emplace(ModelKey(layout), LoadCell(ApplyLayout(cell, layout)));
   }
 
   // Coarse pass: a subset of the layers at a coarser step, every layout, in parallel over layouts.
   const planner::Plan coarse_plan = CoarsePlan(plan, place.coarse_layers);
-  result.coarse.resize(count);
-  {
-    const auto start = std::chrono::steady_clock::now();
-    Progress progress("place", count, "layouts", options.quiet);
-    std::mutex mutex;
-    std::size_t done = 0;
-    ParallelFor(count, [&](std::size_t i) {
-      twin::CellSettings settings = ApplyLayout(cell, result.layouts[i]);
-      settings.step_mm = std::max(settings.step_mm, place.coarse_step_mm);
-      settings.resolve = twin::CellResolve::kFixed;  // the ranking needs the layout's effect, not the resolution's
-      const twin::CheckReport report =
-          twin::CheckPlan(models.at(ModelKey(result.layouts[i])), coarse_plan, settings, rapid_mm_s, nullptr);
-      result.coarse[i] = ScoreLayout(report, settings, false);
-      const std::lock_guard<std::mutex> lock(mutex);
-      progress.Update(++done);
-    });
-    progress.Finish();
-    result.coarse_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
+  CheckCoarse(coarse_plan, cell, place.coarse_step_mm, rapid_mm_s, models, options.quiet, &result);
 
-  // Full checks: the best of the coarse pass, `finalists` at a time, until one passes or the coarse pass's passing
-  // layouts are used up (at most 4 batches).
-  std::vector<int> order(count);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return BetterLayout(result.coarse[a], result.coarse[b]); });
-  const auto start = std::chrono::steady_clock::now();
-  const std::size_t cap = std::min<std::size_t>(count, 4 * static_cast<std::size_t>(place.finalists));
-  Progress progress("full", 0, "layouts", options.quiet);
-  for (std::size_t next = 0; next < cap && !result.feasible;) {
-    const std::size_t batch = std::min<std::size_t>(place.finalists, cap - next);
-    // Past the first batch only layouts that passed the coarse pass are worth the whole path.
-    if (next > 0 && result.coarse[order[next]].violating_samples > 0) break;
-    std::vector<LayoutScore> scores(batch);
-    ParallelFor(batch, [&](std::size_t k) {
-      const Layout& layout = result.layouts[order[next + k]];
-      const twin::CellSettings settings = ApplyLayout(cell, layout);
-      const twin::CheckReport report = twin::CheckPlan(models.at(ModelKey(layout)), plan, settings, rapid_mm_s, nullptr);
-      scores[k] = ScoreLayout(report, settings, true);
-    });
-    for (std::size_t k = 0; k < batch; ++k) {
-      result.full_index.push_back(order[next + k]);
-      result.full.push_back(scores[k]);
-      if (result.best < 0 || BetterLayout(scores[k], result.best_score)) {
-        result.best = order[next + k];
-        result.best_score = scores[k];
-      }
-      result.feasible = result.feasible || scores[k].violating_samples == 0;
-    }
-    next += batch;
-    progress.SetTotal(cap);
-    progress.Update(next);
-  }
-  progress.Finish();
-  result.full_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CheckFinalists(plan, cell, place.finalists, rapid_mm_s, models, options.quiet, &result);
 
   // Outputs: the scenario with the best layout, the picture, place.json last.
   RunOutputs outputs(options.out_dir / "place.json");
@@ -264,49 +339,15 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   const std::vector<std::string> best_overrides = LayoutOverrides(best, current, cell.robot_base_mm[2]);
   overrides.insert(overrides.end(), best_overrides.begin(), best_overrides.end());
   if (result.feasible) overrides.push_back("run.expected_exit_code=0");
-  YAML::Node document = LoadScenarioTop(options.scenario, overrides).node();
-  std::error_code ec;
-  const fs::path out_abs = fs::absolute(options.out_dir, ec).lexically_normal();
-  const fs::path base_dir = scenario.dir.lexically_relative(out_abs);
-  document["base_dir"] = base_dir.empty() ? scenario.dir.string() : base_dir.string();
-  YAML::Emitter emitter;
-  emitter << document;
-  std::ostringstream text;
-  text << "# " << (result.feasible ? "The layout waam place found" : "The nearest miss waam place found (it does not pass)")
-       << " for " << options.scenario.string() << "; place.json has every layout tried.\n"
-       << "# base_dir: relative paths below are resolved against the original scenario's folder.\n"
-       << emitter.c_str() << "\n";
-  WriteFileAtomic(outputs.Add(options.out_dir / "scenario.yaml"), text.str());
+  const std::string text = PlacedScenarioYaml(options, scenario, overrides, result.feasible);
+  WriteFileAtomic(outputs.Add(options.out_dir / "scenario.yaml"), text);
   if (options.images) WritePlaceMarginPng(result, outputs.Add(options.out_dir / "place_margin.png"));
 
-  nlohmann::json variables = nlohmann::json::array();
-  for (int v = 0; v < kPlaceVars; ++v) variables.push_back({{"name", PlaceVariableName(v)}, {"values", result.values[v]}});
-  nlohmann::json tried = nlohmann::json::array();
-  std::vector<int> full_of(count, -1);
-  for (std::size_t k = 0; k < result.full_index.size(); ++k) full_of[result.full_index[k]] = static_cast<int>(k);
-  for (std::size_t i = 0; i < count; ++i) {
-    nlohmann::json entry = {{"layout", LayoutJson(result.layouts[i])}, {"coarse", ScoreJson(result.coarse[i])}};
-    if (full_of[i] >= 0) entry["full"] = ScoreJson(result.full[full_of[i]]);
-    tried.push_back(entry);
-  }
   nlohmann::json best_json = ScoreJson(result.best_score);
   best_json["layout"] = LayoutJson(best);
   best_json["overrides"] = best_overrides;
-  const nlohmann::json document_json = {
-      {"scenario", scenario.name},
-      {"feasible", result.feasible},
-      {"best", best_json},
-      {"scenario_file", "scenario.yaml"},
-      {"variables", variables},
-      {"layouts", count},
-      {"coarse_layers", coarse_plan.layers.size()},
-      {"coarse_step_mm", std::max(cell.step_mm, place.coarse_step_mm)},
-      {"full_checks", result.full.size()},
-      {"tried", tried},
-      {"timing", {{"coarse_s", result.coarse_s},
-                  {"full_s", result.full_s},
-                  {"coarse_layouts_per_s", result.coarse_s > 0.0 ? count / result.coarse_s : 0.0}}},
-  };
+  const nlohmann::json document_json = PlaceJson(result, scenario.name, best_json, coarse_plan.layers.size(),
+                                                 std::max(cell.step_mm, place.coarse_step_mm));
   CheckInterrupt();
   WriteFileAtomic(options.out_dir / "place.json", document_json.dump(2) + "\n");
   outputs.Complete();

@@ -1,6 +1,7 @@
 // The build's timeline on the scenario's cell and its JSON form.
 #include "analysis/plan_timeline.h"
 
+#include "analysis/cell_files.h"
 #include "models/core/numbers.h"
 #include "planner/kinematics/cell_motion.h"
 #include "twin/cell/cell_check.h"
@@ -25,7 +26,7 @@ planner::Timeline CellTimeline(const Scenario& scenario, const twin::CellModel& 
 
 void AddCellTimeline(const Scenario& scenario, planner::PlanResult* result,
                      const std::vector<double>& extra_wait_before_layer_s) {
-  const twin::CellModel cell = twin::LoadCell(scenario.cell);
+  const twin::CellModel cell = LoadCell(scenario.cell);
   result->timeline = CellTimeline(scenario, cell, result->plan, extra_wait_before_layer_s);
   result->stats.estimated_time_s = result->timeline.total_s;
 }

@@ -15,7 +15,7 @@ class CellModel;
 
 namespace waam::analysis {
 
-// The timeline of `plan` on `cell` (made by twin::LoadCell(scenario.cell)): the cell's motion along the plan as `waam
+// The timeline of `plan` on `cell` (made by LoadCell(scenario.cell)): the cell's motion along the plan as `waam
 // check` plans it with the fixed torch spin (positioner limits kept cell.checks.joint_margin_deg inside), the axes'
 // speeds and accelerations (cell.axis_ramp_s), the process's arc start/end, rapid speed and interpass keys, and
 // `extra_wait_before_layer_s` (per plan layer, s >= 0; e.g. the thermal model's interpass waits). Throws InputError

@@ -226,6 +226,9 @@ LogRow ReadRow(const RowReader& r, const ColumnIndex& ix, const ReplaySection& s
   } else {
     const double volts = r.Number(ix.voltage, c.voltage_v), amps = r.Number(ix.current, c.current_a);
     row.power_w = volts * amps;
+    WAAM_THROW_UNLESS(std::isfinite(row.power_w), r.Where(ix.voltage) << ": columns '" << c.voltage_v << "' x '"
+                                                                       << c.current_a << "': power " << volts
+                                                                       << " V x " << amps << " A is out of range");
     WAAM_THROW_UNLESS(row.power_w >= 0.0, r.Where(ix.voltage) << ": columns '" << c.voltage_v << "' x '"
                                                               << c.current_a << "': negative power " << row.power_w
                                                               << " W (" << volts << " V x " << amps
@@ -288,9 +291,8 @@ ReplayLog ParseReplayLog(std::string_view text, const ReplaySection& section, co
   ReplayLog log;
   log.file = file;
   log.probe_c.assign(section.probes.size(), {});
-  double first_s = kLogNaN, previous_s = kLogNaN, day_s = 0.0;
+  double first_s = kLogNaN, previous_s = kLogNaN, previous_t = kLogNaN, day_s = 0.0;
   int previous_line = 0;
-  const bool time_of_day = section.time_unit != LogTimeUnit::kSeconds;
   for (std::size_t l = at + 1; l < lines.size(); ++l) {
     if (LogTrim(lines[l]).empty()) continue;
     const int line = static_cast<int>(l + 1);
@@ -300,22 +302,30 @@ ReplayLog ParseReplayLog(std::string_view text, const ReplaySection& section, co
       log.issues.push_back({"zero_first_row", line, 0.0, "every used cell but the time is 0: row left out"});
       continue;
     }
-    // A time of day that drops by more than 12 h crossed midnight.
+    // A time of day (a clock time, or a day fraction below one day: not a date serial) that drops by more than 12 h
+    // crossed midnight.
+    const bool time_of_day = section.time_unit == LogTimeUnit::kClock ||
+                             (section.time_unit == LogTimeUnit::kDayFraction && row.clock_s < kLogDayS);
     if (time_of_day && !std::isnan(previous_s) && row.clock_s + day_s < previous_s - 0.5 * kLogDayS) day_s += kLogDayS;
     const double clock = row.clock_s + day_s;
     if (std::isnan(first_s)) first_s = clock;
+    // Times compared as seconds from the first row (what the replay uses), so that two rows whose times differ by
+    // less than the rounding of a huge origin count as one time.
     const double t = clock - first_s;
-    if (!std::isnan(previous_s)) {
-      WAAM_THROW_UNLESS(clock >= previous_s, file << ":" << line << ": time " << t << " s is before the previous "
-                                                  << "row's " << previous_s - first_s << " s (line " << previous_line
-                                                  << "): time must not go backwards");
-      if (clock == previous_s) {
+    WAAM_THROW_UNLESS(std::isfinite(t) && std::abs(t) <= 1e9, file << ":" << line << ": time " << t
+                                                                   << " s from the first row: must be within 1e9 s");
+    if (!std::isnan(previous_t)) {
+      WAAM_THROW_UNLESS(t >= previous_t, file << ":" << line << ": time " << t << " s is before the previous "
+                                              << "row's " << previous_t << " s (line " << previous_line
+                                              << "): time must not go backwards");
+      if (t == previous_t) {
         log.issues.push_back({"repeated_time", line, t, "the same time as line " + std::to_string(previous_line) +
                                                             ": row left out"});
         continue;
       }
     }
     previous_s = clock;
+    previous_t = t;
     previous_line = line;
     log.line.push_back(line);
     log.time_s.push_back(t);

@@ -2,7 +2,7 @@
 #include "analysis/simulate_command.h"
 
 #include "analysis/scenario.h"
-#include "planner/mesh/stl_io.h"
+#include "analysis/stl_file.h"
 
 #include <sys/resource.h>
 
@@ -146,16 +146,12 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
   const twin::SimulationSettings& settings = scenario.simulation;
   CheckVoxelBudget(scenario, planned.plan);
   twin::TwinResult result = [&] {
-    std::optional<Progress> progress;  // created once the number of passes is known
-    twin::TwinResult r = twin::SimulateBuild(
-        planned.plan, planned.mesh.facets.empty() ? nullptr : &planned.mesh, settings,
-        scenario.process.rapid_speed_mm_min / 60.0, scenario.path.bead_width_mm,
-        [&](std::size_t done, std::size_t total) {
-          if (!progress) progress.emplace("deposit", total, "passes", options.quiet);
-          progress->Update(done);
-        });
-    if (progress) progress->Finish();
-    return r;
+    Progress progress("deposit", 0, "passes", options.quiet);
+    twin::Depositor depositor =
+        twin::DepositPlan(planned.plan, settings, scenario.process.rapid_speed_mm_min / 60.0, &progress);
+    progress.Finish();
+    return twin::MeasureBuild(planned.plan, std::move(depositor), planned.mesh.facets.empty() ? nullptr : &planned.mesh,
+                              scenario.path.bead_width_mm);
   }();
   WriteSimulateOutputs(scenario, planned, result, options.out_dir, options.images);
   return result;
@@ -178,6 +174,16 @@ void CheckVoxelBudget(const Scenario& scenario, const planner::Plan& plan) {
                     << "simulation.max_voxels = " << settings.max_voxels << "; use a coarser voxel_mm");
 }
 
+planner::TriangleMesh PartSurface(const twin::VoxelGrid& grid, int* factor) {
+  constexpr std::size_t kMaxStlFacets = 5000000;
+  *factor = 1;
+  planner::TriangleMesh surface = twin::ExtractVoxelSurface(grid, kMaxStlFacets);
+  while ((surface.facets.empty() || surface.facets.size() > kMaxStlFacets) && *factor < 8 && grid.occupied() > 0) {
+    surface = twin::ExtractVoxelSurface(twin::Coarsen(grid, ++*factor), kMaxStlFacets);
+  }
+  return surface;
+}
+
 nlohmann::json WriteSimulateOutputs(const Scenario& scenario, const planner::PlanResult& planned,
                                     const twin::TwinResult& result, const fs::path& out_dir, bool images) {
   ClaimOutputDirectory(out_dir);
@@ -186,15 +192,10 @@ nlohmann::json WriteSimulateOutputs(const Scenario& scenario, const planner::Pla
   // The part's surface: coplanar voxel faces merged (twin::ExtractVoxelSurface). Past kMaxStlFacets exposed voxel
   // faces or facets it is exported from a coarser copy of the grid (majority of the fine voxels), reported as
   // stl_voxel_mm.
-  constexpr std::size_t kMaxStlFacets = 5000000;
   const auto surface_start = std::chrono::steady_clock::now();
   int factor = 1;
-  planner::TriangleMesh surface = twin::ExtractVoxelSurface(result.depositor.grid(), kMaxStlFacets);
-  while ((surface.facets.empty() || surface.facets.size() > kMaxStlFacets) && factor < 8 &&
-         result.depositor.grid().occupied() > 0) {
-    surface = twin::ExtractVoxelSurface(twin::Coarsen(result.depositor.grid(), ++factor), kMaxStlFacets);
-  }
-  planner::WriteStlBinary(surface, outputs.Add(out_dir / "part.stl"), "waam simulate: " + scenario.name);
+  const planner::TriangleMesh surface = PartSurface(result.depositor.grid(), &factor);
+  WriteStlBinary(surface, outputs.Add(out_dir / "part.stl"), "waam simulate: " + scenario.name);
   const double surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - surface_start).count();
   const double stl_voxel_mm = factor * result.depositor.grid().voxel_mm();
   WriteSimulationH5(result, outputs.Add(out_dir / "part.h5"));

@@ -38,6 +38,10 @@ twin::TwinResult SimulatePlanned(const Scenario& scenario, const planner::PlanRe
 // Throws InputError naming the scenario file and both keys.
 void CheckVoxelBudget(const Scenario& scenario, const planner::Plan& plan);
 
+// The part.stl surface of `grid` (twin::ExtractVoxelSurface); past 5 M exposed voxel faces or facets it is taken
+// from a coarser copy of the grid (twin::Coarsen, factor 2 to 8, written to `factor`; 1 for the grid itself).
+planner::TriangleMesh PartSurface(const twin::VoxelGrid& grid, int* factor);
+
 // Writes what `waam simulate` writes for a build already simulated into `out_dir` (claimed first; part.stl,
 // part.h5, the PNGs with `images`, simulate.json last, all atomically) and returns the simulate.json document
 // (SimulationToJson with the part.stl fields stl_voxel_mm, stl_facets and performance.surface_s). Throws InputError

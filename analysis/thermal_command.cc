@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "analysis/cell_files.h"
 #include "analysis/import_command.h"
 #include "analysis/scenario_plan.h"
 #include "analysis/plan_timeline.h"
@@ -106,7 +107,7 @@ nlohmann::json ThermalToJson(const Scenario& scenario, const ThermalRunResult& r
 }
 
 TimelineBuilder TimelineBuilderFor(const Scenario& scenario, const planner::Plan& plan) {
-  auto cell = std::make_shared<const twin::CellModel>(twin::LoadCell(scenario.cell));
+  auto cell = std::make_shared<const twin::CellModel>(LoadCell(scenario.cell));
   return [&scenario, &plan, cell](const std::vector<double>& extra_wait_s) {
     return CellTimeline(scenario, *cell, plan, extra_wait_s);
   };
@@ -132,8 +133,8 @@ nlohmann::json WriteThermalOutputs(const Scenario& scenario, const ThermalRunRes
   RunOutputs outputs(options.out_dir / "thermal.json");
   WriteThermalH5(result, outputs.Add(options.out_dir / "thermal.h5"));
   if (options.images) {
-    WriteInterpassPng(result, scenario.process.interpass, outputs.Add(options.out_dir / "interpass.png"));
-    WriteProbesPng(result, scenario.process.interpass, outputs.Add(options.out_dir / "probes.png"));
+    WriteInterpassPng(result, scenario.process.interpass, scenario.name, outputs.Add(options.out_dir / "interpass.png"));
+    WriteProbesPng(result, scenario.process.interpass, scenario.name, outputs.Add(options.out_dir / "probes.png"));
     // One colour range for every layer's map: the coolest and hottest metal of all of them.
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const ThermalLayerField& f : result.fields) {
@@ -146,7 +147,7 @@ nlohmann::json WriteThermalOutputs(const Scenario& scenario, const ThermalRunRes
     for (const ThermalLayerField& f : result.fields) {
       char name[40];
       std::snprintf(name, sizeof(name), "maps/layer_%04d.png", f.layer);
-      WriteTemperatureMapPng(f, result.settings.deposit_box_mm, lo, hi, outputs.Add(options.out_dir / name));
+      WriteTemperatureMapPng(f, result.settings.deposit_box_mm, lo, hi, scenario.name, outputs.Add(options.out_dir / name));
     }
   }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)

@@ -49,12 +49,13 @@ nlohmann::json ThermalToJson(const Scenario& scenario, const ThermalRunResult& r
 void WriteThermalH5(const ThermalRunResult& result, const std::filesystem::path& path);
 
 // Pictures: interpass temperature and wait per layer; probe temperatures over time; a vertical section of the
-// temperature field at one layer's end (colour range [lo_c, hi_c], shared by every layer's map).
+// temperature field at one layer's end (colour range [lo_c, hi_c], shared by every layer's map). Each title starts
+// with `part_name`.
 void WriteInterpassPng(const ThermalRunResult& result, const planner::InterpassSettings& interpass,
-                       const std::filesystem::path& path);
+                       const std::string& part_name, const std::filesystem::path& path);
 void WriteProbesPng(const ThermalRunResult& result, const planner::InterpassSettings& interpass,
-                    const std::filesystem::path& path);
+                    const std::string& part_name, const std::filesystem::path& path);
 void WriteTemperatureMapPng(const ThermalLayerField& field, const Eigen::AlignedBox3d& deposit_box_mm, double lo_c,
-                            double hi_c, const std::filesystem::path& path);
+                            double hi_c, const std::string& part_name, const std::filesystem::path& path);
 
 }  // namespace waam::analysis

@@ -46,7 +46,7 @@ cv::Scalar SeriesColour(std::size_t i) {
 }  // namespace
 
 void WriteInterpassPng(const ThermalRunResult& result, const planner::InterpassSettings& interpass,
-                       const std::filesystem::path& path) {
+                       const std::string& part_name, const std::filesystem::path& path) {
   cv::Mat image(760, 1000, CV_8UC3, cv::Scalar(255, 255, 255));
   const int layers = static_cast<int>(result.layers.size());
   std::vector<double> temps, waits;
@@ -60,7 +60,7 @@ void WriteInterpassPng(const ThermalRunResult& result, const planner::InterpassS
   // Layers by their index (0 = the first), as in thermal.json.
   const PlotFrame top{cv::Rect(90, 70, 860, 260), -0.5, layers - 0.5, t_lo, t_hi};
   const PlotFrame bottom{cv::Rect(90, 420, 860, 260), -0.5, layers - 0.5, 0.0, w_hi};
-  PutLabel(image, "Interpass temperature and interpass wait per layer", {90, 28}, 0.7);
+  PutLabel(image, part_name + ": interpass temperature and interpass wait per layer", {90, 28}, 0.7);
   top.DrawAxes(image, "layer (0 = the first)", "interpass temperature [degC] (" +
                                    std::string(interpass.at == planner::InterpassAt::kProbe ? "probe " + interpass.probe
                                                                                             : NameOf(interpass.at)) +
@@ -88,7 +88,7 @@ void WriteInterpassPng(const ThermalRunResult& result, const planner::InterpassS
 }
 
 void WriteProbesPng(const ThermalRunResult& result, const planner::InterpassSettings& interpass,
-                    const std::filesystem::path& path) {
+                    const std::string& part_name, const std::filesystem::path& path) {
   cv::Mat image(620, 1100, CV_8UC3, cv::Scalar(255, 255, 255));
   std::vector<double> all;
   for (const ThermalProbeHistory& probe : result.probes) all.insert(all.end(), probe.temperature_c.begin(),
@@ -97,7 +97,7 @@ void WriteProbesPng(const ThermalRunResult& result, const planner::InterpassSett
   const auto [lo, hi] = PaddedRange(all, -273.0);
   const double t_end = std::max(1.0, result.sample_time_s.empty() ? 1.0 : result.sample_time_s.back());
   const PlotFrame frame{cv::Rect(90, 70, 800, 460), 0.0, t_end, lo, hi};
-  PutLabel(image, "Probe temperatures (grey lines: layer starts)", {90, 28}, 0.7);
+  PutLabel(image, part_name + ": probe temperatures (grey lines: layer starts)", {90, 28}, 0.7);
   for (const ThermalLayer& l : result.layers) {
     const cv::Point a = frame.Px(l.start_s, lo), b = frame.Px(l.start_s, hi);
     cv::line(image, a, b, cv::Scalar(215, 215, 215), 1);
@@ -138,7 +138,8 @@ void WriteProbesPng(const ThermalRunResult& result, const planner::InterpassSett
 }
 
 void WriteTemperatureMapPng(const ThermalLayerField& layer_field, const Eigen::AlignedBox3d& deposit_box_mm,
-                            double lo_c, double hi_c, const std::filesystem::path& path) {
+                            double lo_c, double hi_c, const std::string& part_name,
+                            const std::filesystem::path& path) {
   const twin::TemperatureField& f = layer_field.field;
   const int nx = std::max(1, f.size.x()), ny = std::max(1, f.size.y()), nz = std::max(1, f.size.z());
   // The section along the part's longer horizontal side, through the middle of the other.
@@ -176,9 +177,9 @@ void WriteTemperatureMapPng(const ThermalLayerField& layer_field, const Eigen::A
   internal::DrawColourBar(image, cv::Rect(area.x + width + 40, area.y, 22, std::max(60, height)), cmap, lo_c, hi_c,
                           "T [degC]");
   PutLabel(image,
-           Printf("Temperature at the end of layer %.0f (t = %.1f s), section ", layer_field.layer,
+           part_name + Printf(": temperature at the end of layer %.0f (t = %.1f s), section ", layer_field.layer,
                   layer_field.time_s) + names[across] + Printf(" = %.1f mm (grey: no metal)", at_mm),
-           {90, 28}, 0.6);
+           {10, 28}, 0.5);
   internal::WritePngFile(image, path);
 }
 

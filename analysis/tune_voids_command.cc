@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <set>
@@ -69,6 +70,69 @@ std::string TrainingCsv(const TuneVoidsResult& result, const TuneVoidsOptions& o
   return out.str();
 }
 
+// The junction classes of the first `layers` layers of `plan` (`all_classes`) and, per class, its first junction on
+// layer 0 (`representative`), the one simulated.
+void FindJunctionClasses(const planner::Plan& plan, int layers, double w, int min_ribs,
+                         std::set<std::string>* all_classes, std::map<std::string, planner::Junction>* representative) {
+  for (int k = 0; k < layers; ++k) {
+    const planner::LayerPath& layer = plan.layers[k];
+    for (const planner::Junction& j : planner::FindJunctions(layer.slice, Moves(layer), w, min_ribs)) {
+      all_classes->insert(j.ClassName());
+    }
+  }
+  const planner::LayerPath& first = plan.layers.front();
+  for (const planner::Junction& j : planner::FindJunctions(first.slice, Moves(first), w, min_ribs)) {
+    representative->emplace(j.ClassName(), j);
+  }
+}
+
+// Searches the shift of one junction class after its plain and geometric (`unit_shift`, mm) trials in `tuning`:
+// `run(shift)` deposits a trial. Fills the tuning's history, converged, tuned and lambda.
+void SearchShift(double unit_shift, double half_mm, const TuneVoidsOptions& options,
+                 const std::function<TuneTrial(double)>& run, JunctionTuning* tuning) {
+  // Search: the smallest shift whose void volume is below the threshold. Above it: the shift is raised by the
+  // void length still measured (eq. 4.6: the shift that fills a void is its length L); once a shift fills the
+  // void, bisection between the last failing and the first filling shift.
+  double lo = 0.0;
+  double lo_length = tuning->plain.void_length_mm;
+  double hi = -1.0;
+  TuneTrial best = tuning->plain;
+  if (tuning->plain.void_volume_mm3 <= options.threshold_mm3) {
+    hi = 0.0;
+  } else if (tuning->geometric.void_volume_mm3 <= options.threshold_mm3) {
+    hi = unit_shift;
+    best = tuning->geometric;
+  } else {
+    lo = unit_shift;
+    lo_length = tuning->geometric.void_length_mm;
+    best = tuning->geometric;
+  }
+  for (int trial = 0; trial < options.max_trials; ++trial) {
+    double shift = 0.0;
+    if (hi < 0.0) {
+      shift = lo + std::max(lo_length, options.resolution_mm);
+      if (shift > half_mm) break;  // the corner would leave the simulated square
+    } else if (hi - lo > options.resolution_mm) {
+      shift = 0.5 * (lo + hi);
+    } else {
+      break;
+    }
+    const TuneTrial t = run(shift);
+    tuning->history.push_back(t);
+    if (t.void_volume_mm3 <= options.threshold_mm3) {
+      hi = shift;
+      best = t;
+    } else {
+      lo = shift;
+      lo_length = t.void_length_mm;
+      if (hi < 0.0) best = t;
+    }
+  }
+  tuning->converged = hi >= 0.0;
+  tuning->tuned = best;
+  tuning->lambda = unit_shift > 0.0 ? best.shift_mm / unit_shift : 0.0;
+}
+
 }  // namespace
 
 TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
@@ -93,17 +157,8 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
 
   // Junction classes over the simulated layers; the first junction of each class (on layer 0) is the one simulated.
   std::set<std::string> all_classes;
-  for (int k = 0; k < options.layers; ++k) {
-    const planner::LayerPath& layer = planned.plan.layers[k];
-    for (const planner::Junction& j : planner::FindJunctions(layer.slice, Moves(layer), w, min_ribs)) {
-      all_classes.insert(j.ClassName());
-    }
-  }
   std::map<std::string, planner::Junction> representative;
-  const planner::LayerPath& first = planned.plan.layers.front();
-  for (const planner::Junction& j : planner::FindJunctions(first.slice, Moves(first), w, min_ribs)) {
-    representative.emplace(j.ClassName(), j);
-  }
+  FindJunctionClasses(planned.plan, options.layers, w, min_ribs, &all_classes, &representative);
   WAAM_THROW_UNLESS(!representative.empty(), options.scenario.string()
                                                  << ": no junction of " << min_ribs
                                                  << " or more ribs on the first layer (is path.pattern eulerian or "
@@ -164,51 +219,11 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
     tuning.plain = first_two[0];
     tuning.geometric = first_two[1];
     tuning.history = {tuning.plain, tuning.geometric};
-    // Search: the smallest shift whose void volume is below the threshold. Above it: the shift is raised by the
-    // void length still measured (eq. 4.6: the shift that fills a void is its length L); once a shift fills the
-    // void, bisection between the last failing and the first filling shift.
-    double lo = 0.0;
-    double lo_length = tuning.plain.void_length_mm;
-    double hi = -1.0;
-    TuneTrial best = tuning.plain;
-    if (tuning.plain.void_volume_mm3 <= options.threshold_mm3) {
-      hi = 0.0;
-    } else if (tuning.geometric.void_volume_mm3 <= options.threshold_mm3) {
-      hi = unit_shift;
-      best = tuning.geometric;
-    } else {
-      lo = unit_shift;
-      lo_length = tuning.geometric.void_length_mm;
-      best = tuning.geometric;
-    }
-    for (int trial = 0; trial < options.max_trials; ++trial) {
-      double shift = 0.0;
-      if (hi < 0.0) {
-        shift = lo + std::max(lo_length, options.resolution_mm);
-        if (shift > crop.half_mm) break;  // the corner would leave the simulated square
-      } else if (hi - lo > options.resolution_mm) {
-        shift = 0.5 * (lo + hi);
-      } else {
-        break;
-      }
-      const TuneTrial t = run(shift, "");
-      tuning.history.push_back(t);
-      if (t.void_volume_mm3 <= options.threshold_mm3) {
-        hi = shift;
-        best = t;
-      } else {
-        lo = shift;
-        lo_length = t.void_length_mm;
-        if (hi < 0.0) best = t;
-      }
-    }
-    tuning.converged = hi >= 0.0;
-    tuning.tuned = best;
-    tuning.lambda = unit_shift > 0.0 ? best.shift_mm / unit_shift : 0.0;
+    SearchShift(unit_shift, crop.half_mm, options, [&](double shift) { return run(shift, ""); }, &tuning);
     if (options.images) {
       // Re-run the final shift with its picture (deterministic: the same numbers as the search found).
       const std::string picture = stem + "_tuned.png";
-      run(best.shift_mm, picture);
+      run(tuning.tuned.shift_mm, picture);
       tuning.pictures = {stem + "_plain.png", picture};
     }
   });

@@ -1,15 +1,24 @@
 // `waam fit`: command-line options for fitting a process model to a CSV table (or the distortion model to a scan).
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "analysis/fit_command.h"
 #include "app/commands.h"
+#include "models/core/enum_names.h"
+#include "models/core/error.h"
 
 namespace waam::app {
 
 void AddFitCommand(CLI::App& app, CommandRunner* runner) {
   auto options = std::make_shared<analysis::FitOptions>();
   auto speed_range = std::make_shared<std::vector<double>>();
+  // The closed sets are taken as names and parsed into their enums when the command runs.
+  auto model = std::make_shared<std::string>();
+  auto space = std::make_shared<std::string>(NameOf(options->space));
+  auto kind = std::make_shared<std::string>(NameOf(options->kind));
   CLI::App* fit = app.add_subcommand(
       "fit",
       "Fit a process model to measured data (Ceres least squares) and write it as a model JSON file.\n"
@@ -54,10 +63,9 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       "                mape_pct, max_error_c, peaks}, solver, time_s. `waam thermal replay --parameters fitted.json`\n"
       "                replays with them. A fit Ceres did not converge is not written (exit 2).\n"
       "Exit code 2 for bad input or a fit the solver could not make usable (the message says why).");
-  fit->add_option("model", options->model,
-                  "csw | speed-height | width-height | bead-temperature | void-length | distortion")
-      ->required()
-      ->check(CLI::IsMember({"csw", "speed-height", "width-height", "bead-temperature", "void-length", "distortion", "thermal"}));
+  std::vector<std::string> models;
+  for (const EnumName<analysis::FitModel>& entry : EnumNames(analysis::FitModel{})) models.emplace_back(entry.name);
+  fit->add_option("model", *model, EnumNameList<analysis::FitModel>(" | "))->required()->check(CLI::IsMember(models));
   fit->add_option("data", options->data, "CSV file with a header row (distortion: the scan, .ply, .xyz or .stl)")
       ->required();
   fit->add_option("-o,--output", options->output, "model JSON to write (atomically)")->required();
@@ -70,14 +78,14 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
       ->expected(2)
       ->delimiter(',');
   fit->add_option("--degree", options->degree, "width-height polynomial degree (1-8)")->capture_default_str();
-  fit->add_option("--space", options->space, "speed-height residuals in v (linear) or ln v (log)")
+  fit->add_option("--space", *space, "speed-height residuals in v (linear) or ln v (log)")
       ->capture_default_str();
   fit->add_option("--reference-c", options->reference_c,
                   "bead-temperature: T_ref, the interpass temperature the bead models were measured at [degC]")
       ->capture_default_str();
   fit->add_flag("--volume-conserving", options->volume_conserving,
                 "bead-temperature: the width follows the height so that w h stays (k_w not fitted)");
-  fit->add_option("--kind", options->kind, "void-length model written: network | baseline")->capture_default_str();
+  fit->add_option("--kind", *kind, "void-length model written: network | baseline")->capture_default_str();
   fit->add_option("--hidden", options->hidden, "void-length hidden layer sizes, e.g. 7,7")->delimiter(',');
   fit->add_option("--l2", options->l2, "void-length L2 penalty weight on normalised weights (start value)")
       ->capture_default_str();
@@ -114,10 +122,17 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
                   "distortion: Ceres iterations (1-1000); a fit that has not converged by then is not written")
       ->capture_default_str();
   fit->add_flag("-q,--quiet", options->quiet, "no progress bar");
-  fit->callback([runner, options, speed_range, free] {
-    if (options->model == "thermal" && free->count() == 0) options->free = {"efficiency", "convection", "contact"};
+  fit->callback([runner, options, speed_range, free, model, space, kind] {
+    options->model = analysis::ParseFitModel(*model);  // a name IsMember let through
+    if (options->model == analysis::FitModel::kThermal && free->count() == 0) options->free = {"efficiency", "convection", "contact"};
     if (speed_range->size() == 2) options->speed_range = std::make_pair((*speed_range)[0], (*speed_range)[1]);
-    *runner = [options] {
+    *runner = [options, space, kind] {
+      const std::optional<models::PowerLawSpace> parsed_space = ParseEnum<models::PowerLawSpace>(*space);
+      WAAM_THROW_UNLESS(parsed_space, "--space '" << *space << "': must be linear or log");
+      options->space = *parsed_space;
+      const std::optional<analysis::VoidModelKind> parsed_kind = ParseEnum<analysis::VoidModelKind>(*kind);
+      WAAM_THROW_UNLESS(parsed_kind, "--kind '" << *kind << "': must be network or baseline");
+      options->kind = *parsed_kind;
       const analysis::FitOutcome outcome = analysis::RunFit(*options, std::cout);
       if (!outcome.ok) {
         std::cerr << "waam: error: fit of " << options->data.string() << " failed: " << outcome.message << "\n";

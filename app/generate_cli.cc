@@ -9,7 +9,7 @@
 #include "models/core/error.h"
 #include "planner/mesh/generators.h"
 #include "planner/mesh/mesh_ops.h"
-#include "planner/mesh/stl_io.h"
+#include "analysis/stl_file.h"
 
 namespace waam::app {
 namespace {
@@ -65,7 +65,7 @@ void AddGenerateCommand(CLI::App& app, CommandRunner* runner) {
         params[key] = values;
       }
       const planner::TriangleMesh mesh = planner::GeneratePart(options->type, params, "waam generate " + options->type);
-      planner::WriteStlBinary(mesh, options->output);
+      analysis::WriteStlBinary(mesh, options->output);
       const planner::MeshReport report = planner::InspectMesh(mesh, 0.0, options->type);
       std::cout << options->output << ": " << options->type << ", " << report.facets << " facets, volume "
                 << report.volume_mm3 << " mm^3, bbox [" << report.bbox_max.x() - report.bbox_min.x() << " x "

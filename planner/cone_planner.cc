@@ -7,6 +7,9 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "models/bead/csw_model.h"
 #include "models/bead/parabolic_bead.h"
@@ -56,6 +59,123 @@ std::vector<double> PassRadii(const std::vector<Eigen::Vector2d>& pass, double w
   return radii;
 }
 
+// The bead of a cone layer: width from the scenario; speed from the CSW model per point (the straight-line speed is
+// the nominal one), or the scenario's speed; height from the wire-feed volume balance (003 eq. 3.4, 3.3).
+class ConeBead {
+ public:
+  explicit ConeBead(const PlannerSections& scenario)
+      : process_(scenario.process),
+        width_(scenario.path.bead_width_mm),
+        csw_(scenario.process.bead_model == BeadModel::kCsw ? scenario.process.csw.get() : nullptr) {
+    WAAM_DEMAND(process_.bead_model != BeadModel::kCsw || csw_ != nullptr);
+  }
+  // Travel speed (mm/min) for a bead of the scenario's width along a path of curvature radius `radius_mm`; `clamp`
+  // (may be null) says whether the CSW model clamped it.
+  double Speed(double radius_mm, models::SpeedClamp* clamp) const {
+    if (csw_ == nullptr) return process_.travel_speed_mm_min;
+    const models::SpeedChoice choice = csw_->SpeedForWidth(width_, radius_mm);
+    if (clamp) *clamp = choice.clamp;
+    return choice.speed_mm_per_min;
+  }
+  // Bead section area (mm^2) at travel speed `speed_mm_min`, from the wire feed.
+  double Area(double speed_mm_min) const {
+    return models::BeadAreaFromWireFeed(process_.wire_diameter_mm, process_.wire_feed_mm_min, speed_mm_min,
+                                        process_.deposition_efficiency);
+  }
+  // Speed, bead width and height of `point`, on a flat path of curvature radius `radius_mm`. The model is used only
+  // where it describes the bead: corners count as straight and tight curves as the smallest radius of its data
+  // (CswModel::ApplicableRadius, the twin's rule too).
+  void Fill(double radius_mm, PathPoint* point) const {
+    const double r = models::CswModel::ApplicableRadius(radius_mm, width_, process_.csw_min_radius_mm);
+    const double speed = Speed(r, nullptr);
+    point->speed_mm_s = speed / 60.0;
+    point->bead_width_mm = csw_ != nullptr ? csw_->Width(speed, r) : width_;
+    point->bead_height_mm = 1.5 * Area(speed) / point->bead_width_mm;
+  }
+
+ private:
+  const ProcessSettings& process_;
+  double width_;
+  const models::CswModel* csw_;
+};
+
+// The number of cone (or cylinder) layers of height `d` (mm) that cover `mesh`, growing away from the axis. Throws
+// InputError (`where` names the scenario) when the part reaches past the cone's apex or lies inside the first surface.
+int ConeLayerCount(const TriangleMesh& mesh, const ConeSurface& base, double d, const std::string& where) {
+  // The layers grow away from the axis; the part must lie on the nappe's side of the apex and outside the surface.
+  double max_offset = -kInf;
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    if (!base.cylinder()) {
+      const double z = v.z() - base.axis_P.z();
+      WAAM_THROW_UNLESS(z / base.H < 1.0, where << ": the part reaches past the cone apex (vertex at z = " << v.z()
+                                                << " mm, apex at z = " << base.axis_P.z() + base.H
+                                                << " mm); the cone slices only the nappe below its apex");
+    }
+    max_offset = std::max(max_offset, base.NormalOffset(v));
+  }
+  WAAM_THROW_UNLESS(max_offset > 0.5 * d, where << ": the part lies inside the first surface (largest normal "
+                                                << "distance " << max_offset << " mm, layer height " << d
+                                                << " mm); the layers grow away from the axis");
+  return std::max(1, static_cast<int>(std::ceil(max_offset / d - 0.5)));
+}
+
+// Densifies every move on the development plane, so that the mapped path follows the surface: points `q_flat` at
+// most kPointStepMm apart, and per point whether the move to it welds. A weld move stays inside its region; a travel
+// move between regions of a cone is interpolated in the polar coordinates of the development, because a straight
+// line between two points of a sector wider than pi can leave the sector (and cross the cutting line).
+void DensifyMoves(const std::vector<Move2D>& moves, const ConeSurface& middle, std::vector<Eigen::Vector2d>* q_flat,
+                  std::vector<bool>* weld) {
+  for (const Move2D& move : moves) {
+    if (!q_flat->empty()) {
+      const Eigen::Vector2d from = q_flat->back();
+      const bool polar = !move.weld && !middle.cylinder();
+      const double rho0 = from.norm(), rho1 = move.p.norm();
+      const double phi0 = std::atan2(from.y(), from.x()), phi1 = std::atan2(move.p.y(), move.p.x());
+      const double length = polar ? std::max(std::abs(rho1 - rho0), std::max(rho0, rho1) * std::abs(phi1 - phi0))
+                                  : (move.p - from).norm();
+      const int steps = std::max(1, static_cast<int>(std::ceil(length / kPointStepMm)));
+      for (int k = 1; k < steps; ++k) {
+        const double f = static_cast<double>(k) / steps;
+        const double rho = rho0 + f * (rho1 - rho0), phi = phi0 + f * (phi1 - phi0);
+        q_flat->push_back(polar ? Eigen::Vector2d(rho * std::cos(phi), rho * std::sin(phi)) : from + (move.p - from) * f);
+        weld->push_back(move.weld);
+      }
+    }
+    q_flat->push_back(move.p);
+    weld->push_back(q_flat->size() == 1 ? false : move.weld);
+  }
+}
+
+// Curvature radius (mm) per point along each weld pass of a densified flat path (a pass starts at the point before
+// its first weld move); +inf off the passes.
+std::vector<double> PathRadii(const std::vector<Eigen::Vector2d>& q_flat, const std::vector<bool>& weld,
+                              double window_mm) {
+  std::vector<double> radius(q_flat.size(), kInf);
+  for (std::size_t j = 1; j < q_flat.size();) {
+    if (!weld[j]) {
+      ++j;
+      continue;
+    }
+    std::size_t end = j;
+    while (end < q_flat.size() && weld[end]) ++end;
+    const std::vector<Eigen::Vector2d> pass(q_flat.begin() + (j - 1), q_flat.begin() + end);
+    const std::vector<double> r = PassRadii(pass, window_mm);
+    for (std::size_t k = 0; k < r.size(); ++k) radius[j - 1 + k] = r[k];
+    j = end;
+  }
+  return radius;
+}
+
+// Appends a planned layer to `result` with the next index and its pattern notes as warnings; a layer whose pattern
+// found no room for a bead is left out (its notes still count), so the plan numbers the others in order.
+void AppendLayer(LayerPath layer, const std::vector<std::string>& notes, PlanResult* result) {
+  const int index = static_cast<int>(result->plan.layers.size());
+  for (const std::string& note : notes) result->warnings.push_back("layer " + std::to_string(index) + ": " + note);
+  if (layer.points.empty()) return;
+  layer.index = index;
+  result->plan.layers.push_back(std::move(layer));
+}
+
 }  // namespace
 
 PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress) {
@@ -70,51 +190,17 @@ PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress)
   base.H = slicing.type == SlicingType::kCylinder ? kInf : slicing.cone_H_mm;
   const double d = slicing.layer_height_mm;
 
-  // The layers grow away from the axis; the part must lie on the nappe's side of the apex and outside the surface.
-  double max_offset = -kInf;
-  for (const Eigen::Vector3d& v : result.mesh.vertices) {
-    if (!base.cylinder()) {
-      const double z = v.z() - base.axis_P.z();
-      WAAM_THROW_UNLESS(z / base.H < 1.0, where << ": the part reaches past the cone apex (vertex at z = " << v.z()
-                                                << " mm, apex at z = " << base.axis_P.z() + base.H
-                                                << " mm); the cone slices only the nappe below its apex");
-    }
-    max_offset = std::max(max_offset, base.NormalOffset(v));
-  }
-  WAAM_THROW_UNLESS(max_offset > 0.5 * d, where << ": the part lies inside the first surface (largest normal "
-                                                << "distance " << max_offset << " mm, layer height " << d
-                                                << " mm); the layers grow away from the axis");
-  const int layer_count = std::max(1, static_cast<int>(std::ceil(max_offset / d - 0.5)));
+  const int layer_count = ConeLayerCount(result.mesh, base, d, where);
   if (progress) progress->SetTotal(layer_count);
 
-  // The bead: width from the scenario; speed from the CSW model per point (the straight-line speed is the
-  // nominal one), or the scenario's speed; height from the wire-feed volume balance (003 eq. 3.4, 3.3).
-  const ProcessSettings& process = scenario.process;
+  const ConeBead bead(scenario);
   const double width = scenario.path.bead_width_mm;
-  const bool csw = process.bead_model == BeadModel::kCsw;
-  const models::CswModel* csw_model = process.csw.get();
-  WAAM_DEMAND(!csw || csw_model != nullptr);
-  // The model is used only where it describes the bead: corners count as straight and tight curves as the
-  // smallest radius of its data (CswModel::ApplicableRadius, the twin's rule too).
-  auto model_radius = [&](double radius_mm) {
-    return models::CswModel::ApplicableRadius(radius_mm, width, scenario.process.csw_min_radius_mm);
-  };
-  auto speed_for = [&](double radius_mm, models::SpeedClamp* clamp) {
-    if (!csw) return process.travel_speed_mm_min;
-    const models::SpeedChoice choice = csw_model->SpeedForWidth(width, radius_mm);
-    if (clamp) *clamp = choice.clamp;
-    return choice.speed_mm_per_min;
-  };
   models::SpeedClamp straight_clamp = models::SpeedClamp::kNone;
   result.layer_height_mm = d;
   result.bead_width_mm = width;
-  result.travel_speed_mm_min = speed_for(kInf, &straight_clamp);
+  result.travel_speed_mm_min = bead.Speed(kInf, &straight_clamp);
   result.speed_clamp = models::ToString(straight_clamp);
-  auto area_at = [&](double speed_mm_min) {
-    return models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min, speed_mm_min,
-                                        process.deposition_efficiency);
-  };
-  result.bead_area_mm2 = area_at(result.travel_speed_mm_min);
+  result.bead_area_mm2 = bead.Area(result.travel_speed_mm_min);
   result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
   result.layer_growth_mm =
       result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
@@ -163,45 +249,10 @@ PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress)
                       where << ": layer " << i << " (surface R = " << middle.R << " mm): path.pattern '"
                             << NameOf(scenario.path.pattern) << "' found no weld path in the flattened slice of "
                             << Area(flat.regions) << " mm^2; try path.pattern: contour");
-    // Densify every move on the plane, so that the mapped path follows the surface. A weld move stays inside its
-    // region; a travel move between regions of a cone is interpolated in the polar coordinates of the development,
-    // because a straight line between two points of a sector wider than pi can leave the sector (and cross the
-    // cutting line).
     std::vector<Eigen::Vector2d> q_flat;
     std::vector<bool> weld;
-    for (const Move2D& move : moves) {
-      if (!q_flat.empty()) {
-        const Eigen::Vector2d from = q_flat.back();
-        const bool polar = !move.weld && !middle.cylinder();
-        const double rho0 = from.norm(), rho1 = move.p.norm();
-        const double phi0 = std::atan2(from.y(), from.x()), phi1 = std::atan2(move.p.y(), move.p.x());
-        const double length = polar ? std::max(std::abs(rho1 - rho0), std::max(rho0, rho1) * std::abs(phi1 - phi0))
-                                    : (move.p - from).norm();
-        const int steps = std::max(1, static_cast<int>(std::ceil(length / kPointStepMm)));
-        for (int k = 1; k < steps; ++k) {
-          const double f = static_cast<double>(k) / steps;
-          const double rho = rho0 + f * (rho1 - rho0), phi = phi0 + f * (phi1 - phi0);
-          q_flat.push_back(polar ? Eigen::Vector2d(rho * std::cos(phi), rho * std::sin(phi)) : from + (move.p - from) * f);
-          weld.push_back(move.weld);
-        }
-      }
-      q_flat.push_back(move.p);
-      weld.push_back(q_flat.size() == 1 ? false : move.weld);
-    }
-    // Curvature radius per point along each weld pass (a pass starts at the point before its first weld move).
-    std::vector<double> radius(q_flat.size(), kInf);
-    for (std::size_t j = 1; j < q_flat.size();) {
-      if (!weld[j]) {
-        ++j;
-        continue;
-      }
-      std::size_t end = j;
-      while (end < q_flat.size() && weld[end]) ++end;
-      const std::vector<Eigen::Vector2d> pass(q_flat.begin() + (j - 1), q_flat.begin() + end);
-      const std::vector<double> r = PassRadii(pass, window_mm);
-      for (std::size_t k = 0; k < r.size(); ++k) radius[j - 1 + k] = r[k];
-      j = end;
-    }
+    DensifyMoves(moves, middle, &q_flat, &weld);
+    const std::vector<double> radius = PathRadii(q_flat, weld, window_mm);
     Eigen::Vector3d dir_sum = Eigen::Vector3d::Zero();
     double z_sum = 0.0;
     for (std::size_t j = 0; j < q_flat.size(); ++j) {
@@ -211,11 +262,7 @@ PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress)
       point.p_P = p_middle + 0.5 * d * n;  // on the top surface, offset (i + 1) d
       point.tool_dir_P = n;
       point.weld = weld[j];
-      const double r = model_radius(radius[j]);
-      const double speed = speed_for(r, nullptr);
-      point.speed_mm_s = speed / 60.0;
-      point.bead_width_mm = csw ? csw_model->Width(speed, r) : width;
-      point.bead_height_mm = 1.5 * area_at(speed) / point.bead_width_mm;
+      bead.Fill(radius[j], &point);
       dir_sum += n;
       z_sum += point.p_P.z();
       layer.points.push_back(point);
@@ -229,16 +276,8 @@ PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress)
       progress->Update(++layers_done);
     }
   });
-  // A layer whose pattern found no room for a bead is left out; the plan numbers the others in order.
   for (int i = 0; i < layer_count; ++i) {
-    if (!flats[i]) continue;
-    const int index = static_cast<int>(result.plan.layers.size());
-    for (const std::string& note : layer_notes[i]) {
-      result.warnings.push_back("layer " + std::to_string(index) + ": " + note);
-    }
-    if (layers[i].points.empty()) continue;
-    layers[i].index = index;
-    result.plan.layers.push_back(std::move(layers[i]));
+    if (flats[i]) AppendLayer(std::move(layers[i]), layer_notes[i], &result);
   }
   if (progress) progress->Finish();
   WAAM_THROW_UNLESS(!result.plan.layers.empty(), where << ": no layer of the part meets the surfaces");

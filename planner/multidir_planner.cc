@@ -7,6 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -52,6 +55,95 @@ PolygonWithHoles HalfPlane(const Eigen::Vector2d& ab, double c) {
   return {ring, {}};
 }
 
+// The slices of one sub-volume in its frame S (z_S = its build direction `n`): R_PS, the extent [lo, hi] along n
+// (the mesh's, narrowed by split planes normal to n), the layer thickness h and each layer's region inside the
+// sub-volume's other split planes (slivers dropped).
+struct SubVolumeSlices {
+  Eigen::Matrix3d R_PS;
+  double lo = 0.0, hi = 0.0, h = 0.0;
+  std::vector<std::vector<PolygonWithHoles>> kept;
+};
+
+// Slices `mesh` (part frame P) for sub-volume `spec` along `n` at about `d` mm per layer. Throws InputError (`where`
+// names the scenario) when the sub-volume holds no metal along its direction.
+SubVolumeSlices SliceSubVolume(const TriangleMesh& mesh, const SubVolumeSpec& spec, const Eigen::Vector3d& n, double d,
+                               const std::string& where) {
+  SubVolumeSlices out;
+  const Eigen::Matrix3d R_PS = FrameFor(n);
+  out.R_PS = R_PS;
+  TriangleMesh rotated = mesh;
+  for (Eigen::Vector3d& v : rotated.vertices) v = R_PS.transpose() * v;
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (const Eigen::Vector3d& v : rotated.vertices) {
+    lo = std::min(lo, v.z());
+    hi = std::max(hi, v.z());
+  }
+  std::vector<std::pair<Eigen::Vector3d, double>> keeps;  // in S: m . p <= c
+  for (const auto& k : spec.keep) {
+    const Eigen::Vector3d m = R_PS.transpose() * Eigen::Vector3d(k[0], k[1], k[2]);
+    if (m.head<2>().norm() < 1e-9 * m.norm()) {
+      if (m.z() < 0) lo = std::max(lo, k[3] / m.z());
+      if (m.z() > 0) hi = std::min(hi, k[3] / m.z());
+    } else {
+      keeps.emplace_back(m, k[3]);
+    }
+  }
+  WAAM_THROW_UNLESS(hi > lo + 0.5 * d, where << ".sub_volumes: '" << spec.name << "' holds no metal along its "
+                                             << "direction (extent " << lo << " to " << hi << " mm)");
+  const int count = std::max(1, static_cast<int>(std::lround((hi - lo) / d)));
+  const double h = (hi - lo) / count;
+  std::vector<double> heights(count);
+  for (int i = 0; i < count; ++i) heights[i] = lo + (i + 0.5) * h;
+  const std::vector<std::vector<PolygonWithHoles>> slices = SlicePlanar(rotated, heights);
+  // The layers' regions are independent: in parallel, each into its own slot.
+  out.kept.resize(count);
+  ParallelFor(count, [&](std::size_t i) {
+    std::vector<PolygonWithHoles> region = slices[i];
+    for (const auto& [m, c] : keeps) {
+      if (region.empty()) break;
+      region = internal::Intersection(region, {HalfPlane(m.head<2>(), c - m.z() * heights[i])});
+    }
+    std::erase_if(region, [](const PolygonWithHoles& r) { return Area(r) < kMinRegionMm2; });
+    out.kept[i] = std::move(region);
+  });
+  out.lo = lo, out.hi = hi, out.h = h;
+  return out;
+}
+
+// Support (Lim & Soh Table 1), mm^3: the metal needed under each layer (regions `kept`, thickness `h` mm) so that
+// everything above it stands on something when built along the direction: U_i = S_i u U_(i+1), support =
+// sum (|U_i| - |S_i|) h. This counts overhangs of any angle; Lim & Soh do not state the overhang angle their support
+// allowed.
+double SupportVolume(const std::vector<std::vector<PolygonWithHoles>>& kept, double h) {
+  double support_mm3 = 0.0;
+  std::vector<PolygonWithHoles> shadow;
+  for (int i = static_cast<int>(kept.size()) - 1; i >= 0; --i) {
+    std::vector<PolygonWithHoles> both = shadow;
+    both.insert(both.end(), kept[i].begin(), kept[i].end());
+    shadow = internal::Union(both);
+    support_mm3 += (Area(shadow) - Area(kept[i])) * h;
+  }
+  return support_mm3;
+}
+
+// The path points of `moves` (in S at height `top`, mm) into `layer` (part frame), each a copy of `bead` (tool
+// direction, bead size, speed) at its place; sets the layer's mean z. False when the moves give no point.
+bool FillLayerPoints(const std::vector<Move2D>& moves, const Eigen::Matrix3d& R_PS, double top, const PathPoint& bead,
+                     LayerPath* layer) {
+  for (const Move2D& move : moves) {
+    PathPoint point = bead;
+    point.p_P = R_PS * Eigen::Vector3d(move.p.x(), move.p.y(), top);
+    point.weld = move.weld;
+    layer->points.push_back(point);
+  }
+  if (layer->points.empty()) return false;
+  double z_sum = 0.0;
+  for (const PathPoint& p : layer->points) z_sum += p.p_P.z();
+  layer->z_mm = z_sum / static_cast<double>(layer->points.size());
+  return true;
+}
+
 }  // namespace
 
 PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progress* progress) {
@@ -93,33 +185,11 @@ PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progres
   int sub_index = 0;
   for (const SubVolumeSpec& spec : specs) {
     const Eigen::Vector3d n(spec.direction[0], spec.direction[1], spec.direction[2]);
-    const Eigen::Matrix3d R_PS = FrameFor(n);
-    TriangleMesh rotated = result.mesh;
-    for (Eigen::Vector3d& v : rotated.vertices) v = R_PS.transpose() * v;
-    // Extent along the direction: the mesh's, narrowed by split planes normal to the direction.
-    double lo = std::numeric_limits<double>::infinity();
-    double hi = -lo;
-    for (const Eigen::Vector3d& v : rotated.vertices) {
-      lo = std::min(lo, v.z());
-      hi = std::max(hi, v.z());
-    }
-    std::vector<std::pair<Eigen::Vector3d, double>> keeps;  // in S: m . p <= c
-    for (const auto& k : spec.keep) {
-      const Eigen::Vector3d m = R_PS.transpose() * Eigen::Vector3d(k[0], k[1], k[2]);
-      if (m.head<2>().norm() < 1e-9 * m.norm()) {
-        if (m.z() < 0) lo = std::max(lo, k[3] / m.z());
-        if (m.z() > 0) hi = std::min(hi, k[3] / m.z());
-      } else {
-        keeps.emplace_back(m, k[3]);
-      }
-    }
-    WAAM_THROW_UNLESS(hi > lo + 0.5 * d, where << ".sub_volumes: '" << spec.name << "' holds no metal along its "
-                                               << "direction (extent " << lo << " to " << hi << " mm)");
-    const int count = std::max(1, static_cast<int>(std::lround((hi - lo) / d)));
-    const double h = (hi - lo) / count;
-    std::vector<double> heights(count);
-    for (int i = 0; i < count; ++i) heights[i] = lo + (i + 0.5) * h;
-    const std::vector<std::vector<PolygonWithHoles>> slices = SlicePlanar(rotated, heights);
+    const SubVolumeSlices sliced = SliceSubVolume(result.mesh, spec, n, d, where);
+    const Eigen::Matrix3d& R_PS = sliced.R_PS;
+    const std::vector<std::vector<PolygonWithHoles>>& kept = sliced.kept;
+    const int count = static_cast<int>(kept.size());
+    const double lo = sliced.lo, h = sliced.h;
 
     SubVolumeReport report;
     report.name = spec.name;
@@ -127,29 +197,8 @@ PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progres
     report.first_layer = static_cast<int>(result.plan.layers.size());
     report.keep = spec.keep;
     if (lean_deg.count(spec.name)) report.centroid_lean_deg = lean_deg.at(spec.name);
-    // The layers' regions and paths are independent once each knows its index in the plan (the count of non-empty
-    // layers before it, which seeds its start point): both in parallel, each into its own slot.
-    std::vector<std::vector<PolygonWithHoles>> kept(count);
-    ParallelFor(count, [&](std::size_t i) {
-      std::vector<PolygonWithHoles> region = slices[i];
-      for (const auto& [m, c] : keeps) {
-        if (region.empty()) break;
-        region = internal::Intersection(region, {HalfPlane(m.head<2>(), c - m.z() * heights[i])});
-      }
-      std::erase_if(region, [](const PolygonWithHoles& r) { return Area(r) < kMinRegionMm2; });
-      kept[i] = std::move(region);
-    });
     for (int i = 0; i < count; ++i) report.volume_mm3 += Area(kept[i]) * h;
-    // Support (Lim & Soh Table 1): the metal needed under each layer so that everything above it stands on
-    // something when built along the direction: U_i = S_i u U_(i+1), support = sum (|U_i| - |S_i|) h. This
-    // counts overhangs of any angle; Lim & Soh do not state the overhang angle their support allowed.
-    std::vector<PolygonWithHoles> shadow;
-    for (int i = count - 1; i >= 0; --i) {
-      std::vector<PolygonWithHoles> both = shadow;
-      both.insert(both.end(), kept[i].begin(), kept[i].end());
-      shadow = internal::Union(both);
-      report.support_mm3 += (Area(shadow) - Area(kept[i])) * h;
-    }
+    report.support_mm3 = SupportVolume(kept, h);
     std::vector<int> plan_index(count, -1);
     for (int i = 0, next = static_cast<int>(result.plan.layers.size()); i < count; ++i) {
       if (!kept[i].empty()) plan_index[i] = next++;
@@ -176,23 +225,15 @@ PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progres
       for (const std::string& note : notes) {
         result.warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
       }
-      for (const Move2D& move : moves) {
-        PathPoint point;
-        point.p_P = R_PS * Eigen::Vector3d(move.p.x(), move.p.y(), top);
-        point.tool_dir_P = n;
-        point.bead_width_mm = width;
-        point.bead_height_mm = result.bead_height_mm;
-        point.speed_mm_s = process.travel_speed_mm_min / 60.0;
-        point.weld = move.weld;
-        layer.points.push_back(point);
-      }
-      if (layer.points.empty()) {
+      PathPoint bead;
+      bead.tool_dir_P = n;
+      bead.bead_width_mm = width;
+      bead.bead_height_mm = result.bead_height_mm;
+      bead.speed_mm_s = process.travel_speed_mm_min / 60.0;
+      if (!FillLayerPoints(moves, R_PS, top, bead, &layer)) {
         report.unwelded_mm3 += Area(kept[i]) * h;  // the pattern found no path in this slice
         continue;
       }
-      double z_sum = 0.0;
-      for (const PathPoint& p : layer.points) z_sum += p.p_P.z();
-      layer.z_mm = z_sum / static_cast<double>(layer.points.size());
       result.plan.layers.push_back(std::move(layer));
       ++report.layers;
     }

@@ -69,7 +69,7 @@ py::object Run(const ScenarioHolder& scn, const fs::path& out_dir, const std::ve
 py::tuple Fit(const std::string& model, const fs::path& data, const fs::path& output,
               const std::vector<std::string>& columns, const py::dict& options_dict, const py::object& progress) {
   analysis::FitOptions options;
-  options.model = model;
+  options.model = analysis::ParseFitModel(model);
   options.data = data;
   options.output = output;
   options.columns = columns;
@@ -77,7 +77,12 @@ py::tuple Fit(const std::string& model, const fs::path& data, const fs::path& ou
   for (auto item : options_dict) {
     const std::string key = py::str(item.first);
     if (key == "degree") options.degree = item.second.cast<int>();
-    else if (key == "space") options.space = item.second.cast<std::string>();
+    else if (key == "space") {
+      const std::string name = item.second.cast<std::string>();
+      const std::optional<models::PowerLawSpace> space = ParseEnum<models::PowerLawSpace>(name);
+      WAAM_THROW_UNLESS(space, "fit: space '" << name << "': must be linear or log");
+      options.space = *space;
+    }
     else if (key == "speed_range") options.speed_range = item.second.cast<std::pair<double, double>>();
     else if (key == "seed") options.seed = item.second.cast<unsigned long long>();
     else if (key == "scenario") options.scenario = item.second.cast<fs::path>();
@@ -149,7 +154,9 @@ void BindCommands(py::module_& m) {
         py::arg("progress"));
   m.def("_fit", &Fit, py::arg("model"), py::arg("data"), py::arg("output"), py::arg("columns"), py::arg("options"),
         py::arg("progress"));
-  m.def("_fit_columns", &analysis::DefaultFitColumns, py::arg("model"));
+  m.def(
+      "_fit_columns", [](const std::string& model) { return analysis::DefaultFitColumns(analysis::ParseFitModel(model)); },
+      py::arg("model"));
   m.def(
       "_scenario_file",
       [](const ScenarioHolder& scn, const fs::path& tmp_dir) {

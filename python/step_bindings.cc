@@ -1,8 +1,11 @@
 // waam_twin.plan, check and simulate: the steps of `waam plan`, `waam check` and `waam simulate` in memory, their
 // arrays as numpy views owned by the result objects.
+#include <chrono>
+
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "analysis/cell_files.h"
 #include "analysis/check_command.h"
 #include "analysis/import_command.h"
 #include "analysis/scenario_plan.h"
@@ -70,7 +73,7 @@ void SaveCheck(const CheckHolder& check, const fs::path& dir, bool images) {
   options.quiet = true;
   options.images = images;
   options.target = &check.plan->result.mesh;
-  const twin::CellModel cell = twin::LoadCell(check.scenario->scenario.cell);
+  const twin::CellModel cell = waam::analysis::LoadCell(check.scenario->scenario.cell);
   analysis::WriteCheckOutputs(check.scenario->scenario, check.plan->result.plan, cell, check.report, options);
 }
 
@@ -93,12 +96,13 @@ std::shared_ptr<CheckHolder> Check(const std::shared_ptr<const ScenarioHolder>& 
     h->scenario = scn;
     h->plan = plan;
     const analysis::Scenario& s = scn->scenario;
-    const twin::CellModel cell = twin::LoadCell(s.cell);
+    const twin::CellModel cell = waam::analysis::LoadCell(s.cell);
     Progress bar("check", 0, "samples", /*quiet=*/true);
     h->report = twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, &bar);
     h->document = analysis::CheckPlanToJson(s, cell, plan->result.plan, h->report);
-    for (const planner::CellSample& sample : h->report.motion) {
-      for (int k = 0; k < 8; ++k) h->joints.push_back(sample.q[k]);
+    h->joints.resize(8 * h->report.motion.size());
+    for (std::size_t i = 0; i < h->report.motion.size(); ++i) {
+      for (int k = 0; k < 8; ++k) h->joints[8 * i + k] = h->report.motion[i].q[k];
     }
     return h;
   });
@@ -114,13 +118,10 @@ std::shared_ptr<SimulateHolder> Simulate(const std::shared_ptr<const ScenarioHol
     const analysis::Scenario& s = scn->scenario;
     const planner::PlanResult& planned = plan->result;
     analysis::CheckVoxelBudget(s, planned.plan);
-    std::optional<Progress> bar;
-    h->result.emplace(twin::SimulateBuild(planned.plan, planned.mesh.facets.empty() ? nullptr : &planned.mesh,
-                                    s.simulation, s.process.rapid_speed_mm_min / 60.0, s.path.bead_width_mm,
-                                    [&](std::size_t done, std::size_t total) {
-                                      if (!bar) bar.emplace("deposit", total, "passes", /*quiet=*/true);
-                                      bar->Update(done);
-                                    }));
+    Progress bar("deposit", 0, "passes", /*quiet=*/true);
+    twin::Depositor depositor = twin::DepositPlan(planned.plan, s.simulation, s.process.rapid_speed_mm_min / 60.0, &bar);
+    h->result.emplace(twin::MeasureBuild(planned.plan, std::move(depositor),
+                                         planned.mesh.facets.empty() ? nullptr : &planned.mesh, s.path.bead_width_mm));
     h->document = analysis::SimulationToJson(s, planned, *h->result);
     const twin::VoxelGrid& grid = h->result->depositor.grid();
     h->voxel_mm = grid.voxel_mm();
@@ -129,6 +130,34 @@ std::shared_ptr<SimulateHolder> Simulate(const std::shared_ptr<const ScenarioHol
     });
     return h;
   });
+}
+
+// The seconds of each of `repeat` runs of a step's C++ computation alone, called directly, with no result object,
+// no numpy table and no progress machinery: what `waam plan` (the plan and its cell timeline) or `waam check` (the
+// cell, the check and check.json's document) computes. python/benchmarks/overhead.py sets it against wt.plan and
+// wt.check in the same process.
+std::vector<double> NativeStepSeconds(const std::string& step, const std::shared_ptr<const ScenarioHolder>& scn,
+                                      const std::shared_ptr<const PlanHolder>& plan, int repeat) {
+  WAAM_THROW_UNLESS(step == "plan" || (step == "check" && plan), "step '" << step << "': plan, or check with a plan");
+  const analysis::Scenario& s = scn->scenario;
+  py::gil_scoped_release release;
+  std::vector<double> seconds;
+  for (int i = 0; i < repeat; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    if (step == "plan") {
+      analysis::ImportReport import;
+      planner::PlanResult result = analysis::PlanScenarioOrProgram(s, nullptr, &import);
+      if (!s.program.present) analysis::AddCellTimeline(s, &result);
+    } else {
+      const twin::CellModel cell = waam::analysis::LoadCell(s.cell);
+      const twin::CheckReport report =
+          twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, nullptr);
+      const nlohmann::json document = analysis::CheckPlanToJson(s, cell, plan->result.plan, report);
+      WAAM_DEMAND(document.is_object());
+    }
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return seconds;
 }
 
 }  // namespace
@@ -202,6 +231,10 @@ void BindSteps(py::module_& m) {
       .def("save", &SaveSimulate, py::arg("dir"), py::arg("images") = true,
            "Writes what `waam simulate` writes into dir (simulate.json, part.stl, part.h5, the pictures with\n"
            "images), by the same writers.");
+  m.def("_native_step_seconds", &NativeStepSeconds, py::arg("step"), py::arg("scenario"), py::arg("plan") = nullptr,
+        py::arg("repeat") = 1,
+        "Benchmark aid: the seconds of each of `repeat` runs of the step's C++ computation alone ('plan' or\n"
+        "'check' with a plan), without the Python result object. python/benchmarks/overhead.py uses it.");
   m.def("_simulate", &Simulate, py::arg("scenario"), py::arg("plan") = nullptr, py::arg("progress") = py::none());
 }
 

@@ -5,13 +5,17 @@
 #    and torus PrusaSlicer's package ships (/usr/share/PrusaSlicer/shapes);
 #  - KDL's numerical IK (Debian liborocos-kdl-dev, tools/peers/kdl_vs_opw.cc compiled here, not in the project
 #    build) against waam's closed-form IK on the same arm;
-#  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py) against waam's thermal model
+#  - FCL 0.7 (Debian libfcl-dev, tools/peers/fcl_check.cc compiled here) against `waam check` on the build hour of
+#    BM_CheckBuildHourUrdfArm (URDF mesh arm): the benchmark exports the cell's shapes and the motion's poses, FCL
+#    checks every sample (broadphase + boolean narrow phase, poses given); CPU times of the same run;
+#  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py, one process) against waam's thermal model
 #    (build/analysis/benchmarks/waam_thermal_peer) on the wall of tools/peers/thermal_wall.json: probe temperatures
-#    (target: within 2 % of the peak rise) and the time ratio; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
-#    problem refined twice (tools/peers/thermal_wall_1mm.json: 1 mm cells, 0.2 s steps; FEniCSx takes ~15x longer).
+#    (target: within 2 % of the peak rise) and the time ratios; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
+#    problem on cells refined twice (1 mm, the same source and 0.4 s steps; docs/THERMAL.md, "FEniCSx comparison").
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
-# Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam). Times are wall clock, one run each;
-# a ratio above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
+# Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam); WAAM_PEERS_ONLY=thermal runs the
+# FEniCSx comparison alone. Times are wall clock (the thermal comparison also prints CPU time), one run each; a ratio
+# above 1 means waam is faster. On a machine shared with other work, compare the ratios of one run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo="$PWD"
@@ -19,14 +23,18 @@ out="${1:-out/peers}"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 waam="$repo/build/waam"
-[ -x "$waam" ] || { echo "peers: build waam first (build/waam)" >&2; exit 1; }
+only="${WAAM_PEERS_ONLY:-}"
+[ -z "$only" ] || [ "$only" = thermal ] || { echo "peers: WAAM_PEERS_ONLY=$only: must be thermal or unset" >&2; exit 2; }
+[ -n "$only" ] || [ -x "$waam" ] || { echo "peers: build waam first (build/waam)" >&2; exit 1; }
 
 # The peers, installed once.
-if ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ] ||
+if { [ -z "$only" ] && { ! command -v prusa-slicer > /dev/null || [ ! -f /usr/include/kdl/chain.hpp ] ||
+  [ ! -f /usr/include/fcl/fcl.h ]; }; } ||
   ! /usr/bin/python3 -c "import dolfinx" 2> /dev/null; then
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  peers=(prusa-slicer liborocos-kdl-dev python3-dolfinx)
+  peers=(python3-dolfinx)
+  [ -n "$only" ] || peers+=(prusa-slicer liborocos-kdl-dev libfcl-dev)
   $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1 ||
     { $sudo apt-get update > /dev/null && $sudo apt-get install -y "${peers[@]}" > "$out/apt.log" 2>&1; }
 fi
@@ -70,6 +78,9 @@ process:
 YAML
 }
 
+echo "peers: $(nproc) hardware threads, load average $(cut -d' ' -f1-3 /proc/loadavg); wall seconds, one run each"
+# PrusaSlicer and KDL (not with WAAM_PEERS_ONLY=thermal).
+if [ -z "$only" ]; then
 "$waam" generate torus --param major_radius_mm=120 --param minor_radius_mm=40 --param major_segments=1224 \
   --param minor_segments=408 -o "$out/torus_1m.stl" > /dev/null
 models=("$out/torus_1m.stl")
@@ -78,7 +89,6 @@ for shape in bunny torus; do
   [ -f "$f" ] && models+=("$f")
 done
 
-echo "peers: $(nproc) hardware threads, load average $(cut -d' ' -f1-3 /proc/loadavg); wall seconds, one run each"
 printf "%-16s %10s" model prusa_s
 for p in continuous hybrid contour zigzag; do printf " %11s %7s" "${p:0:11}_s" ratio; done
 echo
@@ -99,20 +109,42 @@ g++ -O2 -std=c++20 -I"$repo" -isystem /usr/include/eigen3 tools/peers/kdl_vs_opw
   planner/kinematics/angles.cc -o "$out/kdl_vs_opw" -lorocos-kdl
 "$out/kdl_vs_opw" 20000
 
+# FCL's discrete check against waam's (discrete and continuous) on the same motion, CPU times on one core.
+[ -x build/analysis/benchmarks/waam_check_bench ] || cmake --build build --target waam_check_bench > /dev/null
+g++ -O2 -std=c++20 -isystem /usr/include/eigen3 tools/peers/fcl_check.cc -o "$out/fcl_check" -lfcl -lccd
+WAAM_CHECK_EXPORT="$out/fcl" taskset -c 0 build/analysis/benchmarks/waam_check_bench \
+  --benchmark_filter='BM_CheckBuildHourUrdfArm' --benchmark_format=json > "$out/check_bench.json" 2> /dev/null
+fcl_line=$(taskset -c 0 "$out/fcl_check" "$out/fcl" 3)
+/usr/bin/python3 - "$out/check_bench.json" "$fcl_line" << 'PY'
+import json, sys
+runs = {b["name"].split("/")[1]: b for b in json.load(open(sys.argv[1]))["benchmarks"]}
+fcl = dict(kv.split("=") for kv in sys.argv[2].split()[1:])
+fcl_ms, samples = 1000 * float(fcl["cpu_s"]), int(fcl["samples"])
+print(f"check peer: FCL 0.7 discrete {fcl_ms:.0f} ms per build hour ({float(fcl['us_per_sample']):.2f} us/sample, "
+      f"{samples} samples, {fcl['narrow_phase']} narrow-phase pairs, {fcl['contacts']} contacts; poses given)")
+for arg, mode in (("0", "discrete"), ("1", "continuous")):
+    b = runs[arg]
+    ms = b["cpu_time"] if b["time_unit"] == "ms" else b["cpu_time"] / 1e6
+    print(f"check peer: waam {mode:10s} {ms:.0f} ms per build hour ({1000 * ms / b['samples']:.2f} us/sample, "
+          f"IK and every check included), FCL / waam = {fcl_ms / ms:.1f}")
+PY
+fi
+
 # FEniCSx and waam's thermal model on the same wall (same cells, step, source, losses; constant properties). The
-# FEniCSx time includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
+# FEniCSx setup includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
 thermal="$repo/tools/peers/thermal_wall.json"
 [ -x build/analysis/benchmarks/waam_thermal_peer ] || cmake --build build --target waam_thermal_peer > /dev/null
 build/analysis/benchmarks/waam_thermal_peer "$thermal" > "$out/thermal_waam.json" ||
   { echo "peers: waam_thermal_peer failed" >&2; exit 1; }
-/usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" > "$out/thermal_fenicsx.json" 2> "$out/thermal_fenicsx.log" ||
-  { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx.log)" >&2; exit 1; }
+OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" > "$out/thermal_fenicsx.json" \
+  2> "$out/thermal_fenicsx.log" || { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx.log)" >&2; exit 1; }
 /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam.json" "$out/thermal_fenicsx.json" "$thermal"
 if [ "${WAAM_PEERS_THERMAL_FINE:-0}" = 1 ]; then
-  fine="$repo/tools/peers/thermal_wall_1mm.json"
-  build/analysis/benchmarks/waam_thermal_peer "$fine" > "$out/thermal_waam_1mm.json" ||
-    { echo "peers: waam_thermal_peer failed on the 1 mm problem" >&2; exit 1; }
-  /usr/bin/python3 tools/peers/thermal_fenicsx.py "$fine" > "$out/thermal_fenicsx_1mm.json" \
-    2> "$out/thermal_fenicsx_1mm.log" || { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx_1mm.log)" >&2; exit 1; }
-  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json" "$fine"
+  echo "the same problem on 1 mm cells (refine 2):"
+  build/analysis/benchmarks/waam_thermal_peer "$thermal" - 2 > "$out/thermal_waam_1mm.json" ||
+    { echo "peers: waam_thermal_peer failed on 1 mm cells" >&2; exit 1; }
+  OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" --refine 2 \
+    > "$out/thermal_fenicsx_1mm.json" 2> "$out/thermal_fenicsx_1mm.log" ||
+    { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx_1mm.log)" >&2; exit 1; }
+  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json" "$thermal"
 fi

@@ -155,8 +155,9 @@ PY
 compensation_heat() {
   local d="$out/compensation_heat"
   mkdir -p "$d"
-  # The heat run with the beads only: the strain law refuses this continuous spiral (docs/compensation.md).
-  for s in part_3 part_3_heat; do
+  # part_3_heat with the beads only (its continuous spiral stays above mechanical melting: the strain law refuses
+  # it), part_3_interpass with beads and strains after a 250 degC interpass wait (docs/compensation.md).
+  for s in part_3 part_3_heat part_3_interpass; do
     local extra=(); [ "$s" = part_3_heat ] && extra=(--set thermal.shape.distortion=false)
     /usr/bin/time -f '%e %U %M' -o "$d/$s.time" ./build/waam compensate "scenarios/tubes/$s.yaml" -o "$d/$s" \
       "${extra[@]}" --model models/data/distortion_part1_demo.json --mode reduced --no-program --no-images -q \
@@ -168,7 +169,8 @@ d = sys.argv[1]
 print("| part III | tolerance | build 0 max / p99 / axis | build 1 max / p99 / axis | build 0 vs target | status | user CPU |")
 print("| --- | --- | --- | --- | --- | --- | --- |")
 for s, label in (("part_3", "today (`part_3.yaml`)"),
-                 ("part_3_heat", "heat-shaped beads (`part_3_heat.yaml`, `--set thermal.shape.distortion=false`)")):
+                 ("part_3_heat", "heat-shaped beads (`part_3_heat.yaml`, `--set thermal.shape.distortion=false`)"),
+                 ("part_3_interpass", "heat-shaped beads and strains, 250 degC interpass (`part_3_interpass.yaml`)")):
     j = json.load(open(f"{d}/{s}/compensate.json"))
     it = j["iterations"]
     cell = lambda b: "%.2f / %.2f / %.2f" % (b["max_abs_deviation_mm"], b["p99_abs_deviation_mm"], b["axis_deviation_mm"])
@@ -183,6 +185,14 @@ print(f"Heat run: build {h['build_time_s']:.0f} s, thermal model {h['thermal_wal
       f"layer is laid on {min(ip):.0f}-{max(ip):.0f} degC (mean {sum(ip) / len(ip):.0f}, layers 1-{len(ip)}); "
       f"bead height factor {min(h['bead_height_factor']):.3f}-{max(h['bead_height_factor']):.3f}, width factor "
       f"{min(h['bead_width_factor']):.3f}-{max(h['bead_width_factor']):.3f}.")
+h = json.load(open(f"{d}/part_3_interpass/compensate.json"))["heat"]
+ip, f = h["interpass_c"][1:], h["strain_factor"]
+print()
+print(f"Interpass run: build {h['build_time_s']:.0f} s, thermal model {h['thermal_wall_s']:.1f} s wall; the temperature "
+      f"a layer is laid on {min(ip):.0f}-{max(ip):.0f} degC (mean {sum(ip) / len(ip):.0f}, layers 1-{len(ip)}; "
+      f"reference {h['reference_interpass_c']:.0f} degC, mechanical melting {h['mechanical_melting_c']:.0f} degC); "
+      f"strain factor {min(f):.3f}-{max(f):.3f} (mean {sum(f) / len(f):.3f}); bead height factor "
+      f"{min(h['bead_height_factor']):.3f}-{max(h['bead_height_factor']):.3f}.")
 PY
 }
 
@@ -537,8 +547,16 @@ check_bench() {
   # One core: the check's parallel loops get one thread.
   local one=()
   command -v taskset >/dev/null && one=(taskset -c 0)
-  "${one[@]}" "$bench" --benchmark_format=json --benchmark_out="$out/check_bench.json" >/dev/null
-  python3 - "$out/check_bench.json" <<'PY' | put check_bench
+  WAAM_CHECK_EXPORT="$out/check_fcl" "${one[@]}" "$bench" --benchmark_format=json \
+    --benchmark_out="$out/check_bench.json" >/dev/null
+  # FCL's discrete check of the same motion (tools/peers/fcl_check.cc) when Debian's libfcl-dev is installed
+  # (tools/peers.sh installs it).
+  local fcl=""
+  if [ -f /usr/include/fcl/fcl.h ]; then
+    g++ -O2 -std=c++20 -isystem /usr/include/eigen3 tools/peers/fcl_check.cc -o "$out/fcl_check" -lfcl -lccd
+    fcl=$("${one[@]}" "$out/fcl_check" "$out/check_fcl" 3)
+  fi
+  python3 - "$out/check_bench.json" "$fcl" <<'PY' | put check_bench
 import json, sys
 what = {"BM_CheckBuildHour": "every check (motion, limits, speeds, MuJoCo collisions, torch against the deposit)",
         "BM_MotionBuildHour": "the kinematics alone (positioner angles, closed-form IK, time stamps)",
@@ -555,6 +573,12 @@ for r in json.load(open(sys.argv[1]))["benchmarks"]:
     print("| `%s` | %s | %s | %s | %s | %.0f %s | %s |" % (name, what.get(name, ""), format(r["samples"], ",.0f"),
                                                         queries, clearance, r["cpu_time"], r["time_unit"],
                                                         format(r["samples_per_s"], ",.0f")))
+if sys.argv[2]:
+    f = dict(kv.split("=") for kv in sys.argv[2].split()[1:])
+    n, s = int(f["samples"]), float(f["cpu_s"])
+    print("| `fcl_check` | FCL 0.7's discrete check of the same motion (tools/peers/fcl_check.cc: broadphase, boolean "
+          "narrow phase on the same pairs; poses given, no IK or kinematics) | %s | %s | | %.0f ms | %s |"
+          % (format(n, ",.0f"), format(int(f["narrow_phase"]), ",.0f"), 1000 * s, format(n / s, ",.0f")))
 PY
 }
 

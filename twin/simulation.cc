@@ -1,12 +1,12 @@
-// SimulateBuild: deposition, then the virtual scanner (deviation, voids, section profiles, Ra, boundary lag).
+// MeasureBuild: the virtual scanner over a deposited part (deviation, voids, section profiles, Ra, boundary lag).
 #include "twin/simulation.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <utility>
 
 #include "models/core/error.h"
 #include "twin/scanner/target_volume.h"
@@ -14,9 +14,8 @@
 namespace waam::twin {
 namespace {
 
-// Largest peak-to-valley of the top heights along the x and y lines through the centre of the region's bounding box,
-// sampled only inside the region and at least `margin_mm` from its outline.
-double SectionWaviness(const HeightMap& map, const std::vector<planner::PolygonWithHoles>& region, double margin_mm) {
+// Lowest and highest corner of the outer outlines of `region` (infinite when it is empty), mm.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> BoundingBox(const std::vector<planner::PolygonWithHoles>& region) {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
   for (const planner::PolygonWithHoles& r : region) {
@@ -25,6 +24,13 @@ double SectionWaviness(const HeightMap& map, const std::vector<planner::PolygonW
       hi = hi.cwiseMax(p);
     }
   }
+  return {lo, hi};
+}
+
+// Largest peak-to-valley of the top heights along the x and y lines through the centre of the region's bounding box,
+// sampled only inside the region and at least `margin_mm` from its outline.
+double SectionWaviness(const HeightMap& map, const std::vector<planner::PolygonWithHoles>& region, double margin_mm) {
+  const auto [lo, hi] = BoundingBox(region);
   if (!std::isfinite(lo.x())) return 0.0;
   const Eigen::Vector2d c = 0.5 * (lo + hi);
   double worst = 0.0;
@@ -41,6 +47,50 @@ double SectionWaviness(const HeightMap& map, const std::vector<planner::PolygonW
     worst = std::max(worst, Waviness(kept));
   }
   return worst;
+}
+
+// The boundary lag of 003 Fig. 24 like its profilometer: along the x and y section lines through the middle of the
+// top layer's region, pooled over both lines.
+BoundaryLag MeasureTopBoundaryLag(const HeightMap& top, const std::vector<planner::PolygonWithHoles>& top_region,
+                                  double bead_width_mm) {
+  BoundaryLag lag;
+  const auto [lo, hi] = BoundingBox(top_region);
+  if (std::isfinite(lo.x())) {
+    const Eigen::Vector2d c = 0.5 * (lo + hi);
+    const BoundaryLag along_x = MeasureBoundaryLag(top, top_region, bead_width_mm,
+                                                   {Eigen::Vector2d(lo.x(), c.y()), Eigen::Vector2d(hi.x(), c.y())});
+    const BoundaryLag along_y = MeasureBoundaryLag(top, top_region, bead_width_mm,
+                                                   {Eigen::Vector2d(c.x(), lo.y()), Eigen::Vector2d(c.x(), hi.y())});
+    lag.interior_columns = along_x.interior_columns + along_y.interior_columns;
+    lag.boundary_columns = along_x.boundary_columns + along_y.boundary_columns;
+    // Column-weighted means of the two lines; a line without columns of a kind adds nothing (its mean is NaN).
+    auto pooled = [](double mean_x, std::size_t n_x, double mean_y, std::size_t n_y) {
+      if (n_x + n_y == 0) return std::numeric_limits<double>::quiet_NaN();
+      return ((n_x > 0 ? mean_x * n_x : 0.0) + (n_y > 0 ? mean_y * n_y : 0.0)) / (n_x + n_y);
+    };
+    lag.interior_mean_mm = pooled(along_x.interior_mean_mm, along_x.interior_columns, along_y.interior_mean_mm,
+                                  along_y.interior_columns);
+    lag.boundary_mean_mm = pooled(along_x.boundary_mean_mm, along_x.boundary_columns, along_y.boundary_mean_mm,
+                                  along_y.boundary_columns);
+    lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;  // NaN on thin walls: no interior to compare
+  }
+  return lag;
+}
+
+// Waviness, Ra and the top height of a planar build over its top layer's region (w/2 in from its outline), into `m`.
+void MeasureTopSurface(const HeightMap& top, const std::vector<planner::PolygonWithHoles>& top_region,
+                       double bead_width_mm, TwinMeasures& m) {
+  m.waviness_mm = SectionWaviness(top, top_region, 0.5 * bead_width_mm);
+  const std::vector<double> heights = RegionHeights(top, top_region, 0.5 * bead_width_mm);
+  m.ra_mm = ArithmeticRoughness(heights);
+  m.top_mean_mm = m.top_min_mm = m.top_max_mm = std::numeric_limits<double>::quiet_NaN();
+  if (!heights.empty()) {
+    const auto [lo_h, hi_h] = std::minmax_element(heights.begin(), heights.end());
+    m.top_min_mm = *lo_h;
+    m.top_max_mm = *hi_h;
+    m.top_mean_mm = std::accumulate(heights.begin(), heights.end(), 0.0) / heights.size();
+  }
+  m.boundary_lag = MeasureTopBoundaryLag(top, top_region, bead_width_mm);
 }
 
 }  // namespace
@@ -79,32 +129,20 @@ std::string TopSurfaceNotApplicable(const planner::Plan& plan) {
   return "";
 }
 
-TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh* target,
-                         const twin::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
-                         const PassCallback& on_pass) {
+TwinResult MeasureBuild(const planner::Plan& plan, Depositor depositor, const planner::TriangleMesh* target,
+                        double bead_width_mm) {
   WAAM_THROW_UNLESS(bead_width_mm > 0.0, "simulate: bead width = " << bead_width_mm << " mm: must be > 0");
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<ExecutedPass> passes = ExecutePlan(plan, settings, rapid_speed_mm_s);
-  TwinResult result{Depositor(settings), {}, {}, {}, {}};
-  for (std::size_t i = 0; i < passes.size(); ++i) {
-    result.depositor.DepositPass(passes[i]);
-    if (on_pass) on_pass(i + 1, passes.size());
-  }
+  TwinResult result{std::move(depositor), {}, {}, {}, {}};
+  const twin::SimulationSettings& settings = result.depositor.settings();
   TwinMeasures& m = result.measures;
-  m.deposition_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m.deposition_s = result.depositor.deposition_wall_s();
   const VoxelGrid& grid = result.depositor.grid();
   m.voxel_mm = grid.voxel_mm();
   m.layers = plan.layers.size();
   m.beads = result.depositor.beads().size();
   m.voxels = grid.occupied();
   m.weld_length_mm = result.depositor.weld_length_mm();
-  if (!passes.empty()) {
-    const ExecutedPass& last = passes.back();
-    m.build_time_s = last.start_time_s;
-    for (std::size_t i = 1; i < last.points.size(); ++i) {
-      m.build_time_s += (last.points[i].p_P - last.points[i - 1].p_P).norm() / last.points[i].speed_mm_s;
-    }
-  }
+  m.build_time_s = result.depositor.build_time_s();
   m.deposited_volume_mm3 = grid.OccupiedVolume();
   m.expected_volume_mm3 = result.depositor.expected_volume_mm3();
   m.grid_memory_bytes = grid.MemoryBytes();
@@ -117,46 +155,7 @@ TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh*
     m.waviness_mm = m.ra_mm = m.top_mean_mm = m.top_min_mm = m.top_max_mm = nan;
     m.boundary_lag.lag_mm = m.boundary_lag.interior_mean_mm = m.boundary_lag.boundary_mean_mm = nan;
   } else {
-    const std::vector<planner::PolygonWithHoles>& top_region = plan.layers.back().slice;
-    m.waviness_mm = SectionWaviness(result.top, top_region, 0.5 * bead_width_mm);
-    const std::vector<double> heights = RegionHeights(result.top, top_region, 0.5 * bead_width_mm);
-    m.ra_mm = ArithmeticRoughness(heights);
-    m.top_mean_mm = m.top_min_mm = m.top_max_mm = std::numeric_limits<double>::quiet_NaN();
-    if (!heights.empty()) {
-      const auto [lo_h, hi_h] = std::minmax_element(heights.begin(), heights.end());
-      m.top_min_mm = *lo_h;
-      m.top_max_mm = *hi_h;
-      m.top_mean_mm = std::accumulate(heights.begin(), heights.end(), 0.0) / heights.size();
-    }
-    // Like the profilometer of 003 Fig. 24: along the x and y section lines through the middle of the top layer.
-    Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector2d hi = -lo;
-    for (const planner::PolygonWithHoles& r : top_region) {
-      for (const Eigen::Vector2d& p : r.outer) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-      }
-    }
-    if (std::isfinite(lo.x())) {
-      const Eigen::Vector2d c = 0.5 * (lo + hi);
-      const BoundaryLag along_x = MeasureBoundaryLag(result.top, top_region, bead_width_mm,
-                                                     {Eigen::Vector2d(lo.x(), c.y()), Eigen::Vector2d(hi.x(), c.y())});
-      const BoundaryLag along_y = MeasureBoundaryLag(result.top, top_region, bead_width_mm,
-                                                     {Eigen::Vector2d(c.x(), lo.y()), Eigen::Vector2d(c.x(), hi.y())});
-      BoundaryLag& lag = m.boundary_lag;
-      lag.interior_columns = along_x.interior_columns + along_y.interior_columns;
-      lag.boundary_columns = along_x.boundary_columns + along_y.boundary_columns;
-      // Column-weighted means of the two lines; a line without columns of a kind adds nothing (its mean is NaN).
-      auto pooled = [](double mean_x, std::size_t n_x, double mean_y, std::size_t n_y) {
-        if (n_x + n_y == 0) return std::numeric_limits<double>::quiet_NaN();
-        return ((n_x > 0 ? mean_x * n_x : 0.0) + (n_y > 0 ? mean_y * n_y : 0.0)) / (n_x + n_y);
-      };
-      lag.interior_mean_mm = pooled(along_x.interior_mean_mm, along_x.interior_columns, along_y.interior_mean_mm,
-                                    along_y.interior_columns);
-      lag.boundary_mean_mm = pooled(along_x.boundary_mean_mm, along_x.boundary_columns, along_y.boundary_mean_mm,
-                                    along_y.boundary_columns);
-      lag.lag_mm = lag.interior_mean_mm - lag.boundary_mean_mm;  // NaN on thin walls: no interior to compare
-    }
+    MeasureTopSurface(result.top, plan.layers.back().slice, bead_width_mm, m);
   }
   if (target != nullptr && !target->facets.empty()) {
     result.deviation = MeasureDeviation(grid, *target);

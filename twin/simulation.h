@@ -1,8 +1,7 @@
-// The deposition twin end to end: execute and deposit a plan, then scan the part like the papers measured theirs.
+// The deposition twin's scanner: measures a deposited part like the papers measured theirs.
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <string>
 
 #include "planner/mesh/triangle_mesh.h"
@@ -56,13 +55,11 @@ struct TwinResult {
   TwinMeasures measures;
 };
 
-// Deposits `plan` (travel at `rapid_speed_mm_s`, > 0) and measures it against `target` (may be null: then the
-// target volume is the planned layer regions extruded and no surface deviation is measured). `bead_width_mm` (> 0)
-// sets the margins of the surface measures. `on_pass(done, total)` (may be empty) is called after every deposited
-// pass. Throws InputError for invalid settings or past the voxel limit.
-using PassCallback = std::function<void(std::size_t done, std::size_t total)>;
-TwinResult SimulateBuild(const planner::Plan& plan, const planner::TriangleMesh* target,
-                         const twin::SimulationSettings& settings, double rapid_speed_mm_s, double bead_width_mm,
-                         const PassCallback& on_pass);
+// The virtual scanner over a deposited build: measures the part `depositor` holds (deposited from `plan` by
+// DepositPlan, which it takes over) against `target` (may be null: then the target volume is the planned layer regions
+// extruded and no surface deviation is measured). `bead_width_mm` (> 0) sets the margins of the surface measures.
+// Throws InputError for a bead width <= 0 or a target volume past the voxel limit.
+TwinResult MeasureBuild(const planner::Plan& plan, Depositor depositor, const planner::TriangleMesh* target,
+                        double bead_width_mm);
 
 }  // namespace waam::twin

@@ -75,7 +75,7 @@ void BM_FitHalfHour(benchmark::State& state) {
   waam::SetThreadCount(static_cast<int>(state.range(0)));
   const fs::path scenario = HourLog();
   FitOptions options;
-  options.model = "thermal";
+  options.model = waam::analysis::FitModel::kThermal;
   options.data = scenario;
   options.output = scenario.parent_path() / "fitted.json";
   options.free = {"efficiency", "convection", "contact"};

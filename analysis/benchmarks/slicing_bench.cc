@@ -45,7 +45,7 @@ BENCHMARK(BM_SlicePlanarSphere1M)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 // Reads the same sphere back from a binary STL (parse, weld at 1e-4 mm, report).
 void BM_ReadStlBinarySphere1M(benchmark::State& state) {
   const std::filesystem::path path = std::filesystem::temp_directory_path() / "waam_slicing_bench_sphere.stl";
-  waam::planner::WriteStlBinary(BigSphere(), path);
+  waam::analysis::WriteStlBinary(BigSphere(), path);
   for (auto _ : state) {
     waam::planner::MeshReport report;
     auto mesh = waam::analysis::ReadStl(path, 1e-4, &report);

@@ -1,12 +1,16 @@
 // Peer driver: solves the conduction problem of tools/peers/thermal_wall.json on waam's thermal model
 // (twin::ThermalSimulation) and prints the probe histories as JSON, as tools/peers/thermal_fenicsx.py does for FEniCSx.
-// Usage: waam_thermal_peer <problem.json> [far_step_s]  (tools/peers.sh runs both and compares them). Without
-// far_step_s the solver's default time stepping (ThermalSettings) is used; 0 solves the whole model every micro step.
+// Usage: waam_thermal_peer <problem.json> [far_step_s [refine]]  (tools/peers.sh runs both and compares them).
+// Without far_step_s (or with "-") the solver's default time stepping (ThermalSettings) is used; 0 solves the whole
+// model every micro step. refine (default 1) splits each problem cell into refine^3 cells with the same source: the
+// heat of a step goes into the same 2 x 2 x 2 problem cells, so the refined runs converge to the problem's answer.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,12 +44,33 @@ waam::models::ThermalMaterial ConstantMaterial(const json& spec) {
   return m;
 }
 
-json Run(const json& spec, const std::string& far_step_s) {
+// The temperature at p: trilinear in the values of the 8 cell centres around it (a cell's value is its centre's to
+// second order), as FEniCSx evaluates its field at the point; at a cell centre, that cell's value. `origin` is the
+// grid's corner as ThermalSimulation lays it (x, y at the boxes' corner, z shifted to put the plate's top on a face).
+double ProbeAt(const waam::twin::ThermalSimulation& sim, const Eigen::Vector3d& p, const Eigen::Vector3d& origin,
+               double cell_mm) {
+  const Eigen::Vector3d u = (p - origin) / cell_mm - Eigen::Vector3d::Constant(0.5);
+  const Eigen::Vector3d lo = u.array().floor();
+  const Eigen::Vector3d w = u - lo;
+  double value = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3i corner(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+    double weight = 1.0;
+    for (int a = 0; a < 3; ++a) weight *= corner[a] ? w[a] : 1.0 - w[a];
+    if (weight < 1e-12) continue;
+    const Eigen::Vector3d centre = origin + (lo + corner.cast<double>() + Eigen::Vector3d::Constant(0.5)) * cell_mm;
+    value += weight * sim.TemperatureAt(centre);
+  }
+  return value;
+}
+
+json Run(const json& spec, const std::string& far_step_s, int refine) {
   waam::twin::ThermalSettings st;
   st.deposit = st.substrate = ConstantMaterial(spec);
   st.substrate_box_mm = Box(spec.at("plate_mm"));
   st.deposit_box_mm = Box(spec.at("wall_mm"));
-  st.cell_mm = spec.at("cell_mm").get<double>();
+  const double problem_cell_mm = spec.at("cell_mm").get<double>();
+  st.cell_mm = problem_cell_mm / refine;
   st.initial_c = spec.at("initial_c").get<double>();
   st.ambient_c = spec.at("ambient_c").get<double>();
   st.convection_w_m2k = spec.at("convection_w_m2k").get<double>();
@@ -54,9 +79,14 @@ json Run(const json& spec, const std::string& far_step_s) {
   // The problem FEniCSx solves: the bead rule's cell-wise constant source, constant properties (no liquid).
   st.heat_source = waam::twin::HeatSourceShape::kUniformBead;
   st.liquid_conductivity_factor = 1.0;
-  if (!far_step_s.empty()) st.far_step_s = std::stod(far_step_s);
+  if (!far_step_s.empty() && far_step_s != "-") st.far_step_s = std::stod(far_step_s);
+  // One micro step per problem step: the arc moves one problem cell (refine fine cells) in each.
+  st.arc_step_cells = refine;
   const double dt = spec.at("step_s").get<double>();
   const double width = spec.at("bead_width_mm").get<double>(), height = spec.at("bead_height_mm").get<double>();
+  // The bead rule heats the bead's cross-section and one (fine) cell below it: the source's bead is deepened by the
+  // rest of one problem cell, so the heated volume is the problem's whatever the refinement.
+  const double source_height = height + problem_cell_mm - st.cell_mm;
   const Eigen::Vector3d a = Point(spec.at("path_mm").at(0)), b = Point(spec.at("path_mm").at(1));
   const Eigen::AlignedBox3d wall = st.deposit_box_mm;
 
@@ -69,7 +99,11 @@ json Run(const json& spec, const std::string& far_step_s) {
     sim.Weld({wall.min().x(), a.y(), top}, {wall.max().x(), a.y(), top}, width, height, 0.0, 1e-9);
   }
   sim.Cool(0.0);
+  // The solver holds arc motion back until a query: one query here lays the wall before the problem's clock starts.
+  sim.TemperatureAt(a);
   const double t0 = sim.time_s();
+  const double setup_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double setup_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   std::vector<std::string> names;
   std::vector<Eigen::Vector3d> probes;
   for (const auto& [name, p] : spec.at("probes_mm").items()) {
@@ -77,16 +111,19 @@ json Run(const json& spec, const std::string& far_step_s) {
     probes.push_back(Point(p));
   }
   json times = json::array(), history = json::object();
+  Eigen::Vector3d origin = st.substrate_box_mm.min().cwiseMin(st.deposit_box_mm.min());
+  const double plate_top = st.substrate_box_mm.max().z();
+  origin.z() = plate_top - std::ceil((plate_top - origin.z()) / st.cell_mm - 1e-9) * st.cell_mm;
   auto sample = [&] {
     times.push_back(sim.time_s() - t0);
-    for (std::size_t i = 0; i < names.size(); ++i) history[names[i]].push_back(sim.TemperatureAt(probes[i]));
+    for (std::size_t i = 0; i < names.size(); ++i) history[names[i]].push_back(ProbeAt(sim, probes[i], origin, st.cell_mm));
   };
   const int weld_steps = static_cast<int>(std::lround((b - a).norm() / (spec.at("speed_mm_s").get<double>() * dt)));
   const int cool_steps = static_cast<int>(std::lround(spec.at("cool_s").get<double>() / dt));
   for (int i = 0; i < weld_steps; ++i) {
     const Eigen::Vector3d p0 = a + (b - a) * (static_cast<double>(i) / weld_steps);
     const Eigen::Vector3d p1 = a + (b - a) * (static_cast<double>(i + 1) / weld_steps);
-    sim.Weld(p0, p1, width, height, spec.at("heat_w").get<double>(), dt);
+    sim.Weld(p0, p1, width, source_height, spec.at("heat_w").get<double>(), dt);
     sample();
   }
   for (int i = 0; i < cool_steps; ++i) {
@@ -97,21 +134,24 @@ json Run(const json& spec, const std::string& far_step_s) {
   const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const waam::twin::ThermalStats stats = sim.Stats();
   const waam::twin::EnergyBalance energy = sim.Energy();
-  return {{"peer", "waam"}, {"wall_s", wall_s}, {"cpu_s", cpu_s}, {"cells", stats.active_cells},
-          {"steps", stats.steps}, {"iterations", stats.iterations}, {"far_step_s", st.far_step_s},
+  return {{"peer", "waam"}, {"wall_s", wall_s}, {"cpu_s", cpu_s}, {"setup_s", setup_wall_s},
+          {"setup_cpu_s", setup_cpu_s}, {"cells", stats.active_cells},
+          {"steps", stats.steps}, {"iterations", stats.iterations}, {"far_step_s", st.far_step_s}, {"refine", refine},
           {"energy_relative_error", energy.RelativeError()}, {"time_s", times}, {"probes_c", history}};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: waam_thermal_peer <problem.json> [far_step_s]\n");
+  if (argc < 2 || argc > 4) {
+    std::fprintf(stderr, "usage: waam_thermal_peer <problem.json> [far_step_s|- [refine]]\n");
     return 2;
   }
   try {
     const json spec = json::parse(waam::ReadFile(argv[1]));
-    std::cout << Run(spec, argc == 3 ? std::string(argv[2]) : std::string()).dump() << std::endl;
+    const int refine = argc == 4 ? std::stoi(argv[3]) : 1;
+    if (refine < 1) throw std::invalid_argument("refine must be >= 1");
+    std::cout << Run(spec, argc >= 3 ? std::string(argv[2]) : std::string(), refine).dump() << std::endl;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "waam_thermal_peer: %s\n", e.what());
     return 2;

@@ -178,7 +178,7 @@ BeadTemperatureFit FitBeadTemperature(const BeadTemperatureSamples& s, const Dat
     neutral.min_c = params.min_c;
     neutral.max_c = params.max_c;
     const std::string why = info.solver.usable ? "the fitted line is not positive over the data's temperatures"
-                                               : "Ceres: " + info.solver.termination + ": " + info.solver.message;
+                                               : "Ceres: " + std::string(NameOf(info.solver.termination)) + ": " + info.solver.message;
     return {BeadTemperatureModel(neutral, 0.0, 0.0, info), false, why};
   }
   BeadTemperatureModel model(params, p[0], p[2], info);

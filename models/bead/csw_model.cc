@@ -108,7 +108,7 @@ CswFit FitCsw(const CswSamples& s, const DataSource& data, const SpeedRange* fea
   for (std::size_t i = 0; i < n; ++i) predicted[i] = candidate.Width(s.speed_mm_per_min[i], s.radius_mm[i]);
   info.stats = ComputeFitStats(s.width_mm, predicted, 3);
   CswFit fit{CswModel(candidate.params(), range, info), info.solver.usable, ""};
-  if (!fit.ok) fit.message = "Ceres: " + info.solver.termination + ": " + info.solver.message;
+  if (!fit.ok) fit.message = "Ceres: " + std::string(NameOf(info.solver.termination)) + ": " + info.solver.message;
   return fit;
 }
 

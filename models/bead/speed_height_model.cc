@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "models/core/error.h"
 #include "models/fit/internal/ceres_solve.h"
@@ -67,7 +68,7 @@ nlohmann::json SpeedHeightModel::ToJson() const {
   j["source"] = "Nguyen 2022 dissertation, sec. 6.3.2.1, eq. 6.6 and Table 18";
   j["params"] = {{"a", params_.a}, {"b", params_.b}};
   j["units"] = {{"v", "mm/min"}, {"h", "mm (used as h / 1 mm)"}, {"a", "mm/min"}, {"b", "1"}};
-  j["fit_space"] = space_ == PowerLawSpace::kLog ? "log" : "linear";
+  j["fit_space"] = std::string(NameOf(space_));
   j["feasible_speed_mm_per_min"] = waam::models::ToJson(feasible_);
   j["fit"] = waam::models::ToJson(fit_);
   if (fit_.fitted) j["fit"]["stats_log_v"] = waam::models::ToJson(log_stats_);
@@ -77,9 +78,12 @@ nlohmann::json SpeedHeightModel::ToJson() const {
 SpeedHeightModel SpeedHeightModel::FromJson(const nlohmann::json& j, const std::string& where) {
   SpeedHeightParams p{JsonNumber(j, "/params/a", where), JsonNumber(j, "/params/b", where)};
   WAAM_THROW_UNLESS(j.contains("feasible_speed_mm_per_min"), where << ": /feasible_speed_mm_per_min is missing");
-  const PowerLawSpace space = j.value("fit_space", "linear") == "log" ? PowerLawSpace::kLog : PowerLawSpace::kLinear;
+  const std::string space_name = j.value("fit_space", std::string(NameOf(PowerLawSpace::kLinear)));
+  const std::optional<PowerLawSpace> space = ParseEnum<PowerLawSpace>(space_name);
+  WAAM_THROW_UNLESS(space, where << ": /fit_space = '" << space_name << "': must be "
+                                 << EnumNameList<PowerLawSpace>(" or "));
   SpeedHeightModel model(p, SpeedRangeFromJson(j["feasible_speed_mm_per_min"], where), FitInfoFromJson(j, where),
-                         space);
+                         *space);
   const nlohmann::json::json_pointer log_ptr("/fit/stats_log_v");
   if (j.contains(log_ptr)) model.set_log_stats(FitStatsFromJson(j.at(log_ptr), where));
   return model;
@@ -143,7 +147,7 @@ SpeedHeightFit FitSpeedHeight(const SpeedHeightSamples& s, const DataSource& dat
   }
   SpeedHeightFit fit{SpeedHeightModel(params, range, info, space), info.solver.usable, ""};
   fit.model.set_log_stats(ComputeFitStats(log_measured, log_predicted, 2));
-  if (!fit.ok) fit.message = "Ceres: " + info.solver.termination + ": " + info.solver.message;
+  if (!fit.ok) fit.message = "Ceres: " + std::string(NameOf(info.solver.termination)) + ": " + info.solver.message;
   return fit;
 }
 

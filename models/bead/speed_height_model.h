@@ -1,6 +1,7 @@
 // Speed-height power law v = a h^b (dissertation eq. 6.6): the travel speed that gives a wanted layer height.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/bead/speed_range.h"
+#include "models/core/enum_names.h"
 #include "models/fit/fit_stats.h"
 
 namespace waam::models {
@@ -21,6 +23,9 @@ struct SpeedHeightParams {
 // How the power law is fitted: residuals of v (nonlinear least squares, the default) or of ln v (the log-log
 // straight line that spreadsheet "power trendlines" fit).
 enum class PowerLawSpace { kLinear, kLog };
+constexpr std::array<EnumName<PowerLawSpace>, 2> EnumNames(PowerLawSpace) {
+  return {{{PowerLawSpace::kLinear, "linear"}, {PowerLawSpace::kLog, "log"}}};
+}
 
 class SpeedHeightModel {
  public:

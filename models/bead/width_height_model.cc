@@ -118,7 +118,7 @@ WidthHeightFit FitWidthHeight(const WidthHeightSamples& s, const DataSource& dat
   for (std::size_t i = 0; i < n; ++i) predicted[i] = candidate.Width(s.height_mm[i]);
   info.stats = ComputeFitStats(s.width_mm, predicted, static_cast<int>(num_params));
   WidthHeightFit fit{WidthHeightModel(c, *lo, *hi, info), info.solver.usable, ""};
-  if (!fit.ok) fit.message = "Ceres: " + info.solver.termination + ": " + info.solver.message;
+  if (!fit.ok) fit.message = "Ceres: " + std::string(NameOf(info.solver.termination)) + ": " + info.solver.message;
   return fit;
 }
 

@@ -67,6 +67,28 @@ DistortionMode ParseDistortionMode(const std::string& name, const std::string& w
   return *mode;
 }
 
+DistortionParam ParseDistortionParam(const std::string& name, const std::string& where) {
+  const std::optional<DistortionParam> param = ParseEnum<DistortionParam>(name);
+  WAAM_THROW_UNLESS(param.has_value(),
+                    where << " '" << name << "': must be one of " << EnumNameList<DistortionParam>());
+  return *param;
+}
+
+double& ParamValue(DistortionParams& params, DistortionParam param) {
+  switch (param) {
+    case DistortionParam::kStrain: return params.strain;
+    case DistortionParam::kHeatExponent: return params.heat_exponent;
+    case DistortionParam::kVerticalRatio: return params.vertical_ratio;
+    case DistortionParam::kSubstrateStiffness: return params.substrate_stiffness_n_mm3;
+  }
+  WAAM_DEMAND(false);
+  return params.strain;
+}
+
+double ParamValue(const DistortionParams& params, DistortionParam param) {
+  return ParamValue(const_cast<DistortionParams&>(params), param);
+}
+
 nlohmann::json DistortionParamsToJson(const DistortionParams& p, const nlohmann::json* fit) {
   nlohmann::json j = {
       {"model", "distortion"},

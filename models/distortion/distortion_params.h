@@ -51,6 +51,21 @@ struct DistortionParams {
   double ThermalFactor(double peak_c, double interpass_c) const;
 };
 
+// The parameters a fit of the distortion model may free, by their names in the model file.
+enum class DistortionParam { kStrain, kHeatExponent, kVerticalRatio, kSubstrateStiffness };
+constexpr std::array<EnumName<DistortionParam>, 4> EnumNames(DistortionParam) {
+  return {{{DistortionParam::kStrain, "strain"},
+           {DistortionParam::kHeatExponent, "heat_exponent"},
+           {DistortionParam::kVerticalRatio, "vertical_ratio"},
+           {DistortionParam::kSubstrateStiffness, "substrate_stiffness_n_mm3"}}};
+}
+WAAM_ENUM_JSON(DistortionParam)
+// The parameter named `name`; throws InputError "<where> '<name>': must be one of strain, ..." for another name.
+DistortionParam ParseDistortionParam(const std::string& name, const std::string& where);
+// The member of `params` that `param` names.
+double& ParamValue(DistortionParams& params, DistortionParam param);
+double ParamValue(const DistortionParams& params, DistortionParam param);
+
 // The first parameter of `params` outside its valid range, as "<where>: <name> = <value>: must be in [lo, hi]",
 // or "" when all are valid. Does not throw (the distortion fit asks it at every trial step).
 std::string DistortionParamsProblem(const DistortionParams& params, const std::string& where);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "models/core/error.h"
@@ -62,10 +63,20 @@ nlohmann::json ToJson(const SolverReport& r) {
           {"final_cost", NumberOrNull(r.final_cost)}};  // no wall time: identical inputs, identical files
 }
 
-SolverReport SolverReportFromJson(const nlohmann::json& j) {
+SolverTermination TerminationNamed(std::string_view ceres_name) {
+  const std::optional<SolverTermination> termination = ParseEnum<SolverTermination>(ceres_name);
+  WAAM_DEMAND(termination.has_value() && *termination != SolverTermination::kNotRun);
+  return *termination;
+}
+
+SolverReport SolverReportFromJson(const nlohmann::json& j, const std::string& where) {
   SolverReport r;
   r.usable = j.value("usable", false);
-  r.termination = j.value("termination", "");
+  const std::string termination = j.value("termination", "");
+  const std::optional<SolverTermination> parsed = ParseEnum<SolverTermination>(termination);
+  WAAM_THROW_UNLESS(parsed, where << ": /fit/solver/termination = '" << termination << "': must be one of "
+                                  << EnumNameList<SolverTermination>());
+  r.termination = *parsed;
   r.message = j.value("message", "");
   r.iterations = j.value("iterations", 0);
   r.initial_cost = NumberOrNaN(j, "initial_cost");
@@ -99,7 +110,7 @@ FitInfo FitInfoFromJson(const nlohmann::json& model, const std::string& where) {
   WAAM_THROW_UNLESS(fit.is_object() && fit.contains("stats"), where << ": /fit must be an object with 'stats'");
   info.fitted = true;
   info.stats = FitStatsFromJson(fit["stats"], where);
-  if (fit.contains("solver")) info.solver = SolverReportFromJson(fit["solver"]);
+  if (fit.contains("solver")) info.solver = SolverReportFromJson(fit["solver"], where);
   if (fit.contains("data")) info.data = DataSourceFromJson(fit["data"]);
   return info;
 }

@@ -1,12 +1,16 @@
 // Goodness-of-fit statistics and the solver and data records every fitted model carries in its JSON.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "models/core/enum_names.h"
 
 namespace waam::models {
 
@@ -28,10 +32,26 @@ nlohmann::json ToJson(const FitStats& stats);
 // Reads what ToJson wrote; `where` names the file for errors. Throws InputError on a missing or non-numeric key.
 FitStats FitStatsFromJson(const nlohmann::json& j, const std::string& where);
 
+// How Ceres ended (ceres::TerminationType, named as ceres::TerminationTypeToString names it); kNotRun ("") for a
+// report of no solve.
+enum class SolverTermination { kNotRun, kConvergence, kNoConvergence, kFailure, kUserSuccess, kUserFailure };
+constexpr std::array<EnumName<SolverTermination>, 6> EnumNames(SolverTermination) {
+  return {{{SolverTermination::kNotRun, ""},
+           {SolverTermination::kConvergence, "CONVERGENCE"},
+           {SolverTermination::kNoConvergence, "NO_CONVERGENCE"},
+           {SolverTermination::kFailure, "FAILURE"},
+           {SolverTermination::kUserSuccess, "USER_SUCCESS"},
+           {SolverTermination::kUserFailure, "USER_FAILURE"}}};
+}
+WAAM_ENUM_JSON(SolverTermination)
+// The termination Ceres names `ceres_name` (ceres::TerminationTypeToString); a name outside the table is the code's
+// mistake (WAAM_DEMAND).
+SolverTermination TerminationNamed(std::string_view ceres_name);
+
 // How the solver ended (a copy of the parts of ceres::Solver::Summary a user needs).
 struct SolverReport {
   bool usable = false;       // ceres::Solver::Summary::IsSolutionUsable()
-  std::string termination;   // "CONVERGENCE", "NO_CONVERGENCE", "FAILURE", ...
+  SolverTermination termination = SolverTermination::kNotRun;
   std::string message;       // Ceres' message, or why the fit was refused
   int iterations = 0;
   double initial_cost = 0.0;  // 0.5 * sum of squared residuals
@@ -40,7 +60,8 @@ struct SolverReport {
 };
 
 nlohmann::json ToJson(const SolverReport& report);
-SolverReport SolverReportFromJson(const nlohmann::json& j);
+// Reads what ToJson wrote; `where` names the file for errors. Throws InputError for an unknown termination name.
+SolverReport SolverReportFromJson(const nlohmann::json& j, const std::string& where);
 
 // Where a model's data came from: the CSV file, its '#' provenance lines, which columns played which role.
 struct DataSource {

@@ -72,7 +72,7 @@ VoidBaselineFit FitVoidLengthBaseline(const std::vector<JunctionSample>& samples
   info.solver = internal::Solve(internal::DefaultSolverOptions(), &problem);
   VoidBaselineFit fit;
   fit.ok = info.solver.usable;
-  if (!fit.ok) fit.message = "Ceres: " + info.solver.termination + ": " + info.solver.message;
+  if (!fit.ok) fit.message = "Ceres: " + std::string(NameOf(info.solver.termination)) + ": " + info.solver.message;
   std::vector<double> measured, predicted;
   const VoidLengthBaseline candidate(ab[0], ab[1]);
   for (const JunctionSample& s : samples) {

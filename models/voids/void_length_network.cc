@@ -313,7 +313,7 @@ VoidNetworkFit TrainVoidLengthNetwork(const std::vector<JunctionSample>& samples
     restart_log.push_back({{"restart", restart}, {"usable", run.report.usable}, {"objective", run.objective},
                            {"l2", run.l2}, {"iterations", run.report.iterations}});
     if (!run.report.usable) {
-      fit.message = "restart " + std::to_string(restart) + ": Ceres " + run.report.termination + ": " +
+      fit.message = "restart " + std::to_string(restart) + ": Ceres " + std::string(NameOf(run.report.termination)) + ": " +
                     run.report.message;
       continue;
     }

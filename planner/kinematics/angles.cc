@@ -9,7 +9,8 @@ namespace waam::planner {
 
 double NearestAngleCopy(double q, double lo, double hi, double target) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  q = std::remainder(q, kTwoPi);
+  // remainder() returns q itself for |q| <= pi (the quotient rounds to 0): skip the slow call there.
+  if (!(std::abs(q) <= std::numbers::pi)) q = std::remainder(q, kTwoPi);
   double best = q;
   double best_cost = std::numeric_limits<double>::infinity();
   for (int k = -2; k <= 2; ++k) {

@@ -176,6 +176,7 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
   });
 
   // The arm joints, each from the previous sample's (the branch kept continuous), and the time stamps: in order.
+  int seed_branch = -1;  // the OPW branch of the last solution (-1: none yet)
   for (std::size_t i = 0; i < samples.size(); ++i) {
     CellSample& s = samples[i];
     const Eigen::Isometry3d X_RF = X_RW * s.X_WT * X_TF;
@@ -193,17 +194,17 @@ std::vector<CellSample> PlanCellMotion(const CellKinematics& cell, const Plan& p
         s.arm_within_limits = false;
       }
     } else {
-      const IkSolutions ik = SolveIk(cell.arm, X_RF, &seed);
-      const int pick = PickNearest(cell.arm, ik, &seed);
-      if (pick < 0) {
+      // The seed's branch alone where it decides the nearest solution, every branch otherwise.
+      const IkNearest ik = SolveIkNearest(cell.arm, X_RF, seed, seed_branch);
+      if (!ik.reachable) {
         s.reachable = false;
         s.reach_excess_mm = ik.reach_excess_mm;
         s.arm_within_limits = false;
       } else {
-        const IkSolution& sol = ik.solutions[pick];
-        seed = sol.q;
-        s.branch = sol.branch;
-        s.arm_within_limits = sol.within_limits;
+        seed = ik.solution.q;
+        seed_branch = ik.solution.opw_branch;
+        s.branch = ik.solution.branch;
+        s.arm_within_limits = ik.solution.within_limits;
       }
     }
     s.q.head<6>() = seed;

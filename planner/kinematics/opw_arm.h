@@ -70,6 +70,7 @@ Eigen::Vector3d WristCentre(const OpwArm& arm, const Joints6& q);
 struct IkSolution {
   Joints6 q = Joints6::Zero();
   int branch = 0;
+  int opw_branch = 0;  // the OPW model's own branch: shoulder | elbow << 1 | flip << 2 (SolveIkNearest's key)
   bool within_limits = false;
 };
 
@@ -89,6 +90,21 @@ IkSolutions SolveIk(const OpwArm& arm, const Eigen::Isometry3d& X_RF, const Join
 // The solution closest to `seed` (weighted joint distance, wrist joints count half) among those within limits;
 // if none is within limits, the one that passes its limits least. Returns -1 when count == 0.
 int PickNearest(const OpwArm& arm, const IkSolutions& solutions, const Joints6* seed);
+
+// What SolveIkNearest found.
+struct IkNearest {
+  bool reachable = false;        // a solution exists
+  IkSolution solution;           // the solution PickNearest would pick (when reachable)
+  double reach_excess_mm = 0.0;  // when not reachable: as IkSolutions::reach_excess_mm, mm
+  bool all_branches = false;     // every branch was solved (the seed's branch alone could not decide)
+};
+
+// The solution PickNearest(SolveIk(X_RF, &seed), &seed) picks, solving only the seed's branch `seed_branch`
+// (IkSolution::opw_branch of the previous sample's solution; -1: unknown) when that decides it: the branch's
+// solution within limits, away from the wrist singularity and closer to the seed, by a margin, than lower bounds on
+// every other branch's distance (the wrist flip turns j4 and j6 by pi, the other elbow j3 by 2 acos D, the other
+// shoulder j1 by the angle between the two arm planes). Otherwise every branch is solved. Same units as SolveIk.
+IkNearest SolveIkNearest(const OpwArm& arm, const Eigen::Isometry3d& X_RF, const Joints6& seed, int seed_branch);
 
 // Smallest distance of q to any joint limit, rad (negative when a joint is past its limit), and which joint.
 double LimitMargin(const OpwArm& arm, const Joints6& q, int* joint);

@@ -1,4 +1,5 @@
-// Parsing and writing STL meshes (binary and ASCII) with welding and a health report.
+// Parsing STL meshes (binary and ASCII) with welding and a health report (the file is read and written by
+// analysis/stl_file.h).
 #pragma once
 
 #include <cstddef>
@@ -33,16 +34,8 @@ TriangleMesh ParseStl(const std::string& data, const std::filesystem::path& path
 // contours by nesting depth), as is a mesh whose volume is negative (inside out).
 void CheckSliceable(const MeshReport& report);
 
-// Writes `mesh` as binary STL (float32, facet normals from the vertex order) atomically.
-// Throws InputError if the file cannot be written.
-void WriteStlBinary(const TriangleMesh& mesh, const std::filesystem::path& path,
-                    const std::string& header_text = "binary STL written by waam-twin, millimetres");
-
 // The report as a JSON object text (keys as the MeshReport fields; bbox as [x, y, z] in mm) plus "sliceable" and
 // "not_sliceable_reason" (the CheckSliceable message, empty when sliceable), indented by 2.
 std::string MeshReportJson(const MeshReport& report);
-
-// Writes `mesh` as ASCII STL ("solid <name>") atomically, with 9 significant digits.
-void WriteStlAscii(const TriangleMesh& mesh, const std::filesystem::path& path, const std::string& name);
 
 }  // namespace waam::planner

@@ -65,6 +65,139 @@ struct PassSpan {
   bool welded = false;
 };
 
+// The flat point list of an import: one point per target, arcs cut into chords.
+class PointList {
+ public:
+  PointList(const ImportSettings& settings, internal::WarningList* notes) : settings_(settings), notes_(notes) {}
+
+  // Appends a point of target `t` at `p_P`. `target`: the motion's own end point (notes are counted once per motion,
+  // not per chord of an arc). `positioner_rad`: the program's (tilt, rotation) at the point, which the cell motion
+  // then follows.
+  void Add(const Eigen::Vector3d& p_P, const Eigen::Vector3d& tool_dir_P, const ResolvedTarget& t, bool target,
+           const Eigen::Vector2d& positioner_rad) {
+    PathPoint p;
+    p.p_P = p_P;
+    p.positioner_rad = positioner_rad;
+    p.tool_dir_P = tool_dir_P.normalized();
+    p.bead_width_mm = settings_.bead_width_mm;
+    p.bead_height_mm = settings_.bead_height_mm;
+    p.weld = t.weld && !points_.empty();
+    if (t.speed_mm_s > 0.0) {
+      p.speed_mm_s = t.speed_mm_s;
+    } else if (p.weld) {
+      p.speed_mm_s = settings_.weld_speed_mm_s;
+      if (target) notes_->Add("weld move without a speed: the scenario's process.travel_speed_mm_min used", t.line);
+    } else {
+      p.speed_mm_s = settings_.rapid_speed_mm_s;
+    }
+    points_.push_back(p);
+  }
+  std::vector<PathPoint>& points() { return points_; }
+
+ private:
+  const ImportSettings& settings_;
+  internal::WarningList* notes_;
+  std::vector<PathPoint> points_;
+};
+
+// The chords of the circular move `m` from `prev` to `t` (without its end point), or a note when the move is
+// followed as a linear one.
+void AddArc(const ProgramMotion& m, const ResolvedTarget& prev, const ResolvedTarget& t, const CellKinematics& cell,
+            const Eigen::Isometry3d& X_WU, double arc_step_mm, PointList* points, internal::WarningList* notes) {
+  // The arc lies in the frame its points are given in: P for part-frame targets, else W (the positioner's
+  // angles run linearly from the previous target's to this one's along it).
+  const bool in_part = m.frame == TargetFrame::kPart;
+  Eigen::Vector3d a, via, b;
+  if (in_part) {
+    a = prev.p_P, via = m.via, b = t.p_P;
+  } else {
+    const Eigen::Isometry3d X_WF = FrameInWorld(cell, X_WU, m.frame);
+    a = prev.X_WT.translation(), via = X_WF * m.via, b = t.X_WT.translation();
+  }
+  const std::vector<Eigen::Vector3d> arc = ArcPoints(a, via, b, arc_step_mm);
+  if (arc.empty()) {
+    notes->Add("circular move through three points on one line (or too large a circle): followed as a linear move", t.line);
+    return;
+  }
+  const Eigen::Quaterniond q0(prev.X_WT.linear()), q1(t.X_WT.linear());
+  double length = 0.0;
+  Eigen::Vector3d last = a;
+  std::vector<double> along;
+  for (const Eigen::Vector3d& x : arc) along.push_back(length += (x - last).norm()), last = x;
+  for (std::size_t k = 0; k + 1 < arc.size(); ++k) {
+    const double f = along[k] / length;
+    const double tilt = prev.tilt_rad + f * (t.tilt_rad - prev.tilt_rad);
+    const double rot = prev.rotation_rad + f * (t.rotation_rad - prev.rotation_rad);
+    const Eigen::Isometry3d X_PW = PartInWorld(cell, tilt, rot).inverse();
+    const Eigen::Matrix3d R_WT = q0.slerp(f, q1).toRotationMatrix();
+    const Eigen::Vector3d dir_W = -R_WT.col(2);
+    if (in_part) {
+      // Part-frame orientation: interpolate the tool direction in P.
+      points->Add(arc[k], (1.0 - f) * prev.tool_dir_P + f * t.tool_dir_P, t, false, Eigen::Vector2d(tilt, rot));
+    } else {
+      points->Add(X_PW * arc[k], X_PW.linear() * dir_W, t, false, Eigen::Vector2d(tilt, rot));
+    }
+  }
+}
+
+// Passes: a run of arc-off points followed by the welded run after it, with its build direction (the mean tool
+// direction of its welded points) and height along it.
+std::vector<PassSpan> SplitProgramPasses(const std::vector<PathPoint>& points) {
+  std::vector<PassSpan> passes;
+  for (std::size_t i = 0; i < points.size();) {
+    PassSpan pass;
+    pass.first = i;
+    while (i < points.size() && !points[i].weld) ++i;
+    while (i < points.size() && points[i].weld) ++i;
+    pass.last = i;
+    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
+    int welded = 0;
+    for (std::size_t k = pass.first; k < pass.last; ++k) {
+      if (points[k].weld) dir += points[k].tool_dir_P, ++welded;
+    }
+    pass.welded = welded > 0;
+    pass.build_dir = (welded > 0 && dir.norm() > 1e-9) ? Eigen::Vector3d(dir.normalized())
+                                                       : points[pass.last - 1].tool_dir_P;
+    double h = 0.0;
+    for (std::size_t k = pass.first; k < pass.last; ++k) {
+      if (points[k].weld || welded == 0) h += points[k].p_P.dot(pass.build_dir);
+    }
+    pass.height = h / (welded > 0 ? welded : static_cast<int>(pass.last - pass.first));
+    passes.push_back(pass);
+  }
+  return passes;
+}
+
+// Layers: consecutive passes at the same height along the same build direction, appended to `plan`.
+void GroupLayers(const std::vector<PassSpan>& passes, const std::vector<PathPoint>& points,
+                 const ImportSettings& settings, Plan* plan) {
+  const double tolerance =
+      settings.layer_tolerance_mm > 0.0 ? settings.layer_tolerance_mm : 0.5 * settings.bead_height_mm;
+  const double kSameDirection = std::cos(1.0 * kPi / 180.0);
+  const PassSpan* layer_pass = nullptr;  // the first welded pass of the current layer
+  for (const PassSpan& pass : passes) {
+    const bool new_layer = plan->layers.empty() ||
+                           (pass.welded && layer_pass != nullptr &&
+                            (pass.build_dir.dot(layer_pass->build_dir) < kSameDirection ||
+                             std::abs(pass.height - layer_pass->height) > tolerance));
+    if (new_layer) {
+      LayerPath layer;
+      layer.index = static_cast<int>(plan->layers.size());
+      layer.slice_in_plane = false;
+      plan->layers.push_back(layer);
+      layer_pass = nullptr;
+    }
+    LayerPath& layer = plan->layers.back();
+    if (pass.welded && layer_pass == nullptr) {
+      layer_pass = &pass;
+      layer.build_dir_P = pass.build_dir;
+      layer.z_mm = pass.height;
+    }
+    layer.points.insert(layer.points.end(), points.begin() + static_cast<std::ptrdiff_t>(pass.first),
+                        points.begin() + static_cast<std::ptrdiff_t>(pass.last));
+  }
+}
+
 }  // namespace
 
 const ProgramMotion* ProgramTool(const ParsedProgram& program) {
@@ -129,30 +262,8 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
   const std::vector<ResolvedTarget> targets = ResolveTargets(program, cell, settings);
   const Eigen::Isometry3d X_WU = settings.X_WU ? *settings.X_WU : ProgramUserFrame(cell);
 
-  // Flat point list: one point per target, arcs cut into chords.
-  std::vector<PathPoint> points;
-  points.reserve(targets.size());
-  // `target`: the motion's own end point (notes are counted once per motion, not per chord of an arc).
-  // `positioner_rad`: the program's (tilt, rotation) at the point, which the cell motion then follows.
-  auto make_point = [&](const Eigen::Vector3d& p_P, const Eigen::Vector3d& tool_dir_P, const ResolvedTarget& t,
-                        bool target, const Eigen::Vector2d& positioner_rad) {
-    PathPoint p;
-    p.p_P = p_P;
-    p.positioner_rad = positioner_rad;
-    p.tool_dir_P = tool_dir_P.normalized();
-    p.bead_width_mm = settings.bead_width_mm;
-    p.bead_height_mm = settings.bead_height_mm;
-    p.weld = t.weld && !points.empty();
-    if (t.speed_mm_s > 0.0) {
-      p.speed_mm_s = t.speed_mm_s;
-    } else if (p.weld) {
-      p.speed_mm_s = settings.weld_speed_mm_s;
-      if (target) notes.Add("weld move without a speed: the scenario's process.travel_speed_mm_min used", t.line);
-    } else {
-      p.speed_mm_s = settings.rapid_speed_mm_s;
-    }
-    points.push_back(p);
-  };
+  PointList points(settings, &notes);
+  points.points().reserve(targets.size());
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const ResolvedTarget& t = targets[i];
     const ProgramMotion& m = program.motions[i];
@@ -162,101 +273,18 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
                 t.line);
     }
     if (t.kind == MotionKind::kCircular && i > 0 && m.has_via) {
-      const ResolvedTarget& prev = targets[i - 1];
-      // The arc lies in the frame its points are given in: P for part-frame targets, else W (the positioner's
-      // angles run linearly from the previous target's to this one's along it).
-      const bool in_part = m.frame == TargetFrame::kPart;
-      Eigen::Vector3d a, via, b;
-      if (in_part) {
-        a = prev.p_P, via = m.via, b = t.p_P;
-      } else {
-        const Eigen::Isometry3d X_WF = FrameInWorld(cell, X_WU, m.frame);
-        a = prev.X_WT.translation(), via = X_WF * m.via, b = t.X_WT.translation();
-      }
-      const std::vector<Eigen::Vector3d> arc = ArcPoints(a, via, b, settings.arc_step_mm);
-      if (arc.empty()) {
-        notes.Add("circular move through three points on one line (or too large a circle): followed as a linear move", t.line);
-      } else {
-        const Eigen::Quaterniond q0(prev.X_WT.linear()), q1(t.X_WT.linear());
-        double length = 0.0;
-        Eigen::Vector3d last = a;
-        std::vector<double> along;
-        for (const Eigen::Vector3d& x : arc) along.push_back(length += (x - last).norm()), last = x;
-        for (std::size_t k = 0; k + 1 < arc.size(); ++k) {
-          const double f = along[k] / length;
-          const double tilt = prev.tilt_rad + f * (t.tilt_rad - prev.tilt_rad);
-          const double rot = prev.rotation_rad + f * (t.rotation_rad - prev.rotation_rad);
-          const Eigen::Isometry3d X_PW = PartInWorld(cell, tilt, rot).inverse();
-          const Eigen::Matrix3d R_WT = q0.slerp(f, q1).toRotationMatrix();
-          const Eigen::Vector3d dir_W = -R_WT.col(2);
-          if (in_part) {
-            // Part-frame orientation: interpolate the tool direction in P.
-            make_point(arc[k], (1.0 - f) * prev.tool_dir_P + f * t.tool_dir_P, t, false, Eigen::Vector2d(tilt, rot));
-          } else {
-            make_point(X_PW * arc[k], X_PW.linear() * dir_W, t, false, Eigen::Vector2d(tilt, rot));
-          }
-        }
-      }
+      AddArc(m, targets[i - 1], t, cell, X_WU, settings.arc_step_mm, &points, &notes);
     } else if (t.kind == MotionKind::kCircular && !m.has_via) {
       notes.Add("circular move without its intermediate point: followed as a linear move", t.line);
     }
-    make_point(t.p_P, t.tool_dir_P, t, true, Eigen::Vector2d(t.tilt_rad, t.rotation_rad));
-    points.back().dwell_s = t.dwell_s;
+    points.Add(t.p_P, t.tool_dir_P, t, true, Eigen::Vector2d(t.tilt_rad, t.rotation_rad));
+    points.points().back().dwell_s = t.dwell_s;
   }
 
-  // Passes: a run of arc-off points followed by the welded run after it.
-  std::vector<PassSpan> passes;
-  for (std::size_t i = 0; i < points.size();) {
-    PassSpan pass;
-    pass.first = i;
-    while (i < points.size() && !points[i].weld) ++i;
-    while (i < points.size() && points[i].weld) ++i;
-    pass.last = i;
-    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
-    int welded = 0;
-    for (std::size_t k = pass.first; k < pass.last; ++k) {
-      if (points[k].weld) dir += points[k].tool_dir_P, ++welded;
-    }
-    pass.welded = welded > 0;
-    pass.build_dir = (welded > 0 && dir.norm() > 1e-9) ? Eigen::Vector3d(dir.normalized())
-                                                       : points[pass.last - 1].tool_dir_P;
-    double h = 0.0;
-    for (std::size_t k = pass.first; k < pass.last; ++k) {
-      if (points[k].weld || welded == 0) h += points[k].p_P.dot(pass.build_dir);
-    }
-    pass.height = h / (welded > 0 ? welded : static_cast<int>(pass.last - pass.first));
-    passes.push_back(pass);
-  }
-
-  // Layers: consecutive passes at the same height along the same build direction.
-  const double tolerance =
-      settings.layer_tolerance_mm > 0.0 ? settings.layer_tolerance_mm : 0.5 * settings.bead_height_mm;
-  const double kSameDirection = std::cos(1.0 * kPi / 180.0);
   ImportedPlan out;
   out.plan.name = program.name;
-  const PassSpan* layer_pass = nullptr;  // the first welded pass of the current layer
-  for (const PassSpan& pass : passes) {
-    const bool new_layer = out.plan.layers.empty() ||
-                           (pass.welded && layer_pass != nullptr &&
-                            (pass.build_dir.dot(layer_pass->build_dir) < kSameDirection ||
-                             std::abs(pass.height - layer_pass->height) > tolerance));
-    if (new_layer) {
-      LayerPath layer;
-      layer.index = static_cast<int>(out.plan.layers.size());
-      layer.slice_in_plane = false;
-      out.plan.layers.push_back(layer);
-      layer_pass = nullptr;
-    }
-    LayerPath& layer = out.plan.layers.back();
-    if (pass.welded && layer_pass == nullptr) {
-      layer_pass = &pass;
-      layer.build_dir_P = pass.build_dir;
-      layer.z_mm = pass.height;
-    }
-    layer.points.insert(layer.points.end(), points.begin() + static_cast<std::ptrdiff_t>(pass.first),
-                        points.begin() + static_cast<std::ptrdiff_t>(pass.last));
-  }
-  out.points = points.size();
+  GroupLayers(SplitProgramPasses(points.points()), points.points(), settings, &out.plan);
+  out.points = points.points().size();
   if (const ProgramMotion* tool = ProgramTool(program)) {
     out.plan.X_FT = tool->X_FT, out.plan.tool_name = tool->tool_name;
     for (const ProgramMotion& m : program.motions) {

@@ -7,7 +7,11 @@ For plan and check it times, median of N runs each: the command (`waam plan -q -
 (load_scenario, plan [, check], save(dir, images=False): the same computation and the same files by the same
 writers). Then the step alone from Python (wt.plan, wt.check on a loaded scenario) and the cost of getting the
 arrays as numpy views (plan.points, check.joints, part.voxels), which does not copy and so does not grow with the
-array. Prints a Markdown table (docs/PYTHON.md)."""
+array. Last, what a Python call adds to the same step in C++: the step's C++ computation called directly in this
+process (wt._core._native_step_seconds: the plan and its timeline; the cell, the check and check.json's document) against
+wt.plan and wt.check, alternated run by run so that both see the same load: the medians, and the median over the
+pairs of each pair's ratio. Prints Markdown
+tables (docs/PYTHON.md)."""
 import argparse
 import pathlib
 import statistics
@@ -70,6 +74,35 @@ def main():
     for name, seconds in view_s.items():
         rows_of = {"plan.points": len(plan.points), "check.joints": len(check.joints), "part.voxels": len(part.voxels)}
         print(f"| `{name}` | {rows_of[name]} | {seconds * 1e6:.2f} |")
+    print_step_overhead(scn, plan, args.repeat)
+
+
+def print_step_overhead(scn, plan, repeat):
+    """Alternates the C++ step and the Python call `repeat` times each and prints their medians and the median of
+    the pairs' ratios: wall time (the C++ side timed inside C++) and this process's CPU time (both timed here, all
+    threads counted), which a loaded machine disturbs less."""
+    calls = {"plan": lambda: wt.plan(scn), "check": lambda: wt.check(scn, plan)}
+    print("\n| step (alternated, median) | C++ step, s | Python call, s | Python / C++ - 1 | C++ CPU, s | Python CPU, s "
+          "| CPU: Python / C++ - 1 |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for step, call in calls.items():
+        wall = {"cpp": [], "py": []}
+        cpu = {"cpp": [], "py": []}
+        for _ in range(repeat):
+            start_cpu = time.process_time()
+            wall["cpp"] += wt._core._native_step_seconds(step, scn, plan if step == "check" else None, 1)
+            cpu["cpp"].append(time.process_time() - start_cpu)
+            start, start_cpu = time.perf_counter(), time.process_time()
+            call()
+            wall["py"].append(time.perf_counter() - start)
+            cpu["py"].append(time.process_time() - start_cpu)
+        w = {k: statistics.median(v) for k, v in wall.items()}
+        c = {k: statistics.median(v) for k, v in cpu.items()}
+        # The median over the pairs of each pair's ratio: a pair runs back to back, so load drift cancels.
+        w_ratio = statistics.median(p / n for n, p in zip(wall["cpp"], wall["py"]))
+        c_ratio = statistics.median(p / n for n, p in zip(cpu["cpp"], cpu["py"]))
+        print(f"| `wt.{step}` | {w['cpp']:.4f} | {w['py']:.4f} | {100 * (w_ratio - 1):+.2f} % "
+              f"| {c['cpp']:.4f} | {c['py']:.4f} | {100 * (c_ratio - 1):+.2f} % |")
 
 
 if __name__ == "__main__":

@@ -117,3 +117,17 @@ def test_ctrl_c_interrupts_a_long_call(tiny_thermal):
         wt.thermal(scn)
     timer.join()
     assert wt.plan(scn).layer_count == 10
+
+
+def test_native_step_seconds_times_the_same_computation(tiny):
+    """The benchmark aid behind python/benchmarks/overhead.py runs the C++ step alone: one positive time per run,
+    the check only with a plan, and the same plan as wt.plan (so the two sides time the same work)."""
+    scn = wt.load_scenario(tiny)
+    plan = wt.plan(scn)
+    seconds = wt._core._native_step_seconds("plan", scn, None, 2)
+    assert len(seconds) == 2 and all(s > 0 for s in seconds)
+    assert len(wt._core._native_step_seconds("check", scn, plan, 1)) == 1
+    with pytest.raises(wt.InputError, match="check with a plan"):
+        wt._core._native_step_seconds("check", scn, None, 1)
+    with pytest.raises(wt.InputError, match="step 'simulate'"):
+        wt._core._native_step_seconds("simulate", scn, plan, 1)

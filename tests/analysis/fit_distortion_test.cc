@@ -57,7 +57,7 @@ class FitDistortionTest : public ::testing::Test {
 
   static FitOptions Options(const std::string& output) {
     FitOptions o;
-    o.model = "distortion";
+    o.model = FitModel::kDistortion;
     o.data = *dir_ / "twin" / "scan_before.ply";
     o.scenario = kScenario;
     o.start = *dir_ / "start.json";

@@ -1,6 +1,7 @@
 // Replays every input kept in fuzz/regressions/ (inputs that once crashed or hung a fuzz target, see tools/fuzz.sh)
 // through the same reader as its fuzz target: each must give a result or an InputError, nothing else.
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "analysis/sweep.h"
 #include "analysis/thermal_material_io.h"
 #include "fuzz/program_fuzz.h"
+#include "fuzz/replay_log_fuzz.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -101,6 +103,15 @@ TEST(FuzzRegressions, ThermalMaterialInputsGiveAMaterialOrAnInputError) {
   Replay("thermal_material", [](const fs::path& input) {
     const models::ThermalMaterial m = analysis::ParseThermalMaterial(ReadFile(input), input.string(), "fuzz");
     for (double t : {-300.0, 20.0, 1500.0, 1e300}) EXPECT_GT(m.EffectiveHeatCapacity(t), 0.0) << input;
+  });
+}
+
+TEST(FuzzRegressions, ReplayLogInputsGiveAnOrderedLogOrAnInputError) {
+  Replay("replay_log", [](const fs::path& input) {
+    const std::string bytes = ReadFile(input);
+    ASSERT_FALSE(bytes.empty()) << input;
+    EXPECT_TRUE(fuzz::ReplayLogFuzzOne(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()))
+        << input << ": an accepted log must be in strict time order with finite values";
   });
 }
 

@@ -172,7 +172,7 @@ TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
   truth.convection_w_m2k = 25.0;
   const fs::path scenario = WriteRoundTrip(dir, truth);
   FitOptions options;
-  options.model = "thermal";
+  options.model = waam::analysis::FitModel::kThermal;
   options.data = scenario;
   options.output = dir / "fitted.json";
   options.free = {"efficiency", "convection"};

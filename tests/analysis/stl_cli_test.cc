@@ -11,7 +11,7 @@
 
 #include "models/core/files.h"
 #include "planner/mesh/generators.h"
-#include "planner/mesh/stl_io.h"
+#include "analysis/stl_file.h"
 #include "tests/planner/mesh_test_util.h"
 
 namespace waam::planner {
@@ -44,7 +44,7 @@ TEST(StlIoCli, OpenMeshIsReportedThenRefusedWithCodeTwo) {
   const std::filesystem::path dir = TestDir();
   TriangleMesh box = GeneratePart("box", {}, "test");
   box.facets.pop_back();
-  WriteStlBinary(box, dir / "open.stl");
+  analysis::WriteStlBinary(box, dir / "open.stl");
   EXPECT_EQ(RunWaam("inspect " + (dir / "open.stl").string(), dir / "out", dir / "err"), 2);
   EXPECT_THAT(ReadFile(dir / "out"), HasSubstr("\"watertight\": false"));
   EXPECT_THAT(ReadFile(dir / "out"), HasSubstr("\"boundary_edges\": 3"));

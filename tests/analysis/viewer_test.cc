@@ -19,6 +19,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "analysis/bench_command.h"
+#include "analysis/cell_files.h"
 #include "analysis/check_command.h"
 #include "analysis/scenario.h"
 #include "analysis/thermal_run.h"
@@ -67,7 +68,7 @@ void ExpectBodiesMatchShapes(const twin::CellModel& cell, const planner::Joints8
 }
 
 TEST(ViewerTest, BodiesPlacedByTheirPosesMatchTheWorldShapes) {
-  const twin::CellModel cell(fs::path{});
+  const twin::CellModel cell = LoadCellModel(fs::path{});
   planner::Joints8 q;
   q << 0.3, -0.2, 0.4, 0.5, -0.7, 1.1, 0.4, 2.0;
   ExpectBodiesMatchShapes(cell, q);
@@ -76,7 +77,7 @@ TEST(ViewerTest, BodiesPlacedByTheirPosesMatchTheWorldShapes) {
 
 TEST(ViewerTest, MeshGeomsCarryTheirVertices) {
   // The built-in cell with a tetrahedron mesh on the flange.
-  std::string xml = ReadFile(twin::CellModel::BuiltinModelPath());
+  std::string xml = ReadFile(analysis::BuiltinCellPath());
   const std::size_t compiler = xml.find("<compiler");
   ASSERT_NE(compiler, std::string::npos);
   xml.insert(compiler, "<asset><mesh name=\"tetra\" vertex=\"0 0 0  0.05 0 0  0 0.05 0  0 0 0.05\"/></asset>\n  ");
@@ -87,7 +88,7 @@ TEST(ViewerTest, MeshGeomsCarryTheirVertices) {
                            "conaffinity=\"0\" rgba=\"0 1 0 1\"/>");
   const fs::path dir = cli_test::TempDir("viewer_mesh");
   WriteFileAtomic(dir / "cell.xml", xml);
-  const twin::CellModel cell(dir / "cell.xml");
+  const twin::CellModel cell = LoadCellModel(dir / "cell.xml");
   int meshes = 0;
   for (const twin::CellBody& body : cell.Bodies()) {
     ASSERT_EQ(body.geoms.size(), body.mesh_vertices_mm.size());
@@ -140,7 +141,7 @@ TEST(ViewerTest, PageCountsMatchTheRunAndTheBudget) {
   const nlohmann::json check = cli_test::ReadJson(dir / "check.json");
   ASSERT_TRUE(check.contains("viewer")) << check.dump(2);
   const nlohmann::json& v = check["viewer"];
-  const twin::CellModel cell = twin::LoadCell(c.scenario.cell);
+  const twin::CellModel cell = LoadCell(c.scenario.cell);
   EXPECT_EQ(v["bodies"].get<std::size_t>(), cell.Bodies().size());
   EXPECT_EQ(v["violations"].get<std::size_t>(), check["violation_count"].get<std::size_t>());
   EXPECT_GT(v["violations"].get<std::size_t>(), 0u) << "the scenario plants joint-limit violations";
@@ -429,7 +430,7 @@ TEST(ViewerBrowserTest, PageOfARunWithThermalColoursThePartByTemperature) {
 
 TEST(ViewerBrowserTest, EmptyMotionGivesAPageThatSaysSo) {
   const fs::path dir = cli_test::TempDir("viewer_empty");
-  const twin::CellModel cell(fs::path{});
+  const twin::CellModel cell = LoadCellModel(fs::path{});
   const twin::CheckReport empty;
   const ViewerSummary summary =
       WriteViewer("nothing", cell, cell.kinematics(), planner::Plan{}, nullptr, empty, dir / "viewer.html");

@@ -1,6 +1,6 @@
 // The house's rules on the sources themselves: no module names another module's `internal` namespace, no file
-// includes a header of a layer above its own (models <- planner <- twin <- analysis <- app), and the planner reads no
-// file (readers are called from analysis/).
+// includes a header of a layer above its own (models <- planner <- twin <- analysis <- app), and the planner and the
+// twin neither read nor write a file (readers and writers are analysis/'s, called from there).
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -74,30 +74,62 @@ TEST(SourceRules, NoFileIncludesAHigherLayer) {
   EXPECT_THAT(offences, ::testing::IsEmpty()) << "layers are models <- planner <- twin <- analysis <- app";
 }
 
-// What reads a file: a stream or C file opened, a whole file read, a YAML, model or parameter file loaded, a folder
-// listed. Comments are not code.
-const std::regex kFileRead(
-    R"re(^[^/]*?\b(std::ifstream|std::fstream|fopen|ReadFile\(|LoadYamlFile|YAML::LoadFile|Model::Load\(|::Load\(|LoadVoidLengthModel|ReadModelJson|ReadDistortionParams|DefaultModelPath|directory_iterator))re");
-
-// The modules that compute on data handed to them and never read a file.
-const std::vector<std::string> kReadNoFile = {"planner"};
-
-TEST(SourceRules, PlannerReadsNoFile) {
-  std::vector<std::string> offences;
-  for (const std::string& module : kReadNoFile) {
-    for (const Hit& hit : Grep(module, kFileRead)) offences.push_back(hit.where);
+// The code of a line: what precedes a `//` comment (a `//` inside "file://" or "package://" is not one).
+std::string CodeOf(const std::string& line) {
+  for (std::size_t at = line.find("//"); at != std::string::npos; at = line.find("//", at + 2)) {
+    if (at == 0 || line[at - 1] == ' ' || line[at - 1] == '\t') return line.substr(0, at);
   }
-  EXPECT_THAT(offences, ::testing::IsEmpty())
-      << "the planner computes on data: read the file in analysis/ (or the scenario loader) and hand over its "
-         "bytes or what was parsed from it";
+  return line;
 }
 
-TEST(SourceRules, TheFileReadPatternMatchesAReadAndSkipsAComment) {
-  for (const std::string line : {"  std::ifstream in(path);", "  const std::string text = ReadFile(path);",
-                                 "  auto m = models::CswModel::Load(p);", "  YAML::Node n = LoadYamlFile(f);"}) {
-    EXPECT_TRUE(std::regex_search(line, kFileRead)) << line;
+// What reads or writes a file: a stream or C file opened (or <fstream> included), a whole file read or written
+// (atomically or not), an XML, YAML, model or parameter file loaded, a folder listed or changed, a file's size or
+// time asked; MuJoCo loading from the disk (mj_loadXML without a VFS, mj_addFileVFS, mj_loadModel) or saving.
+const std::regex kFileAccess(
+    R"re(::Load\(|(^|\W)(std::ifstream|std::ofstream|std::fstream|#\s*include\s*<fstream>|fopen|freopen|)re"
+    R"re(ReadFile\(|WriteFileAtomic|AtomicOutput|LoadFile\(|SaveFile\(|LoadYamlFile|YAML::LoadFile|)re"
+    R"re(LoadVoidLengthModel|ReadModelJson|ReadDistortionParams|DefaultModelPath|directory_iterator|file_size|)re"
+    R"re(last_write_time|create_director(y|ies)|remove_all|copy_file|mj_loadXML\([^,]*,\s*(nullptr|NULL|0)\s*,|)re"
+    R"re(mj_addFileVFS|mj_loadModel|mj_saveLastXML|mj_saveModel))re");
+
+// Every line of `module` whose code (comments left out) reads or writes a file.
+std::vector<std::string> FileAccesses(const std::string& module) {
+  std::vector<std::string> offences;
+  for (const Hit& hit : Grep(module, std::regex(".*"))) {
+    const std::size_t text = hit.where.find(": ");
+    if (std::regex_search(CodeOf(hit.where.substr(text + 2)), kFileAccess)) offences.push_back(hit.where);
   }
-  EXPECT_FALSE(std::regex_search(std::string("  // the loader calls ReadFile(path) for us"), kFileRead));
+  return offences;
+}
+
+TEST(SourceRules, PlannerReadsNoFile) {
+  EXPECT_THAT(FileAccesses("planner"), ::testing::IsEmpty())
+      << "the planner computes on data: read or write the file in analysis/ (or the scenario loader) and hand over "
+         "its bytes or what was parsed from it";
+}
+
+TEST(SourceRules, TwinReadsNoFile) {
+  EXPECT_THAT(FileAccesses("twin"), ::testing::IsEmpty())
+      << "the twin computes on data: read or write the file in analysis/ (analysis/cell_files.h reads the cell's "
+         "MJCF, URDF and meshes; MuJoCo gets them in a VFS) and hand over its bytes or what was parsed from it";
+}
+
+TEST(SourceRules, TheFileAccessPatternMatchesAReadOrWriteAndSkipsACommentAndAVfsLoad) {
+  for (const std::string line :
+       {"  std::ifstream in(path);", "  const std::string text = ReadFile(path);",
+        "  auto m = models::CswModel::Load(p);", "  YAML::Node n = LoadYamlFile(f);", "#include <fstream>",
+        "  std::ofstream(p) << text;", "  WriteFileAtomic(path, out);", "  AtomicOutput output(path);",
+        "  FILE* f = fopen(name, \"rb\");", "  doc_.LoadFile(file_.c_str());",
+        "  const auto size = fs::file_size(file, ec);", "  fs::create_directories(dir);",
+        "  m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));",
+        "  mj_addFileVFS(vfs, dir, name);", "  f = uri.rfind(\"file://\", 0); std::ifstream in(f);"}) {
+    EXPECT_TRUE(std::regex_search(CodeOf(line), kFileAccess)) << line;
+  }
+  for (const std::string line :
+       {"  // the loader calls ReadFile(path) for us", "  m = mj_loadXML(vfs.main().c_str(), vfs.get(), error, 1024);",
+        "  x = 1;  // not std::ifstream here", "  const bool file = uri.rfind(\"file://\", 0) == 0;"}) {
+    EXPECT_FALSE(std::regex_search(CodeOf(line), kFileAccess)) << line;
+  }
 }
 
 // The check itself finds what it looks for (a rule that cannot fail is no rule).

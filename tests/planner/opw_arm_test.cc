@@ -181,6 +181,37 @@ TEST(OpwArmTest, SeedKeepsTheBranchAndWrapsJ6) {
   EXPECT_LT((ik.solutions[pick].q - q).norm(), 1e-9) << "the nearest branch to its own joints is itself";
 }
 
+// The seed's branch alone answers as the full solve and PickNearest do, along random walks that pass near the
+// singularities and the limits (steps up to 0.3 rad), and the walk does skip the full solve most of the time.
+TEST(OpwArmTest, SeededBranchPicksWhatEveryBranchPicks) {
+  const OpwArm arm = OpwArm::ArcMate100iC12();
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> step(-0.3, 0.3);
+  int single = 0, poses = 0;
+  for (int walk = 0; walk < 40; ++walk) {
+    Joints6 q = RandomJoints(arm, rng);
+    if (walk % 4 == 0) q[4] = 0.01 * step(rng);  // near the wrist singularity
+    Joints6 seed = q;
+    int branch = -1;
+    for (int i = 0; i < 200; ++i, ++poses) {
+      for (int j = 0; j < 6; ++j) q[j] = std::clamp(q[j] + step(rng) * (i % 10 == 0 ? 1.0 : 0.05), arm.lower[j], arm.upper[j]);
+      const Eigen::Isometry3d X = ForwardKinematics(arm, q);
+      const IkSolutions all = SolveIk(arm, X, &seed);
+      const int pick = PickNearest(arm, all, &seed);
+      const IkNearest one = SolveIkNearest(arm, X, seed, branch);
+      ASSERT_EQ(one.reachable, pick >= 0) << "walk " << walk << " pose " << i;
+      if (pick < 0) continue;
+      EXPECT_EQ(one.solution.q, all.solutions[pick].q) << "walk " << walk << " pose " << i;
+      EXPECT_EQ(one.solution.branch, all.solutions[pick].branch);
+      EXPECT_EQ(one.solution.within_limits, all.solutions[pick].within_limits);
+      if (!one.all_branches) ++single;
+      seed = one.solution.q;
+      branch = one.solution.opw_branch;
+    }
+  }
+  EXPECT_GT(single, poses / 2) << "the seed's branch should decide most poses of a walk";
+}
+
 TEST(OpwArmTest, WristSingularityKeepsJ4) {
   const OpwArm arm = OpwArm::ArcMate100iC12();
   Joints6 q;

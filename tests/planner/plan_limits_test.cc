@@ -8,7 +8,7 @@
 
 #include "models/core/error.h"
 #include "planner/mesh/generators.h"
-#include "planner/mesh/stl_io.h"
+#include "analysis/stl_file.h"
 #include "planner/plan_scenario.h"
 #include "tests/planner/test_scenarios.h"
 
@@ -42,7 +42,7 @@ TEST(PlanLimitsTest, TooManyLayersIsRefusedBeforeSlicing) {
   TriangleMesh column = GeneratePart("box", {{"size_mm", {10, 10, 5000}}}, "test");
   for (Eigen::Vector3d& v : column.vertices) v.z() *= 2.0;
   const std::filesystem::path stl = std::filesystem::temp_directory_path() / "waam_plan_limits_column.stl";
-  WriteStlBinary(column, stl);
+  analysis::WriteStlBinary(column, stl);
   PlannerSections s = LimitsBox(10, 10, 10, 0.05);
   s.part.generator.clear();
   s.part.params.clear();

@@ -13,6 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "analysis/stl_file.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "planner/mesh/generators.h"
@@ -56,7 +57,7 @@ std::string StlErrorOf(const std::filesystem::path& path, double weld_tol_mm = 1
 TEST(StlIo, BinaryRoundTripKeepsTopologyAndVolume) {
   const std::filesystem::path file = TestDir() / "ding_b.stl";
   const TriangleMesh mesh = GeneratePart("ding_b", {}, "test");
-  WriteStlBinary(mesh, file);
+  analysis::WriteStlBinary(mesh, file);
   EXPECT_EQ(std::filesystem::file_size(file), 84 + 50 * mesh.facets.size());
   MeshReport report;
   const TriangleMesh back = ReadStl(file, 1e-4, &report);
@@ -74,7 +75,7 @@ TEST(StlIo, BinaryRoundTripKeepsTopologyAndVolume) {
 TEST(StlIo, AsciiRoundTripKeepsTopologyAndVolume) {
   const std::filesystem::path file = TestDir() / "torus.stl";
   const TriangleMesh mesh = GeneratePart("torus", {{"major_segments", {24}}, {"minor_segments", {12}}}, "test");
-  WriteStlAscii(mesh, file, "torus");
+  analysis::WriteStlAscii(mesh, file, "torus");
   MeshReport report;
   const TriangleMesh back = ReadStl(file, 1e-4, &report);
   EXPECT_FALSE(report.binary);
@@ -318,8 +319,8 @@ TEST(StlIoErrors, CorruptedFilesGiveAMeshOrAnInputErrorNeverACrash) {
   // (then sliceable or refused by CheckSliceable) or an InputError naming the file.
   const std::filesystem::path dir = TestDir();
   const TriangleMesh mesh = GeneratePart("ding_b", {{"segments", {8}}}, "test");
-  WriteStlBinary(mesh, dir / "b.stl");
-  WriteStlAscii(mesh, dir / "a.stl", "a");
+  analysis::WriteStlBinary(mesh, dir / "b.stl");
+  analysis::WriteStlAscii(mesh, dir / "a.stl", "a");
   std::mt19937_64 rng(42);
   for (const char* name : {"b.stl", "a.stl"}) {
     const std::string original = ReadFile(dir / name);

@@ -1,6 +1,7 @@
 // Tests of the MuJoCo cell: the closed-form IK agrees with MuJoCo's forward kinematics, bad model files give clear
 // errors, and the three planted faults (out of reach, joint past its limit, torch into the plate) are caught.
 #include "models/core/numbers.h"
+#include "analysis/cell_files.h"
 #include "twin/cell/cell_check.h"
 
 #include <filesystem>
@@ -24,6 +25,7 @@
 
 namespace waam::twin {
 namespace {
+using analysis::LoadCell;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -78,7 +80,7 @@ TEST(CellModelTest, ClosedFormIkReachesTheTcpInMujoco) {
 }
 
 TEST(CellModelTest, ModelKinematicsMatchThePublishedArm) {
-  const CellModel cell({});
+  const CellModel cell = analysis::LoadCellModel({});
   const planner::CellKinematics kin = cell.kinematics();
   const planner::OpwArm ref = planner::OpwArm::ArcMate100iC12();
   EXPECT_NEAR(kin.arm.a1, ref.a1, 1e-9);
@@ -123,7 +125,7 @@ TEST_F(BadModelTest, BrokenXmlIsAnErrorNotAnExit) {
 }
 
 TEST_F(BadModelTest, MissingJointIsNamed) {
-  std::string xml = ReadFileForTest(CellModel::BuiltinModelPath());
+  std::string xml = ReadFileForTest(analysis::BuiltinCellPath());
   xml.replace(xml.find("name=\"j3\""), 9, "name=\"jx\"");
   EXPECT_THAT(ErrorOf(xml), HasSubstr("no joint named 'j3'"));
 }
@@ -132,7 +134,7 @@ TEST_F(BadModelTest, MissingJointIsNamed) {
 class NumericIkTest : public BadModelTest {
  protected:
   fs::path WristOffsetModel() {
-    std::string xml = ReadFileForTest(CellModel::BuiltinModelPath());
+    std::string xml = ReadFileForTest(analysis::BuiltinCellPath());
     xml.replace(xml.find("<body name=\"link6\" pos=\"0.1 0 0\">"), 33, "<body name=\"link6\" pos=\"0.1 0.02 0\">");
     const fs::path file = dir_ / "offset_wrist.xml";
     std::ofstream(file) << xml;
@@ -228,7 +230,7 @@ TEST_F(NumericIkTest, NumericalIkFailureIsReportedAsUnreachable) {
 }
 
 TEST_F(BadModelTest, MujocoRuntimeErrorThrowsInsteadOfExiting) {
-  const CellModel cell({});  // installs the handlers
+  const CellModel cell = analysis::LoadCellModel({});  // installs the handlers
   try {
     mju_error("simulated engine failure");
     ADD_FAILURE() << "mju_error must throw, not return or exit";
@@ -239,7 +241,7 @@ TEST_F(BadModelTest, MujocoRuntimeErrorThrowsInsteadOfExiting) {
 
 TEST_F(BadModelTest, MissingFileIsNamed) {
   try {
-    const CellModel cell(dir_ / "nothere.xml");
+    const CellModel cell = analysis::LoadCellModel(dir_ / "nothere.xml");
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("nothere.xml"));

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/cell_files.h"
 #include "models/core/enum_names.h"
 #include "models/core/numbers.h"
 #include "planner/kinematics/opw_arm.h"
@@ -17,6 +18,7 @@
 
 namespace waam::twin {
 namespace {
+using analysis::LoadCell;
 
 double PoseError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   // Position error in mm plus the rotation error expressed at 1000 mm lever arm.

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/files.h"
+#include "analysis/cell_files.h"
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
 #include "tests/twin/test_plans.h"
@@ -20,11 +21,12 @@
 
 namespace waam::twin {
 namespace cell_resolve_test {
+using analysis::LoadCell;
 namespace fs = std::filesystem;
 
 // The built-in cell with J6's range set to [lo, hi] deg, written to a temporary file.
 fs::path CellWithJ6Range(double lo, double hi) {
-  const std::string text = ReadFile(CellModel::BuiltinModelPath());
+  const std::string text = ReadFile(analysis::BuiltinCellPath());
   const std::string changed = std::regex_replace(
       text, std::regex(R"(<joint name="j6" axis="-1 0 0" range="-360 360"/>)"),
       "<joint name=\"j6\" axis=\"-1 0 0\" range=\"" + std::to_string(lo) + " " + std::to_string(hi) + "\"/>");

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/cell_files.h"
 #include "models/core/numbers.h"
 #include "planner/scenario/scenario_document.h"
 #include "tests/twin/test_plans.h"
@@ -18,6 +19,7 @@
 
 namespace waam::twin {
 namespace {
+using analysis::LoadCell;
 namespace fs = std::filesystem;
 
 twin::CellSettings OkSettings() {
@@ -54,7 +56,7 @@ planner::Plan SwingPlan() {
 // The built-in cell (placed as cell_ok places it) with a 1 mm thin plate, 80 x 80 mm, fixed in the world with its
 // centre at p_W (mm) and its normal along n_W.
 CellModel CellWithPlate(const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W) {
-  std::ifstream in(CellModel::BuiltinModelPath());
+  std::ifstream in(analysis::BuiltinCellPath());
   std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const Eigen::Vector3d p = p_W / 1000.0;
   const std::string oriented = "<geom name=\"planted_plate\" type=\"box\" size=\"0.04 0.04 0.0005\" pos=\"" +
@@ -67,7 +69,8 @@ CellModel CellWithPlate(const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W) 
   X_WB.translate(Eigen::Vector3d(1050.0, 0.0, 0.0));
   X_WB.rotate(Eigen::AngleAxisd(kPi / 2.0, Eigen::Vector3d::UnitZ()));
   const CellModel::RobotInfo info{"FANUC ARC Mate 100iC/12", "builtin"};
-  return CellModel::FromXml(xml, info, Eigen::Isometry3d::Identity(), X_WB, CellModel::BuiltinModelPath());
+  return CellModel::FromXml(MjcfSource{.xml = xml, .file = analysis::BuiltinCellPath()}, info,
+                            Eigen::Isometry3d::Identity(), X_WB);
 }
 
 int Collisions(const CheckReport& r, bool* between, double* t_s) {

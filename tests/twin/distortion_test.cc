@@ -240,13 +240,13 @@ TEST(DistortionFit, RecoversKnownParametersFromATwinScan) {
   EXPECT_LT(r.rms_mm, 0.05) << "the fitted surface must pass through the scan";
 }
 
-TEST(DistortionFit, RefusesUnknownFreeParameter) {
+TEST(DistortionFit, RefusesRepeatedFreeParameter) {
   const Build b(StraightWall(2, 10.0, 8.0, 8.0), 1.0);
   DistortionFitOptions fit;
-  fit.free = {"colour"};
+  fit.free = {models::DistortionParam::kStrain, models::DistortionParam::kStrain};
   const std::vector<Eigen::Vector3d> scan(20, Eigen::Vector3d::Zero());
   EXPECT_THAT([&] { FitDistortion(b.depositor.grid(), b.history, scan, Params(0.004, 0.0), Fe(), fit); },
-              ::testing::ThrowsMessage<InputError>(HasSubstr("free parameter 'colour'")));
+              ::testing::ThrowsMessage<InputError>(HasSubstr("free parameter 'strain' is given twice")));
 }
 
 TEST(Compensation, ResamplingKeepsThePathAndSpacing) {

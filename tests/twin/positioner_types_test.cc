@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "analysis/cell_files.h"
 #include "models/core/numbers.h"
 #include "models/core/yaml_map.h"
 #include "tests/twin/test_plans.h"
@@ -23,6 +24,7 @@
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
+using analysis::LoadCell;
 // Named, not anonymous: the tests compile as unity batches, where anonymous namespaces of several files merge.
 namespace positioner_types_test {
 namespace fs = std::filesystem;
@@ -244,7 +246,7 @@ TEST_F(PositionerBadInputTest, UnknownTypeIsNamedWithTheChoices) {
 
 TEST_F(PositionerBadInputTest, TypeOtherThanTheModelFilesIsAnError) {
   const std::string message =
-      ErrorOf("name: s\ncell:\n  mjcf: " + CellModel::BuiltinModelPath().string() + "\n  positioner: {type: turntable}\n");
+      ErrorOf("name: s\ncell:\n  mjcf: " + analysis::BuiltinCellPath().string() + "\n  positioner: {type: turntable}\n");
   EXPECT_THAT(message, HasSubstr("cell.positioner.type is turntable"));
   EXPECT_THAT(message, HasSubstr("tilt_rotate"));
 }

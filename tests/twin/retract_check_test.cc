@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include "planner/plan_scenario.h"
+#include "analysis/cell_files.h"
 #include "tests/planner/test_scenarios.h"
 #include "twin/cell/cell_check.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
 namespace {
+using analysis::LoadCell;
 
 struct PartHits {
   int weld = 0;    // part collisions whose worst sample is on a weld move

@@ -1,6 +1,6 @@
 // Tests of the scan readers (PLY ascii/binary, XYZ), the ovality of eq. 6.5 and the central axis of a point cloud.
 #include "models/core/numbers.h"
-#include "twin/scanner/point_cloud_io.h"
+#include "analysis/point_cloud_file.h"
 
 #include <cmath>
 #include <cstring>
@@ -18,6 +18,8 @@ namespace waam::twin {
 namespace {
 
 using ::testing::HasSubstr;
+using analysis::ReadPointCloud;
+using analysis::WritePlyWithDeviation;
 
 std::filesystem::path Write(const std::string& name, const std::string& text) {
   const std::filesystem::path p = std::filesystem::temp_directory_path() / ("waam_scan_io_" + name);

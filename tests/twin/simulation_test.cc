@@ -1,4 +1,4 @@
-// SimulateBuild end to end on a small block: volume balance, measures filled in, deviation against the box target.
+// DepositPlan and MeasureBuild end to end on a small block: volume balance, measures filled in, deviation against the box target.
 #include "tests/twin/twin_settings.h"
 #include "twin/simulation.h"
 
@@ -15,14 +15,13 @@ TEST(Simulation, BlockAgainstItsBoxTarget) {
                                                     2.0 / 3.0 * w * h / l, w, h, 8.0);
   const auto& region = plan.layers.back().slice.front().outer;
   const planner::TriangleMesh box = testing::BoxMesh({region[0].x(), 0, 0}, {region[1].x(), 40.0, plan.layers.back().z_mm});
-  std::size_t calls = 0;
-  const TwinResult r = SimulateBuild(plan, &box, twin::TestSimulationSettings(), 100.0, w,
-                                     [&](std::size_t done, std::size_t total) {
-                                       ++calls;
-                                       EXPECT_LE(done, total);
-                                     });
+  const TwinResult r = MeasureBuild(plan, DepositPlan(plan, twin::TestSimulationSettings(), 100.0, nullptr), &box, w);
   const TwinMeasures& m = r.measures;
-  EXPECT_EQ(calls, m.beads) << "one progress call per pass";
+  // The build ends with the last pass's arc end: its start time plus its weld time.
+  const std::vector<ExecutedPass> passes = ExecutePlan(plan, twin::TestSimulationSettings(), 100.0);
+  ASSERT_FALSE(passes.empty());
+  const double last_arc_end_s = passes.back().start_time_s + PassTimes(passes.back()).back();
+  EXPECT_NEAR(m.build_time_s, last_arc_end_s, 1e-9 * last_arc_end_s);
   EXPECT_EQ(m.layers, 3u);
   EXPECT_EQ(m.beads, 3u * 8u);
   EXPECT_NEAR(m.deposited_volume_mm3, m.expected_volume_mm3, 0.02 * m.expected_volume_mm3);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "planner/mesh/mesh_ops.h"
 #include "tests/twin/test_paths.h"
 #include "twin/deposition/bead_deposition.h"
 
@@ -19,7 +20,7 @@ TEST(SurfaceMesh, BlockIsClosedWithTheRightVolume) {
   const planner::TriangleMesh mesh = ExtractSurface(grid);
   EXPECT_EQ(OpenEdges(mesh), 0u) << "the surface must be closed";
   // Iso-surface through the edge midpoints: faces are flat on the block's faces, edges and corners are chamfered.
-  const double volume = twin::EnclosedVolume(mesh);
+  const double volume = planner::EnclosedVolume(mesh);
   EXPECT_GT(volume, 0.0) << "facets must face outward";
   EXPECT_NEAR(volume, grid.OccupiedVolume(), 0.05 * grid.OccupiedVolume());
 }
@@ -32,7 +33,7 @@ TEST(SurfaceMesh, DepositedBeadsGiveAClosedSurface) {
   const Depositor d = DepositPlan(plan, twin::TestSimulationSettings(), 100.0, nullptr);
   const planner::TriangleMesh mesh = ExtractSurface(d.grid());
   EXPECT_EQ(OpenEdges(mesh), 0u);
-  EXPECT_NEAR(twin::EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.1 * d.grid().OccupiedVolume());
+  EXPECT_NEAR(planner::EnclosedVolume(mesh), d.grid().OccupiedVolume(), 0.1 * d.grid().OccupiedVolume());
 }
 
 TEST(SurfaceMesh, CoarsenKeepsAlignedBlocksAndCountsFaces) {

@@ -15,6 +15,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "analysis/cell_files.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "tests/twin/test_plans.h"
@@ -23,6 +24,7 @@
 
 namespace waam::twin {
 namespace {
+using analysis::LoadCell;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -136,7 +138,7 @@ class UrdfArmTest : public ::testing::Test {
 
   // The same arm as MJCF: the built-in cell with its arm replaced by these bodies (link6 = tool0).
   fs::path WriteMjcfTwin() const {
-    std::ifstream in(CellModel::BuiltinModelPath());
+    std::ifstream in(analysis::BuiltinCellPath());
     std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::size_t a = xml.find("<body name=\"robot_base\"");
     const std::size_t b = xml.find("<body name=\"positioner_base\"");
@@ -190,7 +192,7 @@ TEST_F(UrdfArmTest, RosIndustrialPackageLoadsAsAClosedFormArmWithThePublishedPar
 
 TEST_F(UrdfArmTest, ForwardKinematicsAgreeWithTheSameArmWrittenAsMjcf) {
   const CellModel urdf = LoadCell(Settings(WriteUrdf(Urdf())));
-  const CellModel mjcf(WriteMjcfTwin());
+  const CellModel mjcf = analysis::LoadCellModel(WriteMjcfTwin());
   EXPECT_TRUE(mjcf.closed_form()) << mjcf.not_closed_form_reason();
   CellState a(urdf), b(mjcf);
   const Eigen::Isometry3d T_a = urdf.kinematics().X_FT.inverse(), T_b = mjcf.kinematics().X_FT.inverse();

@@ -204,7 +204,7 @@ const char* AxisName(int axis) {
   return (axis >= 0 && axis < 8) ? kNames[axis] : "?";
 }
 
-CellModel LoadCell(const twin::CellSettings& settings) {
+CellModel BuildCell(const CellSettings& settings, const CellFiles& files) {
   const Eigen::Isometry3d X_WR = PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg);
   const Eigen::Isometry3d X_WB = PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg);
   const planner::PositionerType type = settings.positioner_type.value_or(planner::PositionerType::kTiltRotate);
@@ -216,16 +216,21 @@ CellModel LoadCell(const twin::CellSettings& settings) {
     if (settings.preset) {
       info = {std::string(PresetInfo(*settings.preset).robot_name), std::string(NameOf(*settings.preset))};
     }
-    return CellModel::FromXml(ComposeBuiltinCell(type), info, X_WR, X_WB, CellModel::BuiltinModelPath());
+    MjcfSource composed = files.mjcf;
+    composed.xml = ComposeBuiltinCell(files.mjcf.xml, type);
+    return CellModel::FromXml(composed, info, X_WR, X_WB);
   }
   if (settings.preset && PresetUrdf(*settings.preset).empty()) {
     // The built-in cell under its preset name.
     const CellModel::RobotInfo info{std::string(PresetInfo(*settings.preset).robot_name),
                                     std::string(NameOf(*settings.preset))};
-    return CellModel::FromFile({}, info, X_WR, X_WB);
+    return CellModel::FromXml(files.mjcf, info, X_WR, X_WB);
   }
-  if (!settings.robot_urdf.empty()) return LoadUrdfCell(settings, X_WR, X_WB);
-  CellModel cell(settings.mjcf, X_WR, X_WB);
+  if (!settings.robot_urdf.empty()) {
+    WAAM_DEMAND(files.arm.has_value());
+    return UrdfCellModel(*files.arm, files.arm_meshes, settings, X_WR, X_WB);
+  }
+  CellModel cell(files.mjcf, X_WR, X_WB);
   // A model file of one's own has the positioner its joints describe; a type the scenario names must be that one.
   const planner::PositionerType has = cell.kinematics().positioner.type;
   WAAM_THROW_UNLESS(!settings.positioner_type || *settings.positioner_type == has,

@@ -19,7 +19,8 @@ class Progress;
 
 namespace waam::twin {
 
-class CellModel;  // twin/cell/mujoco_cell.h
+class CellModel;   // twin/cell/mujoco_cell.h
+struct CellFiles;  // twin/cell/cell_compose.h
 
 // One violation: all samples of one layer with the same kind and joint (or body pair), merged.
 struct CheckViolation {
@@ -110,11 +111,13 @@ double CheckMargin(const CheckMargins& margins, const twin::CellSettings& settin
 // Names of the eight axes: j1..j6, pos_tilt, pos_rot.
 const char* AxisName(int axis);
 
-// The cell model of `settings` (its `mjcf`, or the built-in cell) with the arm base and the positioner placed as
-// it says. Throws InputError for a model file that cannot be used.
-CellModel LoadCell(const twin::CellSettings& settings);
+// The cell model of `settings` from `files` (read by analysis::ReadCellFiles(settings)), with the arm base and the
+// positioner placed as it says: the built-in cell (composed with another positioner type when the settings name
+// one), a preset, a URDF arm or the cell.mjcf model. Throws InputError for a model that cannot be used, and for a
+// cell.mjcf whose positioner is not of the type the settings name.
+CellModel BuildCell(const twin::CellSettings& settings, const CellFiles& files);
 
-// The kinematics of `cell` (made by LoadCell(settings)) with the part placed on the plate as `settings` says.
+// The kinematics of `cell` (made by BuildCell(settings, ...)) with the part placed on the plate as `settings` says.
 planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings);
 // The kinematics the motion is solved with: the positioner's tilt and rotation ranges pulled in by the settings'
 // joint margin on each side (where the range is wider than twice the margin).
@@ -123,7 +126,7 @@ planner::CellKinematics MarginKinematics(const planner::CellKinematics& kin, con
 // arc-off moves at `rapid_speed_mm_s`.
 planner::MotionOptions MotionOptionsOf(const twin::CellSettings& settings, double rapid_speed_mm_s);
 
-// Checks `plan` (part frame P) on `cell`, which LoadCell(settings) made. Arc-off moves run at `rapid_speed_mm_s`.
+// Checks `plan` (part frame P) on `cell`, which BuildCell(settings, ...) made. Arc-off moves run at `rapid_speed_mm_s`.
 // With settings.resolve optimise (the default) the fixed rule's motion is checked first; unless it passes with every
 // margin comfortable (CheckMargin >= 1), the torch's spin per layer is chosen (twin/cell/cell_resolve.h) and the result
 // is the better of that motion's check and the fixed rule's. `progress` may be null.

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -17,7 +16,6 @@
 
 namespace waam::twin {
 namespace {
-namespace fs = std::filesystem;
 
 std::string N(double v) {
   std::ostringstream s;
@@ -50,7 +48,7 @@ std::string TorchBody(const TorchSettings& torch) {
   return s + "    </body>\n";
 }
 
-// The positioner of `type` at the world origin (LoadCell places positioner_base), as MJCF in radians or, for the
+// The positioner of `type` at the world origin (BuildCell places positioner_base), as MJCF in radians or, for the
 // built-in file, degrees. tilt_rotate: the built-in cell's (tilt +-70 deg, rotation +-240 deg, dissertation
 // Table 3); turntable: its rotary table alone on a fixed pedestal, the plate top at the same 600 mm working height;
 // none: a fixed welding table, plate top at 600 mm. Every type carries the same 300 x 300 x 20 mm plate and two
@@ -155,16 +153,11 @@ std::string ComposeUrdfCell(const UrdfArm& arm, const TorchSettings& torch,
   return x.str();
 }
 
-std::string ComposeBuiltinCell(planner::PositionerType type) {
+std::string ComposeBuiltinCell(const std::string& builtin_xml, planner::PositionerType type) {
   // The file's positioner body (from `<body name="positioner_base"` to its matching `</body>`) is cut out and the
   // composed one put in its place (in degrees, as the file's compiler says); the file's contact exclusions of the
   // positioner's bodies give way to those of the new one. The arm is the file's, untouched.
-  const fs::path path = CellModel::BuiltinModelPath();
-  std::ifstream in(path, std::ios::binary);
-  WAAM_THROW_UNLESS(in, path.string() << ": MJCF cell model not found");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  std::string xml = buffer.str();
+  std::string xml = builtin_xml;
   const std::size_t start = xml.find("<body name=\"positioner_base\"");
   WAAM_DEMAND(start != std::string::npos);
   std::size_t at = start + 1;
@@ -197,23 +190,19 @@ std::string ComposeBuiltinCell(planner::PositionerType type) {
   return out;
 }
 
-CellModel LoadUrdfCell(const CellSettings& settings, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB) {
-  UrdfArmOptions options;
-  options.urdf = settings.robot_urdf;
-  options.package_paths = settings.robot_package_paths;
-  options.joints = settings.robot_joints;
-  options.flange = settings.robot_flange;
-  const UrdfArm arm = ReadUrdfArm(options);
+CellModel UrdfCellModel(const UrdfArm& arm, const MjcfSource& meshes, const CellSettings& settings,
+                        const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB) {
   CellModel::RobotInfo info;
   info.name = settings.preset ? std::string(PresetInfo(*settings.preset).robot_name) : arm.name;
   info.source = settings.preset ? std::string(NameOf(*settings.preset)) : settings.robot_urdf.string();
-  const fs::path file = settings.robot_urdf;
   info.joints = arm.joint_names;
+  MjcfSource mjcf = meshes;
+  mjcf.file = settings.robot_urdf;
   // Arm links whose collision shapes (convex hulls of the meshes) already touch at the zero pose touch by design:
   // their contacts are excluded, as the built-in cell excludes its base against the first link.
   const planner::PositionerType type = settings.positioner_type.value_or(planner::PositionerType::kTiltRotate);
-  const CellModel first =
-      CellModel::FromXml(ComposeUrdfCell(arm, settings.torch, {}, type), info, X_WR, X_WB, file);
+  mjcf.xml = ComposeUrdfCell(arm, settings.torch, {}, type);
+  const CellModel first = CellModel::FromXml(mjcf, info, X_WR, X_WB);
   CellState state(first);
   state.SetJoints(planner::Joints8::Zero());
   std::vector<CellContact> contacts;
@@ -226,8 +215,8 @@ CellModel LoadUrdfCell(const CellSettings& settings, const Eigen::Isometry3d& X_
     excluded.insert(std::minmax(c.body1, c.body2));
   }
   if (excluded.empty()) return first;
-  return CellModel::FromXml(ComposeUrdfCell(arm, settings.torch, {excluded.begin(), excluded.end()}, type), info,
-                            X_WR, X_WB, file);
+  mjcf.xml = ComposeUrdfCell(arm, settings.torch, {excluded.begin(), excluded.end()}, type);
+  return CellModel::FromXml(mjcf, info, X_WR, X_WB);
 }
 
 }  // namespace waam::twin

@@ -16,6 +16,7 @@ namespace {
 using Vec8 = Eigen::Matrix<double, 8, 1>;
 constexpr double kGjkToleranceMm = 0.01;
 constexpr double kSphereSkipSamples = 16.0;  // a bounding-sphere bound that reaches this far needs no GJK
+constexpr double kPoseGrid = 8.0;  // samples: pairs that skip farther are queried at multiples of it
 constexpr std::size_t kMaxRefinements = 20000;
 constexpr int kMaxProbes = 64;
 
@@ -159,8 +160,10 @@ double Sweeper::Distance(int p, double s, double end, bool allow_sphere) {
   // A bounding-sphere answer below the smallest distance found so far could lower the certified clearance for
   // want of a better bound: only those above it are taken.
   if (allow_sphere && sphere > options_.contact_mm && sphere >= result_.min_distance_mm - Resolution()) {
-    const double reach = travel_.Advance(weights_[p], s, end, sphere - 0.5 * options_.contact_mm);
-    if (reach >= std::min(end, std::floor(s) + kSphereSkipSamples)) return sphere;
+    // The travel is monotone in s: the sphere's budget reaches kSphereSkipSamples ahead (or `end`) when the travel
+    // up to there stays within it.
+    const double reach = std::min(end, std::floor(s) + kSphereSkipSamples);
+    if (travel_.At(weights_[p], reach) - travel_.At(weights_[p], s) < sphere - 0.5 * options_.contact_mm) return sphere;
   }
   ++result_.gjk_queries;
   const ConvexDistance d = ShapeDistance(g_.shapes[a], X_WG_[a], g_.shapes[b], X_WG_[b], kGjkToleranceMm);
@@ -239,7 +242,14 @@ void Sweeper::RunStretch(std::size_t r0, std::size_t r1) {
       next = std::min(end, std::floor(s) + 1.0);
     } else {
       next = travel_.Advance(weights_[p], s, end, d - 0.5 * options_.contact_mm);
-      if (std::floor(next) > s) next = std::floor(next);  // wait at the sample: one pose serves the pairs due there
+      // Wait at the sample before: one pose serves the pairs due there; a pair that advances past kPoseGrid
+      // samples waits at the last multiple of kPoseGrid before its due sample, where the far pairs meet.
+      const double grid = std::floor(next / kPoseGrid) * kPoseGrid;
+      if (grid > s + kPoseGrid) {
+        next = grid;
+      } else if (std::floor(next) > s) {
+        next = std::floor(next);
+      }
     }
     queue.push({next, p});
   }

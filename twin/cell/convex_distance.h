@@ -2,6 +2,7 @@
 // continuous cell check (twin/cell/cell_sweep.h) steps on it. MuJoCo-free; the shapes are MuJoCo's geoms.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,6 +18,10 @@ struct ConvexShape {
   // sphere: radius; capsule, cylinder: radius, half-length along z; box: half-sizes; ellipsoid: semi-axes; mm
   Eigen::Vector3d size_mm = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> hull_mm;  // mesh: the vertices of its convex hull in G, mm
+  // mesh: its triangles as MuJoCo loaded them, in G (mm; three vertex indices into mesh_mm each), for peers that
+  // collide the triangles themselves (tools/peers/fcl_check.cc); the distance queries use the hull.
+  std::vector<Eigen::Vector3d> mesh_mm;
+  std::vector<std::array<int, 3>> faces;
   double rbound_mm = 0.0;                // radius of a sphere about G's origin holding the shape (0 for a plane), mm
 
   // The point of the shape farthest along `dir_G` (any length, not zero), in G, mm. A plane has none (WAAM_DEMAND).

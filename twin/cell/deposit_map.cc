@@ -27,11 +27,16 @@ void DepositMap::Deposit(const Eigen::Vector3d& a, const Eigen::Vector3d& b, dou
   const int y1 = std::min(ny_ - 1, static_cast<int>(std::ceil((hi.y() - origin_.y()) / cell_)));
   const Eigen::Vector2d ab = b2 - a2;
   const double len2 = ab.squaredNorm();
+  // Per cell centre c: the nearest point of the segment, a2 + t ab, within half the width (squared distances).
+  const double half2 = half * half;
   for (int iy = y0; iy <= y1; ++iy) {
+    const double cy = origin_.y() + cell_ * iy;
     for (int ix = x0; ix <= x1; ++ix) {
-      const Eigen::Vector2d c = origin_ + cell_ * Eigen::Vector2d(ix, iy);
-      const double t = len2 > 0.0 ? std::clamp((c - a2).dot(ab) / len2, 0.0, 1.0) : 0.0;
-      if ((a2 + t * ab - c).norm() > half) continue;
+      const double cx = origin_.x() + cell_ * ix;
+      const double t =
+          len2 > 0.0 ? std::clamp(((cx - a2.x()) * ab.x() + (cy - a2.y()) * ab.y()) / len2, 0.0, 1.0) : 0.0;
+      const double ex = a2.x() + t * ab.x() - cx, ey = a2.y() + t * ab.y() - cy;
+      if (ex * ex + ey * ey > half2) continue;
       const float z = static_cast<float>(a.z() + t * (b.z() - a.z()));
       float& h = height_[Index(ix, iy)];
       h = std::max(h, z);

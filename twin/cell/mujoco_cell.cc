@@ -12,7 +12,6 @@
 
 #include <mujoco/mujoco.h>
 
-#include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "twin/cell/mujoco_cell_internal.h"
@@ -50,29 +49,53 @@ Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
 
 namespace {
 
-// Loads and checks the model file (the constructor's first half; placing the bases and the kinematics follow).
+// The MJCF text and its assets in a MuJoCo virtual file system, which mj_loadXML reads instead of the disk.
+class Vfs {
+ public:
+  explicit Vfs(const MjcfSource& mjcf) : vfs_(std::make_unique<mjVFS>()) {
+    mj_defaultVFS(vfs_.get());
+    WAAM_THROW_UNLESS(mjcf.assets.size() + 1 < mjMAXVFS, mjcf.file.string() << ": the cell model names "
+                                                                              << mjcf.assets.size()
+                                                                              << " files, more than MuJoCo's "
+                                                                              << mjMAXVFS - 2);
+    const std::string base = mjcf.file.filename().string();
+    main_ = base.empty() || base.size() >= mjMAXVFSNAME ? "waam_cell.xml" : base;
+    Add(main_, mjcf.xml, mjcf.file);
+    for (const auto& [name, bytes] : mjcf.assets) Add(name, bytes, mjcf.file);
+  }
+  ~Vfs() { mj_deleteVFS(vfs_.get()); }
+  Vfs(const Vfs&) = delete;
+  Vfs& operator=(const Vfs&) = delete;
+  const mjVFS* get() const { return vfs_.get(); }
+  const std::string& main() const { return main_; }
+
+ private:
+  void Add(const std::string& name, const std::string& bytes, const fs::path& model) {
+    const std::string base = fs::path(name).filename().string();
+    WAAM_THROW_UNLESS(!base.empty() && base.size() < mjMAXVFSNAME,
+                      model.string() << ": the cell model names a file '" << name << "' MuJoCo cannot hold");
+    // MuJoCo's VFS holds no empty file: an empty asset becomes one zero byte, which MuJoCo then refuses to read.
+    const int size = std::max<int>(1, static_cast<int>(bytes.size()));
+    const int added = mj_makeEmptyFileVFS(vfs_.get(), base.c_str(), size);
+    WAAM_THROW_UNLESS(added != 2, model.string() << ": two files the cell model names are called '" << base
+                                                 << "' (MuJoCo finds files by name, without their folders, in any "
+                                                    "case): rename one");
+    WAAM_DEMAND(added == 0);
+    std::memcpy(vfs_->filedata[vfs_->nfile - 1], bytes.data(), bytes.size());
+  }
+  std::unique_ptr<mjVFS> vfs_;
+  std::string main_;
+};
+
+// Compiles and checks the model (the constructor's first half; placing the bases and the kinematics follow).
 // `impl` owns the model; the returned pointer is the only one that may edit it, while BuildModel builds it.
-mjModel* LoadModel(const fs::path& mjcf, const std::string* xml, CellModel::Impl* impl) {
+mjModel* LoadModel(const MjcfSource& mjcf, CellModel::Impl* impl) {
   InstallMujocoHandlers();
-  impl->file = mjcf.empty() ? CellModel::BuiltinModelPath() : mjcf;
+  impl->file = mjcf.file;
   const fs::path& file = impl->file;
   char error[1024] = "";
-  mjModel* m = nullptr;
-  if (xml) {
-    // Composed text: handed to MuJoCo in a virtual file system; the meshes it names come from disk.
-    auto vfs = std::make_unique<mjVFS>();
-    mj_defaultVFS(vfs.get());
-    const char* const name = "waam_cell.xml";
-    WAAM_DEMAND(mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml->size())) == 0);
-    const int index = mj_findFileVFS(vfs.get(), name);
-    std::memcpy(vfs->filedata[index], xml->data(), xml->size());
-    m = mj_loadXML(name, vfs.get(), error, sizeof(error));
-    mj_deleteVFS(vfs.get());
-  } else {
-    std::error_code ec;
-    WAAM_THROW_UNLESS(fs::is_regular_file(file, ec), file.string() << ": MJCF cell model not found");
-    m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
-  }
+  const Vfs vfs(mjcf);
+  mjModel* m = mj_loadXML(vfs.main().c_str(), vfs.get(), error, sizeof(error));
   impl->m = m;
   if (m == nullptr) {
     // MuJoCo's XML errors span several lines ("XML parse error 14:\nError=... Line number=1: ..."): join them so
@@ -315,22 +338,22 @@ bool SolveIkOnModel(const CellModel::Impl& impl, const Eigen::Isometry3d& X_RF, 
   return false;
 }
 
-std::shared_ptr<const CellModel::Impl> BuildModel(const fs::path& mjcf, const Eigen::Isometry3d* X_WR,
-                                                  const Eigen::Isometry3d* X_WB, const std::string* xml = nullptr,
+std::shared_ptr<const CellModel::Impl> BuildModel(const MjcfSource& mjcf, const Eigen::Isometry3d* X_WR,
+                                                  const Eigen::Isometry3d* X_WB,
                                                   const CellModel::RobotInfo* info = nullptr) {
   auto impl = std::make_shared<CellModel::Impl>();
-  mjModel* editable = LoadModel(mjcf, xml, impl.get());
+  mjModel* editable = LoadModel(mjcf, impl.get());
   if (X_WR) PlaceBody(editable, impl->robot_base, *X_WR);
   if (X_WB) PlaceBody(editable, impl->positioner_base, *X_WB);
   ReadKinematics(impl.get());
   if (info) {
     impl->robot = *info;
-  } else if (mjcf.empty()) {
+  } else if (mjcf.builtin) {
     impl->robot.name = "FANUC ARC Mate 100iC/12";
     impl->robot.source = "builtin";
   } else {
     impl->robot.name = impl->kinematics.arm.name;
-    impl->robot.source = mjcf.string();
+    impl->robot.source = mjcf.file.string();
   }
   impl->kinematics.arm.name = impl->robot.name;
   return impl;
@@ -338,22 +361,17 @@ std::shared_ptr<const CellModel::Impl> BuildModel(const fs::path& mjcf, const Ei
 
 }  // namespace
 
-fs::path CellModel::BuiltinModelPath() { return DataDir() / "twin" / "data" / "cell_arcmate100ic.xml"; }
-
-CellModel::CellModel(const fs::path& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB)
+CellModel::CellModel(const MjcfSource& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB)
     : impl_(BuildModel(mjcf, &X_WR, &X_WB)) {}
 
-CellModel::CellModel(const fs::path& mjcf) : impl_(BuildModel(mjcf, nullptr, nullptr)) {}
+CellModel::CellModel(const MjcfSource& mjcf) : impl_(BuildModel(mjcf, nullptr, nullptr)) {}
 
-CellModel CellModel::FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
-                             const Eigen::Isometry3d& X_WB, const fs::path& file) {
-  return CellModel(FromImplTag{},
-                   BuildModel(file.empty() ? fs::path(info.source) : file, &X_WR, &X_WB, &xml, &info));
-}
-
-CellModel CellModel::FromFile(const fs::path& mjcf, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
-                              const Eigen::Isometry3d& X_WB) {
-  return CellModel(FromImplTag{}, BuildModel(mjcf, &X_WR, &X_WB, nullptr, &info));
+CellModel CellModel::FromXml(const MjcfSource& mjcf, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                             const Eigen::Isometry3d& X_WB) {
+  if (!mjcf.file.empty()) return CellModel(FromImplTag{}, BuildModel(mjcf, &X_WR, &X_WB, &info));
+  MjcfSource named = mjcf;
+  named.file = info.source;
+  return CellModel(FromImplTag{}, BuildModel(named, &X_WR, &X_WB, &info));
 }
 
 const CellModel::RobotInfo& CellModel::robot() const { return impl_->robot; }

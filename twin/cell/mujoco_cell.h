@@ -2,10 +2,11 @@
 // the kinematics) and a per-thread CellState (set the eight axes, forward kinematics, collision detection, shapes).
 #pragma once
 
-#include <filesystem>
 #include <array>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,16 +63,23 @@ struct CellCollisionGeometry {
   std::string unsupported;
 };
 
+// A cell model's MJCF as data (read by analysis/cell_files.h; the twin opens no file): the text, the file that names
+// it, and the bytes of every file the text names (meshes, textures, included MJCF). MuJoCo finds each asset by its
+// file name without the folders, in any case, so no two assets may share that name.
+struct MjcfSource {
+  std::string xml;                                          // the MJCF text
+  std::filesystem::path file;                               // names the model in messages and CellModel::file()
+  std::vector<std::pair<std::string, std::string>> assets;  // (file name as the text gives it, its bytes)
+  bool builtin = false;                                     // the built-in cell (twin/data/cell_arcmate100ic.xml)
+};
+
 // The cell model, after MuJoCo's model/data split: the MJCF loaded and placed once, then immutable. It owns the
 // mjModel and what is read from it (the kinematics, the nozzle); it is shared by reference (copies share the same
 // model) and may be used from several threads at once. What changes with the joints lives in a CellState.
 class CellModel {
  public:
-  // The built-in model, twin/data/cell_arcmate100ic.xml.
-  static std::filesystem::path BuiltinModelPath();
-
-  // Loads an MJCF file (the built-in one when `mjcf` is empty) with the arm base frame R at X_WR and the positioner
-  // base frame B at X_WB in the world (mm), and reads its kinematics: the arm's OPW parameters, limits and speeds,
+  // Compiles the MJCF `mjcf` with the arm base frame R at X_WR and the positioner base frame B at X_WB in the world
+  // (mm), and reads its kinematics: the arm's OPW parameters, limits and speeds,
   // the tool (tcp site in the flange frame), the positioner chain and the plate top (part_origin site) as X_CP. The
   // OPW parameters, offsets and sign corrections are read off the joint axes at the zero pose (any vendor
   // convention); an arm whose axes are not of the OPW kind, or whose closed form differs from MuJoCo's forward
@@ -79,9 +87,9 @@ class CellModel {
   // file that does not parse or compile, that lacks a required joint, body, site or field, or whose positioner chain
   // is not tilt-about-x then rotate-about-z. The positioner's type is read off its joints: pos_tilt and pos_rot
   // (tilt_rotate), pos_rot alone (turntable: positioner_base -> table about z) or neither (none: a fixed plate).
-  CellModel(const std::filesystem::path& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
+  CellModel(const MjcfSource& mjcf, const Eigen::Isometry3d& X_WR, const Eigen::Isometry3d& X_WB);
   // The same with the bases where the file puts them.
-  explicit CellModel(const std::filesystem::path& mjcf);
+  explicit CellModel(const MjcfSource& mjcf);
 
   // What the arm is, for reports: name (vendor first), source (builtin, a preset name or the model's path) and the
   // model's names of j1..j6.
@@ -90,14 +98,10 @@ class CellModel {
     std::string source;
     std::array<std::string, 6> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
   };
-  // A cell model from MJCF text (a composed cell, e.g. around a URDF arm), placed like the constructor above;
-  // `info.source` names it in messages. Mesh files are read from the absolute paths the text gives.
-  // `file` (default: info.source) is the model's file() and names it in MuJoCo's messages.
-  static CellModel FromXml(const std::string& xml, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
-                           const Eigen::Isometry3d& X_WB, const std::filesystem::path& file = {});
-  // An MJCF file (the built-in one when empty) placed like the constructor, reported as `info` (a preset).
-  static CellModel FromFile(const std::filesystem::path& mjcf, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
-                            const Eigen::Isometry3d& X_WB);
+  // A cell model (a composed cell, e.g. around a URDF arm, or a preset's) placed like the constructor above and
+  // reported as `info`; `mjcf.file` (default: info.source) is the model's file() and names it in messages.
+  static CellModel FromXml(const MjcfSource& mjcf, const RobotInfo& info, const Eigen::Isometry3d& X_WR,
+                           const Eigen::Isometry3d& X_WB);
   const RobotInfo& robot() const;
 
   // The cell's kinematics (a copy; the numerical IK it may carry holds this model, safe to call from any thread).

@@ -69,6 +69,12 @@ bool ShapeOf(const mjModel* m, int g, ConvexShape* shape, std::string* why) {
       const auto add = [&](int i) {
         shape->hull_mm.emplace_back(vert[3 * i] * kGeomMm, vert[3 * i + 1] * kGeomMm, vert[3 * i + 2] * kGeomMm);
       };
+      for (int i = 0; i < m->mesh_vertnum[mesh]; ++i) {
+        const float* v = vert + 3 * i;
+        shape->mesh_mm.emplace_back(v[0] * kGeomMm, v[1] * kGeomMm, v[2] * kGeomMm);
+      }
+      const int* face = m->mesh_face + 3 * m->mesh_faceadr[mesh];
+      for (int f = 0; f < m->mesh_facenum[mesh]; ++f) shape->faces.push_back({face[3 * f], face[3 * f + 1], face[3 * f + 2]});
       const int graph = m->mesh_graphadr[mesh];
       if (graph >= 0) {
         // MuJoCo's convex hull: numvert, numface, vert_edgeadr[numvert], vert_globalid[numvert], ...

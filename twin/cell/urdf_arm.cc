@@ -1,4 +1,4 @@
-// URDF reader for arms: links, joints, collision geometry and package:// meshes, written out as MJCF text.
+// URDF parser for arms: links, joints, collision geometry and the meshes it names, written out as MJCF text.
 //
 // Why not MuJoCo's own URDF import (mj_loadXML on the .urdf): MuJoCo 2.2 strips every mesh path to its file name and
 // looks it up in one mesh directory (package:// URIs and meshes/collision vs meshes/visual are lost), merges bodies
@@ -10,10 +10,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdint>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -26,8 +22,6 @@
 #include "models/core/numbers.h"
 
 namespace waam::twin {
-namespace fs = std::filesystem;
-
 namespace {
 
 constexpr std::size_t kMaxLinks = 1000;  // more links than any arm has; bounds the recursion depth
@@ -69,15 +63,11 @@ std::string PosQuat(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
 
 class UrdfReader {
  public:
-  explicit UrdfReader(const UrdfArmOptions& options) : options_(options), file_(options.urdf.string()) {}
+  UrdfReader(const std::filesystem::path& file, const UrdfArmOptions& options)
+      : options_(options), file_(file.string()) {}
 
-  UrdfArm Read() {
-    std::error_code ec;
-    WAAM_THROW_UNLESS(options_.urdf.extension() != ".xacro",
-                      file_ << ": a .xacro file is not read; run `xacro " << options_.urdf.filename().string()
-                            << " > arm.urdf` once and name the .urdf");
-    WAAM_THROW_UNLESS(fs::is_regular_file(options_.urdf, ec), file_ << ": URDF file not found");
-    const tinyxml2::XMLError err = doc_.LoadFile(file_.c_str());
+  UrdfArm Read(const std::string& text) {
+    const tinyxml2::XMLError err = doc_.Parse(text.data(), text.size());
     WAAM_THROW_UNLESS(err == tinyxml2::XML_SUCCESS,
                       file_ << ":" << doc_.ErrorLineNum() << ": not a readable XML file: " << doc_.ErrorStr());
     const tinyxml2::XMLElement* robot = doc_.RootElement();
@@ -276,47 +266,6 @@ class UrdfReader {
     arm_.flange_link = flange;
   }
 
-  // Resolves a mesh filename: package://NAME/rest, file://path, absolute, or relative to the URDF.
-  fs::path ResolveMesh(const tinyxml2::XMLElement* e, const std::string& uri) const {
-    std::error_code ec;
-    const std::string pkg_prefix = "package://";
-    if (uri.rfind(pkg_prefix, 0) == 0) {
-      const std::string rest = uri.substr(pkg_prefix.size());
-      const std::size_t slash = rest.find('/');
-      WAAM_THROW_UNLESS(slash != std::string::npos && slash > 0, Where(e) << "mesh '" << uri << "': no package name");
-      const std::string package = rest.substr(0, slash);
-      const std::string inside = rest.substr(slash + 1);
-      std::vector<fs::path> dirs = options_.package_paths;
-      if (const char* ros = std::getenv("ROS_PACKAGE_PATH")) {
-        std::stringstream in(ros);
-        std::string d;
-        while (std::getline(in, d, ':')) {
-          if (!d.empty()) dirs.emplace_back(d);
-        }
-      }
-      std::string searched;
-      for (const fs::path& dir : dirs) {
-        // DIR/NAME/rest; a ROS_PACKAGE_PATH entry may also be the package itself.
-        for (const fs::path& pkg_dir : {dir / package, dir.filename() == package ? dir : fs::path()}) {
-          if (pkg_dir.empty()) continue;
-          if (fs::is_directory(pkg_dir, ec)) {
-            const fs::path f = pkg_dir / inside;
-            WAAM_THROW_UNLESS(fs::is_regular_file(f, ec), Where(e) << "mesh " << f.string() << " not found");
-            return f;
-          }
-        }
-        searched += (searched.empty() ? "" : ", ") + dir.string();
-      }
-      WAAM_THROW(Where(e) << "unknown package '" << package << "' of mesh '" << uri << "': searched "
-                          << (searched.empty() ? std::string("no directory") : searched)
-                          << " (cell.robot.package_paths, then ROS_PACKAGE_PATH)");
-    }
-    fs::path f = uri.rfind("file://", 0) == 0 ? fs::path(uri.substr(7)) : fs::path(uri);
-    if (f.is_relative()) f = options_.urdf.parent_path() / f;
-    WAAM_THROW_UNLESS(fs::is_regular_file(f, ec), Where(e) << "mesh " << f.string() << " not found");
-    return f;
-  }
-
   // <geom> elements of a link's <collision> children.
   std::string Geoms(const UrdfLink& link) {
     std::string out;
@@ -341,32 +290,22 @@ class UrdfReader {
       } else if (type == "sphere") {
         geom += " type=\"sphere\" size=\"" + Num(Number(shape, "radius")) + "\"";
       } else if (type == "mesh") {
-        const std::string uri = Attr(shape, "filename", true);
-        const fs::path file = ResolveMesh(shape, uri);
-        std::string ext = file.extension().string();
+        // The file is found and read by analysis/cell_files.cc; here it gets its name among the cell's assets.
+        UrdfMesh mesh;
+        mesh.uri = Attr(shape, "filename", true);
+        mesh.line = shape->GetLineNum();
+        const std::size_t slash = mesh.uri.find_last_of('/');
+        const std::size_t dot = mesh.uri.find_last_of('.');
+        std::string ext = dot != std::string::npos && (slash == std::string::npos || dot > slash) ? mesh.uri.substr(dot)
+                                                                                                 : "";
         for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        WAAM_THROW_UNLESS(ext == ".stl" || ext == ".obj",
-                          Where(shape) << "mesh " << file.string() << ": MuJoCo 2.2 reads STL and OBJ, not " << ext
-                                       << " (convert the collision mesh once, e.g. with meshlab)");
-        if (ext == ".stl") {
-          // MuJoCo 2.2 reads binary STL only: 80-byte header, facet count, 50 bytes per facet.
-          std::error_code size_ec;
-          const std::uintmax_t size = fs::file_size(file, size_ec);
-          std::ifstream in(file, std::ios::binary);
-          char head[84] = {};
-          in.read(head, 84);
-          std::uint32_t facets = 0;
-          std::memcpy(&facets, head + 80, 4);
-          WAAM_THROW_UNLESS(in && !size_ec && size == 84 + 50 * static_cast<std::uintmax_t>(facets) && facets > 0,
-                            Where(shape) << "mesh " << file.string()
-                                         << " is not a binary STL (an ASCII STL?): MuJoCo 2.2 reads binary STL "
-                                            "only; convert it once (e.g. meshlab, admesh -b)");
-        }
+        const std::string name = "mesh" + std::to_string(arm_.meshes.size());
+        mesh.file = name + ext;
         const std::vector<double> s = Numbers(shape, "scale", 3, {1, 1, 1});
-        const std::string mesh = "mesh" + std::to_string(arm_.mesh_count++);
-        arm_.assets_mjcf += "<mesh name=\"" + mesh + "\" file=\"" + file.string() + "\" scale=\"" + Num(s[0]) + " " +
+        arm_.assets_mjcf += "<mesh name=\"" + name + "\" file=\"" + mesh.file + "\" scale=\"" + Num(s[0]) + " " +
                             Num(s[1]) + " " + Num(s[2]) + "\"/>\n";
-        geom += " type=\"mesh\" mesh=\"" + mesh + "\"";
+        geom += " type=\"mesh\" mesh=\"" + name + "\"";
+        arm_.meshes.push_back(mesh);
       } else {
         WAAM_THROW(Where(shape) << "unknown collision geometry <" << type << "> (box, cylinder, sphere or mesh)");
       }
@@ -424,10 +363,9 @@ class UrdfReader {
 
 }  // namespace
 
-UrdfArm ReadUrdfArm(const UrdfArmOptions& options) {
-  UrdfReader reader(options);
-  UrdfArm arm = reader.Read();
-  return arm;
+UrdfArm ParseUrdfArm(const std::string& text, const std::filesystem::path& file, const UrdfArmOptions& options) {
+  UrdfReader reader(file, options);
+  return reader.Read(text);
 }
 
 }  // namespace waam::twin

@@ -1,5 +1,6 @@
-// An arm from a URDF file (ROS-Industrial support packages): the serial chain base -> flange as MJCF text, with its
-// collision geometry, limits and speeds, ready to compose into a cell model.
+// An arm from a URDF (ROS-Industrial support packages): the serial chain base -> flange as MJCF text, with its
+// collision geometry, limits and speeds, ready to compose into a cell model. The URDF's text comes parsed here; its
+// file and the mesh files it names are read by analysis/cell_files.h.
 #pragma once
 
 #include <array>
@@ -9,13 +10,18 @@
 
 namespace waam::twin {
 
-// Where the arm comes from (scenario `cell.robot`).
+// Which chain of the URDF is the arm (scenario `cell.robot`).
 struct UrdfArmOptions {
-  std::filesystem::path urdf;                        // the URDF file (a .xacro is refused: run xacro once)
-  std::vector<std::filesystem::path> package_paths;  // package://NAME/rest is DIR/NAME/rest in each DIR in turn,
-                                                     // then in each ROS_PACKAGE_PATH entry
-  std::vector<std::string> joints;                   // the six arm joints; empty: the revolute joints root -> flange
-  std::string flange;                                // the flange link; empty: tool0 if on the chain, else its end
+  std::vector<std::string> joints;  // the six arm joints; empty: the revolute joints root -> flange
+  std::string flange;               // the flange link; empty: tool0 if on the chain, else its end
+};
+
+// A collision mesh the URDF names.
+struct UrdfMesh {
+  std::string uri;   // its filename attribute: package://NAME/rest, file://path, absolute or relative to the URDF
+  int line = 0;      // the line of its <mesh> element
+  std::string file;  // the name of its file in the arm's MJCF (mesh<N> and the URI's extension in lower case): the
+                     // key of its bytes among the cell's assets (MjcfSource::assets)
 };
 
 // The arm as MJCF fragments (metres, radians). Bodies keep the URDF link names (prefixed `urdf_` where they clash
@@ -26,16 +32,16 @@ struct UrdfArm {
   std::array<std::string, 6> joint_names;  // the URDF names of j1..j6
   std::string flange_link;                 // the URDF link used as flange
   std::array<double, 6> max_speed_deg_s = {};  // from <limit velocity>, deg/s
-  std::string assets_mjcf;                 // <mesh .../> elements, absolute file paths
+  std::string assets_mjcf;                 // <mesh .../> elements, each file named as in `meshes`
   std::string body_mjcf;                   // <body name="robot_base"> ... </body>, "<!--TORCH-->" inside link6
   std::string root_body;                   // the body holding the root link's geoms
-  int mesh_count = 0;                      // collision meshes read
+  std::vector<UrdfMesh> meshes;            // the collision meshes, in the order of the <mesh .../> elements
 };
 
-// Reads the URDF and resolves its meshes. Throws InputError naming the file, line and element for: a file that is
-// not URDF XML or is a .xacro, no chain of six revolute joints from the root to the flange, a `joints` entry or
-// flange the URDF lacks, a revolute joint without <limit> or a limit without velocity, a mesh that is missing or
-// of a format MuJoCo does not read, a package:// URI of an unknown package (naming every directory searched).
-UrdfArm ReadUrdfArm(const UrdfArmOptions& options);
+// Parses the URDF `text` of the file `file` (which names it in messages). Throws InputError naming the file, line
+// and element for: text that is not URDF XML or holds xacro elements, no chain of six revolute joints from the
+// root to the flange, a `joints` entry or flange the URDF lacks, a revolute joint without <limit> or a limit
+// without velocity, a collision geometry other than box, cylinder, sphere or mesh.
+UrdfArm ParseUrdfArm(const std::string& text, const std::filesystem::path& file, const UrdfArmOptions& options);
 
 }  // namespace waam::twin

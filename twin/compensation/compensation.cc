@@ -27,7 +27,7 @@
 #include "twin/distortion/deposit_history.h"
 #include "twin/scanner/mesh_distance.h"
 #include "twin/scanner/point_hash.h"
-#include "twin/scanner/point_cloud_io.h"
+#include "twin/scanner/surface_sample.h"
 #include "twin/scanner/surface_mesh.h"
 #include "twin/compensation/compensation_internal.h"
 
@@ -245,15 +245,67 @@ std::vector<Eigen::Vector3d> ScanDistortedPart(const VoxelGrid& grid, const Dist
   return dense;
 }
 
-CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
-                              const twin::SimulationSettings& settings, const CompensationOptions& options,
-                              const std::function<void(int, const CompensationIteration&)>& on_iteration) {
+namespace {
+
+// Throws InputError for options out of range, a target without facets or invalid distortion settings.
+void ValidateCompensation(const planner::TriangleMesh& target, const CompensationOptions& options) {
   WAAM_THROW_UNLESS(options.max_iterations >= 0 && options.max_iterations <= 20,
                     "compensation max_iterations = " << options.max_iterations << ": must be in [0, 20]");
   WAAM_THROW_UNLESS(options.tolerance_mm >= 0.0, "compensation tolerance_mm = " << options.tolerance_mm << ": must be >= 0");
   WAAM_THROW_UNLESS(!target.facets.empty(), "compensate: the target part has no facets");
   ValidateDistortionOptions(options.distortion);
   models::ValidateDistortionParams(options.params, "distortion model");
+}
+
+// The top rim left out of the measures, mm: two mean bead heights of the last layer (0 without one).
+double TopBand(const planner::Plan& nominal) {
+  if (nominal.layers.empty()) return 0.0;
+  double sum = 0.0;
+  for (const planner::PathPoint& p : nominal.layers.back().points) sum += p.bead_height_mm;
+  return nominal.layers.back().points.empty() ? 0.0 : 2.0 * sum / nominal.layers.back().points.size();
+}
+
+// r*_i = r_i - S_i: moves every point of `current` by minus its correction `s` (per layer, per point, mm); returns
+// the largest correction, mm.
+double ApplyCorrections(const std::vector<std::vector<Eigen::Vector3d>>& s, planner::Plan* current) {
+  double largest = 0.0;
+  for (std::size_t l = 0; l < current->layers.size(); ++l) {
+    for (std::size_t i = 0; i < current->layers[l].points.size(); ++i) {
+      current->layers[l].points[i].p_P -= s[l][i];
+      largest = std::max(largest, s[l][i].norm());
+    }
+  }
+  return largest;
+}
+
+// The loop's status after iteration `iter` (the last of result->iterations): converged, diverging (from
+// `previous`, mm) or out of iterations, with its message; nothing while the loop goes on.
+void SetStatus(int iter, bool done, bool diverging, double previous, int max_iterations, CompensationResult* result) {
+  const CompensationIteration& it = result->iterations.back();
+  if (done) {
+    result->converged = true;
+    result->status = "converged";
+    result->message = "converged: max |deviation| " + std::to_string(it.max_abs_deviation_mm) + " mm < tolerance " +
+                      std::to_string(result->tolerance_mm) + " mm after " + std::to_string(iter) + " compensation(s)";
+  } else if (diverging) {
+    result->status = "diverging";
+    result->message = "cannot converge: max |deviation| went from " + std::to_string(previous) + " to " +
+                      std::to_string(it.max_abs_deviation_mm) + " mm (tolerance " +
+                      std::to_string(result->tolerance_mm) + " mm); the loop stops instead of repeating";
+  } else if (iter == max_iterations) {
+    result->status = "max_iterations";
+    result->message = "not converged after " + std::to_string(iter) + " compensation(s): max |deviation| " +
+                      std::to_string(it.max_abs_deviation_mm) + " mm >= tolerance " +
+                      std::to_string(result->tolerance_mm) + " mm";
+  }
+}
+
+}  // namespace
+
+CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
+                              const twin::SimulationSettings& settings, const CompensationOptions& options,
+                              const std::function<void(int, const CompensationIteration&)>& on_iteration) {
+  ValidateCompensation(target, options);
   const planner::Plan nominal = ResamplePlan(plan, options.reference_spacing_mm);
   const MeshDistance distance(target);
   const std::vector<Eigen::Vector3d> target_surface = SampleSurface(target, 0.5 * options.axis_step_mm);
@@ -270,11 +322,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
   std::vector<Eigen::Vector3d> reference_points = target_surface;
   result.reference = twin_reference ? CompensationReference::kTwin : CompensationReference::kTarget;
   // The top rim left out of the measures: two bead heights of the last layer (plus each scan's shortening).
-  if (!nominal.layers.empty()) {
-    double sum = 0.0;
-    for (const planner::PathPoint& p : nominal.layers.back().points) sum += p.bead_height_mm;
-    result.top_band_mm = nominal.layers.back().points.empty() ? 0.0 : 2.0 * sum / nominal.layers.back().points.size();
-  }
+  result.top_band_mm = TopBand(nominal);
   for (int iter = 0; iter <= options.max_iterations; ++iter) {
     CheckInterrupt();
     result.last_scan = ScanDeviation{};  // the previous build's, replaced below: not kept through this build
@@ -355,36 +403,13 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
       if (simulated) {
         it.twin_correction_error_mm = internal::CorrectionError(nominal, current, field, s, options.debug_level);
       }
-      for (std::size_t l = 0; l < current.layers.size(); ++l) {
-        for (std::size_t i = 0; i < current.layers[l].points.size(); ++i) {
-          current.layers[l].points[i].p_P -= s[l][i];
-          it.max_correction_mm = std::max(it.max_correction_mm, s[l][i].norm());
-        }
-      }
+      it.max_correction_mm = ApplyCorrections(s, &current);
     }
     result.last_scan = std::move(scan);
     result.iterations.push_back(it);
     if (on_iteration) on_iteration(iter, it);
-    if (done) {
-      result.converged = true;
-      result.status = "converged";
-      result.message = "converged: max |deviation| " + std::to_string(it.max_abs_deviation_mm) + " mm < tolerance " +
-                       std::to_string(result.tolerance_mm) + " mm after " + std::to_string(iter) + " compensation(s)";
-      break;
-    }
-    if (diverging) {
-      result.status = "diverging";
-      result.message = "cannot converge: max |deviation| went from " + std::to_string(previous) + " to " +
-                       std::to_string(it.max_abs_deviation_mm) + " mm (tolerance " +
-                       std::to_string(result.tolerance_mm) + " mm); the loop stops instead of repeating";
-      break;
-    }
-    if (iter == options.max_iterations) {
-      result.status = "max_iterations";
-      result.message = "not converged after " + std::to_string(iter) + " compensation(s): max |deviation| " +
-                       std::to_string(it.max_abs_deviation_mm) + " mm >= tolerance " +
-                       std::to_string(result.tolerance_mm) + " mm";
-    }
+    SetStatus(iter, done, diverging, previous, options.max_iterations, &result);
+    if (done || diverging) break;
   }
   result.plan = current;
   return result;

@@ -3,6 +3,7 @@
 #include "twin/deposition/bead_deposition.h"
 
 #include <algorithm>
+#include <chrono>
 #include <iterator>
 #include <cmath>
 #include <limits>
@@ -256,6 +257,11 @@ int Depositor::LayerOf(const VoxelData& data) const {
 }
 
 std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  build_time_s_ = pass.start_time_s;
+  for (std::size_t i = 1; i < pass.points.size(); ++i) {
+    build_time_s_ += (pass.points[i].p_P - pass.points[i - 1].p_P).norm() / pass.points[i].speed_mm_s;
+  }
   const auto bead = static_cast<std::uint32_t>(beads_.size());
   BeadRecord record;
   record.start_time_s = pass.start_time_s;
@@ -392,6 +398,7 @@ std::uint32_t Depositor::DepositPass(const ExecutedPass& pass) {
   expected_volume_mm3_ += record.expected_volume_mm3;
   weld_length_mm_ += record.length_mm;
   beads_.push_back(record);
+  deposition_wall_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return bead;
 }
 
@@ -399,6 +406,7 @@ Depositor DepositPlan(const planner::Plan& plan, const twin::SimulationSettings&
                       double rapid_speed_mm_s, Progress* progress) {
   Depositor depositor(settings);
   const std::vector<ExecutedPass> passes = ExecutePlan(plan, settings, rapid_speed_mm_s);
+  if (progress != nullptr) progress->SetTotal(passes.size());
   for (std::size_t i = 0; i < passes.size(); ++i) {
     depositor.DepositPass(passes[i]);
     if (progress != nullptr) progress->Update(i + 1);

@@ -48,6 +48,10 @@ class Depositor {
   const twin::SimulationSettings& settings() const { return settings_; }
   double expected_volume_mm3() const { return expected_volume_mm3_; }
   double weld_length_mm() const { return weld_length_mm_; }
+  // Time of the build from its start to the arc end of the last deposited pass (weld and travel), s.
+  double build_time_s() const { return build_time_s_; }
+  // Wall-clock time spent in DepositPass so far, s.
+  double deposition_wall_s() const { return deposition_wall_s_; }
   // Layer of an occupied voxel: its bead's, or for a pass through several layers the layer it was laid in
   // (by the voxel's deposition time).
   int LayerOf(const VoxelData& data) const;
@@ -62,11 +66,15 @@ class Depositor {
   std::vector<BeadRecord> beads_;
   double expected_volume_mm3_ = 0.0;
   double weld_length_mm_ = 0.0;
+  double build_time_s_ = 0.0;
+  double deposition_wall_s_ = 0.0;
   std::vector<internal::ColumnVoxel> column_voxels_;  // scratch of FillStep: the voxels of one step's columns
   std::optional<internal::TorchFrame> held_frame_;    // the lattice of the last segment (see DepositPass)
 };
 
-// Executes and deposits a whole plan (travel timed at `rapid_speed_mm_s`); `progress` (may be null) counts passes.
+// The one function that deposits a plan: executes it (travel timed at `rapid_speed_mm_s`, > 0) and deposits every
+// pass in order. `progress` (may be null) gets the number of passes as its total and counts them. Throws InputError
+// for invalid settings or past the voxel limit.
 Depositor DepositPlan(const planner::Plan& plan, const twin::SimulationSettings& settings,
                       double rapid_speed_mm_s, Progress* progress);
 

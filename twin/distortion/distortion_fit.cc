@@ -22,16 +22,10 @@
 namespace waam::twin {
 namespace {
 
-double* Field(models::DistortionParams* p, const std::string& name) {
-  if (name == "strain") return &p->strain;
-  if (name == "heat_exponent") return &p->heat_exponent;
-  if (name == "vertical_ratio") return &p->vertical_ratio;
-  if (name == "substrate_stiffness_n_mm3") return &p->substrate_stiffness_n_mm3;
-  return nullptr;
-}
+using models::DistortionParam;
 
 // Strains and stiffnesses are fitted as logarithms (positive, and of very different sizes); the exponent as is.
-bool LogScale(const std::string& name) { return name != "heat_exponent"; }
+bool LogScale(DistortionParam param) { return param != DistortionParam::kHeatExponent; }
 
 // Steps of the face search (it settles in two or three on the test parts).
 constexpr int kPullBackIterations = 8;
@@ -47,11 +41,13 @@ struct ScanResidual {
   const internal::VoxelFaces* faces;
   models::DistortionParams start;
   DistortionOptions options;
-  std::vector<std::string> free;
+  std::vector<DistortionParam> free;
 
   models::DistortionParams Params(const double* x) const {
     models::DistortionParams p = start;
-    for (std::size_t k = 0; k < free.size(); ++k) *Field(&p, free[k]) = LogScale(free[k]) ? std::exp(x[k]) : x[k];
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      models::ParamValue(p, free[k]) = LogScale(free[k]) ? std::exp(x[k]) : x[k];
+    }
     return p;
   }
   bool operator()(double const* const* x, double* residual) const {
@@ -104,16 +100,13 @@ class IterationReporter : public ceres::IterationCallback {
 void ValidateDistortionFitOptions(const DistortionFitOptions& fit, models::DistortionMode mode) {
   WAAM_THROW_UNLESS(!fit.free.empty(), "distortion fit: no free parameter");
   for (std::size_t k = 0; k < fit.free.size(); ++k) {
-    const std::string& name = fit.free[k];
-    models::DistortionParams probe;
-    WAAM_THROW_UNLESS(Field(&probe, name) != nullptr,
-                      "distortion fit: free parameter '" << name << "': must be one of strain, heat_exponent, "
-                      "vertical_ratio, substrate_stiffness_n_mm3");
+    const DistortionParam param = fit.free[k];
     for (std::size_t j = 0; j < k; ++j) {
-      WAAM_THROW_UNLESS(fit.free[j] != name, "distortion fit: free parameter '" << name << "' is given twice");
+      WAAM_THROW_UNLESS(fit.free[j] != param,
+                        "distortion fit: free parameter '" << NameOf(param) << "' is given twice");
     }
     // The reduced model has no substrate: its stiffness would be a free parameter with a zero Jacobian column.
-    WAAM_THROW_UNLESS(!(mode == models::DistortionMode::kReduced && name == "substrate_stiffness_n_mm3"),
+    WAAM_THROW_UNLESS(!(mode == models::DistortionMode::kReduced && param == DistortionParam::kSubstrateStiffness),
                       "distortion fit: free parameter 'substrate_stiffness_n_mm3' has no effect in mode reduced "
                       "(no substrate compliance): fit it in mode fe");
   }
@@ -159,7 +152,7 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   std::vector<double> x(fit.free.size());
   for (std::size_t k = 0; k < fit.free.size(); ++k) {
     models::DistortionParams p = start;
-    const double v = *Field(&p, fit.free[k]);
+    const double v = models::ParamValue(p, fit.free[k]);
     x[k] = LogScale(fit.free[k]) ? std::log(std::max(v, 1e-12)) : v;
   }
   const std::vector<double> x0 = x;
@@ -183,7 +176,7 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   DistortionFitResult result;
   result.points = used.size();
   result.solver.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
-  result.solver.termination = ceres::TerminationTypeToString(summary.termination_type);
+  result.solver.termination = models::TerminationNamed(ceres::TerminationTypeToString(summary.termination_type));
   result.solver.message = summary.message;
   result.solver.iterations = static_cast<int>(summary.iterations.size());
   result.solver.initial_cost = summary.initial_cost;

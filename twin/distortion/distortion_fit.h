@@ -16,13 +16,13 @@
 namespace waam::twin {
 
 struct DistortionFitOptions {
-  std::vector<std::string> free = {"strain", "heat_exponent"};  // any of strain, heat_exponent, vertical_ratio,
-                                                                // substrate_stiffness_n_mm3
+  std::vector<models::DistortionParam> free = {models::DistortionParam::kStrain,
+                                              models::DistortionParam::kHeatExponent};  // each at most once
   std::size_t max_points = 3000;   // scan points used (every k-th point, deterministic), >= 10
   int max_iterations = 30;         // Ceres iterations, in [1, 1000]
 };
 
-// Throws InputError naming the option for an unknown or repeated free parameter, one that has no effect in distortion
+// Throws InputError naming the option for no or a repeated free parameter, one that has no effect in distortion
 // mode `mode` (substrate_stiffness_n_mm3 in reduced mode), max_points < 10 or max_iterations outside [1, 1000].
 void ValidateDistortionFitOptions(const DistortionFitOptions& fit, models::DistortionMode mode);
 

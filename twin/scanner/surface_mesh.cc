@@ -146,14 +146,6 @@ VoxelGrid Coarsen(const VoxelGrid& grid, int factor) {
   return coarse;
 }
 
-double EnclosedVolume(const planner::TriangleMesh& mesh) {
-  double six_v = 0.0;
-  for (const auto& f : mesh.facets) {
-    six_v += mesh.vertices[f[0]].dot(mesh.vertices[f[1]].cross(mesh.vertices[f[2]]));
-  }
-  return six_v / 6.0;
-}
-
 std::size_t OpenEdges(const planner::TriangleMesh& mesh) {
   std::map<std::pair<int, int>, int> uses;
   for (const auto& f : mesh.facets) {

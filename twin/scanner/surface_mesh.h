@@ -19,9 +19,6 @@ std::size_t ExposedFaces(const VoxelGrid& grid);
 // Throws InputError for factor < 1.
 VoxelGrid Coarsen(const VoxelGrid& grid, int factor);
 
-// Volume enclosed by a closed, outward-facing mesh (divergence theorem), mm^3.
-double EnclosedVolume(const planner::TriangleMesh& mesh);
-
 // Number of edges not shared by exactly two facets (0 for a closed manifold surface).
 std::size_t OpenEdges(const planner::TriangleMesh& mesh);
 

@@ -11,6 +11,7 @@
 
 #include "models/core/error.h"
 #include "models/core/progress.h"
+#include "twin/scanner/flat_vertices.h"
 #include "twin/scanner/point_hash.h"
 
 namespace waam::twin {
@@ -86,12 +87,11 @@ struct Quad {
   int d, plane, u0, u1, v0, v1;
 };
 
-// Greedy rectangles of one plane's faces (sorted by v, u). From the first face not yet taken (a corner: nothing free
-// before it in its row or in any row below) a rectangle anchored there, grown row by row along v over the run of free
-// faces along u: with `largest` false the first row's whole run, for as many rows as hold all of it; with `largest`
-// true the rectangle of largest area, the run shrinking row by row to the shortest so far (ties keep the wider one).
-// Appends the rectangles to `quads`.
-void MergePlane(const Face* faces, std::size_t count, bool largest, std::vector<Quad>* quads) {
+// Greedy rectangles of one plane's faces (sorted by v, u): from the first face not yet taken (a corner: nothing free
+// before it in its row or in any row below) the run of free faces along u, grown along v for as many rows as hold
+// all of it. Appends the rectangles to `quads`. (Which rectangles does not matter for the facets: their corners
+// inside the plane's region are removed afterwards.)
+void MergePlane(const Face* faces, std::size_t count, std::vector<Quad>* quads) {
   auto key = [](int u, int v) {
     return static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v);
   };
@@ -101,72 +101,27 @@ void MergePlane(const Face* faces, std::size_t count, bool largest, std::vector<
   for (std::size_t i = 0; i < count; ++i) {
     const Face& f = faces[i];
     if (free.count(key(f.u, f.v)) == 0) continue;
-    int width = 0;  // the run of free faces from f.u along u, no longer than in the rows before
+    int width = 0;
     while (free.count(key(f.u + width, f.v)) != 0) ++width;
-    int best_area = width, best_u1 = f.u + width - 1, best_v1 = f.v;
-    for (int v = f.v + 1;; ++v) {
-      int w = 0;
-      while (w < width && free.count(key(f.u + w, v)) != 0) ++w;
-      if (w == 0 || (!largest && w < width)) break;
-      width = w;
-      if (width * (v - f.v + 1) > best_area) {
-        best_area = width * (v - f.v + 1);
-        best_u1 = f.u + width - 1;
-        best_v1 = v;
-      }
+    int v1 = f.v;
+    for (bool full = true; full;) {
+      for (int w = 0; w < width && full; ++w) full = free.count(key(f.u + w, v1 + 1)) != 0;
+      if (full) ++v1;
     }
-    for (int v = f.v; v <= best_v1; ++v) {
-      for (int u = f.u; u <= best_u1; ++u) free.erase(key(u, v));
+    for (int v = f.v; v <= v1; ++v) {
+      for (int u = f.u; u < f.u + width; ++u) free.erase(key(u, v));
     }
-    quads->push_back({f.d, f.plane, f.u, best_u1, f.v, best_v1});
+    quads->push_back({f.d, f.plane, f.u, f.u + width - 1, f.v, v1});
   }
 }
 
-// The distinct corners of a plane's rectangles. A closed triangle mesh has about twice as many facets as vertices
-// (Euler: F = 2V - 4 for a sphere), so the partition with the fewest corners gives the fewest facets.
-std::size_t CornerCount(const std::vector<Quad>& quads) {
-  std::unordered_set<std::uint64_t> corners;
-  for (const Quad& q : quads) {
-    for (int c = 0; c < 4; ++c) {
-      const int u = c & 1 ? q.u1 + 1 : q.u0, v = c & 2 ? q.v1 + 1 : q.v0;
-      corners.insert(static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v));
-    }
-  }
-  return corners.size();
-}
-
-// The rectangles of every plane of `faces` (sorted by d, plane, v, u): each plane merged four ways (rows along u or
-// along v, each by longest runs or by largest rectangles), keeping the partition with the fewest distinct corners
-// (then the fewest rectangles, then the first).
+// The rectangles of every plane of `faces` (sorted by d, plane, v, u).
 std::vector<Quad> MergeFaces(const std::vector<Face>& faces) {
-  std::vector<Quad> quads, best, candidate;
-  std::vector<Face> swapped;
+  std::vector<Quad> quads;
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i;
     while (j < faces.size() && faces[j].d == faces[i].d && faces[j].plane == faces[i].plane) ++j;
-    swapped.assign(faces.begin() + static_cast<std::ptrdiff_t>(i), faces.begin() + static_cast<std::ptrdiff_t>(j));
-    for (Face& f : swapped) std::swap(f.u, f.v);
-    std::sort(swapped.begin(), swapped.end());
-    std::size_t best_corners = 0;
-    best.clear();
-    for (int way = 0; way < 4; ++way) {
-      candidate.clear();
-      const bool along_v = way >= 2;
-      const Face* plane = along_v ? swapped.data() : &faces[i];
-      MergePlane(plane, j - i, /*largest=*/way % 2 == 1, &candidate);
-      if (along_v) {
-        for (Quad& q : candidate) {
-          std::swap(q.u0, q.v0);
-          std::swap(q.u1, q.v1);
-        }
-      }
-      const std::size_t corners = CornerCount(candidate);
-      if (best.empty() || corners < best_corners || (corners == best_corners && candidate.size() < best.size())) {
-        best.swap(candidate);
-        best_corners = corners;
-      }
-    }
-    quads.insert(quads.end(), best.begin(), best.end());
+    MergePlane(&faces[i], j - i, &quads);
     i = j;
   }
   return quads;
@@ -277,9 +232,10 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
   planner::TriangleMesh mesh;
   const double half_voxel = 0.5 * grid.voxel_mm();
   std::unordered_map<std::uint64_t, int> vertex_of;  // doubled corner coordinates -> vertex
+  std::vector<Eigen::Vector3i> points;               // the vertices' doubled corner coordinates
   auto vertex = [&](const Eigen::Vector3i& doubled) {
-    auto [it, inserted] = vertex_of.emplace(CellKey(doubled), static_cast<int>(mesh.vertices.size()));
-    if (inserted) mesh.vertices.push_back(doubled.cast<double>() * half_voxel);
+    auto [it, inserted] = vertex_of.emplace(CellKey(doubled), static_cast<int>(points.size()));
+    if (inserted) points.push_back(doubled);
     return it->second;
   };
   std::vector<int> ring;
@@ -317,6 +273,21 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
       }
     }
     Triangulate(ring, corner_points, &mesh.facets);
+  }
+  CheckInterrupt();
+  // The rectangles' corners inside a plane's region or on a straight crease are not needed: removed, so each plane's
+  // region becomes one polygon (with holes) cut into triangles over the corners of its outline.
+  RemoveFlatVertices(points, &mesh.facets);
+  std::vector<int> renumbered(points.size(), -1);
+  for (std::array<int, 3>& t : mesh.facets) {
+    for (int& c : t) {
+      int& id = renumbered[static_cast<std::size_t>(c)];
+      if (id < 0) {
+        id = static_cast<int>(mesh.vertices.size());
+        mesh.vertices.push_back(points[static_cast<std::size_t>(c)].cast<double>() * half_voxel);
+      }
+      c = id;
+    }
   }
   return mesh;
 }

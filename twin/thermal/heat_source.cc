@@ -19,8 +19,9 @@ double HalfLine(double lo, double hi, double c) {
   return std::erf(kSqrt3 * std::max(0.0, hi) / c) - std::erf(kSqrt3 * std::max(0.0, lo) / c);
 }
 
-// Share along the travel, both lobes: Goldak et al. 1984 eqs. [9] (front, x >= 0, c_f, f_f) and [10] (rear, x < 0,
-// c_r, f_r). A lobe integrates to f Q / 2 over its quarter of space (6 sqrt(3) f Q / (a b c pi sqrt(pi)) times the
+// Share along the travel, both lobes: the front- (x >= 0, c_f, f_f) and rear-quadrant (x < 0, c_r, f_r) densities
+// of Goldak et al. 1984's double ellipsoid (docs/THERMAL.md eqs. (5)-(6); the paper's own equation numbers are not
+// cited: no copy of it could be checked). A lobe integrates to f Q / 2 over its quarter of space (6 sqrt(3) f Q / (a b c pi sqrt(pi)) times the
 // Gaussian integral a b c pi sqrt(pi) / (12 sqrt(3))), so with f_f + f_r = 2 the source holds exactly Q.
 double AlongShare(const DoubleEllipsoid& s, double lo, double hi) {
   const double sum = s.front_mm + s.rear_mm;

@@ -29,7 +29,7 @@ SolverReport Solve(const ceres::Solver::Options& options, ceres::Problem* proble
   SolverReport report;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
-  report.termination = ceres::TerminationTypeToString(summary.termination_type);
+  report.termination = TerminationNamed(ceres::TerminationTypeToString(summary.termination_type));
   report.message = summary.message;
   report.iterations = static_cast<int>(summary.iterations.size());
   report.initial_cost = summary.initial_cost;

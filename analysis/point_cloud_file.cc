@@ -1,5 +1,5 @@
-// Point-cloud readers: strict PLY and XYZ parsers that name the file and the line of the first problem.
-#include "twin/scanner/point_cloud_io.h"
+// Point-cloud files: strict PLY and XYZ readers that name the file and the line of the first problem, the PLY writer.
+#include "analysis/point_cloud_file.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,9 @@
 #include "models/core/error.h"
 #include "models/core/files.h"
 #include "planner/mesh/stl_io.h"
+#include "twin/scanner/surface_sample.h"
 
-namespace waam::twin {
+namespace waam::analysis {
 namespace {
 
 std::string Lower(std::string s) {
@@ -231,31 +232,11 @@ std::vector<Eigen::Vector3d> ReadPly(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> SampleSurface(const planner::TriangleMesh& mesh, double spacing_mm) {
-  WAAM_THROW_UNLESS(spacing_mm > 0.0, "surface sampling spacing " << spacing_mm << " mm: must be > 0");
-  std::vector<Eigen::Vector3d> points;
-  for (const auto& f : mesh.facets) {
-    const Eigen::Vector3d& a = mesh.vertices[f[0]];
-    const Eigen::Vector3d& b = mesh.vertices[f[1]];
-    const Eigen::Vector3d& c = mesh.vertices[f[2]];
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing_mm)));
-    // Centres of the n^2 sub-triangles of a regular split: each stands for an equal share of the facet area.
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; i + j < n; ++j) {
-        points.push_back(a + (b - a) * ((i + 1.0 / 3.0) / n) + (c - a) * ((j + 1.0 / 3.0) / n));
-        if (i + j + 1 < n) points.push_back(a + (b - a) * ((i + 2.0 / 3.0) / n) + (c - a) * ((j + 2.0 / 3.0) / n));
-      }
-    }
-  }
-  return points;
-}
-
 std::vector<Eigen::Vector3d> ReadPointCloud(const std::filesystem::path& path, double stl_spacing_mm) {
   const std::string ext = Lower(path.extension().string());
   if (ext == ".ply") return ReadPly(path);
   if (ext == ".xyz" || ext == ".txt" || ext == ".asc") return ReadXyz(path);
-  if (ext == ".stl") return SampleSurface(planner::ParseStl(ReadFile(path), path, 0.0, nullptr), stl_spacing_mm);
+  if (ext == ".stl") return twin::SampleSurface(planner::ParseStl(ReadFile(path), path, 0.0, nullptr), stl_spacing_mm);
   WAAM_THROW(path.string() << ": unknown scan format '" << ext << "': must be .ply, .xyz or .stl");
 }
 
@@ -275,4 +256,4 @@ void WritePlyWithDeviation(const std::filesystem::path& path, const std::vector<
   WriteFileAtomic(path, out);
 }
 
-}  // namespace waam::twin
+}  // namespace waam::analysis
