@@ -79,7 +79,7 @@ YAML
 }
 
 echo "peers: $(nproc) hardware threads, load average $(cut -d' ' -f1-3 /proc/loadavg); wall seconds, one run each"
-# PrusaSlicer and KDL (not with WAAM_PEERS_ONLY=thermal).
+# PrusaSlicer, KDL and FCL (not with WAAM_PEERS_ONLY=thermal).
 if [ -z "$only" ]; then
 "$waam" generate torus --param major_radius_mm=120 --param minor_radius_mm=40 --param major_segments=1224 \
   --param minor_segments=408 -o "$out/torus_1m.stl" > /dev/null

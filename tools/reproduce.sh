@@ -188,8 +188,8 @@ print(f"Heat run: build {h['build_time_s']:.0f} s, thermal model {h['thermal_wal
 h = json.load(open(f"{d}/part_3_interpass/compensate.json"))["heat"]
 ip, f = h["interpass_c"][1:], h["strain_factor"]
 print()
-print(f"Interpass run: build {h['build_time_s']:.0f} s, thermal model {h['thermal_wall_s']:.1f} s wall; the temperature "
-      f"a layer is laid on {min(ip):.0f}-{max(ip):.0f} degC (mean {sum(ip) / len(ip):.0f}, layers 1-{len(ip)}; "
+print(f"Interpass run: thermal model {h['thermal_wall_s']:.1f} s wall; the temperature a layer is laid on "
+      f"{min(ip):.0f}-{max(ip):.0f} degC (mean {sum(ip) / len(ip):.0f}, layers 1-{len(ip)}; "
       f"reference {h['reference_interpass_c']:.0f} degC, mechanical melting {h['mechanical_melting_c']:.0f} degC); "
       f"strain factor {min(f):.3f}-{max(f):.3f} (mean {sum(f) / len(f):.3f}); bead height factor "
       f"{min(h['bead_height_factor']):.3f}-{max(h['bead_height_factor']):.3f}.")

@@ -9,7 +9,7 @@
 #include "analysis/scenario.h"
 #include "analysis/scenario_plan.h"
 #include "analysis/simulate_command.h"
-#include "planner/mesh/stl_io.h"
+#include "analysis/stl_file.h"
 #include "twin/scanner/surface_mesh.h"
 #include "twin/scanner/voxel_surface.h"
 #include "twin/simulation.h"
@@ -28,9 +28,11 @@ const VoxelGrid& Grid(const std::string& scenario_file) {
     const waam::analysis::Scenario scenario =
         waam::analysis::LoadScenario(fs::path(WAAM_SOURCE_DIR) / "scenarios" / scenario_file);
     const waam::planner::PlanResult planned = waam::analysis::PlanScenarioOrProgram(scenario, nullptr);
-    slot = std::make_unique<waam::twin::TwinResult>(waam::twin::SimulateBuild(
-        planned.plan, planned.mesh.facets.empty() ? nullptr : &planned.mesh, scenario.simulation,
-        scenario.process.rapid_speed_mm_min / 60.0, scenario.path.bead_width_mm, {}));
+    slot = std::make_unique<waam::twin::TwinResult>(waam::twin::MeasureBuild(
+        planned.plan,
+        waam::twin::DepositPlan(planned.plan, scenario.simulation, scenario.process.rapid_speed_mm_min / 60.0,
+                                nullptr),
+        planned.mesh.facets.empty() ? nullptr : &planned.mesh, scenario.path.bead_width_mm));
   }
   return slot->depositor.grid();
 }
@@ -89,7 +91,7 @@ void BM_PerFaceStl(benchmark::State& state, const std::string& scenario) {
   TriangleMesh mesh;
   for (auto _ : state) {
     mesh = PerFaceMesh(grid);
-    waam::planner::WriteStlBinary(mesh, OutFile());
+    waam::analysis::WriteStlBinary(mesh, OutFile());
   }
   Report(state, mesh);
 }
@@ -101,7 +103,7 @@ void BM_VoxelSurfaceStl(benchmark::State& state, const std::string& scenario) {
   int factor = 1;
   for (auto _ : state) {
     mesh = waam::analysis::PartSurface(grid, &factor);
-    waam::planner::WriteStlBinary(mesh, OutFile());
+    waam::analysis::WriteStlBinary(mesh, OutFile());
   }
   state.counters["voxel_mm"] = factor * grid.voxel_mm();
   Report(state, mesh);
@@ -118,7 +120,7 @@ void BM_TetraStl(benchmark::State& state, const std::string& scenario) {
     factor = 1;
     while (10.0 * faces / (factor * factor) > 5.0e6 && factor < 8) ++factor;
     mesh = factor == 1 ? waam::twin::ExtractSurface(grid) : waam::twin::ExtractSurface(waam::twin::Coarsen(grid, factor));
-    waam::planner::WriteStlBinary(mesh, OutFile());
+    waam::analysis::WriteStlBinary(mesh, OutFile());
   }
   state.counters["voxel_mm"] = factor * grid.voxel_mm();
   Report(state, mesh);

@@ -151,7 +151,7 @@ TEST(VoxelSurface, FlatAndCreaseVerticesAreRemoved) {
   for (const Eigen::Vector3i& p : points) mesh.vertices.push_back(p.cast<double>());
   mesh.facets = facets;
   EXPECT_EQ(OpenEdges(mesh), 0u);
-  EXPECT_NEAR(twin::EnclosedVolume(mesh), 64.0, 1e-9);
+  EXPECT_NEAR(planner::EnclosedVolume(mesh), 64.0, 1e-9);
 }
 
 // The demo's part.stl rule on a small deposited part: under a tenth of the facets of the marching-tetrahedra surface
