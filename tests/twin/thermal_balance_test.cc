@@ -77,6 +77,8 @@ TEST(ThermalSettingsCheck, OutOfRangeSettingsAreRefusedByName) {
   refused([](ThermalSettings& s) { s.table_conductance_w_m2k = -5.0; }, "table_conductance_w_m2k");
   refused([](ThermalSettings& s) { s.ambient_c = -300.0; }, "ambient_c");
   refused([](ThermalSettings& s) { s.far_step_s = -1.0; }, "far_step_s");
+  refused([](ThermalSettings& s) { s.whole_step_s = -1.0; }, "whole_step_s");
+  refused([](ThermalSettings& s) { s.whole_step_s = 32.0, s.whole_radius_mm = 10.0; }, "whole_radius_mm");
   refused([](ThermalSettings& s) { s.arc_radius_mm = 1.0; }, "arc_radius_mm");
   refused([](ThermalSettings& s) { s.solver_tolerance_c = 0.0; }, "solver_tolerance_c");
   refused([](ThermalSettings& s) { s.deposit.temperature_c[2] = 10.0; }, "strictly increasing");

@@ -75,7 +75,7 @@ internal::ArcStep LayStep(ThermalState& s, std::size_t first, std::size_t last, 
 void Pump(ThermalState& s, bool flush) {
   const double micro_length = s.settings.arc_step_cells * s.dx_mm * (1.0 - kSlack);
   const double micro_time = s.settings.max_arc_step_s * (1.0 - kSlack);
-  const double batch_time = s.settings.far_step_s * (1.0 - kSlack);
+  const double batch_time = s.level_step_s.front() * (1.0 - kSlack);
   while (!s.pieces.empty()) {
     std::vector<std::pair<std::size_t, std::size_t>> steps;
     std::size_t p = 0;
@@ -145,6 +145,11 @@ void CheckThermalSettings(const ThermalSettings& st) {
              "must be > 0");
   CheckRange(std::isfinite(st.far_step_s) && st.far_step_s >= 0.0, "far_step_s", st.far_step_s,
              "must be >= 0 (0: no multirate)");
+  CheckRange(std::isfinite(st.whole_step_s) && st.whole_step_s >= 0.0, "whole_step_s", st.whole_step_s,
+             "must be >= 0 (0: the whole model steps every far_step_s)");
+  CheckRange(std::isfinite(st.whole_radius_mm) &&
+                 (st.whole_step_s <= st.far_step_s || st.whole_radius_mm >= st.near_radius_mm),
+             "whole_radius_mm", st.whole_radius_mm, "must be >= near_radius_mm");
   CheckRange(std::isfinite(st.near_step_s) && st.near_step_s >= 0.0, "near_step_s", st.near_step_s,
              "must be >= 0 (0: no middle level)");
   CheckRange(std::isfinite(st.arc_radius_mm) && st.arc_radius_mm >= 2.0 * st.cell_mm, "arc_radius_mm",
@@ -189,6 +194,10 @@ ThermalSimulation::ThermalSimulation(const ThermalSettings& settings) : impl_(st
   if (settings.far_step_s > 0.0) {
     s.level_step_s = {settings.far_step_s};
     s.level_radius_mm = {std::numeric_limits<double>::infinity()};
+    if (settings.whole_step_s > settings.far_step_s) {
+      s.level_step_s = {settings.whole_step_s, settings.far_step_s};
+      s.level_radius_mm.push_back(settings.whole_radius_mm);
+    }
     if (settings.near_step_s > 0.0) {
       s.level_step_s.push_back(settings.near_step_s);
       s.level_radius_mm.push_back(settings.near_radius_mm);
@@ -239,7 +248,7 @@ void ThermalSimulation::Cool(double seconds) {
     // that short travel between beads does not cost whole-model steps.
     double step = s.pieces.empty() ? s.last_step_s : s.pieces.back().seconds;
     double queued = 0.0;
-    while (left > 0.0 && queued < s.settings.far_step_s) {
+    while (left > 0.0 && queued < s.level_step_s.front()) {
       step = std::min({left, s.settings.max_step_s, step * s.settings.step_growth});
       if (left <= 1.25 * step) step = left;
       internal::ArcPiece pause;

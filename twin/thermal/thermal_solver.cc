@@ -239,7 +239,8 @@ void Count(ThermalState& s, int level, std::size_t cells, int iterations) {
   st.level_iterations[level] += static_cast<std::size_t>(iterations);
 }
 
-// The nonlinear iteration's next linearisation (Swaminathan & Voller 1992, Metall. Trans. B 23B 651, eq. 14):
+// The nonlinear iteration's next linearisation (the enthalpy iteration of Swaminathan & Voller 1992, Metall. Trans.
+// B 23B 651):
 // with the iterate H_k, T_k = T(H_k) and C_k = dH/dT at T_k, the step's equation
 // V/dt (H_k + C_k (T - T_k) - H_old) = Q + E/dt + sum_faces G (T_nb - T) - losses(T)
 // changes from the first linearisation only in the capacity's terms of the diagonal and the right-hand side.
