@@ -50,12 +50,20 @@ nlohmann::json ToJson(py::handle value, const std::string& where, int depth = 0)
 // A dict of key paths to values as --set strings (strings as written, other values as JSON). Throws InputError.
 std::vector<std::string> OverridesOf(const py::object& overrides);
 
+// A read-only (rows x cols) view of rows that lie `row_stride_bytes` apart (cols contiguous values of T at the start
+// of each), owned by `owner`: a column block of an array of structs, without a copy.
+template <typename T>
+py::array StridedView(const T* data, std::size_t rows, std::size_t cols, std::size_t row_stride_bytes,
+                      py::handle owner) {
+  py::array a(py::dtype::of<T>(), {rows, cols}, {row_stride_bytes, sizeof(T)}, data, owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
 // A read-only (rows x cols) numpy view of `data`, owned by `owner` (kept alive by the array's base).
 template <typename T>
 py::array View(const T* data, std::size_t rows, std::size_t cols, py::handle owner) {
-  py::array a(py::dtype::of<T>(), {rows, cols}, {cols * sizeof(T), sizeof(T)}, data, owner);
-  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return a;
+  return StridedView(data, rows, cols, cols * sizeof(T), owner);
 }
 
 // Checks that `progress` is None or callable. Throws InputError.

@@ -100,10 +100,6 @@ std::shared_ptr<CheckHolder> Check(const std::shared_ptr<const ScenarioHolder>& 
     Progress bar("check", 0, "samples", /*quiet=*/true);
     h->report = twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, &bar);
     h->document = analysis::CheckPlanToJson(s, cell, plan->result.plan, h->report);
-    h->joints.resize(8 * h->report.motion.size());
-    for (std::size_t i = 0; i < h->report.motion.size(); ++i) {
-      for (int k = 0; k < 8; ++k) h->joints[8 * i + k] = h->report.motion[i].q[k];
-    }
     return h;
   });
 }
@@ -132,9 +128,9 @@ std::shared_ptr<SimulateHolder> Simulate(const std::shared_ptr<const ScenarioHol
   });
 }
 
-// The seconds of each of `repeat` runs of a step's C++ computation alone, called directly, with no result object,
-// no numpy table and no progress machinery: what `waam plan` (the plan and its cell timeline) or `waam check` (the
-// cell, the check and check.json's document) computes. python/benchmarks/overhead.py sets it against wt.plan and
+// The seconds of each of `repeat` runs of a step's C++ computation alone, called directly as `waam plan -q` and
+// `waam check -q` call it (with a quiet Progress), with no result object, no numpy table and no Python callback:
+// the plan and its cell timeline, or the cell, the check and check.json's document. python/benchmarks/overhead.py sets it against wt.plan and
 // wt.check in the same process.
 std::vector<double> NativeStepSeconds(const std::string& step, const std::shared_ptr<const ScenarioHolder>& scn,
                                       const std::shared_ptr<const PlanHolder>& plan, int repeat) {
@@ -146,12 +142,14 @@ std::vector<double> NativeStepSeconds(const std::string& step, const std::shared
     const auto start = std::chrono::steady_clock::now();
     if (step == "plan") {
       analysis::ImportReport import;
-      planner::PlanResult result = analysis::PlanScenarioOrProgram(s, nullptr, &import);
+      Progress progress("plan", 0, "layers", /*quiet=*/true);
+      planner::PlanResult result = analysis::PlanScenarioOrProgram(s, &progress, &import);
       if (!s.program.present) analysis::AddCellTimeline(s, &result);
     } else {
       const twin::CellModel cell = waam::analysis::LoadCell(s.cell);
+      Progress progress("check", 0, "samples", /*quiet=*/true);
       const twin::CheckReport report =
-          twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, nullptr);
+          twin::CheckPlan(cell, plan->result.plan, s.cell, s.process.rapid_speed_mm_min / 60.0, &progress);
       const nlohmann::json document = analysis::CheckPlanToJson(s, cell, plan->result.plan, report);
       WAAM_DEMAND(document.is_object());
     }
@@ -205,7 +203,12 @@ void BindSteps(py::module_& m) {
           "joints",
           [](py::object self) {
             const auto& h = self.cast<const CheckHolder&>();
-            return View(h.joints.data(), h.joints.size() / 8, std::size_t{8}, self);
+            // The samples' joint vectors in place: row i is report.motion[i].q (8 contiguous doubles).
+            static const double kNone[8] = {};
+            const std::vector<planner::CellSample>& motion = h.report.motion;
+            if (motion.empty()) return View(kNone, 0, std::size_t{8}, self);
+            return StridedView(motion.front().q.data(), motion.size(), std::size_t{8}, sizeof(planner::CellSample),
+                               self);
           },
           "The eight axes at every checked sample, (samples x 8) float64 view, rad: the arm's six axes, then the\n"
           "positioner's tilt and rotation.")

@@ -31,7 +31,6 @@ struct CheckHolder {
   std::shared_ptr<const PlanHolder> plan;
   twin::CheckReport report;
   nlohmann::json document;     // check.json without the viewer section
-  std::vector<double> joints;  // samples x 8, rad
 };
 
 struct SimulateHolder {
