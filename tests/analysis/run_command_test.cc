@@ -270,7 +270,9 @@ namespace {
 
 // Runs `waam <arguments>` and returns its exit code; stderr goes to *err.
 int RunWaamCli(const std::string& arguments, std::string* err) {
-  const fs::path err_file = fs::path(::testing::TempDir()) / "waam_test_run_cli.stderr";
+  // Per process: the RunCli tests run in parallel under ctest -j, each in its own process.
+  const fs::path err_file =
+      fs::path(::testing::TempDir()) / ("waam_test_run_cli_" + std::to_string(::getpid()) + ".stderr");
   const std::string command = std::string(WAAM_BINARY) + " " + arguments + " >/dev/null 2>" + err_file.string();
   const int status = std::system(command.c_str());
   *err = ReadFile(err_file);
