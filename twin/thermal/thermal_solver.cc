@@ -22,11 +22,6 @@ constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
-// The conductance factor of a face touching a re-entrant edge (three of the four cells around the edge metal, as
-// where a wall stands on a plate): the two-point flux of the cells' means is exact there for the edge's singular
-// solution r^(2/3) cos(2 (theta - pi/2) / 3) with insulated faces (docs/THERMAL.md, "Re-entrant edges"; derived and
-// checked by quadrature in tests/twin/thermal_reentrant_test.cc).
-constexpr double kReentrantFaceFactor = 1.2626829;
 
 double Sum(const std::vector<double>& partial) {
   double total = 0.0;
