@@ -144,83 +144,93 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
 int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess) {
   const std::size_t n = L.cells.size();
   if (n == 0) return 0;
-  std::vector<double>& x = L.t_new;
-  std::vector<double> r(n), z(n), p(n), ap(n);
-  std::vector<double> part_a(Chunks(n)), part_max(Chunks(n));
+  LevelScratch& w = L.scratch;
+  const PaddedStencil& a = w.stencil;
+  w.stencil.Assign(L);
+  // x and p are multiplied by the matrix: n + 1 values, the last the zero slot.
+  w.x.resize(n + 1);
+  w.p.resize(n + 1);
+  w.x[n] = w.p[n] = 0.0;
+  w.r.resize(n);
+  w.z.resize(n);
+  w.ap.resize(n);
+  w.part_a.resize(Chunks(n));
+  w.part_max.resize(Chunks(n));
+  double* x = w.x.data();
+  double* p = w.p.data();
+  double* r = w.r.data();
+  double* z = w.z.data();
+  double* ap = w.ap.data();
   const bool multigrid = n >= kMultigridCells;
-  if (multigrid) {
-    L.ijk.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
-      L.ijk[i] = {g.x(), g.y(), g.z()};
-    }
-    L.multigrid.Setup(L, L.ijk);
-  }
-  auto apply = [&](const std::vector<double>& v, std::size_t i) {
-    double y = L.diagonal[i] * v[i];
-    for (int f = 0; f < 6; ++f) {
-      const int j = L.neighbour[i][f];
-      if (j >= 0) y -= L.conductance[i][f] * v[j];
-    }
-    return y;
-  };
-  // z = B r and the sum of r.z.
+  bool ready = false;
+  // z = B r and the sum of r.z; the multigrid's blocks are built at the first use (many solves need none).
   auto precondition = [&]() {
-    if (multigrid) L.multigrid.Apply(r, z);
+    if (multigrid && !ready) {
+      L.ijk.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
+        L.ijk[i] = {g.x(), g.y(), g.z()};
+      }
+      L.multigrid.Setup(a, L.ijk);
+      ready = true;
+    }
+    if (multigrid) L.multigrid.Apply(w.r, w.z);
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
       double rz = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
-        if (!multigrid) z[i] = r[i] / L.diagonal[i];
+        if (!multigrid) z[i] = r[i] / a.diagonal[i];
         rz += r[i] * z[i];
       }
-      part_a[c] = rz;
+      w.part_a[c] = rz;
     });
-    return Sum(part_a);
+    return Sum(w.part_a);
   };
   for (std::size_t i = 0; i < n; ++i) x[i] = guess[L.cells[i]];
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
     double worst = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
-      r[i] = L.rhs[i] - apply(x, i);
-      worst = std::max(worst, std::abs(r[i] / L.diagonal[i]));
+      r[i] = L.rhs[i] - a.Row(x, i);
+      worst = std::max(worst, std::abs(r[i] / a.diagonal[i]));
     }
-    part_max[c] = worst;
+    w.part_max[c] = worst;
   });
-  double worst = *std::max_element(part_max.begin(), part_max.end());
+  double worst = *std::max_element(w.part_max.begin(), w.part_max.end());
   const double tolerance = s.settings.solver_tolerance_c;
-  if (worst <= tolerance) return 0;
-  double rz = precondition();
-  p = z;
   int iterations = 0;
-  while (worst > tolerance && iterations < kMaxIterations) {
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double pap = 0.0;
-      for (std::size_t i = begin; i < end; ++i) {
-        ap[i] = apply(p, i);
-        pap += p[i] * ap[i];
-      }
-      part_a[c] = pap;
-    });
-    const double alpha = rz / Sum(part_a);
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double w = 0.0;
-      for (std::size_t i = begin; i < end; ++i) {
-        x[i] += alpha * p[i];
-        r[i] -= alpha * ap[i];
-        w = std::max(w, std::abs(r[i] / L.diagonal[i]));
-      }
-      part_max[c] = w;
-    });
-    worst = *std::max_element(part_max.begin(), part_max.end());
-    ++iterations;
-    if (worst <= tolerance) break;
-    const double rz_new = precondition();
-    const double beta = rz_new / rz;
-    rz = rz_new;
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
-    });
+  if (worst > tolerance) {
+    double rz = precondition();
+    std::copy(z, z + n, p);
+    while (worst > tolerance && iterations < kMaxIterations) {
+      ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
+        double pap = 0.0;
+        for (std::size_t i = begin; i < end; ++i) {
+          ap[i] = a.Row(p, i);
+          pap += p[i] * ap[i];
+        }
+        w.part_a[c] = pap;
+      });
+      const double alpha = rz / Sum(w.part_a);
+      ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
+        double most = 0.0;
+        for (std::size_t i = begin; i < end; ++i) {
+          x[i] += alpha * p[i];
+          r[i] -= alpha * ap[i];
+          most = std::max(most, std::abs(r[i] / a.diagonal[i]));
+        }
+        w.part_max[c] = most;
+      });
+      worst = *std::max_element(w.part_max.begin(), w.part_max.end());
+      ++iterations;
+      if (worst <= tolerance) break;
+      const double rz_new = precondition();
+      const double beta = rz_new / rz;
+      rz = rz_new;
+      ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
+      });
+    }
   }
+  std::copy(x, x + n, L.t_new.begin());
   return iterations;
 }
 

@@ -77,33 +77,6 @@ ThermalPropertyTable::ThermalPropertyTable(const models::ThermalMaterial& materi
   for (double& value : enthalpy_) value -= shift;
 }
 
-double ThermalPropertyTable::Position(double t_c, int* segment) const {
-  const double x = (t_c - low_c_) / step_c_;
-  const int last = static_cast<int>(enthalpy_.size()) - 2;
-  int i = static_cast<int>(std::floor(x));
-  i = std::clamp(i, 0, last);
-  *segment = i;
-  return x - i;
-}
-
-double ThermalPropertyTable::Conductivity(double t_c) const {
-  int i = 0;
-  const double s = std::clamp(Position(t_c, &i), 0.0, 1.0);
-  return conductivity_[i] + s * (conductivity_[i + 1] - conductivity_[i]);
-}
-
-double ThermalPropertyTable::Enthalpy(double t_c) const {
-  int i = 0;
-  const double s = Position(t_c, &i);
-  return enthalpy_[i] + s * (enthalpy_[i + 1] - enthalpy_[i]);
-}
-
-double ThermalPropertyTable::Capacity(double t_c) const {
-  int i = 0;
-  Position(t_c, &i);
-  return (enthalpy_[i + 1] - enthalpy_[i]) / step_c_;
-}
-
 double ThermalPropertyTable::Temperature(double h_j_m3) const {
   // The first node above h (clamped so that a segment [i - 1, i] exists), then the linear inverse.
   auto upper = std::upper_bound(enthalpy_.begin() + 1, enthalpy_.end() - 1, h_j_m3);
