@@ -76,9 +76,10 @@ struct SampleRequest {
 // The conjugate gradients' work arrays of one level, kept from solve to solve (no allocation per step once sized).
 struct LevelScratch {
   PaddedStencil stencil;                     // the level's system without branches
-  std::vector<double> x, p;                  // degC, n + 1 values (the last the zero slot)
-  std::vector<double> r, z, ap;              // W, degC, W
-  std::vector<double> part_a, part_max;      // per-chunk partial sums and maxima
+  std::vector<double> z, p;                  // degC, n + 1 values (the last the zero slot)
+  std::vector<double> x, r, ap;              // degC, W, W
+  std::vector<double> inverse_diagonal;      // K/W
+  std::vector<double> part_a, part_b, part_max;  // per-chunk partial sums and maxima
 };
 
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.

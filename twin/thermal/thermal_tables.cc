@@ -52,7 +52,7 @@ void CheckThermalMaterial(const models::ThermalMaterial& m, const char* what) {
 
 ThermalPropertyTable::ThermalPropertyTable(const models::ThermalMaterial& material, double low_c, double high_c,
                                            double step_c, double reference_c, double liquid_conductivity_factor)
-    : low_c_(low_c), step_c_(step_c), emissivity_(material.emissivity) {
+    : low_c_(low_c), step_c_(step_c), inverse_step_(1.0 / step_c), emissivity_(material.emissivity) {
   const int nodes = static_cast<int>(std::ceil((high_c - low_c) / step_c)) + 1;
   conductivity_.resize(nodes);
   enthalpy_.resize(nodes);
@@ -81,21 +81,6 @@ double ThermalPropertyTable::Temperature(double h_j_m3) const {
   // The first node above h (clamped so that a segment [i - 1, i] exists), then the linear inverse.
   auto upper = std::upper_bound(enthalpy_.begin() + 1, enthalpy_.end() - 1, h_j_m3);
   const int i = static_cast<int>(upper - enthalpy_.begin());
-  const double s = (h_j_m3 - enthalpy_[i - 1]) / (enthalpy_[i] - enthalpy_[i - 1]);
-  return low_c_ + (i - 1 + s) * step_c_;
-}
-
-double ThermalPropertyTable::Temperature(double h_j_m3, double hint_c) const {
-  // The first node above h in [1, last] (the same node as the binary search above), walked to from the hint's.
-  constexpr int kWalk = 8;
-  const int last = static_cast<int>(enthalpy_.size()) - 1;
-  int i = 0;
-  Position(hint_c, &i);
-  i = std::clamp(i + 1, 1, last);
-  int steps = 0;
-  while (i > 1 && enthalpy_[i - 1] > h_j_m3 && steps++ < kWalk) --i;
-  while (i < last && enthalpy_[i] <= h_j_m3 && steps++ < kWalk) ++i;
-  if (steps > kWalk) return Temperature(h_j_m3);
   const double s = (h_j_m3 - enthalpy_[i - 1]) / (enthalpy_[i] - enthalpy_[i - 1]);
   return low_c_ + (i - 1 + s) * step_c_;
 }
