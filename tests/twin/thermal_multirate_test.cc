@@ -15,8 +15,8 @@ namespace {
 // so its 8 s backward-Euler steps err by ~1 %); the hottest cell of the top layer right after it is laid within 8 %
 // (cells that left the micro-step region take 1 s steps while cooling from ~1400 degC: measured up to ~4 %); the
 // whole field after 30 s of cooling within 10 % of the hottest rise (the two runs' cooling steps differ; measured:
-// 39.4 K of 396.6 K, in the wall's top cells); energy conserved to round-off in both. The fixture's liquid
-// conductivity factor is 1 (testing::SmallBuildSettings says why: at the default 5 the field differs by 10.7 %).
+// 34.9 K of 381.9 K, in the wall's top cells); energy conserved to round-off in both. The fixture's liquid
+// conductivity factor is 1 (testing::SmallBuildSettings says why: at the default 5 the field differs by 11.1 %).
 TEST(ThermalMultirate, AgreesWithSingleRateSteppingOnASmallBuild) {
   ThermalSettings single = testing::SmallBuildSettings();
   single.far_step_s = 0.0;

@@ -74,6 +74,14 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
 double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
   double factor = 1.0;
+  if (s.latest_born < m1) {
+    // Every linked cell is present: the faces where the two cells' links differ across the face's edges.
+    const unsigned across = 63u & ~(3u << (2 * (f / 2)));
+    for (unsigned differ = (s.linked[c] ^ s.linked[j]) & across; differ != 0; differ &= differ - 1) {
+      factor *= kReentrantFaceFactor;
+    }
+    return factor;
+  }
   for (int e = 0; e < 6; ++e) {
     if (e / 2 == f / 2) continue;
     const int p = s.neighbour[c][e], q = s.neighbour[j][e];
@@ -556,6 +564,7 @@ void SolveBatch(ThermalState& s) {
   for (const SampleRequest& q : s.requests) s.sample_head[q.cell] = -1;
   s.requests.clear();
   for (int& b : s.born) b = -1;
+  s.latest_born = -1;
   s.time_s += s.batch_start_s[steps];
   s.last_step_s = s.batch.back().seconds;
   s.stats.steps += static_cast<std::size_t>(steps);
