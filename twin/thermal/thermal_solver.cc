@@ -69,6 +69,20 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
   *slope = at1.convection + at1.radiation + at1.table - *offset;
 }
 
+// The factor on the conductance of the face f between cells c and j (both present before micro step m1):
+// kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
+// neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
+double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
+  double factor = 1.0;
+  for (int e = 0; e < 6; ++e) {
+    if (e / 2 == f / 2) continue;
+    const int p = s.neighbour[c][e], q = s.neighbour[j][e];
+    const bool p_metal = p != kNoCell && s.born[p] < m1, q_metal = q != kNoCell && s.born[q] < m1;
+    if (p_metal != q_metal) factor *= kReentrantFaceFactor;
+  }
+  return factor;
+}
+
 // Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
 // (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of
 // docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`, faces towards cells of a
@@ -113,8 +127,9 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
           L.neighbour[i][f] = kFinerCell;
         } else if (j != kNoCell && s.born[j] < m1) {
           const double kj = s.conductivity[j];
-          // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2.
-          const double g = 2.0 * k * kj / (k + kj) * s.dx_m;
+          // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2, times the factor of each re-entrant
+          // edge the face touches.
+          const double g = 2.0 * k * kj / (k + kj) * s.dx_m * EdgeFactor(s, c, j, f, m1);
           L.conductance[i][f] = g;
           diagonal += g;
           if (local_of[j] != kNoCell) {

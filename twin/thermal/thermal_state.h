@@ -21,6 +21,11 @@ namespace waam::twin::internal {
 constexpr double kStefanBoltzmann = 5.670374419e-8;  // W/(m^2 K^4), CODATA 2018
 constexpr double kKelvin = 273.15;
 constexpr int kNoCell = -1;
+// The conductance factor of a face touching a re-entrant edge (three of the four cells around the edge are metal, as
+// where a wall stands on a plate): with it the two-point flux between the two cells' means is exact for the edge's
+// singular solution r^(2/3) cos(2 (theta - pi/2) / 3) between insulated faces (docs/THERMAL.md, "Re-entrant
+// edges"; checked by quadrature in tests/twin/thermal_reentrant_test.cc).
+constexpr double kReentrantFaceFactor = 1.2626829;
 constexpr int kDeposit = 0;    // material index of the deposit
 constexpr int kSubstrate = 1;  // material index of the plate
 
