@@ -216,18 +216,25 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
       w.part_a[c] = pap;
     });
     const double alpha = rz / Sum(w.part_a);
+    // x and r; with the diagonal preconditioner z = r / A_ii and r.z in the same pass.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double most = 0.0;
+      double most = 0.0, rz_part = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
         x[i] += alpha * p[i];
         r[i] -= alpha * ap[i];
-        most = std::max(most, std::abs(r[i] * inv[i]));
+        const double correction = r[i] * inv[i];
+        most = std::max(most, std::abs(correction));
+        if (!multigrid) {
+          z[i] = correction;
+          rz_part += r[i] * correction;
+        }
       }
       w.part_max[c] = most;
+      w.part_a[c] = rz_part;
     });
     ++iterations;
     if (*std::max_element(w.part_max.begin(), w.part_max.end()) <= tolerance) break;
-    const double rz_new = precondition();
+    const double rz_new = multigrid ? precondition() : Sum(w.part_a);
     beta = rz_new / rz;
     rz = rz_new;
   }
