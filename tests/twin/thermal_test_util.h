@@ -126,11 +126,6 @@ inline ThermalSettings SmallBuildSettings() {
   s.convection_w_m2k = 15.0;
   s.table_conductance_w_m2k = 400.0;
   s.table_c = 25.0;
-  // Pure conduction in the liquid: the multirate test's tolerances were measured on it. With the default factor 5
-  // the field after cooling differs from single-rate stepping by 44.3 K of a 413.9 K rise (10.7 %, against the 10 %
-  // asked; factor 1: 39.4 K of 396.6 K, 9.9 %), the other checks pass with it (probe 0.40 % of 2 %, top layer
-  // 0.34 % of 8 %), measured with the multigrid solver and the enthalpy linearisation.
-  s.liquid_conductivity_factor = 1.0;
   return s;
 }
 inline void RunSmallBuild(ThermalSimulation& sim, int layers) {
