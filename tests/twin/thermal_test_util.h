@@ -126,11 +126,6 @@ inline ThermalSettings SmallBuildSettings() {
   s.convection_w_m2k = 15.0;
   s.table_conductance_w_m2k = 400.0;
   s.table_c = 25.0;
-  // Pure conduction in the liquid: the multirate test's tolerances were measured on it. With the default factor 5
-  // the field after cooling differs from single-rate stepping by 44.3 K of a 398.4 K rise (11.1 %, against the 10 %
-  // asked; factor 1: 34.9 K of 381.9 K, 9.1 %), the other checks pass with it (probe 0.42 % of 2 %, top layer
-  // 0.36 % of 8 %), measured with the multigrid solver, the enthalpy linearisation and the re-entrant face factor.
-  s.liquid_conductivity_factor = 1.0;
   return s;
 }
 inline void RunSmallBuild(ThermalSimulation& sim, int layers) {

@@ -46,14 +46,15 @@ struct ThermalSettings {
 
   // Time stepping and the solver (docs/THERMAL.md). While the arc burns, each micro step moves it arc_step_cells
   // cells (and lasts at most max_arc_step_s). Multirate: the whole model steps every far_step_s, the cells within
-  // near_radius_mm of the arc's path every near_step_s, and the cells within arc_radius_mm every micro step.
+  // near_radius_mm of the arc's path every near_step_s, and the cells within arc_radius_mm every micro step; cells whose
+  // enthalpy changes fast join the finer levels wherever they are.
   // far_step_s = 0 solves the whole model at every micro step (no multirate); near_step_s = 0 drops the middle level.
   double arc_step_cells = 1.0;              // arc travel per micro step, cells
   double max_arc_step_s = 0.5;              // longest micro step (a slow or standing arc), s
   double far_step_s = 8.0;                  // step of the whole model while welding, s
-  // An optional coarser top level: when whole_step_s > far_step_s, the whole model steps every whole_step_s and the
-  // far_step_s level covers the cells within whole_radius_mm of the beads laid in a whole step (and the hot cells).
-  double whole_step_s = 0.0;                // s; 0 (or <= far_step_s): no such level
+  // A coarser top level: when whole_step_s > far_step_s, the whole model steps every whole_step_s and the far_step_s
+  // level covers the cells within whole_radius_mm of the beads laid in a whole step (and the fast-changing cells).
+  double whole_step_s = 32.0;               // s; 0 (or <= far_step_s): no such level
   double whole_radius_mm = 48.0;            // mm, >= near_radius_mm
   double near_step_s = 1.0;                 // step of the region near the arc, s
   double near_radius_mm = 24.0;             // that region's reach from the bead laid in a far step, mm

@@ -28,6 +28,9 @@ constexpr int kNoCell = -1;
 constexpr double kReentrantFaceFactor = 1.2626829;
 constexpr int kDeposit = 0;    // material index of the deposit
 constexpr int kSubstrate = 1;  // material index of the plate
+// A cell whose enthalpy would move by more than this many K of heating at its material's reference temperature over
+// a level's step (at the rate of its last step) takes the finer level's steps (docs/THERMAL.md, "Time stepping").
+constexpr double kFastChangeK = 50.0;
 
 // Cells per chunk of the deterministic parallel loops: every reduction sums per-chunk partials in chunk order, and
 // the chunks do not depend on the thread count, so the results are bit-identical on any number of threads.
@@ -113,7 +116,9 @@ struct ThermalState {
   std::array<ThermalPropertyTable, 2> table;            // deposit, substrate
   std::array<double, 2> emissivity = {0.0, 0.0};        // per material
   std::array<double, 2> reference_h = {0.0, 0.0};       // J/m^3 of a cell as it starts (plate) or switches on
-  std::array<double, 2> hot_c = {0.0, 0.0};             // solidus - 100 K: cells this hot take micro steps, degC
+  // J/m^3 per material: a coarse step that would move a cell's enthalpy by more than this (kFastChangeK of heating
+  // at the reference temperature) is too coarse for it, and it takes the finer level's steps.
+  std::array<double, 2> fast_h = {0.0, 0.0};
 
   std::vector<CellKind> kind;      // per grid cell
   std::vector<int> active_of;      // per grid cell: its active-cell id or kNoCell
@@ -129,6 +134,7 @@ struct ThermalState {
   std::vector<double> temperature;  // degC, the state's temperature (from the enthalpy)
   std::vector<double> conductivity; // W/(m K) at that temperature
   std::vector<double> rate;         // dT/dt over the cell's last step, K/s (extrapolated for the solver's first guess)
+  std::vector<double> heat_rate;    // dH/dt over the cell's last step, W/m^3 (latent heat included)
   std::vector<double> guess;        // scratch: the solver's first guess, degC
   std::vector<double> chord;        // scratch: the nonlinear iteration's temperature T_k = T(H_k), degC
   std::vector<double> iterate_h;    // scratch: the nonlinear iteration's enthalpy H_k, J/m^3
