@@ -2,6 +2,7 @@
 #include "twin/cell/cell_check.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -301,6 +302,8 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
   Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
   bool have_velocity = false;
   int last_layer = std::numeric_limits<int>::min();
+  std::array<double, 2> part_at = {std::numeric_limits<double>::quiet_NaN(), 0.0};  // positioner of X_PW
+  Eigen::Isometry3d X_PW = Eigen::Isometry3d::Identity();
 
   for (std::size_t i = 0; i < motion.size(); ++i) {
     const planner::CellSample& s = motion[i];
@@ -378,8 +381,12 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
 
     // Torch against the layers deposited before this sample.
     if (settings.part_collision) {
-      const Eigen::Isometry3d X_WP = kin.X_WB * planner::PartPose(kin.positioner, s.q[6], s.q[7]);
-      const Eigen::Isometry3d X_PT = X_WP.inverse() * s.X_WT;
+      // The part's pose changes only when the positioner moves (not at all along most layers).
+      if (s.q[6] != part_at[0] || s.q[7] != part_at[1]) {
+        part_at = {s.q[6], s.q[7]};
+        X_PW = (kin.X_WB * planner::PartPose(kin.positioner, s.q[6], s.q[7])).inverse();
+      }
+      const Eigen::Isometry3d X_PT = X_PW * s.X_WT;
       const double pen = deposit.Penetration(X_PT * nozzle_a_T, X_PT * nozzle_b_T, nozzle_r);
       if (pen > settings.collision_tolerance_mm) log.Add("collision", "part", "torch", s, si, pen, "penetration_mm", true);
     }
