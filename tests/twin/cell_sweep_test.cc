@@ -3,6 +3,7 @@
 // clearance is a lower bound of the distances along the joint-space lines and close to their minimum.
 #include "twin/cell/cell_sweep.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -154,6 +155,32 @@ TEST(CellSweepTest, CertifiedClearanceBoundsTheDistancesAlongTheLines) {
       << "and within the resolution of the smallest";
   EXPECT_LT(sweep.distance_queries, geometry.pairs.size() * r.motion.size())
       << "advancement skips most of the queries a check of every pair at every sample makes";
+}
+
+TEST(CellSweepTest, TreeForwardKinematicsIsMujocos) {
+  // The URDF mesh arm (fixed joints, meshes) and the built-in cell: the geometry's own tree against mj_kinematics.
+  const fs::path robots = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "robots";
+  twin::CellSettings urdf;
+  urdf.robot_urdf = robots / "waam_kr16_support" / "urdf" / "kr16_2.urdf";
+  urdf.robot_package_paths = {robots};
+  for (const twin::CellSettings& settings : {OkSettings(), urdf}) {
+    const CellModel cell = LoadCell(settings);
+    const CellCollisionGeometry geometry = cell.CollisionGeometry();
+    CellState state(cell);
+    std::vector<Eigen::Isometry3d> mujoco, tree;
+    std::srand(7);
+    for (int k = 0; k < 50; ++k) {
+      const planner::Joints8 q = planner::Joints8::Random() * kPi;
+      state.SetJoints(q);
+      state.ShapePoses(geometry, &mujoco);
+      ShapePosesAt(geometry, q, &tree);
+      ASSERT_EQ(tree.size(), mujoco.size());
+      for (std::size_t i = 0; i < tree.size(); ++i) {
+        EXPECT_LT((tree[i].translation() - mujoco[i].translation()).norm(), 1e-6) << geometry.body[i];
+        EXPECT_LT((tree[i].linear() - mujoco[i].linear()).norm(), 1e-9) << geometry.body[i];
+      }
+    }
+  }
 }
 
 }  // namespace

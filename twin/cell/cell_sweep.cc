@@ -109,12 +109,15 @@ class Sweeper {
     const double f = s - static_cast<double>(i);
     return f > 0.0 ? motion_[i].t_s + f * (motion_[i + 1].t_s - motion_[i].t_s) : motion_[i].t_s;
   }
-  void PoseAt(double s) {
-    if (s == posed_) return;
+  planner::Joints8 JointsAt(double s) const {
     const std::size_t i = static_cast<std::size_t>(s);
     const double f = s - static_cast<double>(i);
-    state_.SetJoints(f > 0.0 ? planner::Joints8(motion_[i].q + f * (motion_[i + 1].q - motion_[i].q)) : motion_[i].q);
-    state_.ShapePoses(g_, &X_WG_);
+    return f > 0.0 ? planner::Joints8(motion_[i].q + f * (motion_[i + 1].q - motion_[i].q)) : motion_[i].q;
+  }
+  // The shapes' poses at s, from the geometry's own tree (MuJoCo's mjData is set only for its collision detection).
+  void PoseAt(double s) {
+    if (s == posed_) return;
+    ShapePosesAt(g_, JointsAt(s), &X_WG_);
     posed_ = s;
     ++result_.poses;
   }
@@ -183,7 +186,7 @@ void Sweeper::ContactAt(int p, double s, double end) {
   const bool at_sample = s == std::floor(s);
   // MuJoCo's contacts at `at`: every pair's at a sample, this pair's at a probe between samples.
   const auto collect = [&](double at, std::size_t sample, bool between) {
-    PoseAt(at);
+    state_.SetJoints(JointsAt(at));
     scratch_.clear();
     state_.Collide(options_.tolerance_mm, &scratch_, nullptr);
     for (CellContact& c : scratch_) {
