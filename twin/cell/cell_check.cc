@@ -7,6 +7,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "models/core/error.h"
@@ -17,6 +18,7 @@
 #include "twin/cell/cell_presets.h"
 #include "twin/cell/cell_sweep.h"
 #include "twin/cell/deposit_map.h"
+#include "twin/cell/deposit_sweep.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
@@ -160,11 +162,11 @@ std::vector<SampleContacts> SweptContacts(const CellModel& cell, const CellColli
 
 // The cell bodies' contacts in the mode `settings` asks for: continuous where every geom has a distance bound, else
 // discrete with the reason in report->mode_fallback. Sets the report's mode and collision figures.
-std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const std::vector<planner::CellSample>& motion,
+std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const CellCollisionGeometry& geometry,
+                                           const std::vector<planner::CellSample>& motion,
                                            const twin::CellSettings& settings, CheckReport* report) {
   report->mode = settings.check_mode;
   if (report->mode == CheckMode::kContinuous) {
-    const CellCollisionGeometry geometry = cell.CollisionGeometry();
     if (geometry.unsupported.empty()) {
       return SweptContacts(cell, geometry, motion, settings.collision_tolerance_mm, report);
     }
@@ -296,8 +298,25 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
   report.min_arm_margin_deg = std::numeric_limits<double>::infinity();
   report.min_j5_deg = std::numeric_limits<double>::infinity();
   int min_margin_sample = 0;
-  const std::vector<SampleContacts> cell_contacts = ContactsInMode(cell, motion, settings, &report);
+  const CellCollisionGeometry geometry =
+      settings.check_mode == CheckMode::kContinuous ? cell.CollisionGeometry() : CellCollisionGeometry{};
+  const std::vector<SampleContacts> cell_contacts = ContactsInMode(cell, geometry, motion, settings, &report);
   const bool continuous = report.mode == CheckMode::kContinuous;
+  // Continuous: the nozzle against the deposit between the samples too, over the box of the metal the path lays.
+  std::optional<DepositSweep> part_sweep;
+  if (continuous && settings.part_collision) {
+    double z_lo = 0.0, z_hi = 0.0, width = 0.0;
+    for (const planner::CellSample& s : motion) {
+      z_lo = std::min(z_lo, s.p_P.z());
+      z_hi = std::max(z_hi, s.p_P.z());
+      width = std::max(width, s.bead_width_mm);
+    }
+    const Eigen::AlignedBox3d box(Eigen::Vector3d(lo.x() - width, lo.y() - width, z_lo - 10.0),
+                                  Eigen::Vector3d(hi.x() + width, hi.y() + width, z_hi));
+    const SweepOptions sweep;
+    part_sweep.emplace(cell, geometry, kin, box, sweep.contact_mm, sweep.probe_mm, settings.collision_tolerance_mm);
+  }
+  NozzleInPart previous_nozzle;
   std::size_t next_contact = 0;  // first entry of cell_contacts at or after the current sample
   Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
   bool have_velocity = false;
@@ -387,13 +406,29 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
         X_PW = (kin.X_WB * planner::PartPose(kin.positioner, s.q[6], s.q[7])).inverse();
       }
       const Eigen::Isometry3d X_PT = X_PW * s.X_WT;
-      const double pen = deposit.Penetration(X_PT * nozzle_a_T, X_PT * nozzle_b_T, nozzle_r);
+      const NozzleInPart nozzle{X_PT * nozzle_a_T, X_PT * nozzle_b_T};
+      if (part_sweep && i > 0 && motion[i - 1].reachable) {
+        // The move into this sample, against the metal laid before it.
+        const std::optional<DepositContact> c = part_sweep->Move(motion[i - 1], previous_nozzle, s, nozzle, deposit);
+        if (c) {
+          log.Add("collision", "part", "torch", s, si, c->penetration_mm, "penetration_mm", true, c->t_s,
+                  c->between_samples);
+          if (report.first_contact_s < 0.0 || c->t_s < report.first_contact_s) report.first_contact_s = c->t_s;
+        }
+      }
+      previous_nozzle = nozzle;
+      const double pen = deposit.Penetration(nozzle.a_P, nozzle.b_P, nozzle_r);
       if (pen > settings.collision_tolerance_mm) log.Add("collision", "part", "torch", s, si, pen, "penetration_mm", true);
     }
     if (deposit_here) deposit.Deposit(motion[i - 1].p_P, s.p_P, s.bead_width_mm);
     if (progress && (i & 1023u) == 0) progress->Update(total + i);
   }
 
+  if (part_sweep) {
+    report.part_clearance_mm = part_sweep->certified_clearance_mm();
+    report.part_queries = part_sweep->queries();
+    report.poses += part_sweep->poses();
+  }
   report.violations = log.Take();
   report.ok = report.violations.empty();
   report.duration_s = motion.empty() ? 0.0 : motion.back().t_s;

@@ -68,13 +68,6 @@ class Travel {
   std::vector<Vec8> rows_;
 };
 
-// Lower bound on a pair's distance between two queries d_a, d_b whose travel bound between them is M: the distance
-// is at least max(d_a - m, d_b - (M - m)) at travel m.
-double IntervalBound(double d_a, double d_b, double M) {
-  if (std::abs(d_a - d_b) >= M) return std::min(d_a, d_b);
-  return 0.5 * (d_a + d_b - M);
-}
-
 // An interval between two queries of one pair whose bound may still be tightened.
 struct Interval {
   int pair = 0;
@@ -313,6 +306,12 @@ SweepResult Sweeper::Run() {
 }
 
 }  // namespace
+
+// The distance is at least max(d_a - m, d_b - (M - m)) at travel m; the smallest over m in [0, M].
+double IntervalBound(double d_a, double d_b, double M) {
+  if (std::abs(d_a - d_b) >= M) return std::min(d_a, d_b);
+  return 0.5 * (d_a + d_b - M);
+}
 
 SweepResult SweepMotion(const CellModel& cell, const CellCollisionGeometry& geometry,
                         const std::vector<planner::CellSample>& motion, const SweepOptions& options) {

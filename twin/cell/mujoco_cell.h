@@ -73,7 +73,16 @@ struct CellCollisionGeometry {
   std::vector<Link> links;
   std::vector<int> link;                   // per shape: its body's index into links
   std::vector<Eigen::Isometry3d> X_LG;     // per shape: the geom in its body's frame, mm
+  // The torch's gas nozzle (the capsule geom `nozzle`, along z of its frame N): its body's link, its pose in that
+  // body (mm), and the lever bound of each axis over it (as lever_mm), for the nozzle against the deposited part.
+  int nozzle_link = 0;
+  Eigen::Isometry3d X_LN = Eigen::Isometry3d::Identity();
+  Eigen::Matrix<double, 8, 1> nozzle_lever_mm = Eigen::Matrix<double, 8, 1>::Zero();
 };
+
+// The world pose (mm) of each body of `geometry.links` at the eight axes `q` (rad), into `X_WL` (resized), as
+// MuJoCo's forward kinematics places them.
+void LinkPosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q, std::vector<Eigen::Isometry3d>* X_WL);
 
 // The world pose (mm) of each shape of `geometry` at the eight axes `q` (rad), into `X_WG` (resized), from the
 // geometry's own tree: the poses MuJoCo's forward kinematics gives (CellState::ShapePoses after SetJoints, to

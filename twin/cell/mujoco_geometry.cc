@@ -150,6 +150,12 @@ CellCollisionGeometry CellModel::CollisionGeometry() const {
       }
     }
   }
+  const int nozzle = impl_->nozzle;
+  geometry.nozzle_link = m->geom_bodyid[nozzle];
+  geometry.X_LN = pose_of(m->geom_pos + 3 * nozzle, m->geom_quat + 4 * nozzle);
+  for (int j = 0; j < 8; ++j) {
+    if (impl_->jnt[j] >= 0) geometry.nozzle_lever_mm[j] = LeverBound(m, impl_->jnt[j], nozzle);
+  }
   for (int g : geometry.geom) {
     geometry.link.push_back(m->geom_bodyid[g]);
     geometry.X_LG.push_back(pose_of(m->geom_pos + 3 * g, m->geom_quat + 4 * g));
@@ -168,11 +174,11 @@ CellCollisionGeometry CellModel::CollisionGeometry() const {
   return geometry;
 }
 
-void ShapePosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q,
-                  std::vector<Eigen::Isometry3d>* X_WG) {
+void LinkPosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q,
+                 std::vector<Eigen::Isometry3d>* X_WL_out) {
   // mj_kinematics of MuJoCo 2.2 per body: the parent's frame times the body's fixed pose, then each hinge turns the
   // body about its anchor (x_anchor fixed, rotation by q - q0 about the axis in the body frame).
-  thread_local std::vector<Eigen::Isometry3d> X_WL;
+  std::vector<Eigen::Isometry3d>& X_WL = *X_WL_out;
   X_WL.resize(geometry.links.size());
   if (!X_WL.empty()) X_WL[0].setIdentity();
   for (std::size_t b = 1; b < geometry.links.size(); ++b) {
@@ -185,6 +191,12 @@ void ShapePosesAt(const CellCollisionGeometry& geometry, const planner::Joints8&
     }
     X_WL[b] = X;
   }
+}
+
+void ShapePosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q,
+                  std::vector<Eigen::Isometry3d>* X_WG) {
+  thread_local std::vector<Eigen::Isometry3d> X_WL;
+  LinkPosesAt(geometry, q, &X_WL);
   X_WG->resize(geometry.link.size());
   for (std::size_t i = 0; i < geometry.link.size(); ++i) (*X_WG)[i] = X_WL[geometry.link[i]] * geometry.X_LG[i];
 }
