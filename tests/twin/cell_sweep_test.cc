@@ -162,7 +162,7 @@ TEST(CellSweepTest, CertifiedClearanceBoundsTheDistancesAlongTheLines) {
 int PartCollisions(const CheckReport& r, bool* between, double* t_s) {
   int n = 0;
   for (const CheckViolation& v : r.violations) {
-    if (v.kind != "collision" || v.body1 != "part") continue;
+    if (v.kind != ViolationKind::kCollision || v.body1 != "part") continue;
     ++n;
     *between = *between || v.between_samples;
     *t_s = v.t_s;
