@@ -247,7 +247,7 @@ TEST_F(UrdfArmTest, WallIsCheckedEndToEnd) {
   EXPECT_EQ(r.ik, "closed_form");
   EXPECT_EQ(r.robot.source, settings.robot_urdf.string());
   for (const CheckViolation& v : r.violations) {
-    EXPECT_NE(v.kind, "unreachable") << "the wall lies well inside the KR 16's reach";
+    EXPECT_NE(v.kind, ViolationKind::kUnreachable) << "the wall lies well inside the KR 16's reach";
   }
 }
 
