@@ -35,7 +35,7 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
     nlohmann::json j = {{"kind", v.kind},          {"point", v.point},           {"layer", v.layer},
                         {"first_point", v.first_point}, {"last_point", v.last_point}, {"samples", v.samples},
                         {v.unit, Finite(v.value)}};
-    if (v.kind == "collision") {
+    if (v.kind == twin::ViolationKind::kCollision) {
       j["bodies"] = {v.body1, v.body2};
     } else if (!v.joint.empty()) {
       j["joint"] = v.joint;

@@ -147,7 +147,7 @@ void WriteCellPng(const twin::CellModel& cell, const planner::CellKinematics& ki
     marked.push_back(v.body1);
     marked.push_back(v.body2);
     char text[256];
-    std::snprintf(text, sizeof(text), "%s %s%s%s%s  point %d layer %d  %s = %.2f", v.kind.c_str(), v.joint.c_str(),
+    std::snprintf(text, sizeof(text), "%s %s%s%s%s  point %d layer %d  %s = %.2f", NameOf(v.kind).data(), v.joint.c_str(),
                   v.body1.c_str(), v.body2.empty() ? "" : "/", v.body2.c_str(), v.point, v.layer, v.unit.c_str(),
                   v.value);
     caption = text;

@@ -13,6 +13,7 @@
 
 #include "models/bead/speed_height_model.h"
 #include "models/core/enum_names.h"
+#include "models/voids/void_length_network.h"
 
 namespace waam::analysis {
 
@@ -58,7 +59,7 @@ struct FitOptions {
   unsigned long long seed = 1;
   int folds = 5;
   bool leave_one_out = false;
-  std::string angle_order = "as_given";   // as_given | sorted
+  models::AngleOrder angle_order = models::AngleOrder::kAsGiven;
   std::vector<std::string> holdout = {"F7", "H3", "H15"};  // dissertation Table 11; empty = skip
   // distortion: the scan of a part built from `scenario` is matched by the distorted twin of that build
   std::filesystem::path scenario;         // scenario YAML of the nominal build the scan came from

@@ -16,8 +16,6 @@ namespace {
 namespace m = waam::models;
 
 m::VoidNetworkOptions NetworkOptions(const FitOptions& options) {
-  WAAM_THROW_UNLESS(options.angle_order == "as_given" || options.angle_order == "sorted",
-                    "--angle-order '" << options.angle_order << "': must be as_given or sorted");
   m::VoidNetworkOptions n;
   n.hidden = options.hidden;
   n.l2 = options.l2;
@@ -25,7 +23,7 @@ m::VoidNetworkOptions NetworkOptions(const FitOptions& options) {
   n.restarts = options.restarts;
   n.ensemble = options.ensemble;
   n.seed = options.seed;
-  n.angle_order = options.angle_order == "sorted" ? m::AngleOrder::kSortedDescending : m::AngleOrder::kAsGiven;
+  n.angle_order = options.angle_order;
   n.Validate();
   return n;
 }
@@ -150,7 +148,7 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
   for (std::size_t k = 0; k < net_options.hidden.size(); ++k) out << (k ? "-" : "") << net_options.hidden[k];
   out << "), " << net_params << " weights, " << net_options.restarts << " restarts, l2 " << net_options.l2
       << (net_options.bayesian ? " (Bayesian update)" : "") << (net_options.ensemble ? ", ensemble of restarts" : "")
-      << ", angles " << options.angle_order << "\n";
+      << ", angles " << NameOf(options.angle_order) << "\n";
   if (model) {
     out << "model written: " << model->kind() << "\n";
     if (options.kind == VoidModelKind::kBaseline) {

@@ -138,7 +138,7 @@ LayoutScore ScoreLayout(const twin::CheckReport& report, const twin::CellSetting
   s.violating_samples = m.violating_samples;
   for (const twin::CheckViolation& v : report.violations) {
     if (v.sample != report.worst_sample) continue;
-    s.worst = v.kind + " " + v.joint + v.body1 + (v.body2.empty() ? "" : "/") + v.body2;
+    s.worst = std::string(NameOf(v.kind)) + " " + v.joint + v.body1 + (v.body2.empty() ? "" : "/") + v.body2;
     while (!s.worst.empty() && s.worst.back() == ' ') s.worst.pop_back();
     s.worst_unit = v.unit;
     s.worst_value = v.value;

@@ -42,11 +42,10 @@ void WritePlanFiles(const planner::Plan& plan, const fs::path& out_dir, bool lay
 // `waam plan` warns when the beads leave more than this share of the sliced area uncovered, per cent.
 constexpr double kUncoveredWarningPct = 5.0;
 
-nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& result) {
-  const planner::MeshReport& mesh = result.mesh_report;
-  const planner::PathStats& stats = result.stats;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  nlohmann::json mesh_json = {
+namespace {
+
+nlohmann::json MeshToJson(const planner::MeshReport& mesh) {
+  return {
       {"source", mesh.source},
       {"binary_stl", mesh.binary},
       {"facets", mesh.facets},
@@ -58,7 +57,19 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       {"bbox_min_mm", {mesh.bbox_min.x(), mesh.bbox_min.y(), mesh.bbox_min.z()}},
       {"bbox_max_mm", {mesh.bbox_max.x(), mesh.bbox_max.y(), mesh.bbox_max.z()}},
   };
-  nlohmann::json layers = nlohmann::json::array();
+}
+
+// plan.json's layer_details and uncovered: each layer's figures and the slice area the beads leave uncovered
+// (planner/path/coverage.h; null where no layer is measured).
+struct LayersJson {
+  nlohmann::json details = nlohmann::json::array();
+  nlohmann::json uncovered;
+};
+
+LayersJson LayersToJson(const planner::PlanResult& result) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const planner::PathStats& stats = result.stats;
+  LayersJson out;
   double uncovered_sum = 0.0, area_sum = 0.0, uncovered_worst = 0.0;  // over the layers whose coverage is measured
   int worst_layer = -1;
   // Each layer's coverage on its own (each into its own slot, so the sums below do not depend on the thread count).
@@ -74,19 +85,27 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       area_sum += area;
       if (worst_layer < 0 || uncovered_pct > uncovered_worst) uncovered_worst = uncovered_pct, worst_layer = layer.index;
     }
-    layers.push_back({{"index", layer.index},
-                      {"z_mm", layer.z_mm},
-                      {"regions", layer.slice.size()},
-                      {"area_mm2", area},
-                      {"uncovered_pct", uncovered_pct},
-                      {"passes", stats.passes_per_layer[i]},
-                      {"path_elements", stats.path_elements_per_layer[i]},
-                      {"points", layer.points.size()}});
+    out.details.push_back({{"index", layer.index},
+                           {"z_mm", layer.z_mm},
+                           {"regions", layer.slice.size()},
+                           {"area_mm2", area},
+                           {"uncovered_pct", uncovered_pct},
+                           {"passes", stats.passes_per_layer[i]},
+                           {"path_elements", stats.path_elements_per_layer[i]},
+                           {"points", layer.points.size()}});
   }
-  // Weld travel speeds actually planned (they vary per point with bead_model csw), mm/min.
+  out.uncovered = {{"pct", area_sum > 0.0 ? 100.0 * uncovered_sum / area_sum : kNaN},
+                   {"worst_layer_pct", worst_layer >= 0 ? uncovered_worst : kNaN},
+                   {"worst_layer", worst_layer}};
+  return out;
+}
+
+// Weld travel speeds actually planned (they vary per point with bead_model csw), [min, max] mm/min; [0, 0] without
+// a weld point.
+nlohmann::json WeldSpeedRange(const planner::Plan& plan) {
   double speed_lo = 0.0, speed_hi = 0.0;
   bool any_weld = false;
-  for (const planner::LayerPath& layer : result.plan.layers) {
+  for (const planner::LayerPath& layer : plan.layers) {
     for (const planner::PathPoint& point : layer.points) {
       if (!point.weld) continue;
       const double v = point.speed_mm_s * 60.0;
@@ -95,8 +114,12 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       any_weld = true;
     }
   }
+  return {speed_lo, speed_hi};
+}
+
+nlohmann::json SubVolumesToJson(const std::vector<planner::SubVolumeReport>& subs) {
   nlohmann::json sub_volumes = nlohmann::json::array();
-  for (const planner::SubVolumeReport& sub : result.sub_volumes) {
+  for (const planner::SubVolumeReport& sub : subs) {
     sub_volumes.push_back({{"name", sub.name},
                            {"direction", {sub.direction.x(), sub.direction.y(), sub.direction.z()}},
                            {"first_layer", sub.first_layer},
@@ -107,7 +130,11 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
                            {"centroid_lean_deg", sub.centroid_lean_deg},
                            {"unwelded_mm3", sub.unwelded_mm3}});
   }
-  // Junction void filling (003 sec. 4.4): corrected corners and the mean shift per junction class.
+  return sub_volumes;
+}
+
+// Junction void filling (003 sec. 4.4): corrected corners and the mean shift per junction class.
+nlohmann::json VoidFillingToJson(const Scenario& scenario, const planner::PlanResult& result) {
   std::map<std::string, std::pair<int, double>> by_class;
   for (const planner::CornerCorrection& c : result.void_corrections) {
     by_class[c.junction_class].first += 1;
@@ -117,13 +144,20 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
   for (const auto& [name, count_sum] : by_class) {
     classes[name] = {{"corners", count_sum.first}, {"mean_shift_mm", count_sum.second / count_sum.first}};
   }
-  const nlohmann::json void_filling = {{"mode", scenario.path.void_filling.mode},
-                                       {"corrected_corners", result.void_corrections.size()},
-                                       {"classes", classes}};
+  return {{"mode", scenario.path.void_filling.mode},
+          {"corrected_corners", result.void_corrections.size()},
+          {"classes", classes}};
+}
+
+}  // namespace
+
+nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& result) {
+  const planner::PathStats& stats = result.stats;
+  LayersJson layers = LayersToJson(result);
   return {
       {"scenario", scenario.name},
       {"slicing", scenario.slicing.type},
-      {"weld_speed_range_mm_min", {speed_lo, speed_hi}},
+      {"weld_speed_range_mm_min", WeldSpeedRange(result.plan)},
       {"pattern", scenario.path.pattern},
       {"overlap_model", scenario.path.overlap_model},
       {"bead_model", scenario.process.bead_model},
@@ -140,7 +174,7 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       {"speed_min_mm_min", result.speed_min_mm_min},
       {"speed_max_mm_min", result.speed_max_mm_min},
       {"layers_out_of_range", result.layers_out_of_range},
-      {"mesh", mesh_json},
+      {"mesh", MeshToJson(result.mesh_report)},
       {"layers", stats.layers},
       {"passes", stats.passes},
       {"passes_per_layer", stats.passes_per_layer},
@@ -155,15 +189,13 @@ nlohmann::json PlanToJson(const Scenario& scenario, const planner::PlanResult& r
       // could not split, planned with the hybrid pattern); empty when everything went as asked.
       {"warnings", result.warnings},
       // Slice area the planned beads leave uncovered (planner/path/coverage.h); null when no layer is measured.
-      {"uncovered", {{"pct", area_sum > 0.0 ? 100.0 * uncovered_sum / area_sum : kNaN},
-                     {"worst_layer_pct", worst_layer >= 0 ? uncovered_worst : kNaN},
-                     {"worst_layer", worst_layer}}},
+      {"uncovered", std::move(layers.uncovered)},
       {"retract", {{"retract_mm", scenario.path.retract_mm},
                    {"travels", result.retract.travels},
                    {"over_the_part", result.retract.via_top}}},
-      {"void_filling", void_filling},
-      {"layer_details", layers},
-      {"sub_volumes", sub_volumes},
+      {"void_filling", VoidFillingToJson(scenario, result)},
+      {"layer_details", std::move(layers.details)},
+      {"sub_volumes", SubVolumesToJson(result.sub_volumes)},
   };
 }
 

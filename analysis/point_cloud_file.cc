@@ -81,11 +81,14 @@ double ReadBinary(const char* p, const std::string& t) {
   return get(double{});
 }
 
-std::vector<Eigen::Vector3d> ReadPly(const std::filesystem::path& path) {
-  const std::string data = ReadFile(path);
+// A PLY file's bytes read line by line (the header, an ASCII body) or as binary values, with the line count.
+struct PlyText {
+  std::string data;
   std::size_t pos = 0;
   std::size_t line_no = 0;
-  auto next_line = [&](std::string* line) {
+
+  // The next line without its end ('\n' or "\r\n"); false at the end of the data.
+  bool NextLine(std::string* line) {
     if (pos >= data.size()) return false;
     std::size_t end = data.find('\n', pos);
     if (end == std::string::npos) end = data.size();
@@ -94,52 +97,68 @@ std::vector<Eigen::Vector3d> ReadPly(const std::filesystem::path& path) {
     pos = end + 1;
     ++line_no;
     return true;
-  };
+  }
+};
+
+struct PlyElement {
+  std::string name;
+  std::size_t count = 0;
+  std::vector<PlyProperty> props;
+};
+
+struct PlyHeader {
+  std::string format;  // ascii | binary_little_endian
+  std::vector<PlyElement> elements;
+};
+
+// `property <type> <name>` or `property list <count type> <item type> <name>`, after the word `property`.
+PlyProperty ReadPlyProperty(std::istringstream& f, const std::string& where) {
+  PlyProperty p;
+  std::string t;
+  f >> t;
+  if (t == "list") {
+    std::string count_type, item_type;
+    f >> count_type >> item_type >> p.name;
+    WAAM_THROW_UNLESS(TypeSize(count_type) > 0 && TypeSize(item_type) > 0,
+                      where << ": unknown list type '" << count_type << " " << item_type << "'");
+    p.list = true;
+    p.type = count_type + " " + item_type;
+  } else {
+    WAAM_THROW_UNLESS(TypeSize(t) > 0, where << ": unknown property type '" << t << "'");
+    f >> p.name;
+    p.type = t;
+  }
+  return p;
+}
+
+// The header from `ply` to `end_header`: the format and the elements with their properties.
+PlyHeader ReadPlyHeader(PlyText& text, const std::filesystem::path& path) {
   std::string line;
-  WAAM_THROW_UNLESS(next_line(&line) && line == "ply", path.string() << ":1: not a PLY file (first line must be 'ply')");
-  std::string format;
-  struct Element {
-    std::string name;
-    std::size_t count = 0;
-    std::vector<PlyProperty> props;
-  };
-  std::vector<Element> elements;
+  WAAM_THROW_UNLESS(text.NextLine(&line) && line == "ply",
+                    path.string() << ":1: not a PLY file (first line must be 'ply')");
+  PlyHeader header;
   bool header_done = false;
-  while (next_line(&line)) {
+  while (text.NextLine(&line)) {
     std::istringstream f(line);
     std::string word;
     f >> word;
-    const std::string where = path.string() + ":" + std::to_string(line_no);
+    const std::string where = path.string() + ":" + std::to_string(text.line_no);
     if (word == "format") {
       std::string version;
-      f >> format >> version;
-      WAAM_THROW_UNLESS(format == "ascii" || format == "binary_little_endian",
-                        where << ": PLY format '" << format << "' not supported: must be ascii or binary_little_endian");
+      f >> header.format >> version;
+      WAAM_THROW_UNLESS(header.format == "ascii" || header.format == "binary_little_endian",
+                        where << ": PLY format '" << header.format
+                              << "' not supported: must be ascii or binary_little_endian");
     } else if (word == "comment" || word == "obj_info" || word.empty()) {
     } else if (word == "element") {
-      Element e;
+      PlyElement e;
       long long count = -1;
       WAAM_THROW_UNLESS(f >> e.name >> count && count >= 0, where << ": expected 'element <name> <count>'");
       e.count = static_cast<std::size_t>(count);
-      elements.push_back(e);
+      header.elements.push_back(e);
     } else if (word == "property") {
-      WAAM_THROW_UNLESS(!elements.empty(), where << ": property before any element");
-      PlyProperty p;
-      std::string t;
-      f >> t;
-      if (t == "list") {
-        std::string count_type, item_type;
-        f >> count_type >> item_type >> p.name;
-        WAAM_THROW_UNLESS(TypeSize(count_type) > 0 && TypeSize(item_type) > 0,
-                          where << ": unknown list type '" << count_type << " " << item_type << "'");
-        p.list = true;
-        p.type = count_type + " " + item_type;
-      } else {
-        WAAM_THROW_UNLESS(TypeSize(t) > 0, where << ": unknown property type '" << t << "'");
-        f >> p.name;
-        p.type = t;
-      }
-      elements.back().props.push_back(p);
+      WAAM_THROW_UNLESS(!header.elements.empty(), where << ": property before any element");
+      header.elements.back().props.push_back(ReadPlyProperty(f, where));
     } else if (word == "end_header") {
       header_done = true;
       break;
@@ -148,21 +167,94 @@ std::vector<Eigen::Vector3d> ReadPly(const std::filesystem::path& path) {
     }
   }
   WAAM_THROW_UNLESS(header_done, path.string() << ": PLY header has no end_header");
-  WAAM_THROW_UNLESS(!format.empty(), path.string() << ": PLY header has no format line");
+  WAAM_THROW_UNLESS(!header.format.empty(), path.string() << ": PLY header has no format line");
+  return header;
+}
+
+// The indices of an element's x, y and z properties (-1: none); a vertex element must have all three as scalars.
+struct PlyXyz {
+  int ix = -1, iy = -1, iz = -1;
+  // Stores `v`, the value of property k, into `value` when k is x, y or z.
+  void Keep(std::size_t k, double v, double value[3]) const {
+    if (static_cast<int>(k) == ix) value[0] = v;
+    if (static_cast<int>(k) == iy) value[1] = v;
+    if (static_cast<int>(k) == iz) value[2] = v;
+  }
+};
+
+PlyXyz FindXyz(const PlyElement& e) {
+  PlyXyz xyz;
+  for (std::size_t k = 0; k < e.props.size(); ++k) {
+    if (e.props[k].name == "x") xyz.ix = static_cast<int>(k);
+    if (e.props[k].name == "y") xyz.iy = static_cast<int>(k);
+    if (e.props[k].name == "z") xyz.iz = static_cast<int>(k);
+  }
+  return xyz;
+}
+
+// Item n of element e in an ASCII body: one line; x, y, z (where e has them) into `value`.
+void ReadAsciiItem(PlyText& text, const PlyElement& e, const PlyXyz& xyz, std::size_t n,
+                   const std::filesystem::path& path, double value[3]) {
+  std::string line;
+  WAAM_THROW_UNLESS(text.NextLine(&line), path.string() << ": PLY ends in element " << e.name << " " << n << " of "
+                                                        << e.count << " (line " << text.line_no + 1 << ")");
+  std::istringstream f(line);
+  for (std::size_t k = 0; k < e.props.size(); ++k) {
+    double v = 0;
+    if (e.props[k].list) {
+      long long count = 0;
+      WAAM_THROW_UNLESS(f >> count && count >= 0, path.string() << ":" << text.line_no << ": bad list count");
+      for (long long c = 0; c < count; ++c) {
+        WAAM_THROW_UNLESS(f >> v, path.string() << ":" << text.line_no << ": list shorter than its count");
+      }
+      continue;
+    }
+    WAAM_THROW_UNLESS(f >> v, path.string() << ":" << text.line_no << ": expected " << e.props.size()
+                                            << " values of element " << e.name << ", got '" << line << "'");
+    xyz.Keep(k, v, value);
+  }
+}
+
+// Item n of element e in a binary little-endian body; x, y, z (where e has them) into `value`.
+void ReadBinaryItem(PlyText& text, const PlyElement& e, const PlyXyz& xyz, std::size_t n,
+                    const std::filesystem::path& path, double value[3]) {
+  const std::string& data = text.data;
+  std::size_t& pos = text.pos;
+  for (std::size_t k = 0; k < e.props.size(); ++k) {
+    const PlyProperty& p = e.props[k];
+    if (p.list) {
+      const std::string count_type = p.type.substr(0, p.type.find(' '));
+      const std::string item_type = p.type.substr(p.type.find(' ') + 1);
+      WAAM_THROW_UNLESS(pos + TypeSize(count_type) <= data.size(),
+                        path.string() << ": binary PLY truncated in element " << e.name << " " << n);
+      const double count = ReadBinary(data.data() + pos, count_type);
+      pos += TypeSize(count_type);
+      WAAM_THROW_UNLESS(count >= 0 && pos + count * TypeSize(item_type) <= data.size(),
+                        path.string() << ": binary PLY truncated in element " << e.name << " " << n);
+      pos += static_cast<std::size_t>(count) * TypeSize(item_type);
+      continue;
+    }
+    WAAM_THROW_UNLESS(pos + TypeSize(p.type) <= data.size(),
+                      path.string() << ": binary PLY truncated at " << e.name << " " << n << " of " << e.count);
+    const double v = ReadBinary(data.data() + pos, p.type);
+    pos += TypeSize(p.type);
+    xyz.Keep(k, v, value);
+  }
+}
+
+std::vector<Eigen::Vector3d> ReadPly(const std::filesystem::path& path) {
+  PlyText text{ReadFile(path)};
+  const PlyHeader header = ReadPlyHeader(text, path);
+  const bool ascii = header.format == "ascii";
   std::vector<Eigen::Vector3d> points;
   bool found_vertex = false;
-  for (const Element& e : elements) {
-    int ix = -1, iy = -1, iz = -1;
-    for (std::size_t k = 0; k < e.props.size(); ++k) {
-      if (e.props[k].name == "x") ix = static_cast<int>(k);
-      if (e.props[k].name == "y") iy = static_cast<int>(k);
-      if (e.props[k].name == "z") iz = static_cast<int>(k);
-    }
+  for (const PlyElement& e : header.elements) {
+    const PlyXyz xyz = FindXyz(e);
     const bool is_vertex = e.name == "vertex";
     if (is_vertex) {
       found_vertex = true;
-      WAAM_THROW_UNLESS(ix >= 0 && iy >= 0 && iz >= 0 && !e.props[ix].list && !e.props[iy].list &&
-                            !e.props[iz].list,
+      WAAM_THROW_UNLESS(xyz.ix >= 0 && xyz.iy >= 0 && xyz.iz >= 0 && !e.props[xyz.ix].list &&
+                            !e.props[xyz.iy].list && !e.props[xyz.iz].list,
                         path.string() << ": PLY element vertex needs scalar properties x, y and z");
       WAAM_THROW_UNLESS(e.count <= kMaxScanPoints,
                         path.string() << ": PLY declares " << e.count << " vertices, more than " << kMaxScanPoints);
@@ -170,60 +262,15 @@ std::vector<Eigen::Vector3d> ReadPly(const std::filesystem::path& path) {
     }
     for (std::size_t n = 0; n < e.count; ++n) {
       double value[3] = {0, 0, 0};
-      if (format == "ascii") {
-        WAAM_THROW_UNLESS(next_line(&line), path.string() << ": PLY ends in element " << e.name << " " << n << " of "
-                                                          << e.count << " (line " << line_no + 1 << ")");
-        std::istringstream f(line);
-        for (std::size_t k = 0; k < e.props.size(); ++k) {
-          double v = 0;
-          if (e.props[k].list) {
-            long long count = 0;
-            WAAM_THROW_UNLESS(f >> count && count >= 0, path.string() << ":" << line_no << ": bad list count");
-            for (long long c = 0; c < count; ++c) {
-              WAAM_THROW_UNLESS(f >> v, path.string() << ":" << line_no << ": list shorter than its count");
-            }
-            continue;
-          }
-          WAAM_THROW_UNLESS(f >> v, path.string() << ":" << line_no << ": expected " << e.props.size()
-                                                  << " values of element " << e.name << ", got '" << line << "'");
-          if (static_cast<int>(k) == ix) value[0] = v;
-          if (static_cast<int>(k) == iy) value[1] = v;
-          if (static_cast<int>(k) == iz) value[2] = v;
-        }
-        if (is_vertex) {
-          const Eigen::Vector3d p(value[0], value[1], value[2]);
-          CheckPoint(p, path, "line " + std::to_string(line_no));
-          points.push_back(p);
-        }
+      if (ascii) {
+        ReadAsciiItem(text, e, xyz, n, path, value);
       } else {
-        for (std::size_t k = 0; k < e.props.size(); ++k) {
-          const PlyProperty& p = e.props[k];
-          if (p.list) {
-            const std::string count_type = p.type.substr(0, p.type.find(' '));
-            const std::string item_type = p.type.substr(p.type.find(' ') + 1);
-            WAAM_THROW_UNLESS(pos + TypeSize(count_type) <= data.size(),
-                              path.string() << ": binary PLY truncated in element " << e.name << " " << n);
-            const double count = ReadBinary(data.data() + pos, count_type);
-            pos += TypeSize(count_type);
-            WAAM_THROW_UNLESS(count >= 0 && pos + count * TypeSize(item_type) <= data.size(),
-                              path.string() << ": binary PLY truncated in element " << e.name << " " << n);
-            pos += static_cast<std::size_t>(count) * TypeSize(item_type);
-            continue;
-          }
-          WAAM_THROW_UNLESS(pos + TypeSize(p.type) <= data.size(),
-                            path.string() << ": binary PLY truncated at " << e.name << " " << n << " of " << e.count);
-          const double v = ReadBinary(data.data() + pos, p.type);
-          pos += TypeSize(p.type);
-          if (static_cast<int>(k) == ix) value[0] = v;
-          if (static_cast<int>(k) == iy) value[1] = v;
-          if (static_cast<int>(k) == iz) value[2] = v;
-        }
-        if (is_vertex) {
-          const Eigen::Vector3d p(value[0], value[1], value[2]);
-          CheckPoint(p, path, "vertex " + std::to_string(n));
-          points.push_back(p);
-        }
+        ReadBinaryItem(text, e, xyz, n, path, value);
       }
+      if (!is_vertex) continue;
+      const Eigen::Vector3d p(value[0], value[1], value[2]);
+      CheckPoint(p, path, ascii ? "line " + std::to_string(text.line_no) : "vertex " + std::to_string(n));
+      points.push_back(p);
     }
   }
   WAAM_THROW_UNLESS(found_vertex && !points.empty(), path.string() << ": PLY has no vertex element or no vertices");

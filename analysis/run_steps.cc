@@ -75,7 +75,10 @@ StepOutcome RunCheckStep(RunContext& context, const fs::path& step_dir) {
                                            "/max_joint_speed_ratio", "/min_j5_deg", "/max_torch_tilt_deg",
                                            "/duration_s"});
   nlohmann::json kinds = nlohmann::json::object();
-  for (const twin::CheckViolation& v : report.violations) kinds[v.kind] = kinds.value(v.kind, 0) + 1;
+  for (const twin::CheckViolation& v : report.violations) {
+    const std::string kind(NameOf(v.kind));
+    kinds[kind] = kinds.value(kind, 0) + 1;
+  }
   outcome.metrics["violations_by_kind"] = kinds;
   context.results["check"] = std::move(document);
   return outcome;

@@ -88,7 +88,14 @@ YamlMap ScenarioTop(YAML::Node root, const std::filesystem::path& file, const st
 
 void LoadScenarioFiles(Scenario* scenario) {
   planner::PartSpec& part = scenario->part;
-  if (!part.mesh_path.empty()) part.mesh_data = std::make_shared<const std::string>(ReadFile(part.mesh_path));
+  if (!part.mesh_path.empty()) {
+    std::error_code ec;
+    WAAM_THROW_UNLESS(std::filesystem::exists(part.mesh_path, ec),
+                      part.mesh_where << ": mesh file " << part.mesh_path.string() << " not found");
+    WAAM_THROW_UNLESS(!std::filesystem::is_directory(part.mesh_path, ec),
+                      part.mesh_where << ": " << part.mesh_path.string() << " is a directory, expected an STL file");
+    part.mesh_data = std::make_shared<const std::string>(ReadFile(part.mesh_path));
+  }
   planner::ProcessSettings& process = scenario->process;
   process.csw = LoadModel<models::CswModel>(process.csw_model, "csw");
   process.speed_height = LoadModel<models::SpeedHeightModel>(process.speed_height_model, "speed_height");
@@ -139,6 +146,9 @@ Scenario ParseScenario(YamlMap& top) {
   Scenario scenario;
   static_cast<planner::PlannerSections&>(scenario) = planner::ParsePlannerSections(top);
   const std::filesystem::path dir = scenario.dir;
+  std::error_code ec;
+  WAAM_THROW_UNLESS(scenario.base_dir_where.empty() || std::filesystem::is_directory(dir, ec),
+                    scenario.base_dir_where << ": folder " << dir.string() << " not found");
   scenario.cell = twin::ParseCellSection(top, dir);
   twin::ParseSimulationSection(top, &scenario.simulation, dir);
   internal::ParseRunSection(top, &scenario.run);
@@ -149,6 +159,7 @@ Scenario ParseScenario(YamlMap& top) {
   // The CSW radius clamp is one rule for the planner's speed and the twin's bead width (simulation section).
   scenario.process.csw_min_radius_mm = scenario.simulation.csw_min_radius_mm;
   top.CheckNoUnknownKeys();
+  CheckNamedFiles(top.named_files());  // the sections name files; the planner's and the twin's parsers open none
   internal::CheckThermalScenario(scenario.process, scenario.thermal);
   internal::LoadThermalMaterials(dir, &scenario.thermal);
   internal::LoadThermalShape(dir, &scenario.thermal);

@@ -25,7 +25,7 @@
 namespace waam::analysis {
 namespace fs = std::filesystem;
 
-std::vector<std::string> SimulationNotes(const Scenario& scenario, const planner::PlanResult& planned) {
+std::vector<std::string> SimulationNotes(const planner::PlanResult& planned) {
   std::vector<std::string> notes;
   char text[512];
   // A layer of beads grows its bead area over the bead spacing (layer_growth_mm, 003 eq. 3.3-3.4); when the slicer
@@ -116,7 +116,7 @@ nlohmann::json SimulationToJson(const Scenario& scenario, const planner::PlanRes
         {"interior_columns", m.boundary_lag.interior_columns},
         {"boundary_columns", m.boundary_lag.boundary_columns}}},
       {"not_applicable", not_applicable},
-      {"notes", SimulationNotes(scenario, planned)},
+      {"notes", SimulationNotes(planned)},
       {"performance",
        {{"deposition_s", m.deposition_s},
         {"bead_mm_per_s", m.weld_length_mm / seconds},

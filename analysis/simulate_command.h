@@ -57,7 +57,7 @@ nlohmann::json SimulationToJson(const Scenario& scenario, const planner::PlanRes
 // The notes simulate.json and the bench report give where the scenario's own settings explain a large deviation:
 // layers planned thinner or thicker than a layer of beads grows (slicing.layer_height_mm against the bead laid),
 // and walls thinner than the bead (path.bead_width_mm against the narrowest sliced wall). Empty when neither holds.
-std::vector<std::string> SimulationNotes(const Scenario& scenario, const planner::PlanResult& planned);
+std::vector<std::string> SimulationNotes(const planner::PlanResult& planned);
 
 // Writes the voxel grid and the top height map to HDF5: /voxels/{ijk (N x 3 int32), bead (N uint32),
 // layer (N int32), time_s (N float32)}, /top_height_mm (ny x nx float32, NaN where empty), /beads table,

@@ -116,17 +116,9 @@ std::vector<std::size_t> FrameSamples(const twin::CheckReport& report, std::size
   return picked;
 }
 
-}  // namespace
-
-nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellModel& cell,
-                          const planner::CellKinematics& kin, const planner::Plan& plan,
-                          const planner::TriangleMesh* target, const twin::CheckReport& report,
-                          const ViewerBudget& budget, ViewerSummary* summary) {
-  const std::vector<twin::CellBody> bodies = cell.Bodies();
-  std::size_t stride = 1;
-  const std::vector<std::size_t> frames = FrameSamples(report, budget.max_frames, &stride);
-
-  // Body and part poses, TCP, time, layer and arc state of every frame.
+// The frames' body and part poses, TCP, time, layer and arc state.
+nlohmann::json FramesJson(const twin::CellModel& cell, const planner::CellKinematics& kin,
+                          const twin::CheckReport& report, const std::vector<std::size_t>& frames) {
   std::vector<float> t, body_poses, part_poses, tcp_W;
   std::vector<std::int32_t> frame_layer;
   std::vector<std::uint8_t> frame_weld;
@@ -142,7 +134,23 @@ nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellMode
     frame_layer.push_back(s.layer);
     frame_weld.push_back(s.weld ? 1 : 0);
   }
+  return {{"count", frames.size()},     {"t", Pack(t)},         {"body_poses", Pack(body_poses)},
+          {"part_poses", Pack(part_poses)}, {"tcp_W", Pack(tcp_W)}, {"layer", Pack(frame_layer)},
+          {"weld", Pack(frame_weld)}};
+}
 
+// What the page's path holds, for the sampling note and the summary.
+struct PathCounts {
+  std::size_t total_points = 0;  // plan points
+  std::size_t path_points = 0;   // kept
+  std::size_t stride = 1;        // every stride-th point kept (and each layer's first and last)
+  std::size_t beads = 0;         // kept points that end a bead segment
+};
+
+// The path and its beads in the part frame: every k-th point, and each layer's first and last, with the time the
+// torch reaches each.
+nlohmann::json PathJson(const planner::Plan& plan, const twin::CheckReport& report, const ViewerBudget& budget,
+                        PathCounts* counts) {
   // When the torch reaches each plan point (the last sample of the move ending there), s.
   std::size_t total_points = 0;
   for (const planner::LayerPath& layer : plan.layers) total_points += layer.points.size();
@@ -153,7 +161,6 @@ nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellMode
   double last = 0.0;
   for (double& r : reached) r = r < 0.0 ? last : (last = r);
 
-  // The path and its beads in the part frame: every k-th point, and each layer's first and last.
   const std::size_t path_stride = std::max<std::size_t>(
       1, (total_points + budget.max_path_points - 1) / std::max<std::size_t>(1, budget.max_path_points));
   std::vector<float> p_P, up_P, width, height, reach_t;
@@ -179,35 +186,14 @@ nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellMode
       weld_since_kept = false;
     }
   }
-  const std::size_t path_points = weld.size();
+  *counts = {total_points, weld.size(), path_stride, beads};
+  return {{"count", weld.size()},  {"p_P", Pack(p_P)},  {"up_P", Pack(up_P)},      {"width", Pack(width)},
+          {"height", Pack(height)}, {"t", Pack(reach_t)}, {"layer", Pack(layer_of)}, {"weld", Pack(weld)}};
+}
 
-  nlohmann::json data = {
-      {"scenario", scenario_name},
-      {"samples", report.motion.size()},
-      {"duration_s", report.duration_s},
-      {"layers", plan.layers.size()},
-      {"bodies", BodiesJson(bodies)},
-      {"frames",
-       {{"count", frames.size()},
-        {"t", Pack(t)},
-        {"body_poses", Pack(body_poses)},
-        {"part_poses", Pack(part_poses)},
-        {"tcp_W", Pack(tcp_W)},
-        {"layer", Pack(frame_layer)},
-        {"weld", Pack(frame_weld)}}},
-      {"path",
-       {{"count", path_points},
-        {"p_P", Pack(p_P)},
-        {"up_P", Pack(up_P)},
-        {"width", Pack(width)},
-        {"height", Pack(height)},
-        {"t", Pack(reach_t)},
-        {"layer", Pack(layer_of)},
-        {"weld", Pack(weld)}}},
-  };
-
-  // The target as a ghost in the part frame, unless it is too large for the page.
-  std::string target_note = "no target mesh";
+// The target as a ghost in the part frame into data["target"], unless it is too large for the page; the note
+// saying which.
+std::string AddTarget(const planner::TriangleMesh* target, const ViewerBudget& budget, nlohmann::json* data) {
   if (target && !target->facets.empty() && target->facets.size() <= budget.max_target_facets) {
     std::vector<float> v;
     for (const Eigen::Vector3d& p : target->vertices) v.insert(v.end(), {float(p.x()), float(p.y()), float(p.z())});
@@ -215,23 +201,28 @@ nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellMode
     for (const std::array<int, 3>& t3 : target->facets) {
       f.insert(f.end(), {std::uint32_t(t3[0]), std::uint32_t(t3[1]), std::uint32_t(t3[2])});
     }
-    data["target"] = {{"vertices", Pack(v)}, {"triangles", Pack(f)}};
-    target_note = "target mesh: " + std::to_string(target->facets.size()) + " facets";
-  } else if (target && !target->facets.empty()) {
-    target_note = "target mesh left out (" + std::to_string(target->facets.size()) + " facets, over the budget of " +
-                  std::to_string(budget.max_target_facets) + ")";
+    (*data)["target"] = {{"vertices", Pack(v)}, {"triangles", Pack(f)}};
+    return "target mesh: " + std::to_string(target->facets.size()) + " facets";
   }
+  if (target && !target->facets.empty()) {
+    return "target mesh left out (" + std::to_string(target->facets.size()) + " facets, over the budget of " +
+           std::to_string(budget.max_target_facets) + ")";
+  }
+  return "no target mesh";
+}
 
-  // Violations (those check.json lists) with the frame of their worst sample and the bodies to highlight.
+// Violations (those check.json lists) with the frame of their worst sample and the bodies to highlight.
+nlohmann::json ViolationsJson(const twin::CheckReport& report, const std::vector<twin::CellBody>& bodies,
+                              const std::vector<std::size_t>& frames) {
   nlohmann::json violations = nlohmann::json::array();
   for (std::size_t i = 0; i < report.violations.size() && i < 1000; ++i) {
     const twin::CheckViolation& v = report.violations[i];
     if (v.sample < 0 || std::size_t(v.sample) >= report.motion.size()) continue;
     const planner::CellSample& s = report.motion[v.sample];
+    const bool collision = v.kind == twin::ViolationKind::kCollision;
     nlohmann::json highlight = nlohmann::json::array();
     for (const twin::CellBody& b : bodies) {
-      const bool hit = v.kind == "collision" ? (b.name == v.body1 || b.name == v.body2)
-                                             : (!v.joint.empty() && b.joint == v.joint);
+      const bool hit = collision ? (b.name == v.body1 || b.name == v.body2) : (!v.joint.empty() && b.joint == v.joint);
       if (hit) highlight.push_back(b.name);
     }
     const auto frame = std::lower_bound(frames.begin(), frames.end(), std::size_t(v.sample)) - frames.begin();
@@ -239,7 +230,7 @@ nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellMode
                           {"layer", v.layer},
                           {"point", v.point},
                           {"joint", v.joint},
-                          {"bodies", v.kind == "collision" ? nlohmann::json{v.body1, v.body2} : nlohmann::json::array()},
+                          {"bodies", collision ? nlohmann::json{v.body1, v.body2} : nlohmann::json::array()},
                           {"value", std::isfinite(v.value) ? v.value : 0.0},
                           {"unit", v.unit},
                           {"t_s", s.t_s},
@@ -247,12 +238,36 @@ nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellMode
                           {"p_P", {s.p_P.x(), s.p_P.y(), s.p_P.z()}},
                           {"highlight", highlight}});
   }
+  return violations;
+}
+
+}  // namespace
+
+nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellModel& cell,
+                          const planner::CellKinematics& kin, const planner::Plan& plan,
+                          const planner::TriangleMesh* target, const twin::CheckReport& report,
+                          const ViewerBudget& budget, ViewerSummary* summary) {
+  const std::vector<twin::CellBody> bodies = cell.Bodies();
+  std::size_t stride = 1;
+  const std::vector<std::size_t> frames = FrameSamples(report, budget.max_frames, &stride);
+  PathCounts path;
+  nlohmann::json data = {
+      {"scenario", scenario_name},
+      {"samples", report.motion.size()},
+      {"duration_s", report.duration_s},
+      {"layers", plan.layers.size()},
+      {"bodies", BodiesJson(bodies)},
+      {"frames", FramesJson(cell, kin, report, frames)},
+      {"path", PathJson(plan, report, budget, &path)},
+  };
+  const std::string target_note = AddTarget(target, budget, &data);
+  const nlohmann::json violations = ViolationsJson(report, bodies, frames);
   data["violations"] = violations;
 
   std::ostringstream sampling;
   sampling << frames.size() << " frames of " << report.motion.size() << " checked samples (" << OneIn(stride)
-           << ", the last one and each violation's worst); path: " << path_points << " of " << total_points
-           << " plan points (" << OneIn(path_stride) << " and each layer's ends), " << beads
+           << ", the last one and each violation's worst); path: " << path.path_points << " of " << path.total_points
+           << " plan points (" << OneIn(path.stride) << " and each layer's ends), " << path.beads
            << " planned bead segments; " << target_note;
   data["sampling"] = sampling.str();
 
@@ -260,8 +275,8 @@ nlohmann::json ViewerData(const std::string& scenario_name, const twin::CellMode
     summary->frames = frames.size();
     summary->bodies = bodies.size();
     summary->violations = violations.size();
-    summary->path_points = path_points;
-    summary->beads = beads;
+    summary->path_points = path.path_points;
+    summary->beads = path.beads;
   }
   return data;
 }

@@ -48,7 +48,7 @@ void AddCheckCommand(CLI::App& app, CommandRunner* runner) {
                 << (options->out_dir / "check.json").string() << "\n";
       for (std::size_t i = 0; i < report.violations.size() && i < 10; ++i) {
         const twin::CheckViolation& v = report.violations[i];
-        std::cout << "  " << v.kind << " " << v.joint << v.body1 << (v.body2.empty() ? "" : "/") << v.body2
+        std::cout << "  " << NameOf(v.kind) << " " << v.joint << v.body1 << (v.body2.empty() ? "" : "/") << v.body2
                   << " at point " << v.point << " (layer " << v.layer << "): " << v.unit << " = " << v.value << "\n";
       }
       return report.ok ? kExitOk : kExitViolations;

@@ -1,4 +1,5 @@
 // `waam generate`: writes a procedural test part (box, plate with holes, Ding 2014 shapes, rib-web...) as binary STL.
+#include <algorithm>
 #include <charconv>
 #include <iostream>
 #include <memory>
@@ -14,16 +15,27 @@
 namespace waam::app {
 namespace {
 
-// Parses "key=v1,v2,..." into (key, values). Throws InputError naming the option for anything else.
+// Parses "key=v1,v2,..." (or "key=v1 v2 ...": commas or spaces, like every list option) into (key, values).
+// Throws InputError naming the option for anything else.
 std::pair<std::string, std::vector<double>> ParseParam(const std::string& text) {
   const std::size_t eq = text.find('=');
   WAAM_THROW_UNLESS(eq != std::string::npos && eq > 0 && eq + 1 < text.size(),
                     "waam generate --param '" << text << "': expected key=v1[,v2,...], e.g. size_mm=100,60,40");
+  // One comma with any spaces round it, or spaces alone, separate two values.
+  std::string list;
+  for (std::size_t k = eq + 1; k < text.size(); ++k) {
+    if (text[k] != ' ') {
+      list += text[k];
+    } else if (!list.empty() && list.back() != ',' && k + 1 < text.size() && text[k + 1] != ' ' &&
+               text[k + 1] != ',') {
+      list += ',';
+    }
+  }
   std::vector<double> values;
-  std::size_t start = eq + 1;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string item = list.substr(start, comma - start);
     double value = 0.0;
     const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
     WAAM_THROW_UNLESS(!item.empty() && ec == std::errc() && end == item.data() + item.size(),
@@ -52,7 +64,7 @@ void AddGenerateCommand(CLI::App& app, CommandRunner* runner) {
       "Types, parameters and defaults:\n" +
           planner::GeneratorHelp());
   command->add_option("type", options->type, "generator type (see the list above)")->required();
-  command->add_option("--param", options->params, "a parameter as key=v1[,v2,...] (repeatable), e.g. size_mm=100,60,40")
+  command->add_option("--param", options->params, "a parameter as key=v1[,v2,...] (repeatable), e.g. size_mm=100,60,40 or \"size_mm=100 60 40\"")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command->add_option("-o,--output", options->output, "STL file to write (written atomically)")->required();

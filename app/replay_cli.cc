@@ -2,6 +2,8 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "analysis/replay_command.h"
 #include "app/commands.h"
@@ -29,14 +31,19 @@ CLI::App* AddThermalReplayCommand(CLI::App& thermal, CommandRunner* runner) {
   command->add_option("scenario", options->scenario, "Scenario YAML with thermal:, process.arc and replay:")
       ->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
-  command->add_option("--windows", options->windows,
-                      "windows A:B,C:D in s from the log's first row, each reported under windows[]");
+  // A list option: A:B,C:D or A:B C:D, joined into the comma-separated form the replay reads.
+  auto windows = std::make_shared<std::vector<std::string>>();
+  command->add_option("--windows", *windows,
+                      "windows A:B,C:D (or A:B C:D) in s from the log's first row, each reported under windows[]")
+      ->delimiter(',');
   command->add_option("--parameters", options->parameters,
                       "a fitted file (waam fit thermal -o) whose parameters replace the scenario's");
   command->add_option("--set", options->overrides, "Override a scenario setting, key.path=value (repeatable)");
   command->add_flag("-q,--quiet", options->quiet, "list only the first five log issues on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw probes_replay.png");
-  command->callback([options, runner] {
+  command->callback([options, windows, runner] {
+    options->windows.clear();
+    for (const std::string& w : *windows) options->windows += (options->windows.empty() ? "" : ",") + w;
     *runner = [options] {
       const analysis::ReplayRunResult r = analysis::RunThermalReplay(*options, std::cerr);
       const nlohmann::json& overall = r.document["overall"];

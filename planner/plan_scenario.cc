@@ -34,8 +34,9 @@ TriangleMesh PartMesh(const PartSpec& part, double weld_tolerance_mm, MeshReport
     WAAM_DEMAND(part.mesh_data != nullptr);
     mesh = ParseStl(*part.mesh_data, part.mesh_path, weld_tolerance_mm, report);
   } else {
-    mesh = GeneratePart(part.generator, part.params, part.where);
-    *report = InspectMesh(mesh, weld_tolerance_mm, part.generator);
+    WAAM_THROW_UNLESS(part.generator, part.where << ": give exactly one of 'mesh' or 'generator'");
+    mesh = GeneratePart(*part.generator, part.params, part.where);
+    *report = InspectMesh(mesh, weld_tolerance_mm, std::string(NameOf(*part.generator)));
   }
   CheckSliceable(*report);
   return mesh;

@@ -192,10 +192,10 @@ Plan BuildSkeletonPlan(const SkeletonSlicing& slicing, const models::SpeedHeight
 PlanResult PlanSkeletonScenario(const PlannerSections& scenario, Progress* progress) {
   const SlicingSettings& s = scenario.slicing;
   PlanResult result;
-  if (scenario.part.mesh_path.empty() && scenario.part.generator == "bent_tube") {
+  if (scenario.part.mesh_path.empty() && scenario.part.generator == PartGenerator::kBentTube) {
     // eq. 6.4 on the generator's own numbers, before any slicing.
     const BentTubeSpec spec = BentTubeSpecFromParams(
-        ResolveGeneratorParams(scenario.part.generator, scenario.part.params, scenario.part.where));
+        ResolveGeneratorParams(PartGenerator::kBentTube, scenario.part.params, scenario.part.where));
     const TubePart tube = BuildBentTube(spec, scenario.part.where);
     CheckBendRule(spec.bend_radius_mm, tube.extent_in_bend_plane_mm, s.h_min_mm, s.h_max_mm,
                   scenario.part.where + " bent_tube.bend_radius_mm");
@@ -214,7 +214,7 @@ PlanResult PlanSkeletonScenario(const PlannerSections& scenario, Progress* progr
   const SkeletonSlicing slicing = SliceAlongSkeleton(result.mesh, slice_options, progress);
   WAAM_THROW_UNLESS(!slicing.layers.empty(), scenario.part.where << ": skeleton slicing found no layer above the "
                                                                     "base; is the part thicker than h_min_mm?");
-  if (scenario.part.generator != "bent_tube") {
+  if (scenario.part.generator != PartGenerator::kBentTube) {
     // A mesh: eq. 6.4 on the tightest bend measured along the centroid chain (+-3 layers), 2 % slack for facets.
     const BendEstimate bend = EstimateTightestBend(slicing, 3);
     if (std::isfinite(bend.radius_mm) &&

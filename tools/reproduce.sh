@@ -473,7 +473,7 @@ void_length_fit() {
   # name and extra options of each variant of `waam fit void-length`
   local variants=("default:" "seed2:--seed 2" "seed3:--seed 3" "loo:--loo" "best1:--best-only --seed 1"
                   "best2:--best-only --seed 2" "best3:--best-only --seed 3" "fixed_l2:--no-bayesian --l2 0.1"
-                  "sorted:--angle-order sorted" "baseline:--kind baseline")
+                  "sorted:--angle-order sorted_descending" "baseline:--kind baseline")
   local v
   for v in "${variants[@]}"; do
     # shellcheck disable=SC2086  # the options are words
@@ -486,7 +486,7 @@ d = sys.argv[1]
 rows = [("default (ensemble of 5), 5-fold, seed 1", "default"), ("default, `--seed 2` (restarts and folds)", "seed2"),
         ("default, `--seed 3`", "seed3"), ("default, `--loo`", "loo"),
         ("`--best-only` (seed 1)", "best1"), ("`--best-only --seed 2`", "best2"), ("`--best-only --seed 3`", "best3"),
-        ("`--no-bayesian --l2 0.1`", "fixed_l2"), ("`--angle-order sorted`", "sorted")]
+        ("`--no-bayesian --l2 0.1`", "fixed_l2"), ("`--angle-order sorted_descending`", "sorted")]
 def held(j, key):
     return " / ".join("%.2f" % h[key] for h in j["holdout"])
 def cpu(name):  # user CPU seconds of the whole `waam fit void-length` run

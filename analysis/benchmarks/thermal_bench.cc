@@ -93,7 +93,8 @@ void BM_ThermalBuildHour(benchmark::State& state) {
     state.counters["iterations"] = static_cast<double>(stats.iterations);
     // Per multirate level: cells x solves (millions), solves, and CG iterations per solve.
     for (std::size_t l = 0; l < stats.level_solves.size(); ++l) {
-      const std::string level = "L" + std::to_string(l);
+      std::string level = "L";  // appended: GCC 12's -Wrestrict misfires on "L" + std::string&& (its bug 105329)
+      level += std::to_string(l);
       const double solves = static_cast<double>(stats.level_solves[l]);
       state.counters[level + "_Mcell_solves"] = static_cast<double>(stats.level_cell_solves[l]) * 1e-6;
       state.counters[level + "_solves"] = solves;

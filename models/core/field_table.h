@@ -213,7 +213,12 @@ std::vector<FieldInfo> Describe(std::span<const Field<S>> fields) {
                    std::string(f.doc)};
     if (f.names) info.range = f.names();
     if (f.numbers) {
-      info.range = "[" + field_internal::ShowNumber(f.min) + ", " + field_internal::ShowNumber(f.max) + "]";
+      // Appended piece by piece: GCC 12's -Wrestrict misfires on `"[" + std::string&&` (its bug 105329).
+      info.range = "[";
+      info.range += field_internal::ShowNumber(f.min);
+      info.range += ", ";
+      info.range += field_internal::ShowNumber(f.max);
+      info.range += "]";
     }
     out.push_back(std::move(info));
   }

@@ -11,7 +11,10 @@
 namespace waam {
 
 YamlMap::YamlMap(YAML::Node node, std::string key_path, std::string file)
-    : node_(std::move(node)), key_path_(std::move(key_path)), file_(std::move(file)) {
+    : node_(std::move(node)),
+      key_path_(std::move(key_path)),
+      file_(std::move(file)),
+      files_(std::make_shared<std::vector<NamedFile>>()) {
   WAAM_THROW_UNLESS(node_.IsMap(), Where("") << ": must be a mapping of keys to values");
 }
 
@@ -141,16 +144,24 @@ std::filesystem::path YamlMap::File(const std::string& key, const std::filesyste
                                     const std::string& noun) {
   std::filesystem::path file = String(key);
   if (file.is_relative()) file = dir / file;
-  std::error_code ec;
-  WAAM_THROW_UNLESS(std::filesystem::is_regular_file(file, ec),
-                    Where(key) << ": " << noun << " " << file.string() << " not found");
+  files_->push_back({Where(key), file, noun});
   return file.lexically_normal();
+}
+
+void CheckNamedFiles(const std::vector<NamedFile>& files) {
+  for (const NamedFile& f : files) {
+    std::error_code ec;
+    WAAM_THROW_UNLESS(std::filesystem::is_regular_file(f.path, ec),
+                      f.where << ": " << f.noun << " " << f.path.string() << " not found");
+  }
 }
 
 YamlMap YamlMap::Map(const std::string& key) {
   YAML::Node value = Get(key);
   WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required section '" << key << "'");
-  return YamlMap(value, Child(key), file_);
+  YamlMap child(value, Child(key), file_);
+  child.files_ = files_;
+  return child;
 }
 
 std::vector<YamlMap> YamlMap::Maps(const std::string& key) {
@@ -159,6 +170,7 @@ std::vector<YamlMap> YamlMap::Maps(const std::string& key) {
   std::vector<YamlMap> maps;
   for (std::size_t i = 0; i < value.size(); ++i) {
     maps.emplace_back(value[i], Child(key) + "[" + std::to_string(i) + "]", file_);
+    maps.back().files_ = files_;
   }
   return maps;
 }

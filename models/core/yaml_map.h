@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -13,6 +14,13 @@
 #include "models/core/enum_names.h"
 
 namespace waam {
+
+// A file a document names (YamlMap::File), checked by CheckNamedFiles where the document is loaded.
+struct NamedFile {
+  std::string where;            // "file:line: key.path" of the key that names it
+  std::filesystem::path path;   // resolved, normalized
+  std::string noun;             // "model file", "URDF file", ... for the message
+};
 
 // A YAML mapping at a dotted key path (e.g. "path" or "cell.robot"). Every accessor records the key as known;
 // CheckNoUnknownKeys() then refuses any key that was never asked for, naming it.
@@ -48,8 +56,9 @@ class YamlMap {
                               const std::vector<double>& fallback);
   // A list of strings (`fallback` when the key is absent).
   std::vector<std::string> Strings(const std::string& key, const std::vector<std::string>& fallback);
-  // A file named by a required string key: relative paths are taken from `dir`; InputError
-  // "file:line: key: <noun> <path> not found" unless it is a regular file. Returns the normalized path.
+  // A file named by a required string key: relative paths are taken from `dir`. Returns the normalized path and
+  // records it in named_files() without touching the file system (the section parsers of the planner and the twin
+  // open no file): the loader checks them all with CheckNamedFiles.
   std::filesystem::path File(const std::string& key, const std::filesystem::path& dir, const std::string& noun);
   // A nested mapping.
   YamlMap Map(const std::string& key);
@@ -65,6 +74,8 @@ class YamlMap {
   std::string Where(const std::string& key) const;
   const std::string& file() const { return file_; }
   const std::string& key_path() const { return key_path_; }
+  // The files File() returned, from this map and every map taken from it (Map, Maps), in the order asked for.
+  const std::vector<NamedFile>& named_files() const { return *files_; }
 
  private:
   template <typename E>
@@ -80,7 +91,11 @@ class YamlMap {
   std::string key_path_;
   std::string file_;
   std::set<std::string> known_;
+  std::shared_ptr<std::vector<NamedFile>> files_;  // shared with the maps taken from this one
 };
+
+// Throws InputError "file:line: key: <noun> <path> not found" for the first of `files` that is not a regular file.
+void CheckNamedFiles(const std::vector<NamedFile>& files);
 
 // Parses a YAML document from a file, throwing InputError with file:line for syntax errors.
 YAML::Node LoadYamlFile(const std::string& path);

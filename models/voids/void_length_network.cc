@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include <Eigen/Dense>
@@ -207,7 +208,7 @@ nlohmann::json VoidLengthNetwork::ToJson() const {
                  {"input_max", input_max_},
                  {"output_min", output_min_},
                  {"output_max", output_max_},
-                 {"angle_order", order_ == AngleOrder::kAsGiven ? "as_given" : "sorted_descending"}};
+                 {"angle_order", order_}};
   j["units"] = {{"eta", "count"}, {"theta", "deg"}, {"L", "mm"}};
   j["training"] = training_;
   j["fit"] = waam::models::ToJson(fit_);
@@ -242,11 +243,12 @@ VoidLengthNetwork VoidLengthNetwork::FromJson(const nlohmann::json& j, const std
   WAAM_THROW_UNLESS(in_min.size() == kInputs && in_max.size() == kInputs,
                     where << ": /params/input_min and input_max need 5 values");
   const std::string order = p.value("angle_order", "as_given");
-  WAAM_THROW_UNLESS(order == "as_given" || order == "sorted_descending",
-                    where << ": /params/angle_order '" << order << "': must be as_given or sorted_descending");
+  const std::optional<AngleOrder> angle_order = ParseEnum<AngleOrder>(order);
+  WAAM_THROW_UNLESS(angle_order, where << ": /params/angle_order '" << order << "': must be "
+                                       << EnumNameList<AngleOrder>(" or "));
   return VoidLengthNetwork(sizes, members, in_min, in_max, JsonNumber(j, "/params/output_min", where),
                            JsonNumber(j, "/params/output_max", where),
-                           order == "as_given" ? AngleOrder::kAsGiven : AngleOrder::kSortedDescending,
+                           *angle_order,
                            FitInfoFromJson(j, where), j.value("training", nlohmann::json()));
 }
 

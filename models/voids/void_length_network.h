@@ -1,11 +1,13 @@
 // A small feed-forward network for junction void length (dissertation eq. 4.7, Fig. 33), trained with Ceres.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "models/core/enum_names.h"
 #include "models/voids/void_length_model.h"
 
 namespace waam::models {
@@ -13,7 +15,12 @@ namespace waam::models {
 // How the four angles enter the network. The dissertation states "descending order" but prints them in the order
 // met going round the junction from the largest (F1 108/72/108/72 and F9 108/72/72/108 are different junctions
 // with different voids); sorting merges such pairs into identical inputs with different targets.
+// Its name is the model file's /params/angle_order and `waam fit void-length --angle-order`.
 enum class AngleOrder { kAsGiven, kSortedDescending };
+constexpr std::array<EnumName<AngleOrder>, 2> EnumNames(AngleOrder) {
+  return {{{AngleOrder::kAsGiven, "as_given"}, {AngleOrder::kSortedDescending, "sorted_descending"}}};
+}
+WAAM_ENUM_JSON(AngleOrder)
 
 struct VoidNetworkOptions {
   std::vector<int> hidden = {7, 7};  // neurons per hidden layer (tanh); the dissertation: two layers of 7

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "models/core/error.h"
@@ -193,30 +194,30 @@ TriangleMesh BuildJunction(const Args& a) {
   return Extrude(std::move(united[0]), a("height_mm"));
 }
 
-const std::map<std::string, GeneratorSpec>& Registry() {
-  static const std::map<std::string, GeneratorSpec> registry = [] {
+const std::map<PartGenerator, GeneratorSpec>& Registry() {
+  static const std::map<PartGenerator, GeneratorSpec> registry = [] {
     const double kBig = 5000.0;  // mm: larger than any WAAM cell
-    std::map<std::string, GeneratorSpec> r;
+    std::map<PartGenerator, GeneratorSpec> r;
     const ParamSpec height{"height_mm", {30.0}, 1, 0.1, kBig, false, "extrusion height (mm)"};
     const ParamSpec scale{"scale", {1.0}, 1, 0.01, 100.0, false, "scale factor applied to the plan outline"};
-    r["box"] = {"rectangular block",
+    r[PartGenerator::kBox] = {"rectangular block",
                 {{"size_mm", {100.0, 60.0, 40.0}, 3, 0.1, kBig, false, "x, y, z edge lengths (mm)"}},
                 [](const Args& a) {
                   return Extrude({RectangleRing(0, 0, a("size_mm", 0), a("size_mm", 1)), {}}, a("size_mm", 2));
                 }};
-    r["cylinder"] = {"upright cylinder (regular polygon prism)",
+    r[PartGenerator::kCylinder] = {"upright cylinder (regular polygon prism)",
                      {{"radius_mm", {30.0}, 1, 0.1, kBig, false, "radius (mm)"},
                       {"height_mm", {60.0}, 1, 0.1, kBig, false, "height (mm)"},
                       {"segments", {64.0}, 1, 3, 4096, true, "polygon sides"}},
                      [](const Args& a) {
                        return Extrude({CircleRing(Vec2::Zero(), a("radius_mm"), a.Int("segments")), {}}, a("height_mm"));
                      }};
-    r["sphere"] = {"UV sphere resting on its south pole",
+    r[PartGenerator::kSphere] = {"UV sphere resting on its south pole",
                    {{"radius_mm", {40.0}, 1, 0.1, kBig, false, "radius (mm)"},
                     {"segments", {64.0}, 1, 3, 8192, true, "meridians"},
                     {"rings", {32.0}, 1, 2, 8192, true, "latitude bands"}},
                    [](const Args& a) { return BuildSphere(a("radius_mm"), a.Int("segments"), a.Int("rings")); }};
-    r["torus"] = {"torus with a vertical axis, lying flat",
+    r[PartGenerator::kTorus] = {"torus with a vertical axis, lying flat",
                   {{"major_radius_mm", {50.0}, 1, 0.1, kBig, false, "axis to tube centre (mm)"},
                    {"minor_radius_mm", {15.0}, 1, 0.1, kBig, false, "tube radius (mm), < major_radius_mm"},
                    {"major_segments", {96.0}, 1, 3, 8192, true, "segments around the axis"},
@@ -228,7 +229,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                     return BuildTorus(a("major_radius_mm"), a("minor_radius_mm"), a.Int("major_segments"),
                                       a.Int("minor_segments"));
                   }};
-    r["bent_tube"] = {"thin-walled tube swept along a straight-arc-straight axis (dissertation 6.2, parts I-IV)",
+    r[PartGenerator::kBentTube] = {"thin-walled tube swept along a straight-arc-straight axis (dissertation 6.2, parts I-IV)",
                       {{"diameter_mm", {100.0, 100.0}, 2, 1.0, kBig, false,
                         "mid-wall section size at base and top: diameter, or width across flats (mm)"},
                        {"sides", {0.0, 0.0}, 2, 0, 64, true, "section at base and top: 0 circle, 4 rounded square, n n-gon"},
@@ -240,14 +241,14 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                        {"section_points", {128.0}, 1, 8, 4096, true, "points around the section"},
                        {"axis_step_mm", {1.0}, 1, 0.1, 100.0, false, "section spacing along the axis (mm)"}},
                       [](const Args& a) { return BuildBentTube(BentTubeSpecFromParams(a.values()), a.where()).mesh; }};
-    r["plate_with_holes"] = {"plate with round through-holes",
+    r[PartGenerator::kPlateWithHoles] = {"plate with round through-holes",
                              {{"size_mm", {160.0, 100.0, 12.0}, 3, 0.1, kBig, false, "x, y, thickness (mm)"},
                               {"hole_diameters_mm", {30.0, 20.0, 20.0}, 0, 0.1, kBig, false, "one per hole (mm)"},
                               {"hole_centers_mm", {-35.0, 0.0, 35.0, 25.0, 35.0, -25.0}, 0, -kBig, kBig, false,
                                "x, y per hole from the plate centre (mm)"},
                               {"segments", {48.0}, 1, 3, 4096, true, "polygon sides per hole"}},
                              BuildPlateWithHoles};
-    r["l_shape"] = {"L-section block",
+    r[PartGenerator::kLShape] = {"L-section block",
                     {{"size_mm", {120.0, 80.0, 40.0}, 3, 0.1, kBig, false, "x, y, z overall (mm)"},
                      {"leg_mm", {25.0, 25.0}, 2, 0.1, kBig, false, "width of the vertical and horizontal legs (mm)"}},
                     [](const Args& a) {
@@ -258,7 +259,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                       return Extrude({Polygon({{0, 0}, {x, 0}, {x, ly}, {lx, ly}, {lx, y}, {0, y}}, 1.0), {}},
                                      a("size_mm", 2));
                     }};
-    r["t_shape"] = {"T-section block (flange on top of a centred web)",
+    r[PartGenerator::kTShape] = {"T-section block (flange on top of a centred web)",
                     {{"size_mm", {120.0, 100.0, 40.0}, 3, 0.1, kBig, false, "x, y, z overall (mm)"},
                      {"flange_mm", {25.0}, 1, 0.1, kBig, false, "flange depth along y (mm)"},
                      {"web_mm", {30.0}, 1, 0.1, kBig, false, "web width along x (mm)"}},
@@ -274,13 +275,13 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                                       {}},
                                      a("size_mm", 2));
                     }};
-    r["rib_web"] = {"rib-web grid: outer wall and inner ribs around open cells",
+    r[PartGenerator::kRibWeb] = {"rib-web grid: outer wall and inner ribs around open cells",
                     {{"cells", {2.0, 2.0}, 2, 1, 100, true, "open cells along x and y"},
                      {"pitch_mm", {60.0, 60.0}, 2, 1.0, kBig, false, "rib spacing along x and y (mm)"},
                      {"wall_mm", {9.0}, 1, 0.1, kBig, false, "wall and rib thickness (mm)"},
                      {"height_mm", {45.0}, 1, 0.1, kBig, false, "height (mm)"}},
                     BuildRibWeb};
-    r["junction"] = {"rib junction: straight ribs from a common centre (003 Fig. 30-32)",
+    r[PartGenerator::kJunction] = {"rib junction: straight ribs from a common centre (003 Fig. 30-32)",
                      {{"arm_angles_deg", {0.0, 90.0, 180.0, 270.0}, 0, -360.0, 360.0, false,
                        "directions of the ribs (deg from +x), at least 2, 15 deg apart"},
                       {"arm_mm", {40.0}, 1, 1.0, kBig, false, "rib length from the centre (mm)"},
@@ -288,7 +289,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                       {"height_mm", {21.6}, 1, 0.1, kBig, false, "height (mm)"}},
                      BuildJunction};
     // Outlines of the Ding et al. 2014 stand-ins (see the top of this file), in mm before scaling.
-    r["ding_a"] = {"Ding 2014 case-1-like non-convex polygon with four notches",
+    r[PartGenerator::kDingA] = {"Ding 2014 case-1-like non-convex polygon with four notches",
                    {height, scale},
                    [](const Args& a) {
                      return Extrude({Polygon({{0, 0}, {60, 15}, {120, 0}, {120, 30}, {80, 45}, {120, 60}, {120, 100},
@@ -297,7 +298,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                                      {}},
                                     a("height_mm"));
                    }};
-    r["ding_b"] = {"Ding 2014 Fig. 3(b)-like notched polygon with a round island and a small hole",
+    r[PartGenerator::kDingB] = {"Ding 2014 Fig. 3(b)-like notched polygon with a round island and a small hole",
                    {height, scale, {"segments", {48.0}, 1, 8, 4096, true, "polygon sides per hole"}},
                    [](const Args& a) {
                      const double s = a("scale");
@@ -309,7 +310,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                      region.holes.push_back(CircleRing(Vec2(105 * s, 80 * s), 6 * s, a.Int("segments")));
                      return Extrude(std::move(region), a("height_mm"));
                    }};
-    r["ding_c"] = {"Ding 2014 case-3-like thin-walled frame with three pockets",
+    r[PartGenerator::kDingC] = {"Ding 2014 case-3-like thin-walled frame with three pockets",
                    {height, scale, {"segments", {48.0}, 1, 8, 4096, true, "polygon sides of the round pocket"}},
                    [](const Args& a) {
                      const double s = a("scale");
@@ -319,7 +320,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
                      region.holes.push_back(CircleRing(Vec2(95 * s, 72 * s), 14 * s, a.Int("segments")));
                      return Extrude(std::move(region), a("height_mm"));
                    }};
-    r["thruster_blades"] = {
+    r[PartGenerator::kThrusterBlades] = {
         "blades on the cone x^2+y^2 = R^2 (z/H-1)^2 round the z axis (Dai 2020 thruster; kept in the cone's frame: "
         "axis x = y = 0, radius R at z = 0, for slicing.type cone)",
         {{"blades", {6.0}, 1, 1, 64, true, "blades round the axis"},
@@ -347,7 +348,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
           return BuildConeBlades(p);
         },
         true};
-    r["propeller"] = {
+    r[PartGenerator::kPropeller] = {
         "Lim & Soh-like propeller: square hub (blade roots on its flats) and blades round the z axis, kept in the "
         "hub's frame (axis x = y = 0, hub from z = 0), for slicing.type multi_directional",
         {{"blades", {4.0}, 1, 1, 4, true, "blades, one per hub flat (at 0, 90, 180, 270 deg)"},
@@ -369,7 +370,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
           return BuildPropeller(p, a("hub_mm", 1));
         },
         true};
-    r["cup_two_handles"] = {
+    r[PartGenerator::kCupTwoHandles] = {
         "cup with two handles (dissertation 003 Fig. 52, the overhang decomposition example): a cylindrical shell "
         "with a bottom, axis x = y = 0 from z = 0, two half-torus handles on +x and -x, for slicing.type "
         "multi_directional with split: centroid_shift",
@@ -391,7 +392,7 @@ const std::map<std::string, GeneratorSpec>& Registry() {
           return BuildCupTwoHandles(p, a.where());
         },
         true};
-    r["ding_d"] = {"Ding 2014 case-4-like large solid cross with four notches",
+    r[PartGenerator::kDingD] = {"Ding 2014 case-4-like large solid cross with four notches",
                    {height, scale},
                    [](const Args& a) {
                      return Extrude({Polygon({{50, 0}, {110, 0}, {110, 50}, {160, 50}, {160, 110}, {110, 110},
@@ -415,16 +416,19 @@ std::string Join(const std::vector<double>& values) {
 
 }  // namespace
 
-GeneratorParams ResolveGeneratorParams(const std::string& type, const GeneratorParams& params,
+PartGenerator ParsePartGenerator(const std::string& name, const std::string& where) {
+  const std::optional<PartGenerator> type = ParseEnum<PartGenerator>(name);
+  WAAM_THROW_UNLESS(type, where << ": unknown generator type '" << name << "' (known: " << EnumNameList<PartGenerator>()
+                                << ")");
+  return *type;
+}
+
+GeneratorParams ResolveGeneratorParams(PartGenerator generator, const GeneratorParams& params,
                                        const std::string& where) {
-  const auto& registry = Registry();
-  const auto it = registry.find(type);
-  if (it == registry.end()) {
-    std::ostringstream known;
-    for (const auto& [name, spec] : registry) known << (known.tellp() ? ", " : "") << name;
-    WAAM_THROW(where << ": unknown generator type '" << type << "' (known: " << known.str() << ")");
-  }
+  const auto it = Registry().find(generator);
+  WAAM_DEMAND(it != Registry().end());  // a type the table names and the registry lacks
   const GeneratorSpec& spec = it->second;
+  const std::string type(NameOf(generator));
   // A plain loop variable, not a structured binding: clang 14 cannot capture bindings in the lambdas below.
   for (const auto& param : params) {
     const std::string& name = param.first;
@@ -456,6 +460,10 @@ GeneratorParams ResolveGeneratorParams(const std::string& type, const GeneratorP
 }
 
 TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params, const std::string& where) {
+  return GeneratePart(ParsePartGenerator(type, where), params, where);
+}
+
+TriangleMesh GeneratePart(PartGenerator type, const GeneratorParams& params, const std::string& where) {
   GeneratorParams values = ResolveGeneratorParams(type, params, where);
   const GeneratorSpec& spec = Registry().at(type);
   TriangleMesh mesh = spec.build(Args(std::move(values), where));
@@ -469,14 +477,14 @@ TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params
 
 std::vector<std::string> GeneratorTypes() {
   std::vector<std::string> types;
-  for (const auto& [name, spec] : Registry()) types.push_back(name);
+  for (const EnumName<PartGenerator>& entry : EnumNames(PartGenerator{})) types.emplace_back(entry.name);
   return types;
 }
 
 std::string GeneratorHelp() {
   std::ostringstream out;
-  for (const auto& [name, spec] : Registry()) {
-    out << "  " << name << ": " << spec.summary << "\n";
+  for (const auto& [type, spec] : Registry()) {
+    out << "  " << NameOf(type) << ": " << spec.summary << "\n";
     for (const ParamSpec& p : spec.params) {
       out << "      " << p.name << " = " << Join(p.default_value) << "  " << p.help << "\n";
     }

@@ -89,20 +89,11 @@ bool Overlaps(const std::vector<std::pair<double, double>>& taken, double lo, do
   return false;
 }
 
-}  // namespace
-
-JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector<PolygonWithHoles>& area,
-                              double max_gap_mm, std::uint64_t seed) {
-  JoinedCurves result;
-  result.curves = curves.size();
-  if (curves.empty()) return result;
-  std::mt19937_64 rng(seed);
-  std::vector<SharedStretch> stretches = FindSharedStretches(curves, max_gap_mm);
-  std::shuffle(stretches.begin(), stretches.end(), rng);
-
-  // A random spanning tree of the "side by side" graph of the curves (Kruskal over a shuffled edge list). A tree
-  // never joins two curves twice, which would split them into a closed sub-path again (003 Fig. 27e); the cut
-  // intervals on one segment never overlap (each stretch of wall is used once).
+// A random spanning tree of the "side by side" graph of the curves (Kruskal over the shuffled `stretches`). A tree
+// never joins two curves twice, which would split them into a closed sub-path again (003 Fig. 27e); the cut
+// intervals on one segment never overlap (each stretch of wall is used once).
+std::vector<RibCut> ChooseCuts(const std::vector<Ring>& curves, const std::vector<SharedStretch>& stretches,
+                               const std::vector<PolygonWithHoles>& area, std::mt19937_64& rng) {
   UnionFind groups(curves.size());
   std::vector<std::vector<std::vector<std::pair<double, double>>>> taken(curves.size());
   for (std::size_t k = 0; k < curves.size(); ++k) taken[k].resize(curves[k].size());
@@ -136,16 +127,16 @@ JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector
     groups.parent[groups.Find(s.a)] = groups.Find(s.b);
     cuts.push_back(cut);
   }
+  return cuts;
+}
 
-  // Orient the curves so that the two curves of every cut run in opposite directions along it: then the connectors
-  // go straight across the wall and do not cross (a tree can always be oriented so, root first).
-  std::vector<std::vector<std::size_t>> cuts_of(curves.size());
-  for (std::size_t k = 0; k < cuts.size(); ++k) {
-    cuts_of[cuts[k].where.a].push_back(k);
-    cuts_of[cuts[k].where.b].push_back(k);
-  }
-  std::vector<int> orient(curves.size(), 0);
-  for (std::size_t root = 0; root < curves.size(); ++root) {
+// +1 or -1 per curve, so that the two curves of every cut run in opposite directions along it: then the connectors
+// go straight across the wall and do not cross (a tree can always be oriented so, root first). `cuts_of[r]`: the
+// cuts on curve r.
+std::vector<int> OrientCurves(std::size_t n_curves, const std::vector<RibCut>& cuts,
+                              const std::vector<std::vector<std::size_t>>& cuts_of) {
+  std::vector<int> orient(n_curves, 0);
+  for (std::size_t root = 0; root < n_curves; ++root) {
     if (orient[root] != 0) continue;
     orient[root] = 1;
     std::queue<std::size_t> todo;
@@ -163,55 +154,89 @@ JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector
       }
     }
   }
+  return orient;
+}
 
-  // Nodes: every curve vertex and cut end, in curve order; succ[] walks each oriented curve.
+// Nodes: every curve vertex and cut end, in curve order; succ[] walks each oriented curve. node_*[k]: the nodes of
+// cut k's ends on curve a (lo, hi) and on curve b.
+struct CurveGraph {
   std::vector<Vec> pos;
   std::vector<std::size_t> succ;
-  std::vector<std::size_t> node_a_lo(cuts.size()), node_a_hi(cuts.size()), node_b_lo(cuts.size()),
-      node_b_hi(cuts.size());
+  std::vector<std::size_t> a_lo, a_hi, b_lo, b_hi;
+};
+
+CurveGraph BuildCurveGraph(const std::vector<Ring>& curves, const std::vector<RibCut>& cuts,
+                           const std::vector<std::vector<std::size_t>>& cuts_of, const std::vector<int>& orient) {
+  CurveGraph g;
+  g.a_lo.resize(cuts.size());
+  g.a_hi.resize(cuts.size());
+  g.b_lo.resize(cuts.size());
+  g.b_hi.resize(cuts.size());
   for (std::size_t r = 0; r < curves.size(); ++r) {
     std::vector<std::size_t> order;
     for (std::size_t i = 0; i < curves[r].size(); ++i) {
-      order.push_back(pos.size());
-      pos.push_back(curves[r][i]);
+      order.push_back(g.pos.size());
+      g.pos.push_back(curves[r][i]);
       // RibCut ends on this segment, sorted along it.
       std::vector<std::pair<double, std::size_t*>> ends;
       for (std::size_t k : cuts_of[r]) {
-        RibCut& cut = cuts[k];
+        const RibCut& cut = cuts[k];
         if (cut.where.a == r && cut.where.seg_a == i) {
-          ends.push_back({cut.c_lo, &node_a_lo[k]});
-          ends.push_back({cut.c_hi, &node_a_hi[k]});
+          ends.push_back({cut.c_lo, &g.a_lo[k]});
+          ends.push_back({cut.c_hi, &g.a_hi[k]});
         }
         if (cut.where.b == r && cut.where.seg_b == i) {
-          ends.push_back({cut.u_lo, &node_b_lo[k]});
-          ends.push_back({cut.u_hi, &node_b_hi[k]});
+          ends.push_back({cut.u_lo, &g.b_lo[k]});
+          ends.push_back({cut.u_hi, &g.b_hi[k]});
         }
       }
       std::sort(ends.begin(), ends.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
       const Vec p0 = curves[r][i];
       const Vec d = (curves[r][(i + 1) % curves[r].size()] - p0).normalized();
       for (auto& [s, node] : ends) {
-        *node = pos.size();
-        order.push_back(pos.size());
-        pos.push_back(p0 + s * d);
+        *node = g.pos.size();
+        order.push_back(g.pos.size());
+        g.pos.push_back(p0 + s * d);
       }
     }
     if (orient[r] < 0) std::reverse(order.begin(), order.end());
-    succ.resize(pos.size());
-    for (std::size_t k = 0; k < order.size(); ++k) succ[order[k]] = order[(k + 1) % order.size()];
+    g.succ.resize(g.pos.size());
+    for (std::size_t k = 0; k < order.size(); ++k) g.succ[order[k]] = order[(k + 1) % order.size()];
   }
+  return g;
+}
+
+}  // namespace
+
+JoinedCurves JoinOffsetCurves(const std::vector<Ring>& curves, const std::vector<PolygonWithHoles>& area,
+                              double max_gap_mm, std::uint64_t seed) {
+  JoinedCurves result;
+  result.curves = curves.size();
+  if (curves.empty()) return result;
+  std::mt19937_64 rng(seed);
+  std::vector<SharedStretch> stretches = FindSharedStretches(curves, max_gap_mm);
+  std::shuffle(stretches.begin(), stretches.end(), rng);
+  const std::vector<RibCut> cuts = ChooseCuts(curves, stretches, area, rng);
+  std::vector<std::vector<std::size_t>> cuts_of(curves.size());
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    cuts_of[cuts[k].where.a].push_back(k);
+    cuts_of[cuts[k].where.b].push_back(k);
+  }
+  CurveGraph g = BuildCurveGraph(curves, cuts, cuts_of, OrientCurves(curves.size(), cuts, cuts_of));
+  std::vector<std::size_t>& succ = g.succ;
   // Each cut removes the gap X-Y from curve a and the facing gap from curve b and crosses over: X -> partner(X)
   // along b, around b, then partner(Y) -> Y back onto a (a 2-opt move that merges two loops into one).
   for (std::size_t k = 0; k < cuts.size(); ++k) {
-    const bool lo_first = succ[node_a_lo[k]] == node_a_hi[k];
-    const std::size_t x = lo_first ? node_a_lo[k] : node_a_hi[k];
-    const std::size_t y = lo_first ? node_a_hi[k] : node_a_lo[k];
-    const std::size_t bx = lo_first ? node_b_lo[k] : node_b_hi[k];
-    const std::size_t by = lo_first ? node_b_hi[k] : node_b_lo[k];
+    const bool lo_first = succ[g.a_lo[k]] == g.a_hi[k];
+    const std::size_t x = lo_first ? g.a_lo[k] : g.a_hi[k];
+    const std::size_t y = lo_first ? g.a_hi[k] : g.a_lo[k];
+    const std::size_t bx = lo_first ? g.b_lo[k] : g.b_hi[k];
+    const std::size_t by = lo_first ? g.b_hi[k] : g.b_lo[k];
     succ[x] = bx;
     succ[by] = y;
   }
   // Walk the loops.
+  const std::vector<Vec>& pos = g.pos;
   std::vector<bool> seen(pos.size(), false);
   for (std::size_t start = 0; start < pos.size(); ++start) {
     if (seen[start]) continue;

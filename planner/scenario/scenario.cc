@@ -24,15 +24,11 @@ PartSpec ParsePart(YamlMap part, const YAML::Node& node, const fs::path& scenari
     spec.mesh_path = fs::path(part.String("mesh"));
     if (spec.mesh_path.is_relative()) spec.mesh_path = scenario_dir / spec.mesh_path;
     spec.mesh_path = spec.mesh_path.lexically_normal();
-    std::error_code ec;
-    WAAM_THROW_UNLESS(fs::exists(spec.mesh_path, ec),
-                      part.Where("mesh") << ": mesh file " << spec.mesh_path.string() << " not found");
-    WAAM_THROW_UNLESS(!fs::is_directory(spec.mesh_path, ec),
-                      part.Where("mesh") << ": " << spec.mesh_path.string() << " is a directory, expected an STL file");
+    spec.mesh_where = part.Where("mesh");  // the scenario loader (analysis/) reads the file and checks it is one
   } else {
     YamlMap generator = part.Map("generator");
-    spec.generator = generator.String("type");
     spec.where = generator.Where("");
+    spec.generator = ParsePartGenerator(generator.String("type"), spec.where);
     // Every other key is a numeric parameter (a number or a list); the generator checks names and ranges.
     const YAML::Node gen_node = node["generator"];
     for (auto it = gen_node.begin(); it != gen_node.end(); ++it) {
@@ -47,6 +43,122 @@ PartSpec ParsePart(YamlMap part, const YAML::Node& node, const fs::path& scenari
   return spec;
 }
 
+// slicing: the keys of its type, the sub-volumes of a multi-directional split by planes.
+void ParseSlicing(YamlMap& top, SlicingSettings* out) {
+  SlicingSettings& sl = *out;
+  YamlMap slicing = top.Map("slicing");
+  auto read = [&](std::string_view key, bool required = false) {
+    ReadField<SlicingSettings>(slicing, kSlicingFields, key, &sl, required);
+  };
+  read("type");
+  if (sl.type == SlicingType::kSkeleton) {
+    for (const char* key : {"layer_height_mm", "h_min_mm", "h_max_mm"}) read(key);
+    WAAM_THROW_UNLESS(sl.h_max_mm >= sl.h_min_mm, slicing.Where("h_max_mm") << " = " << sl.h_max_mm
+                                                   << ": must be >= slicing.h_min_mm = " << sl.h_min_mm);
+    for (const char* key : {"point_spacing_mm", "first_step_mm", "beta_deg", "wall_mm"}) read(key);
+  } else {
+    read("layer_height_mm", true);
+  }
+  if (sl.type == SlicingType::kCone || sl.type == SlicingType::kCylinder) {
+    read("R_mm", true);
+    if (sl.type == SlicingType::kCone) {
+      read("H_mm", true);
+      WAAM_THROW_UNLESS(std::abs(sl.cone_H_mm) >= 1.0, slicing.Where("H_mm") << " = " << sl.cone_H_mm
+                            << ": |H| must be >= 1 mm (a cylinder is slicing.type: cylinder)");
+    }
+    read("axis_mm");
+    read("rotation_step_deg");
+  }
+  if (sl.type == SlicingType::kMultiDirectional) {
+    read("split");
+    if (sl.split == SplitMethod::kCentroidShift) {
+      read("overhang_deg");
+      WAAM_THROW_UNLESS(!slicing.Has("sub_volumes"), slicing.Where("sub_volumes")
+                            << ": split = centroid_shift finds the sub-volumes itself: remove sub_volumes");
+    }
+  }
+  if (sl.type == SlicingType::kMultiDirectional && sl.split == SplitMethod::kPlanes) {
+    for (YamlMap sub : slicing.Maps("sub_volumes")) {
+      SubVolumeSpec spec;
+      spec.name = sub.String("name");
+      const std::vector<double> d = sub.Numbers("direction", 3, -1e3, 1e3);
+      const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      WAAM_THROW_UNLESS(norm > 1e-9, sub.Where("direction") << ": must not be the zero vector");
+      for (int k = 0; k < 3; ++k) spec.direction[k] = d[k] / norm;
+      const std::vector<double> keep = sub.Numbers("keep", -1, -1e6, 1e6, {});
+      WAAM_THROW_UNLESS(keep.size() % 4 == 0, sub.Where("keep") << ": " << keep.size()
+                            << " numbers: give 4 per half-space n . p <= c (nx, ny, nz, c in mm)");
+      for (std::size_t k = 0; k < keep.size(); k += 4) {
+        spec.keep.push_back({keep[k], keep[k + 1], keep[k + 2], keep[k + 3]});
+      }
+      sub.CheckNoUnknownKeys();
+      sl.sub_volumes.push_back(std::move(spec));
+    }
+    WAAM_THROW_UNLESS(!sl.sub_volumes.empty(),
+                      slicing.Where("sub_volumes") << ": give at least one sub-volume");
+  }
+  slicing.CheckNoUnknownKeys();
+}
+
+// path: the pattern (as the slicing type allows), the bead width, the void filling.
+void ParsePath(YamlMap& top, SlicingType slicing_type, const fs::path& dir, PathSettings* out) {
+  PathSettings& s = *out;
+  YamlMap path = top.Map("path");
+  const bool skeleton = slicing_type == SlicingType::kSkeleton;
+  auto read = [&](std::string_view key, bool required = false) {
+    ReadField<PathSettings>(path, kPathFields, key, &s, required);
+  };
+  read("pattern", true);
+  WAAM_THROW_UNLESS(skeleton || s.pattern != Pattern::kSpiral,
+                    path.Where("pattern") << " = spiral: needs slicing.type = skeleton");
+  WAAM_THROW_UNLESS(!skeleton || s.pattern == Pattern::kSpiral || s.pattern == Pattern::kContour,
+                    path.Where("pattern") << " = " << NameOf(s.pattern)
+                                          << ": slicing.type = skeleton plans a single-bead wall: use spiral "
+                                             "(one pass) or contour (one closed pass per layer)");
+  // Skeleton slicing takes the width at every point from the width-height model (eq. 6.7).
+  read("bead_width_mm", !skeleton);
+  read("overlap_model");
+  if (path.Has("zigzag_angle_deg")) {
+    const std::string raw = path.String("zigzag_angle_deg");
+    if (raw == "auto") {
+      s.zigzag_angle_auto = true;
+    } else {
+      s.zigzag_angle_auto = false;
+      read("zigzag_angle_deg");
+    }
+  }
+  for (const char* key : {"alternate_start", "seed", "retract_mm", "island_order"}) read(key);
+  internal::ParseVoidFillingSection(path, dir, &s.void_filling);
+  path.CheckNoUnknownKeys();
+}
+
+// process: speeds, wire, the bead model (as the slicing type allows), the model files, arc and interpass.
+void ParseProcess(YamlMap& top, SlicingType slicing_type, const fs::path& dir, ProcessSettings* out) {
+  ProcessSettings& p = *out;
+  YamlMap process = top.Map("process");
+  // Skeleton slicing takes the speed at every point from the speed-height model (eq. 6.6).
+  auto read = [&](std::string_view key, bool required = false) {
+    ReadField<ProcessSettings>(process, kProcessFields, key, &p, required);
+  };
+  read("travel_speed_mm_min", slicing_type != SlicingType::kSkeleton);
+  read("wire_feed_mm_min", true);
+  for (const char* key : {"wire_diameter_mm", "deposition_efficiency", "bead_model"}) read(key);
+  const bool curved = slicing_type == SlicingType::kCone || slicing_type == SlicingType::kCylinder;
+  WAAM_THROW_UNLESS(curved || p.bead_model != BeadModel::kCsw, process.Where("bead_model")
+                        << " = csw: needs slicing.type cone or cylinder (planar planning has no csw mode)");
+  WAAM_THROW_UNLESS(!curved || p.bead_model != BeadModel::kSpeedHeight, process.Where("bead_model")
+                        << " = speed_height: not available with slicing.type " << NameOf(slicing_type)
+                        << " (use csw or volume_balance)");
+  for (auto [key, target] : {std::pair{"csw_model", &p.csw_model},
+                             std::pair{"speed_height_model", &p.speed_height_model},
+                             std::pair{"width_height_model", &p.width_height_model}}) {
+    if (process.Has(key)) *target = process.File(key, dir, "model file");
+  }
+  for (const char* key : {"rapid_speed_mm_min", "arc_start_s", "arc_end_s"}) read(key);
+  ParseArcAndInterpass(process, &p.arc, &p.interpass);
+  process.CheckNoUnknownKeys();
+}
+
 }  // namespace
 
 PlannerSections ParsePlannerSections(YamlMap& top) {
@@ -57,8 +169,7 @@ PlannerSections ParsePlannerSections(YamlMap& top) {
   if (top.Has("base_dir")) {
     const fs::path base = top.String("base_dir");
     scenario.dir = (base.is_relative() ? scenario.dir / base : base).lexically_normal();
-    WAAM_THROW_UNLESS(fs::is_directory(scenario.dir, ec),
-                      top.Where("base_dir") << ": folder " << scenario.dir.string() << " not found");
+    scenario.base_dir_where = top.Where("base_dir");  // the scenario loader checks the folder
   }
   const YAML::Node root = top.node();
 
@@ -71,122 +182,9 @@ PlannerSections ParsePlannerSections(YamlMap& top) {
                     top.Where("part") << ": give either part (planned here) or program (planned elsewhere), not both");
   if (!from_program) scenario.part = ParsePart(top.Map("part"), root["part"], scenario.dir);
 
-  // slicing
-  if (!from_program || top.Has("slicing")) {
-    YamlMap slicing = top.Map("slicing");
-    SlicingSettings& sl = scenario.slicing;
-    auto read = [&](std::string_view key, bool required = false) {
-      ReadField<SlicingSettings>(slicing, kSlicingFields, key, &sl, required);
-    };
-    read("type");
-    if (sl.type == SlicingType::kSkeleton) {
-      for (const char* key : {"layer_height_mm", "h_min_mm", "h_max_mm"}) read(key);
-      WAAM_THROW_UNLESS(sl.h_max_mm >= sl.h_min_mm, slicing.Where("h_max_mm") << " = " << sl.h_max_mm
-                                                     << ": must be >= slicing.h_min_mm = " << sl.h_min_mm);
-      for (const char* key : {"point_spacing_mm", "first_step_mm", "beta_deg", "wall_mm"}) read(key);
-    } else {
-      read("layer_height_mm", true);
-    }
-    if (sl.type == SlicingType::kCone || sl.type == SlicingType::kCylinder) {
-      read("R_mm", true);
-      if (sl.type == SlicingType::kCone) {
-        read("H_mm", true);
-        WAAM_THROW_UNLESS(std::abs(sl.cone_H_mm) >= 1.0, slicing.Where("H_mm") << " = " << sl.cone_H_mm
-                              << ": |H| must be >= 1 mm (a cylinder is slicing.type: cylinder)");
-      }
-      read("axis_mm");
-      read("rotation_step_deg");
-    }
-    if (sl.type == SlicingType::kMultiDirectional) {
-      read("split");
-      if (sl.split == SplitMethod::kCentroidShift) {
-        read("overhang_deg");
-        WAAM_THROW_UNLESS(!slicing.Has("sub_volumes"), slicing.Where("sub_volumes")
-                              << ": split = centroid_shift finds the sub-volumes itself: remove sub_volumes");
-      }
-    }
-    if (sl.type == SlicingType::kMultiDirectional && sl.split == SplitMethod::kPlanes) {
-      for (YamlMap sub : slicing.Maps("sub_volumes")) {
-        SubVolumeSpec spec;
-        spec.name = sub.String("name");
-        const std::vector<double> d = sub.Numbers("direction", 3, -1e3, 1e3);
-        const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        WAAM_THROW_UNLESS(norm > 1e-9, sub.Where("direction") << ": must not be the zero vector");
-        for (int k = 0; k < 3; ++k) spec.direction[k] = d[k] / norm;
-        const std::vector<double> keep = sub.Numbers("keep", -1, -1e6, 1e6, {});
-        WAAM_THROW_UNLESS(keep.size() % 4 == 0, sub.Where("keep") << ": " << keep.size()
-                              << " numbers: give 4 per half-space n . p <= c (nx, ny, nz, c in mm)");
-        for (std::size_t k = 0; k < keep.size(); k += 4) {
-          spec.keep.push_back({keep[k], keep[k + 1], keep[k + 2], keep[k + 3]});
-        }
-        sub.CheckNoUnknownKeys();
-        scenario.slicing.sub_volumes.push_back(std::move(spec));
-      }
-      WAAM_THROW_UNLESS(!scenario.slicing.sub_volumes.empty(),
-                        slicing.Where("sub_volumes") << ": give at least one sub-volume");
-    }
-    slicing.CheckNoUnknownKeys();
-  }
-
-  // path
-  if (!from_program || top.Has("path")) {
-    YamlMap path = top.Map("path");
-    PathSettings& s = scenario.path;
-    const bool skeleton = scenario.slicing.type == SlicingType::kSkeleton;
-    auto read = [&](std::string_view key, bool required = false) {
-      ReadField<PathSettings>(path, kPathFields, key, &s, required);
-    };
-    read("pattern", true);
-    WAAM_THROW_UNLESS(skeleton || s.pattern != Pattern::kSpiral,
-                      path.Where("pattern") << " = spiral: needs slicing.type = skeleton");
-    WAAM_THROW_UNLESS(!skeleton || s.pattern == Pattern::kSpiral || s.pattern == Pattern::kContour,
-                      path.Where("pattern") << " = " << NameOf(s.pattern)
-                                            << ": slicing.type = skeleton plans a single-bead wall: use spiral "
-                                               "(one pass) or contour (one closed pass per layer)");
-    // Skeleton slicing takes the width at every point from the width-height model (eq. 6.7).
-    read("bead_width_mm", !skeleton);
-    read("overlap_model");
-    if (path.Has("zigzag_angle_deg")) {
-      const std::string raw = path.String("zigzag_angle_deg");
-      if (raw == "auto") {
-        s.zigzag_angle_auto = true;
-      } else {
-        s.zigzag_angle_auto = false;
-        read("zigzag_angle_deg");
-      }
-    }
-    for (const char* key : {"alternate_start", "seed", "retract_mm", "island_order"}) read(key);
-    internal::ParseVoidFillingSection(path, scenario.dir, &s.void_filling);
-    path.CheckNoUnknownKeys();
-  }
-
-  // process
-  {
-    YamlMap process = top.Map("process");
-    ProcessSettings& p = scenario.process;
-    // Skeleton slicing takes the speed at every point from the speed-height model (eq. 6.6).
-    auto read = [&](std::string_view key, bool required = false) {
-      ReadField<ProcessSettings>(process, kProcessFields, key, &p, required);
-    };
-    read("travel_speed_mm_min", scenario.slicing.type != SlicingType::kSkeleton);
-    read("wire_feed_mm_min", true);
-    for (const char* key : {"wire_diameter_mm", "deposition_efficiency", "bead_model"}) read(key);
-    const bool curved = scenario.slicing.type == SlicingType::kCone || scenario.slicing.type == SlicingType::kCylinder;
-    WAAM_THROW_UNLESS(curved || p.bead_model != BeadModel::kCsw, process.Where("bead_model")
-                          << " = csw: needs slicing.type cone or cylinder (planar planning has no csw mode)");
-    WAAM_THROW_UNLESS(!curved || p.bead_model != BeadModel::kSpeedHeight, process.Where("bead_model")
-                          << " = speed_height: not available with slicing.type " << NameOf(scenario.slicing.type)
-                          << " (use csw or volume_balance)");
-    for (auto [key, target] : {std::pair{"csw_model", &p.csw_model},
-                               std::pair{"speed_height_model", &p.speed_height_model},
-                               std::pair{"width_height_model", &p.width_height_model}}) {
-      if (process.Has(key)) *target = process.File(key, scenario.dir, "model file");
-    }
-    for (const char* key : {"rapid_speed_mm_min", "arc_start_s", "arc_end_s"}) read(key);
-    ParseArcAndInterpass(process, &p.arc, &p.interpass);
-    process.CheckNoUnknownKeys();
-  }
-
+  if (!from_program || top.Has("slicing")) ParseSlicing(top, &scenario.slicing);
+  if (!from_program || top.Has("path")) ParsePath(top, scenario.slicing.type, scenario.dir, &scenario.path);
+  ParseProcess(top, scenario.slicing.type, scenario.dir, &scenario.process);
   return scenario;
 }
 

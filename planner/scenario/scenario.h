@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "models/bead/speed_height_model.h"
 #include "models/bead/width_height_model.h"
 #include "models/core/enum_names.h"
+#include "planner/mesh/generators.h"
 #include "planner/path/pattern_names.h"
 #include "planner/scenario/arc_settings.h"
 #include "planner/scenario/void_filling_settings.h"
@@ -45,9 +47,10 @@ WAAM_ENUM_JSON(BeadModel)
 // Where the part comes from: an STL file or a procedural generator with parameters.
 struct PartSpec {
   std::filesystem::path mesh_path;   // absolute, resolved against the scenario file's folder; empty for a generator
-  std::string generator;             // generator name (see planner/mesh/generators.h); empty for a mesh
+  std::optional<PartGenerator> generator;  // the generator (planner/mesh/generators.h); empty for a mesh
   std::map<std::string, std::vector<double>> params;  // generator parameters, each a number or list of numbers
   std::string where;                 // "file:line: part" for messages about the part
+  std::string mesh_where;            // "file:line: part.mesh" for messages about the mesh file; empty for a generator
   // The bytes of the mesh file, read by the scenario loader (the planner reads no file); null for a generator.
   std::shared_ptr<const std::string> mesh_data;
 };
@@ -140,6 +143,7 @@ struct PlannerSections {
   // relative to the file's folder), or the file's folder. A scenario written elsewhere (`waam place`) keeps pointing
   // at its original meshes and models this way.
   std::filesystem::path dir;
+  std::string base_dir_where;        // "file:line: base_dir" when the scenario gives one (the loader checks the folder)
   std::string name;
   PartSpec part;
   SlicingSettings slicing;

@@ -84,6 +84,26 @@ TEST(FitCliTest, VoidLengthPrintsCrossValidationAndHoldOut) {
   EXPECT_EQ(LoadVoidLengthModel(out)->kind(), "network");
 }
 
+// --angle-order takes the model file's names (as_given, sorted_descending) and its first spelling `sorted`; the file
+// gets the model's name whichever was given.
+TEST(FitCliTest, AngleOrderTakesTheModelFilesNames) {
+  const fs::path dir = waam::testing::TestDir();
+  for (const std::string order : {"sorted_descending", "sorted"}) {
+    const fs::path out = dir / ("void_" + order + ".json");
+    const CliRun run = Waam("fit void-length " + Data("nguyen2022_appendixA1_junction_voids.csv") +
+                            " --hidden 2 --restarts 1 --folds 2 -q --angle-order " + order + " -o " +
+                            out.string());
+    ASSERT_EQ(run.exit_code, 0) << order << ": " << run.output;
+    std::ifstream in(out);
+    EXPECT_EQ(nlohmann::json::parse(in)["params"]["angle_order"], "sorted_descending") << order;
+  }
+  const CliRun bad = Waam("fit void-length " + Data("nguyen2022_appendixA1_junction_voids.csv") +
+                          " --angle-order descending -o " + (dir / "x.json").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.output, HasSubstr("--angle-order 'descending': must be as_given or sorted_descending (or sorted)"));
+  EXPECT_FALSE(fs::exists(dir / "x.json"));
+}
+
 TEST(FitCliTest, BadCsvGivesOneLineNamingFileLineAndColumn) {
   const fs::path dir = waam::testing::TestDir();
   const fs::path bad = waam::testing::WriteText(

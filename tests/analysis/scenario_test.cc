@@ -62,7 +62,7 @@ class ScenarioTest : public ::testing::Test {
 TEST_F(ScenarioTest, ValidScenarioLoads) {
   const analysis::Scenario s = analysis::LoadScenario(Write(Valid()));
   EXPECT_EQ(s.name, "demo");
-  EXPECT_EQ(s.part.generator, "box");
+  EXPECT_EQ(s.part.generator, planner::PartGenerator::kBox);
   ASSERT_EQ(s.part.params.at("size_mm").size(), 3u);
   EXPECT_DOUBLE_EQ(s.part.params.at("size_mm")[1], 30.0);
   EXPECT_DOUBLE_EQ(s.slicing.layer_height_mm, 1.5);

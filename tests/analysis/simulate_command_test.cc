@@ -112,17 +112,17 @@ TEST(SimulateCommand, NotesNameLayerHeightAndBeadWidthMismatches) {
   f.planned.bead_width_mm = 6.0;
   f.planned.layer_height_mm = 2.0;
   f.planned.layer_growth_mm = 2.05;
-  EXPECT_THAT(SimulationNotes(f.scenario, f.planned), ::testing::IsEmpty()) << "a 2.5 % mismatch is no note";
+  EXPECT_THAT(SimulationNotes(f.planned), ::testing::IsEmpty()) << "a 2.5 % mismatch is no note";
   f.planned.layer_height_mm = 1.8;
   f.planned.layer_growth_mm = 2.6;
-  const std::vector<std::string> notes = SimulationNotes(f.scenario, f.planned);
+  const std::vector<std::string> notes = SimulationNotes(f.planned);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_THAT(notes[0], HasSubstr("slicing.layer_height_mm"));
   EXPECT_THAT(notes[0], HasSubstr("taller"));
   // A 3 mm wide, 30 mm long wall under the 6 mm bead.
   f.planned.layer_growth_mm = 1.8;
   f.planned.plan.layers.back().slice = {planner::PolygonWithHoles{{{0, 0}, {3, 0}, {3, 30}, {0, 30}}, {}}};
-  const std::vector<std::string> wall = SimulationNotes(f.scenario, f.planned);
+  const std::vector<std::string> wall = SimulationNotes(f.planned);
   ASSERT_EQ(wall.size(), 1u);
   EXPECT_THAT(wall[0], HasSubstr("path.bead_width_mm"));
 }

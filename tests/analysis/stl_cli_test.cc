@@ -68,5 +68,21 @@ TEST(StlIoCli, BadMeshExitsWithCodeTwoAndOneLine) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.stl"));
 }
 
+// --param's values, like every list option's, are comma or space separated; an empty value between two commas is not.
+TEST(StlIoCli, GenerateParamValuesCommaOrSpaceSeparated) {
+  const std::filesystem::path dir = TestDir();
+  const std::string comma = (dir / "comma.stl").string();
+  ASSERT_EQ(RunWaam("generate box --param size_mm=30,20,4 -o " + comma, dir / "out", dir / "err"), 0)
+      << ReadFile(dir / "err");
+  for (const std::string values : {"'size_mm=30 20 4'", "'size_mm=30, 20,4 '", "'size_mm=30  20 , 4'"}) {
+    const std::string spaced = (dir / "spaced.stl").string();
+    ASSERT_EQ(RunWaam("generate box --param " + values + " -o " + spaced, dir / "out", dir / "err"), 0)
+        << values << ": " << ReadFile(dir / "err");
+    EXPECT_EQ(ReadFile(spaced), ReadFile(comma)) << values << " builds the same box as size_mm=30,20,4";
+  }
+  EXPECT_EQ(RunWaam("generate box --param size_mm=30,,4 -o " + (dir / "x.stl").string(), dir / "out", dir / "err"), 2);
+  EXPECT_THAT(ReadFile(dir / "err"), HasSubstr("--param 'size_mm=30,,4': '' is not a number"));
+}
+
 }  // namespace
 }  // namespace waam::planner

@@ -413,7 +413,9 @@ TEST(ViewerBrowserTest, PageOfARunWithThermalColoursThePartByTemperature) {
     const int shown = std::stoi(BodyAttribute(dom, "data-thermal-shown"));
     EXPECT_GT(shown, 0);
     EXPECT_LE(shown, cells);
-    if (end) EXPECT_EQ(shown, cells) << "at the end every cell is there";
+    if (end) {
+      EXPECT_EQ(shown, cells) << "at the end every cell is there";
+    }
     const std::size_t at = dom.find("id=\"clock\"");
     ASSERT_NE(at, std::string::npos);
     std::smatch m;

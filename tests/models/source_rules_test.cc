@@ -83,13 +83,15 @@ std::string CodeOf(const std::string& line) {
 }
 
 // What reads or writes a file: a stream or C file opened (or <fstream> included), a whole file read or written
-// (atomically or not), an XML, YAML, model or parameter file loaded, a folder listed or changed, a file's size or
-// time asked; MuJoCo loading from the disk (mj_loadXML without a VFS, mj_addFileVFS, mj_loadModel) or saving.
+// (atomically or not), an XML, YAML, model or parameter file loaded, a folder listed or changed, a file's size, time
+// or existence asked (fs::exists, is_directory, ...: the loader checks the paths a scenario names); MuJoCo loading
+// from the disk (mj_loadXML without a VFS, mj_addFileVFS, mj_loadModel) or saving.
 const std::regex kFileAccess(
     R"re(::Load\(|(^|\W)(std::ifstream|std::ofstream|std::fstream|#\s*include\s*<fstream>|fopen|freopen|)re"
     R"re(ReadFile\(|WriteFileAtomic|AtomicOutput|LoadFile\(|SaveFile\(|LoadYamlFile|YAML::LoadFile|)re"
     R"re(LoadVoidLengthModel|ReadModelJson|ReadDistortionParams|DefaultModelPath|directory_iterator|file_size|)re"
     R"re(last_write_time|create_director(y|ies)|remove_all|copy_file|mj_loadXML\([^,]*,\s*(nullptr|NULL|0)\s*,|)re"
+    R"re((fs|filesystem)::(exists|is_directory|is_regular_file|is_symlink|status|symlink_status|canonical)\(|)re"
     R"re(mj_addFileVFS|mj_loadModel|mj_saveLastXML|mj_saveModel))re");
 
 // Every line of `module` whose code (comments left out) reads or writes a file.
@@ -121,13 +123,15 @@ TEST(SourceRules, TheFileAccessPatternMatchesAReadOrWriteAndSkipsACommentAndAVfs
         "  std::ofstream(p) << text;", "  WriteFileAtomic(path, out);", "  AtomicOutput output(path);",
         "  FILE* f = fopen(name, \"rb\");", "  doc_.LoadFile(file_.c_str());",
         "  const auto size = fs::file_size(file, ec);", "  fs::create_directories(dir);",
+        "  WAAM_THROW_UNLESS(fs::exists(path, ec), where);", "  if (std::filesystem::is_directory(dir)) return;",
         "  m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));",
         "  mj_addFileVFS(vfs, dir, name);", "  f = uri.rfind(\"file://\", 0); std::ifstream in(f);"}) {
     EXPECT_TRUE(std::regex_search(CodeOf(line), kFileAccess)) << line;
   }
   for (const std::string line :
        {"  // the loader calls ReadFile(path) for us", "  m = mj_loadXML(vfs.main().c_str(), vfs.get(), error, 1024);",
-        "  x = 1;  // not std::ifstream here", "  const bool file = uri.rfind(\"file://\", 0) == 0;"}) {
+        "  x = 1;  // not std::ifstream here", "  const bool file = uri.rfind(\"file://\", 0) == 0;",
+        "  spec.mesh_path = fs::absolute(path, ec).lexically_normal();", "  const bool exists = true;"}) {
     EXPECT_FALSE(std::regex_search(CodeOf(line), kFileAccess)) << line;
   }
 }

@@ -126,7 +126,7 @@ TEST(ConeSlicerTest, AContourRoundTheAxisCannotBeFlattened) {
 PlannerSections BladeScenario() {
   PlannerSections s;
   s.name = "blades";
-  s.part.generator = "thruster_blades";
+  s.part.generator = PartGenerator::kThrusterBlades;
   s.part.params = {{"blades", {3.0}}, {"span_mm", {12.0}}, {"chord_mm", {30.0}}, {"thickness_mm", {14.0, 10.0}}};
   s.part.where = "test: part.generator";
   s.slicing.type = SlicingType::kCone;
@@ -247,7 +247,7 @@ TEST(ConePlannerTest, PartInsideTheFirstSurfaceIsRefused) {
 TEST(ConePlannerTest, ALayerRoundTheAxisIsRefusedWithItsIndex) {
   // A tube round the cylinder's axis: every layer is a full ring that no cutting line can miss.
   PlannerSections s = BladeScenario();
-  s.part.generator = "cylinder";
+  s.part.generator = PartGenerator::kCylinder;
   s.part.params = {{"radius_mm", {50.0}}, {"height_mm", {20.0}}};
   s.slicing.type = SlicingType::kCylinder;
   s.slicing.cone_R_mm = 40;

@@ -131,7 +131,7 @@ TEST(CentroidDecompositionTest, BadOptionsAreNamed) {
 PlannerSections CupScenario() {
   PlannerSections s;
   s.name = "cup";
-  s.part.generator = "cup_two_handles";
+  s.part.generator = PartGenerator::kCupTwoHandles;
   s.part.where = "test: part.generator";
   s.slicing.type = SlicingType::kMultiDirectional;
   s.slicing.split = SplitMethod::kCentroidShift;

@@ -19,7 +19,7 @@ using ::testing::HasSubstr;
 PlannerSections LimitsBox(double x, double y, double z, double layer_height_mm) {
   PlannerSections s;
   s.name = "limits";
-  s.part.generator = "box";
+  s.part.generator = PartGenerator::kBox;
   s.part.params["size_mm"] = {x, y, z};
   s.part.where = "s.yaml:3: part";
   s.slicing.layer_height_mm = layer_height_mm;
@@ -44,7 +44,7 @@ TEST(PlanLimitsTest, TooManyLayersIsRefusedBeforeSlicing) {
   const std::filesystem::path stl = std::filesystem::temp_directory_path() / "waam_plan_limits_column.stl";
   analysis::WriteStlBinary(column, stl);
   PlannerSections s = LimitsBox(10, 10, 10, 0.05);
-  s.part.generator.clear();
+  s.part.generator.reset();
   s.part.params.clear();
   s.part.mesh_path = stl;
   EXPECT_THAT(LimitsErrorOf(s), HasSubstr("s.yaml:3: part: the part is 10000 mm tall: 200000 layers at "

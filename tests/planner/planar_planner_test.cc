@@ -20,7 +20,7 @@ using ::testing::HasSubstr;
 PlannerSections BoxScenario() {
   PlannerSections s;
   s.name = "box";
-  s.part.generator = "box";
+  s.part.generator = PartGenerator::kBox;
   s.part.params["size_mm"] = {60, 40, 12};
   s.part.where = "test: part.generator";
   s.slicing.layer_height_mm = 1.5;
@@ -102,7 +102,7 @@ TEST(PlanScenarioTest, PartIsPutOnTheSubstrate) {
   stl << "endsolid raised\n";
   stl.close();
   PlannerSections s = BoxScenario();
-  s.part.generator.clear();
+  s.part.generator.reset();
   s.part.mesh_path = dir / "raised.stl";
   const PlanResult result = PlanScenario(testing::WithFiles(s), nullptr);
   EXPECT_EQ(result.plan.layers.size(), 4u);
@@ -112,13 +112,23 @@ TEST(PlanScenarioTest, PartIsPutOnTheSubstrate) {
 }
 
 TEST(PlanScenarioTest, UnknownGeneratorIsNamed) {
+  try {
+    ParsePartGenerator("dodecahedron", "s.yaml:3: part.generator");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("s.yaml:3: part.generator: unknown generator type 'dodecahedron' (known: "));
+  }
+  EXPECT_EQ(ParsePartGenerator("bent_tube", "s.yaml:3: part.generator"), PartGenerator::kBentTube);
+}
+
+TEST(PlanScenarioTest, PartWithoutMeshOrGeneratorIsRefused) {
   PlannerSections s = BoxScenario();
-  s.part.generator = "dodecahedron";
+  s.part.generator.reset();
   try {
     PlanScenario(testing::WithFiles(s), nullptr);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("dodecahedron"));
+    EXPECT_THAT(e.what(), HasSubstr("give exactly one of 'mesh' or 'generator'"));
   }
 }
 

@@ -29,7 +29,7 @@ inline PlannerSections WithFiles(PlannerSections s) {
 inline PlannerSections SmallPropeller(double pitch_root_deg = 30.0, double pitch_tip_deg = 50.0) {
   PlannerSections s;
   s.name = "propeller";
-  s.part.generator = "propeller";
+  s.part.generator = PartGenerator::kPropeller;
   s.part.params = {{"hub_mm", {60.0, 60.0}},
                    {"span_mm", {40.0}},
                    {"chord_mm", {40.0}},

@@ -36,14 +36,14 @@ std::string ReadFileForTest(const fs::path& path) {
 
 std::set<std::string> Kinds(const CheckReport& r) {
   std::set<std::string> kinds;
-  for (const CheckViolation& v : r.violations) kinds.insert(v.kind);
+  for (const CheckViolation& v : r.violations) kinds.insert(std::string(NameOf(v.kind)));
   return kinds;
 }
 
 std::string Describe(const CheckReport& r) {
   std::string text;
   for (const CheckViolation& v : r.violations) {
-    text += v.kind + " " + v.joint + v.body1 + "/" + v.body2 + " at point " + std::to_string(v.point) + " value " +
+    text += std::string(NameOf(v.kind)) + " " + v.joint + v.body1 + "/" + v.body2 + " at point " + std::to_string(v.point) + " value " +
             std::to_string(v.value) + " " + v.unit + "\n";
   }
   return text;
@@ -337,7 +337,7 @@ TEST_F(PlantedFaultTest, TorchAgainstTheDepositedWallIsACollisionWithThePart) {
   }
   const CheckReport r = CheckPlan(LoadCell(Settings("cell_ok")), plan, Settings("cell_ok"), 100.0, nullptr);
   bool part_hit = false;
-  for (const CheckViolation& v : r.violations) part_hit |= (v.kind == "collision" && v.body1 == "part");
+  for (const CheckViolation& v : r.violations) part_hit |= (v.kind == ViolationKind::kCollision && v.body1 == "part");
   EXPECT_TRUE(part_hit) << "a torch leaning 75 deg must hit the wall it just built\n" << Describe(r);
 }
 
@@ -362,7 +362,7 @@ TEST_F(PlantedFaultTest, SkippedCollisionChecksMissNothing) {
   const CheckReport r = CheckPlan(model, plan, settings, 100.0, nullptr);
   int flagged = 0;
   for (const CheckViolation& v : r.violations) {
-    if (v.kind == "collision") flagged += v.samples;
+    if (v.kind == ViolationKind::kCollision) flagged += v.samples;
   }
   int brute = 0;
   std::vector<CellContact> contacts;

@@ -36,7 +36,7 @@ fs::path CellWithJ6Range(double lo, double hi) {
   return path;
 }
 
-std::size_t Count(const CheckReport& r, const std::string& kind, const std::string& joint) {
+std::size_t Count(const CheckReport& r, ViolationKind kind, const std::string& joint) {
   std::size_t n = 0;
   for (const CheckViolation& v : r.violations) n += v.kind == kind && v.joint == joint;
   return n;
@@ -60,11 +60,11 @@ TEST(CellResolve, SpinTakesJ6BackInsideItsLimitsWithTheSameWeld) {
   settings.mjcf = file;
   const CellModel cell = LoadCell(settings);
   const CheckReport fixed = CheckPlan(cell, wall, settings, 100.0, nullptr);
-  EXPECT_GT(Count(fixed, "joint_limit", "j6"), 0u);
+  EXPECT_GT(Count(fixed, ViolationKind::kJointLimit, "j6"), 0u);
 
   settings.resolve = CellResolve::kOptimise;
   const CheckReport resolved = CheckPlan(cell, wall, settings, 100.0, nullptr);
-  EXPECT_TRUE(resolved.ok) << resolved.violations.size() << " violations, first " << resolved.violations[0].kind;
+  EXPECT_TRUE(resolved.ok) << resolved.violations.size() << " violations, first " << NameOf(resolved.violations[0].kind);
   EXPECT_FALSE(resolved.resolve.kept_fixed);
   EXPECT_GT(resolved.resolve.before.violating_samples, 0u);
   EXPECT_EQ(resolved.resolve.after.violating_samples, 0u);

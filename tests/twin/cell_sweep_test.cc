@@ -69,14 +69,14 @@ CellModel CellWithPlate(const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W) 
   X_WB.translate(Eigen::Vector3d(1050.0, 0.0, 0.0));
   X_WB.rotate(Eigen::AngleAxisd(kPi / 2.0, Eigen::Vector3d::UnitZ()));
   const CellModel::RobotInfo info{"FANUC ARC Mate 100iC/12", "builtin"};
-  return CellModel::FromXml(MjcfSource{.xml = xml, .file = analysis::BuiltinCellPath()}, info,
-                            Eigen::Isometry3d::Identity(), X_WB);
+  return CellModel::FromXml(MjcfSource{.xml = xml, .file = analysis::BuiltinCellPath(), .assets = {}, .builtin = false},
+                            info, Eigen::Isometry3d::Identity(), X_WB);
 }
 
 int Collisions(const CheckReport& r, bool* between, double* t_s) {
   int n = 0;
   for (const CheckViolation& v : r.violations) {
-    if (v.kind != "collision") continue;
+    if (v.kind != ViolationKind::kCollision) continue;
     ++n;
     *between = *between || v.between_samples;
     if (v.t_s >= 0.0) *t_s = v.t_s;

@@ -34,7 +34,7 @@ using ::testing::HasSubstr;
 std::string Describe(const CheckReport& r) {
   std::string text;
   for (const CheckViolation& v : r.violations) {
-    text += v.kind + " " + v.joint + v.body1 + "/" + v.body2 + " at point " + std::to_string(v.point) + " value " +
+    text += std::string(NameOf(v.kind)) + " " + v.joint + v.body1 + "/" + v.body2 + " at point " + std::to_string(v.point) + " value " +
             std::to_string(v.value) + " " + v.unit + "\n";
   }
   return text;
@@ -172,8 +172,8 @@ TEST(PositionerTypes, WhereTheArmCannotKeepTheTorchAngleTheCheckSaysWhere) {
   EXPECT_FALSE(r.ok);
   bool wrist = false, table = false;
   for (const CheckViolation& v : r.violations) {
-    wrist |= v.kind == "joint_limit" && v.joint == "j5";
-    table |= v.kind == "collision" && v.body1 == "positioner_base" && v.body2 == "torch";
+    wrist |= v.kind == ViolationKind::kJointLimit && v.joint == "j5";
+    table |= v.kind == ViolationKind::kCollision && v.body1 == "positioner_base" && v.body2 == "torch";
     EXPECT_NE(v.joint, "pos_tilt");
     EXPECT_NE(v.joint, "pos_rot");
   }

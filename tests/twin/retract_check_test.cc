@@ -29,7 +29,7 @@ PartHits CheckPart(double retract_mm) {
   const CheckReport r = CheckPlan(LoadCell(settings), planned.plan, settings, 100.0, nullptr);
   PartHits hits;
   for (const CheckViolation& v : r.violations) {
-    if (v.kind != "collision" || v.body1 != "part") continue;
+    if (v.kind != ViolationKind::kCollision || v.body1 != "part") continue;
     (r.motion[v.sample].weld ? hits.weld : hits.travel) += 1;
     hits.text += "layer " + std::to_string(v.layer) + " point " + std::to_string(v.point) + ": " +
                  std::to_string(v.value) + " mm\n";

@@ -33,7 +33,7 @@ class ViolationLog {
  public:
   // `worse_if_larger`: whether a larger value is a worse violation.
   // `t_s`: when the contact or crossing begins (continuous mode; -1 unknown); `between`: strictly between samples.
-  void Add(const std::string& kind, const std::string& subject1, const std::string& subject2,
+  void Add(ViolationKind kind, const std::string& subject1, const std::string& subject2,
            const planner::CellSample& s, int sample, double value, const std::string& unit, bool worse_if_larger,
            double t_s = -1.0, bool between = false) {
     const auto key = std::make_tuple(kind, subject1, subject2);
@@ -57,7 +57,7 @@ class ViolationLog {
     v.point = v.first_point = v.last_point = s.point;
     v.layer = s.layer;
     v.samples = 1;
-    if (kind == "collision") {
+    if (kind == ViolationKind::kCollision) {
       v.body1 = subject1;
       v.body2 = subject2;
     } else {
@@ -75,7 +75,7 @@ class ViolationLog {
 
  private:
   // The entry of the current layer for each kind and subject.
-  std::map<std::tuple<std::string, std::string, std::string>, std::size_t> open_;
+  std::map<std::tuple<ViolationKind, std::string, std::string>, std::size_t> open_;
   std::vector<CheckViolation> violations_;
 };
 
@@ -189,11 +189,15 @@ double SingularityCrossing(const planner::CellSample& a, const planner::CellSamp
   return a.t_s + f * (b.t_s - a.t_s);
 }
 
-int KindRank(const std::string& kind) {
-  if (kind == "collision") return 0;
-  if (kind == "unreachable") return 1;
-  if (kind == "joint_limit") return 2;
-  if (kind == "joint_speed") return 3;
+// The order in which a kind's sample becomes the report's worst_sample: collisions first.
+int KindRank(ViolationKind kind) {
+  switch (kind) {
+    case ViolationKind::kCollision: return 0;
+    case ViolationKind::kUnreachable: return 1;
+    case ViolationKind::kJointLimit: return 2;
+    case ViolationKind::kJointSpeed: return 3;
+    case ViolationKind::kSingularity: return 4;
+  }
   return 4;
 }
 
@@ -253,6 +257,193 @@ planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSe
 
 namespace {
 
+// The nozzle capsule (TCP frame) and, for the torch against the part, a deposit map over the motion's footprint.
+struct NozzleAndMap {
+  Eigen::Vector3d a_T, b_T;
+  double r = 0.0;
+  DepositMap deposit;
+};
+
+NozzleAndMap FootprintMap(const CellModel& cell, const std::vector<planner::CellSample>& motion) {
+  Eigen::Vector3d a_T, b_T;
+  double r = 0.0;
+  cell.NozzleInTcp(&a_T, &b_T, &r);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (const planner::CellSample& s : motion) {
+    lo = lo.cwiseMin(s.p_P.head<2>());
+    hi = hi.cwiseMax(s.p_P.head<2>());
+  }
+  if (motion.empty()) lo = hi = Eigen::Vector2d::Zero();
+  const double pad = 20.0 + 2.0 * r;
+  return {a_T, b_T, r, DepositMap(lo.array() - pad, hi.array() + pad, 1.0)};
+}
+
+// The checks of one sample after another along the motion: each writes its figures into the report and its
+// violations into the log; the state between samples (the last joint velocity, the layer) lives here.
+class SampleChecks {
+ public:
+  SampleChecks(const CellModel& cell, const planner::CellKinematics& kin, const twin::CellSettings& settings,
+               CheckReport* report)
+      : kin_(kin), settings_(settings), report_(*report), motion_(report->motion),
+        nozzle_(FootprintMap(cell, report->motion)) {
+    limit_lo_ << kin.arm.lower, kin.positioner.tilt_lower, kin.positioner.rotation_lower;
+    limit_hi_ << kin.arm.upper, kin.positioner.tilt_upper, kin.positioner.rotation_upper;
+    max_speed_ << kin.arm.max_speed, kin.positioner.tilt_max_speed, kin.positioner.rotation_max_speed;
+    report_.min_joint_margin_deg = std::numeric_limits<double>::infinity();
+    report_.min_arm_margin_deg = std::numeric_limits<double>::infinity();
+    report_.min_j5_deg = std::numeric_limits<double>::infinity();
+    cell_contacts_ = ContactsInMode(cell, motion_, settings, &report_);
+    continuous_ = report_.mode == CheckMode::kContinuous;
+  }
+
+  // Every check at sample i, then the bead laid up to it.
+  void Sample(std::size_t i) {
+    const planner::CellSample& s = motion_[i];
+    if (s.layer != last_layer_) {
+      if (s.positioner_at_limit) ++report_.positioner_limit_layers;
+      last_layer_ = s.layer;
+    }
+    if (s.weld) report_.max_torch_tilt_deg = std::max(report_.max_torch_tilt_deg, s.torch_tilt_rad * kDeg);
+    if (!s.reachable) {
+      log_.Add(ViolationKind::kUnreachable, "", "", s, static_cast<int>(i), s.reach_excess_mm,
+               kin_.numeric_ik ? "ik_residual_mm" : "reach_excess_mm", true);
+      have_velocity_ = false;
+    } else {
+      JointLimits(i);
+      Singularity(i);
+      JointSpeeds(i);
+      CellCollisions(i);
+      PartCollision(i);
+    }
+    if (s.weld && i > 0) nozzle_.deposit.Deposit(motion_[i - 1].p_P, s.p_P, s.bead_width_mm);
+  }
+
+  // The report's violations and summary figures once every sample is checked.
+  void Finish() {
+    report_.violations = log_.Take();
+    report_.ok = report_.violations.empty();
+    report_.duration_s = motion_.empty() ? 0.0 : motion_.back().t_s;
+    if (!std::isfinite(report_.min_joint_margin_deg)) report_.min_joint_margin_deg = 0.0;
+    if (!std::isfinite(report_.min_arm_margin_deg)) report_.min_arm_margin_deg = 0.0;
+    if (!std::isfinite(report_.min_j5_deg)) report_.min_j5_deg = 0.0;
+    report_.worst_sample = min_margin_sample_;
+    int best_rank = 99;
+    for (const CheckViolation& v : report_.violations) {
+      if (KindRank(v.kind) < best_rank) {
+        best_rank = KindRank(v.kind);
+        report_.worst_sample = v.sample;
+      }
+    }
+  }
+
+ private:
+  // Joint limits with margin (every axis the cell has; a missing one stays at 0 and is no limit).
+  void JointLimits(std::size_t i) {
+    const planner::CellSample& s = motion_[i];
+    const int si = static_cast<int>(i);
+    for (int j = 0; j < 8; ++j) {
+      if (!planner::HasAxis(kin_.positioner.type, j)) continue;
+      const double m_deg = std::min(s.q[j] - limit_lo_[j], limit_hi_[j] - s.q[j]) * kDeg;
+      if (j < 6) report_.min_arm_margin_deg = std::min(report_.min_arm_margin_deg, m_deg);
+      if (m_deg < report_.min_joint_margin_deg) {
+        report_.min_joint_margin_deg = m_deg;
+        report_.min_margin_joint = AxisName(j);
+        min_margin_sample_ = si;
+      }
+      if (m_deg < settings_.joint_margin_deg) {
+        log_.Add(ViolationKind::kJointLimit, AxisName(j), "", s, si, m_deg, "margin_deg", false);
+      }
+    }
+  }
+
+  // Wrist singularity: j5 near 0 (or 180) deg aligns j4 and j6.
+  void Singularity(std::size_t i) {
+    const planner::CellSample& s = motion_[i];
+    const int si = static_cast<int>(i);
+    const double j5_deg = std::asin(std::min(1.0, std::abs(std::sin(s.q[4])))) * kDeg;
+    report_.min_j5_deg = std::min(report_.min_j5_deg, j5_deg);
+    if (j5_deg < settings_.singularity_deg) {
+      log_.Add(ViolationKind::kSingularity, "j5", "", s, si, j5_deg, "j5_deg", false);
+    }
+    if (continuous_ && i > 0 && motion_[i - 1].reachable && j5_deg >= settings_.singularity_deg) {
+      // Between the samples: the joint-space line may pass j5 = 0 while both ends keep the margin.
+      const double t = SingularityCrossing(motion_[i - 1], s, settings_.singularity_deg);
+      if (t >= 0.0) {
+        report_.min_j5_deg = 0.0;
+        log_.Add(ViolationKind::kSingularity, "j5", "", s, si, 0.0, "j5_deg", false, t, true);
+      }
+    }
+  }
+
+  // Joint speeds and accelerations while welding, at the planned travel speed.
+  void JointSpeeds(std::size_t i) {
+    const planner::CellSample& s = motion_[i];
+    if (!(s.weld && i > 0 && s.dt_s > 0.0 && motion_[i - 1].reachable)) {
+      have_velocity_ = false;
+      return;
+    }
+    const Eigen::Matrix<double, 8, 1> v = (s.q - motion_[i - 1].q) / s.dt_s;
+    for (int j = 0; j < 8; ++j) {
+      if (!planner::HasAxis(kin_.positioner.type, j)) continue;
+      const double ratio = std::abs(v[j]) / max_speed_[j];
+      if (ratio > report_.max_joint_speed_ratio) {
+        report_.max_joint_speed_ratio = ratio;
+        report_.max_speed_joint = AxisName(j);
+      }
+      if (ratio > 1.0) {
+        log_.Add(ViolationKind::kJointSpeed, AxisName(j), "", s, static_cast<int>(i), ratio, "speed_ratio", true);
+      }
+      if (have_velocity_) {
+        report_.max_accel_deg_s2[j] =
+            std::max(report_.max_accel_deg_s2[j], std::abs(v[j] - prev_velocity_[j]) / s.dt_s * kDeg);
+      }
+    }
+    prev_velocity_ = v;
+    have_velocity_ = true;
+  }
+
+  // Cell bodies: the contacts found at this sample (ContactsInMode).
+  void CellCollisions(std::size_t i) {
+    const planner::CellSample& s = motion_[i];
+    while (next_contact_ < cell_contacts_.size() && cell_contacts_[next_contact_].sample < i) ++next_contact_;
+    for (; next_contact_ < cell_contacts_.size() && cell_contacts_[next_contact_].sample == i; ++next_contact_) {
+      const SampleContacts& found = cell_contacts_[next_contact_];
+      const CellContact& c = found.contact;
+      const bool ordered = c.body1 < c.body2;
+      log_.Add(ViolationKind::kCollision, ordered ? c.body1 : c.body2, ordered ? c.body2 : c.body1, s,
+               static_cast<int>(i), c.penetration_mm, "penetration_mm", true, found.t_s, found.between);
+    }
+  }
+
+  // Torch against the layers deposited before this sample.
+  void PartCollision(std::size_t i) {
+    if (!settings_.part_collision) return;
+    const planner::CellSample& s = motion_[i];
+    const Eigen::Isometry3d X_WP = kin_.X_WB * planner::PartPose(kin_.positioner, s.q[6], s.q[7]);
+    const Eigen::Isometry3d X_PT = X_WP.inverse() * s.X_WT;
+    const double pen = nozzle_.deposit.Penetration(X_PT * nozzle_.a_T, X_PT * nozzle_.b_T, nozzle_.r);
+    if (pen > settings_.collision_tolerance_mm) {
+      log_.Add(ViolationKind::kCollision, "part", "torch", s, static_cast<int>(i), pen, "penetration_mm", true);
+    }
+  }
+
+  const planner::CellKinematics& kin_;
+  const twin::CellSettings& settings_;
+  CheckReport& report_;
+  const std::vector<planner::CellSample>& motion_;
+  NozzleAndMap nozzle_;
+  ViolationLog log_;
+  Eigen::Matrix<double, 8, 1> limit_lo_, limit_hi_, max_speed_;
+  std::vector<SampleContacts> cell_contacts_;
+  bool continuous_ = false;
+  std::size_t next_contact_ = 0;  // first entry of cell_contacts_ at or after the current sample
+  Eigen::Matrix<double, 8, 1> prev_velocity_ = Eigen::Matrix<double, 8, 1>::Zero();
+  bool have_velocity_ = false;
+  int last_layer_ = std::numeric_limits<int>::min();
+  int min_margin_sample_ = 0;
+};
+
 // The check of the motion `options` give on `solve` (the kinematics the motion is planned on, the positioner's limits
 // kept `margin` inside) against the limits of `kin`.
 CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematics& kin,
@@ -269,138 +460,14 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
   report.motion = planner::PlanCellMotion(solve, plan, options, [&](std::size_t done) {
     if (progress) progress->Update(done);
   });
-  const std::vector<planner::CellSample>& motion = report.motion;
-  report.samples = motion.size();
+  report.samples = report.motion.size();
 
-  // Nozzle capsule (TCP frame) and the deposit map over the path's footprint.
-  Eigen::Vector3d nozzle_a_T, nozzle_b_T;
-  double nozzle_r = 0.0;
-  cell.NozzleInTcp(&nozzle_a_T, &nozzle_b_T, &nozzle_r);
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector2d hi = -lo;
-  for (const planner::CellSample& s : motion) {
-    lo = lo.cwiseMin(s.p_P.head<2>());
-    hi = hi.cwiseMax(s.p_P.head<2>());
-  }
-  if (motion.empty()) lo = hi = Eigen::Vector2d::Zero();
-  const double pad = 20.0 + 2.0 * nozzle_r;
-  DepositMap deposit(lo.array() - pad, hi.array() + pad, 1.0);
-
-  ViolationLog log;
-  Eigen::Matrix<double, 8, 1> limit_lo, limit_hi, max_speed;
-  limit_lo << kin.arm.lower, kin.positioner.tilt_lower, kin.positioner.rotation_lower;
-  limit_hi << kin.arm.upper, kin.positioner.tilt_upper, kin.positioner.rotation_upper;
-  max_speed << kin.arm.max_speed, kin.positioner.tilt_max_speed, kin.positioner.rotation_max_speed;
-  report.min_joint_margin_deg = std::numeric_limits<double>::infinity();
-  report.min_arm_margin_deg = std::numeric_limits<double>::infinity();
-  report.min_j5_deg = std::numeric_limits<double>::infinity();
-  int min_margin_sample = 0;
-  const std::vector<SampleContacts> cell_contacts = ContactsInMode(cell, motion, settings, &report);
-  const bool continuous = report.mode == CheckMode::kContinuous;
-  std::size_t next_contact = 0;  // first entry of cell_contacts at or after the current sample
-  Eigen::Matrix<double, 8, 1> prev_velocity = Eigen::Matrix<double, 8, 1>::Zero();
-  bool have_velocity = false;
-  int last_layer = std::numeric_limits<int>::min();
-
-  for (std::size_t i = 0; i < motion.size(); ++i) {
-    const planner::CellSample& s = motion[i];
-    const int si = static_cast<int>(i);
-    if (s.layer != last_layer) {
-      if (s.positioner_at_limit) ++report.positioner_limit_layers;
-      last_layer = s.layer;
-    }
-    if (s.weld) report.max_torch_tilt_deg = std::max(report.max_torch_tilt_deg, s.torch_tilt_rad * kDeg);
-    const bool deposit_here = s.weld && i > 0;
-    if (!s.reachable) {
-      log.Add("unreachable", "", "", s, si, s.reach_excess_mm,
-              kin.numeric_ik ? "ik_residual_mm" : "reach_excess_mm", true);
-      have_velocity = false;
-      if (deposit_here) deposit.Deposit(motion[i - 1].p_P, s.p_P, s.bead_width_mm);
-      continue;
-    }
-
-    // Joint limits with margin (every axis the cell has; a missing one stays at 0 and is no limit).
-    for (int j = 0; j < 8; ++j) {
-      if (!planner::HasAxis(kin.positioner.type, j)) continue;
-      const double m_deg = std::min(s.q[j] - limit_lo[j], limit_hi[j] - s.q[j]) * kDeg;
-      if (j < 6) report.min_arm_margin_deg = std::min(report.min_arm_margin_deg, m_deg);
-      if (m_deg < report.min_joint_margin_deg) {
-        report.min_joint_margin_deg = m_deg;
-        report.min_margin_joint = AxisName(j);
-        min_margin_sample = si;
-      }
-      if (m_deg < settings.joint_margin_deg) log.Add("joint_limit", AxisName(j), "", s, si, m_deg, "margin_deg", false);
-    }
-
-    // Wrist singularity: j5 near 0 (or 180) deg aligns j4 and j6.
-    const double j5_deg = std::asin(std::min(1.0, std::abs(std::sin(s.q[4])))) * kDeg;
-    report.min_j5_deg = std::min(report.min_j5_deg, j5_deg);
-    if (j5_deg < settings.singularity_deg) log.Add("singularity", "j5", "", s, si, j5_deg, "j5_deg", false);
-    if (continuous && i > 0 && motion[i - 1].reachable && j5_deg >= settings.singularity_deg) {
-      // Between the samples: the joint-space line may pass j5 = 0 while both ends keep the margin.
-      const double t = SingularityCrossing(motion[i - 1], s, settings.singularity_deg);
-      if (t >= 0.0) {
-        report.min_j5_deg = 0.0;
-        log.Add("singularity", "j5", "", s, si, 0.0, "j5_deg", false, t, true);
-      }
-    }
-
-    // Joint speeds and accelerations while welding, at the planned travel speed.
-    if (s.weld && i > 0 && s.dt_s > 0.0 && motion[i - 1].reachable) {
-      const Eigen::Matrix<double, 8, 1> v = (s.q - motion[i - 1].q) / s.dt_s;
-      for (int j = 0; j < 8; ++j) {
-        if (!planner::HasAxis(kin.positioner.type, j)) continue;
-        const double ratio = std::abs(v[j]) / max_speed[j];
-        if (ratio > report.max_joint_speed_ratio) {
-          report.max_joint_speed_ratio = ratio;
-          report.max_speed_joint = AxisName(j);
-        }
-        if (ratio > 1.0) log.Add("joint_speed", AxisName(j), "", s, si, ratio, "speed_ratio", true);
-        if (have_velocity) {
-          report.max_accel_deg_s2[j] =
-              std::max(report.max_accel_deg_s2[j], std::abs(v[j] - prev_velocity[j]) / s.dt_s * kDeg);
-        }
-      }
-      prev_velocity = v;
-      have_velocity = true;
-    } else {
-      have_velocity = false;
-    }
-
-    // Cell bodies: the contacts found at this sample (CellContacts).
-    while (next_contact < cell_contacts.size() && cell_contacts[next_contact].sample < i) ++next_contact;
-    for (; next_contact < cell_contacts.size() && cell_contacts[next_contact].sample == i; ++next_contact) {
-      const CellContact& c = cell_contacts[next_contact].contact;
-      const bool ordered = c.body1 < c.body2;
-      log.Add("collision", ordered ? c.body1 : c.body2, ordered ? c.body2 : c.body1, s, si, c.penetration_mm,
-              "penetration_mm", true, cell_contacts[next_contact].t_s, cell_contacts[next_contact].between);
-    }
-
-    // Torch against the layers deposited before this sample.
-    if (settings.part_collision) {
-      const Eigen::Isometry3d X_WP = kin.X_WB * planner::PartPose(kin.positioner, s.q[6], s.q[7]);
-      const Eigen::Isometry3d X_PT = X_WP.inverse() * s.X_WT;
-      const double pen = deposit.Penetration(X_PT * nozzle_a_T, X_PT * nozzle_b_T, nozzle_r);
-      if (pen > settings.collision_tolerance_mm) log.Add("collision", "part", "torch", s, si, pen, "penetration_mm", true);
-    }
-    if (deposit_here) deposit.Deposit(motion[i - 1].p_P, s.p_P, s.bead_width_mm);
+  SampleChecks checks(cell, kin, settings, &report);
+  for (std::size_t i = 0; i < report.motion.size(); ++i) {
+    checks.Sample(i);
     if (progress && (i & 1023u) == 0) progress->Update(total + i);
   }
-
-  report.violations = log.Take();
-  report.ok = report.violations.empty();
-  report.duration_s = motion.empty() ? 0.0 : motion.back().t_s;
-  if (!std::isfinite(report.min_joint_margin_deg)) report.min_joint_margin_deg = 0.0;
-  if (!std::isfinite(report.min_arm_margin_deg)) report.min_arm_margin_deg = 0.0;
-  if (!std::isfinite(report.min_j5_deg)) report.min_j5_deg = 0.0;
-  report.worst_sample = min_margin_sample;
-  int best_rank = 99;
-  for (const CheckViolation& v : report.violations) {
-    if (KindRank(v.kind) < best_rank) {
-      best_rank = KindRank(v.kind);
-      report.worst_sample = v.sample;
-    }
-  }
+  checks.Finish();
   if (progress) progress->Update(2 * total);
   return report;
 }

@@ -2,6 +2,7 @@
 // collisions (MuJoCo between cell bodies, a height map between the torch and the layers deposited so far).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -22,9 +23,20 @@ namespace waam::twin {
 class CellModel;   // twin/cell/mujoco_cell.h
 struct CellFiles;  // twin/cell/cell_compose.h
 
+// What a violation is; its name is check.json's `kind`.
+enum class ViolationKind { kUnreachable, kJointLimit, kJointSpeed, kSingularity, kCollision };
+constexpr std::array<EnumName<ViolationKind>, 5> EnumNames(ViolationKind) {
+  return {{{ViolationKind::kUnreachable, "unreachable"},
+           {ViolationKind::kJointLimit, "joint_limit"},
+           {ViolationKind::kJointSpeed, "joint_speed"},
+           {ViolationKind::kSingularity, "singularity"},
+           {ViolationKind::kCollision, "collision"}}};
+}
+WAAM_ENUM_JSON(ViolationKind)
+
 // One violation: all samples of one layer with the same kind and joint (or body pair), merged.
 struct CheckViolation {
-  std::string kind;        // unreachable | joint_limit | joint_speed | singularity | collision
+  ViolationKind kind = ViolationKind::kUnreachable;
   int point = 0;           // path point (over the whole plan) where it is worst
   int layer = 0;           // layer of that point
   int first_point = 0;     // first and last path point in this layer with this violation

@@ -44,6 +44,8 @@ planner::ProgramFormat PresetDialect(CellPreset preset) {
     case CellPreset::kFanucArcMate100ic: return planner::ProgramFormat::kFanucLs;
     case CellPreset::kAbbIrb1600: return planner::ProgramFormat::kAbbRapid;
     case CellPreset::kKukaKr16: return planner::ProgramFormat::kKukaKrl;
+    case CellPreset::kKukaKr16Turntable: return planner::ProgramFormat::kKukaKrl;
+    case CellPreset::kAbbIrb1600Table: return planner::ProgramFormat::kAbbRapid;
     case CellPreset::kYaskawaMh12: return planner::ProgramFormat::kYaskawaJbi;
   }
   WAAM_DEMAND(false);

@@ -83,38 +83,183 @@ Eigen::Matrix<double, 6, 1> InherentStrain(const HexElement& e, double ratio) {
   return v;
 }
 
+// The elements around each node, in element order: at[n] .. at[n + 1] in list.
+struct NodeElements {
+  std::vector<int> at;
+  std::vector<int> list;
+};
+
+NodeElements ElementsAtNodes(const HexMesh& mesh) {
+  const std::size_t n_nodes = mesh.node_ijk.size();
+  NodeElements ne;
+  ne.at.assign(n_nodes + 1, 0);
+  for (const HexElement& el : mesh.elements) {
+    for (int n : el.nodes) ++ne.at[n + 1];
+  }
+  for (std::size_t n = 0; n < n_nodes; ++n) ne.at[n + 1] += ne.at[n];
+  ne.list.resize(ne.at[n_nodes]);
+  std::vector<int> next(ne.at.begin(), ne.at.end() - 1);
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    for (int n : mesh.elements[e].nodes) ne.list[next[n]++] = static_cast<int>(e);
+  }
+  return ne;
+}
+
+// The elements active once `group` is laid (of those `final_active` keeps, held by the substrate) and their nodes
+// numbered in element order: dof_of[node] (-1: none), node_of[dof block].
+struct GroupNodes {
+  std::vector<std::uint8_t> active;
+  std::vector<int> dof_of;
+  std::vector<int> node_of;
+};
+
+// False when the group adds no element (nothing to solve).
+bool NumberGroupNodes(const HexMesh& mesh, const std::vector<std::uint8_t>& final_active, int group,
+                      GroupNodes* out) {
+  out->active.assign(mesh.elements.size(), 0);
+  bool any_new = false;
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    out->active[e] = final_active[e] && mesh.elements[e].group <= group;
+    any_new = any_new || (out->active[e] && mesh.elements[e].group == group);
+  }
+  if (!any_new) return false;
+  KeepConnectedToSubstrate(mesh, &out->active);
+  out->dof_of.assign(mesh.node_ijk.size(), -1);
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    if (!out->active[e]) continue;
+    for (int n : mesh.elements[e].nodes) {
+      if (out->dof_of[n] < 0) {
+        out->dof_of[n] = static_cast<int>(out->node_of.size());
+        out->node_of.push_back(n);
+      }
+    }
+  }
+  return true;
+}
+
+// The element matrices and loads the assembly adds up.
+struct ElementTerms {
+  Matrix24 ke;         // stiffness of one cube
+  Matrix24x6 gd;       // nodal loads per unit inherent strain (G D)
+  double spring = 0.0; // Winkler spring per bottom node, N/mm
+  double vertical_ratio = 1.0;
+};
+
+// K (lower triangle) and f of one group, assembled by column: node a's three columns (and its three entries of f)
+// are summed only from the elements around a, in element order, the order a scatter over the elements adds them
+// in. Each node writes only its own columns, so the nodes run in parallel and K and f are the same, bit for bit, on
+// any number of threads. Columns hold the lower triangle (rows >= column), from the nodes sharing an element with a.
+void AssembleGroup(const HexMesh& mesh, const NodeElements& around, const GroupNodes& g, int group,
+                   const ElementTerms& terms, Eigen::SparseMatrix<double>* k_out, Eigen::VectorXd* f_out) {
+  const int nn = static_cast<int>(g.node_of.size());
+  std::vector<std::vector<int>> adjacent(nn);
+  ParallelFor(nn, [&](std::size_t a) {
+    const int node = g.node_of[a];
+    for (int k = around.at[node]; k < around.at[node + 1]; ++k) {
+      if (!g.active[around.list[k]]) continue;
+      for (int b : mesh.elements[around.list[k]].nodes) {
+        if (g.dof_of[b] >= static_cast<int>(a)) adjacent[a].push_back(g.dof_of[b]);
+      }
+    }
+    std::sort(adjacent[a].begin(), adjacent[a].end());
+    adjacent[a].erase(std::unique(adjacent[a].begin(), adjacent[a].end()), adjacent[a].end());
+  });
+  Eigen::SparseMatrix<double>& k = *k_out;
+  k.resize(3 * nn, 3 * nn);
+  int* outer = k.outerIndexPtr();
+  outer[0] = 0;
+  for (int a = 0; a < nn; ++a) {
+    for (int c = 0; c < 3; ++c) outer[3 * a + c + 1] = outer[3 * a + c] + 3 * static_cast<int>(adjacent[a].size()) - c;
+  }
+  k.resizeNonZeros(outer[3 * nn]);
+  int* inner = k.innerIndexPtr();
+  double* values = k.valuePtr();
+  std::fill(values, values + outer[3 * nn], 0.0);
+  Eigen::VectorXd& f = *f_out;
+  f = Eigen::VectorXd::Zero(3 * nn);
+  ParallelFor(nn, [&](std::size_t a_index) {
+    const int a = static_cast<int>(a_index);
+    for (int c = 0; c < 3; ++c) {
+      int at = outer[3 * a + c];
+      for (int b : adjacent[a]) {
+        for (int r = 0; r < 3; ++r) {
+          if (3 * b + r >= 3 * a + c) inner[at++] = 3 * b + r;
+        }
+      }
+    }
+    auto entry = [&](int row, int col) -> double& {
+      const int* lo = inner + outer[col];
+      const int* hi = inner + outer[col + 1];
+      return values[std::lower_bound(lo, hi, row) - inner];
+    };
+    const int node = g.node_of[a];
+    for (int k_at = around.at[node]; k_at < around.at[node + 1]; ++k_at) {
+      const int e = around.list[k_at];
+      if (!g.active[e]) continue;
+      const HexElement& el = mesh.elements[e];
+      const int local = static_cast<int>(std::find(el.nodes.begin(), el.nodes.end(), node) - el.nodes.begin());
+      int dofs[24];
+      for (int n = 0; n < 8; ++n) {
+        for (int c = 0; c < 3; ++c) dofs[3 * n + c] = 3 * g.dof_of[el.nodes[n]] + c;
+      }
+      for (int c = 0; c < 3; ++c) {
+        const int j = 3 * local + c;
+        for (int i = 0; i < 24; ++i) {
+          if (dofs[i] >= dofs[j]) entry(dofs[i], dofs[j]) += terms.ke(i, j);
+        }
+      }
+      if (el.group == group) {
+        const Eigen::Matrix<double, 24, 1> fe = terms.gd * InherentStrain(el, terms.vertical_ratio);
+        for (int c = 0; c < 3; ++c) f[3 * a + c] += fe[3 * local + c];
+      }
+      // Winkler springs on the bottom face (nodes 0-3) of a substrate element.
+      if (el.ijk.z() == 0 && local < 4) {
+        for (int c = 0; c < 3; ++c) entry(3 * a + c, 3 * a + c) += terms.spring;
+      }
+    }
+  });
+}
+
+// K du = f for one group with the solver `options` name. Throws InputError when it fails.
+Eigen::VectorXd SolveGroup(const Eigen::SparseMatrix<double>& k, const Eigen::VectorXd& f,
+                           const DistortionOptions& options, int group) {
+  if (options.solver == FeSolver::kCg) {
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::IncompleteCholesky<double>> cg;
+    cg.setTolerance(1e-8);
+    cg.setMaxIterations(20000);
+    cg.compute(k);
+    Eigen::VectorXd du = cg.solve(f);
+    WAAM_THROW_UNLESS(cg.info() == Eigen::Success,
+                      "distortion: conjugate gradient did not converge in " << cg.iterations()
+                      << " iterations (error " << cg.error() << "); use distortion solver ldlt");
+    return du;
+  }
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt(k);
+  WAAM_THROW_UNLESS(ldlt.info() == Eigen::Success,
+                    "distortion: the stiffness matrix of group " << group << " is singular (part not held by the "
+                    "substrate?); raise models distortion substrate_stiffness_n_mm3");
+  return ldlt.solve(f);
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const models::DistortionParams& params,
                                                  const DistortionOptions& options, DistortionStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   const Matrix6 d = Elasticity(params.youngs_modulus_mpa, params.poisson);
-  Matrix24 ke;
+  ElementTerms terms;
   Matrix24x6 ge;
-  CubeMatrices(mesh.h_mm, d, &ke, &ge);
-  const Matrix24x6 gd = ge * d;
+  CubeMatrices(mesh.h_mm, d, &terms.ke, &ge);
+  terms.gd = ge * d;
   // Winkler substrate: each bottom face (z = 0) spreads k_s h^2 over its four nodes in all three directions.
-  const double spring = params.substrate_stiffness_n_mm3 * mesh.h_mm * mesh.h_mm / 4.0;
+  terms.spring = params.substrate_stiffness_n_mm3 * mesh.h_mm * mesh.h_mm / 4.0;
+  terms.vertical_ratio = params.vertical_ratio;
 
-  const std::size_t n_nodes = mesh.node_ijk.size();
-  std::vector<Eigen::Vector3d> u(n_nodes, Eigen::Vector3d::Zero());
+  std::vector<Eigen::Vector3d> u(mesh.node_ijk.size(), Eigen::Vector3d::Zero());
   std::vector<std::uint8_t> final_active(mesh.elements.size(), 1);
   const std::size_t dropped = KeepConnectedToSubstrate(mesh, &final_active);
   if (stats != nullptr) stats->dropped_elements = dropped;
-
-  // The elements around each node, in element order: elements_at[n] .. elements_at[n + 1] in element_list.
-  std::vector<int> elements_at(n_nodes + 1, 0);
-  for (const HexElement& el : mesh.elements) {
-    for (int n : el.nodes) ++elements_at[n + 1];
-  }
-  for (std::size_t n = 0; n < n_nodes; ++n) elements_at[n + 1] += elements_at[n];
-  std::vector<int> element_list(elements_at[n_nodes]);
-  {
-    std::vector<int> next(elements_at.begin(), elements_at.end() - 1);
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
-      for (int n : mesh.elements[e].nodes) element_list[next[n]++] = static_cast<int>(e);
-    }
-  }
+  const NodeElements around = ElementsAtNodes(mesh);
 
   // Each group's increment du_g = K_g^-1 f_g depends only on the elements active then and the group's own strains,
   // not on the other increments: the groups are solved in parallel, each into its own slot, and their increments
@@ -129,116 +274,14 @@ std::vector<Eigen::Vector3d> SolveInherentStrain(const HexMesh& mesh, const mode
   ParallelFor(solutions.size(), [&](std::size_t group_index) {
     const int group = static_cast<int>(group_index);
     CheckInterrupt();
-    std::vector<std::uint8_t> active(mesh.elements.size(), 0);
-    bool any_new = false;
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
-      active[e] = final_active[e] && mesh.elements[e].group <= group;
-      any_new = any_new || (active[e] && mesh.elements[e].group == group);
-    }
-    if (!any_new) return;
-    KeepConnectedToSubstrate(mesh, &active);
-    // Number the nodes of the active elements.
-    std::vector<int> dof_of(n_nodes, -1);
-    std::vector<int> node_of;
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
-      if (!active[e]) continue;
-      for (int n : mesh.elements[e].nodes) {
-        if (dof_of[n] < 0) {
-          dof_of[n] = static_cast<int>(node_of.size());
-          node_of.push_back(n);
-        }
-      }
-    }
-    const int nn = static_cast<int>(node_of.size());
-    if (nn == 0) return;
-    // The assembly gathers by column: node a's three columns (and its three entries of f) are summed only from the
-    // elements around a, in element order, the order a scatter over the elements adds them in. Each node writes
-    // only its own columns, so the nodes run in parallel and K and f are the same, bit for bit, on any number of
-    // threads. Columns hold the lower triangle (rows >= column), from the nodes sharing an element with a.
-    std::vector<std::vector<int>> adjacent(nn);
-    ParallelFor(nn, [&](std::size_t a) {
-      const int node = node_of[a];
-      for (int k = elements_at[node]; k < elements_at[node + 1]; ++k) {
-        if (!active[element_list[k]]) continue;
-        for (int b : mesh.elements[element_list[k]].nodes) {
-          if (dof_of[b] >= static_cast<int>(a)) adjacent[a].push_back(dof_of[b]);
-        }
-      }
-      std::sort(adjacent[a].begin(), adjacent[a].end());
-      adjacent[a].erase(std::unique(adjacent[a].begin(), adjacent[a].end()), adjacent[a].end());
-    });
-    Eigen::SparseMatrix<double> k(3 * nn, 3 * nn);
-    int* outer = k.outerIndexPtr();
-    outer[0] = 0;
-    for (int a = 0; a < nn; ++a) {
-      for (int c = 0; c < 3; ++c) outer[3 * a + c + 1] = outer[3 * a + c] + 3 * static_cast<int>(adjacent[a].size()) - c;
-    }
-    k.resizeNonZeros(outer[3 * nn]);
-    int* inner = k.innerIndexPtr();
-    double* values = k.valuePtr();
-    std::fill(values, values + outer[3 * nn], 0.0);
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * nn);
-    ParallelFor(nn, [&](std::size_t a_index) {
-      const int a = static_cast<int>(a_index);
-      for (int c = 0; c < 3; ++c) {
-        int at = outer[3 * a + c];
-        for (int b : adjacent[a]) {
-          for (int r = 0; r < 3; ++r) {
-            if (3 * b + r >= 3 * a + c) inner[at++] = 3 * b + r;
-          }
-        }
-      }
-      auto entry = [&](int row, int col) -> double& {
-        const int* lo = inner + outer[col];
-        const int* hi = inner + outer[col + 1];
-        return values[std::lower_bound(lo, hi, row) - inner];
-      };
-      const int node = node_of[a];
-      for (int k_at = elements_at[node]; k_at < elements_at[node + 1]; ++k_at) {
-        const int e = element_list[k_at];
-        if (!active[e]) continue;
-        const HexElement& el = mesh.elements[e];
-        const int local = static_cast<int>(std::find(el.nodes.begin(), el.nodes.end(), node) - el.nodes.begin());
-        int dofs[24];
-        for (int n = 0; n < 8; ++n) {
-          for (int c = 0; c < 3; ++c) dofs[3 * n + c] = 3 * dof_of[el.nodes[n]] + c;
-        }
-        for (int c = 0; c < 3; ++c) {
-          const int j = 3 * local + c;
-          for (int i = 0; i < 24; ++i) {
-            if (dofs[i] >= dofs[j]) entry(dofs[i], dofs[j]) += ke(i, j);
-          }
-        }
-        if (el.group == group) {
-          const Eigen::Matrix<double, 24, 1> fe = gd * InherentStrain(el, params.vertical_ratio);
-          for (int c = 0; c < 3; ++c) f[3 * a + c] += fe[3 * local + c];
-        }
-        // Winkler springs on the bottom face (nodes 0-3) of a substrate element.
-        if (el.ijk.z() == 0 && local < 4) {
-          for (int c = 0; c < 3; ++c) entry(3 * a + c, 3 * a + c) += spring;
-        }
-      }
-    });
-    Eigen::VectorXd du;
-    if (options.solver == FeSolver::kCg) {
-      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::IncompleteCholesky<double>> cg;
-      cg.setTolerance(1e-8);
-      cg.setMaxIterations(20000);
-      cg.compute(k);
-      du = cg.solve(f);
-      WAAM_THROW_UNLESS(cg.info() == Eigen::Success,
-                        "distortion: conjugate gradient did not converge in " << cg.iterations()
-                        << " iterations (error " << cg.error() << "); use distortion solver ldlt");
-    } else {
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt(k);
-      WAAM_THROW_UNLESS(ldlt.info() == Eigen::Success,
-                        "distortion: the stiffness matrix of group " << group << " is singular (part not held by the "
-                        "substrate?); raise models distortion substrate_stiffness_n_mm3");
-      du = ldlt.solve(f);
-    }
+    GroupNodes g;
+    if (!NumberGroupNodes(mesh, final_active, group, &g) || g.node_of.empty()) return;
+    Eigen::SparseMatrix<double> k;
+    Eigen::VectorXd f;
+    AssembleGroup(mesh, around, g, group, terms, &k, &f);
+    solutions[group_index].du = SolveGroup(k, f, options, group);
     solutions[group_index].nonzeros = static_cast<std::size_t>(k.nonZeros());
-    solutions[group_index].du = std::move(du);
-    solutions[group_index].node_of = std::move(node_of);
+    solutions[group_index].node_of = std::move(g.node_of);
   });
   for (const GroupSolution& solution : solutions) {
     if (solution.node_of.empty()) continue;

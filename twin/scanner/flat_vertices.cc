@@ -25,11 +25,14 @@ P3 ReducedNormal(const P3& a, const P3& b, const P3& c) {
   return g > 0 ? P3(n / g) : n;
 }
 
+// 128-bit products of 64-bit coordinates (a GCC/Clang extension, marked so that -Wpedantic accepts it).
+__extension__ using Int128 = __int128;
+
 // Twice the area of triangle a, b, c projected on n: > 0 when counter-clockwise seen from the side n points to.
-__int128 Side(const P3& a, const P3& b, const P3& c, const P3& n) {
+Int128 Side(const P3& a, const P3& b, const P3& c, const P3& n) {
   const P3 k = (b - a).cross(c - a);
-  return static_cast<__int128>(k.x()) * n.x() + static_cast<__int128>(k.y()) * n.y() +
-         static_cast<__int128>(k.z()) * n.z();
+  return static_cast<Int128>(k.x()) * n.x() + static_cast<Int128>(k.y()) * n.y() +
+         static_cast<Int128>(k.z()) * n.z();
 }
 
 // Ear clipping of the planar polygon `ring` (vertex ids, counter-clockwise about n): an ear is a strict convex

@@ -1,5 +1,5 @@
 // Additive-correction multigrid on the structured grid (Hutchinson & Raithby 1986): coarse levels from 2 x 2 x 2
-// blocks, chunked symmetric Gauss-Seidel smoothing, an exact solve on the coarsest level.
+// blocks, chunked symmetric Gauss-Seidel smoothing, symmetric Gauss-Seidel on the coarsest level.
 #include "twin/thermal/thermal_multigrid.h"
 
 #include <algorithm>
@@ -9,25 +9,47 @@
 namespace waam::twin::internal {
 namespace {
 
-// Coarsening stops at this many cells (the coarsest level is solved exactly, by dense Cholesky) ...
+// Coarsening stops at this many cells (the coarsest level is smoothed by 8 symmetric Gauss-Seidel pairs) ...
 constexpr std::size_t kCoarsestCells = 96;
 // ... or when a level keeps more than this share of its finer level's cells (the blocks no longer merge cells).
 constexpr double kPoorCoarsening = 0.75;
 
 // One Gauss-Seidel sweep of A x = b over the chunks of ForChunks, forward or backward; inside a chunk the new values
-// are used at once, values of other chunks are those from before the sweep.
-void Sweep(const StencilSystem& a, const std::vector<double>& b, std::vector<double>& x, std::vector<double>& before,
+// are used at once, values of other chunks are those from before the sweep. x and before hold n + 1 values.
+void Sweep(const PaddedStencil& a, const std::vector<double>& b, std::vector<double>& x, std::vector<double>& before,
            bool forward) {
   const std::size_t n = a.size();
-  if (n > kChunk) before = x;
+  if (n <= kChunk) {
+    // One chunk: plain Gauss-Seidel (the zero slot reads 0).
+    double* v = x.data();
+    auto relax = [&](std::size_t i) {
+      const std::array<int, 6>& nb = a.neighbour[i];
+      const std::array<double, 6>& g = a.conductance[i];
+      double sum = b[i];
+      sum += g[0] * v[nb[0]];
+      sum += g[1] * v[nb[1]];
+      sum += g[2] * v[nb[2]];
+      sum += g[3] * v[nb[3]];
+      sum += g[4] * v[nb[4]];
+      sum += g[5] * v[nb[5]];
+      v[i] = sum / a.diagonal[i];
+    };
+    if (forward) {
+      for (std::size_t i = 0; i < n; ++i) relax(i);
+    } else {
+      for (std::size_t i = n; i-- > 0;) relax(i);
+    }
+    return;
+  }
+  std::copy(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n), before.begin());
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     auto relax = [&](std::size_t i) {
+      const std::array<int, 6>& nb = a.neighbour[i];
+      const std::array<double, 6>& g = a.conductance[i];
       double sum = b[i];
       for (int f = 0; f < 6; ++f) {
-        const int j = a.neighbour[i][f];
-        if (j < 0) continue;
-        const std::size_t u = static_cast<std::size_t>(j);
-        sum += a.conductance[i][f] * (u >= begin && u < end ? x[u] : before[u]);
+        const std::size_t u = static_cast<std::size_t>(nb[f]);
+        sum += g[f] * (u >= begin && u < end ? x[u] : before[u]);
       }
       x[i] = sum / a.diagonal[i];
     };
@@ -41,19 +63,60 @@ void Sweep(const StencilSystem& a, const std::vector<double>& b, std::vector<dou
 
 }  // namespace
 
+void PaddedStencil::Assign(const StencilSystem& a) {
+  const std::size_t n = a.size();
+  const int pad = static_cast<int>(n);
+  neighbour.resize(n);
+  conductance.resize(n);
+  diagonal = a.diagonal;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int f = 0; f < 6; ++f) {
+      const bool present = a.neighbour[i][f] >= 0;
+      neighbour[i][f] = present ? a.neighbour[i][f] : pad;
+      conductance[i][f] = present ? a.conductance[i][f] : 0.0;
+    }
+  }
+}
+
 void AdditiveCorrectionMultigrid::Setup(const StencilSystem& fine, const std::vector<std::array<int, 3>>& ijk) {
-  fine_ = &fine;
-  coarse_.clear();
-  coarse_.reserve(32);
-  fine_residual_.resize(fine.size());
-  fine_before_.resize(fine.size());
+  scratch_.Assign(fine);
+  Setup(scratch_, ijk);
+}
+
+void AdditiveCorrectionMultigrid::Setup(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk) {
+  const bool same = SameStructure(fine, ijk);
+  if (levels_.empty()) levels_.resize(1);
+  PaddedStencil& a = levels_[0].system;
+  if (&a != &fine) {
+    if (same) {
+      std::copy(fine.conductance.begin(), fine.conductance.end(), a.conductance.begin());
+      std::copy(fine.diagonal.begin(), fine.diagonal.end(), a.diagonal.begin());
+    } else {
+      a = fine;
+    }
+  }
+  if (!same) BuildStructure(ijk);
+  SumCoefficients();
+}
+
+bool AdditiveCorrectionMultigrid::SameStructure(const PaddedStencil& fine,
+                                                const std::vector<std::array<int, 3>>& ijk) const {
+  if (levels_.empty() || ijk_.size() != ijk.size() || levels_[0].system.size() != fine.size()) return false;
+  return ijk_ == ijk && levels_[0].system.neighbour == fine.neighbour;
+}
+
+// The blocks of every level (Hutchinson & Raithby's coarse cells) and the coarse levels' faces; the coefficients
+// are left to SumCoefficients.
+void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<int, 3>>& ijk) {
+  ijk_ = ijk;
+  levels_.resize(1);
+  levels_.reserve(32);
   std::vector<std::array<int, 3>> coords = ijk;
   std::vector<std::array<int, 3>> next;
   std::vector<int> map;
   while (true) {
-    const StencilSystem& a = coarse_.empty() ? fine : coarse_.back().system;
-    const std::size_t n = a.size();
-    if (n <= kCoarsestCells || coarse_.size() >= 30) break;
+    const std::size_t n = levels_.back().system.size();
+    if (n <= kCoarsestCells || levels_.size() > 30) break;
     std::array<int, 3> lo = {coords[0][0] >> 1, coords[0][1] >> 1, coords[0][2] >> 1};
     std::array<int, 3> hi = lo;
     for (const auto& c : coords) {
@@ -64,8 +127,7 @@ void AdditiveCorrectionMultigrid::Setup(const StencilSystem& fine, const std::ve
     }
     const std::size_t nx = hi[0] - lo[0] + 1, ny = hi[1] - lo[1] + 1, nz = hi[2] - lo[2] + 1;
     map.assign(nx * ny * nz, -1);
-    Level level;
-    level.parent.resize(n);
+    std::vector<int> parent(n);
     next.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const std::array<int, 3> c = {coords[i][0] >> 1, coords[i][1] >> 1, coords[i][2] >> 1};
@@ -74,73 +136,98 @@ void AdditiveCorrectionMultigrid::Setup(const StencilSystem& fine, const std::ve
         map[key] = static_cast<int>(next.size());
         next.push_back(c);
       }
-      level.parent[i] = map[key];
+      parent[i] = map[key];
     }
     const std::size_t m = next.size();
     if (static_cast<double>(m) > kPoorCoarsening * static_cast<double>(n)) break;
-    // Hutchinson & Raithby eqs. 9-12: a block's equation is the sum of its cells' equations with one correction for
-    // all of them; faces inside the block cancel from the diagonal, faces between blocks add up.
-    StencilSystem& c = level.system;
-    c.neighbour.assign(m, {-1, -1, -1, -1, -1, -1});
+    // A block's face f leads to the block holding the neighbour across face f of any of its cells (on the
+    // structured grid that is one block).
+    const PaddedStencil& a = levels_.back().system;
+    Level coarse;
+    PaddedStencil& c = coarse.system;
+    const int pad = static_cast<int>(m);
+    c.neighbour.assign(m, {pad, pad, pad, pad, pad, pad});
     c.conductance.assign(m, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
     c.diagonal.assign(m, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
-      const int block = level.parent[i];
+      for (int f = 0; f < 6; ++f) {
+        const std::size_t j = static_cast<std::size_t>(a.neighbour[i][f]);
+        if (j < n && parent[j] != parent[i]) c.neighbour[parent[i]][f] = parent[j];
+      }
+    }
+    levels_.back().parent = std::move(parent);
+    coarse.b.resize(m);
+    coarse.residual.resize(m);
+    coarse.x.assign(m + 1, 0.0);
+    coarse.before.assign(m + 1, 0.0);
+    levels_.push_back(std::move(coarse));
+    coords.swap(next);
+  }
+  levels_.back().parent.clear();
+  Level& fine = levels_[0];
+  fine.b.resize(fine.system.size());
+  fine.residual.resize(fine.system.size());
+  fine.x.assign(fine.system.size() + 1, 0.0);
+  fine.before.assign(fine.system.size() + 1, 0.0);
+}
+
+// Hutchinson & Raithby eqs. 9-12: a block's equation is the sum of its cells' equations with one correction for
+// all of them; faces inside the block cancel from the diagonal, faces between blocks add up.
+void AdditiveCorrectionMultigrid::SumCoefficients() {
+  for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
+    const PaddedStencil& a = levels_[l].system;
+    const std::vector<int>& parent = levels_[l].parent;
+    PaddedStencil& c = levels_[l + 1].system;
+    std::fill(c.conductance.begin(), c.conductance.end(), std::array<double, 6>{0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+    std::fill(c.diagonal.begin(), c.diagonal.end(), 0.0);
+    const std::size_t n = a.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int block = parent[i];
       c.diagonal[block] += a.diagonal[i];
       for (int f = 0; f < 6; ++f) {
-        const int j = a.neighbour[i][f];
-        if (j < 0) continue;
-        const int other = level.parent[j];
-        if (other == block) {
+        const std::size_t j = static_cast<std::size_t>(a.neighbour[i][f]);
+        if (j >= n) continue;
+        if (parent[j] == block) {
           c.diagonal[block] -= a.conductance[i][f];
         } else {
-          c.neighbour[block][f] = other;
           c.conductance[block][f] += a.conductance[i][f];
         }
       }
     }
-    level.b.resize(m);
-    level.x.resize(m);
-    level.residual.resize(m);
-    level.before.resize(m);
-    coarse_.push_back(std::move(level));
-    coords.swap(next);
   }
 }
 
-void AdditiveCorrectionMultigrid::Apply(const std::vector<double>& r, std::vector<double>& z) { Cycle(0, r, z); }
+void AdditiveCorrectionMultigrid::Apply(const std::vector<double>& r, std::vector<double>& z) {
+  Level& fine = levels_[0];
+  const std::size_t n = fine.system.size();
+  std::copy(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(n), fine.b.begin());
+  Cycle(0);
+  std::copy(fine.x.begin(), fine.x.begin() + static_cast<std::ptrdiff_t>(n), z.begin());
+}
 
-void AdditiveCorrectionMultigrid::Cycle(std::size_t level, const std::vector<double>& b, std::vector<double>& x) {
-  const StencilSystem& a = level == 0 ? *fine_ : coarse_[level - 1].system;
-  std::vector<double>& residual = level == 0 ? fine_residual_ : coarse_[level - 1].residual;
-  std::vector<double>& before = level == 0 ? fine_before_ : coarse_[level - 1].before;
+void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
+  Level& L = levels_[level];
+  const PaddedStencil& a = L.system;
   const std::size_t n = a.size();
-  std::fill(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
-  if (level == coarse_.size()) {
+  std::fill(L.x.begin(), L.x.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
+  if (level + 1 == levels_.size()) {
     // The coarsest level: symmetric Gauss-Seidel pairs from zero (a symmetric operator).
     for (int pass = 0; pass < 8; ++pass) {
-      Sweep(a, b, x, before, true);
-      Sweep(a, b, x, before, false);
+      Sweep(a, L.b, L.x, L.before, true);
+      Sweep(a, L.b, L.x, L.before, false);
     }
     return;
   }
-  Sweep(a, b, x, before, true);
+  Sweep(a, L.b, L.x, L.before, true);
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i) {
-      double ax = a.diagonal[i] * x[i];
-      for (int f = 0; f < 6; ++f) {
-        const int j = a.neighbour[i][f];
-        if (j >= 0) ax -= a.conductance[i][f] * x[j];
-      }
-      residual[i] = b[i] - ax;
-    }
+    for (std::size_t i = begin; i < end; ++i) L.residual[i] = L.b[i] - a.Row(L.x.data(), i);
   });
-  Level& coarse = coarse_[level];
+  Level& coarse = levels_[level + 1];
   std::fill(coarse.b.begin(), coarse.b.end(), 0.0);
-  for (std::size_t i = 0; i < n; ++i) coarse.b[coarse.parent[i]] += residual[i];
-  Cycle(level + 1, coarse.b, coarse.x);
-  for (std::size_t i = 0; i < n; ++i) x[i] += coarse.x[coarse.parent[i]];
-  Sweep(a, b, x, before, false);
+  for (std::size_t i = 0; i < n; ++i) coarse.b[L.parent[i]] += L.residual[i];
+  Cycle(level + 1);
+  for (std::size_t i = 0; i < n; ++i) L.x[i] += coarse.x[L.parent[i]];
+  Sweep(a, L.b, L.x, L.before, false);
 }
 
 }  // namespace waam::twin::internal

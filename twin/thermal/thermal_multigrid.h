@@ -17,6 +17,30 @@ struct StencilSystem {
   std::size_t size() const { return diagonal.size(); }
 };
 
+// The same system in the form the hot loops read without branches: a face with no neighbour points at the zero
+// slot n (vectors multiplied by it hold n + 1 values, the last 0) with conductance 0.
+struct PaddedStencil {
+  std::vector<std::array<int, 6>> neighbour;       // index in [0, n]
+  std::vector<std::array<double, 6>> conductance;  // W/K, 0 towards the zero slot
+  std::vector<double> diagonal;                    // W/K
+  std::size_t size() const { return diagonal.size(); }
+  // Copies `a` (faces with neighbour < 0 become the zero slot with conductance 0).
+  void Assign(const StencilSystem& a);
+  // (A v)_i for v of n + 1 values with v[n] = 0.
+  double Row(const double* v, std::size_t i) const {
+    const std::array<int, 6>& nb = neighbour[i];
+    const std::array<double, 6>& g = conductance[i];
+    double y = diagonal[i] * v[i];
+    y -= g[0] * v[nb[0]];
+    y -= g[1] * v[nb[1]];
+    y -= g[2] * v[nb[2]];
+    y -= g[3] * v[nb[3]];
+    y -= g[4] * v[nb[4]];
+    y -= g[5] * v[nb[5]];
+    return y;
+  }
+};
+
 // One symmetric V-cycle of additive-correction multigrid, used as the preconditioner z = B r of conjugate gradients.
 // The coarse cells are 2 x 2 x 2 blocks of the grid restricted to the system's cells; a coarse equation is the sum
 // of its fine cells' equations with the correction constant over the block (Hutchinson & Raithby 1986, Numer. Heat
@@ -24,27 +48,33 @@ struct StencilSystem {
 // forward Gauss-Seidel sweep before the coarse correction and one backward sweep after it (the adjoint), so B is
 // symmetric positive definite and the conjugate gradients stay valid. Gauss-Seidel runs in the fixed chunks of
 // ForChunks and reads other chunks' values from before the sweep (block Gauss-Seidel): the result does not depend
-// on the thread count.
+// on the thread count. The blocks are kept between Setups while the system's cells and faces stay the same (the
+// usual case from one time step to the next): only the coefficients are summed again.
 class AdditiveCorrectionMultigrid {
  public:
-  // Builds the coarse levels of `fine` (kept by reference: it must outlive every Apply), whose cell i lies at grid
-  // coordinates ijk[i] (non-negative). Throws nothing.
+  // Builds the coarse levels of `fine` (copied), whose cell i lies at grid coordinates ijk[i] (non-negative).
+  // Throws nothing.
+  void Setup(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk);
   void Setup(const StencilSystem& fine, const std::vector<std::array<int, 3>>& ijk);
-  // z = B r (sizes: fine.size()).
+  // z = B r (sizes: at least the fine system's size; only its first values are read and written).
   void Apply(const std::vector<double>& r, std::vector<double>& z);
-  int levels() const { return static_cast<int>(coarse_.size()) + 1; }
+  int levels() const { return static_cast<int>(levels_.size()); }
 
  private:
   struct Level {
-    StencilSystem system;
-    std::vector<int> parent;  // per cell of the finer level: its block's index in this level
-    std::vector<double> b, x, residual, before;
+    PaddedStencil system;
+    std::vector<int> parent;  // per cell: its block's index in the next coarser level (empty on the coarsest)
+    std::vector<double> b, residual;
+    std::vector<double> x, before;  // n + 1 values, the last 0 (the zero slot)
   };
-  void Cycle(std::size_t level, const std::vector<double>& b, std::vector<double>& x);
+  bool SameStructure(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk) const;
+  void BuildStructure(const std::vector<std::array<int, 3>>& ijk);
+  void SumCoefficients();
+  void Cycle(std::size_t level);
 
-  const StencilSystem* fine_ = nullptr;
-  std::vector<double> fine_residual_, fine_before_;
-  std::vector<Level> coarse_;  // coarse_[0] is the first coarse level
+  std::vector<Level> levels_;  // levels_[0] is the fine system
+  std::vector<std::array<int, 3>> ijk_;  // the fine cells' grid coordinates of the last structure built
+  PaddedStencil scratch_;
 };
 
 }  // namespace waam::twin::internal

@@ -229,8 +229,7 @@ void ThermalSimulation::Weld(const Eigen::Vector3d& p0_mm, const Eigen::Vector3d
                                                                                        << ": must be >= 0");
   if (seconds == 0.0) return;
   ThermalState& s = impl_->s;
-  internal::ArcPiece weld{p0_mm, p1_mm, width_mm, height_mm, heat_w, seconds};
-  weld.travel = travel.head<2>();
+  const internal::ArcPiece weld{p0_mm, p1_mm, width_mm, height_mm, heat_w, seconds, false, travel.head<2>(), {}};
   for (const internal::ArcPiece& piece : CutIntoPieces(s, weld)) {
     s.pieces.push_back(piece);
     s.pieces_seconds += piece.seconds;

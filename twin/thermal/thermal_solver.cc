@@ -15,6 +15,10 @@ namespace {
 constexpr int kMaxIterations = 2000;
 // Systems of at least this many cells are preconditioned by multigrid, smaller ones by their diagonal.
 constexpr std::size_t kMultigridCells = 512;
+// ... and stiff: conduction (the sum of the face conductances) at least this many times the storage and losses
+// (the rest of the diagonal), summed over the system. Milder systems converge in a few diagonally preconditioned
+// iterations, which cost a third of a V-cycle's.
+constexpr double kMultigridStiffness = 30.0;
 // The nonlinear (chord) iteration of a step stops when every cell's enthalpy maps back to within this + 10 % of its
 // temperature change, or after kChordRounds re-solves: it exists to keep big steps from jumping the latent heat
 // (hundreds of K of mismatch), not to polish micro steps.
@@ -65,6 +69,20 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
   *slope = at1.convection + at1.radiation + at1.table - *offset;
 }
 
+// The factor on the conductance of the face f between cells c and j (both present before micro step m1):
+// kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
+// neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
+double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
+  double factor = 1.0;
+  for (int e = 0; e < 6; ++e) {
+    if (e / 2 == f / 2) continue;
+    const int p = s.neighbour[c][e], q = s.neighbour[j][e];
+    const bool p_metal = p != kNoCell && s.born[p] < m1, q_metal = q != kNoCell && s.born[q] < m1;
+    if (p_metal != q_metal) factor *= kReentrantFaceFactor;
+  }
+  return factor;
+}
+
 // Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
 // (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of
 // docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`, faces towards cells of a
@@ -109,8 +127,9 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
           L.neighbour[i][f] = kFinerCell;
         } else if (j != kNoCell && s.born[j] < m1) {
           const double kj = s.conductivity[j];
-          // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2.
-          const double g = 2.0 * k * kj / (k + kj) * s.dx_m;
+          // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2, times the factor of each re-entrant
+          // edge the face touches.
+          const double g = 2.0 * k * kj / (k + kj) * s.dx_m * EdgeFactor(s, c, j, f, m1);
           L.conductance[i][f] = g;
           diagonal += g;
           if (local_of[j] != kNoCell) {
@@ -137,90 +156,124 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
   for (int c : L.cells) local_of[c] = kNoCell;
 }
 
-// Solves the level's system by preconditioned conjugate gradients from `guess` (degC by active cell), until every
-// Jacobi correction |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below the tolerance.
-// Systems of kMultigridCells cells or more are preconditioned by one additive-correction multigrid V-cycle
-// (thermal_multigrid.h), smaller ones by the diagonal. Returns the iterations.
-int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess) {
+// Conjugate gradients on the level's system from the scratch's x and r = b - A x, preconditioned by one multigrid
+// V-cycle (`multigrid`) or the diagonal, until every Jacobi correction |r_i / A_ii| is below the tolerance. Each
+// iteration takes one stencil product: p = z + beta p and A p = A z + beta (A p)_old in one pass. Returns the
+// iterations.
+int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
+  LevelScratch& w = L.scratch;
+  const PaddedStencil& a = w.stencil;
   const std::size_t n = L.cells.size();
-  if (n == 0) return 0;
-  std::vector<double>& x = L.t_new;
-  std::vector<double> r(n), z(n), p(n), ap(n);
-  std::vector<double> part_a(Chunks(n)), part_max(Chunks(n));
-  const bool multigrid = n >= kMultigridCells;
+  double* x = w.x.data();
+  double* p = w.p.data();
+  double* r = w.r.data();
+  double* z = w.z.data();
+  double* ap = w.ap.data();
+  const double* inv = w.inverse_diagonal.data();
   if (multigrid) {
     L.ijk.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
       L.ijk[i] = {g.x(), g.y(), g.z()};
     }
-    L.multigrid.Setup(L, L.ijk);
+    L.multigrid.Setup(a, L.ijk);
   }
-  auto apply = [&](const std::vector<double>& v, std::size_t i) {
-    double y = L.diagonal[i] * v[i];
-    for (int f = 0; f < 6; ++f) {
-      const int j = L.neighbour[i][f];
-      if (j >= 0) y -= L.conductance[i][f] * v[j];
-    }
-    return y;
-  };
-  // z = B r and the sum of r.z.
+  // z = B r; returns r.z.
   auto precondition = [&]() {
-    if (multigrid) L.multigrid.Apply(r, z);
+    if (multigrid) L.multigrid.Apply(w.r, w.z);
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
       double rz = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
-        if (!multigrid) z[i] = r[i] / L.diagonal[i];
+        if (!multigrid) z[i] = r[i] * inv[i];
         rz += r[i] * z[i];
       }
-      part_a[c] = rz;
+      w.part_a[c] = rz;
     });
-    return Sum(part_a);
+    return Sum(w.part_a);
   };
-  for (std::size_t i = 0; i < n; ++i) x[i] = guess[L.cells[i]];
-  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-    double worst = 0.0;
-    for (std::size_t i = begin; i < end; ++i) {
-      r[i] = L.rhs[i] - apply(x, i);
-      worst = std::max(worst, std::abs(r[i] / L.diagonal[i]));
-    }
-    part_max[c] = worst;
-  });
-  double worst = *std::max_element(part_max.begin(), part_max.end());
   const double tolerance = s.settings.solver_tolerance_c;
-  if (worst <= tolerance) return 0;
   double rz = precondition();
-  p = z;
+  double beta = 0.0;
   int iterations = 0;
-  while (worst > tolerance && iterations < kMaxIterations) {
+  while (iterations < kMaxIterations) {
+    const bool first = iterations == 0;
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
       double pap = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
-        ap[i] = apply(p, i);
+        const double az = a.Row(z, i);
+        p[i] = first ? z[i] : z[i] + beta * p[i];
+        ap[i] = first ? az : az + beta * ap[i];
         pap += p[i] * ap[i];
       }
-      part_a[c] = pap;
+      w.part_a[c] = pap;
     });
-    const double alpha = rz / Sum(part_a);
+    const double alpha = rz / Sum(w.part_a);
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double w = 0.0;
+      double most = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
         x[i] += alpha * p[i];
         r[i] -= alpha * ap[i];
-        w = std::max(w, std::abs(r[i] / L.diagonal[i]));
+        most = std::max(most, std::abs(r[i] * inv[i]));
       }
-      part_max[c] = w;
+      w.part_max[c] = most;
     });
-    worst = *std::max_element(part_max.begin(), part_max.end());
     ++iterations;
-    if (worst <= tolerance) break;
+    if (*std::max_element(w.part_max.begin(), w.part_max.end()) <= tolerance) break;
     const double rz_new = precondition();
-    const double beta = rz_new / rz;
+    beta = rz_new / rz;
     rz = rz_new;
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
-    });
   }
+  return iterations;
+}
+
+// Solves the level's system by preconditioned conjugate gradients from `guess` (degC by active cell), until every
+// Jacobi correction |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below the tolerance.
+// Stiff systems of kMultigridCells cells or more are preconditioned by one additive-correction multigrid V-cycle
+// (thermal_multigrid.h), the others by the diagonal. Returns the iterations.
+int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess) {
+  const std::size_t n = L.cells.size();
+  if (n == 0) return 0;
+  LevelScratch& w = L.scratch;
+  const PaddedStencil& a = w.stencil;
+  w.stencil.Assign(L);
+  // x, z and p are multiplied by the matrix: n + 1 values, the last the zero slot.
+  w.x.resize(n + 1);
+  w.z.resize(n + 1);
+  w.p.resize(n + 1);
+  w.x[n] = w.z[n] = w.p[n] = 0.0;
+  w.r.resize(n);
+  w.ap.resize(n);
+  w.inverse_diagonal.resize(n);
+  const std::size_t chunks = Chunks(n);
+  w.part_a.resize(chunks);
+  w.part_b.resize(chunks);
+  w.part_max.resize(chunks);
+  double* x = w.x.data();
+  double* r = w.r.data();
+  double* inv = w.inverse_diagonal.data();
+  for (std::size_t i = 0; i < n; ++i) x[i] = guess[L.cells[i]];
+  // The first residual, the Jacobi corrections and the stiffness: conduction over storage and losses, summed.
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
+    double worst = 0.0, conduction = 0.0, rest = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::array<double, 6>& g = a.conductance[i];
+      const double faces = g[0] + g[1] + g[2] + g[3] + g[4] + g[5];
+      conduction += faces;
+      rest += a.diagonal[i] - faces;
+      inv[i] = 1.0 / a.diagonal[i];
+      r[i] = L.rhs[i] - a.Row(x, i);
+      worst = std::max(worst, std::abs(r[i] * inv[i]));
+    }
+    w.part_max[c] = worst;
+    w.part_a[c] = conduction;
+    w.part_b[c] = rest;
+  });
+  int iterations = 0;
+  if (*std::max_element(w.part_max.begin(), w.part_max.end()) > s.settings.solver_tolerance_c) {
+    const bool multigrid = n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness * Sum(w.part_b);
+    iterations = Iterate(s, L, multigrid);
+  }
+  std::copy(x, x + n, L.t_new.begin());
   return iterations;
 }
 
@@ -288,13 +341,13 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
       bool converged = true;
       for (std::size_t i = begin; i < end; ++i) {
         const int c = L.cells[i];
-        const bool finer = InsideFinerRegion(s, L, level, i);
         const double t_k = round == 0 ? s.temperature[c] : s.chord[c];
         const double h_k = round == 0 ? s.enthalpy[c] : s.iterate_h[c];
         const double h = h_k + L.capacity[i] * (L.t_new[i] - t_k);
         const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
         const double change = L.t_new[i] - s.temperature[c];
-        converged = converged && (finer || std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change));
+        converged = converged && (std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
+                                  InsideFinerRegion(s, L, level, i));
         s.iterate_h[c] = h;
         s.chord[c] = t;
       }

@@ -21,6 +21,11 @@ namespace waam::twin::internal {
 constexpr double kStefanBoltzmann = 5.670374419e-8;  // W/(m^2 K^4), CODATA 2018
 constexpr double kKelvin = 273.15;
 constexpr int kNoCell = -1;
+// The conductance factor of a face touching a re-entrant edge (three of the four cells around the edge are metal, as
+// where a wall stands on a plate): with it the two-point flux between the two cells' means is exact for the edge's
+// singular solution r^(2/3) cos(2 (theta - pi/2) / 3) between insulated faces (docs/THERMAL.md, "Re-entrant
+// edges"; checked by quadrature in tests/twin/thermal_reentrant_test.cc).
+constexpr double kReentrantFaceFactor = 1.2626829;
 constexpr int kDeposit = 0;    // material index of the deposit
 constexpr int kSubstrate = 1;  // material index of the plate
 
@@ -73,6 +78,15 @@ struct SampleRequest {
   int next = -1;     // the next request of the same cell, or -1
 };
 
+// The conjugate gradients' work arrays of one level, kept from solve to solve (no allocation per step once sized).
+struct LevelScratch {
+  PaddedStencil stencil;                     // the level's system without branches
+  std::vector<double> z, p;                  // degC, n + 1 values (the last the zero slot)
+  std::vector<double> x, r, ap;              // degC, W, W
+  std::vector<double> inverse_diagonal;      // K/W
+  std::vector<double> part_a, part_b, part_max;  // per-chunk partial sums and maxima
+};
+
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
 // StencilSystem: the local index of each face's neighbour in the region (or kNoCell, or a finer level's cell), the
 // conductance W/K through each face to a present neighbour (else 0), the diagonal W/K.
@@ -82,6 +96,7 @@ struct LevelSystem : StencilSystem {
   std::vector<double> base_diagonal, base_rhs; // W/K, W: the diagonal and right-hand side without the capacity's terms
   std::vector<std::array<int, 3>> ijk;        // grid coordinates of the cells (for the multigrid's blocks)
   AdditiveCorrectionMultigrid multigrid;
+  LevelScratch scratch;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
   double seconds = 0.0;
   double end_time_s = 0.0;

@@ -52,7 +52,7 @@ void CheckThermalMaterial(const models::ThermalMaterial& m, const char* what) {
 
 ThermalPropertyTable::ThermalPropertyTable(const models::ThermalMaterial& material, double low_c, double high_c,
                                            double step_c, double reference_c, double liquid_conductivity_factor)
-    : low_c_(low_c), step_c_(step_c), emissivity_(material.emissivity) {
+    : low_c_(low_c), step_c_(step_c), inverse_step_(1.0 / step_c), emissivity_(material.emissivity) {
   const int nodes = static_cast<int>(std::ceil((high_c - low_c) / step_c)) + 1;
   conductivity_.resize(nodes);
   enthalpy_.resize(nodes);
@@ -77,52 +77,10 @@ ThermalPropertyTable::ThermalPropertyTable(const models::ThermalMaterial& materi
   for (double& value : enthalpy_) value -= shift;
 }
 
-double ThermalPropertyTable::Position(double t_c, int* segment) const {
-  const double x = (t_c - low_c_) / step_c_;
-  const int last = static_cast<int>(enthalpy_.size()) - 2;
-  int i = static_cast<int>(std::floor(x));
-  i = std::clamp(i, 0, last);
-  *segment = i;
-  return x - i;
-}
-
-double ThermalPropertyTable::Conductivity(double t_c) const {
-  int i = 0;
-  const double s = std::clamp(Position(t_c, &i), 0.0, 1.0);
-  return conductivity_[i] + s * (conductivity_[i + 1] - conductivity_[i]);
-}
-
-double ThermalPropertyTable::Enthalpy(double t_c) const {
-  int i = 0;
-  const double s = Position(t_c, &i);
-  return enthalpy_[i] + s * (enthalpy_[i + 1] - enthalpy_[i]);
-}
-
-double ThermalPropertyTable::Capacity(double t_c) const {
-  int i = 0;
-  Position(t_c, &i);
-  return (enthalpy_[i + 1] - enthalpy_[i]) / step_c_;
-}
-
 double ThermalPropertyTable::Temperature(double h_j_m3) const {
   // The first node above h (clamped so that a segment [i - 1, i] exists), then the linear inverse.
   auto upper = std::upper_bound(enthalpy_.begin() + 1, enthalpy_.end() - 1, h_j_m3);
   const int i = static_cast<int>(upper - enthalpy_.begin());
-  const double s = (h_j_m3 - enthalpy_[i - 1]) / (enthalpy_[i] - enthalpy_[i - 1]);
-  return low_c_ + (i - 1 + s) * step_c_;
-}
-
-double ThermalPropertyTable::Temperature(double h_j_m3, double hint_c) const {
-  // The first node above h in [1, last] (the same node as the binary search above), walked to from the hint's.
-  constexpr int kWalk = 8;
-  const int last = static_cast<int>(enthalpy_.size()) - 1;
-  int i = 0;
-  Position(hint_c, &i);
-  i = std::clamp(i + 1, 1, last);
-  int steps = 0;
-  while (i > 1 && enthalpy_[i - 1] > h_j_m3 && steps++ < kWalk) --i;
-  while (i < last && enthalpy_[i] <= h_j_m3 && steps++ < kWalk) ++i;
-  if (steps > kWalk) return Temperature(h_j_m3);
   const double s = (h_j_m3 - enthalpy_[i - 1]) / (enthalpy_[i] - enthalpy_[i - 1]);
   return low_c_ + (i - 1 + s) * step_c_;
 }
