@@ -310,7 +310,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   for (std::size_t k = 0; k < free.size(); ++k) x[k] = start.*(free[k].member) / free[k].scale;
   // Coarse to fine: the same fit on a grid of coarse_mm first (about 8 times fewer cells at twice the spacing); its
   // answer and its Jacobian start the fit on the scenario's grid, which alone decides the fitted values.
-  const double coarse_mm = options.coarse_cell_mm < 0.0 ? 2.0 * model.settings.cell_mm : options.coarse_cell_mm;
+  const double coarse_mm = options.coarse_cell_mm;
   std::vector<double> seed;
   nlohmann::json coarse_doc = nullptr;
   if (coarse_mm > model.settings.cell_mm) {
