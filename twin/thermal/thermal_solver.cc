@@ -460,64 +460,6 @@ void Update(ThermalState& s, int level) {
   });
 }
 
-// The cells of `region` (this level's, depth == level) that take the finer level's steps over micro steps [m0, m1)
-// of `seconds`, marked depth = level + 1 (docs/THERMAL.md, "Time stepping and the multirate scheme"):
-// - those whose centres lie within `radius_mm` of the beads laid in the interval (the arc heats them);
-// - those whose enthalpy moved at a rate over their last step that, kept up over this level's step, would move it by
-//   more than kFastChangeK of the material's heating at its reference temperature (cells cooling fast behind the
-//   arc, and melting or freezing ones, whose latent heat moves while their temperature barely does), with their
-//   face neighbours in the region (one cell of margin);
-// - then, repeatedly, every cell with at least half of its present neighbours in the region. A coarse cell wrapped
-//   in finer ones would otherwise be a Dirichlet value to them for the whole coarse step while they pass it far more
-//   energy than its own small capacity holds (scattered fast cells made such cells hundreds of K wrong).
-std::vector<int> NearArc(ThermalState& s, const std::vector<int>& region, int level, int m0, int m1, double radius_mm,
-                         double seconds) {
-  Eigen::AlignedBox3d box;
-  for (int m = m0; m < m1; ++m) {
-    if (!s.batch[m].swept_mm.isEmpty()) box.extend(s.batch[m].swept_mm);
-  }
-  if (!box.isEmpty()) {
-    box.min().array() -= radius_mm;
-    box.max().array() += radius_mm;
-  }
-  auto join = [&](int c, std::vector<int>& near) {
-    near.push_back(c);
-    s.depth[c] = level + 1;
-  };
-  // Whether cell j of this level, present in the interval, is outside the finer region so far.
-  auto outside = [&](int j) { return j != kNoCell && s.depth[j] == level && s.born[j] < m1; };
-  std::vector<int> near, fast;
-  for (int c : region) {
-    const Eigen::Vector3i g = s.CellIndex(s.grid_of[c]);
-    if (!box.isEmpty() && box.contains(s.Centre(g.x(), g.y(), g.z()))) {
-      join(c, near);
-    } else if (std::abs(s.heat_rate[c]) * seconds > s.fast_h[s.material[c]]) {
-      join(c, near);
-      fast.push_back(c);
-    }
-  }
-  for (int c : fast) {
-    for (int f = 0; f < 6; ++f) {
-      if (outside(s.neighbour[c][f])) join(s.neighbour[c][f], near);
-    }
-  }
-  for (std::size_t q = 0; q < near.size(); ++q) {
-    for (int f = 0; f < 6; ++f) {
-      const int j = s.neighbour[near[q]][f];
-      if (!outside(j)) continue;
-      int inside = 0, present = 0;
-      for (int e = 0; e < 6; ++e) {
-        const int k = s.neighbour[j][e];
-        if (k == kNoCell || s.born[k] >= m1) continue;
-        ++present;
-        if (s.depth[k] == level + 1) ++inside;
-      }
-      if (2 * inside >= present) join(j, near);
-    }
-  }
-  return near;
-}
-
 // One level of the multirate scheme over micro steps [m0, m1) (docs/THERMAL.md, "Multirate"): a backward-Euler
 // step of the whole region; near the arc, finer steps with this step's temperatures as their boundary moving
 // linearly in time; then the cells left to this level solved again, implicitly, with the energy the finer steps
@@ -542,7 +484,7 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   // The predictor's nonlinear iteration need not converge in the finer region: the finer levels solve it again.
   for (int c : present) s.depth[c] = level;
   std::vector<int> near;
-  if (!finest) near = NearArc(s, present, level, m0, m1, s.level_radius_mm[level + 1], L.seconds);
+  if (!finest) near = FinerRegion(s, present, level, m0, m1, s.level_radius_mm[level + 1], L.seconds);
   SolveStep(s, level, candidates, m0, m1, false, s.guess, local_of);
   for (int c : L.cells) s.depth[c] = level;
   if (near.empty()) {

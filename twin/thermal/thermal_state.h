@@ -194,6 +194,14 @@ std::vector<int> LayPiece(ThermalState& s, const ArcPiece& piece, int step);
 std::vector<std::pair<int, double>> HeatPiece(ThermalState& s, const ArcPiece& piece, int step,
                                               Eigen::AlignedBox3d* heated_mm);
 
+// The cells of `region` (multirate level `level`'s, depth == level, present before micro step m1) that take the finer
+// level's steps over micro steps [m0, m1) of `seconds`, marked depth = level + 1: those whose centres lie within
+// `radius_mm` of the beads laid in the interval; those whose enthalpy, at the rate of their last step, would move by
+// more than fast_h over `seconds` (cells cooling fast behind the arc, melting or freezing ones), with their face
+// neighbours; then, repeatedly, every cell with at least half of its present neighbours in the region.
+std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, int level, int m0, int m1,
+                             double radius_mm, double seconds);
+
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
 void SolveBatch(ThermalState& s);
 // Advances the whole state by one backward-Euler step of `seconds` with no heat input.
