@@ -102,7 +102,7 @@ TEST(HeatShapeScenario, BuildTimeCountsTheInterpassWaitsOfAContinuousSpiral) {
   std::ofstream(file) << "name: spiral_interpass\n"
                          "part:\n  generator: {type: bent_tube, diameter_mm: [24, 24], sides: [0, 0], wall_mm: 4,\n"
                          "    bend_radius_mm: 40, bend_angle_deg: 10, straight_mm: [4, 0]}\n"
-                         "slicing: {type: skeleton, h_min_mm: 1.5, h_max_mm: 2.0, point_spacing_mm: 3}\n"
+                         "slicing: {type: skeleton, h_min_mm: 1.0, h_max_mm: 2.0, point_spacing_mm: 3}\n"
                          "path: {pattern: spiral}\n"
                          "process:\n  wire_feed_mm_min: 3200\n  wire_diameter_mm: 1.0\n  bead_model: speed_height\n"
                          "  arc: {voltage_v: 14.5, current_a: 125}\n  interpass: {max_c: 250, at: next_start}\n"
