@@ -96,7 +96,9 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
              {"first_contact_s", report.first_contact_s >= 0.0 ? nlohmann::json(report.first_contact_s) : nullptr},
              {"gjk_queries", report.gjk_queries},
              {"poses", report.poses},
-             {"refinements", report.refinements}};
+             {"refinements", report.refinements},
+             {"part_clearance_mm", std::isfinite(report.part_clearance_mm) ? nlohmann::json(report.part_clearance_mm) : nullptr},
+             {"part_queries", report.part_queries}};
   }
   return {
       {"mode", report.mode},

@@ -42,6 +42,8 @@ nlohmann::json PrepareHeatShape(const Scenario& scenario, const planner::Plan& p
     peak[layer.layer] = layer.peak_c;
   }
   const std::vector<twin::LayerHeat> heat = LayerHeatOf(interpass, peak, scenario.thermal.initial_c);
+  double interpass_wait_s = 0.0;
+  for (const ThermalLayer& layer : run.layers) interpass_wait_s += layer.wait_s;
   std::vector<double> used_interpass;
   double mean = 0.0;
   for (const twin::LayerHeat& h : heat) {
@@ -50,7 +52,8 @@ nlohmann::json PrepareHeatShape(const Scenario& scenario, const planner::Plan& p
   }
   nlohmann::json record = {{"interpass_c", used_interpass},
                            {"thermal_wall_s", run.wall_s},
-                           {"build_time_s", run.timeline.total_s},
+                           {"build_time_s", run.timeline.total_s},  // the waits included
+                           {"interpass_wait_s", interpass_wait_s},
                            {"bead_model", shape.bead_model_path},
                            {"distortion", shape.distortion}};
   if (shape.bead_model) {

@@ -74,6 +74,7 @@ struct FitOptions {
   // thermal: `data` is the scenario (with replay:), `free` of efficiency, convection, contact, emissivity, `start`
   // an optional fitted file to start from, `window` the part of the log fitted
   std::string window;                     // "START:END", s from the log's first row
+  double coarse_cell_mm = 0.0;            // grid of a coarse first stage, mm; 0 (or <= thermal.cell_mm): none
   bool quiet = false;                     // no progress bar
 };
 

@@ -4,7 +4,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
+#include <limits>
 #include <iomanip>
+#include <memory>
+#include <mutex>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -68,12 +72,13 @@ std::vector<FreeParameter> ResolveFree(const std::vector<std::string>& names) {
   return free;
 }
 
-// The residuals of one replay to the window's end: simulated - measured at every compared row, degC.
+// The residuals of one replay to the window's end: simulated - measured at every compared row, degC. The replay of
+// the best point so far (lowest cost) may be kept, so the held-out rows continue it from the window's end.
 class ReplayResiduals {
  public:
   ReplayResiduals(const ReplayModel& model, const std::vector<FreeParameter>& free, const ThermalParameters& start,
                   std::pair<double, double> window)
-      : model_(model), free_(free), start_(start), window_(window) {
+      : model_(&model), free_(free), start_(start), window_(window) {
     // The rows compared: measured in the window (a probe not yet in metal at the start gives 0 there later too).
     for (std::size_t p = 0; p < model.probes.size(); ++p) {
       for (std::size_t i = 0; i < model.log.time_s.size(); ++i) {
@@ -83,7 +88,13 @@ class ReplayResiduals {
     }
   }
   std::size_t size() const { return used_.size(); }
+  std::size_t free_count() const { return free_.size(); }
   const FreeParameter& free(std::size_t k) const { return free_[k]; }
+  const ReplayModel& model() const { return *model_; }
+  // The same rows on another grid of the same log (a coarse stage).
+  ReplayResiduals OnModel(const ReplayModel& model) const {
+    return ReplayResiduals(model, free_, start_, window_);
+  }
 
   ThermalParameters Parameters(const double* x) const {
     ThermalParameters p = start_;
@@ -93,36 +104,59 @@ class ReplayResiduals {
     return p;
   }
 
-  // One replay; false when the model refuses the parameters.
-  bool Run(const double* x, double* residuals) const {
-    const ReplaySimulation sim = SimulateReplay(model_, Parameters(x), window_.second);
+  // One replay to the window's end; `keep`: keep the replay when its cost is the lowest so far.
+  void Run(const double* x, double* residuals, bool keep) const {
+    auto run = std::make_unique<ReplayRun>(*model_, Parameters(x));
+    run->AdvanceTo(window_.second);
+    const ReplaySimulation sim = run->Result();
     ++replays_;
+    double cost = 0.0;
     for (std::size_t r = 0; r < used_.size(); ++r) {
       const auto [p, i] = used_[r];
       const double s = sim.probe_c[p][i];
-      residuals[r] = std::isfinite(s) ? s - model_.log.probe_c[p][i] : 0.0;
+      residuals[r] = std::isfinite(s) ? s - model_->log.probe_c[p][i] : 0.0;
+      cost += residuals[r] * residuals[r];
     }
-    return true;
+    if (!keep) return;
+    const std::lock_guard<std::mutex> lock(kept_mutex_);
+    if (kept_ == nullptr || cost < kept_cost_) {
+      kept_ = std::move(run);
+      kept_cost_ = cost;
+    }
+  }
+  // The kept replay if it was made with the parameters of `x`, else null.
+  std::unique_ptr<ReplayRun> TakeKept(const double* x) const {
+    const ThermalParameters p = Parameters(x);
+    if (kept_ == nullptr) return nullptr;
+    const ThermalParameters& q = kept_->parameters();
+    const bool same = p.efficiency == q.efficiency && p.convection_w_m2k == q.convection_w_m2k &&
+                      p.table_conductance_w_m2k == q.table_conductance_w_m2k && p.emissivity == q.emissivity;
+    return same ? std::move(kept_) : nullptr;
   }
   int replays() const { return replays_.load(); }
 
  private:
-  const ReplayModel& model_;
+  const ReplayModel* model_;
   std::vector<FreeParameter> free_;
   ThermalParameters start_;
   std::pair<double, double> window_;
   std::vector<std::pair<std::size_t, std::size_t>> used_;
   mutable std::atomic<int> replays_{0};
+  mutable std::mutex kept_mutex_;
+  mutable std::unique_ptr<ReplayRun> kept_;
+  mutable double kept_cost_ = 0.0;
 };
 
 // Forward differences over whole replays, the base replay and the n perturbed ones run in parallel (each its own
 // ThermalSimulation). The step is 1 % of each parameter's scale: the solver's CG tolerance (0.01 K) makes the
 // temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. The last
-// point's residuals are kept, so a Jacobian asked at the point whose cost Ceres just evaluated costs n replays.
+// point's residuals are kept, so a Jacobian asked at the point whose cost Ceres just evaluated costs n replays. A
+// `seed` Jacobian (the coarse stage's, m x n row-major) stands in for the differences at the first point only.
 class ReplayCost : public ceres::CostFunction {
  public:
-  explicit ReplayCost(const ReplayResiduals& residuals, int n) : residuals_(residuals), n_(n) {
-    mutable_parameter_block_sizes()->push_back(n);
+  ReplayCost(const ReplayResiduals& residuals, bool keep, std::vector<double> seed = {})
+      : residuals_(residuals), n_(static_cast<int>(residuals.free_count())), keep_(keep), seed_(std::move(seed)) {
+    mutable_parameter_block_sizes()->push_back(n_);
     set_num_residuals(static_cast<int>(residuals.size()));
   }
 
@@ -131,12 +165,13 @@ class ReplayCost : public ceres::CostFunction {
     const std::size_t m = residuals_.size();
     const bool cached = !cache_x_.empty() && std::equal(cache_x_.begin(), cache_x_.end(), x);
     const bool jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+    const bool seeded = jacobian && !seed_.empty() && (cache_x_.empty() || cached) && !seed_used_;
     if (cached && !jacobian) {
       std::copy(cache_r_.begin(), cache_r_.end(), residuals);
       return true;
     }
     // Run 0 is the point itself (unless cached), run k + 1 the point with x_k moved by its step.
-    const std::size_t runs = jacobian ? n_ + 1 : 1;
+    const std::size_t runs = jacobian && !seeded ? n_ + 1 : 1;
     std::vector<std::vector<double>> out(runs, std::vector<double>(m));
     std::vector<double> step(n_, 0.0);
     for (int k = 0; k < n_; ++k) {
@@ -148,7 +183,7 @@ class ReplayCost : public ceres::CostFunction {
         if (run == 0 && cached) return;
         std::vector<double> xs(x, x + n_);
         if (run > 0) xs[run - 1] += step[run - 1];
-        residuals_.Run(xs.data(), out[run].data());
+        residuals_.Run(xs.data(), out[run].data(), keep_ && run == 0);
       });
     } catch (const std::exception& e) {  // an exception must not cross Ceres
       error_ = e.what();
@@ -157,20 +192,32 @@ class ReplayCost : public ceres::CostFunction {
     if (cached) out[0] = cache_r_;
     cache_x_.assign(x, x + n_);
     cache_r_ = out[0];
-    std::copy(out[0].begin(), out[0].end(), residuals);
+    if (residuals != nullptr) std::copy(out[0].begin(), out[0].end(), residuals);
     if (jacobian) {
-      for (std::size_t r = 0; r < m; ++r) {
-        for (int k = 0; k < n_; ++k) jacobians[0][r * n_ + k] = (out[k + 1][r] - out[0][r]) / step[k];
+      if (seeded) {
+        seed_used_ = true;
+        last_jacobian_ = seed_;
+      } else {
+        last_jacobian_.assign(m * n_, 0.0);
+        for (std::size_t r = 0; r < m; ++r) {
+          for (int k = 0; k < n_; ++k) last_jacobian_[r * n_ + k] = (out[k + 1][r] - out[0][r]) / step[k];
+        }
       }
+      std::copy(last_jacobian_.begin(), last_jacobian_.end(), jacobians[0]);
     }
     return true;
   }
   const std::string& error() const { return error_; }
+  // The last Jacobian handed to Ceres, m x n row-major (the next stage's seed).
+  const std::vector<double>& last_jacobian() const { return last_jacobian_; }
 
  private:
   const ReplayResiduals& residuals_;
   int n_;
-  mutable std::vector<double> cache_x_, cache_r_;
+  bool keep_;
+  std::vector<double> seed_;
+  mutable bool seed_used_ = false;
+  mutable std::vector<double> cache_x_, cache_r_, last_jacobian_;
   mutable std::string error_;
 };
 
@@ -180,6 +227,50 @@ class ThermalFitStop : public ceres::IterationCallback {
     return InterruptRequested() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 };
+
+// One stage of the fit: Ceres on one grid, from `x` (scaled values).
+struct StageOutcome {
+  std::vector<double> x;
+  ceres::Solver::Summary summary;
+  std::string error;              // why a replay failed (empty: none did)
+  std::vector<double> jacobian;   // the last one Ceres used, m x n row-major
+  int replays = 0;
+  double seconds = 0.0;           // wall
+};
+
+StageOutcome SolveStage(const ReplayResiduals& residuals, std::vector<double> x, int max_iterations, bool keep,
+                        std::vector<double> seed) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  StageOutcome outcome;
+  auto* cost = new ReplayCost(residuals, keep, std::move(seed));
+  ceres::Problem problem;  // owns `cost`
+  problem.AddResidualBlock(cost, nullptr, x.data());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const FreeParameter& f = residuals.free(k);
+    problem.SetParameterLowerBound(x.data(), static_cast<int>(k), f.lo / f.scale);
+    problem.SetParameterUpperBound(x.data(), static_cast<int>(k), f.hi / f.scale);
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = max_iterations;
+  // Ceres asks the Jacobian with every new point (n + 1 replays each), so the tolerances end the fit once the cost
+  // changes by less than 0.1 % or the scaled parameters by less than 0.1 %: far below the thermocouples' noise.
+  solver.function_tolerance = 1e-3;
+  solver.parameter_tolerance = 1e-3;
+  solver.gradient_tolerance = 1e-8;
+  solver.logging_type = ceres::SILENT;
+  solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
+  ThermalFitStop stop;
+  solver.callbacks.push_back(&stop);
+  ceres::Solve(solver, &problem, &outcome.summary);
+  CheckInterrupt();
+  outcome.x = x;
+  outcome.error = cost->error();
+  outcome.jacobian = cost->last_jacobian();
+  outcome.replays = residuals.replays();
+  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return outcome;
+}
 
 nlohmann::json ThermalValuesJson(const std::vector<FreeParameter>& free, const ThermalParameters& p) {
   nlohmann::json j = nlohmann::json::object();
@@ -191,6 +282,7 @@ nlohmann::json ThermalValuesJson(const std::vector<FreeParameter>& free, const T
 
 FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out) {
   const auto clock_start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   const std::vector<FreeParameter> free = ResolveFree(options.free);
   WAAM_THROW_UNLESS(options.max_iterations >= 1 && options.max_iterations <= 1000,
                     "--max-iter = " << options.max_iterations << ": must be in [1, 1000]");
@@ -216,42 +308,57 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
 
   std::vector<double> x(free.size());
   for (std::size_t k = 0; k < free.size(); ++k) x[k] = start.*(free[k].member) / free[k].scale;
-  auto* cost = new ReplayCost(residuals, static_cast<int>(free.size()));
-  ceres::Problem problem;
-  problem.AddResidualBlock(cost, nullptr, x.data());
-  for (std::size_t k = 0; k < free.size(); ++k) {
-    problem.SetParameterLowerBound(x.data(), static_cast<int>(k), free[k].lo / free[k].scale);
-    problem.SetParameterUpperBound(x.data(), static_cast<int>(k), free[k].hi / free[k].scale);
+  // Coarse to fine: the same fit on a grid of coarse_mm first (about 8 times fewer cells at twice the spacing); its
+  // answer and its Jacobian start the fit on the scenario's grid, which alone decides the fitted values.
+  const double coarse_mm = options.coarse_cell_mm;
+  std::vector<double> seed;
+  nlohmann::json coarse_doc = nullptr;
+  if (coarse_mm > model.settings.cell_mm) {
+    std::vector<std::string> overrides = options.overrides;
+    std::ostringstream cell;
+    cell << "thermal.cell_mm=" << std::setprecision(17) << coarse_mm;
+    overrides.push_back(cell.str());
+    const ReplayModel coarse_model = LoadReplayModel(options.data, overrides, options.start);
+    const ReplayResiduals coarse = residuals.OnModel(coarse_model);
+    const StageOutcome stage = SolveStage(coarse, x, options.max_iterations, false, {});
+    const bool usable = stage.summary.IsSolutionUsable() && stage.error.empty();
+    if (usable) x = stage.x, seed = stage.jacobian;
+    const ThermalParameters reached = coarse.Parameters(stage.x.data());
+    coarse_doc = {{"cell_mm", coarse_mm},
+                  {"fitted", ThermalValuesJson(free, reached)},
+                  {"used", usable},
+                  {"termination", ceres::TerminationTypeToString(stage.summary.termination_type)},
+                  {"iterations", stage.summary.iterations.size()},
+                  {"replays", stage.replays},
+                  {"time_s", stage.seconds}};
+    out << "  coarse " << coarse_mm << " mm:" << std::setprecision(5);
+    for (const FreeParameter& f : free) out << " " << f.name << " " << reached.*(f.member);
+    out << " (" << stage.summary.iterations.size() << " iterations, " << stage.replays << " replays, "
+        << stage.seconds << " s" << (usable ? "" : "; not used: " + stage.summary.message + stage.error) << ")\n";
   }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.max_iterations;
-  // Ceres asks the Jacobian with every new point (n + 1 replays each), so the tolerances end the fit once the cost
-  // changes by less than 0.1 % or the scaled parameters by less than 0.1 %: far below the thermocouples' noise.
-  solver.function_tolerance = 1e-3;
-  solver.parameter_tolerance = 1e-3;
-  solver.gradient_tolerance = 1e-8;
-  solver.logging_type = ceres::SILENT;
-  solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
-  ThermalFitStop stop;
-  solver.callbacks.push_back(&stop);
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  CheckInterrupt();
+  const StageOutcome fine = SolveStage(residuals, x, options.max_iterations, true, std::move(seed));
+  const ceres::Solver::Summary& summary = fine.summary;
 
-  const ThermalParameters fitted = residuals.Parameters(x.data());
+  const ThermalParameters fitted = residuals.Parameters(fine.x.data());
   const models::SolverTermination termination =
       models::TerminationNamed(ceres::TerminationTypeToString(summary.termination_type));
   const bool converged = summary.IsSolutionUsable() && termination == models::SolverTermination::kConvergence;
   std::string message = summary.message;
-  if (!cost->error().empty()) message = cost->error();
+  if (!fine.error.empty()) message = fine.error;
   if (!converged) {
     message = std::string(NameOf(termination)) + " after " +
               std::to_string(summary.iterations.size()) + " iterations: " + message;
   }
-  // The whole log replayed with the fitted values: the window's fit and the held-out prediction.
+  // The whole log with the fitted values (the replay of the fitted point continued from the window's end) and with
+  // the start values: the window's fit and the held-out prediction.
   const ReplaySimulation start_run = SimulateReplay(model, start);
-  const ReplaySimulation fitted_run = converged ? SimulateReplay(model, fitted) : start_run;
+  ReplaySimulation fitted_run = start_run;
+  if (converged) {
+    std::unique_ptr<ReplayRun> run = residuals.TakeKept(fine.x.data());
+    if (run == nullptr) run = std::make_unique<ReplayRun>(model, fitted);
+    run->AdvanceTo(std::numeric_limits<double>::infinity());
+    fitted_run = run->Result();
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   nlohmann::json doc;
   doc["parameters"] = ThermalParametersJson(fitted);
@@ -270,6 +377,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   doc["held_out"] = ReplayErrorsJson(model, fitted_run, window.first, window.second, true);
   doc["start_window"] = ReplayErrorsJson(model, start_run, window.first, window.second)["overall"];
   doc["start_held_out"] = ReplayErrorsJson(model, start_run, window.first, window.second, true)["overall"];
+  doc["coarse"] = coarse_doc;
   doc["solver"] = {{"termination", termination},
                    {"message", summary.message},
                    {"iterations", summary.iterations.size()},
@@ -278,6 +386,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
                    {"replays", residuals.replays()},
                    {"report", summary.BriefReport()}};
   doc["time_s"] = seconds;
+  doc["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   doc["scenario"] = options.data.string();
   doc["log"] = {{"file", model.log.file}, {"rows", model.log.time_s.size()}, {"duration_s", model.log.time_s.back()}};
   doc["log_issues"] = LogIssuesJson(model.log);

@@ -63,8 +63,9 @@ ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log) {
   return model;
 }
 
-ReplaySimulation SimulateReplay(const ReplayModel& model, const ThermalParameters& parameters, double end_s) {
-  const ReplayLog& log = model.log;
+namespace {
+
+twin::ThermalSettings ReplaySettings(const ReplayModel& model, const ThermalParameters& parameters) {
   WAAM_THROW_UNLESS(std::isfinite(parameters.efficiency) && parameters.efficiency > 0.0 &&
                         parameters.efficiency <= 1.0,
                     "arc efficiency = " << parameters.efficiency << ": must be in (0, 1]");
@@ -72,41 +73,63 @@ ReplaySimulation SimulateReplay(const ReplayModel& model, const ThermalParameter
   settings.convection_w_m2k = parameters.convection_w_m2k;
   settings.table_conductance_w_m2k = parameters.table_conductance_w_m2k;
   settings.emissivity = parameters.emissivity;
-  const auto start = std::chrono::steady_clock::now();
-  twin::ThermalSimulation sim(settings);
-  ReplaySimulation out;
-  const std::size_t rows = log.time_s.size();
-  out.probe_c.assign(model.probes.size(), std::vector<double>(rows, kReplayNaN));
-  const bool boundaries = !log.ambient_c.empty() || !log.table_c.empty();
+  return settings;
+}
+
+}  // namespace
+
+ReplayRun::ReplayRun(const ReplayModel& model, const ThermalParameters& parameters)
+    : model_(&model), parameters_(parameters), sim_(ReplaySettings(model, parameters)) {
   // The probes are recorded inside the solver's batches (a TemperatureAt query would end the batch at every row).
-  for (const ReplayProbe& probe : model.probes) sim.AddProbe(probe.at_mm);
-  std::vector<std::size_t> records;
-  for (std::size_t i = 0; i < rows && log.time_s[i] <= end_s; ++i) {
+  for (const ReplayProbe& probe : model.probes) sim_.AddProbe(probe.at_mm);
+}
+
+void ReplayRun::AdvanceTo(double end_s) {
+  const ReplayLog& log = model_->log;
+  const auto start = std::chrono::steady_clock::now();
+  const bool boundaries = !log.ambient_c.empty() || !log.table_c.empty();
+  const twin::ThermalSettings& settings = model_->settings;
+  for (std::size_t& i = next_row_; i < log.time_s.size() && log.time_s[i] <= end_s; ++i) {
     if (i > 0) {
       const double seconds = log.time_s[i] - log.time_s[i - 1];
       if (log.arc_on[i - 1] && !log.gap_before[i]) {
-        const double heat_w = parameters.efficiency * log.power_w[i - 1];
-        sim.Weld(log.head_mm[i - 1], log.head_mm[i], model.bead_width_mm, model.bead_height_mm, heat_w, seconds);
-        out.heat_input_j += heat_w * seconds;
+        const double heat_w = parameters_.efficiency * log.power_w[i - 1];
+        sim_.Weld(log.head_mm[i - 1], log.head_mm[i], model_->bead_width_mm, model_->bead_height_mm, heat_w,
+                  seconds);
+        heat_input_j_ += heat_w * seconds;
       } else {
-        sim.Cool(seconds);
+        sim_.Cool(seconds);
       }
     }
     if (boundaries) {
-      sim.SetBoundaryTemperatures(log.ambient_c.empty() ? settings.ambient_c : log.ambient_c[i],
-                                  log.table_c.empty() ? settings.table_c : log.table_c[i]);
+      sim_.SetBoundaryTemperatures(log.ambient_c.empty() ? settings.ambient_c : log.ambient_c[i],
+                                   log.table_c.empty() ? settings.table_c : log.table_c[i]);
     }
-    records.push_back(sim.RecordProbes());
+    records_.push_back(sim_.RecordProbes());
     if (i % 64 == 0) CheckInterrupt();
   }
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const std::vector<double> values = sim.ProbeRecord(records[i]);
-    for (std::size_t p = 0; p < model.probes.size(); ++p) out.probe_c[p][i] = values[p];
+  wall_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+ReplaySimulation ReplayRun::Result() const {
+  const auto start = std::chrono::steady_clock::now();
+  ReplaySimulation out;
+  out.probe_c.assign(model_->probes.size(), std::vector<double>(model_->log.time_s.size(), kReplayNaN));
+  for (std::size_t i = 0; i < records_.size(); ++i) {
+    const std::vector<double> values = sim_.ProbeRecord(records_[i]);
+    for (std::size_t p = 0; p < model_->probes.size(); ++p) out.probe_c[p][i] = values[p];
   }
-  out.energy = sim.Energy();
-  out.stats = sim.Stats();
-  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.energy = sim_.Energy();
+  out.stats = sim_.Stats();
+  out.heat_input_j = heat_input_j_;
+  out.wall_s = wall_s_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+ReplaySimulation SimulateReplay(const ReplayModel& model, const ThermalParameters& parameters, double end_s) {
+  ReplayRun run(model, parameters);
+  run.AdvanceTo(end_s);
+  return run.Result();
 }
 
 ReplayErrors CompareProbe(const std::vector<double>& time_s, const std::vector<double>& measured,

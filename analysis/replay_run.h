@@ -47,6 +47,29 @@ struct ReplaySimulation {
   double wall_s = 0.0;
 };
 
+// A replay that can be continued: AdvanceTo drives the rows not yet driven up to a time, Result reads every row
+// driven so far. A replay advanced to A and then to B gives the rows up to A as one advanced to A alone, and the rows
+// after A as a replay to B up to the solver's tolerance (reading at A ends the solver's multirate batch there).
+class ReplayRun {
+ public:
+  // Throws InputError for parameters out of range (naming them). `model` must outlive the run.
+  ReplayRun(const ReplayModel& model, const ThermalParameters& parameters);
+  // Drives the rows with time_s <= end_s (see SimulateReplay). Throws Interrupted on Ctrl-C.
+  void AdvanceTo(double end_s);
+  // The probes at every row driven so far (NaN at the rows after them), the energy, stats and wall time.
+  ReplaySimulation Result() const;
+  const ThermalParameters& parameters() const { return parameters_; }
+
+ private:
+  const ReplayModel* model_;
+  ThermalParameters parameters_;
+  twin::ThermalSimulation sim_;
+  std::size_t next_row_ = 0;
+  std::vector<std::size_t> records_;  // the solver's probe record of each row driven
+  double heat_input_j_ = 0.0;
+  double wall_s_ = 0.0;
+};
+
 // Drives the model through the rows with time_s <= end_s: between two rows the arc (when the first row has it on
 // and no gap follows) welds along the head's straight move with power x efficiency of the first row, else the part
 // cools; measured ambient and table temperatures (when logged) hold from their row. Throws InputError for

@@ -96,6 +96,9 @@ CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options) {
                   "distortion: start parameters, a distortion model JSON (default models/data/distortion.json); the\n"
                   "parameters not in --free keep its values; thermal: a fitted file to start from");
   fit->add_option("--window", options->window, "thermal: START:END, the part of the log fitted, s from its first row");
+  fit->add_option("--coarse-cell", options->coarse_cell_mm,
+                  "thermal: grid spacing of a first fit whose answer starts the fit on the scenario's grid, mm, "
+                  "e.g. twice thermal.cell_mm (default 0: one fit on the scenario's grid)");
   CLI::Option* free = fit->add_option("--free", options->free,
                   "distortion: parameters fitted, any of strain [1], vertical_ratio [1], heat_exponent [1],\n"
                   "substrate_stiffness_n_mm3 [N/mm^3] (fe mode only); thermal: any of efficiency, convection,\n"

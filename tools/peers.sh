@@ -4,7 +4,7 @@
 #    (continuous, hybrid, contour, zigzag) on the 1 M-facet torus at 1.5 mm layers and 2 mm beads, and on the bunny
 #    and torus PrusaSlicer's package ships (/usr/share/PrusaSlicer/shapes);
 #  - KDL's numerical IK (Debian liborocos-kdl-dev, tools/peers/kdl_vs_opw.cc compiled here, not in the project
-#    build) against waam's closed-form IK on the same arm;
+#    build) against waam's closed-form IK on the same arm: the built-in FANUC, then the KR 16-2 class URDF arm;
 #  - FCL 0.7 (Debian libfcl-dev, tools/peers/fcl_check.cc compiled here) against `waam check` on the build hour of
 #    BM_CheckBuildHourUrdfArm (URDF mesh arm): the benchmark exports the cell's shapes and the motion's poses, FCL
 #    checks every sample (broadphase + boolean narrow phase, poses given); CPU times of the same run;
@@ -106,8 +106,10 @@ for model in "${models[@]}"; do
 done
 
 g++ -O2 -std=c++20 -I"$repo" -isystem /usr/include/eigen3 tools/peers/kdl_vs_opw.cc planner/kinematics/opw_arm.cc \
-  planner/kinematics/angles.cc -o "$out/kdl_vs_opw" -lorocos-kdl
+  planner/kinematics/opw_detect.cc planner/kinematics/angles.cc -o "$out/kdl_vs_opw" -lorocos-kdl -ltinyxml2
 "$out/kdl_vs_opw" 20000
+# The same on the KUKA KR 16-2 class URDF arm of BM_CheckBuildHourUrdfArm (KDL's chain from the URDF's joints).
+"$out/kdl_vs_opw" 20000 scenarios/cell/robots/waam_kr16_support/urdf/kr16_2.urdf
 
 # FCL's discrete check against waam's (discrete and continuous) on the same motion, CPU times on one core.
 [ -x build/analysis/benchmarks/waam_check_bench ] || cmake --build build --target waam_check_bench > /dev/null

@@ -2,6 +2,7 @@
 // the deposit) on a build hour of path: 73 layers of a 200 x 150 mm wall = 51,100 mm at 1 mm spacing, about one
 // hour of welding at 850 mm/min. With WAAM_CHECK_EXPORT=<dir>, BM_CheckBuildHourUrdfArm also writes the cell's
 // collision shapes and the motion's shape poses there for the FCL peer (tools/peers/fcl_check.cc, tools/peers.sh).
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -127,6 +128,8 @@ void BM_CheckBuildHourUrdfArm(benchmark::State& state) {
     state.counters["gjk"] = static_cast<double>(report.gjk_queries);
     state.counters["refine"] = static_cast<double>(report.refinements);
     state.counters["min_mm"] = report.sweep_min_distance_mm;
+    state.counters["part_mm"] = std::isfinite(report.part_clearance_mm) ? report.part_clearance_mm : 0.0;
+    state.counters["part_queries"] = static_cast<double>(report.part_queries);
     benchmark::DoNotOptimize(report.violations.data());
   }
   if (const char* dir = std::getenv("WAAM_CHECK_EXPORT"); dir && *dir && state.range(0) == 0) {

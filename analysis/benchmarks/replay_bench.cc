@@ -80,6 +80,7 @@ void BM_FitHalfHour(benchmark::State& state) {
   options.output = scenario.parent_path() / "fitted.json";
   options.free = {"efficiency", "convection", "contact"};
   options.window = "0:1800";
+  options.coarse_cell_mm = static_cast<double>(state.range(1));  // 0: one stage on the 2 mm grid
   FitOutcome outcome;
   std::ostringstream out;
   for (auto _ : state) outcome = RunFit(options, out);
@@ -92,7 +93,12 @@ void BM_FitHalfHour(benchmark::State& state) {
   state.counters["replays"] = m["solver"]["replays"].get<double>();
   state.counters["iterations"] = m["solver"]["iterations"].get<double>();
   state.counters["held_out_rmse_c"] = m["held_out"]["overall"]["rmse_c"].get<double>();
+  if (m["coarse"].is_object()) {
+    state.counters["coarse_replays"] = m["coarse"]["replays"].get<double>();
+    state.counters["coarse_iterations"] = m["coarse"]["iterations"].get<double>();
+  }
 }
-BENCHMARK(BM_FitHalfHour)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+// Args: threads, coarse stage's grid in mm (0 = none: the fit on the scenario's 2 mm grid alone).
+BENCHMARK(BM_FitHalfHour)->Args({1, 4})->Args({1, 0})->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace

@@ -1,4 +1,5 @@
 // Writing part.stl: the merged voxel surface against one facet pair per exposed voxel face, on simulated scenarios.
+#include <ctime>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -109,6 +110,29 @@ void BM_VoxelSurfaceStl(benchmark::State& state, const std::string& scenario) {
   Report(state, mesh);
 }
 
+// The steps of PartSurface on one grid, timed apart (CPU seconds as counters): the attempt at the grid's own voxel
+// size (stopped at the facet cap), the coarsening, the extraction from the coarse grid and the write.
+void BM_SurfaceSteps(benchmark::State& state, const std::string& scenario) {
+  const VoxelGrid& grid = Grid(scenario);
+  auto cpu = [] { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; };
+  for (auto _ : state) {
+    double t0 = cpu();
+    TriangleMesh mesh = waam::twin::ExtractVoxelSurface(grid, 5000000);
+    double t1 = cpu();
+    state.counters["fine_s"] = t1 - t0;
+    state.counters["fine_facets"] = static_cast<double>(mesh.facets.size());
+    if (!mesh.facets.empty()) continue;
+    const VoxelGrid coarse = waam::twin::Coarsen(grid, 2);
+    double t2 = cpu();
+    state.counters["coarsen_s"] = t2 - t1;
+    mesh = waam::twin::ExtractVoxelSurface(coarse, 5000000);
+    double t3 = cpu();
+    state.counters["coarse_extract_s"] = t3 - t2;
+    waam::analysis::WriteStlBinary(mesh, OutFile());
+    state.counters["write_s"] = cpu() - t3;
+  }
+}
+
 // The part.stl `waam simulate` wrote before the merged surface: the marching-tetrahedra surface
 // (twin::ExtractSurface), from a grid coarsened until about ten facets per exposed face came under 5 M.
 void BM_TetraStl(benchmark::State& state, const std::string& scenario) {
@@ -130,6 +154,9 @@ BENCHMARK_CAPTURE(BM_TetraStl, demo, std::string("planar_demo.yaml"))->Unit(benc
 BENCHMARK_CAPTURE(BM_PerFaceStl, demo, std::string("planar_demo.yaml"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_VoxelSurfaceStl, demo, std::string("planar_demo.yaml"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_TetraStl, large_block, std::string("twin/large_block.yaml"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(BM_SurfaceSteps, large_block, std::string("twin/large_block.yaml"))
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 BENCHMARK_CAPTURE(BM_VoxelSurfaceStl, large_block, std::string("twin/large_block.yaml"))

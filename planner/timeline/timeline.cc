@@ -191,6 +191,14 @@ Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, 
               last_started_layer = layer;
             }
             out.Add(SpanKind::kArcStart, settings.arc_start_s, prev_layer, prev_point);
+          } else if (last_started_layer != layer) {
+            // A layer reached with the arc burning (a continuous spiral): its extra wait pauses the torch between the
+            // two weld moves, with no arc end or start (as the thermal model's interpass wait runs it).
+            if (l < settings.extra_wait_before_layer_s.size()) {
+              out.Add(SpanKind::kWait, settings.extra_wait_before_layer_s[l], prev_layer, prev_point);
+            }
+            last_layer_start = out.now();
+            last_started_layer = layer;
           }
           if (p.speed_mm_s > 0.0) out.Add(SpanKind::kArcOn, length / p.speed_mm_s, layer, i);
           arc_on = true;

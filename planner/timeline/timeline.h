@@ -92,7 +92,8 @@ double TrapezoidTime(double distance, double max_speed, double max_accel);
 // arc-off move is one rest-to-rest trapezoidal move along its path whose peak speed and acceleration are the largest
 // the TCP speed and every axis's limits allow along it (a kPositioner span when a positioner axis sets its time, else
 // kTravel); a point's dwell_s is a wait; min_layer_time_s and extra_wait_before_layer_s add waits before a layer's
-// first arc start. Time 0 is the torch at the plan's first point. Throws InputError for negative or non-finite
+// first arc start (a layer reached with the arc burning, as in a continuous spiral, gets its extra wait as a pause
+// between the two weld moves). Time 0 is the torch at the plan's first point. Throws InputError for negative or non-finite
 // settings.
 Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, const AxisLimits& limits,
                        const TimelineSettings& settings);

@@ -13,6 +13,8 @@
 #include <unistd.h>
 
 #include "analysis/compensate_heat.h"
+#include "analysis/thermal_command.h"
+#include "planner/plan_scenario.h"
 #include "analysis/scenario.h"
 #include "models/bead/bead_temperature_model.h"
 #include "models/core/error.h"
@@ -91,6 +93,30 @@ TEST(HeatShapeScenario, LayersWithoutATemperatureTakeThePlatesAndAreFullyHeated)
   EXPECT_EQ(heat[0].peak_c, 1500.0);
   EXPECT_EQ(heat[1].interpass_c, 250.0);
   EXPECT_TRUE(std::isinf(heat[1].peak_c));
+}
+
+TEST(HeatShapeScenario, BuildTimeCountsTheInterpassWaitsOfAContinuousSpiral) {
+  // A small tube laid as one continuous spiral (no arc end between the turns) with a 250 degC interpass limit: the
+  // thermal run pauses before the turns, and compensate.json's heat.build_time_s is the timeline with those pauses.
+  const fs::path file = HeatShapeDir() / "spiral_interpass.yaml";
+  std::ofstream(file) << "name: spiral_interpass\n"
+                         "part:\n  generator: {type: bent_tube, diameter_mm: [24, 24], sides: [0, 0], wall_mm: 4,\n"
+                         "    bend_radius_mm: 40, bend_angle_deg: 10, straight_mm: [4, 0]}\n"
+                         "slicing: {type: skeleton, h_min_mm: 1.5, h_max_mm: 2.0, point_spacing_mm: 3}\n"
+                         "path: {pattern: spiral}\n"
+                         "process:\n  wire_feed_mm_min: 3200\n  wire_diameter_mm: 1.0\n  bead_model: speed_height\n"
+                         "  arc: {voltage_v: 14.5, current_a: 125}\n  interpass: {max_c: 250, at: next_start}\n"
+                         "thermal:\n  material: mild_steel\n  substrate: {size_mm: [60, 60, 8]}\n  cell_mm: 4.0\n"
+                         "  table: {conductance_w_m2k: 200}\n  shape: {distortion: true}\n";
+  const Scenario scenario = LoadScenario(file);
+  const planner::Plan plan = planner::PlanScenario(scenario, nullptr).plan;
+  twin::CompensationOptions loop;
+  const nlohmann::json heat = PrepareHeatShape(scenario, plan, true, &loop);
+  const double waits = heat["interpass_wait_s"].get<double>();
+  EXPECT_GT(waits, 0.0) << "a 250 degC limit on a 4 mm wall must make the build wait";
+  // The timeline without the waits: what the build time read before they were counted.
+  const double plain = TimelineBuilderFor(scenario, plan)(std::vector<double>(plan.layers.size(), 0.0)).total_s;
+  EXPECT_NEAR(heat["build_time_s"].get<double>(), plain + waits, 1e-6 * plain) << heat.dump();
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -14,7 +16,11 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "analysis/distortion_command.h"
 #include "analysis/scenario.h"
+#include "analysis/stl_file.h"
+#include "twin/scanner/mesh_distance.h"
+#include "twin/scanner/surface_sample.h"
 #include "models/core/files.h"
 #include "tests/analysis/cli_test_util.h"
 #include "tests/twin/test_paths.h"
@@ -42,6 +48,60 @@ Fixture SmallBlock() {
   const auto& ring = f.planned.plan.layers.back().slice.front().outer;
   f.planned.mesh = twin::testing::BoxMesh({ring[0].x(), 0, 0}, {ring[1].x(), 30.0, f.planned.plan.layers.back().z_mm});
   return f;
+}
+
+// The deviation measured on the written part.stl agrees with the deviation simulate.json reports (every exposed voxel
+// face of the grid, each of the same area): the merged surface is the voxels' boundary. The file's surface is sampled
+// as `waam deviation` samples an STL (the centres of n^2 sub-triangles of each facet, n = longest edge / 0.5 mm),
+// each point weighted by its sub-triangle's area, since the merged facets are long slivers that this sampling
+// crowds. The facets closing the part at z = 0 are left out, as simulate.json leaves the faces on the substrate out.
+// Tolerance: 0.05 mm (a tenth of the 0.5 mm voxel) on rms and mean, one voxel on the extremes, which `waam
+// deviation` on the file also gives.
+TEST(SimulateCommand, DeviationOfTheWrittenPartStlMatchesSimulateJson) {
+  const Fixture f = SmallBlock();
+  SimulateOptions options;
+  options.out_dir = fs::path(::testing::TempDir()) / "simulate_stl_deviation";
+  options.quiet = true;
+  options.images = false;
+  SimulatePlanned(f.scenario, f.planned, options);
+  const nlohmann::json sim = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
+  const double voxel = sim["voxel_mm"].get<double>();
+  ASSERT_EQ(sim["stl_voxel_mm"].get<double>(), voxel) << "part.stl at the simulation's own voxel size";
+  DeviationOptions deviation;
+  deviation.target = options.out_dir / "target.stl";
+  WriteStlBinary(f.planned.mesh, deviation.target);
+  deviation.scan = options.out_dir / "part.stl";
+  deviation.out_dir = options.out_dir / "deviation";
+  deviation.images = false;
+  const nlohmann::json command = RunDeviation(deviation);  // the command as a user runs it, on the two files
+  const planner::TriangleMesh target = ReadStl(deviation.target, 0.0, nullptr);
+  const planner::TriangleMesh part = ReadStl(deviation.scan, 0.0, nullptr);
+  const twin::MeshDistance distance(target);
+  double area = 0.0, sum = 0.0, sum2 = 0.0;
+  for (const auto& t : part.facets) {
+    planner::TriangleMesh facet;
+    for (const int c : t) facet.vertices.push_back(part.vertices[static_cast<std::size_t>(c)]);
+    if (std::max({facet.vertices[0].z(), facet.vertices[1].z(), facet.vertices[2].z()}) < 1e-6) continue;
+    facet.facets.push_back({0, 1, 2});
+    const std::vector<Eigen::Vector3d> points = twin::SampleSurface(facet, 0.5);
+    const double a = 0.5 * (facet.vertices[1] - facet.vertices[0]).cross(facet.vertices[2] - facet.vertices[0]).norm();
+    for (const Eigen::Vector3d& p : points) {
+      const double d = distance.SignedDistance(p);
+      sum += a / static_cast<double>(points.size()) * d;
+      sum2 += a / static_cast<double>(points.size()) * d * d;
+    }
+    area += a;
+  }
+  const nlohmann::json& grid = sim["deviation"];
+  std::printf("part.stl above z = 0, area-weighted: rms %.3f mean %.3f mm; waam deviation on the file: rms %.3f, "
+              "min %.3f, max %.3f mm; simulate.json: rms %.3f mean %.3f min %.3f max %.3f mm\n",
+              std::sqrt(sum2 / area), sum / area, command["rms_mm"].get<double>(), command["min_mm"].get<double>(),
+              command["max_mm"].get<double>(), grid["rms_mm"].get<double>(), grid["mean_mm"].get<double>(),
+              grid["min_mm"].get<double>(), grid["max_mm"].get<double>());
+  EXPECT_NEAR(std::sqrt(sum2 / area), grid["rms_mm"].get<double>(), 0.1 * voxel);
+  EXPECT_NEAR(sum / area, grid["mean_mm"].get<double>(), 0.1 * voxel);
+  EXPECT_NEAR(command["max_mm"].get<double>(), grid["max_mm"].get<double>(), voxel);
+  EXPECT_NEAR(command["min_mm"].get<double>(), grid["min_mm"].get<double>(), voxel);
 }
 
 TEST(SimulateCommand, WritesTheContract) {

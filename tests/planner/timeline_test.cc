@@ -133,6 +133,27 @@ TEST(TimelineTest, MinLayerTimeWaitsBeforeTheNextLayersFirstArcStart) {
   EXPECT_DOUBLE_EQ(BuildTimeline(plan, {}, AxisLimits{}, settings).wait_s, 0.0);
 }
 
+TEST(TimelineTest, ExtraWaitPausesAContinuousSpiralBetweenItsLayers) {
+  // Two layers welded without an arc end between them (a spiral): layer 1 starts with a weld move.
+  Plan plan;
+  plan.layers.resize(2);
+  plan.layers[0].points = {Pt(0, 0, 2, false), Pt(30, 0, 2, true)};
+  plan.layers[1].index = 1;
+  plan.layers[1].points = {Pt(30, 0, 4, true), Pt(0, 0, 4, true)};
+  TimelineSettings settings;
+  const Timeline plain = BuildTimeline(plan, {}, AxisLimits{}, settings);
+  ExpectConsistent(plain);
+  EXPECT_EQ(Count(plain, SpanKind::kArcStart), 1) << "one pass: the arc burns across the layers";
+  settings.extra_wait_before_layer_s = {0.0, 40.0};
+  const Timeline t = BuildTimeline(plan, {}, AxisLimits{}, settings);
+  ExpectConsistent(t);
+  EXPECT_NEAR(t.wait_s, plain.wait_s + 40.0, 1e-9) << "the interpass wait is in the timeline";
+  EXPECT_NEAR(t.total_s, plain.total_s + 40.0, 1e-9);
+  EXPECT_NEAR(t.layers[1].start_s, plain.layers[1].start_s + 40.0, 1e-9) << "layer 1 starts after the wait";
+  EXPECT_EQ(Count(t, SpanKind::kArcStart), 1) << "a pause, not a new pass";
+  EXPECT_EQ(Count(t, SpanKind::kArcEnd), 1);
+}
+
 // A two-point plan (a travel move) and a hand-made motion of `n` samples along it, axis `axis` turning by `angle`.
 void TravelWithMotion(double length_mm, int axis, double angle_rad, Plan* plan, std::vector<CellSample>* motion) {
   plan->layers.assign(1, LayerPath{});

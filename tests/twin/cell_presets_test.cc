@@ -130,5 +130,14 @@ TEST(CellPresets, EveryNameOfTheTableHasAnEntryAndAnInstalledModel) {
   }
 }
 
+// Every preset has a program dialect for `waam export`, its vendor's: the names of both begin with the vendor.
+TEST(CellPresets, EveryPresetExportsInItsVendorsDialect) {
+  for (const EnumName<CellPreset>& entry : EnumNames(CellPreset{})) {
+    const std::string preset(entry.name);
+    const std::string dialect(NameOf(PresetDialect(entry.value)));
+    EXPECT_EQ(preset.substr(0, preset.find('_')), dialect.substr(0, dialect.find('_'))) << preset << ": " << dialect;
+  }
+}
+
 }  // namespace
 }  // namespace waam::twin

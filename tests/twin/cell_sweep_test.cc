@@ -3,6 +3,8 @@
 // clearance is a lower bound of the distances along the joint-space lines and close to their minimum.
 #include "twin/cell/cell_sweep.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -12,6 +14,7 @@
 
 #include "analysis/cell_files.h"
 #include "models/core/numbers.h"
+#include "planner/kinematics/positioner.h"
 #include "planner/scenario/scenario_document.h"
 #include "tests/twin/test_plans.h"
 #include "twin/cell/cell_check.h"
@@ -154,6 +157,108 @@ TEST(CellSweepTest, CertifiedClearanceBoundsTheDistancesAlongTheLines) {
       << "and within the resolution of the smallest";
   EXPECT_LT(sweep.distance_queries, geometry.pairs.size() * r.motion.size())
       << "advancement skips most of the queries a check of every pair at every sample makes";
+}
+
+int PartCollisions(const CheckReport& r, bool* between, double* t_s) {
+  int n = 0;
+  for (const CheckViolation& v : r.violations) {
+    if (v.kind != ViolationKind::kCollision || v.body1 != "part") continue;
+    ++n;
+    *between = *between || v.between_samples;
+    *t_s = v.t_s;
+  }
+  return n;
+}
+
+std::size_t LargestMove(const std::vector<planner::CellSample>& motion) {
+  std::size_t k = 1;
+  double largest = 0.0;
+  for (std::size_t i = 1; i < motion.size(); ++i) {
+    const double move = (motion[i].X_WT.translation() - motion[i - 1].X_WT.translation()).norm();
+    if (move > largest) {
+      largest = move;
+      k = i;
+    }
+  }
+  return k;
+}
+
+// The torch against the part built so far: while the table turns 70 deg under a 1 mm move, the nozzle leaves the
+// move's line by tens of mm in the part frame. A wall laid first where it passes halfway is clipped between two
+// samples, with the nozzle clear of the metal at every sample.
+TEST(CellSweepTest, WallTheSwingClipsBetweenTwoSamplesIsFoundOnlyByTheContinuousCheck) {
+  twin::CellSettings settings = OkSettings();
+  settings.part_collision = true;
+  settings.check_mode = CheckMode::kContinuous;
+  const CellModel cell = LoadCell(settings);
+  const CellCollisionGeometry geometry = cell.CollisionGeometry();
+  const CheckReport plain = CheckPlan(cell, SwingPlan(), settings, 100.0, nullptr);
+  ASSERT_TRUE(plain.ok);
+  const std::size_t k = LargestMove(plain.motion);
+  const planner::Joints8 q_mid = 0.5 * (plain.motion[k - 1].q + plain.motion[k].q);
+  std::vector<Eigen::Isometry3d> X_WL;
+  LinkPosesAt(geometry, q_mid, &X_WL);
+  const planner::CellKinematics kin = PartKinematics(cell, settings);
+  const Eigen::Vector3d mid_P = ((kin.X_WB * planner::PartPose(kin.positioner, q_mid[6], q_mid[7])).inverse() *
+                                 X_WL[geometry.nozzle_link] * geometry.X_LN).translation();
+  // The samples' nozzle stands on x = 100 mm; the wall below along y at the nozzle's x halfway: at the samples more
+  // than its half width (3 mm) and the nozzle's radius (11 mm) away.
+  ASSERT_GT(std::abs(mid_P.x() - 100.0), 18.0) << "halfway the nozzle is far from the move's line in the part frame";
+
+  // The wall: one 20 mm pass whose top is 30 mm up (the map's metal stands below each bead's top), then a travel up
+  // and over to the swing.
+  const auto at = [](double x, double y, double z, bool weld) {
+    planner::PathPoint p = Point(x, y, 0.0, weld);
+    p.p_P.z() = z;
+    return p;
+  };
+  planner::Plan plan;
+  planner::LayerPath wall;
+  wall.points = {at(mid_P.x(), mid_P.y() - 10.0, 30.0, false), at(mid_P.x(), mid_P.y() + 10.0, 30.0, true),
+                 at(mid_P.x(), mid_P.y() + 10.0, 80.0, false), at(100.0, -10.0, 80.0, false)};
+  plan.layers = {wall, SwingPlan().layers[0]};
+
+  const CheckReport continuous = CheckPlan(cell, plan, settings, 100.0, nullptr);
+  settings.check_mode = CheckMode::kDiscrete;
+  const CheckReport discrete = CheckPlan(cell, plan, settings, 100.0, nullptr);
+  const std::size_t swing = LargestMove(continuous.motion);
+  bool between = false;
+  double t_s = -1.0;
+  EXPECT_EQ(PartCollisions(discrete, &between, &t_s), 0) << "the discrete check steps over the wall (the known miss)";
+  ASSERT_EQ(PartCollisions(continuous, &between, &t_s), 1) << "the continuous check must find the wall";
+  EXPECT_TRUE(between) << "the contact lies strictly between two samples";
+  EXPECT_GT(t_s, continuous.motion[swing - 1].t_s) << "first contact after the sample before the swing";
+  EXPECT_LT(t_s, continuous.motion[swing].t_s) << "and before the sample after it";
+  EXPECT_LT(continuous.part_clearance_mm, 0.0) << "a penetrating contact: minus its depth";
+  // Without the wall the swing passes and the nozzle's clearance from its own beads is certified.
+  EXPECT_GT(plain.part_clearance_mm, 0.0);
+  EXPECT_TRUE(std::isfinite(plain.part_clearance_mm));
+}
+
+TEST(CellSweepTest, TreeForwardKinematicsIsMujocos) {
+  // The URDF mesh arm (fixed joints, meshes) and the built-in cell: the geometry's own tree against mj_kinematics.
+  const fs::path robots = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "robots";
+  twin::CellSettings urdf;
+  urdf.robot_urdf = robots / "waam_kr16_support" / "urdf" / "kr16_2.urdf";
+  urdf.robot_package_paths = {robots};
+  for (const twin::CellSettings& settings : {OkSettings(), urdf}) {
+    const CellModel cell = LoadCell(settings);
+    const CellCollisionGeometry geometry = cell.CollisionGeometry();
+    CellState state(cell);
+    std::vector<Eigen::Isometry3d> mujoco, tree;
+    std::srand(7);
+    for (int k = 0; k < 50; ++k) {
+      const planner::Joints8 q = planner::Joints8::Random() * kPi;
+      state.SetJoints(q);
+      state.ShapePoses(geometry, &mujoco);
+      ShapePosesAt(geometry, q, &tree);
+      ASSERT_EQ(tree.size(), mujoco.size());
+      for (std::size_t i = 0; i < tree.size(); ++i) {
+        EXPECT_LT((tree[i].translation() - mujoco[i].translation()).norm(), 1e-6) << geometry.body[i];
+        EXPECT_LT((tree[i].linear() - mujoco[i].linear()).norm(), 1e-9) << geometry.body[i];
+      }
+    }
+  }
 }
 
 }  // namespace

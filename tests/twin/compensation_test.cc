@@ -71,9 +71,13 @@ CompensationOptions Reduced(double strain) {
   return o;
 }
 
+// The tube of `layers` layers (40 for the convergence tests; 16 where only the loop's bookkeeping is checked) and its
+// target: the uncompensated deposit's surface.
 struct Tube {
-  planner::Plan plan = HotSideTube(15.0, 40);
-  planner::TriangleMesh target = ExtractSurface(DepositPlan(plan, Coarse(), 100.0, nullptr).grid());
+  explicit Tube(int layers = 40)
+      : plan(HotSideTube(15.0, layers)), target(ExtractSurface(DepositPlan(plan, Coarse(), 100.0, nullptr).grid())) {}
+  planner::Plan plan;
+  planner::TriangleMesh target;
 };
 
 TEST(Compensation, BentTubeConvergesWithinTwoIterationsFromTheScan) {
@@ -98,8 +102,7 @@ TEST(Compensation, BentTubeConvergesWithinTwoIterationsFromTheScan) {
 }
 
 TEST(Compensation, SectionShiftOfAMovedScanIsTheMove) {
-  const Tube tube;
-  const Depositor d = DepositPlan(tube.plan, Coarse(), 100.0, nullptr);
+  const Depositor d = DepositPlan(HotSideTube(15.0, 40), Coarse(), 100.0, nullptr);
   const std::vector<Eigen::Vector3d> reference = ScanDistortedPart(d.grid(), DistortionField());
   std::vector<Eigen::Vector3d> moved = reference;
   // A lean: the section at height z moves by 0.1 z along +y.
@@ -123,8 +126,7 @@ TEST(Compensation, SectionShiftOfAMovedScanIsTheMove) {
 }
 
 TEST(Compensation, PartialRingAtTheTopIsNotMeasuredAsAnOutlineMove) {
-  const Tube tube;
-  const Depositor d = DepositPlan(tube.plan, Coarse(), 100.0, nullptr);
+  const Depositor d = DepositPlan(HotSideTube(15.0, 40), Coarse(), 100.0, nullptr);
   const std::vector<Eigen::Vector3d> reference = ScanDistortedPart(d.grid(), DistortionField());
   double top = 0.0;
   for (const Eigen::Vector3d& p : reference) top = std::max(top, p.z());
@@ -152,9 +154,7 @@ TEST(Compensation, PartialRingAtTheTopIsNotMeasuredAsAnOutlineMove) {
 // The loop's scans, section measures and per-layer corrections run in parallel, each into its own slot: the same
 // iterations and the same compensated path, bit for bit, on 1 and 4 threads, with either correction method.
 TEST(Compensation, SameOnOneAndFourThreads) {
-  Tube tube;
-  tube.plan = HotSideTube(15.0, 16);
-  tube.target = ExtractSurface(DepositPlan(tube.plan, Coarse(), 100.0, nullptr).grid());
+  const Tube tube(16);
   for (const CorrectionMethod method : {CorrectionMethod::kAxis, CorrectionMethod::kPoints}) {
     CompensationOptions o = Reduced(0.04);
     o.tolerance_mm = 0.01;  // unreachable: every iteration corrects
@@ -186,7 +186,7 @@ TEST(Compensation, SameOnOneAndFourThreads) {
 }
 
 TEST(Compensation, LoopThatCannotReachTheToleranceSaysSo) {
-  const Tube tube;
+  const Tube tube(16);
   CompensationOptions o = Reduced(0.04);
   o.tolerance_mm = 0.01;  // far below the voxel scale: cannot be reached
   o.max_iterations = 1;

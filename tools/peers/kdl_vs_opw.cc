@@ -1,13 +1,23 @@
-// tools/peers.sh: KDL's numerical inverse kinematics against waam's closed form on the same arm (the FANUC ARC Mate
-// 100iC/12 of planner/kinematics/opw_arm.h), built by the script against Debian's KDL, not part of the project build.
+// tools/peers.sh: KDL's numerical inverse kinematics against waam's closed form on the same arm, built by the script
+// against Debian's KDL, not part of the project build: the FANUC ARC Mate 100iC/12 of planner/kinematics/opw_arm.h, or
+// with a URDF path the arm of that URDF (base_link -> tool0, six revolute joints): KDL's chain built from the URDF's
+// joints here (kdl_parser is not in Debian), waam's OPW parameters read off the same chain's axes at the zero pose
+// (planner::OpwFromAxes, as the cell does for a URDF arm) and checked against KDL's forward kinematics.
 // Both solve the flange poses of the same seeded random joint vectors from the same seeds (the target's joints
 // moved by up to 0.1 rad, as along a path); each answer is checked by waam's forward kinematics: solved when the
 // position error plus 1000 mm x the rotation error (rad) is below 1e-3 mm, far below a robot's repeatability. waam is
 // timed twice: every branch then PickNearest, and SolveIkNearest from the seed's branch (as along a path).
+// Usage: kdl_vs_opw [poses] [urdf]
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
+
+#include <tinyxml2.h>
 
 #include <kdl/chain.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -49,6 +59,62 @@ KDL::Chain ChainOf(const OpwArm& arm) {
   return chain;
 }
 
+// Three numbers of a URDF attribute (absent: zeros).
+KDL::Vector Triple(const tinyxml2::XMLElement* e, const char* attribute) {
+  double v[3] = {0.0, 0.0, 0.0};
+  if (e && e->Attribute(attribute)) {
+    std::istringstream in(e->Attribute(attribute));
+    in >> v[0] >> v[1] >> v[2];
+  }
+  return KDL::Vector(v[0], v[1], v[2]);
+}
+
+[[noreturn]] void Fail(const std::string& why) {
+  std::fprintf(stderr, "kdl_vs_opw: %s\n", why.c_str());
+  std::exit(1);
+}
+
+// The chain base_link -> tool0 of a URDF as kdl_parser builds it: per joint a segment whose joint sits at the
+// joint's origin with its axis turned into the parent's frame, and whose tip is that origin. Limits into `lower`,
+// `upper` (rad).
+KDL::Chain ChainOfUrdf(const char* path, Joints6* lower, Joints6* upper) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path) != tinyxml2::XML_SUCCESS) Fail(std::string("cannot read ") + path);
+  std::vector<const tinyxml2::XMLElement*> joints;
+  for (auto* j = doc.RootElement()->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) joints.push_back(j);
+  // Walk back from tool0 to base_link.
+  std::vector<const tinyxml2::XMLElement*> path_joints;
+  for (std::string link = "tool0"; link != "base_link";) {
+    const tinyxml2::XMLElement* found = nullptr;
+    for (auto* j : joints) {
+      if (link == j->FirstChildElement("child")->Attribute("link")) found = j;
+    }
+    if (!found) Fail("no joint leads to link " + link);
+    path_joints.insert(path_joints.begin(), found);
+    link = found->FirstChildElement("parent")->Attribute("link");
+  }
+  KDL::Chain chain;
+  int k = 0;
+  for (auto* j : path_joints) {
+    const auto* origin = j->FirstChildElement("origin");
+    const KDL::Vector rpy = Triple(origin, "rpy");
+    const KDL::Frame F(KDL::Rotation::RPY(rpy.x(), rpy.y(), rpy.z()), Triple(origin, "xyz"));
+    if (std::strcmp(j->Attribute("type"), "fixed") == 0) {
+      chain.addSegment(KDL::Segment(KDL::Joint(KDL::Joint::None), F));
+      continue;
+    }
+    if (k == 6) Fail("more than six moving joints");
+    const auto* limit = j->FirstChildElement("limit");
+    (*lower)[k] = limit->DoubleAttribute("lower");
+    (*upper)[k] = limit->DoubleAttribute("upper");
+    ++k;
+    const KDL::Vector axis = Triple(j->FirstChildElement("axis"), "xyz");
+    chain.addSegment(KDL::Segment(KDL::Joint(j->Attribute("name"), F.p, F.M * axis, KDL::Joint::RotAxis), F));
+  }
+  if (k != 6) Fail("not six moving joints");
+  return chain;
+}
+
 Eigen::Isometry3d FromKdl(const KDL::Frame& f) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   for (int r = 0; r < 3; ++r) {
@@ -58,12 +124,38 @@ Eigen::Isometry3d FromKdl(const KDL::Frame& f) {
   return X;
 }
 
+// waam's OPW arm of a KDL chain: the axes at q = 0 (mm, in the chain's base frame) read by OpwFromAxes.
+OpwArm ArmOfChain(const KDL::Chain& chain, const Joints6& lower, const Joints6& upper) {
+  waam::planner::ArmAxes axes;
+  KDL::Frame X = KDL::Frame::Identity();
+  int k = 0;
+  for (unsigned s = 0; s < chain.getNrOfSegments(); ++s) {
+    const KDL::Segment& seg = chain.getSegment(s);
+    if (seg.getJoint().getType() != KDL::Joint::None) {
+      const KDL::Vector p = X * seg.getJoint().JointOrigin(), a = X.M * seg.getJoint().JointAxis();
+      axes.point_R[k] = 1000.0 * Eigen::Vector3d(p.x(), p.y(), p.z());
+      axes.axis_R[k] = Eigen::Vector3d(a.x(), a.y(), a.z()).normalized();
+      ++k;
+    }
+    X = X * seg.pose(0.0);
+  }
+  axes.X_RF0 = FromKdl(X);
+  std::string why;
+  std::optional<OpwArm> arm = waam::planner::OpwFromAxes(axes, &why);
+  if (!arm) Fail("the URDF's arm is not of the OPW kind: " + why);
+  arm->lower = lower;
+  arm->upper = upper;
+  return *arm;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const int n = argc > 1 ? std::atoi(argv[1]) : 20000;
-  const OpwArm arm = OpwArm::ArcMate100iC12();
-  const KDL::Chain chain = ChainOf(arm);
+  Joints6 lower, upper;
+  const KDL::Chain chain = argc > 2 ? ChainOfUrdf(argv[2], &lower, &upper) : ChainOf(OpwArm::ArcMate100iC12());
+  const OpwArm arm = argc > 2 ? ArmOfChain(chain, lower, upper) : OpwArm::ArcMate100iC12();
+  std::printf("kdl_vs_opw: arm %s\n", argc > 2 ? argv[2] : "FANUC ARC Mate 100iC/12 (built in)");
   KDL::ChainFkSolverPos_recursive fk(chain);
   KDL::ChainIkSolverPos_LMA ik(chain, 1e-12, 500, 1e-15);
 

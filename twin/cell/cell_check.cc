@@ -6,6 +6,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "models/core/error.h"
@@ -16,6 +17,7 @@
 #include "twin/cell/cell_presets.h"
 #include "twin/cell/cell_sweep.h"
 #include "twin/cell/deposit_map.h"
+#include "twin/cell/deposit_sweep.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
@@ -159,11 +161,11 @@ std::vector<SampleContacts> SweptContacts(const CellModel& cell, const CellColli
 
 // The cell bodies' contacts in the mode `settings` asks for: continuous where every geom has a distance bound, else
 // discrete with the reason in report->mode_fallback. Sets the report's mode and collision figures.
-std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const std::vector<planner::CellSample>& motion,
+std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const CellCollisionGeometry& geometry,
+                                           const std::vector<planner::CellSample>& motion,
                                            const twin::CellSettings& settings, CheckReport* report) {
   report->mode = settings.check_mode;
   if (report->mode == CheckMode::kContinuous) {
-    const CellCollisionGeometry geometry = cell.CollisionGeometry();
     if (geometry.unsupported.empty()) {
       return SweptContacts(cell, geometry, motion, settings.collision_tolerance_mm, report);
     }
@@ -262,21 +264,26 @@ struct NozzleAndMap {
   Eigen::Vector3d a_T, b_T;
   double r = 0.0;
   DepositMap deposit;
+  Eigen::AlignedBox3d part_box_P;  // holds every bead the motion lays, mm
 };
 
 NozzleAndMap FootprintMap(const CellModel& cell, const std::vector<planner::CellSample>& motion) {
   Eigen::Vector3d a_T, b_T;
-  double r = 0.0;
+  double r = 0.0, width = 0.0;
   cell.NozzleInTcp(&a_T, &b_T, &r);
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector2d hi = -lo;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
   for (const planner::CellSample& s : motion) {
-    lo = lo.cwiseMin(s.p_P.head<2>());
-    hi = hi.cwiseMax(s.p_P.head<2>());
+    lo = lo.cwiseMin(s.p_P);
+    hi = hi.cwiseMax(s.p_P);
+    width = std::max(width, s.bead_width_mm);
   }
-  if (motion.empty()) lo = hi = Eigen::Vector2d::Zero();
+  if (motion.empty()) lo = hi = Eigen::Vector3d::Zero();
   const double pad = 20.0 + 2.0 * r;
-  return {a_T, b_T, r, DepositMap(lo.array() - pad, hi.array() + pad, 1.0)};
+  // The part's box: the beads' widths about the path, from 10 mm below the plate top (or the path) to the path's top.
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(lo.x() - width, lo.y() - width, std::min(0.0, lo.z()) - 10.0),
+                                Eigen::Vector3d(hi.x() + width, hi.y() + width, std::max(0.0, hi.z())));
+  return {a_T, b_T, r, DepositMap(lo.head<2>().array() - pad, hi.head<2>().array() + pad, 1.0), box};
 }
 
 // The checks of one sample after another along the motion: each writes its figures into the report and its
@@ -293,8 +300,15 @@ class SampleChecks {
     report_.min_joint_margin_deg = std::numeric_limits<double>::infinity();
     report_.min_arm_margin_deg = std::numeric_limits<double>::infinity();
     report_.min_j5_deg = std::numeric_limits<double>::infinity();
-    cell_contacts_ = ContactsInMode(cell, motion_, settings, &report_);
+    if (settings.check_mode == CheckMode::kContinuous) geometry_ = cell.CollisionGeometry();
+    cell_contacts_ = ContactsInMode(cell, geometry_, motion_, settings, &report_);
     continuous_ = report_.mode == CheckMode::kContinuous;
+    // Continuous: the nozzle against the deposit between the samples too.
+    if (continuous_ && settings.part_collision) {
+      const SweepOptions sweep;
+      part_sweep_.emplace(cell, geometry_, kin, nozzle_.part_box_P, sweep.contact_mm, sweep.probe_mm,
+                          settings.collision_tolerance_mm);
+    }
   }
 
   // Every check at sample i, then the bead laid up to it.
@@ -321,6 +335,11 @@ class SampleChecks {
 
   // The report's violations and summary figures once every sample is checked.
   void Finish() {
+    if (part_sweep_) {
+      report_.part_clearance_mm = part_sweep_->certified_clearance_mm();
+      report_.part_queries = part_sweep_->queries();
+      report_.poses += part_sweep_->poses();
+    }
     report_.violations = log_.Take();
     report_.ok = report_.violations.empty();
     report_.duration_s = motion_.empty() ? 0.0 : motion_.back().t_s;
@@ -416,13 +435,28 @@ class SampleChecks {
     }
   }
 
-  // Torch against the layers deposited before this sample.
+  // Torch against the layers deposited before this sample (continuous: over the move into it too).
   void PartCollision(std::size_t i) {
     if (!settings_.part_collision) return;
     const planner::CellSample& s = motion_[i];
-    const Eigen::Isometry3d X_WP = kin_.X_WB * planner::PartPose(kin_.positioner, s.q[6], s.q[7]);
-    const Eigen::Isometry3d X_PT = X_WP.inverse() * s.X_WT;
-    const double pen = nozzle_.deposit.Penetration(X_PT * nozzle_.a_T, X_PT * nozzle_.b_T, nozzle_.r);
+    // The part's pose changes only when the positioner moves (not at all along most layers).
+    if (s.q[6] != part_at_[0] || s.q[7] != part_at_[1]) {
+      part_at_ = {s.q[6], s.q[7]};
+      X_PW_ = (kin_.X_WB * planner::PartPose(kin_.positioner, s.q[6], s.q[7])).inverse();
+    }
+    const Eigen::Isometry3d X_PT = X_PW_ * s.X_WT;
+    const NozzleInPart nozzle{X_PT * nozzle_.a_T, X_PT * nozzle_.b_T};
+    if (part_sweep_ && i > 0 && motion_[i - 1].reachable) {
+      // The move into this sample, against the metal laid before it.
+      if (const std::optional<DepositContact> c =
+              part_sweep_->Move(motion_[i - 1], previous_nozzle_, s, nozzle, nozzle_.deposit)) {
+        log_.Add(ViolationKind::kCollision, "part", "torch", s, static_cast<int>(i), c->penetration_mm,
+                 "penetration_mm", true, c->t_s, c->between_samples);
+        if (report_.first_contact_s < 0.0 || c->t_s < report_.first_contact_s) report_.first_contact_s = c->t_s;
+      }
+    }
+    previous_nozzle_ = nozzle;
+    const double pen = nozzle_.deposit.Penetration(nozzle.a_P, nozzle.b_P, nozzle_.r);
     if (pen > settings_.collision_tolerance_mm) {
       log_.Add(ViolationKind::kCollision, "part", "torch", s, static_cast<int>(i), pen, "penetration_mm", true);
     }
@@ -436,6 +470,11 @@ class SampleChecks {
   ViolationLog log_;
   Eigen::Matrix<double, 8, 1> limit_lo_, limit_hi_, max_speed_;
   std::vector<SampleContacts> cell_contacts_;
+  CellCollisionGeometry geometry_;            // continuous mode's (empty in discrete mode)
+  std::optional<DepositSweep> part_sweep_;    // continuous mode with part_collision
+  NozzleInPart previous_nozzle_;              // the nozzle at the sample before, in P
+  std::array<double, 2> part_at_ = {std::numeric_limits<double>::quiet_NaN(), 0.0};  // positioner of X_PW_
+  Eigen::Isometry3d X_PW_ = Eigen::Isometry3d::Identity();
   bool continuous_ = false;
   std::size_t next_contact_ = 0;  // first entry of cell_contacts_ at or after the current sample
   Eigen::Matrix<double, 8, 1> prev_velocity_ = Eigen::Matrix<double, 8, 1>::Zero();

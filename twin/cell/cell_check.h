@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -112,6 +113,11 @@ struct CheckReport {
   double closest_t_s = 0.0;                  // and when, s
   double first_contact_s = -1.0;             // the first contact found, -1 when none, s
   std::size_t gjk_queries = 0, poses = 0, refinements = 0;
+  // Continuous mode with part_collision: the certified clearance between the nozzle and the part built so far over
+  // every move (+inf when no move was swept; minus the deepest penetration when there is a contact), mm, and the
+  // deposit-map distance bounds it took.
+  double part_clearance_mm = std::numeric_limits<double>::infinity();
+  std::size_t part_queries = 0;
 };
 
 // The figures of `report` the resolution and `waam place` compare.

@@ -68,13 +68,6 @@ class Travel {
   std::vector<Vec8> rows_;
 };
 
-// Lower bound on a pair's distance between two queries d_a, d_b whose travel bound between them is M: the distance
-// is at least max(d_a - m, d_b - (M - m)) at travel m.
-double IntervalBound(double d_a, double d_b, double M) {
-  if (std::abs(d_a - d_b) >= M) return std::min(d_a, d_b);
-  return 0.5 * (d_a + d_b - M);
-}
-
 // An interval between two queries of one pair whose bound may still be tightened.
 struct Interval {
   int pair = 0;
@@ -109,12 +102,15 @@ class Sweeper {
     const double f = s - static_cast<double>(i);
     return f > 0.0 ? motion_[i].t_s + f * (motion_[i + 1].t_s - motion_[i].t_s) : motion_[i].t_s;
   }
-  void PoseAt(double s) {
-    if (s == posed_) return;
+  planner::Joints8 JointsAt(double s) const {
     const std::size_t i = static_cast<std::size_t>(s);
     const double f = s - static_cast<double>(i);
-    state_.SetJoints(f > 0.0 ? planner::Joints8(motion_[i].q + f * (motion_[i + 1].q - motion_[i].q)) : motion_[i].q);
-    state_.ShapePoses(g_, &X_WG_);
+    return f > 0.0 ? planner::Joints8(motion_[i].q + f * (motion_[i + 1].q - motion_[i].q)) : motion_[i].q;
+  }
+  // The shapes' poses at s, from the geometry's own tree (MuJoCo's mjData is set only for its collision detection).
+  void PoseAt(double s) {
+    if (s == posed_) return;
+    ShapePosesAt(g_, JointsAt(s), &X_WG_);
     posed_ = s;
     ++result_.poses;
   }
@@ -183,7 +179,7 @@ void Sweeper::ContactAt(int p, double s, double end) {
   const bool at_sample = s == std::floor(s);
   // MuJoCo's contacts at `at`: every pair's at a sample, this pair's at a probe between samples.
   const auto collect = [&](double at, std::size_t sample, bool between) {
-    PoseAt(at);
+    state_.SetJoints(JointsAt(at));
     scratch_.clear();
     state_.Collide(options_.tolerance_mm, &scratch_, nullptr);
     for (CellContact& c : scratch_) {
@@ -310,6 +306,12 @@ SweepResult Sweeper::Run() {
 }
 
 }  // namespace
+
+// The distance is at least max(d_a - m, d_b - (M - m)) at travel m; the smallest over m in [0, M].
+double IntervalBound(double d_a, double d_b, double M) {
+  if (std::abs(d_a - d_b) >= M) return std::min(d_a, d_b);
+  return 0.5 * (d_a + d_b - M);
+}
 
 SweepResult SweepMotion(const CellModel& cell, const CellCollisionGeometry& geometry,
                         const std::vector<planner::CellSample>& motion, const SweepOptions& options) {

@@ -51,6 +51,10 @@ struct SweepResult {
 // (the joints' travel along the line times the lever arms of the joints that move one shape and not the other), the
 // next query is where the travel bound reaches d - contact_mm / 2; queries falling beyond a sample are moved back to
 // it, so that one forward kinematics serves every pair due there.
+// Lower bound on a distance over a stretch of motion from bounds d_a, d_b at its ends (mm) and the bound M (mm) on
+// how far the two shapes can approach over it: (d_a + d_b - M) / 2, or min(d_a, d_b) when |d_a - d_b| >= M.
+double IntervalBound(double d_a, double d_b, double M);
+
 SweepResult SweepMotion(const CellModel& cell, const CellCollisionGeometry& geometry,
                         const std::vector<planner::CellSample>& motion, const SweepOptions& options);
 

@@ -61,7 +61,33 @@ struct CellCollisionGeometry {
   // Why distances cannot be bounded on this model (names the geom), empty when they can: a height field, or a
   // plane that an axis moves.
   std::string unsupported;
+  // The model's bodies as a tree for ShapePosesAt (MuJoCo's body order: a parent before its children; 0 the world).
+  struct Link {
+    int parent = 0;                                          // the parent's index (the world's own: 0)
+    Eigen::Isometry3d X_PL = Eigen::Isometry3d::Identity();  // the body in its parent's frame at zero axes, mm
+    int axis = -1;                      // which of the eight axes turns it about its hinge (-1: none)
+    Eigen::Vector3d anchor_L = Eigen::Vector3d::Zero();      // the hinge's anchor in the body frame, mm
+    Eigen::Vector3d axis_L = Eigen::Vector3d::UnitZ();       // the hinge's unit axis in the body frame
+    double q0 = 0.0;                                         // the hinge's reference angle, rad
+  };
+  std::vector<Link> links;
+  std::vector<int> link;                   // per shape: its body's index into links
+  std::vector<Eigen::Isometry3d> X_LG;     // per shape: the geom in its body's frame, mm
+  // The torch's gas nozzle (the capsule geom `nozzle`, along z of its frame N): its body's link, its pose in that
+  // body (mm), and the lever bound of each axis over it (as lever_mm), for the nozzle against the deposited part.
+  int nozzle_link = 0;
+  Eigen::Isometry3d X_LN = Eigen::Isometry3d::Identity();
+  Eigen::Matrix<double, 8, 1> nozzle_lever_mm = Eigen::Matrix<double, 8, 1>::Zero();
 };
+
+// The world pose (mm) of each body of `geometry.links` at the eight axes `q` (rad), into `X_WL` (resized), as
+// MuJoCo's forward kinematics places them.
+void LinkPosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q, std::vector<Eigen::Isometry3d>* X_WL);
+
+// The world pose (mm) of each shape of `geometry` at the eight axes `q` (rad), into `X_WG` (resized), from the
+// geometry's own tree: the poses MuJoCo's forward kinematics gives (CellState::ShapePoses after SetJoints, to
+// rounding), without an mjData and at a fraction of its cost (only the bodies, not the model's sites and visual geoms).
+void ShapePosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q, std::vector<Eigen::Isometry3d>* X_WG);
 
 // A cell model's MJCF as data (read by analysis/cell_files.h; the twin opens no file): the text, the file that names
 // it, and the bytes of every file the text names (meshes, textures, included MJCF). MuJoCo finds each asset by its

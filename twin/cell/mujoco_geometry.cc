@@ -2,6 +2,9 @@
 // filters them, the lever arm of every axis over every shape, and the shapes' poses.
 #include <cmath>
 #include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
 
 #include "twin/cell/mujoco_cell.h"
 #include "twin/cell/mujoco_cell_internal.h"
@@ -124,6 +127,39 @@ CellCollisionGeometry CellModel::CollisionGeometry() const {
     geometry.body.push_back(body ? body : "world");
     geometry.lever_mm.push_back(lever);
   }
+  // The tree: every body with its fixed pose in its parent and the axis that turns it.
+  const auto pose_of = [](const mjtNum* pos, const mjtNum* quat) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]) * kGeomMm;
+    X.linear() = Eigen::Quaterniond(quat[0], quat[1], quat[2], quat[3]).normalized().toRotationMatrix();
+    return X;
+  };
+  geometry.links.resize(m->nbody);
+  for (int b = 1; b < m->nbody; ++b) {
+    CellCollisionGeometry::Link& link = geometry.links[b];
+    link.parent = m->body_parentid[b];
+    link.X_PL = pose_of(m->body_pos + 3 * b, m->body_quat + 4 * b);
+    // Joints other than the eight axes stay at their reference (SetJoints never moves them): no motion.
+    for (int k = m->body_jntadr[b]; k >= 0 && k < m->body_jntadr[b] + m->body_jntnum[b]; ++k) {
+      for (int j = 0; j < 8; ++j) {
+        if (impl_->jnt[j] != k) continue;
+        link.axis = j;
+        link.anchor_L = Eigen::Vector3d(m->jnt_pos[3 * k], m->jnt_pos[3 * k + 1], m->jnt_pos[3 * k + 2]) * kGeomMm;
+        link.axis_L = Eigen::Vector3d(m->jnt_axis[3 * k], m->jnt_axis[3 * k + 1], m->jnt_axis[3 * k + 2]).normalized();
+        link.q0 = m->qpos0[m->jnt_qposadr[k]];
+      }
+    }
+  }
+  const int nozzle = impl_->nozzle;
+  geometry.nozzle_link = m->geom_bodyid[nozzle];
+  geometry.X_LN = pose_of(m->geom_pos + 3 * nozzle, m->geom_quat + 4 * nozzle);
+  for (int j = 0; j < 8; ++j) {
+    if (impl_->jnt[j] >= 0) geometry.nozzle_lever_mm[j] = LeverBound(m, impl_->jnt[j], nozzle);
+  }
+  for (int g : geometry.geom) {
+    geometry.link.push_back(m->geom_bodyid[g]);
+    geometry.X_LG.push_back(pose_of(m->geom_pos + 3 * g, m->geom_quat + 4 * g));
+  }
   for (int g1 = 0; g1 < m->ngeom; ++g1) {
     for (int g2 = g1 + 1; g2 < m->ngeom; ++g2) {
       if (shape_of[g1] >= 0 && shape_of[g2] >= 0 && MujocoTestsPair(m, g1, g2)) {
@@ -136,6 +172,33 @@ CellCollisionGeometry CellModel::CollisionGeometry() const {
     if (a >= 0 && b >= 0) geometry.pairs.push_back({a, b});
   }
   return geometry;
+}
+
+void LinkPosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q,
+                 std::vector<Eigen::Isometry3d>* X_WL_out) {
+  // mj_kinematics of MuJoCo 2.2 per body: the parent's frame times the body's fixed pose, then each hinge turns the
+  // body about its anchor (x_anchor fixed, rotation by q - q0 about the axis in the body frame).
+  std::vector<Eigen::Isometry3d>& X_WL = *X_WL_out;
+  X_WL.resize(geometry.links.size());
+  if (!X_WL.empty()) X_WL[0].setIdentity();
+  for (std::size_t b = 1; b < geometry.links.size(); ++b) {
+    const CellCollisionGeometry::Link& link = geometry.links[b];
+    Eigen::Isometry3d X = X_WL[link.parent] * link.X_PL;
+    if (link.axis >= 0) {
+      const Eigen::Vector3d anchor_W = X * link.anchor_L;
+      X.linear() = X.linear() * Eigen::AngleAxisd(q[link.axis] - link.q0, link.axis_L).toRotationMatrix();
+      X.translation() = anchor_W - X.linear() * link.anchor_L;
+    }
+    X_WL[b] = X;
+  }
+}
+
+void ShapePosesAt(const CellCollisionGeometry& geometry, const planner::Joints8& q,
+                  std::vector<Eigen::Isometry3d>* X_WG) {
+  thread_local std::vector<Eigen::Isometry3d> X_WL;
+  LinkPosesAt(geometry, q, &X_WL);
+  X_WG->resize(geometry.link.size());
+  for (std::size_t i = 0; i < geometry.link.size(); ++i) (*X_WG)[i] = X_WL[geometry.link[i]] * geometry.X_LG[i];
 }
 
 void CellState::ShapePoses(const CellCollisionGeometry& geometry, std::vector<Eigen::Isometry3d>* X_WG) const {

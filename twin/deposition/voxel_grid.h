@@ -72,10 +72,28 @@ class VoxelGrid {
     }
   }
 
+  // The occupancy of one block: bit n of word n / 64 is voxel origin + (n & 7, n >> 3 & 7, n >> 6), so word z is the
+  // 8 x 8 slice at height origin.z() + z, bit x + 8 y.
+  using BlockBits = std::array<std::uint64_t, kBlockVoxels / 64>;
+
+  // Calls f(origin, bits, data) for every block (origin: its first voxel, a multiple of kBlock on each axis; data:
+  // kBlockVoxels entries, voxel n's valid where its bit is set), in the order of ForEach; for whole-block bit
+  // operations (exposed faces, coarsening).
+  template <typename F>
+  void ForEachBlock(F&& f) const {
+    for (const Block& block : blocks_) f(block.origin, block.occupancy, block.data.data());
+  }
+  // The occupancy of the block whose first voxel is `origin` (a multiple of kBlock on each axis), or nullptr when the
+  // block holds no voxel.
+  const BlockBits* BlockAt(const VoxelIndex& origin) const {
+    const Block* block = FindBlock(origin);
+    return block == nullptr ? nullptr : &block->occupancy;
+  }
+
  private:
   struct Block {
     VoxelIndex origin;                                   // voxel index of the block's first voxel
-    std::array<std::uint64_t, kBlockVoxels / 64> occupancy{};
+    BlockBits occupancy{};
     std::array<VoxelData, kBlockVoxels> data{};
   };
   static std::uint64_t Key(const VoxelIndex& block_coord);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
@@ -114,10 +116,35 @@ planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
 }
 
 std::size_t ExposedFaces(const VoxelGrid& grid) {
+  // Block by block on the occupancy words (word z: the slice at height z, bit x + 8 y): the neighbour of every voxel
+  // in one direction is the block's word shifted, with the row or slice across the block's side taken from the
+  // neighbouring block (the substrate below z = 0 is solid).
+  using Bits = VoxelGrid::BlockBits;
+  constexpr int B = VoxelGrid::kBlock;
+  static_assert(B == 8, "a slice of a block is one 64-bit word");
+  constexpr std::uint64_t kX0 = 0x0101010101010101ull;  // the bits of x = 0 in a slice
+  constexpr std::uint64_t kX7 = kX0 << 7;
+  static const Bits kEmpty{};
+  Bits substrate;
+  substrate.fill(~std::uint64_t{0});
   std::size_t faces = 0;
-  const Eigen::Vector3i dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  grid.ForEach([&](const VoxelIndex& v, const VoxelData&) {
-    for (const Eigen::Vector3i& d : dirs) faces += grid.Solid(v + d) ? 0 : 1;
+  grid.ForEachBlock([&](const VoxelIndex& origin, const Bits& w, const VoxelData*) {
+    auto side = [&](int dx, int dy, int dz) -> const Bits& {
+      if (origin.z() + dz * B < 0) return substrate;
+      const Bits* bits = grid.BlockAt(origin + VoxelIndex(dx, dy, dz) * B);
+      return bits != nullptr ? *bits : kEmpty;
+    };
+    const Bits &xp = side(1, 0, 0), &xm = side(-1, 0, 0), &yp = side(0, 1, 0), &ym = side(0, -1, 0);
+    const Bits &zp = side(0, 0, 1), &zm = side(0, 0, -1);
+    for (int z = 0; z < B; ++z) {
+      const std::uint64_t s = w[static_cast<std::size_t>(z)];
+      if (s == 0) continue;
+      const auto k = static_cast<std::size_t>(z);
+      const std::uint64_t solid[6] = {((s >> 1) & ~kX7) | ((xp[k] & kX0) << 7), ((s << 1) & ~kX0) | ((xm[k] & kX7) >> 7),
+                                      (s >> 8) | (yp[k] << 56), (s << 8) | (ym[k] >> 56),
+                                      z + 1 < B ? w[k + 1] : zp[0], z > 0 ? w[k - 1] : zm[B - 1]};
+      for (const std::uint64_t n : solid) faces += static_cast<std::size_t>(std::popcount(s & ~n));
+    }
   });
   return faces;
 }
@@ -130,18 +157,52 @@ VoxelGrid Coarsen(const VoxelGrid& grid, int factor) {
     return coarse;
   }
   auto floor_div = [factor](int a) { return a >= 0 ? a / factor : -((-a + factor - 1) / factor); };
-  std::unordered_map<std::uint64_t, std::pair<int, VoxelData>> counts;
-  std::vector<std::uint64_t> order;  // first-seen order, for a deterministic result
-  grid.ForEach([&](const VoxelIndex& v, const VoxelData& d) {
-    const Eigen::Vector3i c(floor_div(v.x()), floor_div(v.y()), floor_div(v.z()));
-    auto [it, inserted] = counts.try_emplace(CellKey(c), 0, d);
-    if (inserted) order.push_back(it->first);
-    ++it->second.first;
-  });
+  // Counted block by block in a small local array (the coarse cells one block touches), then added to the coarse
+  // cells in the order first seen, each keeping the data of its first fine voxel in ForEach order (deterministic).
+  // Where the factor divides the block size, a block holds its coarse cells whole and they are set at once.
+  struct Cell {
+    Eigen::Vector3i c;
+    int count;
+    VoxelData data;
+  };
+  std::vector<Cell> cells;
+  std::unordered_map<std::uint64_t, std::size_t> slot;
   const int half = (factor * factor * factor + 1) / 2;
-  for (std::uint64_t key : order) {
-    const auto& [n, data] = counts[key];
-    if (n >= half) coarse.Set(CellOfKey(key), data);
+  const bool aligned = VoxelGrid::kBlock % factor == 0;  // every coarse cell inside one block
+  const int span = (VoxelGrid::kBlock - 1) / factor + 2;  // coarse cells a block touches along an axis, at most
+  std::vector<int> local_count(static_cast<std::size_t>(span * span * span), 0), local_first(local_count.size());
+  std::vector<int> touched;
+  grid.ForEachBlock([&](const VoxelIndex& origin, const VoxelGrid::BlockBits& bits, const VoxelData* data) {
+    const Eigen::Vector3i c0(floor_div(origin.x()), floor_div(origin.y()), floor_div(origin.z()));
+    touched.clear();
+    for (int word = 0; word < static_cast<int>(bits.size()); ++word) {
+      for (std::uint64_t w = bits[static_cast<std::size_t>(word)]; w != 0; w &= w - 1) {
+        const int n = 64 * word + std::countr_zero(w);
+        const VoxelIndex v = origin + VoxelIndex(n & 7, n >> 3 & 7, n >> 6);
+        const Eigen::Vector3i c = Eigen::Vector3i(floor_div(v.x()), floor_div(v.y()), floor_div(v.z())) - c0;
+        const auto l = static_cast<std::size_t>(c.x() + span * (c.y() + span * c.z()));
+        if (local_count[l]++ == 0) {
+          local_first[l] = n;
+          touched.push_back(static_cast<int>(l));
+        }
+      }
+    }
+    for (const int l : touched) {
+      const auto i = static_cast<std::size_t>(l);
+      const Eigen::Vector3i c = c0 + Eigen::Vector3i(l % span, l / span % span, l / (span * span));
+      if (aligned) {  // no other block reaches this coarse cell: it is complete
+        if (local_count[i] >= half) coarse.Set(c, data[local_first[i]]);
+        local_count[i] = 0;
+        continue;
+      }
+      const auto [it, inserted] = slot.try_emplace(CellKey(c), cells.size());
+      if (inserted) cells.push_back({c, 0, data[local_first[i]]});
+      cells[it->second].count += local_count[i];
+      local_count[i] = 0;
+    }
+  });
+  for (const Cell& cell : cells) {
+    if (cell.count >= half) coarse.Set(cell.c, cell.data);
   }
   return coarse;
 }

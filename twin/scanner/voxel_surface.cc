@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numeric>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -13,22 +14,51 @@
 #include "models/core/progress.h"
 #include "twin/scanner/flat_vertices.h"
 #include "twin/scanner/point_hash.h"
+#include "twin/scanner/surface_mesh.h"
 
 namespace waam::twin {
 namespace {
 
 // Occupancy for the mesh: the grid's metal (z >= 0; the substrate is air here) plus the voxels filled for manifoldness.
+// Reads the grid's occupancy words through a one-block cache (the neighbours of a voxel are mostly in its block).
 class MeshOccupancy {
  public:
   explicit MeshOccupancy(const VoxelGrid& grid) : grid_(grid) {}
   bool operator()(const Eigen::Vector3i& v) const {
-    return grid_.Occupied(v) || (!filled_.empty() && filled_.count(CellKey(v)) != 0);
+    const Eigen::Vector3i origin(v.x() & ~kMask, v.y() & ~kMask, v.z() & ~kMask);
+    if (origin != cached_origin_ || !cached_) {
+      cached_ = true;
+      cached_origin_ = origin;
+      cached_grid_ = grid_.BlockAt(origin);
+      const auto it = filled_.find(CellKey(origin / VoxelGrid::kBlock));
+      cached_filled_ = it == filled_.end() ? nullptr : &it->second;
+    }
+    const int n = (v.x() & kMask) | (v.y() & kMask) << 3 | (v.z() & kMask) << 6;
+    const std::uint64_t bit = std::uint64_t{1} << (n & 63);
+    return (cached_grid_ != nullptr && ((*cached_grid_)[static_cast<std::size_t>(n >> 6)] & bit) != 0) ||
+           (cached_filled_ != nullptr && ((*cached_filled_)[static_cast<std::size_t>(n >> 6)] & bit) != 0);
   }
-  bool Fill(const Eigen::Vector3i& v) { return filled_.insert(CellKey(v)).second; }
+  // Marks v filled; false when it already was.
+  bool Fill(const Eigen::Vector3i& v) {
+    const Eigen::Vector3i origin(v.x() & ~kMask, v.y() & ~kMask, v.z() & ~kMask);
+    VoxelGrid::BlockBits& bits = filled_[CellKey(origin / VoxelGrid::kBlock)];
+    cached_ = false;  // a block new to the map is not in the cache (the map's nodes themselves never move)
+    const int n = (v.x() & kMask) | (v.y() & kMask) << 3 | (v.z() & kMask) << 6;
+    std::uint64_t& word = bits[static_cast<std::size_t>(n >> 6)];
+    const std::uint64_t bit = std::uint64_t{1} << (n & 63);
+    const bool added = (word & bit) == 0;
+    word |= bit;
+    return added;
+  }
 
  private:
+  static constexpr int kMask = VoxelGrid::kBlock - 1;
   const VoxelGrid& grid_;
-  std::unordered_set<std::uint64_t> filled_;
+  std::unordered_map<std::uint64_t, VoxelGrid::BlockBits> filled_;  // block (CellKey of origin / kBlock) -> bits
+  mutable bool cached_ = false;
+  mutable Eigen::Vector3i cached_origin_ = Eigen::Vector3i::Zero();
+  mutable const VoxelGrid::BlockBits* cached_grid_ = nullptr;
+  mutable const VoxelGrid::BlockBits* cached_filled_ = nullptr;
 };
 
 const std::array<Eigen::Vector3i, 6> kDirs = {Eigen::Vector3i(1, 0, 0),  Eigen::Vector3i(-1, 0, 0),
@@ -136,15 +166,24 @@ Eigen::Vector3i Corner(int axis, int plane, int u, int v) {
   return p;
 }
 
-// The quad corners sorted for the lines along one axis: by the two other coordinates, then the one along the axis,
-// so the corners on a line segment are one contiguous range.
+// The quad corners sorted for the lines along one axis: by the two other coordinates, then the one along the axis
+// (packed in one integer key, 21 bits each), so the corners on a line segment are one contiguous range. `id` is each
+// corner's place in the index of axis 0, which numbers the distinct corners.
 struct LineIndex {
   int axis;
-  std::vector<Eigen::Vector3i> corners;
-  std::array<int, 3> Key(const Eigen::Vector3i& p) const {
-    return {p[(axis + 1) % 3], p[(axis + 2) % 3], p[axis]};
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint32_t> id;
+  std::uint64_t Key(const Eigen::Vector3i& p) const {
+    return CellKey(Eigen::Vector3i(p[axis], p[(axis + 2) % 3], p[(axis + 1) % 3]));
   }
-  bool Less(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const { return Key(a) < Key(b); }
+  Eigen::Vector3i Point(std::uint64_t key) const {  // the inverse of Key
+    const Eigen::Vector3i c = CellOfKey(key);
+    Eigen::Vector3i p;
+    p[axis] = c.x();
+    p[(axis + 2) % 3] = c.y();
+    p[(axis + 1) % 3] = c.z();
+    return p;
+  }
 };
 
 // Triangulates a rectangle whose boundary `ring` (vertex ids, counter-clockwise) carries the corners of the
@@ -189,9 +228,39 @@ void Triangulate(std::vector<int> ring, std::vector<Eigen::Vector3i> points, std
   facets->push_back({ring[0], ring[1], ring[2]});
 }
 
+// Every quad corner, sorted three ways, so that an edge along any axis finds the corners lying inside it.
+std::array<LineIndex, 3> IndexCorners(const std::vector<Quad>& quads) {
+  std::array<LineIndex, 3> lines;
+  for (int a = 0; a < 3; ++a) {
+    LineIndex& line = lines[static_cast<std::size_t>(a)];
+    line.axis = a;
+    line.keys.reserve(4 * quads.size());
+    for (const Quad& q : quads) {
+      for (int c = 0; c < 4; ++c) {
+        line.keys.push_back(line.Key(Corner(q.d / 2, q.plane, c & 1 ? q.u1 + 1 : q.u0, c & 2 ? q.v1 + 1 : q.v0)));
+      }
+    }
+    std::sort(line.keys.begin(), line.keys.end());
+    line.keys.erase(std::unique(line.keys.begin(), line.keys.end()), line.keys.end());
+  }
+  // Ids through axis 0's order: a corner's key on axis a, re-packed for axis 0, found there.
+  lines[0].id.resize(lines[0].keys.size());
+  std::iota(lines[0].id.begin(), lines[0].id.end(), 0u);
+  for (std::size_t a = 1; a < 3; ++a) {
+    lines[a].id.resize(lines[a].keys.size());
+    for (std::size_t i = 0; i < lines[a].keys.size(); ++i) {
+      const std::uint64_t key = lines[0].Key(lines[a].Point(lines[a].keys[i]));
+      const auto it = std::lower_bound(lines[0].keys.begin(), lines[0].keys.end(), key);
+      lines[a].id[i] = static_cast<std::uint32_t>(it - lines[0].keys.begin());
+    }
+  }
+  return lines;
+}
+
 }  // namespace
 
 planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max_faces) {
+  if (ExposedFaces(grid) > max_faces) return {};  // counted on the occupancy bits, without building anything
   MeshOccupancy occ(grid);
   std::vector<Eigen::Vector3i> surface;
   if (!SurfaceVoxels(grid, &occ, max_faces, &surface)) return {};
@@ -212,31 +281,20 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
   std::vector<Face>().swap(faces);
   CheckInterrupt();
 
-  // Every quad corner, sorted three ways, so that an edge along any axis finds the corners lying inside it.
-  std::vector<Eigen::Vector3i> corners;
-  corners.reserve(4 * quads.size());
-  for (const Quad& q : quads) {
-    const int axis = q.d / 2;
-    for (int c = 0; c < 4; ++c) corners.push_back(Corner(axis, q.plane, c & 1 ? q.u1 + 1 : q.u0, c & 2 ? q.v1 + 1 : q.v0));
-  }
-  std::array<LineIndex, 3> lines;
-  for (int a = 0; a < 3; ++a) {
-    lines[a].axis = a;
-    lines[a].corners = corners;
-    std::sort(lines[a].corners.begin(), lines[a].corners.end(),
-              [&](const Eigen::Vector3i& p, const Eigen::Vector3i& q) { return lines[a].Less(p, q); });
-    lines[a].corners.erase(std::unique(lines[a].corners.begin(), lines[a].corners.end()), lines[a].corners.end());
-  }
-  std::vector<Eigen::Vector3i>().swap(corners);
+  const std::array<LineIndex, 3> lines = IndexCorners(quads);
 
   planner::TriangleMesh mesh;
   const double half_voxel = 0.5 * grid.voxel_mm();
-  std::unordered_map<std::uint64_t, int> vertex_of;  // doubled corner coordinates -> vertex
-  std::vector<Eigen::Vector3i> points;               // the vertices' doubled corner coordinates
-  auto vertex = [&](const Eigen::Vector3i& doubled) {
-    auto [it, inserted] = vertex_of.emplace(CellKey(doubled), static_cast<int>(points.size()));
-    if (inserted) points.push_back(doubled);
-    return it->second;
+  // Vertices numbered in the order the rectangles first use them (the order RemoveFlatVertices visits them).
+  std::vector<int> vertex_of(lines[0].keys.size(), -1);  // corner id -> vertex
+  std::vector<Eigen::Vector3i> points;                   // the vertices' doubled corner coordinates
+  auto vertex = [&](std::uint32_t corner, const Eigen::Vector3i& p) {
+    int& id = vertex_of[corner];
+    if (id < 0) {
+      id = static_cast<int>(points.size());
+      points.push_back(2 * p);
+    }
+    return id;
   };
   std::vector<int> ring;
   std::vector<Eigen::Vector3i> corner_points;  // the ring's points, doubled coordinates
@@ -250,24 +308,25 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
     ring.clear();
     corner_points.clear();
     for (int k = 0; k < 4; ++k) {
-      const Eigen::Vector3i& a = c[k];
-      const Eigen::Vector3i& b = c[(k + 1) % 4];
+      const Eigen::Vector3i& a = c[static_cast<std::size_t>(k)];
+      const Eigen::Vector3i& b = c[static_cast<std::size_t>((k + 1) % 4)];
       int along = 0;
       while (a[along] == b[along]) ++along;
-      ring.push_back(vertex(2 * a));
+      const LineIndex& line = lines[static_cast<std::size_t>(along)];
+      const bool forward = a[along] < b[along];
+      // The corners strictly between a and b, in order from a.
+      const auto first = std::upper_bound(line.keys.begin(), line.keys.end(), line.Key(forward ? a : b));
+      const auto last = std::lower_bound(first, line.keys.end(), line.Key(forward ? b : a));
+      const auto at_a = forward ? first - 1 : last;
+      ring.push_back(vertex(line.id[static_cast<std::size_t>(at_a - line.keys.begin())], a));
       corner_points.push_back(2 * a);
-      const LineIndex& line = lines[along];
-      const auto less = [&](const Eigen::Vector3i& p, const Eigen::Vector3i& q) { return line.Less(p, q); };
-      const Eigen::Vector3i& lo = a[along] < b[along] ? a : b;
-      const Eigen::Vector3i& hi = a[along] < b[along] ? b : a;
-      auto first = std::upper_bound(line.corners.begin(), line.corners.end(), lo, less);
-      auto last = std::lower_bound(line.corners.begin(), line.corners.end(), hi, less);
       const std::size_t start = ring.size();
       for (auto it = first; it != last; ++it) {
-        ring.push_back(vertex(2 * *it));
-        corner_points.push_back(2 * *it);
+        const Eigen::Vector3i p = line.Point(*it);
+        ring.push_back(vertex(line.id[static_cast<std::size_t>(it - line.keys.begin())], p));
+        corner_points.push_back(2 * p);
       }
-      if (a[along] > b[along]) {
+      if (!forward) {
         std::reverse(ring.begin() + static_cast<std::ptrdiff_t>(start), ring.end());
         std::reverse(corner_points.begin() + static_cast<std::ptrdiff_t>(start), corner_points.end());
       }

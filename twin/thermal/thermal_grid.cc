@@ -67,6 +67,7 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   grid_of.push_back(grid);
   material.push_back(static_cast<std::uint8_t>(material_index));
   born.push_back(born_step);
+  latest_born = std::max(latest_born, born_step);
   enthalpy.push_back(h);
   temperature.push_back(table[material_index].Temperature(h));
   conductivity.push_back(table[material_index].Conductivity(temperature.back()));
@@ -83,6 +84,7 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   sample_head.push_back(-1);
   active_of[grid] = id;
   std::array<int, 6> links;
+  std::uint8_t bits = 0;
   const Eigen::Vector3i c = CellIndex(grid);
   for (int f = 0; f < 6; ++f) {
     const Eigen::Vector3i n = c + Eigen::Vector3i(kFaceStep[f][0], kFaceStep[f][1], kFaceStep[f][2]);
@@ -91,9 +93,12 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
     const int other = active_of[GridIndex(n.x(), n.y(), n.z())];
     if (other == kNoCell) continue;
     links[f] = other;
+    bits |= static_cast<std::uint8_t>(1u << f);
     neighbour[other][f ^ 1] = id;
+    linked[other] |= static_cast<std::uint8_t>(1u << (f ^ 1));
   }
   neighbour.push_back(links);
+  linked.push_back(bits);
   return id;
 }
 

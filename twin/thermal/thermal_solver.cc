@@ -74,6 +74,14 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
 double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
   double factor = 1.0;
+  if (s.latest_born < m1) {
+    // Every linked cell is present: the faces where the two cells' links differ across the face's edges.
+    const unsigned across = 63u & ~(3u << (2 * (f / 2)));
+    for (unsigned differ = (s.linked[c] ^ s.linked[j]) & across; differ != 0; differ &= differ - 1) {
+      factor *= kReentrantFaceFactor;
+    }
+    return factor;
+  }
   for (int e = 0; e < 6; ++e) {
     if (e / 2 == f / 2) continue;
     const int p = s.neighbour[c][e], q = s.neighbour[j][e];
@@ -208,18 +216,25 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
       w.part_a[c] = pap;
     });
     const double alpha = rz / Sum(w.part_a);
+    // x and r; with the diagonal preconditioner z = r / A_ii and r.z in the same pass.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double most = 0.0;
+      double most = 0.0, rz_part = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
         x[i] += alpha * p[i];
         r[i] -= alpha * ap[i];
-        most = std::max(most, std::abs(r[i] * inv[i]));
+        const double correction = r[i] * inv[i];
+        most = std::max(most, std::abs(correction));
+        if (!multigrid) {
+          z[i] = correction;
+          rz_part += r[i] * correction;
+        }
       }
       w.part_max[c] = most;
+      w.part_a[c] = rz_part;
     });
     ++iterations;
     if (*std::max_element(w.part_max.begin(), w.part_max.end()) <= tolerance) break;
-    const double rz_new = precondition();
+    const double rz_new = multigrid ? precondition() : Sum(w.part_a);
     beta = rz_new / rz;
     rz = rz_new;
   }
@@ -534,6 +549,7 @@ void SolveBatch(ThermalState& s) {
   for (const SampleRequest& q : s.requests) s.sample_head[q.cell] = -1;
   s.requests.clear();
   for (int& b : s.born) b = -1;
+  s.latest_born = -1;
   s.time_s += s.batch_start_s[steps];
   s.last_step_s = s.batch.back().seconds;
   s.stats.steps += static_cast<std::size_t>(steps);
