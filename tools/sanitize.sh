@@ -22,5 +22,13 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # Six thermal tests that each repeat the same six-layer wall run (40-85 s apiece here, a few seconds in Release) run
 # in the Release build only; ThermalCli.WritesEveryOutputAndTheTimelineAddsUp runs that wall under the sanitizers,
 # and the thermal model's own tests (twin/thermal) all run here.
-release_only='^(ThermalCli\.(WaitsHold|ProbeHistories|RunStep)|ThermalRun\.(InterpassWaits|WithoutTheLimit|EnergyBalanceCloses))'
+# Tests that rerun a whole command on 1 and 4 threads to compare the outputs (24-32 s apiece here) check determinism,
+# which the Release build checks as well; the code they run is sanitized by the single-run tests of the same
+# commands. The planted-clamp placement search (75 s here) has a smaller sanitized sibling
+# (PlaceCliTest.APartOutOfReachEverywhere...), and the viewer's headless-Chromium page tests (5-17 s) time the
+# browser; the viewer's data is sanitized by ViewerTest.*.
+release_only='^(ThermalCli\.(WaitsHold|ProbeHistories|RunStep)|ThermalRun\.(InterpassWaits|WithoutTheLimit|EnergyBalanceCloses)'
+release_only+='|PlanCommandTest\.SamePlanOnOneAndFourThreads|Compensation\.SameOnOneAndFourThreads'
+release_only+='|ParallelCheck\.SameCheckJsonOnOneAndFourThreads|PlaceCliTest\.ThePlantedClampFaultGetsAPlacementThatPasses'
+release_only+='|ViewerBrowserTest\.)'
 ctest --test-dir "$build" --output-on-failure -j"$jobs" -LE cluster -E "$release_only" "$@"

@@ -84,7 +84,9 @@ TEST(SurfaceMesh, BlockwiseCountsMatchTheVoxelByVoxelDefinitions) {
       expected += in ? 1 : 0;
       const VoxelData* d = coarse.Get(VoxelIndex(c[0], c[1], c[2]));
       ASSERT_EQ(d != nullptr, in) << "factor " << factor << " at " << c[0] << " " << c[1] << " " << c[2];
-      if (in) EXPECT_EQ(d->bead, cell.second) << "the data of the first fine voxel, factor " << factor;
+      if (in) {
+        EXPECT_EQ(d->bead, cell.second) << "the data of the first fine voxel, factor " << factor;
+      }
     }
     EXPECT_EQ(coarse.occupied(), expected) << "factor " << factor;
   }
