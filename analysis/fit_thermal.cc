@@ -311,6 +311,9 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   // Coarse to fine: the same fit on a grid of coarse_mm first (about 8 times fewer cells at twice the spacing); its
   // answer and its Jacobian start the fit on the scenario's grid, which alone decides the fitted values.
   const double coarse_mm = options.coarse_cell_mm;
+  WAAM_THROW_UNLESS(coarse_mm == 0.0 || coarse_mm > model.settings.cell_mm,
+                    "--coarse-cell " << coarse_mm << " mm: must be 0 (no coarse stage) or larger than thermal.cell_mm ("
+                                     << model.settings.cell_mm << " mm)");
   std::vector<double> seed;
   nlohmann::json coarse_doc = nullptr;
   if (coarse_mm > model.settings.cell_mm) {
