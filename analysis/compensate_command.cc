@@ -65,7 +65,11 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   loop.correction = *correction;
   loop.debug_level = options.debug_level;
   twin::ValidateDistortionOptions(loop.distortion);
-  if (!options.first_scan.empty()) loop.first_scan = ReadPointCloud(options.first_scan, 0.5);
+  if (!options.first_scan.empty()) {
+    ScanCloud cloud = ReadScan(options.first_scan, 0.5, /*skip_bottom=*/true);
+    loop.first_scan = std::move(cloud.points);
+    loop.first_scan_weight = std::move(cloud.weight);
+  }
   planner::PlanResult planned;
   {
     Progress progress("plan", 0, "layers", options.quiet);

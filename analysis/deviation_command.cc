@@ -104,10 +104,10 @@ nlohmann::json RunDeviation(const DeviationOptions& options) {
   WAAM_THROW_UNLESS(options.axis_step_mm > 0.0, "deviation --axis-step-mm = " << options.axis_step_mm << ": must be > 0");
   planner::MeshReport report;
   const planner::TriangleMesh target = ReadStl(options.target, 0.0, &report);
-  const std::vector<Eigen::Vector3d> points = ReadPointCloud(options.scan, 0.5);
+  const ScanCloud cloud = ReadScan(options.scan, 0.5, !options.keep_bottom);
   ClaimOutputDirectory(options.out_dir);
   const twin::MeshDistance distance(target);
-  const twin::ScanDeviation scan = twin::MeasureScanDeviation(points, distance);
+  const twin::ScanDeviation scan = twin::MeasureScanDeviation(cloud.points, distance, cloud.weight);
   const twin::AxisComparison axis = twin::CompareAxis(twin::SampleSurface(target, 0.5 * options.axis_step_mm),
                                                       scan.points, options.axis_step_mm, 0.5 * options.axis_step_mm);
   WritePlyWithDeviation(options.out_dir / "deviation.ply", scan.points, scan.deviation_mm);
@@ -116,6 +116,8 @@ nlohmann::json RunDeviation(const DeviationOptions& options) {
   json["target"] = options.target.string();
   json["scan"] = options.scan.string();
   json["target_watertight"] = report.watertight;
+  json["weighting"] = cloud.area_weighted ? "area" : "point";
+  json["bottom_excluded"] = {{"facets", cloud.bottom_facets_skipped}, {"area_mm2", cloud.bottom_area_skipped_mm2}};
   WriteFileAtomic(options.out_dir / "deviation.json", json.dump(2) + "\n");
   return json;
 }

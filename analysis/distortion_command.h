@@ -18,6 +18,7 @@ struct DeviationOptions {
   std::filesystem::path scan;       // scan: .ply, .xyz or .stl (aligned in the part frame, mm)
   std::filesystem::path out_dir;
   double axis_step_mm = 2.0;        // central-axis station spacing, mm
+  bool keep_bottom = false;         // an STL scan: keep the facets the part stands on (left out by default)
   bool images = true;
 };
 

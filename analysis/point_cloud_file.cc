@@ -287,6 +287,25 @@ std::vector<Eigen::Vector3d> ReadPointCloud(const std::filesystem::path& path, d
   WAAM_THROW(path.string() << ": unknown scan format '" << ext << "': must be .ply, .xyz or .stl");
 }
 
+ScanCloud ReadScan(const std::filesystem::path& path, double stl_spacing_mm, bool skip_bottom) {
+  ScanCloud cloud;
+  if (Lower(path.extension().string()) != ".stl") {
+    cloud.points = ReadPointCloud(path, stl_spacing_mm);
+    cloud.weight.assign(cloud.points.size(), 1.0);
+    return cloud;
+  }
+  twin::SurfaceSamples samples =
+      twin::SampleSurfaceByArea(planner::ParseStl(ReadFile(path), path, 0.0, nullptr), stl_spacing_mm, skip_bottom);
+  WAAM_THROW_UNLESS(!samples.points.empty(), path.string() << ": STL has no facets to sample"
+                                                           << (samples.skipped_facets > 0 ? " above its bottom face" : ""));
+  cloud.points = std::move(samples.points);
+  cloud.weight = std::move(samples.area_mm2);
+  cloud.area_weighted = true;
+  cloud.bottom_facets_skipped = samples.skipped_facets;
+  cloud.bottom_area_skipped_mm2 = samples.skipped_area_mm2;
+  return cloud;
+}
+
 void WritePlyWithDeviation(const std::filesystem::path& path, const std::vector<Eigen::Vector3d>& points,
                            const std::vector<double>& deviation_mm) {
   WAAM_THROW_UNLESS(points.size() == deviation_mm.size(), "PLY writer: " << points.size() << " points but "

@@ -13,19 +13,24 @@ void AddDeviationCommand(CLI::App& app, CommandRunner* runner) {
       "deviation",
       "Compare a scan of a part with its target, as a GOM-style scan-to-CAD check (003 sec. 6.4.2). Both are in the\n"
       "part frame in mm (align the scan first). The scan is a point cloud: .ply (ascii or binary_little_endian,\n"
-      "vertex x y z), .xyz (x y z per line) or .stl (its surface sampled every 0.5 mm).\n"
+      "vertex x y z), .xyz (x y z per line) or .stl (its surface sampled every 0.5 mm, each point weighted by the\n"
+      "area it stands for, without the face the part stands on: facets facing down in the lowest plane).\n"
       "Writes to the output directory:\n"
       "  deviation.json     min_mm, max_mm, mean_mm, rms_mm, max_abs_mm of the signed deviation (+ = material\n"
       "                     outside the target), axis {max_deviation_mm, samples: s_mm, center_mm, deviation_mm}\n"
       "                     (central axis of the target by adaptive slicing, 003 sec. 6.3.1, and the scan's section\n"
       "                     centroids there), sections bottom/middle/top {target, scan: d_min_mm, d_max_mm,\n"
-      "                     ovality_pct} and ovality_pct (top section, eq. 6.5: 200 (dmax - dmin) / (dmax + dmin))\n"
+      "                     ovality_pct} and ovality_pct (top section, eq. 6.5: 200 (dmax - dmin) / (dmax + dmin)),\n"
+      "                     weighting (\"area\" for an STL scan, \"point\" otherwise), bottom_excluded {facets,\n"
+      "                     area_mm2}\n"
       "  deviation.ply      the scan points with a deviation_mm property\n"
       "  deviation_map.png  front and side views coloured by deviation");
   command->add_option("target", options->target, "Target part, STL (mm)")->required();
   command->add_option("scan", options->scan, "Scan point cloud: .ply, .xyz or .stl (mm)")->required();
   command->add_option("-o,--out", options->out_dir, "Output directory (created if missing)")->required();
   command->add_option("--axis-step-mm", options->axis_step_mm, "Central-axis station spacing, mm (default 2)");
+  command->add_flag("--keep-bottom", options->keep_bottom,
+                    "An STL scan: keep the facets the part stands on (a scan of the part off its plate)");
   command->add_flag("!--no-images", options->images, "Do not draw the PNG");
   command->callback([options, runner] {
     *runner = [options] {
@@ -66,7 +71,7 @@ void AddCompensateCommand(CLI::App& app, CommandRunner* runner) {
       ->check(CLI::Range(0, 20));
   command->add_option("--tol-mm", options->tolerance_mm, "Tolerance on max |deviation|, mm (default: maximum waviness)")
       ->check(CLI::Range(0.0, 1000.0));
-  command->add_option("--scan", options->first_scan, "Real scan of the first part (.ply, .xyz or .stl, mm)");
+  command->add_option("--scan", options->first_scan, "Real scan of the first part (.ply, .xyz or .stl, mm; an STL as in `waam deviation`)");
   command->add_option("--model", options->model, "Distortion model JSON (default models/data/distortion.json)");
   command->add_option("--mode", options->mode, "fe (inherent-strain FE) or reduced (layer shrinkage + axis bending)");
   command->add_option("--element-mm", options->element_mm, "FE element edge, mm (default 2)");

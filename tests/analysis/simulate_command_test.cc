@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include <gmock/gmock.h>
+#include <hdf5.h>
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
@@ -100,6 +101,11 @@ TEST(SimulateCommand, DeviationOfTheWrittenPartStlMatchesSimulateJson) {
               grid["min_mm"].get<double>(), grid["max_mm"].get<double>());
   EXPECT_NEAR(std::sqrt(sum2 / area), grid["rms_mm"].get<double>(), 0.1 * voxel);
   EXPECT_NEAR(sum / area, grid["mean_mm"].get<double>(), 0.1 * voxel);
+  // The command itself: area-weighted, without the face the part stands on.
+  EXPECT_EQ(command["weighting"], "area");
+  EXPECT_GT(command["bottom_excluded"]["facets"].get<int>(), 0);
+  EXPECT_NEAR(command["rms_mm"].get<double>(), grid["rms_mm"].get<double>(), 0.1 * voxel);
+  EXPECT_NEAR(command["mean_mm"].get<double>(), grid["mean_mm"].get<double>(), 0.1 * voxel);
   EXPECT_NEAR(command["max_mm"].get<double>(), grid["max_mm"].get<double>(), voxel);
   EXPECT_NEAR(command["min_mm"].get<double>(), grid["min_mm"].get<double>(), voxel);
 }
@@ -136,6 +142,26 @@ TEST(SimulateCommand, WritesTheContract) {
   EXPECT_EQ(stl.size(), 84u + 50u * facets);
   const std::string h5 = ReadFile(options.out_dir / "part.h5");
   EXPECT_EQ(h5.substr(0, 8), std::string("\x89HDF\r\n\x1a\n", 8)) << "part.h5 must be an HDF5 file";
+  // Every dataset chunked and deflated (the file is mailed and archived).
+  const hid_t file = H5Fopen((options.out_dir / "part.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  for (const char* name : {"/voxels/ijk", "/voxels/bead", "/voxels/layer", "/voxels/time_s", "/top_height_mm", "/beads"}) {
+    const hid_t dataset = H5Dopen2(file, name, H5P_DEFAULT);
+    ASSERT_GE(dataset, 0) << name;
+    const hid_t create = H5Dget_create_plist(dataset);
+    EXPECT_EQ(H5Pget_layout(create), H5D_CHUNKED) << name;
+    bool deflate = false;
+    for (int i = 0; i < H5Pget_nfilters(create); ++i) {
+      unsigned flags = 0;
+      std::size_t n = 0;
+      deflate |= H5Pget_filter2(create, static_cast<unsigned>(i), &flags, &n, nullptr, 0, nullptr, nullptr) ==
+                 H5Z_FILTER_DEFLATE;
+    }
+    EXPECT_TRUE(deflate) << name << " is not deflated";
+    H5Pclose(create);
+    H5Dclose(dataset);
+  }
+  H5Fclose(file);
   EXPECT_EQ(result.measures.voxels, result.depositor.grid().occupied());
 }
 

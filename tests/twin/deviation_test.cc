@@ -11,6 +11,7 @@
 #include "tests/twin/test_paths.h"
 #include "twin/scanner/mesh_distance.h"
 #include "twin/scanner/scan_deviation.h"
+#include "twin/scanner/surface_sample.h"
 #include "twin/scanner/target_volume.h"
 
 namespace waam::twin {
@@ -48,6 +49,55 @@ TEST(MeshDistance, EmptyMeshIsRefused) {
 }
 
 // A voxel block that fills the target exactly deviates by 0; one voxel layer too many on top deviates by +1 voxel.
+// Two flat patches over a box's top: a large one 1 mm above it in two facets, a small one 3 mm above it in 40
+// slivers (far more points per mm^2). Per unit area, mean = (1600 x 1 + 100 x 3) / 1700 mm and
+// rms = sqrt((1600 x 1 + 100 x 9) / 1700) mm, whatever the facets.
+TEST(ScanDeviation, SampledSurfaceIsWeightedByArea) {
+  const planner::TriangleMesh target = testing::BoxMesh({0, 0, -10}, {100, 100, 0});  // MeshDistance keeps a reference
+  const MeshDistance distance(target);
+  planner::TriangleMesh scan;
+  auto quad = [&](double x0, double y0, double x1, double y1, double z) {
+    const int v = static_cast<int>(scan.vertices.size());
+    scan.vertices.insert(scan.vertices.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
+    scan.facets.push_back({v, v + 1, v + 2});
+    scan.facets.push_back({v, v + 2, v + 3});
+  };
+  quad(10, 10, 50, 50, 1.0);
+  for (int i = 0; i < 20; ++i) quad(60 + 0.5 * i, 60, 60.5 + 0.5 * i, 70, 3.0);
+  const SurfaceSamples samples = SampleSurfaceByArea(scan, 0.5, false);
+  ASSERT_EQ(samples.points.size(), samples.area_mm2.size());
+  double area = 0.0;
+  for (const double a : samples.area_mm2) area += a;
+  EXPECT_NEAR(area, 1700.0, 1e-6);
+  const ScanDeviation weighted = MeasureScanDeviation(samples.points, distance, samples.area_mm2);
+  EXPECT_NEAR(weighted.mean_mm, 1900.0 / 1700.0, 1e-9);
+  EXPECT_NEAR(weighted.rms_mm, std::sqrt(2500.0 / 1700.0), 1e-9);
+  // Per point, the slivers' many points pull the figures towards 3 mm: the bias the weights remove.
+  const ScanDeviation per_point = MeasureScanDeviation(samples.points, distance);
+  EXPECT_GT(per_point.mean_mm, weighted.mean_mm + 0.5);
+  // Kept subsets keep their weights: the small patch alone is 3 mm.
+  const ScanDeviation small = KeepScanPoints(weighted, [&](std::size_t i) { return weighted.points[i].x() > 55; });
+  EXPECT_NEAR(small.mean_mm, 3.0, 1e-9);
+  EXPECT_THAT([&] { MeasureScanDeviation(samples.points, distance, {1.0}); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("1 weights for")));
+}
+
+// A box scanned on its plate: the face it stands on is left out, and only that one.
+TEST(ScanDeviation, BottomFaceOfASampledSurfaceIsLeftOut) {
+  const planner::TriangleMesh box = testing::BoxMesh({0, 0, 0}, {10, 20, 30});
+  const SurfaceSamples all = SampleSurfaceByArea(box, 1.0, false);
+  const SurfaceSamples seen = SampleSurfaceByArea(box, 1.0, true);
+  double area_all = 0.0, area_seen = 0.0;
+  for (const double a : all.area_mm2) area_all += a;
+  for (const double a : seen.area_mm2) area_seen += a;
+  EXPECT_NEAR(area_all, 2 * (10 * 20 + 10 * 30 + 20 * 30), 1e-9);
+  EXPECT_NEAR(area_seen, area_all - 200.0, 1e-9);
+  EXPECT_NEAR(seen.skipped_area_mm2, 200.0, 1e-9);
+  EXPECT_EQ(all.skipped_facets, 0u);
+  for (const Eigen::Vector3d& p : seen.points) EXPECT_GT(p.z(), 0.0);
+  EXPECT_EQ(SampleSurface(box, 1.0).size(), all.points.size()) << "the same points as the unweighted sampler";
+}
+
 TEST(Deviation, ExactAndOverbuiltBlocks) {
   const planner::TriangleMesh target = testing::BoxMesh({0, 0, 0}, {5, 4, 3});
   VoxelGrid grid(0.5, 100000);

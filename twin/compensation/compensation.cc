@@ -328,6 +328,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
     result.last_scan = ScanDeviation{};  // the previous build's, replaced below: not kept through this build
     CompensationIteration it;
     std::vector<Eigen::Vector3d> points;
+    std::vector<double> weights;  // the real first scan's; the twin's scans weigh every point alike
     DistortionField field;
     bool simulated = true;
     // What the build lays: the path's beads, shaped by the heat where they are laid when a thermal history is given.
@@ -355,6 +356,7 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
         it.real_scan = true;
         simulated = false;
         points = options.first_scan;
+        weights = options.first_scan_weight;
       }
     }
     if (simulated) {
@@ -377,13 +379,13 @@ CompensationResult Compensate(const planner::Plan& plan, const planner::Triangle
                    top_dir.x(), top_dir.y(), top_dir.z(), path_top, it.top_band_mm, shortening);
     }
     const ScanDeviation against_target =
-        ExcludeTopBand(MeasureScanDeviation(points, distance), top_dir, path_top, it.top_band_mm);
+        ExcludeTopBand(MeasureScanDeviation(points, distance, weights), top_dir, path_top, it.top_band_mm);
     it.max_abs_vs_target_mm = against_target.max_abs_mm;
     it.rms_vs_target_mm = against_target.rms_mm;
     const MeshDistance& reference_distance = twin_reference ? *reference : distance;
-    ScanDeviation scan =
-        twin_reference ? ExcludeTopBand(MeasureScanDeviation(points, *reference), top_dir, path_top, it.top_band_mm)
-                       : against_target;
+    ScanDeviation scan = twin_reference ? ExcludeTopBand(MeasureScanDeviation(points, *reference, weights), top_dir,
+                                                         path_top, it.top_band_mm)
+                                        : against_target;
     Summarize(scan, reference_points, options.axis_step_mm, &it);
     if (iter == 0) {
       WAAM_THROW_UNLESS(result.tolerance_mm > 0.0,

@@ -46,6 +46,7 @@ struct CompensationOptions {
   CompensationReference reference = CompensationReference::kTwin;
   CorrectionMethod correction = CorrectionMethod::kAxis;
   std::vector<Eigen::Vector3d> first_scan;  // a real scan of the first part (part frame, mm); empty = simulate it
+  std::vector<double> first_scan_weight;    // what each first_scan point counts for (area of a sampled STL); empty = 1
   // Heat into shape (docs/compensation.md): per plan layer, factors on the bead height and width every build lays
   // (the twin reference keeps the planned beads). Empty = the planned beads. distortion.layer_heat drives the
   // strains by the same thermal history.

@@ -12,14 +12,44 @@
 
 namespace waam::twin {
 
-ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, const MeshDistance& target) {
+namespace {
+
+// min, max, the weighted mean and rms and max |d| of `r`'s deviations, in the points' order (the same on any number
+// of threads).
+void Summarize(ScanDeviation* r) {
+  double sum = 0.0, sum2 = 0.0, total = 0.0;
+  r->min_mm = std::numeric_limits<double>::infinity();
+  r->max_mm = -r->min_mm;
+  for (std::size_t i = 0; i < r->deviation_mm.size(); ++i) {
+    const double d = r->deviation_mm[i], w = r->weight[i];
+    sum += w * d;
+    sum2 += w * d * d;
+    total += w;
+    r->min_mm = std::min(r->min_mm, d);
+    r->max_mm = std::max(r->max_mm, d);
+  }
+  r->mean_mm = sum / total;
+  r->rms_mm = std::sqrt(sum2 / total);
+  r->max_abs_mm = std::max(std::abs(r->min_mm), std::abs(r->max_mm));
+}
+
+}  // namespace
+
+ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, const MeshDistance& target,
+                                   const std::vector<double>& weight) {
   WAAM_THROW_UNLESS(!scan.empty(), "deviation: the scan has no points");
+  WAAM_THROW_UNLESS(weight.empty() || weight.size() == scan.size(),
+                    "deviation: " << weight.size() << " weights for " << scan.size() << " points");
   ScanDeviation r;
   r.points = scan;
+  r.weight = weight.empty() ? std::vector<double>(scan.size(), 1.0) : weight;
+  for (std::size_t i = 0; i < r.weight.size(); ++i) {
+    WAAM_THROW_UNLESS(r.weight[i] > 0.0 && std::isfinite(r.weight[i]),
+                      "deviation: point " << i << " has weight " << r.weight[i] << ": must be > 0");
+  }
   r.deviation_mm.resize(scan.size());
   r.normal.resize(scan.size());
-  // Each point's distance and normal in parallel, into its own slot; the sums below run in the scan's order, so
-  // they are the same on any number of threads.
+  // Each point's distance and normal in parallel, into its own slot.
   constexpr std::size_t kChunk = 4096;
   ParallelFor((scan.size() + kChunk - 1) / kChunk, [&](std::size_t chunk) {
     const std::size_t end = std::min(scan.size(), (chunk + 1) * kChunk);
@@ -33,44 +63,21 @@ ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, con
                                       : Eigen::Vector3d::Zero();
     }
   });
-  double sum = 0.0, sum2 = 0.0;
-  r.min_mm = std::numeric_limits<double>::infinity();
-  r.max_mm = -r.min_mm;
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    const double d = r.deviation_mm[i];
-    sum += d;
-    sum2 += d * d;
-    r.min_mm = std::min(r.min_mm, d);
-    r.max_mm = std::max(r.max_mm, d);
-  }
-  const double n = static_cast<double>(scan.size());
-  r.mean_mm = sum / n;
-  r.rms_mm = std::sqrt(sum2 / n);
-  r.max_abs_mm = std::max(std::abs(r.min_mm), std::abs(r.max_mm));
+  Summarize(&r);
   return r;
 }
 
 ScanDeviation KeepScanPoints(const ScanDeviation& scan, const std::function<bool(std::size_t)>& keep) {
   ScanDeviation r;
-  double sum = 0.0, sum2 = 0.0;
-  r.min_mm = std::numeric_limits<double>::infinity();
-  r.max_mm = -r.min_mm;
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
     if (!keep(i)) continue;
-    const double d = scan.deviation_mm[i];
     r.points.push_back(scan.points[i]);
-    r.deviation_mm.push_back(d);
+    r.deviation_mm.push_back(scan.deviation_mm[i]);
     r.normal.push_back(scan.normal[i]);
-    sum += d;
-    sum2 += d * d;
-    r.min_mm = std::min(r.min_mm, d);
-    r.max_mm = std::max(r.max_mm, d);
+    r.weight.push_back(scan.weight.empty() ? 1.0 : scan.weight[i]);
   }
   if (r.points.empty()) return ScanDeviation{};
-  const double n = static_cast<double>(r.points.size());
-  r.mean_mm = sum / n;
-  r.rms_mm = std::sqrt(sum2 / n);
-  r.max_abs_mm = std::max(std::abs(r.min_mm), std::abs(r.max_mm));
+  Summarize(&r);
   return r;
 }
 

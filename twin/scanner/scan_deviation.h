@@ -17,6 +17,8 @@ struct ScanDeviation {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> deviation_mm;        // + outside the target (excess), - inside (shortfall)
   std::vector<Eigen::Vector3d> normal;     // unit outward normal of the target at the closest point
+  std::vector<double> weight;              // what each point counts for in mean_mm and rms_mm: 1 per point of a
+                                           // point cloud, the surface area (mm^2) it stands for on a sampled STL
   double min_mm = 0.0;
   double max_mm = 0.0;
   double mean_mm = 0.0;
@@ -24,8 +26,10 @@ struct ScanDeviation {
   double max_abs_mm = 0.0;
 };
 
-// Measures every point of `scan` against `target`. Throws InputError for an empty scan.
-ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, const MeshDistance& target);
+// Measures every point of `scan` against `target`. mean_mm and rms_mm are weighted by `weight` (one per point, > 0;
+// empty: 1 each). Throws InputError for an empty scan or a weight count that is not the point count.
+ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, const MeshDistance& target,
+                                   const std::vector<double>& weight = {});
 
 // The points of `scan` whose target normal is NOT within acos(`min_cos`) of the unit `dir` (e.g. without the top
 // end face), with the statistics recomputed; empty if none is left.
