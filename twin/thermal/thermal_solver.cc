@@ -2,6 +2,8 @@
 // conjugate gradients, conservative enthalpy update) and the multirate recursion over regions nearer and nearer
 // the arc. Derivations and stability in docs/THERMAL.md.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -69,19 +71,23 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
   *slope = at1.convection + at1.radiation + at1.table - *offset;
 }
 
+// kReentrantFaceFactor to the power 0..4.
+constexpr std::array<double, 5> kEdgePowers = {1.0, kReentrantFaceFactor, kReentrantFaceFactor * kReentrantFaceFactor,
+                                               kReentrantFaceFactor * kReentrantFaceFactor * kReentrantFaceFactor,
+                                               kReentrantFaceFactor * kReentrantFaceFactor * kReentrantFaceFactor *
+                                                   kReentrantFaceFactor};
+
 // The factor on the conductance of the face f between cells c and j (both present before micro step m1):
 // kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
 double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
-  double factor = 1.0;
-  if (s.latest_born < m1) {
-    // Every linked cell is present: the faces where the two cells' links differ across the face's edges.
-    const unsigned across = 63u & ~(3u << (2 * (f / 2)));
-    for (unsigned differ = (s.linked[c] ^ s.linked[j]) & across; differ != 0; differ &= differ - 1) {
-      factor *= kReentrantFaceFactor;
-    }
-    return factor;
+  const unsigned across = 63u & ~(3u << (2 * (f / 2)));
+  if (s.latest_born < m1 || ((s.pending[c] | s.pending[j]) & across) == 0) {
+    // Every linked cell beyond the edges is present (none of them is laid later in the batch): the edges where the
+    // two cells' links differ.
+    return kEdgePowers[static_cast<std::size_t>(std::popcount((s.linked[c] ^ s.linked[j]) & across))];
   }
+  double factor = 1.0;
   for (int e = 0; e < 6; ++e) {
     if (e / 2 == f / 2) continue;
     const int p = s.neighbour[c][e], q = s.neighbour[j][e];
@@ -549,6 +555,7 @@ void SolveBatch(ThermalState& s) {
   for (const SampleRequest& q : s.requests) s.sample_head[q.cell] = -1;
   s.requests.clear();
   for (int& b : s.born) b = -1;
+  std::fill(s.pending.begin(), s.pending.end(), std::uint8_t{0});
   s.latest_born = -1;
   s.time_s += s.batch_start_s[steps];
   s.last_step_s = s.batch.back().seconds;
