@@ -250,13 +250,18 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
 // Solves the level's system by preconditioned conjugate gradients from `guess` (degC by active cell), until every
 // Jacobi correction |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below the tolerance.
 // Stiff systems of kMultigridCells cells or more are preconditioned by one additive-correction multigrid V-cycle
-// (thermal_multigrid.h), the others by the diagonal. Returns the iterations.
-int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess) {
+// (thermal_multigrid.h), the others by the diagonal. With `same_faces` the system differs from the one last solved
+// only in its diagonal and right-hand side (a nonlinear round), so only the diagonal is copied. Returns the iterations.
+int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces) {
   const std::size_t n = L.cells.size();
   if (n == 0) return 0;
   LevelScratch& w = L.scratch;
   const PaddedStencil& a = w.stencil;
-  w.stencil.Assign(L);
+  if (same_faces) {
+    std::copy(L.diagonal.begin(), L.diagonal.end(), w.stencil.diagonal.begin());
+  } else {
+    w.stencil.Assign(L);
+  }
   // x, z and p are multiplied by the matrix: n + 1 values, the last the zero slot.
   w.x.resize(n + 1);
   w.z.resize(n + 1);
@@ -353,7 +358,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
                const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   Assemble(s, level, candidates, m0, m1, finer_apart, local_of);
-  Count(s, level, L.cells.size(), SolveLevel(s, L, guess));
+  Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
   std::vector<std::uint8_t> part_converged(Chunks(n));
   for (int round = 0; round < kChordRounds; ++round) {
@@ -376,7 +381,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
     });
     if (std::all_of(part_converged.begin(), part_converged.end(), [](std::uint8_t v) { return v != 0; })) return;
     Relinearise(s, L);
-    Count(s, level, n, SolveLevel(s, L, s.chord));
+    Count(s, level, n, SolveLevel(s, L, s.chord, true));
   }
 }
 
