@@ -20,7 +20,7 @@ constexpr std::size_t kMultigridCells = 512;
 // ... and stiff: conduction (the sum of the face conductances) at least this many times the storage and losses
 // (the rest of the diagonal), summed over the system. Milder systems converge in a few diagonally preconditioned
 // iterations, which cost a third of a V-cycle's.
-constexpr double kMultigridStiffness = 30.0;
+constexpr double kMultigridStiffness = 10.0;
 // The nonlinear (chord) iteration of a step stops when every cell's enthalpy maps back to within this + 10 % of its
 // temperature change, or after kChordRounds re-solves: it exists to keep big steps from jumping the latent heat
 // (hundreds of K of mismatch), not to polish micro steps.
