@@ -173,8 +173,8 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
 // Conjugate gradients on the level's system from the scratch's x and r = b - A x, preconditioned by one multigrid
 // V-cycle (`multigrid`) or the diagonal, until every Jacobi correction |r_i / A_ii| is below the tolerance. Each
 // iteration takes one stencil product: p = z + beta p and A p = A z + beta (A p)_old in one pass. Returns the
-// iterations.
-int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
+// iterations. With `same_faces` the cells are those of the last solve, whose grid coordinates L.ijk still holds.
+int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
   LevelScratch& w = L.scratch;
   const PaddedStencil& a = w.stencil;
   const std::size_t n = L.cells.size();
@@ -184,14 +184,14 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
   double* z = w.z.data();
   double* ap = w.ap.data();
   const double* inv = w.inverse_diagonal.data();
-  if (multigrid) {
+  if (multigrid && !(same_faces && L.ijk.size() == n)) {
     L.ijk.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
       L.ijk[i] = {g.x(), g.y(), g.z()};
     }
-    L.multigrid.Setup(a, L.ijk);
   }
+  if (multigrid) L.multigrid.Setup(a, L.ijk);
   // z = B r; returns r.z.
   auto precondition = [&]() {
     if (multigrid) L.multigrid.Apply(w.r, w.z);
@@ -261,6 +261,7 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
     std::copy(L.diagonal.begin(), L.diagonal.end(), w.stencil.diagonal.begin());
   } else {
     w.stencil.Assign(L);
+    L.ijk.clear();  // other cells: their grid coordinates are found again if the multigrid is taken
   }
   // x, z and p are multiplied by the matrix: n + 1 values, the last the zero slot.
   w.x.resize(n + 1);
@@ -297,7 +298,7 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
   int iterations = 0;
   if (*std::max_element(w.part_max.begin(), w.part_max.end()) > s.settings.solver_tolerance_c) {
     const bool multigrid = n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness * Sum(w.part_b);
-    iterations = Iterate(s, L, multigrid);
+    iterations = Iterate(s, L, multigrid, same_faces);
   }
   std::copy(x, x + n, L.t_new.begin());
   return iterations;
