@@ -34,25 +34,48 @@ double DistortionParams::ThermalFactor(double peak_c, double interpass_c) const 
   return std::max(0.0, effective_peak - interpass_c) / (mechanical_melting_c - reference_interpass_c);
 }
 
+namespace {
+
+// One row per parameter of the model file: its key, member, unit and valid range. reference_interpass_c may be
+// NaN (not set: the thermal law is off), and its range ends 1 degC below mechanical_melting_c; the two thermal
+// parameters may be absent from a file (files written before the thermal law keep their meaning).
+struct ParamField {
+  const char* key;
+  double DistortionParams::*member;
+  const char* unit;
+  double lo;
+  double hi;
+  bool optional;
+};
+
+constexpr ParamField kParamFields[] = {
+    {"strain", &DistortionParams::strain, "1", 0.0, 0.1, false},
+    {"vertical_ratio", &DistortionParams::vertical_ratio, "1", 0.0, 10.0, false},
+    {"heat_exponent", &DistortionParams::heat_exponent, "1", -3.0, 3.0, false},
+    {"reference_heat_input_j_mm", &DistortionParams::reference_heat_input_j_mm, "J/mm", 1e-3, 1e5, false},
+    {"arc_energy_per_wire_j_mm", &DistortionParams::arc_energy_per_wire_j_mm, "J/mm of wire", 1e-3, 1e4, false},
+    {"substrate_stiffness_n_mm3", &DistortionParams::substrate_stiffness_n_mm3, "N/mm^3", 1e-3, 1e9, false},
+    {"youngs_modulus_mpa", &DistortionParams::youngs_modulus_mpa, "MPa", 1.0, 1e7, false},
+    {"poisson", &DistortionParams::poisson, "1", 0.0, 0.49, false},
+    {"mechanical_melting_c", &DistortionParams::mechanical_melting_c, "degC", 100.0, 3000.0, true},
+    {"reference_interpass_c", &DistortionParams::reference_interpass_c, "degC", -50.0, 0.0, true},
+};
+
+bool IsInterpass(const ParamField& f) { return f.member == &DistortionParams::reference_interpass_c; }
+
+}  // namespace
+
 std::string DistortionParamsProblem(const DistortionParams& p, const std::string& where) {
-  std::ostringstream problem;
-  auto range = [&](const char* name, double v, double lo, double hi) {
-    if (problem.tellp() > 0 || (std::isfinite(v) && v >= lo && v <= hi)) return;
-    problem << where << ": " << name << " = " << v << ": must be in [" << lo << ", " << hi << "]";
-  };
-  range("strain", p.strain, 0.0, 0.1);
-  range("vertical_ratio", p.vertical_ratio, 0.0, 10.0);
-  range("heat_exponent", p.heat_exponent, -3.0, 3.0);
-  range("reference_heat_input_j_mm", p.reference_heat_input_j_mm, 1e-3, 1e5);
-  range("arc_energy_per_wire_j_mm", p.arc_energy_per_wire_j_mm, 1e-3, 1e4);
-  range("substrate_stiffness_n_mm3", p.substrate_stiffness_n_mm3, 1e-3, 1e9);
-  range("youngs_modulus_mpa", p.youngs_modulus_mpa, 1.0, 1e7);
-  range("poisson", p.poisson, 0.0, 0.49);
-  range("mechanical_melting_c", p.mechanical_melting_c, 100.0, 3000.0);
-  if (!std::isnan(p.reference_interpass_c)) {
-    range("reference_interpass_c", p.reference_interpass_c, -50.0, p.mechanical_melting_c - 1.0);
+  for (const ParamField& f : kParamFields) {
+    const double v = p.*f.member;
+    if (IsInterpass(f) && std::isnan(v)) continue;
+    const double hi = IsInterpass(f) ? p.mechanical_melting_c - 1.0 : f.hi;
+    if (std::isfinite(v) && v >= f.lo && v <= hi) continue;
+    std::ostringstream problem;
+    problem << where << ": " << f.key << " = " << v << ": must be in [" << f.lo << ", " << hi << "]";
+    return problem.str();
   }
-  return problem.str();
+  return "";
 }
 
 void ValidateDistortionParams(const DistortionParams& p, const std::string& where) {
@@ -96,29 +119,13 @@ nlohmann::json DistortionParamsToJson(const DistortionParams& p, const nlohmann:
       {"formula", "eps(q) = strain * (q / reference_heat_input_j_mm)^heat_exponent, q = e_w * v_wire / v_travel"},
       {"source", "inherent-strain method (waam-twin); compensation after Nguyen 2022 dissertation sec. 6.5.2"},
       {"mode", p.mode},
-      {"params",
-       {{"strain", p.strain},
-        {"vertical_ratio", p.vertical_ratio},
-        {"heat_exponent", p.heat_exponent},
-        {"reference_heat_input_j_mm", p.reference_heat_input_j_mm},
-        {"arc_energy_per_wire_j_mm", p.arc_energy_per_wire_j_mm},
-        {"substrate_stiffness_n_mm3", p.substrate_stiffness_n_mm3},
-        {"youngs_modulus_mpa", p.youngs_modulus_mpa},
-        {"poisson", p.poisson},
-        {"mechanical_melting_c", p.mechanical_melting_c}}},
-      {"units",
-       {{"strain", "1"},
-        {"vertical_ratio", "1"},
-        {"heat_exponent", "1"},
-        {"reference_heat_input_j_mm", "J/mm"},
-        {"arc_energy_per_wire_j_mm", "J/mm of wire"},
-        {"substrate_stiffness_n_mm3", "N/mm^3"},
-        {"youngs_modulus_mpa", "MPa"},
-        {"poisson", "1"},
-        {"mechanical_melting_c", "degC"},
-        {"reference_interpass_c", "degC"}}},
   };
-  if (!std::isnan(p.reference_interpass_c)) j["params"]["reference_interpass_c"] = p.reference_interpass_c;
+  j["params"] = nlohmann::json::object();
+  j["units"] = nlohmann::json::object();
+  for (const ParamField& f : kParamFields) {
+    j["units"][f.key] = f.unit;
+    if (!(IsInterpass(f) && std::isnan(p.*f.member))) j["params"][f.key] = p.*f.member;
+  }
   if (fit != nullptr) j["fit"] = *fit;
   return j;
 }
@@ -127,20 +134,10 @@ DistortionParams ReadDistortionParams(const std::filesystem::path& path) {
   const nlohmann::json j = ReadModelJson(path, "distortion");
   const std::string where = path.string();
   DistortionParams p;
-  p.strain = JsonNumber(j, "/params/strain", where);
-  p.vertical_ratio = JsonNumber(j, "/params/vertical_ratio", where);
-  p.heat_exponent = JsonNumber(j, "/params/heat_exponent", where);
-  p.reference_heat_input_j_mm = JsonNumber(j, "/params/reference_heat_input_j_mm", where);
-  p.arc_energy_per_wire_j_mm = JsonNumber(j, "/params/arc_energy_per_wire_j_mm", where);
-  p.substrate_stiffness_n_mm3 = JsonNumber(j, "/params/substrate_stiffness_n_mm3", where);
-  p.youngs_modulus_mpa = JsonNumber(j, "/params/youngs_modulus_mpa", where);
-  p.poisson = JsonNumber(j, "/params/poisson", where);
-  // The thermal law's two parameters are optional (files written before it keep their meaning).
-  if (j.contains(nlohmann::json::json_pointer("/params/mechanical_melting_c"))) {
-    p.mechanical_melting_c = JsonNumber(j, "/params/mechanical_melting_c", where);
-  }
-  if (j.contains(nlohmann::json::json_pointer("/params/reference_interpass_c"))) {
-    p.reference_interpass_c = JsonNumber(j, "/params/reference_interpass_c", where);
+  for (const ParamField& f : kParamFields) {
+    const std::string pointer = std::string("/params/") + f.key;
+    if (f.optional && !j.contains(nlohmann::json::json_pointer(pointer))) continue;  // the default stays
+    p.*f.member = JsonNumber(j, pointer, where);
   }
   WAAM_THROW_UNLESS(j.contains("mode") && j["mode"].is_string(), where << ": mode is missing or not a string");
   p.mode = ParseDistortionMode(j["mode"].get<std::string>(), where + ": mode");

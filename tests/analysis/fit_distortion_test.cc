@@ -1,5 +1,6 @@
 // `waam fit distortion`: a twin scan written by `waam compensate --max-iter 0` at known parameters is fitted back from
 // a perturbed start (the recovery the issue asks for, on a small bent tube), and every bad input is one clear line.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -73,6 +74,34 @@ class FitDistortionTest : public ::testing::Test {
 
 fs::path* FitDistortionTest::dir_ = nullptr;
 models::DistortionParams* FitDistortionTest::truth_ = nullptr;
+
+// The model file through its one field table: every shipped file reads, writes back the same parameters and reads
+// again to the same values; a file without the thermal law's keys keeps their defaults; a value out of range is
+// one line naming the file and the key.
+TEST(DistortionModelFile, RoundTripsThroughItsFieldTable) {
+  for (const char* name : {"distortion.json", "distortion_part1_demo.json"}) {
+    const fs::path file = kSource / "models" / "data" / name;
+    const nlohmann::json original = nlohmann::json::parse(ReadFile(file));
+    const models::DistortionParams read = models::ReadDistortionParams(file);
+    const nlohmann::json written = models::DistortionParamsToJson(read);
+    EXPECT_EQ(written["params"].size(), original["params"].size() + (original["params"].contains(
+                                                                         "mechanical_melting_c") ? 0 : 1))
+        << name << ": every key written once, mechanical_melting_c with its default";
+    for (const auto& [key, value] : original["params"].items()) EXPECT_EQ(written["params"][key], value) << key;
+    EXPECT_EQ(written["mode"], original["mode"]);
+    const fs::path again = fs::path(::testing::TempDir()) / (std::string("again_") + name);
+    WriteFileAtomic(again, written.dump(2));
+    const nlohmann::json reread = models::DistortionParamsToJson(models::ReadDistortionParams(again));
+    EXPECT_EQ(reread, written) << name;
+    EXPECT_TRUE(std::isnan(read.reference_interpass_c) || original["params"].contains("reference_interpass_c"));
+  }
+  nlohmann::json bad = nlohmann::json::parse(ReadFile(kSource / "models" / "data" / "distortion.json"));
+  bad["params"]["poisson"] = 0.7;
+  const fs::path file = fs::path(::testing::TempDir()) / "bad_poisson.json";
+  WriteFileAtomic(file, bad.dump());
+  EXPECT_THAT([&] { models::ReadDistortionParams(file); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("bad_poisson.json: poisson = 0.7: must be in [0, 0.49]")));
+}
 
 TEST_F(FitDistortionTest, RecoversKnownParametersFromATwinScan) {
   const FitOptions options = Options("fitted.json");

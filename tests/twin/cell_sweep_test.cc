@@ -235,6 +235,28 @@ TEST(CellSweepTest, WallTheSwingClipsBetweenTwoSamplesIsFoundOnlyByTheContinuous
   EXPECT_TRUE(std::isfinite(plain.part_clearance_mm));
 }
 
+// The pairs the distance queries take are MuJoCo's: none of the built-in cell's <exclude> body pairs (the pedestal
+// and the tilt housing it would reach from 45 deg of tilt), and the pairs no rule excludes (the arm's base against the
+// tilt housing).
+TEST(CellSweepTest, PairsLeaveOutTheModelsExcludedBodies) {
+  const CellModel cell = LoadCell(OkSettings());
+  const CellCollisionGeometry geometry = cell.CollisionGeometry();
+  auto has = [&](const std::string& b1, const std::string& b2) {
+    for (const std::array<int, 2>& p : geometry.pairs) {
+      const std::string& x = geometry.body[p[0]];
+      const std::string& y = geometry.body[p[1]];
+      if ((x == b1 && y == b2) || (x == b2 && y == b1)) return true;
+    }
+    return false;
+  };
+  EXPECT_FALSE(has("positioner_base", "tilt"));
+  EXPECT_FALSE(has("positioner_base", "table"));
+  EXPECT_FALSE(has("tilt", "substrate"));
+  EXPECT_TRUE(has("robot_base", "tilt"));
+  EXPECT_TRUE(has("robot_base", "table"));
+  EXPECT_TRUE(has("link3", "positioner_base"));
+}
+
 TEST(CellSweepTest, TreeForwardKinematicsIsMujocos) {
   // The URDF mesh arm (fixed joints, meshes) and the built-in cell: the geometry's own tree against mj_kinematics.
   const fs::path robots = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "robots";

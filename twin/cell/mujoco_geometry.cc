@@ -31,8 +31,10 @@ bool MujocoTestsPair(const mjModel* m, int g1, int g2) {
       (w1 == m->body_weldid[m->body_parentid[w2]] || w2 == m->body_weldid[m->body_parentid[w1]])) {
     return false;
   }
+  // mjmodel.h: exclude_signature = (body1 + 1) << 16 + body2 + 1.
   for (int i = 0; i < m->nexclude; ++i) {
-    if (m->exclude_signature[i] == (b1 << 16) + b2 || m->exclude_signature[i] == (b2 << 16) + b1) return false;
+    const int s = m->exclude_signature[i];
+    if (s == ((b1 + 1) << 16) + b2 + 1 || s == ((b2 + 1) << 16) + b1 + 1) return false;
   }
   return m->geom_type[g1] != mjGEOM_PLANE || m->geom_type[g2] != mjGEOM_PLANE;
 }
