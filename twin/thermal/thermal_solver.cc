@@ -19,7 +19,8 @@ constexpr int kMaxIterations = 2000;
 constexpr std::size_t kMultigridCells = 512;
 // ... and stiff: conduction (the sum of the face conductances) at least this many times the storage and losses
 // (the rest of the diagonal), summed over the system. Milder systems converge in a few diagonally preconditioned
-// iterations, which cost a third of a V-cycle's.
+// iterations, each a fraction of a V-cycle's cost (at 30, aluminium's 1 s and micro steps took 24 of them a solve,
+// about 7 and 17 V-cycles now; docs/THERMAL.md, "Benchmark").
 constexpr double kMultigridStiffness = 10.0;
 // The nonlinear (chord) iteration of a step stops when every cell's enthalpy maps back to within this + 10 % of its
 // temperature change, or after kChordRounds re-solves: it exists to keep big steps from jumping the latent heat
