@@ -19,7 +19,7 @@ import numpy as np
 
 
 def largest_difference(run, ref, name):
-    """The signed difference of run from ref where it is largest over ref's times (K), and ref's peak rise's base."""
+    """The signed difference of run from ref where it is largest over ref's times (K), and that time (s)."""
     t_ref = np.asarray(ref["time_s"])
     r = np.asarray(ref["probes_c"][name])
     w = np.interp(t_ref, np.asarray(run["time_s"]), np.asarray(run["probes_c"][name]))
@@ -75,6 +75,7 @@ def main():
                     d, t = largest_difference(a, f, name)
                     cells.append(f"{100 * d / rise:+7.2f} % at {t:5.1f} s")
                 print(f"{name:14s} " + " ".join(f"{c:>24s}" for c in cells))
+
 
 if __name__ == "__main__":
     main()
