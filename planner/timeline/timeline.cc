@@ -192,8 +192,13 @@ Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, 
             }
             out.Add(SpanKind::kArcStart, settings.arc_start_s, prev_layer, prev_point);
           } else if (last_started_layer != layer) {
-            // A layer reached with the arc burning (a continuous spiral): its extra wait pauses the torch between the
-            // two weld moves, with no arc end or start (as the thermal model's interpass wait runs it).
+            // A layer reached with the arc burning (a continuous spiral): the rest of min_layer_time_s and its extra
+            // wait pause the torch between the two weld moves, with no arc end or start (as the thermal model's
+            // interpass wait runs it).
+            if (last_started_layer >= 0) {
+              out.Add(SpanKind::kWait, settings.min_layer_time_s - (out.now() - last_layer_start), prev_layer,
+                      prev_point);
+            }
             if (l < settings.extra_wait_before_layer_s.size()) {
               out.Add(SpanKind::kWait, settings.extra_wait_before_layer_s[l], prev_layer, prev_point);
             }

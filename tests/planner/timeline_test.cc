@@ -152,6 +152,13 @@ TEST(TimelineTest, ExtraWaitPausesAContinuousSpiralBetweenItsLayers) {
   EXPECT_NEAR(t.layers[1].start_s, plain.layers[1].start_s + 40.0, 1e-9) << "layer 1 starts after the wait";
   EXPECT_EQ(Count(t, SpanKind::kArcStart), 1) << "a pause, not a new pass";
   EXPECT_EQ(Count(t, SpanKind::kArcEnd), 1);
+  // min_layer_time_s holds the spiral's layer 0 to 100 s the same way.
+  settings.extra_wait_before_layer_s.clear();
+  settings.min_layer_time_s = 100.0;
+  const Timeline held = BuildTimeline(plan, {}, AxisLimits{}, settings);
+  ExpectConsistent(held);
+  EXPECT_NEAR(held.layers[1].start_s - held.layers[0].start_s, 100.0, 1e-9) << "layer 0 lasts min_layer_time_s";
+  EXPECT_EQ(Count(held, SpanKind::kArcStart), 1) << "a pause, not a new pass";
 }
 
 // A two-point plan (a travel move) and a hand-made motion of `n` samples along it, axis `axis` turning by `angle`.
