@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -163,6 +164,9 @@ namespace {
 
 using CellModels = std::map<std::array<double, 3>, twin::CellModel>;
 
+// CPU time of the process (every thread) since `start`, s.
+double CpuSince(std::clock_t start) { return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC; }
+
 // Every layout of the grid over `values` (per variable the values searched), the last variable varying fastest.
 std::vector<Layout> LayoutGrid(const std::vector<std::vector<double>>& values) {
   std::size_t count = 1;
@@ -186,6 +190,7 @@ void CheckCoarse(const planner::Plan& coarse_plan, const twin::CellSettings& cel
   const std::size_t count = result->layouts.size();
   result->coarse.resize(count);
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   Progress progress("place", count, "layouts", quiet);
   std::mutex mutex;
   std::size_t done = 0;
@@ -201,6 +206,7 @@ void CheckCoarse(const planner::Plan& coarse_plan, const twin::CellSettings& cel
   });
   progress.Finish();
   result->coarse_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result->coarse_cpu_s = CpuSince(cpu_start);
 }
 
 // Full checks of `plan`: the best of the coarse pass, `finalists` at a time, until one passes or the coarse pass's
@@ -214,6 +220,7 @@ void CheckFinalists(const planner::Plan& plan, const twin::CellSettings& cell, i
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return BetterLayout(result->coarse[a], result->coarse[b]); });
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   const std::size_t cap = std::min<std::size_t>(count, 4 * static_cast<std::size_t>(finalists));
   Progress progress("full", 0, "layouts", quiet);
   for (std::size_t next = 0; next < cap && !result->feasible;) {
@@ -242,6 +249,7 @@ void CheckFinalists(const planner::Plan& plan, const twin::CellSettings& cell, i
   }
   progress.Finish();
   result->full_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result->full_cpu_s = CpuSince(cpu_start);
 }
 
 // The text of scenario.yaml: the scenario with `overrides` (the best layout's among them) and `base_dir` pointing back
@@ -290,6 +298,8 @@ nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_
       {"tried", tried},
       {"timing", {{"coarse_s", result.coarse_s},
                   {"full_s", result.full_s},
+                  {"coarse_cpu_s", result.coarse_cpu_s},
+                  {"full_cpu_s", result.full_cpu_s},
                   {"coarse_layouts_per_s", result.coarse_s > 0.0 ? count / result.coarse_s : 0.0}}},
   };
 }

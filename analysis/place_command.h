@@ -69,6 +69,8 @@ struct PlaceResult {
   LayoutScore best_score;
   double coarse_s = 0.0;                 // wall time of the coarse pass, s
   double full_s = 0.0;                   // wall time of the full checks, s
+  double coarse_cpu_s = 0.0;             // CPU time of the process (all threads) over the coarse pass, s
+  double full_cpu_s = 0.0;               // ... over the full checks, s
 };
 
 // Plans the scenario once and searches its `place:` ranges: every layout on the coarse pass (place.coarse_layers
