@@ -150,6 +150,7 @@ LayoutScore ScoreLayout(const twin::CheckReport& report, const twin::CellSetting
   s.min_j5_deg = m.min_j5_deg;
   s.min_clearance_mm = m.min_clearance_mm;
   s.margin = twin::CheckMargin(m, cell);
+  s.abandoned = report.resolve.abandoned;
   return s;
 }
 
@@ -273,8 +274,10 @@ std::string PlacedScenarioYaml(const PlaceOptions& options, const Scenario& scen
 
 // place.json: every layout tried with its coarse (and full) score, the best one as `best_json`.
 nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_name, const nlohmann::json& best_json,
-                         std::size_t coarse_layers, double coarse_step_mm) {
+                         std::size_t coarse_layers, double coarse_step_mm, bool exhaustive) {
   const std::size_t count = result.layouts.size();
+  std::size_t abandoned = 0;
+  for (const LayoutScore& s : result.full) abandoned += s.abandoned ? 1 : 0;
   nlohmann::json variables = nlohmann::json::array();
   for (int v = 0; v < kPlaceVars; ++v) variables.push_back({{"name", PlaceVariableName(v)}, {"values", result.values[v]}});
   nlohmann::json tried = nlohmann::json::array();
@@ -295,6 +298,7 @@ nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_
       {"coarse_layers", coarse_layers},
       {"coarse_step_mm", coarse_step_mm},
       {"full_checks", result.full.size()},
+      {"pruning", {{"enabled", !exhaustive}, {"resolved_checks_abandoned", abandoned}}},
       {"tried", tried},
       {"timing", {{"coarse_s", result.coarse_s},
                   {"full_s", result.full_s},
@@ -317,7 +321,8 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   }
   const planner::Plan& plan = planned.plan;
   const PlaceSettings& place = scenario.place;
-  const twin::CellSettings& cell = scenario.cell;
+  twin::CellSettings cell = scenario.cell;
+  cell.prune = !options.exhaustive;
   const double rapid_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
 
   PlaceResult result;
@@ -357,7 +362,7 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   best_json["layout"] = LayoutJson(best);
   best_json["overrides"] = best_overrides;
   const nlohmann::json document_json = PlaceJson(result, scenario.name, best_json, coarse_plan.layers.size(),
-                                                 std::max(cell.step_mm, place.coarse_step_mm));
+                                                 std::max(cell.step_mm, place.coarse_step_mm), options.exhaustive);
   CheckInterrupt();
   WriteFileAtomic(options.out_dir / "place.json", document_json.dump(2) + "\n");
   outputs.Complete();
