@@ -62,7 +62,9 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   fit.max_points = options.max_points;
   fit.max_iterations = options.max_iterations;
   twin::ValidateDistortionFitOptions(fit, distortion.mode);
-  const std::vector<Eigen::Vector3d> scan = ReadPointCloud(options.data, kStlSpacingMm);
+  // An STL's points weighted by the area each stands for, without the face the part stands on (as waam deviation).
+  const ScanCloud cloud = ReadScan(options.data, kStlSpacingMm, /*skip_bottom=*/true);
+  const std::vector<Eigen::Vector3d>& scan = cloud.points;
   WAAM_THROW_UNLESS(scan.size() >= 10, options.data.string() << ": the scan has " << scan.size()
                                                              << " points: the fit needs at least 10");
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
@@ -88,7 +90,7 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   {
     Progress progress("fit", static_cast<std::size_t>(fit.max_iterations), "Ceres iterations", options.quiet);
     result = twin::FitDistortion(build.depositor.grid(), history, scan, start, distortion, fit,
-                                 [&](int i) { progress.Update(static_cast<std::size_t>(i)); });
+                                 [&](int i) { progress.Update(static_cast<std::size_t>(i)); }, cloud.weight);
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
@@ -110,6 +112,7 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
       {"scan", options.data.string()},
       {"scan_points", scan.size()},
       {"points_used", result.points},
+      {"weighting", cloud.area_weighted ? "area" : "point"},
       {"scenario", scenario.name},
       {"scenario_file", options.scenario.string()},
       {"overrides", options.overrides},

@@ -48,7 +48,6 @@ TEST(MeshDistance, EmptyMeshIsRefused) {
   }
 }
 
-// A voxel block that fills the target exactly deviates by 0; one voxel layer too many on top deviates by +1 voxel.
 // Two flat patches over a box's top: a large one 1 mm above it in two facets, a small one 3 mm above it in 40
 // slivers (far more points per mm^2). Per unit area, mean = (1600 x 1 + 100 x 3) / 1700 mm and
 // rms = sqrt((1600 x 1 + 100 x 9) / 1700) mm, whatever the facets.
@@ -75,6 +74,14 @@ TEST(ScanDeviation, SampledSurfaceIsWeightedByArea) {
   // Per point, the slivers' many points pull the figures towards 3 mm: the bias the weights remove.
   const ScanDeviation per_point = MeasureScanDeviation(samples.points, distance);
   EXPECT_GT(per_point.mean_mm, weighted.mean_mm + 0.5);
+  // Percentiles by area: 1600 of the 1700 mm^2 (94 %) are 1 mm out, so the 90th percentile of |d| is 1 mm and the
+  // 99th 3 mm; per point (the slivers hold about 40 % of the points) the 90th is 3 mm.
+  EXPECT_NEAR(AbsDeviationQuantile(weighted, 0.9), 1.0, 1e-9);
+  EXPECT_NEAR(AbsDeviationQuantile(weighted, 0.99), 3.0, 1e-9);
+  EXPECT_NEAR(AbsDeviationQuantile(per_point, 0.9), 3.0, 1e-9);
+  EXPECT_NEAR(AbsDeviationQuantile(weighted, 0.0), 1.0, 1e-9);
+  EXPECT_NEAR(AbsDeviationQuantile(weighted, 1.0), 3.0, 1e-9);
+  EXPECT_THAT([&] { AbsDeviationQuantile(weighted, 1.5); }, ::testing::ThrowsMessage<InputError>(HasSubstr("[0, 1]")));
   // Kept subsets keep their weights: the small patch alone is 3 mm.
   const ScanDeviation small = KeepScanPoints(weighted, [&](std::size_t i) { return weighted.points[i].x() > 55; });
   EXPECT_NEAR(small.mean_mm, 3.0, 1e-9);
@@ -98,6 +105,33 @@ TEST(ScanDeviation, BottomFaceOfASampledSurfaceIsLeftOut) {
   EXPECT_EQ(SampleSurface(box, 1.0).size(), all.points.size()) << "the same points as the unweighted sampler";
 }
 
+// A box on its plate whose top came out delta too high, sampled as an STL scan against the box it should be. The top
+// (L x W) is delta out; the sides (perimeter P, height H + delta) are on the target up to H and z - H out above it.
+// Without the bottom (the area A = L W + P (H + delta)): mean = (L W delta + P delta^2 / 2) / A and
+// rms^2 = (L W delta^2 + P delta^3 / 3) / A; with it, A grows by L W and the sums stay.
+TEST(ScanDeviation, BoxWithATopTooHighHasTheClosedFormRms) {
+  const double l = 20.0, w = 10.0, h = 10.0, delta = 1.0, p = 2.0 * (l + w);
+  const planner::TriangleMesh target = testing::BoxMesh({0, 0, 0}, {l, w, h});
+  const planner::TriangleMesh built = testing::BoxMesh({0, 0, 0}, {l, w, h + delta});
+  const MeshDistance distance(target);
+  const double sum = l * w * delta + p * delta * delta / 2.0, sum2 = l * w * delta * delta + p * delta * delta * delta / 3.0;
+  for (const bool skip_bottom : {true, false}) {
+    const SurfaceSamples samples = SampleSurfaceByArea(built, 0.5, skip_bottom);
+    const double area = l * w * (skip_bottom ? 1.0 : 2.0) + p * (h + delta);
+    const ScanDeviation scan = MeasureScanDeviation(samples.points, distance, samples.area_mm2);
+    // The centre of each sub-triangle integrates z - H exactly but for the row the kink at z = H crosses.
+    EXPECT_NEAR(scan.mean_mm, sum / area, 1e-3) << "skip_bottom " << skip_bottom;
+    EXPECT_NEAR(scan.rms_mm, std::sqrt(sum2 / area), 1e-3) << "skip_bottom " << skip_bottom;
+    EXPECT_NEAR(scan.max_mm, delta, 1e-9);
+    EXPECT_NEAR(scan.min_mm, 0.0, 1e-9);
+    // The top holds L W / A of the area (23 % or 19 %), all at delta: the 90th percentile of |d| is delta, the
+    // median is below the kink.
+    EXPECT_NEAR(AbsDeviationQuantile(scan, 0.9), delta, 1e-9);
+    EXPECT_NEAR(AbsDeviationQuantile(scan, 0.5), 0.0, 1e-9);
+  }
+}
+
+// A voxel block that fills the target exactly deviates by 0; one voxel layer too many on top deviates by +1 voxel.
 TEST(Deviation, ExactAndOverbuiltBlocks) {
   const planner::TriangleMesh target = testing::BoxMesh({0, 0, 0}, {5, 4, 3});
   VoxelGrid grid(0.5, 100000);

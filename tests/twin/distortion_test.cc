@@ -240,6 +240,35 @@ TEST(DistortionFit, RecoversKnownParametersFromATwinScan) {
   EXPECT_LT(r.rms_mm, 0.05) << "the fitted surface must pass through the scan";
 }
 
+// Weights decide what the fit follows: the twin scan at known parameters (weight 1 per point) and as many points 2 mm
+// above it (weight 1e-6, like the slivers' points of an STL that stand for almost no area). Per unit weight the fit
+// recovers the parameters and its rms is that of the true points; counted alike (no weights), the raised half pulls
+// the strain to 0 and leaves an rms of 0.49 mm.
+TEST(DistortionFit, FollowsThePointsByTheirWeights) {
+  const Build b(StraightWall(8, 24.0, 8.0, 4.0), 1.0);
+  const models::DistortionParams truth = Params(0.01, 0.8);
+  const DistortionOptions o = Fe(2.0, 2);
+  std::vector<Eigen::Vector3d> scan =
+      ScanDistortedPart(b.depositor.grid(), ComputeDistortion(b.depositor.grid(), b.history, truth, o));
+  const std::size_t n = scan.size();
+  std::vector<double> weight(n, 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    scan.push_back(scan[i] + Eigen::Vector3d(0.0, 0.0, 2.0));
+    weight.push_back(1e-6);
+  }
+  DistortionFitOptions fit;
+  fit.max_points = 800;  // every k-th point: half from the true scan, half from the raised copy
+  const DistortionFitResult r =
+      FitDistortion(b.depositor.grid(), b.history, scan, Params(0.005, 0.3), o, fit, {}, weight);
+  ASSERT_TRUE(r.solver.usable) << r.solver.message;
+  EXPECT_NEAR(r.params.strain, truth.strain, 0.03 * truth.strain) << "strain within 3 %";
+  EXPECT_NEAR(r.params.heat_exponent, truth.heat_exponent, 0.03 * truth.heat_exponent) << "exponent within 3 %";
+  EXPECT_LT(r.rms_mm, 0.05) << "the rms per unit weight is the true points'";
+  weight.pop_back();
+  EXPECT_THAT([&] { FitDistortion(b.depositor.grid(), b.history, scan, truth, o, fit, {}, weight); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("weights for")));
+}
+
 TEST(DistortionFit, RefusesRepeatedFreeParameter) {
   const Build b(StraightWall(2, 10.0, 8.0, 8.0), 1.0);
   DistortionFitOptions fit;

@@ -41,13 +41,8 @@ void Summarize(const ScanDeviation& scan, const std::vector<Eigen::Vector3d>& re
                CompensationIteration* it) {
   it->max_abs_deviation_mm = scan.max_abs_mm;
   it->rms_deviation_mm = scan.rms_mm;
-  if (!scan.deviation_mm.empty()) {
-    std::vector<double> a(scan.deviation_mm.size());
-    for (std::size_t i = 0; i < a.size(); ++i) a[i] = std::abs(scan.deviation_mm[i]);
-    const std::size_t k = std::min(a.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(a.size())));
-    std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k), a.end());
-    it->p99_abs_deviation_mm = a[k];
-  }
+  // Per unit area for a real STL scan (its points carry their areas), per point for the twin's equal voxel faces.
+  it->p99_abs_deviation_mm = AbsDeviationQuantile(scan, 0.99);
   it->min_deviation_mm = scan.min_mm;
   it->max_deviation_mm = scan.max_mm;
   const AxisComparison axis = CompareAxis(reference_points, scan.points, axis_step_mm, 0.5 * axis_step_mm);

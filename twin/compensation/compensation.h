@@ -59,7 +59,8 @@ struct CompensationOptions {
 struct CompensationIteration {
   double max_abs_deviation_mm = 0.0;
   double rms_deviation_mm = 0.0;
-  double p99_abs_deviation_mm = 0.0; // 99th percentile of |deviation|: the bulk, without a few local spots, mm
+  double p99_abs_deviation_mm = 0.0; // 99th percentile of |deviation| (by area for a sampled STL scan): the bulk,
+                                     // without a few local spots, mm
   double min_deviation_mm = 0.0;
   double max_deviation_mm = 0.0;
   double axis_deviation_mm = 0.0;    // largest central-axis offset from the reference's axis (twin part or target)

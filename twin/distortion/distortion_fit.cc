@@ -38,6 +38,7 @@ struct ScanResidual {
   const DepositHistory* history;
   const std::vector<Eigen::Vector3d>* points;
   const std::vector<int>* seeds;  // per point: the undistorted voxel face nearest to it
+  const std::vector<double>* scale;  // per point: sqrt(weight / mean weight), 1 for a point cloud
   const internal::VoxelFaces* faces;
   models::DistortionParams start;
   DistortionOptions options;
@@ -63,7 +64,7 @@ struct ScanResidual {
         if (next < 0 || next == c) break;
         c = next;
       }
-      residual[i] = faces->PlaneDistance(c, s - field.Displacement(faces->centre(c)));
+      residual[i] = (*scale)[i] * faces->PlaneDistance(c, s - field.Displacement(faces->centre(c)));
     }
     return true;
   }
@@ -118,16 +119,23 @@ void ValidateDistortionFitOptions(const DistortionFitOptions& fit, models::Disto
 DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
                                   const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
                                   const DistortionOptions& options, const DistortionFitOptions& fit,
-                                  const std::function<void(int)>& on_iteration) {
+                                  const std::function<void(int)>& on_iteration, const std::vector<double>& scan_weight) {
   models::ValidateDistortionParams(start, "distortion fit start");
   ValidateDistortionOptions(options);
   ValidateDistortionFitOptions(fit, options.mode);
   WAAM_THROW_UNLESS(scan.size() >= 10, "distortion fit: the scan has " << scan.size() << " points: need >= 10");
+  WAAM_THROW_UNLESS(scan_weight.empty() || scan_weight.size() == scan.size(),
+                    "distortion fit: " << scan_weight.size() << " weights for " << scan.size() << " scan points");
+  for (std::size_t i = 0; i < scan_weight.size(); ++i) {
+    WAAM_THROW_UNLESS(scan_weight[i] > 0.0 && std::isfinite(scan_weight[i]),
+                      "distortion fit: scan point " << i << " has weight " << scan_weight[i] << ": must be > 0");
+  }
   const internal::VoxelFaces faces(grid);
   WAAM_THROW_UNLESS(faces.size() > 0, "distortion fit: the deposit is empty");
   // Every k-th scan point with its seed; points nowhere near the part are left out (and counted).
   std::vector<Eigen::Vector3d> used;
   std::vector<int> seeds;
+  std::vector<double> scale;
   std::size_t far = 0;
   // Seeds: the face whose centre the start parameters move nearest to the scan point, so that the face search starts
   // next to its answer (from the undistorted faces it can settle on a wrong face where the part moved by centimetres).
@@ -143,12 +151,17 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
     }
     used.push_back(scan[i]);
     seeds.push_back(f);
+    scale.push_back(scan_weight.empty() ? 1.0 : scan_weight[i]);
   }
   WAAM_THROW_UNLESS(used.size() >= 10 && far <= used.size(),
                     "distortion fit: " << far << " of " << far + used.size() << " scan points are farther than "
                     << kSeedReachMm << " mm from the twin part: the scan must be of this part, in its part frame (mm)");
+  // Least squares of sqrt(w / mean w) r: the sum of w r^2 per unit weight, the rms per unit area on an STL.
+  double mean_weight = 0.0;
+  for (const double w : scale) mean_weight += w / static_cast<double>(scale.size());
+  for (double& w : scale) w = std::sqrt(w / mean_weight);
 
-  auto* functor = new ScanResidual{&grid, &history, &used, &seeds, &faces, start, options, fit.free};
+  auto* functor = new ScanResidual{&grid, &history, &used, &seeds, &scale, &faces, start, options, fit.free};
   std::vector<double> x(fit.free.size());
   for (std::size_t k = 0; k < fit.free.size(); ++k) {
     models::DistortionParams p = start;
@@ -182,7 +195,7 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   result.solver.initial_cost = summary.initial_cost;
   result.solver.final_cost = summary.final_cost;
   result.solver.seconds = summary.total_time_in_seconds;
-  const ScanResidual eval{&grid, &history, &used, &seeds, &faces, start, options, fit.free};
+  const ScanResidual eval{&grid, &history, &used, &seeds, &scale, &faces, start, options, fit.free};
   result.params = eval.Params(x.data());
   result.initial_rms_mm = ResidualRms(eval, x0, used.size());
   if (result.solver.usable) result.rms_mm = ResidualRms(eval, x, used.size());

@@ -29,8 +29,9 @@ void ValidateDistortionFitOptions(const DistortionFitOptions& fit, models::Disto
 struct DistortionFitResult {
   models::DistortionParams params;   // the start with the free parameters replaced by the fit
   models::SolverReport solver;
-  double initial_rms_mm = 0.0;       // rms distance of the used scan points to the distorted surface at the start, mm
-  double rms_mm = 0.0;               // rms distance of the used scan points to the fitted distorted surface, mm
+  double initial_rms_mm = 0.0;       // rms distance of the used scan points to the distorted surface at the start
+                                     // (weighted as the fit is), mm
+  double rms_mm = 0.0;               // the same to the fitted distorted surface, mm
   std::size_t points = 0;
 };
 
@@ -40,10 +41,14 @@ struct DistortionFitResult {
 // for invalid fit options (ValidateDistortionFitOptions), too few points or invalid start parameters; a fit that
 // fails comes back with solver.usable = false.
 // `on_iteration(i)` (may be empty) is called after every Ceres iteration; a Ctrl-C stops the solve and throws
-// waam::Interrupted.
+// waam::Interrupted. `scan_weight` (empty: 1 each; else one per scan point, > 0) is what each point counts for, the
+// area it stands for on a sampled STL: each residual is scaled by sqrt(weight / mean weight of the used points), so
+// the fit and initial_rms_mm / rms_mm are per unit area. Throws InputError for a weight count that is not the point
+// count or a weight that is not > 0.
 DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
                                   const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
                                   const DistortionOptions& options, const DistortionFitOptions& fit,
-                                  const std::function<void(int)>& on_iteration = {});
+                                  const std::function<void(int)>& on_iteration = {},
+                                  const std::vector<double>& scan_weight = {});
 
 }  // namespace waam::twin

@@ -81,6 +81,29 @@ ScanDeviation KeepScanPoints(const ScanDeviation& scan, const std::function<bool
   return r;
 }
 
+double AbsDeviationQuantile(const ScanDeviation& scan, double q) {
+  WAAM_THROW_UNLESS(q >= 0.0 && q <= 1.0, "deviation quantile " << q << ": must be in [0, 1]");
+  const std::size_t n = scan.deviation_mm.size();
+  if (n == 0) return 0.0;
+  auto weight = [&](std::size_t i) { return scan.weight.empty() ? 1.0 : scan.weight[i]; };
+  std::vector<std::size_t> order(n);
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    order[i] = i;
+    total += weight(i);
+  }
+  // Equal |d| cross the threshold together whatever their order, so the value does not depend on the sort's ties.
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::abs(scan.deviation_mm[a]) < std::abs(scan.deviation_mm[b]);
+  });
+  double below = 0.0;
+  for (const std::size_t i : order) {
+    below += weight(i);
+    if (below > q * total) return std::abs(scan.deviation_mm[i]);
+  }
+  return std::abs(scan.deviation_mm[order.back()]);
+}
+
 ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& dir, double min_cos) {
   return KeepScanPoints(scan, [&](std::size_t i) { return scan.normal[i].dot(dir) <= min_cos; });
 }

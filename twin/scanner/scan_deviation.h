@@ -31,6 +31,12 @@ struct ScanDeviation {
 ScanDeviation MeasureScanDeviation(const std::vector<Eigen::Vector3d>& scan, const MeshDistance& target,
                                    const std::vector<double>& weight = {});
 
+// The q-quantile (0 <= q <= 1) of |deviation| over `scan`, each point counting by its weight (its area on a sampled
+// STL, so the figure is per unit area as mean_mm and rms_mm are): the smallest |d| such that the points with |d| at
+// or below it hold more than q of the total weight (the largest |d| if none does). With equal weights it is the
+// element floor(q n) of the sorted |d|. 0 for a scan without points. Throws InputError for q outside [0, 1].
+double AbsDeviationQuantile(const ScanDeviation& scan, double q);
+
 // The points of `scan` whose target normal is NOT within acos(`min_cos`) of the unit `dir` (e.g. without the top
 // end face), with the statistics recomputed; empty if none is left.
 ScanDeviation ExcludeFacing(const ScanDeviation& scan, const Eigen::Vector3d& dir, double min_cos);
