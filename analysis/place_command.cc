@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -149,6 +150,7 @@ LayoutScore ScoreLayout(const twin::CheckReport& report, const twin::CellSetting
   s.min_j5_deg = m.min_j5_deg;
   s.min_clearance_mm = m.min_clearance_mm;
   s.margin = twin::CheckMargin(m, cell);
+  s.abandoned = report.resolve.abandoned;
   return s;
 }
 
@@ -162,6 +164,9 @@ void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path);  // p
 namespace {
 
 using CellModels = std::map<std::array<double, 3>, twin::CellModel>;
+
+// CPU time of the process (every thread) since `start`, s.
+double CpuSince(std::clock_t start) { return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC; }
 
 // Every layout of the grid over `values` (per variable the values searched), the last variable varying fastest.
 std::vector<Layout> LayoutGrid(const std::vector<std::vector<double>>& values) {
@@ -186,6 +191,7 @@ void CheckCoarse(const planner::Plan& coarse_plan, const twin::CellSettings& cel
   const std::size_t count = result->layouts.size();
   result->coarse.resize(count);
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   Progress progress("place", count, "layouts", quiet);
   std::mutex mutex;
   std::size_t done = 0;
@@ -201,6 +207,7 @@ void CheckCoarse(const planner::Plan& coarse_plan, const twin::CellSettings& cel
   });
   progress.Finish();
   result->coarse_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result->coarse_cpu_s = CpuSince(cpu_start);
 }
 
 // Full checks of `plan`: the best of the coarse pass, `finalists` at a time, until one passes or the coarse pass's
@@ -214,6 +221,7 @@ void CheckFinalists(const planner::Plan& plan, const twin::CellSettings& cell, i
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return BetterLayout(result->coarse[a], result->coarse[b]); });
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   const std::size_t cap = std::min<std::size_t>(count, 4 * static_cast<std::size_t>(finalists));
   Progress progress("full", 0, "layouts", quiet);
   for (std::size_t next = 0; next < cap && !result->feasible;) {
@@ -242,6 +250,7 @@ void CheckFinalists(const planner::Plan& plan, const twin::CellSettings& cell, i
   }
   progress.Finish();
   result->full_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result->full_cpu_s = CpuSince(cpu_start);
 }
 
 // The text of scenario.yaml: the scenario with `overrides` (the best layout's among them) and `base_dir` pointing back
@@ -265,8 +274,10 @@ std::string PlacedScenarioYaml(const PlaceOptions& options, const Scenario& scen
 
 // place.json: every layout tried with its coarse (and full) score, the best one as `best_json`.
 nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_name, const nlohmann::json& best_json,
-                         std::size_t coarse_layers, double coarse_step_mm) {
+                         std::size_t coarse_layers, double coarse_step_mm, bool exhaustive) {
   const std::size_t count = result.layouts.size();
+  std::size_t abandoned = 0;
+  for (const LayoutScore& s : result.full) abandoned += s.abandoned ? 1 : 0;
   nlohmann::json variables = nlohmann::json::array();
   for (int v = 0; v < kPlaceVars; ++v) variables.push_back({{"name", PlaceVariableName(v)}, {"values", result.values[v]}});
   nlohmann::json tried = nlohmann::json::array();
@@ -287,9 +298,12 @@ nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_
       {"coarse_layers", coarse_layers},
       {"coarse_step_mm", coarse_step_mm},
       {"full_checks", result.full.size()},
+      {"pruning", {{"enabled", !exhaustive}, {"resolved_checks_abandoned", abandoned}}},
       {"tried", tried},
       {"timing", {{"coarse_s", result.coarse_s},
                   {"full_s", result.full_s},
+                  {"coarse_cpu_s", result.coarse_cpu_s},
+                  {"full_cpu_s", result.full_cpu_s},
                   {"coarse_layouts_per_s", result.coarse_s > 0.0 ? count / result.coarse_s : 0.0}}},
   };
 }
@@ -307,7 +321,8 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   }
   const planner::Plan& plan = planned.plan;
   const PlaceSettings& place = scenario.place;
-  const twin::CellSettings& cell = scenario.cell;
+  twin::CellSettings cell = scenario.cell;
+  cell.prune = !options.exhaustive;
   const double rapid_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
 
   PlaceResult result;
@@ -347,7 +362,7 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   best_json["layout"] = LayoutJson(best);
   best_json["overrides"] = best_overrides;
   const nlohmann::json document_json = PlaceJson(result, scenario.name, best_json, coarse_plan.layers.size(),
-                                                 std::max(cell.step_mm, place.coarse_step_mm));
+                                                 std::max(cell.step_mm, place.coarse_step_mm), options.exhaustive);
   CheckInterrupt();
   WriteFileAtomic(options.out_dir / "place.json", document_json.dump(2) + "\n");
   outputs.Complete();

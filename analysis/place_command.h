@@ -20,6 +20,7 @@ struct PlaceOptions {
   std::vector<std::string> overrides;  // "key.path=value" scenario overrides (--set)
   bool quiet = false;                  // no progress bars
   bool images = true;                  // place_margin.png
+  bool exhaustive = false;             // no pruning (twin::CellSettings::prune false): the same answer, slower
 };
 
 // The searched variables, in this order in every Layout.
@@ -51,6 +52,7 @@ struct LayoutScore {
   // min((arm joint margin - cell.checks.joint_margin_deg) / 10 deg, (|j5| - cell.checks.singularity_deg) / 10 deg,
   //     clearance / 10 mm). The clearance is capped at the 10 mm contact margin, so the margin is at most 1.
   double margin = 0.0;
+  bool abandoned = false;  // the resolved motion's check stopped once proven worse than the fixed rule's (pruned)
 };
 
 // The score of a check report of `cell` settings.
@@ -69,6 +71,8 @@ struct PlaceResult {
   LayoutScore best_score;
   double coarse_s = 0.0;                 // wall time of the coarse pass, s
   double full_s = 0.0;                   // wall time of the full checks, s
+  double coarse_cpu_s = 0.0;             // CPU time of the process (all threads) over the coarse pass, s
+  double full_cpu_s = 0.0;               // ... over the full checks, s
 };
 
 // Plans the scenario once and searches its `place:` ranges: every layout on the coarse pass (place.coarse_layers

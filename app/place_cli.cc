@@ -34,6 +34,8 @@ void AddPlaceCommand(CLI::App& app, CommandRunner* runner) {
                       "Override a scenario setting, key.path=value (repeatable), e.g. --set place.part_yaw_deg=[0,90,45]");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw place_margin.png");
+  command->add_flag("--exhaustive", options->exhaustive,
+                    "Check every resolved motion whole (no pruning by the fixed rule's margin); the same answer, slower");
   command->callback([options, runner] {
     *runner = [options] {
       const analysis::PlaceResult result = analysis::RunPlace(*options);

@@ -1,6 +1,7 @@
 // End-to-end tests of `waam place`: a planted layout fault (the torch meets a clamp) gets a placement that passes,
 // written as a scenario `waam check` passes; a part out of reach everywhere gets no layout, the nearest miss named;
-// the same inputs give the same place.json (timings aside) on one and two threads; a bad range is one line.
+// the same inputs give the same place.json (timings aside) on one and two threads, and with --exhaustive (no
+// pruning) on four; a bad range is one line.
 #include <filesystem>
 #include <string>
 
@@ -47,6 +48,18 @@ TEST(PlaceCliTest, ThePlantedClampFaultGetsAPlacementThatPasses) {
   a.erase("timing");
   b.erase("timing");
   EXPECT_EQ(a, b);
+
+  // Without pruning (every resolved motion checked whole), on four threads: the same layout and the same scores.
+  const fs::path whole = TempDir("place_clamp_exhaustive");
+  ASSERT_EQ(RunWaam("place " + Scenario("cell_torch_meets_clamp") + " -q --no-images --exhaustive --threads 4 -o " +
+                        whole.string(), &err), 0) << err;
+  nlohmann::json c = ReadJson(whole / "place.json");
+  EXPECT_FALSE(c.at("pruning").at("enabled").get<bool>());
+  EXPECT_EQ(c.at("pruning").at("resolved_checks_abandoned").get<int>(), 0);
+  c.erase("timing");
+  c.erase("pruning");
+  a.erase("pruning");
+  EXPECT_EQ(a, c);
 }
 
 TEST(PlaceCliTest, APartOutOfReachEverywhereHasNoLayoutAndNamesTheNearestMiss) {

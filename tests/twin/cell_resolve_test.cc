@@ -1,6 +1,7 @@
 // Tests of cell.resolve optimise: a wall whose fixed torch rotation drives J6 past its limit (a cell whose J6 range
 // leaves the fixed rule's angles out) passes once the torch's spin is chosen, with the same weld points and tool axes;
-// the choice is the same on every run and thread count; a path the fixed rule serves keeps it.
+// the choice is the same on every run and thread count; a path the fixed rule serves keeps it; pruning the resolved
+// check by the fixed rule's margin changes no report.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -103,6 +104,43 @@ TEST(CellResolve, APathTheFixedRuleServesKeepsItsMotion) {
   const CheckReport f = CheckPlan(cell, wall, settings, 100.0, nullptr);
   ASSERT_EQ(f.motion.size(), r.motion.size());
   for (std::size_t i = 0; i < f.motion.size(); ++i) EXPECT_EQ(f.motion[i].q, r.motion[i].q);
+}
+
+// The pruned resolution (the resolved motion's check stopped once proven worse than the fixed rule's) gives the same
+// report as the whole check, on J6 ranges that leave the fixed rule a small margin, on one and four threads.
+TEST(CellResolve, PruningByTheFixedRulesMarginGivesTheSameReport) {
+  const planner::Plan wall = testing::RectangleWall(2, 100.0, 30.0, 2.0, 8.0);
+  CellSettings settings;
+  settings.resolve = CellResolve::kFixed;
+  const CheckReport free = CheckPlan(LoadCell(settings), wall, settings, 100.0, nullptr);
+  double lo = 1e9, hi = -1e9;
+  for (const planner::CellSample& s : free.motion) {
+    lo = std::min(lo, s.q[5] * kDeg);
+    hi = std::max(hi, s.q[5] * kDeg);
+  }
+  settings.resolve = CellResolve::kOptimise;
+  for (double pad : {3.0, 6.0, 9.0}) {
+    const fs::path file = CellWithJ6Range(lo - pad, hi + pad);
+    settings.mjcf = file;
+    const CellModel cell = LoadCell(settings);
+    for (int threads : {1, 4}) {
+      SetThreadCount(threads);
+      settings.prune = false;
+      const CheckReport whole = CheckPlan(cell, wall, settings, 100.0, nullptr);
+      settings.prune = true;
+      const CheckReport pruned = CheckPlan(cell, wall, settings, 100.0, nullptr);
+      SetThreadCount(0);
+      EXPECT_FALSE(whole.resolve.abandoned);
+      EXPECT_EQ(pruned.resolve.kept_fixed, whole.resolve.kept_fixed) << "pad " << pad;
+      EXPECT_EQ(pruned.resolve.layer_spin_deg, whole.resolve.layer_spin_deg) << "pad " << pad;
+      EXPECT_EQ(CheckMargin(pruned.resolve.after, settings), CheckMargin(whole.resolve.after, settings));
+      EXPECT_EQ(pruned.violations.size(), whole.violations.size());
+      EXPECT_EQ(pruned.min_clearance_mm, whole.min_clearance_mm);
+      ASSERT_EQ(pruned.motion.size(), whole.motion.size());
+      for (std::size_t i = 0; i < whole.motion.size(); ++i) EXPECT_EQ(pruned.motion[i].q, whole.motion[i].q);
+    }
+    fs::remove(file);
+  }
 }
 
 }  // namespace cell_resolve_test

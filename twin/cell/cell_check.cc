@@ -333,6 +333,9 @@ class SampleChecks {
     if (s.weld && i > 0) nozzle_.deposit.Deposit(motion_[i - 1].p_P, s.p_P, s.bead_width_mm);
   }
 
+  // Whether the cell bodies have a contact anywhere along the motion (each is a collision violation).
+  bool has_cell_contacts() const { return !cell_contacts_.empty(); }
+
   // The report's violations and summary figures once every sample is checked.
   void Finish() {
     if (part_sweep_) {
@@ -485,10 +488,30 @@ class SampleChecks {
 
 // The check of the motion `options` give on `solve` (the kinematics the motion is planned on, the positioner's limits
 // kept `margin` inside) against the limits of `kin`.
-CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematics& kin,
-                             const planner::CellKinematics& solve, const planner::Plan& plan,
-                             const twin::CellSettings& settings, const planner::MotionOptions& options,
-                             Progress* progress) {
+// Figures of the motion alone (before any collision detection) that bound its check's margin from above: a sample out
+// of reach or an arm joint or |J5| term of CheckMargin below `margin` proves the check worse than one with no
+// violation and that margin (its violating samples can only be more, its margin only smaller).
+bool MotionProvenWorse(const std::vector<planner::CellSample>& motion, const planner::CellKinematics& kin,
+                       const twin::CellSettings& settings, double margin) {
+  for (const planner::CellSample& s : motion) {
+    if (!s.reachable) return true;
+    for (int j = 0; j < 6; ++j) {
+      const double m_deg = std::min(s.q[j] - kin.arm.lower[j], kin.arm.upper[j] - s.q[j]) * kDeg;
+      if ((m_deg - settings.joint_margin_deg) / 10.0 < margin) return true;
+    }
+    const double j5_deg = std::asin(std::min(1.0, std::abs(std::sin(s.q[4])))) * kDeg;
+    if ((j5_deg - settings.singularity_deg) / 10.0 < margin) return true;
+  }
+  return false;
+}
+
+// With `beat` (a check with no violation and CheckMargin `*beat`): nothing once the motion or its cell contacts and
+// clearance prove this check worse (any contact is a violation; the clearance term only falls as samples are added).
+std::optional<CheckReport> CheckWithOptions(const CellModel& cell, const planner::CellKinematics& kin,
+                                            const planner::CellKinematics& solve, const planner::Plan& plan,
+                                            const twin::CellSettings& settings,
+                                            const planner::MotionOptions& options, Progress* progress,
+                                            const double* beat = nullptr) {
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";
   report.positioner_type = kin.positioner.type;
@@ -500,8 +523,12 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
     if (progress) progress->Update(done);
   });
   report.samples = report.motion.size();
+  if (beat && MotionProvenWorse(report.motion, kin, settings, *beat)) return std::nullopt;
 
   SampleChecks checks(cell, kin, settings, &report);
+  if (beat && (checks.has_cell_contacts() || report.min_clearance_mm / CellModel::kClearanceMarginMm < *beat)) {
+    return std::nullopt;
+  }
   for (std::size_t i = 0; i < report.motion.size(); ++i) {
     checks.Sample(i);
     if (progress && (i & 1023u) == 0) progress->Update(total + i);
@@ -513,47 +540,6 @@ CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematic
 
 }  // namespace
 
-CheckMargins MarginsOf(const CheckReport& report) {
-  CheckMargins m;
-  m.violations = report.violations.size();
-  for (const CheckViolation& v : report.violations) m.violating_samples += static_cast<std::size_t>(v.samples);
-  m.min_arm_margin_deg = report.min_arm_margin_deg;
-  m.min_j5_deg = report.min_j5_deg;
-  m.min_clearance_mm = report.min_clearance_mm;
-  m.max_joint_speed_ratio = report.max_joint_speed_ratio;
-  return m;
-}
-
-double CheckMargin(const CheckMargins& m, const twin::CellSettings& settings) {
-  return std::min({(m.min_arm_margin_deg - settings.joint_margin_deg) / 10.0,
-                   (m.min_j5_deg - settings.singularity_deg) / 10.0,
-                   m.min_clearance_mm / CellModel::kClearanceMarginMm});
-}
-
-planner::CellKinematics MarginKinematics(const planner::CellKinematics& kin, const twin::CellSettings& settings) {
-  const double margin_rad = settings.joint_margin_deg / kDeg;
-  planner::CellKinematics solve = kin;
-  if (solve.positioner.tilt_upper - solve.positioner.tilt_lower > 2.0 * margin_rad) {
-    solve.positioner.tilt_lower += margin_rad;
-    solve.positioner.tilt_upper -= margin_rad;
-  }
-  if (solve.positioner.rotation_upper - solve.positioner.rotation_lower > 2.0 * margin_rad) {
-    solve.positioner.rotation_lower += margin_rad;
-    solve.positioner.rotation_upper -= margin_rad;
-  }
-  return solve;
-}
-
-planner::MotionOptions MotionOptionsOf(const twin::CellSettings& settings, double rapid_speed_mm_s) {
-  planner::MotionOptions options;
-  options.step_mm = settings.step_mm;
-  options.rapid_speed_mm_s = rapid_speed_mm_s;
-  options.rotation_rad = settings.positioner_rotation_deg / kDeg;
-  options.positioner_per_point = settings.positioner_follow == twin::PositionerFollow::kPoint;
-  options.tilt_tolerance_rad = settings.positioner_tilt_tolerance_deg / kDeg;
-  return options;
-}
-
 CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress) {
   planner::CellKinematics kin = PartKinematics(cell, settings);
@@ -562,12 +548,12 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   const planner::CellKinematics solve = MarginKinematics(kin, settings);
   planner::MotionOptions options = MotionOptionsOf(settings, rapid_speed_mm_s);  // the spins are set below
   if (settings.resolve == CellResolve::kFixed) {
-    return CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
+    return *CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
   }
 
   // optimise: the fixed rule's check, the spins per layer, the check of their motion; the better of the two is kept.
   // The progress bar runs once for the fixed check and again for the resolved one.
-  CheckReport fixed = CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
+  CheckReport fixed = *CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
   ResolveSummary summary;
   summary.mode = CellResolve::kOptimise;
   summary.before = MarginsOf(fixed);
@@ -580,20 +566,32 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
     return fixed;
   }
   options.layer_spin_rad = ResolveLayerSpins(cell, solve, plan, options, settings);
-  CheckReport report = CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
-  summary.after = MarginsOf(report);
-  const bool worse = summary.after.violating_samples > summary.before.violating_samples ||
+  if (std::all_of(options.layer_spin_rad.begin(), options.layer_spin_rad.end(), [](double s) { return s == 0.0; })) {
+    // Every spin 0: the resolved motion is the fixed rule's (PlanCellMotion turns nothing), so is its check.
+    summary.after = summary.before;
+    summary.layer_spin_deg.assign(plan.layers.size(), 0.0);
+    fixed.resolve = std::move(summary);
+    return fixed;
+  }
+  // A fixed rule with no violation is a bar: the resolved motion's check stops once it is proven below it.
+  const double bar = CheckMargin(summary.before, settings);
+  const bool prune = settings.prune && summary.before.violating_samples == 0;
+  std::optional<CheckReport> resolved =
+      CheckWithOptions(cell, kin, solve, plan, settings, options, progress, prune ? &bar : nullptr);
+  if (resolved) summary.after = MarginsOf(*resolved);
+  const bool worse = !resolved || summary.after.violating_samples > summary.before.violating_samples ||
                      (summary.after.violating_samples == summary.before.violating_samples &&
-                      CheckMargin(summary.after, settings) < CheckMargin(summary.before, settings));
+                      CheckMargin(summary.after, settings) < bar);
   for (double spin : options.layer_spin_rad) summary.layer_spin_deg.push_back(spin * kDeg);
   if (worse) {
     summary.kept_fixed = true;
+    summary.abandoned = !resolved;
     summary.after = summary.before;
     std::fill(summary.layer_spin_deg.begin(), summary.layer_spin_deg.end(), 0.0);
-    report = std::move(fixed);
+    resolved = std::move(fixed);
   }
-  report.resolve = std::move(summary);
-  return report;
+  resolved->resolve = std::move(summary);
+  return std::move(*resolved);
 }
 
 }  // namespace waam::twin

@@ -70,6 +70,7 @@ struct CheckMargins {
 struct ResolveSummary {
   CellResolve mode = CellResolve::kFixed;
   bool kept_fixed = false;            // optimise checked worse than the fixed rule, which was kept
+  bool abandoned = false;             // ... proven so before its check was whole (CellSettings::prune)
   CheckMargins before;                // the fixed rule's check
   CheckMargins after;                 // the check reported (the resolved motion's, or the fixed one's when kept)
   std::vector<double> layer_spin_deg; // per layer: the torch's spin about its axis, deg

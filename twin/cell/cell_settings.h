@@ -103,6 +103,10 @@ struct CellSettings {
   // cell.checks.mode: discrete = MuJoCo's collision detection at every sample; continuous = conservative advancement
   // over the joint-space lines between samples as well (twin/cell/cell_sweep.h), with a certified clearance.
   CheckMode check_mode = CheckMode::kDiscrete;
+  // Not a scenario key: with optimise, the resolved motion's check is abandoned as soon as its figures prove it worse
+  // than the fixed rule's (the fixed rule's is then kept, as the whole check would decide); false checks it whole
+  // (`waam place --exhaustive`, tests comparing the two).
+  bool prune = true;
   std::string where;                     // "file:line: cell" for messages about the section
 };
 

@@ -9,6 +9,7 @@
 namespace waam::twin {
 namespace {
 constexpr float kEmpty = -1e9f;
+constexpr int kTile = 8;  // grid points per side of a tile of tile_top_
 
 // Squared distance from p to the 2D segment a-b.
 double SegmentDistance2(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -24,6 +25,16 @@ DepositMap::DepositMap(const Eigen::Vector2d& min_xy, const Eigen::Vector2d& max
   nx_ = std::max(1, static_cast<int>(std::ceil((max_xy.x() - min_xy.x()) / cell_)) + 1);
   ny_ = std::max(1, static_cast<int>(std::ceil((max_xy.y() - min_xy.y()) / cell_)) + 1);
   height_.assign(static_cast<std::size_t>(nx_) * ny_, kEmpty);
+  tiles_x_ = (nx_ + kTile - 1) / kTile;
+  tile_top_.assign(static_cast<std::size_t>(tiles_x_) * ((ny_ + kTile - 1) / kTile), kEmpty);
+}
+
+float DepositMap::TileTop(int x0, int x1, int y0, int y1) const {
+  float top = kEmpty;
+  for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty) {
+    for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) top = std::max(top, tile_top_[ty * tiles_x_ + tx]);
+  }
+  return top;
 }
 
 void DepositMap::Deposit(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double width_mm) {
@@ -62,6 +73,8 @@ void DepositMap::Rasterise(const Bead& bead) const {
       const float z = static_cast<float>(a.z() + t * (b.z() - a.z()));
       float& h = height_[Index(ix, iy)];
       h = std::max(h, z);
+      float& tile = tile_top_[(iy / kTile) * tiles_x_ + ix / kTile];
+      tile = std::max(tile, z);
     }
   }
 }
@@ -81,6 +94,10 @@ double DepositMap::Penetration(const Eigen::Vector3d& a, const Eigen::Vector3d& 
     const int x1 = std::min(nx_ - 1, static_cast<int>(std::ceil((c.x() + r - origin_.x()) / cell_)));
     const int y0 = std::max(0, static_cast<int>(std::floor((c.y() - r - origin_.y()) / cell_)));
     const int y1 = std::min(ny_ - 1, static_cast<int>(std::ceil((c.y() + r - origin_.y()) / cell_)));
+    if (x0 > x1 || y0 > y1) continue;
+    // A clearance bound first: no metal under this sphere's square reaches its lowest point (a cell's metal h
+    // reaches into the sphere only if h > c.z - sqrt(r^2 - d^2) >= c.z - r), so its cells need not be visited.
+    if (TileTop(x0, x1, y0, y1) <= c.z() - r) continue;
     for (int iy = y0; iy <= y1; ++iy) {
       for (int ix = x0; ix <= x1; ++ix) {
         const float h = height_[Index(ix, iy)];

@@ -34,6 +34,8 @@ class DepositMap {
     double width_mm;
   };
   int Index(int ix, int iy) const { return iy * nx_ + ix; }
+  // The highest metal over the tiles that hold grid points x0..x1, y0..y1 (kTile x kTile points a tile).
+  float TileTop(int x0, int x1, int y0, int y1) const;
   void Rasterise(const Bead& bead) const;
   void Flush() const;
   Eigen::Vector2d origin_;
@@ -41,6 +43,8 @@ class DepositMap {
   int nx_ = 0;
   int ny_ = 0;
   mutable std::vector<float> height_;
+  int tiles_x_ = 0;
+  mutable std::vector<float> tile_top_;  // per tile of kTile x kTile grid points: the highest metal in it, mm
   mutable std::vector<Bead> pending_;  // laid, not yet rasterised
   double top_;
 };
