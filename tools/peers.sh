@@ -11,7 +11,9 @@
 #  - FEniCSx (Debian python3-dolfinx, tools/peers/thermal_fenicsx.py, one process) against waam's thermal model
 #    (build/analysis/benchmarks/waam_thermal_peer) on the wall of tools/peers/thermal_wall.json: probe temperatures
 #    (target: within 2 % of the peak rise) and the time ratios; with WAAM_PEERS_THERMAL_FINE=1 also both on the same
-#    problem on cells refined twice (1 mm, the same source and 0.4 s steps; docs/THERMAL.md, "FEniCSx comparison").
+#    problem on cells refined twice (1 mm, the same source and 0.4 s steps; docs/THERMAL.md, "FEniCSx comparison"),
+#    and the 2 mm runs measured against those finer ones (which side the 2 mm difference comes from); with
+#    WAAM_PEERS_THERMAL_Q2=1 as well FEniCSx's Q2 elements on the 2 mm mesh as one more finer run (~80 s CPU).
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
 # Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam); WAAM_PEERS_ONLY=thermal runs the
 # FEniCSx comparison alone. Times are wall clock (the thermal comparison also prints CPU time), one run each; a ratio
@@ -149,4 +151,14 @@ if [ "${WAAM_PEERS_THERMAL_FINE:-0}" = 1 ]; then
     > "$out/thermal_fenicsx_1mm.json" 2> "$out/thermal_fenicsx_1mm.log" ||
     { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx_1mm.log)" >&2; exit 1; }
   /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json" "$thermal"
+  finer=("$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json")
+  if [ "${WAAM_PEERS_THERMAL_Q2:-0}" = 1 ]; then
+    OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" --degree 2 \
+      > "$out/thermal_fenicsx_q2.json" 2> "$out/thermal_fenicsx_q2.log" ||
+      { echo "peers: thermal_fenicsx.py --degree 2 failed (see $out/thermal_fenicsx_q2.log)" >&2; exit 1; }
+    finer+=("$out/thermal_fenicsx_q2.json")
+  fi
+  echo "the 2 mm runs against the finer ones:"
+  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam.json" "$out/thermal_fenicsx.json" "$thermal" \
+    --against "${finer[@]}" | sed -n '/^against finer/,$p'
 fi

@@ -1,10 +1,14 @@
 // Helpers shared by the analysis tests that run the `waam` executable and read what it writes.
 #pragma once
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -64,6 +68,35 @@ inline int RunWaam(const std::string& args, std::string* err) {
   const int status = std::system(command.c_str());
   *err = Slurp(err_file);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The output directory of `waam <args> -o <dir>`, run once for every test process of this build that asks for the
+// same args (ctest runs each test in a process of its own): the first to get here runs it under an exclusive lock
+// of the directory, the others wait for the lock and reuse its output. The directory is keyed by the args and the
+// executable's size and modification time, so a rebuilt executable runs again. A failed run leaves no "done" mark
+// and fails the test that made it (and each test after it that runs it again).
+inline std::filesystem::path SharedRun(const std::string& args) {
+  struct stat binary {};
+  EXPECT_EQ(::stat(WAAM_BINARY, &binary), 0) << WAAM_BINARY;
+  const std::string key = args + "|" + std::to_string(binary.st_size) + "|" +
+                          std::to_string(binary.st_mtim.tv_sec) + "." + std::to_string(binary.st_mtim.tv_nsec);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("waam_shared_run_" + std::to_string(std::hash<std::string>{}(key)));
+  std::filesystem::create_directories(dir);
+  const int lock = ::open((dir / "lock").c_str(), O_CREAT | O_RDWR, 0644);
+  EXPECT_GE(lock, 0) << dir;
+  ::flock(lock, LOCK_EX);
+  const std::filesystem::path out = dir / "out";
+  if (!std::filesystem::exists(dir / "done")) {
+    std::filesystem::remove_all(out);
+    std::string err;
+    const int code = RunWaam(args + " -o " + out.string(), &err);
+    EXPECT_EQ(code, 0) << err;
+    if (code == 0) std::ofstream(dir / "done") << key << "\n";
+  }
+  ::flock(lock, LOCK_UN);
+  ::close(lock);
+  return out;
 }
 
 // Every file below `dir` (none when it does not exist).

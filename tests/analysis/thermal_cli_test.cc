@@ -21,15 +21,10 @@ using cli_test::TempDir;
 
 std::string WallScenario() { return std::string(WAAM_SOURCE_DIR) + "/scenarios/thermal/wall_interpass.yaml"; }
 
-// The scenario's thermal run, made once for the tests that read it.
+// The scenario's thermal run, made once for the tests that read it (cli_test::SharedRun: once for all their
+// processes).
 const fs::path& WallRun() {
-  static const fs::path out = [] {
-    const fs::path dir = TempDir("thermal_wall") / "out";
-    std::string err;
-    const int code = RunWaam("thermal " + WallScenario() + " -q -o " + dir.string(), &err);
-    EXPECT_EQ(code, 0) << err;
-    return dir;
-  }();
+  static const fs::path out = cli_test::SharedRun("thermal " + WallScenario() + " -q");
   return out;
 }
 

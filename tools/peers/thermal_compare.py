@@ -7,25 +7,46 @@ the reference's times (both sample at the end of every step of the problem). Pri
 relative difference against the 2 % target, and the CPU and wall times of each side, the whole run and its time
 stepping alone (after the mesh, the forms and the matrices, or waam's grid and wall, are set up), with their ratios
 (reference / waam: above 1 means waam is faster).
-Usage: thermal_compare.py <waam.json> <fenicsx.json> <problem.json>
+With --against FILE... (finer runs of the same problem, from either peer) it also prints, per probe, how far each of
+the two compared runs lies from each finer run (largest difference over the run, % of that run's peak rise, signed
+as compared minus finer at that time): which side the difference between the two comes from.
+Usage: thermal_compare.py <waam.json> <fenicsx.json> <problem.json> [--against <finer.json>...]
 """
+import argparse
 import json
-import sys
 
 import numpy as np
 
 
-def main():
-    if len(sys.argv) != 4:
-        sys.exit("usage: thermal_compare.py <waam.json> <fenicsx.json> <problem.json>")
-    ours, ref, spec = (json.load(open(p)) for p in sys.argv[1:4])
-    ambient = spec["ambient_c"]
+def largest_difference(run, ref, name):
+    """The signed difference of run from ref where it is largest over ref's times (K), and that time (s)."""
     t_ref = np.asarray(ref["time_s"])
+    r = np.asarray(ref["probes_c"][name])
+    w = np.interp(t_ref, np.asarray(run["time_s"]), np.asarray(run["probes_c"][name]))
+    i = int(np.abs(w - r).argmax())
+    return w[i] - r[i], t_ref[i]
+
+
+def label(run, cell_mm):
+    """waam 2mm, Q1 1mm, ...: the side and its cell size (FEniCSx: the Lagrange degree on that mesh)."""
+    side = "waam" if run["peer"] == "waam" else f"Q{run['degree']}"
+    return f"{side} {cell_mm / run['refine']:g}mm"
+
+
+def main():
+    parser = argparse.ArgumentParser(description="compares waam's and FEniCSx's probe histories")
+    parser.add_argument("waam")
+    parser.add_argument("fenicsx")
+    parser.add_argument("problem")
+    parser.add_argument("--against", nargs="*", default=[], help="finer runs to measure both against")
+    args = parser.parse_args()
+    ours, ref, spec = (json.load(open(p)) for p in (args.waam, args.fenicsx, args.problem))
+    ambient = spec["ambient_c"]
     worst = 0.0
     print(f"{'probe':14s} {'peak_waam_c':>11s} {'peak_fenicsx_c':>14s} {'max_diff_k':>10s} {'of_rise_%':>9s}")
     for name, history in ref["probes_c"].items():
         r = np.asarray(history)
-        w = np.interp(t_ref, np.asarray(ours["time_s"]), np.asarray(ours["probes_c"][name]))
+        w = np.interp(np.asarray(ref["time_s"]), np.asarray(ours["time_s"]), np.asarray(ours["probes_c"][name]))
         rise = r.max() - ambient
         diff = np.abs(w - r).max()
         worst = max(worst, diff / rise)
@@ -36,11 +57,24 @@ def main():
           f"rtol {ref['rtol']:g}), {ref['steps']} steps, {ref['iterations']} CG iterations")
     print(f"{'seconds':8s} {'waam_cpu':>9s} {'fenicsx_cpu':>11s} {'ratio':>6s} {'waam_wall':>9s} {'fenicsx_wall':>12s} "
           f"{'ratio':>6s}")
-    for label, a, b, c, d in (
+    for row, a, b, c, d in (
             ("run", ours["cpu_s"], ref["cpu_s"], ours["wall_s"], ref["wall_s"]),
             ("stepping", ours["cpu_s"] - ours["setup_cpu_s"], ref["cpu_s"] - ref["setup_cpu_s"],
              ours["wall_s"] - ours["setup_s"], ref["wall_s"] - ref["setup_s"])):
-        print(f"{label:8s} {a:9.3f} {b:11.3f} {b / a:5.1f}x {c:9.3f} {d:12.3f} {d / c:5.1f}x")
+        print(f"{row:8s} {a:9.3f} {b:11.3f} {b / a:5.1f}x {c:9.3f} {d:12.3f} {d / c:5.1f}x")
+    finer = [json.load(open(p)) for p in args.against]
+    if finer:
+        h = spec["cell_mm"]
+        print("against finer runs (largest difference over the run, % of the finer run's peak rise, at time s):")
+        for f in finer:
+            print(f"{'probe':14s} " + " ".join(f"{label(a, h) + ' - ' + label(f, h):>24s}" for a in (ours, ref)))
+            for name in ref["probes_c"]:
+                rise = max(f["probes_c"][name]) - ambient
+                cells = []
+                for a in (ours, ref):
+                    d, t = largest_difference(a, f, name)
+                    cells.append(f"{100 * d / rise:+7.2f} % at {t:5.1f} s")
+                print(f"{name:14s} " + " ".join(f"{c:>24s}" for c in cells))
 
 
 if __name__ == "__main__":
