@@ -166,8 +166,10 @@ class ReplayCost : public ceres::CostFunction {
     const bool cached = !cache_x_.empty() && std::equal(cache_x_.begin(), cache_x_.end(), x);
     const bool jacobian = jacobians != nullptr && jacobians[0] != nullptr;
     const bool seeded = jacobian && !seed_.empty() && (cache_x_.empty() || cached) && !seed_used_;
-    if (cached && !jacobian) {
-      std::copy(cache_r_.begin(), cache_r_.end(), residuals);
+    // Ceres (2.1) asks the Jacobian with the candidate point and again once it accepts it: the second is the first.
+    if (cached && (!jacobian || differenced_)) {
+      if (residuals != nullptr) std::copy(cache_r_.begin(), cache_r_.end(), residuals);
+      if (jacobian) std::copy(last_jacobian_.begin(), last_jacobian_.end(), jacobians[0]);
       return true;
     }
     // Run 0 is the point itself (unless cached), run k + 1 the point with x_k moved by its step.
@@ -192,6 +194,7 @@ class ReplayCost : public ceres::CostFunction {
     if (cached) out[0] = cache_r_;
     cache_x_.assign(x, x + n_);
     cache_r_ = out[0];
+    differenced_ = jacobian && !seeded;
     if (residuals != nullptr) std::copy(out[0].begin(), out[0].end(), residuals);
     if (jacobian) {
       if (seeded) {
@@ -217,6 +220,7 @@ class ReplayCost : public ceres::CostFunction {
   bool keep_;
   std::vector<double> seed_;
   mutable bool seed_used_ = false;
+  mutable bool differenced_ = false;  // last_jacobian_ was differenced at cache_x_
   mutable std::vector<double> cache_x_, cache_r_, last_jacobian_;
   mutable std::string error_;
 };

@@ -191,5 +191,35 @@ TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
   EXPECT_NEAR(model.parameters.efficiency, fitted["parameters"]["efficiency"].get<double>(), 1e-12);
 }
 
+// Coarse to fine (--coarse-cell 4 on the 2 mm grid): the coarse stage only chooses the start of the fit on the
+// scenario's grid, so it ends at that grid's own answer: the one-stage fit's values within the tolerances' reach.
+TEST(ReplayRoundTrip, CoarseToFineFitEndsAtTheOneStageFitsValues) {
+  const fs::path dir = cli_test::TempDir("replay_fit_coarse");
+  ThermalParameters truth;
+  truth.efficiency = 0.7;
+  truth.convection_w_m2k = 25.0;
+  const fs::path scenario = WriteRoundTrip(dir, truth);
+  FitOptions options;
+  options.model = waam::analysis::FitModel::kThermal;
+  options.data = scenario;
+  options.free = {"efficiency", "convection"};
+  options.window = "0:60";
+  std::ostringstream out;
+  options.output = dir / "one_stage.json";
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  options.output = dir / "coarse_to_fine.json";
+  options.coarse_cell_mm = 4.0;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  const nlohmann::json one = cli_test::ReadJson(dir / "one_stage.json");
+  const nlohmann::json two = cli_test::ReadJson(options.output);
+  ASSERT_TRUE(two["coarse"].is_object()) << out.str();
+  EXPECT_TRUE(two["coarse"]["used"].get<bool>()) << out.str();
+  EXPECT_NEAR(two["fitted"]["efficiency"].get<double>(), one["fitted"]["efficiency"].get<double>(), 2e-3) << out.str();
+  EXPECT_NEAR(two["fitted"]["convection"].get<double>(), one["fitted"]["convection"].get<double>(), 1.0) << out.str();
+  EXPECT_NEAR(two["fitted"]["efficiency"].get<double>(), 0.7, 0.01) << out.str();
+  EXPECT_LT(two["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
+  std::cout << out.str();
+}
+
 }  // namespace
 }  // namespace waam::analysis

@@ -84,7 +84,7 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   sample_head.push_back(-1);
   active_of[grid] = id;
   std::array<int, 6> links;
-  std::uint8_t bits = 0;
+  std::uint8_t bits = 0, laid = 0;
   const Eigen::Vector3i c = CellIndex(grid);
   for (int f = 0; f < 6; ++f) {
     const Eigen::Vector3i n = c + Eigen::Vector3i(kFaceStep[f][0], kFaceStep[f][1], kFaceStep[f][2]);
@@ -96,9 +96,12 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
     bits |= static_cast<std::uint8_t>(1u << f);
     neighbour[other][f ^ 1] = id;
     linked[other] |= static_cast<std::uint8_t>(1u << (f ^ 1));
+    if (born_step >= 0) pending[other] |= static_cast<std::uint8_t>(1u << (f ^ 1));
+    if (born[other] >= 0) laid |= static_cast<std::uint8_t>(1u << f);
   }
   neighbour.push_back(links);
   linked.push_back(bits);
+  pending.push_back(laid);
   return id;
 }
 

@@ -15,9 +15,12 @@ constexpr std::size_t kCoarsestCells = 96;
 constexpr double kPoorCoarsening = 0.75;
 
 // One Gauss-Seidel sweep of A x = b over the chunks of ForChunks, forward or backward; inside a chunk the new values
-// are used at once, values of other chunks are those from before the sweep. x and before hold n + 1 values.
-void Sweep(const PaddedStencil& a, const std::vector<double>& b, std::vector<double>& x, std::vector<double>& before,
-           bool forward) {
+// are used at once, values of other chunks are those from before the sweep. x and before hold n + 1 values;
+// `inverse` holds 1 / A_ii. The y and z faces are summed first and the x faces (the neighbours next in the
+// sweep's order, just updated) last, and the diagonal's inverse multiplies: the chain from one cell's new value
+// to the next is a few operations long instead of seven additions and a division.
+void Sweep(const PaddedStencil& a, const std::vector<double>& inverse, const std::vector<double>& b,
+           std::vector<double>& x, std::vector<double>& before, bool forward) {
   const std::size_t n = a.size();
   if (n <= kChunk) {
     // One chunk: plain Gauss-Seidel (the zero slot reads 0).
@@ -25,14 +28,8 @@ void Sweep(const PaddedStencil& a, const std::vector<double>& b, std::vector<dou
     auto relax = [&](std::size_t i) {
       const std::array<int, 6>& nb = a.neighbour[i];
       const std::array<double, 6>& g = a.conductance[i];
-      double sum = b[i];
-      sum += g[0] * v[nb[0]];
-      sum += g[1] * v[nb[1]];
-      sum += g[2] * v[nb[2]];
-      sum += g[3] * v[nb[3]];
-      sum += g[4] * v[nb[4]];
-      sum += g[5] * v[nb[5]];
-      v[i] = sum / a.diagonal[i];
+      const double far = (b[i] + g[2] * v[nb[2]] + g[3] * v[nb[3]]) + (g[4] * v[nb[4]] + g[5] * v[nb[5]]);
+      v[i] = (far + (g[0] * v[nb[0]] + g[1] * v[nb[1]])) * inverse[i];
     };
     if (forward) {
       for (std::size_t i = 0; i < n; ++i) relax(i);
@@ -46,12 +43,12 @@ void Sweep(const PaddedStencil& a, const std::vector<double>& b, std::vector<dou
     auto relax = [&](std::size_t i) {
       const std::array<int, 6>& nb = a.neighbour[i];
       const std::array<double, 6>& g = a.conductance[i];
-      double sum = b[i];
-      for (int f = 0; f < 6; ++f) {
+      auto value = [&](int f) {
         const std::size_t u = static_cast<std::size_t>(nb[f]);
-        sum += g[f] * (u >= begin && u < end ? x[u] : before[u]);
-      }
-      x[i] = sum / a.diagonal[i];
+        return u >= begin && u < end ? x[u] : before[u];
+      };
+      const double far = (b[i] + g[2] * value(2) + g[3] * value(3)) + (g[4] * value(4) + g[5] * value(5));
+      x[i] = (far + (g[0] * value(0) + g[1] * value(1))) * inverse[i];
     };
     if (forward) {
       for (std::size_t i = begin; i < end; ++i) relax(i);
@@ -97,6 +94,11 @@ void AdditiveCorrectionMultigrid::Setup(const PaddedStencil& fine, const std::ve
   }
   if (!same) BuildStructure(ijk);
   SumCoefficients();
+  for (Level& level : levels_) {
+    const std::vector<double>& d = level.system.diagonal;
+    level.inverse.resize(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) level.inverse[i] = 1.0 / d[i];
+  }
 }
 
 bool AdditiveCorrectionMultigrid::SameStructure(const PaddedStencil& fine,
@@ -213,12 +215,12 @@ void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
   if (level + 1 == levels_.size()) {
     // The coarsest level: symmetric Gauss-Seidel pairs from zero (a symmetric operator).
     for (int pass = 0; pass < 8; ++pass) {
-      Sweep(a, L.b, L.x, L.before, true);
-      Sweep(a, L.b, L.x, L.before, false);
+      Sweep(a, L.inverse, L.b, L.x, L.before, true);
+      Sweep(a, L.inverse, L.b, L.x, L.before, false);
     }
     return;
   }
-  Sweep(a, L.b, L.x, L.before, true);
+  Sweep(a, L.inverse, L.b, L.x, L.before, true);
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) L.residual[i] = L.b[i] - a.Row(L.x.data(), i);
   });
@@ -227,7 +229,7 @@ void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
   for (std::size_t i = 0; i < n; ++i) coarse.b[L.parent[i]] += L.residual[i];
   Cycle(level + 1);
   for (std::size_t i = 0; i < n; ++i) L.x[i] += coarse.x[L.parent[i]];
-  Sweep(a, L.b, L.x, L.before, false);
+  Sweep(a, L.inverse, L.b, L.x, L.before, false);
 }
 
 }  // namespace waam::twin::internal

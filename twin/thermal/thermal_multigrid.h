@@ -64,6 +64,7 @@ class AdditiveCorrectionMultigrid {
   struct Level {
     PaddedStencil system;
     std::vector<int> parent;  // per cell: its block's index in the next coarser level (empty on the coarsest)
+    std::vector<double> inverse;  // 1 / the diagonal
     std::vector<double> b, residual;
     std::vector<double> x, before;  // n + 1 values, the last 0 (the zero slot)
   };

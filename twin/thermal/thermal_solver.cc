@@ -2,6 +2,8 @@
 // conjugate gradients, conservative enthalpy update) and the multirate recursion over regions nearer and nearer
 // the arc. Derivations and stability in docs/THERMAL.md.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -17,8 +19,9 @@ constexpr int kMaxIterations = 2000;
 constexpr std::size_t kMultigridCells = 512;
 // ... and stiff: conduction (the sum of the face conductances) at least this many times the storage and losses
 // (the rest of the diagonal), summed over the system. Milder systems converge in a few diagonally preconditioned
-// iterations, which cost a third of a V-cycle's.
-constexpr double kMultigridStiffness = 30.0;
+// iterations, each a fraction of a V-cycle's cost (at 30, aluminium's 1 s and micro steps took 24 of them a solve,
+// about 7 and 17 V-cycles now; docs/THERMAL.md, "Benchmark").
+constexpr double kMultigridStiffness = 10.0;
 // The nonlinear (chord) iteration of a step stops when every cell's enthalpy maps back to within this + 10 % of its
 // temperature change, or after kChordRounds re-solves: it exists to keep big steps from jumping the latent heat
 // (hundreds of K of mismatch), not to polish micro steps.
@@ -69,19 +72,23 @@ void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double*
   *slope = at1.convection + at1.radiation + at1.table - *offset;
 }
 
+// kReentrantFaceFactor to the power 0..4.
+constexpr std::array<double, 5> kEdgePowers = {1.0, kReentrantFaceFactor, kReentrantFaceFactor * kReentrantFaceFactor,
+                                               kReentrantFaceFactor * kReentrantFaceFactor * kReentrantFaceFactor,
+                                               kReentrantFaceFactor * kReentrantFaceFactor * kReentrantFaceFactor *
+                                                   kReentrantFaceFactor};
+
 // The factor on the conductance of the face f between cells c and j (both present before micro step m1):
 // kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
 double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
-  double factor = 1.0;
-  if (s.latest_born < m1) {
-    // Every linked cell is present: the faces where the two cells' links differ across the face's edges.
-    const unsigned across = 63u & ~(3u << (2 * (f / 2)));
-    for (unsigned differ = (s.linked[c] ^ s.linked[j]) & across; differ != 0; differ &= differ - 1) {
-      factor *= kReentrantFaceFactor;
-    }
-    return factor;
+  const unsigned across = 63u & ~(3u << (2 * (f / 2)));
+  if (s.latest_born < m1 || ((s.pending[c] | s.pending[j]) & across) == 0) {
+    // Every linked cell beyond the edges is present (none of them is laid later in the batch): the edges where the
+    // two cells' links differ.
+    return kEdgePowers[static_cast<std::size_t>(std::popcount((s.linked[c] ^ s.linked[j]) & across))];
   }
+  double factor = 1.0;
   for (int e = 0; e < 6; ++e) {
     if (e / 2 == f / 2) continue;
     const int p = s.neighbour[c][e], q = s.neighbour[j][e];
@@ -167,8 +174,8 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
 // Conjugate gradients on the level's system from the scratch's x and r = b - A x, preconditioned by one multigrid
 // V-cycle (`multigrid`) or the diagonal, until every Jacobi correction |r_i / A_ii| is below the tolerance. Each
 // iteration takes one stencil product: p = z + beta p and A p = A z + beta (A p)_old in one pass. Returns the
-// iterations.
-int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
+// iterations. With `same_faces` the cells are those of the last solve, whose grid coordinates L.ijk still holds.
+int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
   LevelScratch& w = L.scratch;
   const PaddedStencil& a = w.stencil;
   const std::size_t n = L.cells.size();
@@ -178,14 +185,14 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
   double* z = w.z.data();
   double* ap = w.ap.data();
   const double* inv = w.inverse_diagonal.data();
-  if (multigrid) {
+  if (multigrid && !(same_faces && L.ijk.size() == n)) {
     L.ijk.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
       L.ijk[i] = {g.x(), g.y(), g.z()};
     }
-    L.multigrid.Setup(a, L.ijk);
   }
+  if (multigrid) L.multigrid.Setup(a, L.ijk);
   // z = B r; returns r.z.
   auto precondition = [&]() {
     if (multigrid) L.multigrid.Apply(w.r, w.z);
@@ -244,13 +251,19 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid) {
 // Solves the level's system by preconditioned conjugate gradients from `guess` (degC by active cell), until every
 // Jacobi correction |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below the tolerance.
 // Stiff systems of kMultigridCells cells or more are preconditioned by one additive-correction multigrid V-cycle
-// (thermal_multigrid.h), the others by the diagonal. Returns the iterations.
-int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess) {
+// (thermal_multigrid.h), the others by the diagonal. With `same_faces` the system differs from the one last solved
+// only in its diagonal and right-hand side (a nonlinear round), so only the diagonal is copied. Returns the iterations.
+int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces) {
   const std::size_t n = L.cells.size();
   if (n == 0) return 0;
   LevelScratch& w = L.scratch;
   const PaddedStencil& a = w.stencil;
-  w.stencil.Assign(L);
+  if (same_faces) {
+    std::copy(L.diagonal.begin(), L.diagonal.end(), w.stencil.diagonal.begin());
+  } else {
+    w.stencil.Assign(L);
+    L.ijk.clear();  // other cells: their grid coordinates are found again if the multigrid is taken
+  }
   // x, z and p are multiplied by the matrix: n + 1 values, the last the zero slot.
   w.x.resize(n + 1);
   w.z.resize(n + 1);
@@ -286,7 +299,7 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
   int iterations = 0;
   if (*std::max_element(w.part_max.begin(), w.part_max.end()) > s.settings.solver_tolerance_c) {
     const bool multigrid = n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness * Sum(w.part_b);
-    iterations = Iterate(s, L, multigrid);
+    iterations = Iterate(s, L, multigrid, same_faces);
   }
   std::copy(x, x + n, L.t_new.begin());
   return iterations;
@@ -347,7 +360,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
                const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   Assemble(s, level, candidates, m0, m1, finer_apart, local_of);
-  Count(s, level, L.cells.size(), SolveLevel(s, L, guess));
+  Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
   std::vector<std::uint8_t> part_converged(Chunks(n));
   for (int round = 0; round < kChordRounds; ++round) {
@@ -370,7 +383,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
     });
     if (std::all_of(part_converged.begin(), part_converged.end(), [](std::uint8_t v) { return v != 0; })) return;
     Relinearise(s, L);
-    Count(s, level, n, SolveLevel(s, L, s.chord));
+    Count(s, level, n, SolveLevel(s, L, s.chord, true));
   }
 }
 
@@ -549,6 +562,7 @@ void SolveBatch(ThermalState& s) {
   for (const SampleRequest& q : s.requests) s.sample_head[q.cell] = -1;
   s.requests.clear();
   for (int& b : s.born) b = -1;
+  std::fill(s.pending.begin(), s.pending.end(), std::uint8_t{0});
   s.latest_born = -1;
   s.time_s += s.batch_start_s[steps];
   s.last_step_s = s.batch.back().seconds;

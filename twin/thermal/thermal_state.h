@@ -129,6 +129,7 @@ struct ThermalState {
   std::vector<std::array<int, 6>> neighbour;  // active-cell id across -x, +x, -y, +y, -z, +z, or kNoCell
   std::vector<int> born;            // index of the micro step of the pending batch that lays it; -1 = present
   std::vector<std::uint8_t> linked;  // bit f set when neighbour[f] is an active cell
+  std::vector<std::uint8_t> pending; // bit f set when neighbour[f] is laid in the pending batch (born >= 0)
   int latest_born = -1;             // the highest born of the pending batch (-1: no cell laid in it)
   std::vector<double> enthalpy;     // J/m^3 (relative to each table's reference temperature)
   std::vector<double> temperature;  // degC, the state's temperature (from the enthalpy)
