@@ -282,6 +282,105 @@ nlohmann::json ThermalValuesJson(const std::vector<FreeParameter>& free, const T
   return j;
 }
 
+// The start values of a fit: the model's parameters, where a free emissivity starts from the deposit's own (the
+// scenario's < 0 means "each material's").
+ThermalParameters FitStart(const ReplayModel& model, const std::vector<FreeParameter>& free) {
+  ThermalParameters start = model.parameters;
+  if (start.emissivity < 0.0) {
+    for (const FreeParameter& f : free) {
+      if (f.name == "emissivity") start.emissivity = model.settings.deposit.emissivity;
+    }
+  }
+  return start;
+}
+
+// Coarse to fine: the same fit on a grid of --coarse-cell mm first (about 8 times fewer cells at twice the spacing);
+// when usable, its answer replaces x and its Jacobian becomes seed, to start the fit on the scenario's grid, which
+// alone decides the fitted values. Returns the stage's record for fit.json (null without a coarse stage).
+nlohmann::json RunCoarseStage(const FitOptions& options, const ReplayModel& model, const ReplayResiduals& residuals,
+                              const std::vector<FreeParameter>& free, std::vector<double>& x,
+                              std::vector<double>& seed, std::ostream& out) {
+  const double coarse_mm = options.coarse_cell_mm;
+  WAAM_THROW_UNLESS(coarse_mm == 0.0 || coarse_mm > model.settings.cell_mm,
+                    "--coarse-cell " << coarse_mm << " mm: must be 0 (no coarse stage) or larger than thermal.cell_mm ("
+                                     << model.settings.cell_mm << " mm)");
+  if (coarse_mm <= model.settings.cell_mm) return nullptr;
+  std::vector<std::string> overrides = options.overrides;
+  std::ostringstream cell;
+  cell << "thermal.cell_mm=" << std::setprecision(17) << coarse_mm;
+  overrides.push_back(cell.str());
+  const ReplayModel coarse_model = LoadReplayModel(options.data, overrides, options.start);
+  const ReplayResiduals coarse = residuals.OnModel(coarse_model);
+  const StageOutcome stage = SolveStage(coarse, x, options.max_iterations, false, {});
+  const bool usable = stage.summary.IsSolutionUsable() && stage.error.empty();
+  if (usable) x = stage.x, seed = stage.jacobian;
+  const ThermalParameters reached = coarse.Parameters(stage.x.data());
+  out << "  coarse " << coarse_mm << " mm:" << std::setprecision(5);
+  for (const FreeParameter& f : free) out << " " << f.name << " " << reached.*(f.member);
+  out << " (" << stage.summary.iterations.size() << " iterations, " << stage.replays << " replays, "
+      << stage.seconds << " s" << (usable ? "" : "; not used: " + stage.summary.message + stage.error) << ")\n";
+  return {{"cell_mm", coarse_mm},
+          {"fitted", ThermalValuesJson(free, reached)},
+          {"used", usable},
+          {"termination", ceres::TerminationTypeToString(stage.summary.termination_type)},
+          {"iterations", stage.summary.iterations.size()},
+          {"replays", stage.replays},
+          {"time_s", stage.seconds}};
+}
+
+// The fit's record without its timings: the values, those that ended on a bound, the errors of the fitted and the
+// start runs over the window and the held-out rest of the log, and the solver's summary.
+nlohmann::json ThermalFitDoc(const ReplayModel& model, const std::vector<FreeParameter>& free,
+                             const ThermalParameters& start, const ThermalParameters& fitted,
+                             const ReplaySimulation& start_run, const ReplaySimulation& fitted_run,
+                             const std::pair<double, double>& window, const ceres::Solver::Summary& summary,
+                             models::SolverTermination termination, int replays) {
+  nlohmann::json doc;
+  doc["parameters"] = ThermalParametersJson(fitted);
+  doc["set"] = SetLines(fitted);
+  doc["free"] = nlohmann::json::array();
+  for (const FreeParameter& f : free) doc["free"].push_back(f.name);
+  // A value that ended on its bound is a fit the bounds decided, not the data: listed, and said on stdout.
+  doc["at_bound"] = nlohmann::json::array();
+  for (const FreeParameter& f : free) {
+    const double v = fitted.*(f.member);
+    if (v <= f.lo + 1e-9 * f.scale || v >= f.hi - 1e-9 * f.scale) doc["at_bound"].push_back(f.name);
+  }
+  doc["start"] = ThermalValuesJson(free, start);
+  doc["fitted"] = ThermalValuesJson(free, fitted);
+  doc["window"] = ReplayErrorsJson(model, fitted_run, window.first, window.second);
+  doc["held_out"] = ReplayErrorsJson(model, fitted_run, window.first, window.second, true);
+  doc["start_window"] = ReplayErrorsJson(model, start_run, window.first, window.second)["overall"];
+  doc["start_held_out"] = ReplayErrorsJson(model, start_run, window.first, window.second, true)["overall"];
+  doc["solver"] = {{"termination", termination},
+                   {"message", summary.message},
+                   {"iterations", summary.iterations.size()},
+                   {"initial_cost", summary.initial_cost},
+                   {"final_cost", summary.final_cost},
+                   {"replays", replays},
+                   {"report", summary.BriefReport()}};
+  return doc;
+}
+
+// The fit's summary on stdout: start and fitted values, bound notes, the rmse of window and held-out part.
+void PrintThermalFit(const std::vector<FreeParameter>& free, const ThermalParameters& start,
+                     const ThermalParameters& fitted, const nlohmann::json& doc, std::size_t iterations,
+                     int replays, double seconds, std::ostream& out) {
+  out << std::setprecision(5);
+  for (const FreeParameter& f : free) {
+    out << "  " << std::left << std::setw(11) << f.name << std::right << " start " << start.*(f.member)
+        << "  fitted " << fitted.*(f.member) << "\n";
+  }
+  for (const auto& name : doc["at_bound"]) {
+    out << "  note: " << name.get<std::string>() << " ended on its bound: the data would move it further\n";
+  }
+  auto rmse = [](const nlohmann::json& j) { return j["overall"]["rmse_c"].dump(); };
+  out << "  window   rmse " << rmse(doc["window"]) << " degC (start " << doc["start_window"]["rmse_c"].dump()
+      << ")\n  held out rmse " << rmse(doc["held_out"]) << " degC (start " << doc["start_held_out"]["rmse_c"].dump()
+      << ")\n  solver   Ceres " << doc["solver"]["termination"].get<std::string>() << ", " << iterations
+      << " iterations, " << replays << " replays, " << seconds << " s\n";
+}
+
 }  // namespace
 
 FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out) {
@@ -293,13 +392,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   WAAM_THROW_UNLESS(!options.window.empty(), "--window START:END is required: the part of the log fitted, in s");
   const ReplayModel model = LoadReplayModel(options.data, options.overrides, options.start);
   const std::pair<double, double> window = ParseLogWindow(options.window, model.log, "--window");
-  ThermalParameters start = model.parameters;
-  // A free emissivity starts from the deposit's own (the scenario's < 0 means "each material's").
-  if (start.emissivity < 0.0) {
-    for (const FreeParameter& f : free) {
-      if (f.name == "emissivity") start.emissivity = model.settings.deposit.emissivity;
-    }
-  }
+  const ThermalParameters start = FitStart(model, free);
   const ReplayResiduals residuals(model, free, start, window);
   WAAM_THROW_UNLESS(residuals.size() > free.size(),
                     "--window '" << options.window << "': " << residuals.size() << " measured temperatures in it; "
@@ -312,37 +405,8 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
 
   std::vector<double> x(free.size());
   for (std::size_t k = 0; k < free.size(); ++k) x[k] = start.*(free[k].member) / free[k].scale;
-  // Coarse to fine: the same fit on a grid of coarse_mm first (about 8 times fewer cells at twice the spacing); its
-  // answer and its Jacobian start the fit on the scenario's grid, which alone decides the fitted values.
-  const double coarse_mm = options.coarse_cell_mm;
-  WAAM_THROW_UNLESS(coarse_mm == 0.0 || coarse_mm > model.settings.cell_mm,
-                    "--coarse-cell " << coarse_mm << " mm: must be 0 (no coarse stage) or larger than thermal.cell_mm ("
-                                     << model.settings.cell_mm << " mm)");
   std::vector<double> seed;
-  nlohmann::json coarse_doc = nullptr;
-  if (coarse_mm > model.settings.cell_mm) {
-    std::vector<std::string> overrides = options.overrides;
-    std::ostringstream cell;
-    cell << "thermal.cell_mm=" << std::setprecision(17) << coarse_mm;
-    overrides.push_back(cell.str());
-    const ReplayModel coarse_model = LoadReplayModel(options.data, overrides, options.start);
-    const ReplayResiduals coarse = residuals.OnModel(coarse_model);
-    const StageOutcome stage = SolveStage(coarse, x, options.max_iterations, false, {});
-    const bool usable = stage.summary.IsSolutionUsable() && stage.error.empty();
-    if (usable) x = stage.x, seed = stage.jacobian;
-    const ThermalParameters reached = coarse.Parameters(stage.x.data());
-    coarse_doc = {{"cell_mm", coarse_mm},
-                  {"fitted", ThermalValuesJson(free, reached)},
-                  {"used", usable},
-                  {"termination", ceres::TerminationTypeToString(stage.summary.termination_type)},
-                  {"iterations", stage.summary.iterations.size()},
-                  {"replays", stage.replays},
-                  {"time_s", stage.seconds}};
-    out << "  coarse " << coarse_mm << " mm:" << std::setprecision(5);
-    for (const FreeParameter& f : free) out << " " << f.name << " " << reached.*(f.member);
-    out << " (" << stage.summary.iterations.size() << " iterations, " << stage.replays << " replays, "
-        << stage.seconds << " s" << (usable ? "" : "; not used: " + stage.summary.message + stage.error) << ")\n";
-  }
+  const nlohmann::json coarse_doc = RunCoarseStage(options, model, residuals, free, x, seed, out);
   const StageOutcome fine = SolveStage(residuals, x, options.max_iterations, true, std::move(seed));
   const ceres::Solver::Summary& summary = fine.summary;
 
@@ -367,50 +431,15 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
     fitted_run = run->Result();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
-  nlohmann::json doc;
-  doc["parameters"] = ThermalParametersJson(fitted);
-  doc["set"] = SetLines(fitted);
-  doc["free"] = nlohmann::json::array();
-  for (const FreeParameter& f : free) doc["free"].push_back(f.name);
-  // A value that ended on its bound is a fit the bounds decided, not the data: listed, and said on stdout.
-  doc["at_bound"] = nlohmann::json::array();
-  for (const FreeParameter& f : free) {
-    const double v = fitted.*(f.member);
-    if (v <= f.lo + 1e-9 * f.scale || v >= f.hi - 1e-9 * f.scale) doc["at_bound"].push_back(f.name);
-  }
-  doc["start"] = ThermalValuesJson(free, start);
-  doc["fitted"] = ThermalValuesJson(free, fitted);
-  doc["window"] = ReplayErrorsJson(model, fitted_run, window.first, window.second);
-  doc["held_out"] = ReplayErrorsJson(model, fitted_run, window.first, window.second, true);
-  doc["start_window"] = ReplayErrorsJson(model, start_run, window.first, window.second)["overall"];
-  doc["start_held_out"] = ReplayErrorsJson(model, start_run, window.first, window.second, true)["overall"];
+  nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, summary, termination,
+                                     residuals.replays());
   doc["coarse"] = coarse_doc;
-  doc["solver"] = {{"termination", termination},
-                   {"message", summary.message},
-                   {"iterations", summary.iterations.size()},
-                   {"initial_cost", summary.initial_cost},
-                   {"final_cost", summary.final_cost},
-                   {"replays", residuals.replays()},
-                   {"report", summary.BriefReport()}};
   doc["time_s"] = seconds;
   doc["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   doc["scenario"] = options.data.string();
   doc["log"] = {{"file", model.log.file}, {"rows", model.log.time_s.size()}, {"duration_s", model.log.time_s.back()}};
   doc["log_issues"] = LogIssuesJson(model.log);
-
-  out << std::setprecision(5);
-  for (const FreeParameter& f : free) {
-    out << "  " << std::left << std::setw(11) << f.name << std::right << " start " << start.*(f.member)
-        << "  fitted " << fitted.*(f.member) << "\n";
-  }
-  for (const auto& name : doc["at_bound"]) {
-    out << "  note: " << name.get<std::string>() << " ended on its bound: the data would move it further\n";
-  }
-  auto rmse = [](const nlohmann::json& j) { return j["overall"]["rmse_c"].dump(); };
-  out << "  window   rmse " << rmse(doc["window"]) << " degC (start " << doc["start_window"]["rmse_c"].dump()
-      << ")\n  held out rmse " << rmse(doc["held_out"]) << " degC (start " << doc["start_held_out"]["rmse_c"].dump()
-      << ")\n  solver   Ceres " << doc["solver"]["termination"].get<std::string>() << ", " << summary.iterations.size()
-      << " iterations, " << residuals.replays() << " replays, " << seconds << " s\n";
+  PrintThermalFit(free, start, fitted, doc, summary.iterations.size(), residuals.replays(), seconds, out);
   return internal::Finish(converged, message, doc, options, out);
 }
 

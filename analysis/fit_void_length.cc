@@ -37,6 +37,91 @@ void PrintCv(std::ostream& out, const char* name, const m::CrossValidationResult
   out << "\n" << std::defaultfloat;
 }
 
+// The model written: trained on every row; fail_message says why it failed (the model is then null).
+std::unique_ptr<m::VoidLengthModel> FitWholeData(const FitOptions& options,
+                                                 const std::vector<m::JunctionSample>& samples,
+                                                 const m::DataSource& source, const m::VoidNetworkOptions& net_options,
+                                                 std::string& fail_message) {
+  std::unique_ptr<m::VoidLengthModel> model;
+  if (options.kind == VoidModelKind::kNetwork) {
+    m::VoidNetworkFit fit = m::TrainVoidLengthNetwork(samples, source, net_options);
+    if (fit.ok) model = std::move(fit.model);
+    fail_message = fit.message;
+  } else {
+    m::VoidBaselineFit fit = m::FitVoidLengthBaseline(samples, source);
+    if (fit.ok) model = std::move(fit.model);
+    fail_message = fit.message;
+  }
+  return model;
+}
+
+// The rows whose labels --holdout names, in the order of the labels.
+std::vector<int> HeldOutRows(const FitOptions& options, const std::vector<m::JunctionSample>& samples) {
+  std::vector<int> held;
+  for (const std::string& label : options.holdout) {
+    for (int i = 0; i < static_cast<int>(samples.size()); ++i) {
+      if (samples[i].label == label) held.push_back(i);
+    }
+  }
+  return held;
+}
+
+// The network's shape and training settings, one line.
+void PrintNetworkLine(std::ostream& out, int n, const m::VoidNetworkOptions& net_options, int net_params,
+                      const FitOptions& options) {
+  out << "junction void length L [mm], " << n << " junctions; network " << net_options.hidden.size()
+      << " hidden layers (";
+  for (std::size_t k = 0; k < net_options.hidden.size(); ++k) out << (k ? "-" : "") << net_options.hidden[k];
+  out << "), " << net_params << " weights, " << net_options.restarts << " restarts, l2 " << net_options.l2
+      << (net_options.bayesian ? " (Bayesian update)" : "") << (net_options.ensemble ? ", ensemble of restarts" : "")
+      << ", angles " << NameOf(options.angle_order) << "\n";
+}
+
+// The model written: its parameters, the fit statistics and the solver's summary.
+void PrintWrittenModel(std::ostream& out, const m::VoidLengthModel& model, VoidModelKind kind, int net_params) {
+  out << "model written: " << model.kind() << "\n";
+  if (kind == VoidModelKind::kBaseline) {
+    const auto& b = static_cast<const m::VoidLengthBaseline&>(model);
+    out << std::setprecision(6) << "  params   : a = " << b.a_mm() << " mm, b = " << b.b_mm()
+        << " mm  (L = a + b (1/sin(theta_min/2) - 1))\n";
+  } else {
+    const nlohmann::json t = model.ToJson()["training"];
+    out << "  params   : " << net_params << " weights; l2 after evidence updates " << t["l2_final"].get<double>()
+        << ", effective parameters " << std::setprecision(4) << t["effective_params"].get<double>() << "\n";
+  }
+  const nlohmann::json training = model.ToJson()["training"];
+  std::ostringstream note;
+  if (!training.is_null()) {
+    note << "sqrt(SSE / (n - gamma)), gamma = " << std::setprecision(4)
+         << training["effective_params"].get<double>() << " effective parameters";
+  }
+  PrintStats(out, model.fit().stats, "mm", note.str());
+  PrintSolver(out, model.fit().solver);
+}
+
+// Dissertation Table 11's hold-out: each held row's measured length and the two models' predictions (null where a
+// model failed to train), printed and returned for fit.json.
+nlohmann::json PrintHoldout(std::ostream& out, const std::vector<m::JunctionSample>& samples,
+                            const std::vector<int>& held, const m::VoidLengthModel* held_net,
+                            const m::VoidLengthModel* held_base) {
+  nlohmann::json holdout = nlohmann::json::array();
+  out << "hold-out (dissertation Table 11), trained on the other "
+      << static_cast<int>(samples.size()) - static_cast<int>(held.size())
+      << " rows:\n  junction  measured  network  baseline\n";
+  for (int i : held) {
+    const double pn = held_net ? held_net->PredictMm(samples[i].junction) : NAN;
+    const double pb = held_base ? held_base->PredictMm(samples[i].junction) : NAN;
+    out << "  " << std::left << std::setw(8) << samples[i].label << std::right << std::fixed << std::setprecision(2)
+        << std::setw(10) << samples[i].void_length_mm << std::setw(9) << pn << std::setw(10) << pb << "\n"
+        << std::defaultfloat;
+    holdout.push_back({{"label", samples[i].label},
+                       {"measured_mm", samples[i].void_length_mm},
+                       {"network_mm", std::isfinite(pn) ? nlohmann::json(pn) : nlohmann::json(nullptr)},
+                       {"baseline_mm", std::isfinite(pb) ? nlohmann::json(pb) : nlohmann::json(nullptr)}});
+  }
+  return holdout;
+}
+
 }  // namespace
 
 std::vector<m::JunctionSample> ReadJunctions(const FitOptions& options, const CsvTable& table) {
@@ -105,18 +190,8 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
   Progress progress("fit void-length", static_cast<std::size_t>(folds + 2), "trainings", options.quiet);
   std::size_t done = 0;
 
-  // The model written: trained on every row.
-  std::unique_ptr<m::VoidLengthModel> model;
   std::string fail_message;
-  if (options.kind == VoidModelKind::kNetwork) {
-    m::VoidNetworkFit fit = m::TrainVoidLengthNetwork(samples, source, net_options);
-    if (fit.ok) model = std::move(fit.model);
-    fail_message = fit.message;
-  } else {
-    m::VoidBaselineFit fit = m::FitVoidLengthBaseline(samples, source);
-    if (fit.ok) model = std::move(fit.model);
-    fail_message = fit.message;
-  }
+  const std::unique_ptr<m::VoidLengthModel> model = FitWholeData(options, samples, source, net_options, fail_message);
   progress.Update(++done);
 
   const m::CrossValidationResult cv_net =
@@ -124,13 +199,7 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
   const m::CrossValidationResult cv_base = m::CrossValidate(samples, train_baseline, cv_options);
 
   // Dissertation Table 11: train on the other rows, predict the named junctions.
-  nlohmann::json holdout = nlohmann::json::array();
-  std::vector<int> held;
-  for (const std::string& label : options.holdout) {
-    for (int i = 0; i < n; ++i) {
-      if (samples[i].label == label) held.push_back(i);
-    }
-  }
+  const std::vector<int> held = HeldOutRows(options, samples);
   std::unique_ptr<m::VoidLengthModel> held_net, held_base;
   if (!held.empty()) {
     std::vector<m::JunctionSample> rest;
@@ -143,50 +212,15 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
   progress.Update(++done);
   progress.Finish();
 
-  out << "junction void length L [mm], " << n << " junctions; network " << net_options.hidden.size()
-      << " hidden layers (";
-  for (std::size_t k = 0; k < net_options.hidden.size(); ++k) out << (k ? "-" : "") << net_options.hidden[k];
-  out << "), " << net_params << " weights, " << net_options.restarts << " restarts, l2 " << net_options.l2
-      << (net_options.bayesian ? " (Bayesian update)" : "") << (net_options.ensemble ? ", ensemble of restarts" : "")
-      << ", angles " << NameOf(options.angle_order) << "\n";
-  if (model) {
-    out << "model written: " << model->kind() << "\n";
-    if (options.kind == VoidModelKind::kBaseline) {
-      const auto* b = static_cast<const m::VoidLengthBaseline*>(model.get());
-      out << std::setprecision(6) << "  params   : a = " << b->a_mm() << " mm, b = " << b->b_mm()
-          << " mm  (L = a + b (1/sin(theta_min/2) - 1))\n";
-    } else {
-      const nlohmann::json t = model->ToJson()["training"];
-      out << "  params   : " << net_params << " weights; l2 after evidence updates " << t["l2_final"].get<double>()
-          << ", effective parameters " << std::setprecision(4) << t["effective_params"].get<double>() << "\n";
-    }
-    const nlohmann::json training = model->ToJson()["training"];
-    std::ostringstream note;
-    if (!training.is_null()) {
-      note << "sqrt(SSE / (n - gamma)), gamma = " << std::setprecision(4)
-           << training["effective_params"].get<double>() << " effective parameters";
-    }
-    PrintStats(out, model->fit().stats, "mm", note.str());
-    PrintSolver(out, model->fit().solver);
-  }
+  PrintNetworkLine(out, n, net_options, net_params, options);
+  if (model) PrintWrittenModel(out, *model, options.kind, net_params);
   out << (options.leave_one_out ? "leave-one-out" : std::to_string(folds) + "-fold") << " cross-validation (seed "
       << options.seed << "), held-out error = predicted - measured:\n";
   PrintCv(out, "network", cv_net, cv_options);
   PrintCv(out, "baseline", cv_base, cv_options);
+  nlohmann::json holdout = nlohmann::json::array();
   if (!held.empty()) {
-    out << "hold-out (dissertation Table 11), trained on the other " << n - static_cast<int>(held.size())
-        << " rows:\n  junction  measured  network  baseline\n";
-    for (int i : held) {
-      const double pn = held_net ? held_net->PredictMm(samples[i].junction) : NAN;
-      const double pb = held_base ? held_base->PredictMm(samples[i].junction) : NAN;
-      out << "  " << std::left << std::setw(8) << samples[i].label << std::right << std::fixed << std::setprecision(2)
-          << std::setw(10) << samples[i].void_length_mm << std::setw(9) << pn << std::setw(10) << pb << "\n"
-          << std::defaultfloat;
-      holdout.push_back({{"label", samples[i].label},
-                         {"measured_mm", samples[i].void_length_mm},
-                         {"network_mm", std::isfinite(pn) ? nlohmann::json(pn) : nlohmann::json(nullptr)},
-                         {"baseline_mm", std::isfinite(pb) ? nlohmann::json(pb) : nlohmann::json(nullptr)}});
-    }
+    holdout = PrintHoldout(out, samples, held, held_net.get(), held_base.get());
   } else if (!options.holdout.empty()) {
     out << "hold-out: none of the labels were found in the data; skipped\n";
   }

@@ -20,8 +20,12 @@ export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$(pwd)/tools/sanitize.supp:prin
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # The scheduler tests (label cluster) run the Release build only: they check Slurm, Dask and the scripts.
 # Six thermal tests that each repeat the same six-layer wall run (40-85 s apiece here, a few seconds in Release) run
-# in the Release build only; ThermalCli.WritesEveryOutputAndTheTimelineAddsUp runs that wall under the sanitizers,
-# and the thermal model's own tests (twin/thermal) all run here.
+# in the Release build only; ThermalCli.WritesEveryOutputAndTheTimelineAddsUp runs a three-layer cut of that wall
+# under the sanitizers, and the thermal model's own tests (twin/thermal) all run here.
+# The 40-layer bent tube's convergence in two compensations (23 s here) checks numbers; the compensation loop's code
+# is sanitized by the 16-layer tube's tests (Compensation.LoopThatCannotReachTheTolerance...). The scenarios of
+# scenarios/cell/ beyond one per kind of cell (CheckCliTest.EachKindOfCell...) are checked in Release only; their
+# faults are sanitized by PlantedFaultTest.*.
 # Tests that rerun a whole command on 1 and 4 threads to compare the outputs (24-32 s apiece here) check determinism,
 # which the Release build checks as well; the code they run is sanitized by the single-run tests of the same
 # commands. The planted-clamp placement search (75 s here) has a smaller sanitized sibling
@@ -30,5 +34,6 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 release_only='^(ThermalCli\.(WaitsHold|ProbeHistories|RunStep)|ThermalRun\.(InterpassWaits|WithoutTheLimit|EnergyBalanceCloses)'
 release_only+='|PlanCommandTest\.SamePlanOnOneAndFourThreads|Compensation\.SameOnOneAndFourThreads'
 release_only+='|ParallelCheck\.SameCheckJsonOnOneAndFourThreads|PlaceCliTest\.ThePlantedClampFaultGetsAPlacementThatPasses'
+release_only+='|Compensation\.BentTubeConvergesWithinTwoIterations|CheckCliTest\.EveryOtherCellScenario'
 release_only+='|ViewerBrowserTest\.)'
 ctest --test-dir "$build" --output-on-failure -j"$jobs" -LE cluster -E "$release_only" "$@"

@@ -40,8 +40,14 @@ std::vector<double> ReadDoubles(hid_t file, const std::string& name) {
   return values;
 }
 
+// The same wall cut to 40 x 8 x 6 mm (three layers, still waiting for 200 degC): every output and the timeline sums
+// do not need the six layers, and this is the run the sanitizer build checks (the six-layer tests run in Release).
 TEST(ThermalCli, WritesEveryOutputAndTheTimelineAddsUp) {
-  const fs::path& out = WallRun();
+  const fs::path out = TempDir("thermal_short_wall") / "out";
+  std::string err;
+  ASSERT_EQ(RunWaam("thermal " + WallScenario() + " -q --set part.generator.size_mm=[40,8,6] -o " + out.string(), &err),
+            0)
+      << err;
   for (const char* name : {"thermal.json", "thermal.h5", "interpass.png", "probes.png"}) {
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
   }
@@ -58,6 +64,7 @@ TEST(ThermalCli, WritesEveryOutputAndTheTimelineAddsUp) {
   EXPECT_NEAR(arc, t["arc_on_s"].get<double>(), 1e-6);
   EXPECT_NEAR(travel, t["travel_s"].get<double>(), 1e-6);
   EXPECT_NEAR(wait, t["wait_s"].get<double>(), 1e-6);
+  EXPECT_GT(wait, 0.0) << "the short wall must still wait for 200 degC";
   EXPECT_EQ(j["build_time_s"], t["total_s"]);
   ASSERT_EQ(j["layers"].size(), t["layers"].size());
   for (std::size_t l = 0; l < j["layers"].size(); ++l) {
