@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "analysis/cell_files.h"
@@ -238,6 +239,32 @@ TEST(CellSweepTest, WallTheSwingClipsBetweenTwoSamplesIsFoundOnlyByTheContinuous
 // The pairs the distance queries take are MuJoCo's: none of the built-in cell's <exclude> body pairs (the pedestal
 // and the tilt housing it would reach from 45 deg of tilt), and the pairs no rule excludes (the arm's base against the
 // tilt housing).
+// A geom the continuous check cannot bound (a height field: no convex shape for the distance queries) sends the
+// check back to the discrete mode, with the geom and the reason in the report, never silently.
+TEST(CellSweepTest, AnUnboundedGeomFallsBackToDiscreteWithTheReason) {
+  std::ifstream in(analysis::BuiltinCellPath());
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string anchor = "<worldbody>";
+  ASSERT_NE(xml.find(anchor), std::string::npos);
+  xml.insert(xml.find(anchor),
+             "<asset><hfield name=\"bumps\" nrow=\"2\" ncol=\"2\" size=\"0.2 0.2 0.01 0.01\"/></asset>\n");
+  xml.insert(xml.find(anchor) + anchor.size(),
+             "\n<geom name=\"floor_bumps\" type=\"hfield\" hfield=\"bumps\" pos=\"3 3 0\"/>");
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  X_WB.translate(Eigen::Vector3d(1050.0, 0.0, 0.0));
+  X_WB.rotate(Eigen::AngleAxisd(kPi / 2.0, Eigen::Vector3d::UnitZ()));
+  const CellModel cell =
+      CellModel::FromXml(MjcfSource{.xml = xml, .file = analysis::BuiltinCellPath(), .assets = {}, .builtin = false},
+                         CellModel::RobotInfo{"FANUC ARC Mate 100iC/12", "builtin"}, Eigen::Isometry3d::Identity(),
+                         X_WB);
+  EXPECT_THAT(cell.CollisionGeometry().unsupported, ::testing::HasSubstr("floor_bumps is a height field"));
+  twin::CellSettings settings = OkSettings();
+  settings.check_mode = CheckMode::kContinuous;
+  const CheckReport report = CheckPlan(cell, SwingPlan(), settings, 100.0, nullptr);
+  EXPECT_EQ(report.mode, CheckMode::kDiscrete);
+  EXPECT_THAT(report.mode_fallback, ::testing::HasSubstr("floor_bumps"));
+}
+
 TEST(CellSweepTest, PairsLeaveOutTheModelsExcludedBodies) {
   const CellModel cell = LoadCell(OkSettings());
   const CellCollisionGeometry geometry = cell.CollisionGeometry();
