@@ -165,18 +165,24 @@ TEST(ReplayRoundTrip, AReplayAtTheTrueParametersMatchesTheLogToItsNoise) {
   EXPECT_GT(errors["probes"]["near"]["peak_measured_c"].get<double>(), 100.0) << "the probe must see the welds";
 }
 
-TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
-  const fs::path dir = cli_test::TempDir("replay_fit");
+// The round trip's two-parameter fit options: efficiency and convection on the first 60 s of a log made in `dir` at
+// efficiency 0.7 and convection 25 W/(m^2 K), written to `dir`/`output`.
+FitOptions RoundTripFit(const fs::path& dir, const std::string& output) {
   ThermalParameters truth;
   truth.efficiency = 0.7;
   truth.convection_w_m2k = 25.0;
-  const fs::path scenario = WriteRoundTrip(dir, truth);
   FitOptions options;
   options.model = waam::analysis::FitModel::kThermal;
-  options.data = scenario;
-  options.output = dir / "fitted.json";
+  options.data = WriteRoundTrip(dir, truth);
+  options.output = dir / output;
   options.free = {"efficiency", "convection"};
   options.window = "0:60";
+  return options;
+}
+
+TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
+  const FitOptions options = RoundTripFit(cli_test::TempDir("replay_fit"), "fitted.json");
+  const fs::path& scenario = options.data;
   std::ostringstream out;
   const FitOutcome outcome = RunFit(options, out);
   ASSERT_TRUE(outcome.ok) << out.str();
@@ -195,17 +201,8 @@ TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
 // scenario's grid, so it ends at that grid's own answer: the one-stage fit's values within the tolerances' reach.
 TEST(ReplayRoundTrip, CoarseToFineFitEndsAtTheOneStageFitsValues) {
   const fs::path dir = cli_test::TempDir("replay_fit_coarse");
-  ThermalParameters truth;
-  truth.efficiency = 0.7;
-  truth.convection_w_m2k = 25.0;
-  const fs::path scenario = WriteRoundTrip(dir, truth);
-  FitOptions options;
-  options.model = waam::analysis::FitModel::kThermal;
-  options.data = scenario;
-  options.free = {"efficiency", "convection"};
-  options.window = "0:60";
+  FitOptions options = RoundTripFit(dir, "one_stage.json");
   std::ostringstream out;
-  options.output = dir / "one_stage.json";
   ASSERT_TRUE(RunFit(options, out).ok) << out.str();
   options.output = dir / "coarse_to_fine.json";
   options.coarse_cell_mm = 4.0;

@@ -366,7 +366,7 @@ class SampleChecks {
     const int si = static_cast<int>(i);
     for (int j = 0; j < 8; ++j) {
       if (!planner::HasAxis(kin_.positioner.type, j)) continue;
-      const double m_deg = std::min(s.q[j] - limit_lo_[j], limit_hi_[j] - s.q[j]) * kDeg;
+      const double m_deg = JointMarginDeg(s.q, j, limit_lo_[j], limit_hi_[j]);
       if (j < 6) report_.min_arm_margin_deg = std::min(report_.min_arm_margin_deg, m_deg);
       if (m_deg < report_.min_joint_margin_deg) {
         report_.min_joint_margin_deg = m_deg;
@@ -383,7 +383,7 @@ class SampleChecks {
   void Singularity(std::size_t i) {
     const planner::CellSample& s = motion_[i];
     const int si = static_cast<int>(i);
-    const double j5_deg = std::asin(std::min(1.0, std::abs(std::sin(s.q[4])))) * kDeg;
+    const double j5_deg = J5Deg(s.q);
     report_.min_j5_deg = std::min(report_.min_j5_deg, j5_deg);
     if (j5_deg < settings_.singularity_deg) {
       log_.Add(ViolationKind::kSingularity, "j5", "", s, si, j5_deg, "j5_deg", false);
@@ -496,11 +496,10 @@ bool MotionProvenWorse(const std::vector<planner::CellSample>& motion, const pla
   for (const planner::CellSample& s : motion) {
     if (!s.reachable) return true;
     for (int j = 0; j < 6; ++j) {
-      const double m_deg = std::min(s.q[j] - kin.arm.lower[j], kin.arm.upper[j] - s.q[j]) * kDeg;
+      const double m_deg = JointMarginDeg(s.q, j, kin.arm.lower[j], kin.arm.upper[j]);
       if ((m_deg - settings.joint_margin_deg) / 10.0 < margin) return true;
     }
-    const double j5_deg = std::asin(std::min(1.0, std::abs(std::sin(s.q[4])))) * kDeg;
-    if ((j5_deg - settings.singularity_deg) / 10.0 < margin) return true;
+    if ((J5Deg(s.q) - settings.singularity_deg) / 10.0 < margin) return true;
   }
   return false;
 }

@@ -127,6 +127,12 @@ CheckMargins MarginsOf(const CheckReport& report);
 // min((arm joint margin - joint_margin_deg) / 10 deg, (|J5| - singularity_deg) / 10 deg, clearance / 10 mm).
 double CheckMargin(const CheckMargins& margins, const twin::CellSettings& settings);
 
+// |J5| from the wrist-singular pose (j5 near 0 or 180 deg aligns j4 and j6), deg: the singularity check's figure.
+double J5Deg(const planner::Joints8& q);
+
+// Axis j's distance from q to the nearer of its limits lo..hi, deg: the joint-limit check's figure.
+double JointMarginDeg(const planner::Joints8& q, int j, double lo, double hi);
+
 // Names of the eight axes: j1..j6, pos_tilt, pos_rot.
 const char* AxisName(int axis);
 

@@ -1,5 +1,6 @@
 // The check's margins and the motion options and solving kinematics of the cell settings (declared in cell_check.h).
 #include <algorithm>
+#include <cmath>
 
 #include "models/core/numbers.h"
 #include "twin/cell/cell_check.h"
@@ -21,6 +22,12 @@ double CheckMargin(const CheckMargins& m, const twin::CellSettings& settings) {
   return std::min({(m.min_arm_margin_deg - settings.joint_margin_deg) / 10.0,
                    (m.min_j5_deg - settings.singularity_deg) / 10.0,
                    m.min_clearance_mm / CellModel::kClearanceMarginMm});
+}
+
+double J5Deg(const planner::Joints8& q) { return std::asin(std::min(1.0, std::abs(std::sin(q[4])))) * kDeg; }
+
+double JointMarginDeg(const planner::Joints8& q, int j, double lo, double hi) {
+  return std::min(q[j] - lo, hi - q[j]) * kDeg;
 }
 
 planner::CellKinematics MarginKinematics(const planner::CellKinematics& kin, const twin::CellSettings& settings) {

@@ -7,6 +7,7 @@
 
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
+#include "twin/cell/cell_check.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
@@ -43,14 +44,14 @@ std::vector<LayerScore> ScoreLayers(const CellModel& cell, const planner::CellKi
     }
     double arm_margin = std::numeric_limits<double>::infinity();
     for (int j = 0; j < 6; ++j) arm_margin = std::min({arm_margin, s.q[j] - kin.arm.lower[j], kin.arm.upper[j] - s.q[j]});
-    const double j5 = std::asin(std::min(1.0, std::abs(std::sin(s.q[4]))));
-    bool bad = arm_margin < margin_rad || j5 * kDeg < settings.singularity_deg;
+    const double j5_deg = J5Deg(s.q);
+    bool bad = arm_margin < margin_rad || j5_deg < settings.singularity_deg;
     if (s.weld && i > 0 && s.dt_s > 0.0 && motion[i - 1].reachable) {
       const Eigen::Matrix<double, 8, 1> v = (s.q - motion[i - 1].q).cwiseAbs() / s.dt_s;
       bad = bad || (v.array() > max_speed.array()).any();
     }
     score.margin = std::min({score.margin, (arm_margin - margin_rad) * kDeg / 10.0,
-                             (j5 * kDeg - settings.singularity_deg) / 10.0});
+                             (j5_deg - settings.singularity_deg) / 10.0});
     // Collisions between cell bodies on a subsample of the layer.
     const std::size_t l = static_cast<std::size_t>(layer_of_sample[i]);
     const std::size_t stride = std::max<std::size_t>(1, count[l] / kResolveCollisionSamples);
