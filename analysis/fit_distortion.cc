@@ -34,34 +34,48 @@ std::string Join(const std::vector<models::DistortionParam>& items) {
   return s;
 }
 
-}  // namespace
+// The fit's start and settings from the command's options, every one checked before the expensive build.
+struct DistortionFitSetup {
+  std::filesystem::path start_path;
+  models::DistortionParams start;
+  twin::DistortionOptions distortion;
+  twin::DistortionFitOptions fit;
+};
 
-FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& out) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  // Everything that can be checked without the expensive build is checked first.
+DistortionFitSetup CheckedSetup(const FitOptions& options) {
   WAAM_THROW_UNLESS(!options.output.empty(), "-o/--output: the model JSON file to write is required");
   WAAM_THROW_UNLESS(!options.scenario.empty(),
                     "fit distortion: --scenario is required (the scenario YAML the scanned part was built from)");
   WAAM_THROW_UNLESS(options.columns.empty() && !options.speed_range,
                     "fit distortion: --columns and --speed-range apply to CSV models only");
-  const std::filesystem::path start_path =
-      options.start.empty() ? models::DefaultModelPath("distortion") : options.start;
-  models::DistortionParams start = models::ReadDistortionParams(start_path);
-  twin::DistortionOptions distortion;
-  distortion.mode =
-      options.mode.empty() ? start.mode : models::ParseDistortionMode(options.mode, "distortion.mode");
-  distortion.element_mm = options.element_mm;
-  distortion.groups = options.groups;
-  twin::ValidateDistortionOptions(distortion);
-  start.mode = distortion.mode;
-  twin::DistortionFitOptions fit;
-  fit.free.clear();
+  DistortionFitSetup s;
+  s.start_path = options.start.empty() ? models::DefaultModelPath("distortion") : options.start;
+  s.start = models::ReadDistortionParams(s.start_path);
+  s.distortion.mode =
+      options.mode.empty() ? s.start.mode : models::ParseDistortionMode(options.mode, "distortion.mode");
+  s.distortion.element_mm = options.element_mm;
+  s.distortion.groups = options.groups;
+  twin::ValidateDistortionOptions(s.distortion);
+  s.start.mode = s.distortion.mode;
+  s.fit.free.clear();
   for (const std::string& name : options.free) {
-    fit.free.push_back(models::ParseDistortionParam(name, "distortion fit: free parameter"));
+    s.fit.free.push_back(models::ParseDistortionParam(name, "distortion fit: free parameter"));
   }
-  fit.max_points = options.max_points;
-  fit.max_iterations = options.max_iterations;
-  twin::ValidateDistortionFitOptions(fit, distortion.mode);
+  s.fit.max_points = options.max_points;
+  s.fit.max_iterations = options.max_iterations;
+  twin::ValidateDistortionFitOptions(s.fit, s.distortion.mode);
+  return s;
+}
+
+}  // namespace
+
+FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& out) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const DistortionFitSetup setup = CheckedSetup(options);
+  const std::filesystem::path& start_path = setup.start_path;
+  const models::DistortionParams& start = setup.start;
+  const twin::DistortionOptions& distortion = setup.distortion;
+  const twin::DistortionFitOptions& fit = setup.fit;
   // An STL's points weighted by the area each stands for, without the face the part stands on (as waam deviation).
   const ScanCloud cloud = ReadScan(options.data, kStlSpacingMm, /*skip_bottom=*/true);
   const std::vector<Eigen::Vector3d>& scan = cloud.points;

@@ -177,24 +177,11 @@ Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, 
       if (prev != nullptr) {
         const double length = (p.p_P - prev->p_P).norm();
         if (p.weld) {
-          if (!arc_on) {
-            // A new pass in this layer: the layer's first one first waits out min_layer_time_s and the extra wait.
-            if (last_started_layer != layer) {
-              if (last_started_layer >= 0) {
-                out.Add(SpanKind::kWait, settings.min_layer_time_s - (out.now() - last_layer_start), prev_layer,
-                        prev_point);
-              }
-              if (l < settings.extra_wait_before_layer_s.size()) {
-                out.Add(SpanKind::kWait, settings.extra_wait_before_layer_s[l], prev_layer, prev_point);
-              }
-              last_layer_start = out.now();
-              last_started_layer = layer;
-            }
-            out.Add(SpanKind::kArcStart, settings.arc_start_s, prev_layer, prev_point);
-          } else if (last_started_layer != layer) {
-            // A layer reached with the arc burning (a continuous spiral): the rest of min_layer_time_s and its extra
-            // wait pause the torch between the two weld moves, with no arc end or start (as the thermal model's
-            // interpass wait runs it).
+          // The layer's first weld move waits out the rest of min_layer_time_s and the extra wait, at the point the
+          // torch reached: before the arc start of a new pass, or between the two weld moves of a layer reached with
+          // the arc burning (a continuous spiral: a pause with no arc end or start, as the thermal model's interpass
+          // wait runs it).
+          if (last_started_layer != layer) {
             if (last_started_layer >= 0) {
               out.Add(SpanKind::kWait, settings.min_layer_time_s - (out.now() - last_layer_start), prev_layer,
                       prev_point);
@@ -205,6 +192,7 @@ Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, 
             last_layer_start = out.now();
             last_started_layer = layer;
           }
+          if (!arc_on) out.Add(SpanKind::kArcStart, settings.arc_start_s, prev_layer, prev_point);
           if (p.speed_mm_s > 0.0) out.Add(SpanKind::kArcOn, length / p.speed_mm_s, layer, i);
           arc_on = true;
         } else {
