@@ -265,6 +265,20 @@ TEST(CellSweepTest, AnUnboundedGeomFallsBackToDiscreteWithTheReason) {
   EXPECT_THAT(report.mode_fallback, ::testing::HasSubstr("floor_bumps"));
 }
 
+// A plane on a body an axis moves cannot reach the distance bounds: MuJoCo 2.2 refuses the model when it loads it
+// (CollisionGeometry() demands planes are static).
+TEST(CellSweepTest, APlaneOnAMovingBodyIsRefusedAtLoad) {
+  std::ifstream in(analysis::BuiltinCellPath());
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string anchor = "<body name=\"link2\" pos=\"0.15 0 0.45\">";
+  ASSERT_NE(xml.find(anchor), std::string::npos);
+  xml.insert(xml.find(anchor) + anchor.size(), "\n<geom name=\"link2_plane\" type=\"plane\" size=\"0.1 0.1 0.01\"/>");
+  EXPECT_THROW(CellModel::FromXml(MjcfSource{.xml = xml, .file = analysis::BuiltinCellPath(), .assets = {}, .builtin = false},
+                                  CellModel::RobotInfo{"FANUC ARC Mate 100iC/12", "builtin"},
+                                  Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity()),
+               InputError);
+}
+
 TEST(CellSweepTest, PairsLeaveOutTheModelsExcludedBodies) {
   const CellModel cell = LoadCell(OkSettings());
   const CellCollisionGeometry geometry = cell.CollisionGeometry();
