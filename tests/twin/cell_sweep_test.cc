@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/cell_files.h"
+#include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "planner/kinematics/positioner.h"
 #include "planner/scenario/scenario_document.h"
