@@ -274,8 +274,8 @@ TEST(CellSweepTest, APlaneOnAMovingBodyIsRefusedAtLoad) {
   const std::string anchor = "<body name=\"link2\" pos=\"0.15 0 0.45\">";
   ASSERT_NE(xml.find(anchor), std::string::npos);
   xml.insert(xml.find(anchor) + anchor.size(), "\n<geom name=\"link2_plane\" type=\"plane\" size=\"0.1 0.1 0.01\"/>");
-  EXPECT_THROW(CellModel::FromXml(MjcfSource{.xml = xml, .file = analysis::BuiltinCellPath(), .assets = {}, .builtin = false},
-                                  CellModel::RobotInfo{"FANUC ARC Mate 100iC/12", "builtin"},
+  const MjcfSource mjcf{.xml = xml, .file = analysis::BuiltinCellPath(), .assets = {}, .builtin = false};
+  EXPECT_THROW(CellModel::FromXml(mjcf, CellModel::RobotInfo{"FANUC ARC Mate 100iC/12", "builtin"},
                                   Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity()),
                InputError);
 }

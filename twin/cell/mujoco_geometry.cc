@@ -150,7 +150,7 @@ CellCollisionGeometry CellModel::CollisionGeometry() const {
     for (int j = 0; j < 8; ++j) {
       if (impl_->jnt[j] >= 0) lever[j] = LeverBound(m, impl_->jnt[j], g);
     }
-    // MuJoCo 2.2 refuses a plane on a body that is not static (user_model.cc): a plane never moves.
+    // MuJoCo 2.2 refuses a plane on a body that is not static ("plane and hfield only allowed in static bodies").
     WAAM_DEMAND(shape.type != ConvexShape::Type::kPlane || lever.maxCoeff() == 0.0);
     shape_of[g] = static_cast<int>(geometry.shapes.size());
     geometry.shapes.push_back(std::move(shape));

@@ -43,7 +43,8 @@ struct UrdfArm {
 // Parses the URDF `text` of the file `file` (which names it in messages). Throws InputError naming the file, line
 // and element for: text that is not URDF XML or holds xacro elements, no chain of six revolute joints from the
 // root to the flange, a `joints` entry or flange the URDF lacks, a revolute joint without <limit>, a continuous
-// joint without <limit velocity> or a limit without velocity, a collision geometry other than box, cylinder, sphere or mesh.
+// joint without <limit velocity> or a limit without velocity, a collision geometry other than box, cylinder,
+// sphere or mesh.
 UrdfArm ParseUrdfArm(const std::string& text, const std::filesystem::path& file, const UrdfArmOptions& options);
 
 }  // namespace waam::twin
