@@ -105,6 +105,8 @@ TEST(GcodeGrammarTest, OrnlWolfSyntaxRunsWithItsPumpSignalsPackedWordsAndDwells)
   for (const LayerTimes& layer : timeline.layers) {
     // 60 + 4 + 60 mm at 5 mm/s; the F0 before layers 2 and 3 keeps the feed in force (F5), no move runs at zero feed.
     EXPECT_NEAR(layer.arc_on_s, 124.0 / 5.0, 1e-6) << "layer " << layer.layer;
+    // The G4 after M103 waits after the pass's arc end: the layer ends at its last arc end, not after the dwell.
+    EXPECT_NEAR(layer.end_s - layer.start_s, 124.0 / 5.0, 1e-6) << "layer " << layer.layer;
   }
   EXPECT_NEAR(timeline.wait_s, 30.0 + 20.0, 1e-9);
   EXPECT_GE(timeline.layers[1].start_s - timeline.layers[0].start_s, 124.0 / 5.0 + 30.0);
