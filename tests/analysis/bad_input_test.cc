@@ -515,7 +515,7 @@ TEST(BadInputCatalogue, EveryCaseExitsTwoWithOneLineNamingFileAndPlaceAndNoOutpu
     const fs::path out = fit ? dir / "out" / "model.json" : dir / "out";
     // An input starting with '@' is passed as it is (a name, not a file of the case's folder).
     std::string inputs = c.input.rfind('@', 0) == 0 ? c.input.substr(1) : (dir / c.input).string();
-    for (const std::string& more : c.more_inputs) inputs += " " + (dir / more).string();
+    for (const std::string& more : c.more_inputs) inputs.append(" ").append((dir / more).string());
     const std::string args = c.command + " " + inputs + " " + c.options + " -o " + out.string() + QuietFlags(c.command);
     const CliRun run = Waam(args, dir / "stderr.txt");
     EXPECT_EQ(run.exit_code, 2) << "expected exit code 2 (bad input) for " << c.id << "; stderr: " << run.err;
