@@ -192,7 +192,7 @@ Depositor::StepFill::StepFill(const VoxelGrid& grid, std::vector<internal::Colum
   voxels_.clear();
 }
 
-void Depositor::StepFill::Collect(Column& c, double lo, double hi) {
+inline void Depositor::StepFill::Collect(Column& c, double lo, double hi) {
   c.begin = voxels_.size();
   frame_.CollectColumn(c.i0, c.i1, lo, hi, &voxels_);
   c.end = voxels_.size();
@@ -202,7 +202,7 @@ void Depositor::StepFill::Collect(Column& c, double lo, double hi) {
 }
 
 // Ground search of one column; false when it ran out of the collected voxels before its limits.
-bool Depositor::StepFill::Search(Column& c) {
+inline bool Depositor::StepFill::Search(Column& c) {
   c.ground_mm = kNoGround;
   c.floor = c.end;
   // The crown voxel: the last one at or below the crown height.
@@ -291,7 +291,7 @@ void Depositor::StepFill::FindGrounds(std::vector<Column>& columns) {
 
 // Index of the first voxel of column c whose centre lies at or above `height` (above it when `strictly`). A grid
 // column's centres are one pitch apart: found by arithmetic as the grid-axis fill always did; else by bisection.
-std::size_t Depositor::StepFill::FirstAbove(const Column& c, double height, bool strictly) const {
+inline std::size_t Depositor::StepFill::FirstAbove(const Column& c, double height, bool strictly) const {
   if (frame_.aligned()) {
     const double m = strictly ? std::floor(height / v_ - 0.5) + 1.0 : std::ceil(height / v_ - 0.5);
     return c.begin + static_cast<std::size_t>(std::clamp(m - c.m0, 0.0, static_cast<double>(c.end - c.begin)));
@@ -307,7 +307,7 @@ std::size_t Depositor::StepFill::FirstAbove(const Column& c, double height, bool
 }
 
 // Number of free voxels under the pool at `level`; stores each column's [lo, hi) when `store`.
-long Depositor::StepFill::Count(std::vector<Column>& columns, double level, bool store) const {
+inline long Depositor::StepFill::Count(std::vector<Column>& columns, double level, bool store) const {
   const double h = h_;
   const double w = w_;
   long total = 0;
