@@ -42,12 +42,10 @@ nlohmann::json IterationJson(const twin::CompensationIteration& it) {
             {"max_displacement_mm", it.distortion.max_displacement_mm}}}};
 }
 
-}  // namespace
-
-twin::CompensationResult RunCompensate(const CompensateOptions& options) {
-  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
-  const std::filesystem::path model_path =
-      options.model.empty() ? models::DefaultModelPath("distortion") : options.model;
+// The loop's options from the command's and the scenario's: the distortion model at `model_path`, its mode, the
+// correction method and the real first scan when one is given. Throws InputError for a bad value or file.
+twin::CompensationOptions LoopOptions(const CompensateOptions& options, const Scenario& scenario,
+                                      const std::filesystem::path& model_path) {
   twin::CompensationOptions loop;
   loop.params = models::ReadDistortionParams(model_path);
   loop.max_iterations = options.max_iterations;
@@ -70,21 +68,11 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
     loop.first_scan = std::move(cloud.points);
     loop.first_scan_weight = std::move(cloud.weight);
   }
-  planner::PlanResult planned;
-  {
-    Progress progress("plan", 0, "layers", options.quiet);
-    planned = planner::PlanScenario(scenario, &progress);
-  }
-  WAAM_THROW_UNLESS(!planned.mesh.facets.empty(), options.scenario.string() << ": compensate needs a target part mesh");
-  ClaimOutputDirectory(options.out_dir);
-  const nlohmann::json heat = PrepareHeatShape(scenario, planned.plan, options.quiet, &loop);
-  Progress progress("compensate", static_cast<std::size_t>(options.max_iterations) + 1, "builds", options.quiet);
-  const twin::CompensationResult result =
-      twin::Compensate(planned.plan, planned.mesh, scenario.simulation, loop,
-                       [&](int i, const twin::CompensationIteration&) { progress.Update(i + 1); });
-  progress.Finish();
+  return loop;
+}
 
-  WritePlanH5(result.plan, options.out_dir / "compensated_path.h5");
+// The scans before and after compensation (PLY with their deviations, and their pictures unless turned off).
+void WriteScans(const twin::CompensationResult& result, const CompensateOptions& options) {
   WritePlyWithDeviation(options.out_dir / "scan_before.ply", result.first_scan.points,
                               result.first_scan.deviation_mm);
   WritePlyWithDeviation(options.out_dir / "scan_after.ply", result.last_scan.points,
@@ -96,20 +84,29 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
                           "after " + std::to_string(result.iterations.size() - 1) + " compensation(s)", range,
                           options.out_dir / "deviation_after.png");
   }
-  nlohmann::json program = {{"written", false}};
-  if (options.program) {
-    // The compensated path through the cell check, which writes program.ls / program.csv for the robot.
-    CheckOptions check;
-    check.out_dir = options.out_dir / "program";
-    check.quiet = true;
-    check.images = false;
-    check.program = true;
-    const twin::CheckReport report = RunCheckOnPlan(scenario, result.plan, check);
-    program = {{"written", true}, {"dir", "program"}, {"check", "program/check.json"}};
-  }
+}
+
+// The compensated path through the cell check, which writes program.ls / program.csv for the robot, when asked for;
+// returns compensate.json's "program".
+nlohmann::json WriteProgram(const Scenario& scenario, const twin::CompensationResult& result,
+                            const CompensateOptions& options) {
+  if (!options.program) return {{"written", false}};
+  CheckOptions check;
+  check.out_dir = options.out_dir / "program";
+  check.quiet = true;
+  check.images = false;
+  check.program = true;
+  RunCheckOnPlan(scenario, result.plan, check);
+  return {{"written", true}, {"dir", "program"}, {"check", "program/check.json"}};
+}
+
+nlohmann::json CompensateJson(const Scenario& scenario, const std::filesystem::path& model_path,
+                              const twin::CompensationOptions& loop, const twin::CompensationResult& result,
+                              const CompensateOptions& options, const nlohmann::json& heat,
+                              const nlohmann::json& program) {
   nlohmann::json iterations = nlohmann::json::array();
   for (const twin::CompensationIteration& it : result.iterations) iterations.push_back(IterationJson(it));
-  const nlohmann::json json = {
+  return {
       {"scenario", scenario.name},
       {"model", model_path.string()},
       {"mode", loop.distortion.mode},
@@ -129,6 +126,33 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
       {"heat", heat},
       {"program", program},
   };
+}
+
+}  // namespace
+
+twin::CompensationResult RunCompensate(const CompensateOptions& options) {
+  const Scenario scenario = LoadScenario(options.scenario, options.overrides);
+  const std::filesystem::path model_path =
+      options.model.empty() ? models::DefaultModelPath("distortion") : options.model;
+  twin::CompensationOptions loop = LoopOptions(options, scenario, model_path);
+  planner::PlanResult planned;
+  {
+    Progress progress("plan", 0, "layers", options.quiet);
+    planned = planner::PlanScenario(scenario, &progress);
+  }
+  WAAM_THROW_UNLESS(!planned.mesh.facets.empty(), options.scenario.string() << ": compensate needs a target part mesh");
+  ClaimOutputDirectory(options.out_dir);
+  const nlohmann::json heat = PrepareHeatShape(scenario, planned.plan, options.quiet, &loop);
+  Progress progress("compensate", static_cast<std::size_t>(options.max_iterations) + 1, "builds", options.quiet);
+  const twin::CompensationResult result =
+      twin::Compensate(planned.plan, planned.mesh, scenario.simulation, loop,
+                       [&](int i, const twin::CompensationIteration&) { progress.Update(i + 1); });
+  progress.Finish();
+
+  WritePlanH5(result.plan, options.out_dir / "compensated_path.h5");
+  WriteScans(result, options);
+  const nlohmann::json program = WriteProgram(scenario, result, options);
+  const nlohmann::json json = CompensateJson(scenario, model_path, loop, result, options, heat, program);
   WriteFileAtomic(options.out_dir / "compensate.json", json.dump(2) + "\n");
   if (!options.quiet) std::cerr << "compensate: " << result.message << "\n";
   return result;

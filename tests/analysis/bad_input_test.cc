@@ -184,12 +184,13 @@ std::string UrdfScenario(const std::string& urdf, const std::string& extra = "")
 // One row of the catalogue (docs/BAD_INPUTS.md has the same rows, by id).
 struct BadInput {
   std::string id;
-  std::string command;                         // "plan", "check", "material", "thermal" or "fit <model>"
+  std::string command;                         // "plan", "check", "material", "thermal", "deviation", "fit <model>"...
   std::string input;                           // the file named on the command line, in the case's folder ('@': as is)
   std::map<std::string, std::string> files;    // name -> contents, written into the case's folder
   std::vector<std::string> expected;           // each must appear in the one stderr line
   std::vector<std::string> folders = {};       // folders created in the case's folder (before the files)
-  std::string options = "";                    // options after the input, e.g. "--shard 3/3"
+  std::string options = "";                    // options after the inputs, e.g. "--shard 3/3"
+  std::vector<std::string> more_inputs = {};   // further files named after the input, in the case's folder
 };
 
 std::string ReplaceAll(std::string text, const std::string& from, const std::string& to) {
@@ -481,6 +482,9 @@ std::vector<BadInput> Catalogue() {
       {"urdf-xacro", "check", "s.yaml",
        {{"s.yaml", UrdfScenario("arm.urdf.xacro")}, {"arm.urdf.xacro", MiniUrdf("m.stl")}},
        {"arm.urdf.xacro: a .xacro file is not read; run `xacro arm.urdf.xacro > arm.urdf` once and name the .urdf"}},
+      {"deviation-scan-only-bottom-face", "deviation", "target.stl",
+       {{"target.stl", full}, {"scan.stl", BinaryStl({tetra[0]})}},
+       {"scan.stl: STL has no facets to sample above its bottom face"}, {}, "", {"scan.stl"}},
   };
 }
 
@@ -498,6 +502,15 @@ CliRun Waam(const std::string& args, const fs::path& err_file) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
 }
 
+// The flags after `-o` that keep a command to its outputs: no progress (-q) and no pictures (--no-images), where the
+// command takes them.
+std::string QuietFlags(const std::string& command) {
+  if (command.rfind("fit", 0) == 0) return "";
+  if (command == "sweep" || command.rfind("bench", 0) == 0 || command == "material") return " -q";
+  if (command == "deviation") return " --no-images";
+  return " -q --no-images";
+}
+
 fs::path CaseDir(const std::string& id) {
   const fs::path dir = fs::temp_directory_path() / ("waam_bad_input_" + std::to_string(::getpid())) / id;
   fs::remove_all(dir);
@@ -512,13 +525,11 @@ TEST(BadInputCatalogue, EveryCaseExitsTwoWithOneLineNamingFileAndPlaceAndNoOutpu
     for (const std::string& folder : c.folders) fs::create_directories(dir / folder);
     for (const auto& [name, contents] : c.files) std::ofstream(dir / name, std::ios::binary) << contents;
     const bool fit = c.command.rfind("fit", 0) == 0;
-    const bool bench = c.command == "sweep" || c.command.rfind("bench", 0) == 0;
     const fs::path out = fit ? dir / "out" / "model.json" : dir / "out";
     // An input starting with '@' is passed as it is (a name, not a file of the case's folder).
-    const std::string input = c.input.rfind('@', 0) == 0 ? c.input.substr(1) : (dir / c.input).string();
-    const bool quiet_only = bench || c.command == "material";  // commands without pictures to leave out
-    const std::string args = c.command + " " + input + " " + c.options + " -o " + out.string() +
-                             (fit ? "" : quiet_only ? " -q" : " -q --no-images");
+    std::string inputs = c.input.rfind('@', 0) == 0 ? c.input.substr(1) : (dir / c.input).string();
+    for (const std::string& more : c.more_inputs) inputs.append(" ").append((dir / more).string());
+    const std::string args = c.command + " " + inputs + " " + c.options + " -o " + out.string() + QuietFlags(c.command);
     const CliRun run = Waam(args, dir / "stderr.txt");
     EXPECT_EQ(run.exit_code, 2) << "expected exit code 2 (bad input) for " << c.id << "; stderr: " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "expected one line on stderr: " << run.err;

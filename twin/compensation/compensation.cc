@@ -295,121 +295,182 @@ void SetStatus(int iter, bool done, bool diverging, double previous, int max_ite
   }
 }
 
+// The loop's state across iterations: the nominal path, the reference the part is driven to, the current path
+// and the result so far.
+class CompensationLoop {
+ public:
+  CompensationLoop(const planner::Plan& plan, const planner::TriangleMesh& target,
+                   const twin::SimulationSettings& settings, const CompensationOptions& options);
+  // Iteration `iter`: builds and scans the current path, measures it and corrects the path unless the loop stops.
+  // Returns true when it stops (converged or diverging).
+  bool Iterate(int iter, const std::function<void(int, const CompensationIteration&)>& on_iteration);
+  // The result, with the last corrected path.
+  CompensationResult Finish();
+
+ private:
+  // A scan of the built part: the twin's (with the distortion field that made it) or the real first scan.
+  struct PartScan {
+    std::vector<Eigen::Vector3d> points;
+    std::vector<double> weights;  // the real first scan's; the twin's scans weigh every point alike
+    DistortionField field;
+    bool simulated = true;
+  };
+  PartScan BuildAndScan(int iter, CompensationIteration& it);
+  void SetReference(const Depositor& depositor);
+  ScanDeviation Measure(const PartScan& scan, CompensationIteration& it) const;
+  void Correct(const PartScan& scan, const ScanDeviation& deviation, CompensationIteration& it);
+
+  const twin::SimulationSettings& settings_;
+  const CompensationOptions& options_;
+  const planner::Plan nominal_;
+  const MeshDistance distance_;
+  const std::vector<Eigen::Vector3d> target_surface_;
+  const bool shaped_;
+  const bool twin_reference_;
+  planner::TriangleMesh reference_mesh_;
+  std::unique_ptr<MeshDistance> reference_;
+  std::vector<Eigen::Vector3d> reference_points_;
+  planner::Plan current_;
+  CompensationResult result_;
+};
+
+// The reference the loop drives the part to. "twin": the nominal path deposited without distortion (what the process
+// makes of the target; bead-shape errors no path shift can fix, such as arc starts and corners, are left out).
+// "target": the target mesh itself, as 003 compares scans with the CAD model (always so with a real scan).
+CompensationLoop::CompensationLoop(const planner::Plan& plan, const planner::TriangleMesh& target,
+                                   const twin::SimulationSettings& settings, const CompensationOptions& options)
+    : settings_(settings), options_(options), nominal_(ResamplePlan(plan, options.reference_spacing_mm)),
+      distance_(target), target_surface_(SampleSurface(target, 0.5 * options.axis_step_mm)),
+      shaped_(!options.bead_heat.height.empty()),
+      twin_reference_(options.reference == CompensationReference::kTwin && options.first_scan.empty()),
+      reference_points_(target_surface_), current_(nominal_) {
+  result_.reference = twin_reference_ ? CompensationReference::kTwin : CompensationReference::kTarget;
+  // The top rim left out of the measures: two bead heights of the last layer (plus each scan's shortening).
+  result_.top_band_mm = TopBand(nominal_);
+}
+
+// The reference and the tolerance, from the nominal path with its planned beads (`depositor`: the first build).
+void CompensationLoop::SetReference(const Depositor& depositor) {
+  std::optional<Depositor> planned;
+  if (shaped_) planned.emplace(DepositPlan(current_, settings_, options_.rapid_speed_mm_s, nullptr));
+  const Depositor& nominal_deposit = shaped_ ? *planned : depositor;
+  const ScanDeviation undistorted =
+      MeasureScanDeviation(ScanDistortedPart(nominal_deposit.grid(), DistortionField()), distance_);
+  const internal::Waviness waviness =
+      internal::WallWaviness(undistorted, 2.0 * options_.reference_spacing_mm, options_.debug_level);
+  result_.waviness_mm = waviness.max_mm;
+  result_.waviness_median_mm = waviness.median_mm;
+  result_.tolerance_mm = internal::StopTolerance(options_.tolerance_mm, waviness);
+  if (twin_reference_) {
+    reference_mesh_ = ExtractSurface(nominal_deposit.grid());
+    reference_ = std::make_unique<MeshDistance>(reference_mesh_);
+    reference_points_ = undistorted.points;
+  }
+}
+
+// What the build lays: the path's beads, shaped by the heat where they are laid when a thermal history is given;
+// scanned after its distortion, or the real first scan at iteration 0 when one is given.
+CompensationLoop::PartScan CompensationLoop::BuildAndScan(int iter, CompensationIteration& it) {
+  PartScan scan;
+  const planner::Plan built = shaped_ ? ShapeBeadsByHeat(current_, options_.bead_heat) : planner::Plan{};
+  const planner::Plan& laid = shaped_ ? built : current_;
+  const Depositor depositor = DepositPlan(laid, settings_, options_.rapid_speed_mm_s, nullptr);
+  if (iter == 0) {
+    SetReference(depositor);
+    if (!options_.first_scan.empty()) {
+      it.real_scan = true;
+      scan.simulated = false;
+      scan.points = options_.first_scan;
+      scan.weights = options_.first_scan_weight;
+      return scan;
+    }
+  }
+  const DepositHistory history(laid, depositor, settings_, options_.rapid_speed_mm_s, options_.wire_feed_mm_s);
+  scan.field = ComputeDistortion(depositor.grid(), history, options_.params, options_.distortion, &it.distortion);
+  scan.points = ScanDistortedPart(depositor.grid(), scan.field);
+  return scan;
+}
+
+// The scan's deviation from the reference (and from the target, in `it`) without the top end: the end face and the
+// rim below it (a band along the last layer's build direction, not a normal cone: the side walls of a bent tube's
+// first layers face the last layer's build direction too).
+ScanDeviation CompensationLoop::Measure(const PartScan& scan, CompensationIteration& it) const {
+  const Eigen::Vector3d top_dir = nominal_.layers.empty()
+                                      ? Eigen::Vector3d::UnitZ()
+                                      : Eigen::Vector3d(nominal_.layers.back().build_dir_P.normalized());
+  const double path_top = PathTop(nominal_, top_dir);
+  // The rim: two bead heights plus the shortening the scan shows at the top end (its highest point below the
+  // reference's along the build direction).
+  const double shortening = std::max(
+      0.0, TopOf(twin_reference_ ? reference_points_ : target_surface_, top_dir) - TopOf(scan.points, top_dir));
+  it.top_band_mm = result_.top_band_mm + shortening;
+  if (options_.debug_level >= 1) {
+    std::fprintf(stderr, "top: dir (%.3f %.3f %.3f), path top %.2f mm, band %.2f mm (shortening %.2f mm)\n",
+                 top_dir.x(), top_dir.y(), top_dir.z(), path_top, it.top_band_mm, shortening);
+  }
+  const ScanDeviation against_target = ExcludeTopBand(MeasureScanDeviation(scan.points, distance_, scan.weights),
+                                                      top_dir, path_top, it.top_band_mm);
+  it.max_abs_vs_target_mm = against_target.max_abs_mm;
+  it.rms_vs_target_mm = against_target.rms_mm;
+  ScanDeviation deviation =
+      twin_reference_ ? ExcludeTopBand(MeasureScanDeviation(scan.points, *reference_, scan.weights), top_dir,
+                                       path_top, it.top_band_mm)
+                      : against_target;
+  Summarize(deviation, reference_points_, options_.axis_step_mm, &it);
+  return deviation;
+}
+
+// r*_i = r_i - S_i on the current path; S from the scan around the nominal point.
+void CompensationLoop::Correct(const PartScan& scan, const ScanDeviation& deviation, CompensationIteration& it) {
+  const MeshDistance& reference_distance = twin_reference_ ? *reference_ : distance_;
+  const std::vector<std::vector<Eigen::Vector3d>> s = internal::EstimateCorrections(
+      nominal_, deviation, scan.points, reference_distance, reference_points_, options_.bead_width_mm,
+      options_.axis_step_mm, options_.correction, options_.debug_level);
+  if (scan.simulated) {
+    it.twin_correction_error_mm = internal::CorrectionError(nominal_, current_, scan.field, s, options_.debug_level);
+  }
+  it.max_correction_mm = ApplyCorrections(s, &current_);
+}
+
+bool CompensationLoop::Iterate(int iter, const std::function<void(int, const CompensationIteration&)>& on_iteration) {
+  CheckInterrupt();
+  result_.last_scan = ScanDeviation{};  // the previous build's, replaced below: not kept through this build
+  CompensationIteration it;
+  const PartScan scan = BuildAndScan(iter, it);
+  ScanDeviation deviation = Measure(scan, it);
+  if (iter == 0) {
+    WAAM_THROW_UNLESS(result_.tolerance_mm > 0.0,
+                      "compensation: the simulated part has no measurable waviness (first scan given?); give a tolerance");
+    result_.first_scan = deviation;
+  }
+  const bool done = it.max_abs_deviation_mm < result_.tolerance_mm;
+  const double previous = result_.iterations.empty() ? std::numeric_limits<double>::infinity()
+                                                     : result_.iterations.back().max_abs_deviation_mm;
+  const bool diverging = iter > 0 && it.max_abs_deviation_mm > 0.95 * previous;
+  if (!done && !diverging && iter < options_.max_iterations) Correct(scan, deviation, it);
+  result_.last_scan = std::move(deviation);
+  result_.iterations.push_back(it);
+  if (on_iteration) on_iteration(iter, it);
+  SetStatus(iter, done, diverging, previous, options_.max_iterations, &result_);
+  return done || diverging;
+}
+
+CompensationResult CompensationLoop::Finish() {
+  result_.plan = current_;
+  return std::move(result_);
+}
+
 }  // namespace
 
 CompensationResult Compensate(const planner::Plan& plan, const planner::TriangleMesh& target,
                               const twin::SimulationSettings& settings, const CompensationOptions& options,
                               const std::function<void(int, const CompensationIteration&)>& on_iteration) {
   ValidateCompensation(target, options);
-  const planner::Plan nominal = ResamplePlan(plan, options.reference_spacing_mm);
-  const MeshDistance distance(target);
-  const std::vector<Eigen::Vector3d> target_surface = SampleSurface(target, 0.5 * options.axis_step_mm);
-
-  CompensationResult result;
-  planner::Plan current = nominal;
-  const bool shaped = !options.bead_heat.height.empty();
-  // The reference the loop drives the part to. "twin": the nominal path deposited without distortion (what the
-  // process makes of the target; bead-shape errors no path shift can fix, such as arc starts and corners, are left
-  // out). "target": the target mesh itself, as 003 compares scans with the CAD model (always so with a real scan).
-  const bool twin_reference = options.reference == CompensationReference::kTwin && options.first_scan.empty();
-  planner::TriangleMesh reference_mesh;
-  std::unique_ptr<MeshDistance> reference;
-  std::vector<Eigen::Vector3d> reference_points = target_surface;
-  result.reference = twin_reference ? CompensationReference::kTwin : CompensationReference::kTarget;
-  // The top rim left out of the measures: two bead heights of the last layer (plus each scan's shortening).
-  result.top_band_mm = TopBand(nominal);
+  CompensationLoop loop(plan, target, settings, options);
   for (int iter = 0; iter <= options.max_iterations; ++iter) {
-    CheckInterrupt();
-    result.last_scan = ScanDeviation{};  // the previous build's, replaced below: not kept through this build
-    CompensationIteration it;
-    std::vector<Eigen::Vector3d> points;
-    std::vector<double> weights;  // the real first scan's; the twin's scans weigh every point alike
-    DistortionField field;
-    bool simulated = true;
-    // What the build lays: the path's beads, shaped by the heat where they are laid when a thermal history is given.
-    const planner::Plan built = shaped ? ShapeBeadsByHeat(current, options.bead_heat) : planner::Plan{};
-    const planner::Plan& laid = shaped ? built : current;
-    const Depositor depositor = DepositPlan(laid, settings, options.rapid_speed_mm_s, nullptr);
-    if (iter == 0) {
-      // The reference and the tolerance come from the nominal path with its planned beads.
-      std::optional<Depositor> planned;
-      if (shaped) planned.emplace(DepositPlan(current, settings, options.rapid_speed_mm_s, nullptr));
-      const Depositor& nominal_deposit = shaped ? *planned : depositor;
-      const ScanDeviation undistorted =
-          MeasureScanDeviation(ScanDistortedPart(nominal_deposit.grid(), DistortionField()), distance);
-      const internal::Waviness waviness = internal::WallWaviness(undistorted, 2.0 * options.reference_spacing_mm,
-                                                                               options.debug_level);
-      result.waviness_mm = waviness.max_mm;
-      result.waviness_median_mm = waviness.median_mm;
-      result.tolerance_mm = internal::StopTolerance(options.tolerance_mm, waviness);
-      if (twin_reference) {
-        reference_mesh = ExtractSurface(nominal_deposit.grid());
-        reference = std::make_unique<MeshDistance>(reference_mesh);
-        reference_points = undistorted.points;
-      }
-      if (!options.first_scan.empty()) {
-        it.real_scan = true;
-        simulated = false;
-        points = options.first_scan;
-        weights = options.first_scan_weight;
-      }
-    }
-    if (simulated) {
-      const DepositHistory history(laid, depositor, settings, options.rapid_speed_mm_s, options.wire_feed_mm_s);
-      field = ComputeDistortion(depositor.grid(), history, options.params, options.distortion, &it.distortion);
-      points = ScanDistortedPart(depositor.grid(), field);
-    }
-    // Without the top end: the end face and the rim below it (a band along the last layer's build direction, not
-    // a normal cone: the side walls of a bent tube's first layers face the last layer's build direction too).
-    const Eigen::Vector3d top_dir = nominal.layers.empty() ? Eigen::Vector3d::UnitZ()
-                                                           : Eigen::Vector3d(nominal.layers.back().build_dir_P.normalized());
-    const double path_top = PathTop(nominal, top_dir);
-    // The rim: two bead heights plus the shortening the scan shows at the top end (its highest point below the
-    // reference's along the build direction).
-    const double shortening =
-        std::max(0.0, TopOf(twin_reference ? reference_points : target_surface, top_dir) - TopOf(points, top_dir));
-    it.top_band_mm = result.top_band_mm + shortening;
-    if (options.debug_level >= 1) {
-      std::fprintf(stderr, "top: dir (%.3f %.3f %.3f), path top %.2f mm, band %.2f mm (shortening %.2f mm)\n",
-                   top_dir.x(), top_dir.y(), top_dir.z(), path_top, it.top_band_mm, shortening);
-    }
-    const ScanDeviation against_target =
-        ExcludeTopBand(MeasureScanDeviation(points, distance, weights), top_dir, path_top, it.top_band_mm);
-    it.max_abs_vs_target_mm = against_target.max_abs_mm;
-    it.rms_vs_target_mm = against_target.rms_mm;
-    const MeshDistance& reference_distance = twin_reference ? *reference : distance;
-    ScanDeviation scan = twin_reference ? ExcludeTopBand(MeasureScanDeviation(points, *reference, weights), top_dir,
-                                                         path_top, it.top_band_mm)
-                                        : against_target;
-    Summarize(scan, reference_points, options.axis_step_mm, &it);
-    if (iter == 0) {
-      WAAM_THROW_UNLESS(result.tolerance_mm > 0.0,
-                        "compensation: the simulated part has no measurable waviness (first scan given?); give a tolerance");
-      result.first_scan = scan;
-    }
-    const bool done = it.max_abs_deviation_mm < result.tolerance_mm;
-    const double previous = result.iterations.empty() ? std::numeric_limits<double>::infinity()
-                                                      : result.iterations.back().max_abs_deviation_mm;
-    const bool diverging = iter > 0 && it.max_abs_deviation_mm > 0.95 * previous;
-    if (!done && !diverging && iter < options.max_iterations) {
-      // r*_i = r_i - S_i on the current path; S from the scan around the nominal point.
-      const std::vector<std::vector<Eigen::Vector3d>> s =
-          internal::EstimateCorrections(nominal, scan, points, reference_distance, reference_points,
-                                        options.bead_width_mm, options.axis_step_mm, options.correction,
-                                        options.debug_level);
-      if (simulated) {
-        it.twin_correction_error_mm = internal::CorrectionError(nominal, current, field, s, options.debug_level);
-      }
-      it.max_correction_mm = ApplyCorrections(s, &current);
-    }
-    result.last_scan = std::move(scan);
-    result.iterations.push_back(it);
-    if (on_iteration) on_iteration(iter, it);
-    SetStatus(iter, done, diverging, previous, options.max_iterations, &result);
-    if (done || diverging) break;
+    if (loop.Iterate(iter, on_iteration)) break;
   }
-  result.plan = current;
-  return result;
+  return loop.Finish();
 }
 
 }  // namespace waam::twin

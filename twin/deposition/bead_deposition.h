@@ -58,6 +58,13 @@ class Depositor {
 
  private:
   struct Column;
+  struct Segment;
+  struct PassFill;
+  class StepFill;
+  internal::TorchFrame HoldFrame(const ExecutedPoint& A, const ExecutedPoint& B);
+  Segment SegmentColumns(const ExecutedPass& pass, std::size_t i, const internal::TorchFrame& frame) const;
+  void FillSegment(const ExecutedPass& pass, const Segment& segment, const internal::TorchFrame& frame,
+                   PassFill& fill);
   double FillStep(std::vector<Column>& columns, const BeadSection& section, double target_mm3, double zeta_tcp_mm,
                   const internal::TorchFrame& frame, const VoxelData& data, bool last_step, double drape);
 

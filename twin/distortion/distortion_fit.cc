@@ -116,10 +116,13 @@ void ValidateDistortionFitOptions(const DistortionFitOptions& fit, models::Disto
                     "distortion fit: max_iterations = " << fit.max_iterations << ": must be in [1, 1000]");
 }
 
-DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
-                                  const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
-                                  const DistortionOptions& options, const DistortionFitOptions& fit,
-                                  const std::function<void(int)>& on_iteration, const std::vector<double>& scan_weight) {
+namespace {
+
+// Throws InputError for invalid start parameters or options, fewer than 10 scan points or a weight that is not a
+// positive number (one per point, or none).
+void ValidateFitInputs(const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
+                       const DistortionOptions& options, const DistortionFitOptions& fit,
+                       const std::vector<double>& scan_weight) {
   models::ValidateDistortionParams(start, "distortion fit start");
   ValidateDistortionOptions(options);
   ValidateDistortionFitOptions(fit, options.mode);
@@ -130,15 +133,26 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
     WAAM_THROW_UNLESS(scan_weight[i] > 0.0 && std::isfinite(scan_weight[i]),
                       "distortion fit: scan point " << i << " has weight " << scan_weight[i] << ": must be > 0");
   }
-  const internal::VoxelFaces faces(grid);
-  WAAM_THROW_UNLESS(faces.size() > 0, "distortion fit: the deposit is empty");
-  // Every k-th scan point with its seed; points nowhere near the part are left out (and counted).
+}
+
+// The scan points the fit uses: every k-th (at most fit.max_points), each with its seed face and the square root of
+// its weight per mean weight.
+struct FitPoints {
   std::vector<Eigen::Vector3d> used;
   std::vector<int> seeds;
   std::vector<double> scale;
+};
+
+// Points nowhere near the part are left out (and counted); throws InputError when fewer than 10 remain or more are
+// far than near. Seeds: the face whose centre the start parameters move nearest to the scan point, so that the face
+// search starts next to its answer (from the undistorted faces it can settle on a wrong face where the part moved by
+// centimetres).
+FitPoints PickFitPoints(const VoxelGrid& grid, const DepositHistory& history, const internal::VoxelFaces& faces,
+                        const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
+                        const DistortionOptions& options, const DistortionFitOptions& fit,
+                        const std::vector<double>& scan_weight) {
+  FitPoints points;
   std::size_t far = 0;
-  // Seeds: the face whose centre the start parameters move nearest to the scan point, so that the face search starts
-  // next to its answer (from the undistorted faces it can settle on a wrong face where the part moved by centimetres).
   const DistortionField start_field = ComputeDistortion(grid, history, start, options);
   const internal::VoxelFaces moved =
       faces.Moved([&](const Eigen::Vector3d& c) { return start_field.Displacement(c); });
@@ -149,34 +163,32 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
       ++far;
       continue;
     }
-    used.push_back(scan[i]);
-    seeds.push_back(f);
-    scale.push_back(scan_weight.empty() ? 1.0 : scan_weight[i]);
+    points.used.push_back(scan[i]);
+    points.seeds.push_back(f);
+    points.scale.push_back(scan_weight.empty() ? 1.0 : scan_weight[i]);
   }
-  WAAM_THROW_UNLESS(used.size() >= 10 && far <= used.size(),
-                    "distortion fit: " << far << " of " << far + used.size() << " scan points are farther than "
+  const std::size_t n = points.used.size();
+  WAAM_THROW_UNLESS(n >= 10 && far <= n,
+                    "distortion fit: " << far << " of " << far + n << " scan points are farther than "
                     << kSeedReachMm << " mm from the twin part: the scan must be of this part, in its part frame (mm)");
   // Least squares of sqrt(w / mean w) r: the sum of w r^2 per unit weight, the rms per unit area on an STL.
   double mean_weight = 0.0;
-  for (const double w : scale) mean_weight += w / static_cast<double>(scale.size());
-  for (double& w : scale) w = std::sqrt(w / mean_weight);
+  for (const double w : points.scale) mean_weight += w / static_cast<double>(points.scale.size());
+  for (double& w : points.scale) w = std::sqrt(w / mean_weight);
+  return points;
+}
 
-  auto* functor = new ScanResidual{&grid, &history, &used, &seeds, &scale, &faces, start, options, fit.free};
-  std::vector<double> x(fit.free.size());
-  for (std::size_t k = 0; k < fit.free.size(); ++k) {
-    models::DistortionParams p = start;
-    const double v = models::ParamValue(p, fit.free[k]);
-    x[k] = LogScale(fit.free[k]) ? std::log(std::max(v, 1e-12)) : v;
-  }
-  const std::vector<double> x0 = x;
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<ScanResidual, ceres::CENTRAL>(functor);
+// Robust (Huber) least squares of `residual` over x, from x (updated in place); the solve stops on Ctrl-C.
+ceres::Solver::Summary SolveFit(const ScanResidual& residual, std::size_t residuals, int max_iterations,
+                                const std::function<void(int)>& on_iteration, std::vector<double>& x) {
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<ScanResidual, ceres::CENTRAL>(new ScanResidual(residual));
   cost->AddParameterBlock(static_cast<int>(x.size()));
-  cost->SetNumResiduals(static_cast<int>(used.size()));
+  cost->SetNumResiduals(static_cast<int>(residuals));
   ceres::Problem problem;
   problem.AddResidualBlock(cost, new ceres::HuberLoss(1.0), x.data());
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = fit.max_iterations;
+  solver.max_num_iterations = max_iterations;
   solver.function_tolerance = 1e-10;
   solver.parameter_tolerance = 1e-8;
   solver.logging_type = ceres::SILENT;
@@ -185,9 +197,31 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   CheckInterrupt();
+  return summary;
+}
+
+}  // namespace
+
+DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& history,
+                                  const std::vector<Eigen::Vector3d>& scan, const models::DistortionParams& start,
+                                  const DistortionOptions& options, const DistortionFitOptions& fit,
+                                  const std::function<void(int)>& on_iteration, const std::vector<double>& scan_weight) {
+  ValidateFitInputs(scan, start, options, fit, scan_weight);
+  const internal::VoxelFaces faces(grid);
+  WAAM_THROW_UNLESS(faces.size() > 0, "distortion fit: the deposit is empty");
+  const FitPoints points = PickFitPoints(grid, history, faces, scan, start, options, fit, scan_weight);
+  const ScanResidual eval{&grid, &history, &points.used, &points.seeds, &points.scale, &faces, start, options, fit.free};
+  std::vector<double> x(fit.free.size());
+  for (std::size_t k = 0; k < fit.free.size(); ++k) {
+    models::DistortionParams p = start;
+    const double v = models::ParamValue(p, fit.free[k]);
+    x[k] = LogScale(fit.free[k]) ? std::log(std::max(v, 1e-12)) : v;
+  }
+  const std::vector<double> x0 = x;
+  const ceres::Solver::Summary summary = SolveFit(eval, points.used.size(), fit.max_iterations, on_iteration, x);
 
   DistortionFitResult result;
-  result.points = used.size();
+  result.points = points.used.size();
   result.solver.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
   result.solver.termination = models::TerminationNamed(ceres::TerminationTypeToString(summary.termination_type));
   result.solver.message = summary.message;
@@ -195,10 +229,9 @@ DistortionFitResult FitDistortion(const VoxelGrid& grid, const DepositHistory& h
   result.solver.initial_cost = summary.initial_cost;
   result.solver.final_cost = summary.final_cost;
   result.solver.seconds = summary.total_time_in_seconds;
-  const ScanResidual eval{&grid, &history, &used, &seeds, &scale, &faces, start, options, fit.free};
   result.params = eval.Params(x.data());
-  result.initial_rms_mm = ResidualRms(eval, x0, used.size());
-  if (result.solver.usable) result.rms_mm = ResidualRms(eval, x, used.size());
+  result.initial_rms_mm = ResidualRms(eval, x0, points.used.size());
+  if (result.solver.usable) result.rms_mm = ResidualRms(eval, x, points.used.size());
   return result;
 }
 
