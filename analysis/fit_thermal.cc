@@ -405,6 +405,10 @@ nlohmann::json ThermalFitDoc(const ReplayModel& model, const std::vector<FreePar
                    {"initial_cost", summary.initial_cost},
                    {"final_cost", summary.final_cost},
                    {"replays", replays},
+                   {"successful_steps", summary.num_successful_steps},
+                   {"unsuccessful_steps", summary.num_unsuccessful_steps},
+                   {"residual_evaluations", summary.num_residual_evaluations},
+                   {"jacobian_evaluations", summary.num_jacobian_evaluations},
                    {"report", summary.BriefReport()}};
   return doc;
 }
@@ -454,7 +458,9 @@ void PrintIdentifiability(const nlohmann::json& id, std::ostream& out) {
   out << " (noise " << id["noise_c"].get<double>() << " degC)\n";
   for (const auto& [a, row] : id["correlation"].items()) {
     for (const auto& [b, r] : row.items()) {
-      if (a < b && std::abs(r.get<double>()) > 0.9) out << "  correlated " << a << ", " << b << ": " << r << "\n";
+      if (a < b && std::abs(r.get<double>()) > 0.9) {
+        out << "  correlated " << a << ", " << b << ": " << r.get<double>() << "\n";
+      }
     }
   }
   out << "  weakest    condition " << id["condition_number"].get<double>() << ", 1 sd along:";
