@@ -57,7 +57,9 @@ struct IdentifiabilityInput {
 // pseudo-inverse leaves a null direction out): `standard_deviation` and `correlation` by name, `undetermined` (one
 // standard deviation over kUndeterminedFraction of the value), and from the data alone (J^T J scaled to a unit
 // diagonal) its `condition_number` and `weakest` combination, one standard deviation along it in each parameter's
-// units; `noise_c` = s, `readings` = m, `prior_weight_c` = W. WAAM_DEMAND on inconsistent sizes.
+// units; `noise_c` = s, `readings` = m, `prior_weight_c` = W. A parameter with a zero column (clamped beyond a
+// bound, or not felt in the window) is left out of every figure and listed in `blind` and `undetermined`.
+// WAAM_DEMAND on inconsistent sizes.
 nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in);
 
 }  // namespace waam::analysis::internal

@@ -293,11 +293,10 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, std::vector<double> x,
   problem.AddResidualBlock(cost, nullptr, x.data());
   PriorCost* prior_cost = prior.first > 0.0 ? new PriorCost(prior.second, prior.first) : nullptr;
   if (prior_cost != nullptr) problem.AddResidualBlock(prior_cost, nullptr, x.data());
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const FreeParameter& f = residuals.free(k);
-    problem.SetParameterLowerBound(x.data(), static_cast<int>(k), f.lo / f.scale);
-    problem.SetParameterUpperBound(x.data(), static_cast<int>(k), f.hi / f.scale);
-  }
+  // No Ceres bounds: on a bounded problem Ceres 2.1 evaluates every trust-region candidate through a projected line
+  // search that asks the gradient, i.e. a differenced Jacobian (n + 1 replays) at each point it tries instead of one
+  // replay. The bounds are kept by the clamp in ReplayResiduals::Parameters (beyond a bound a parameter has no
+  // effect, so its Jacobian column is zero there and Ceres does not push it further).
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = max_iterations;
@@ -312,11 +311,15 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, std::vector<double> x,
   solver.callbacks.push_back(&stop);
   ceres::Solve(solver, &problem, &outcome.summary);
   CheckInterrupt();
-  outcome.x = x;
   outcome.error = cost->error();
   outcome.jacobian = cost->last_jacobian();
   outcome.jacobian_at_x = cost->JacobianAt(x);
   outcome.data_cost = outcome.summary.final_cost - (prior_cost != nullptr ? prior_cost->Cost(x) : 0.0);
+  for (std::size_t k = 0; k < x.size(); ++k) {  // the values the clamp used
+    const FreeParameter& f = residuals.free(k);
+    x[k] = std::clamp(x[k], f.lo / f.scale, f.hi / f.scale);
+  }
+  outcome.x = x;
   outcome.replays = residuals.replays();
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return outcome;
@@ -455,7 +458,8 @@ void PrintIdentifiability(const nlohmann::json& id, std::ostream& out) {
   if (id.is_null()) return;
   out << std::setprecision(3) << "  1 sd      ";
   for (const auto& [name, sd] : id["standard_deviation"].items()) out << " " << name << " " << sd.get<double>();
-  out << " (noise " << id["noise_c"].get<double>() << " degC)\n";
+  if (id["noise_c"].is_number()) out << " (noise " << id["noise_c"].get<double>() << " degC)";
+  out << "\n";
   for (const auto& [a, row] : id["correlation"].items()) {
     for (const auto& [b, r] : row.items()) {
       if (a < b && std::abs(r.get<double>()) > 0.9) {
@@ -463,9 +467,11 @@ void PrintIdentifiability(const nlohmann::json& id, std::ostream& out) {
       }
     }
   }
-  out << "  weakest    condition " << id["condition_number"].get<double>() << ", 1 sd along:";
-  for (const auto& [name, d] : id["weakest"].items()) out << " " << name << " " << std::showpos << d.get<double>();
-  out << std::noshowpos << "\n";
+  if (id["condition_number"].is_number()) {
+    out << "  weakest    condition " << id["condition_number"].get<double>() << ", 1 sd along:";
+    for (const auto& [name, d] : id["weakest"].items()) out << " " << name << " " << std::showpos << d.get<double>();
+    out << std::noshowpos << "\n";
+  }
   for (const auto& name : id["undetermined"]) {
     out << "  note: the window does not determine " << name.get<std::string>() << " (1 sd over "
         << 100.0 * internal::kUndeterminedFraction << " % of its value): fix it (fewer --free) or add --prior\n";

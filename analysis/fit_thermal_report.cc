@@ -13,9 +13,11 @@
 
 namespace waam::analysis::internal {
 
-nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in) {
+namespace {
+
+// The report over the parameters the window sees (a nonzero Jacobian column).
+nlohmann::json SeenIdentifiability(const IdentifiabilityInput& in) {
   const std::size_t n = in.names.size();
-  WAAM_DEMAND(n >= 1 && in.scales.size() == n && in.values.size() == n && in.jacobian.size() == in.m * n);
   // Gauss-Newton's normal matrix in the scaled parameters x = value / scale; the prior adds W^2 to its diagonal.
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t r = 0; r < in.m; ++r) {
@@ -79,6 +81,43 @@ nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in) {
   }
   doc["weakest"] = weakest;
   doc["prior_weight_c"] = in.prior_weight;
+  return doc;
+}
+
+}  // namespace
+
+nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in) {
+  const std::size_t n = in.names.size();
+  WAAM_DEMAND(n >= 1 && in.scales.size() == n && in.values.size() == n && in.jacobian.size() == in.m * n);
+  // A parameter whose column is zero (clamped beyond a bound, or not felt in the window) is blind: no figure.
+  IdentifiabilityInput seen = in;
+  seen.names.clear(), seen.scales.clear(), seen.values.clear(), seen.jacobian.clear();
+  std::vector<std::size_t> cols;
+  nlohmann::json blind = nlohmann::json::array();
+  for (std::size_t k = 0; k < n; ++k) {
+    double norm = 0.0;
+    for (std::size_t r = 0; r < in.m; ++r) norm += in.jacobian[r * n + k] * in.jacobian[r * n + k];
+    if (norm > 0.0) {
+      cols.push_back(k), seen.names.push_back(in.names[k]), seen.scales.push_back(in.scales[k]);
+      seen.values.push_back(in.values[k]);
+    } else {
+      blind.push_back(in.names[k]);
+    }
+  }
+  for (std::size_t r = 0; r < in.m; ++r) {
+    for (std::size_t k : cols) seen.jacobian.push_back(in.jacobian[r * n + k]);
+  }
+  nlohmann::json doc = cols.empty() ? nlohmann::json{{"standard_deviation", nlohmann::json::object()},
+                                                     {"correlation", nlohmann::json::object()},
+                                                     {"undetermined", nlohmann::json::array()},
+                                                     {"weakest", nlohmann::json::object()},
+                                                     {"condition_number", nullptr},
+                                                     {"noise_c", nullptr},
+                                                     {"readings", in.m},
+                                                     {"prior_weight_c", in.prior_weight}}
+                                    : SeenIdentifiability(seen);
+  for (const auto& name : blind) doc["undetermined"].push_back(name);
+  doc["blind"] = blind;
   return doc;
 }
 

@@ -260,6 +260,13 @@ TEST(ThermalIdentifiability, MatchesTheGaussNewtonCovarianceOfASmallJacobian) {
   EXPECT_GT(wa, 0.0);
   EXPECT_NEAR(wb / in.scales[1], -wa, 0.02 * wa) << "along (1, -1) in scaled units";
   EXPECT_EQ(id["undetermined"].size(), 2u) << id.dump();
+  in.jacobian = {3, 0, 0, 0, 0, 0, 0, 0};  // b not felt: blind, a as alone
+  in.values = {0.5, 21.0};
+  id = internal::ThermalIdentifiability(in);
+  EXPECT_EQ(id["blind"], nlohmann::json::array({"b"}));
+  EXPECT_FALSE(id["standard_deviation"].contains("b"));
+  EXPECT_NEAR(id["standard_deviation"]["a"].get<double>(), std::sqrt(2.0 * 4.0 / 3.0) / 3.0, 1e-12) << "m - n = 3";
+  EXPECT_EQ(id["undetermined"], nlohmann::json::array({"a", "b"}));
 }
 
 // Coarse to fine (--coarse-cell 4 on the 2 mm grid): the coarse stage only chooses the start of the fit on the
