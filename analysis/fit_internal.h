@@ -40,4 +40,26 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
 // Throws InputError for bad input; a fit Ceres did not converge comes back with ok = false and nothing written.
 FitOutcome RunFitDistortion(const FitOptions& options, std::ostream& out);
 
+// A parameter is reported undetermined when one standard deviation exceeds this fraction of its value.
+inline constexpr double kUndeterminedFraction = 0.25;
+
+// What the identifiability report of a thermal fit is computed from.
+struct IdentifiabilityInput {
+  std::vector<std::string> names;   // the free parameters
+  std::vector<double> scales;       // x = value / scale
+  std::vector<double> values;       // fitted values, own units
+  std::vector<double> jacobian;     // d residual / d x at the fitted point, m x n row-major, degC per scaled unit
+  std::size_t m = 0;                // readings (data residuals)
+  double data_cost = 0.0;           // 1/2 sum of the data residuals squared, degC^2 (the prior's part excluded)
+  double prior_weight = 0.0;        // --prior W, degC per scaled unit (0: none)
+};
+// The covariance of the free parameters, s^2 (J^T J + W^2 I)^+ with s^2 = 2 cost / (m - n) (Gauss-Newton; the
+// pseudo-inverse leaves a null direction out): `standard_deviation` and `correlation` by name, `undetermined` (one
+// standard deviation over kUndeterminedFraction of the value), and from the data alone (J^T J scaled to a unit
+// diagonal) its `condition_number` and `weakest` combination, one standard deviation along it in each parameter's
+// units; `noise_c` = s, `readings` = m, `prior_weight_c` = W. A parameter with a zero column (clamped beyond a
+// bound, or not felt in the window) is left out of every figure and listed in `blind` and `undetermined`.
+// WAAM_DEMAND on inconsistent sizes.
+nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in);
+
 }  // namespace waam::analysis::internal

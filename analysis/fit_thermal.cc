@@ -207,10 +207,18 @@ class ReplayCost : public ceres::CostFunction {
         }
       }
       std::copy(last_jacobian_.begin(), last_jacobian_.end(), jacobians[0]);
+      jacobians_.emplace_back(cache_x_, last_jacobian_);
     }
     return true;
   }
   const std::string& error() const { return error_; }
+  // The Jacobian handed to Ceres at `x` (the last one when none was made there: a seeded first point).
+  const std::vector<double>& JacobianAt(const std::vector<double>& x) const {
+    for (const auto& [at, jacobian] : jacobians_) {
+      if (at == x) return jacobian;
+    }
+    return last_jacobian_;
+  }
   // The last Jacobian handed to Ceres, m x n row-major (the next stage's seed).
   const std::vector<double>& last_jacobian() const { return last_jacobian_; }
 
@@ -222,7 +230,38 @@ class ReplayCost : public ceres::CostFunction {
   mutable bool seed_used_ = false;
   mutable bool differenced_ = false;  // last_jacobian_ was differenced at cache_x_
   mutable std::vector<double> cache_x_, cache_r_, last_jacobian_;
+  mutable std::vector<std::pair<std::vector<double>, std::vector<double>>> jacobians_;  // every point's (x, J)
   mutable std::string error_;
+};
+
+// The weak prior (--prior W): residual k = W (x_k - x0_k), degC, x the scaled parameters, x0 the start's. A change
+// of one scale unit costs as much as one reading W degC off; with thermocouple noise sigma it is a Gaussian prior
+// of standard deviation sigma / W scale units.
+class PriorCost : public ceres::CostFunction {
+ public:
+  PriorCost(std::vector<double> x0, double weight) : x0_(std::move(x0)), weight_(weight) {
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(x0_.size()));
+    set_num_residuals(static_cast<int>(x0_.size()));
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const std::size_t n = x0_.size();
+    for (std::size_t k = 0; k < n; ++k) residuals[k] = weight_ * (parameters[0][k] - x0_[k]);
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      std::fill(jacobians[0], jacobians[0] + n * n, 0.0);
+      for (std::size_t k = 0; k < n; ++k) jacobians[0][k * n + k] = weight_;
+    }
+    return true;
+  }
+  // 1/2 sum of the residuals squared at `x`.
+  double Cost(const std::vector<double>& x) const {
+    double c = 0.0;
+    for (std::size_t k = 0; k < x0_.size(); ++k) c += 0.5 * std::pow(weight_ * (x[k] - x0_[k]), 2);
+    return c;
+  }
+
+ private:
+  std::vector<double> x0_;
+  double weight_;
 };
 
 class ThermalFitStop : public ceres::IterationCallback {
@@ -238,22 +277,26 @@ struct StageOutcome {
   ceres::Solver::Summary summary;
   std::string error;              // why a replay failed (empty: none did)
   std::vector<double> jacobian;   // the last one Ceres used, m x n row-major
+  std::vector<double> jacobian_at_x;  // the one at the stage's answer x
+  double data_cost = 0.0;         // the final cost without the prior's part
   int replays = 0;
   double seconds = 0.0;           // wall
 };
 
+// `prior`: the weak prior's weight (0: none) and x0, the start's scaled values it pulls toward.
 StageOutcome SolveStage(const ReplayResiduals& residuals, std::vector<double> x, int max_iterations, bool keep,
-                        std::vector<double> seed) {
+                        std::vector<double> seed, std::pair<double, std::vector<double>> prior) {
   const auto clock_start = std::chrono::steady_clock::now();
   StageOutcome outcome;
   auto* cost = new ReplayCost(residuals, keep, std::move(seed));
-  ceres::Problem problem;  // owns `cost`
+  ceres::Problem problem;  // owns `cost` and `prior_cost`
   problem.AddResidualBlock(cost, nullptr, x.data());
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const FreeParameter& f = residuals.free(k);
-    problem.SetParameterLowerBound(x.data(), static_cast<int>(k), f.lo / f.scale);
-    problem.SetParameterUpperBound(x.data(), static_cast<int>(k), f.hi / f.scale);
-  }
+  PriorCost* prior_cost = prior.first > 0.0 ? new PriorCost(prior.second, prior.first) : nullptr;
+  if (prior_cost != nullptr) problem.AddResidualBlock(prior_cost, nullptr, x.data());
+  // No Ceres bounds: on a bounded problem Ceres 2.1 evaluates every trust-region candidate through a projected line
+  // search that asks the gradient, i.e. a differenced Jacobian (n + 1 replays) at each point it tries instead of one
+  // replay. The bounds are kept by the clamp in ReplayResiduals::Parameters (beyond a bound a parameter has no
+  // effect, so its Jacobian column is zero there and Ceres does not push it further).
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = max_iterations;
@@ -268,9 +311,15 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, std::vector<double> x,
   solver.callbacks.push_back(&stop);
   ceres::Solve(solver, &problem, &outcome.summary);
   CheckInterrupt();
-  outcome.x = x;
   outcome.error = cost->error();
   outcome.jacobian = cost->last_jacobian();
+  outcome.jacobian_at_x = cost->JacobianAt(x);
+  outcome.data_cost = outcome.summary.final_cost - (prior_cost != nullptr ? prior_cost->Cost(x) : 0.0);
+  for (std::size_t k = 0; k < x.size(); ++k) {  // the values the clamp used
+    const FreeParameter& f = residuals.free(k);
+    x[k] = std::clamp(x[k], f.lo / f.scale, f.hi / f.scale);
+  }
+  outcome.x = x;
   outcome.replays = residuals.replays();
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return outcome;
@@ -311,7 +360,8 @@ nlohmann::json RunCoarseStage(const FitOptions& options, const ReplayModel& mode
   overrides.push_back(cell.str());
   const ReplayModel coarse_model = LoadReplayModel(options.data, overrides, options.start);
   const ReplayResiduals coarse = residuals.OnModel(coarse_model);
-  const StageOutcome stage = SolveStage(coarse, x, options.max_iterations, false, {});
+  std::vector<double> x0 = x;
+  const StageOutcome stage = SolveStage(coarse, x, options.max_iterations, false, {}, {options.prior_weight, x0});
   const bool usable = stage.summary.IsSolutionUsable() && stage.error.empty();
   if (usable) x = stage.x, seed = stage.jacobian;
   const ThermalParameters reached = coarse.Parameters(stage.x.data());
@@ -358,6 +408,10 @@ nlohmann::json ThermalFitDoc(const ReplayModel& model, const std::vector<FreePar
                    {"initial_cost", summary.initial_cost},
                    {"final_cost", summary.final_cost},
                    {"replays", replays},
+                   {"successful_steps", summary.num_successful_steps},
+                   {"unsuccessful_steps", summary.num_unsuccessful_steps},
+                   {"residual_evaluations", summary.num_residual_evaluations},
+                   {"jacobian_evaluations", summary.num_jacobian_evaluations},
                    {"report", summary.BriefReport()}};
   return doc;
 }
@@ -381,6 +435,49 @@ void PrintThermalFit(const std::vector<FreeParameter>& free, const ThermalParame
       << " iterations, " << replays << " replays, " << seconds << " s\n";
 }
 
+// The identifiability report of the fine stage's answer (null when Ceres made no Jacobian there).
+nlohmann::json IdentifiabilityJson(const ReplayResiduals& residuals, const ThermalParameters& fitted,
+                                   const StageOutcome& fine, double prior_weight) {
+  internal::IdentifiabilityInput in;
+  for (std::size_t k = 0; k < residuals.free_count(); ++k) {
+    const FreeParameter& f = residuals.free(k);
+    in.names.push_back(f.name);
+    in.scales.push_back(f.scale);
+    in.values.push_back(fitted.*(f.member));
+  }
+  in.m = residuals.size();
+  if (fine.jacobian_at_x.size() != in.m * in.names.size()) return nullptr;
+  in.jacobian = fine.jacobian_at_x;
+  in.data_cost = fine.data_cost;
+  in.prior_weight = prior_weight;
+  return internal::ThermalIdentifiability(in);
+}
+
+// The standard deviations, the strong correlations (|r| > 0.9), the weakest combination and what is undetermined.
+void PrintIdentifiability(const nlohmann::json& id, std::ostream& out) {
+  if (id.is_null()) return;
+  out << std::setprecision(3) << "  1 sd      ";
+  for (const auto& [name, sd] : id["standard_deviation"].items()) out << " " << name << " " << sd.get<double>();
+  if (id["noise_c"].is_number()) out << " (noise " << id["noise_c"].get<double>() << " degC)";
+  out << "\n";
+  for (const auto& [a, row] : id["correlation"].items()) {
+    for (const auto& [b, r] : row.items()) {
+      if (a < b && std::abs(r.get<double>()) > 0.9) {
+        out << "  correlated " << a << ", " << b << ": " << r.get<double>() << "\n";
+      }
+    }
+  }
+  if (id["condition_number"].is_number()) {
+    out << "  weakest    condition " << id["condition_number"].get<double>() << ", 1 sd along:";
+    for (const auto& [name, d] : id["weakest"].items()) out << " " << name << " " << std::showpos << d.get<double>();
+    out << std::noshowpos << "\n";
+  }
+  for (const auto& name : id["undetermined"]) {
+    out << "  note: the window does not determine " << name.get<std::string>() << " (1 sd over "
+        << 100.0 * internal::kUndeterminedFraction << " % of its value): fix it (fewer --free) or add --prior\n";
+  }
+}
+
 }  // namespace
 
 FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out) {
@@ -389,6 +486,8 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   const std::vector<FreeParameter> free = ResolveFree(options.free);
   WAAM_THROW_UNLESS(options.max_iterations >= 1 && options.max_iterations <= 1000,
                     "--max-iter = " << options.max_iterations << ": must be in [1, 1000]");
+  WAAM_THROW_UNLESS(std::isfinite(options.prior_weight) && options.prior_weight >= 0.0,
+                    "--prior = " << options.prior_weight << ": must be a weight >= 0 degC (0: no prior)");
   WAAM_THROW_UNLESS(!options.window.empty(), "--window START:END is required: the part of the log fitted, in s");
   const ReplayModel model = LoadReplayModel(options.data, options.overrides, options.start);
   const std::pair<double, double> window = ParseLogWindow(options.window, model.log, "--window");
@@ -406,8 +505,10 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   std::vector<double> x(free.size());
   for (std::size_t k = 0; k < free.size(); ++k) x[k] = start.*(free[k].member) / free[k].scale;
   std::vector<double> seed;
+  const std::vector<double> x0 = x;  // before the coarse stage moves x
   const nlohmann::json coarse_doc = RunCoarseStage(options, model, residuals, free, x, seed, out);
-  const StageOutcome fine = SolveStage(residuals, x, options.max_iterations, true, std::move(seed));
+  const StageOutcome fine =
+      SolveStage(residuals, x, options.max_iterations, true, std::move(seed), {options.prior_weight, x0});
   const ceres::Solver::Summary& summary = fine.summary;
 
   const ThermalParameters fitted = residuals.Parameters(fine.x.data());
@@ -434,12 +535,17 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, summary, termination,
                                      residuals.replays());
   doc["coarse"] = coarse_doc;
+  doc["identifiability"] = IdentifiabilityJson(residuals, fitted, fine, options.prior_weight);
+  doc["prior"] = options.prior_weight > 0.0
+                     ? nlohmann::json{{"weight_c", options.prior_weight}, {"toward", ThermalValuesJson(free, start)}}
+                     : nlohmann::json(nullptr);
   doc["time_s"] = seconds;
   doc["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   doc["scenario"] = options.data.string();
   doc["log"] = {{"file", model.log.file}, {"rows", model.log.time_s.size()}, {"duration_s", model.log.time_s.back()}};
   doc["log_issues"] = LogIssuesJson(model.log);
   PrintThermalFit(free, start, fitted, doc, summary.iterations.size(), residuals.replays(), seconds, out);
+  PrintIdentifiability(doc["identifiability"], out);
   return internal::Finish(converged, message, doc, options, out);
 }
 

@@ -99,6 +99,9 @@ CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options) {
   fit->add_option("--coarse-cell", options->coarse_cell_mm,
                   "thermal: grid spacing of a first fit whose answer starts the fit on the scenario's grid, mm, "
                   "e.g. twice thermal.cell_mm (default 0: one fit on the scenario's grid)");
+  fit->add_option("--prior", options->prior_weight,
+                  "thermal: weak prior toward the start values, degC: one residual W (value - start) / scale per free\n"
+                  "parameter (scales: efficiency 1, convection 10, contact 100, emissivity 1; default 0: none)");
   CLI::Option* free = fit->add_option("--free", options->free,
                   "distortion: parameters fitted, any of strain [1], vertical_ratio [1], heat_exponent [1],\n"
                   "substrate_stiffness_n_mm3 [N/mm^3] (fe mode only); thermal: any of efficiency, convection,\n"

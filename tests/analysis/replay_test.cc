@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/fit_command.h"
+#include "analysis/fit_internal.h"
 #include "analysis/replay_command.h"
 #include "analysis/replay_synthetic.h"
 #include "models/core/error.h"
@@ -195,6 +196,79 @@ TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
   // The fitted file replays: its parameters replace the scenario's.
   const ReplayModel model = LoadReplayModel(scenario, {}, options.output);
   EXPECT_NEAR(model.parameters.efficiency, fitted["parameters"]["efficiency"].get<double>(), 1e-12);
+  // Two thermocouples under the welds tell efficiency from convection: both determined, to within the tolerances.
+  const nlohmann::json& id = fitted["identifiability"];
+  ASSERT_TRUE(id.is_object()) << out.str();
+  EXPECT_TRUE(id["undetermined"].empty()) << id.dump();
+  EXPECT_NEAR(id["noise_c"].get<double>(), 1.0, 0.2) << "the residual is the log's noise";
+  EXPECT_LT(id["standard_deviation"]["efficiency"].get<double>(), 0.01) << id.dump();
+  EXPECT_LT(id["standard_deviation"]["convection"].get<double>(), 5.0) << id.dump();
+  EXPECT_TRUE(fitted["prior"].is_null());
+  // No line search's Jacobians (Ceres' bounds would add n + 1 replays at every point tried): at most one per point.
+  EXPECT_LE(fitted["solver"]["jacobian_evaluations"].get<int>(), fitted["solver"]["residual_evaluations"].get<int>());
+}
+
+// A strong prior holds the free parameters at the start values (efficiency 0.84, h = 10) against the log's 0.7 and
+// 25; a weak one leaves the fit to the data. The prior's part of the cost is not counted as noise.
+TEST(ReplayRoundTrip, APriorPullsTowardTheStartValuesWithItsStatedWeight) {
+  const fs::path dir = cli_test::TempDir("replay_fit_prior");
+  FitOptions options = RoundTripFit(dir, "strong.json");
+  options.prior_weight = 1e5;
+  std::ostringstream out;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  const nlohmann::json strong = cli_test::ReadJson(options.output);
+  EXPECT_NEAR(strong["fitted"]["efficiency"].get<double>(), 0.84, 2e-3) << out.str();
+  EXPECT_NEAR(strong["fitted"]["convection"].get<double>(), 10.0, 0.2) << out.str();
+  EXPECT_EQ(strong["prior"]["weight_c"].get<double>(), 1e5);
+  EXPECT_EQ(strong["prior"]["toward"]["convection"].get<double>(), 10.0);
+  EXPECT_GT(strong["identifiability"]["noise_c"].get<double>(), 5.0) << "the start values do not fit the log";
+  options.output = dir / "weak.json";
+  options.prior_weight = 1.0;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  const nlohmann::json weak = cli_test::ReadJson(options.output);
+  EXPECT_NEAR(weak["fitted"]["efficiency"].get<double>(), 0.7, 0.01) << out.str();
+  EXPECT_NEAR(weak["identifiability"]["noise_c"].get<double>(), 1.0, 0.2) << out.str();
+}
+
+// The identifiability report against closed forms: orthogonal Jacobian columns give s * scale / |column| and no
+// correlation; nearly parallel ones a correlation near -1, both undetermined, the weakest combination along
+// (1, -1) in scaled units; a prior W adds W^2 to J^T J.
+TEST(ThermalIdentifiability, MatchesTheGaussNewtonCovarianceOfASmallJacobian) {
+  internal::IdentifiabilityInput in;
+  in.names = {"a", "b"};
+  in.scales = {1.0, 10.0};
+  in.values = {0.5, 21.0};
+  in.m = 4;
+  in.jacobian = {3, 0, 0, 4, 0, 0, 0, 0};  // columns (3, 0, 0, 0) and (0, 4, 0, 0)
+  in.data_cost = 0.5 * 2.0 * 4.0;          // s^2 = 2 cost / (m - n) = 4
+  nlohmann::json id = internal::ThermalIdentifiability(in);
+  EXPECT_NEAR(id["noise_c"].get<double>(), 2.0, 1e-12);
+  EXPECT_NEAR(id["standard_deviation"]["a"].get<double>(), 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(id["standard_deviation"]["b"].get<double>(), 2.0 * 10.0 / 4.0, 1e-12);
+  EXPECT_NEAR(id["correlation"]["a"]["b"].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(id["condition_number"].get<double>(), 1.0, 1e-12);
+  EXPECT_EQ(id["undetermined"], nlohmann::json::array({"a"})) << "sd 0.67 of 0.5 (> 25 %), 5 of 21 (< 25 %)";
+  in.prior_weight = 4.0;
+  id = internal::ThermalIdentifiability(in);
+  EXPECT_NEAR(id["standard_deviation"]["a"].get<double>(), 2.0 / 5.0, 1e-12) << "sqrt(9 + 16)";
+  EXPECT_NEAR(id["condition_number"].get<double>(), 1.0, 1e-12) << "the data's own";
+  in.prior_weight = 0.0;
+  in.values = {5.0, 200.0};
+  in.jacobian = {1, 1, 1, 1.01, 1, 1, 1, 0.99};  // nearly parallel columns
+  id = internal::ThermalIdentifiability(in);
+  EXPECT_LT(id["correlation"]["a"]["b"].get<double>(), -0.99);
+  EXPECT_GT(id["condition_number"].get<double>(), 1e3);
+  const double wa = id["weakest"]["a"].get<double>(), wb = id["weakest"]["b"].get<double>();
+  EXPECT_GT(wa, 0.0);
+  EXPECT_NEAR(wb / in.scales[1], -wa, 0.02 * wa) << "along (1, -1) in scaled units";
+  EXPECT_EQ(id["undetermined"].size(), 2u) << id.dump();
+  in.jacobian = {3, 0, 0, 0, 0, 0, 0, 0};  // b not felt: blind, a as alone
+  in.values = {0.5, 21.0};
+  id = internal::ThermalIdentifiability(in);
+  EXPECT_EQ(id["blind"], nlohmann::json::array({"b"}));
+  EXPECT_FALSE(id["standard_deviation"].contains("b"));
+  EXPECT_NEAR(id["standard_deviation"]["a"].get<double>(), std::sqrt(2.0 * 4.0 / 3.0) / 3.0, 1e-12) << "m - n = 3";
+  EXPECT_EQ(id["undetermined"], nlohmann::json::array({"a", "b"}));
 }
 
 // Coarse to fine (--coarse-cell 4 on the 2 mm grid): the coarse stage only chooses the start of the fit on the
