@@ -15,7 +15,7 @@ packages=(
   libjs-three chromium
   slurmctld slurmd slurm-client munge python3-distributed
   pybind11-dev python3-dev python3-numpy python3-pytest
-  python3-pandas python3-matplotlib python3-nbclient python3-nbformat python3-ipykernel mypy
+  python3-pandas python3-matplotlib python3-h5py python3-nbclient python3-nbformat python3-ipykernel mypy
 )
 if [ "${1:-}" = "--fuzz" ]; then
   packages+=(clang-14 libclang-rt-14-dev)

@@ -212,7 +212,14 @@ bool IsSignalCode(const GcodeRun& run, const GcodeWord& w) {
 void ExecGcodeFeed(GcodeRun& run, const GcodeBlock& block) {
   const GcodeWord* f = block.Find("F");
   if (f == nullptr || block.HasCode("G", 4)) return;  // Sinumerik's G4 F is a time
-  WAAM_THROW_UNLESS(f->value > 0.0, run.file << ":" << block.line << ": F" << f->value << " must be > 0");
+  WAAM_THROW_UNLESS(f->value >= 0.0, run.file << ":" << block.line << ": F" << f->value << " must be >= 0");
+  // F0 programs no feed: no move can run at it, and the controllers that take it (ORNL's Wolf syntax writes
+  // M5T2D1F0 before each layer's travel) run the next moves at the feed in force; LinuxCNC refuses a G1 at zero
+  // feed. The modal feed stays, warned.
+  if (f->value == 0.0) {
+    run.warnings.Add("F0 programs no feed: the moves keep the feed in force", block.line);
+    return;
+  }
   const double per_s = run.options.feed_unit == GcodeFeedUnit::kMmPerS ? 1.0 : 1.0 / 60.0;
   run.s.feed_mm_s = f->value * run.s.unit * per_s;
   run.s.raw_feed = f->value;

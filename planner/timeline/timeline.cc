@@ -70,6 +70,16 @@ void CheckSetting(double value, const char* key, bool positive) {
                     "timeline setting " << key << " = " << value << ": must be " << (positive ? "> 0" : ">= 0"));
 }
 
+// True when the move to the point after plan.layers[l].points[i] (in this layer or the next that has points) lays a
+// bead; false at the plan's end.
+bool NextMoveWelds(const Plan& plan, std::size_t l, std::size_t i) {
+  if (i + 1 < plan.layers[l].points.size()) return plan.layers[l].points[i + 1].weld;
+  for (std::size_t k = l + 1; k < plan.layers.size(); ++k) {
+    if (!plan.layers[k].points.empty()) return plan.layers[k].points.front().weld;
+  }
+  return false;
+}
+
 // Layer sums, first arc start and last arc end from the spans.
 void SumLayers(const Plan& plan, Timeline* timeline) {
   timeline->layers.assign(plan.layers.size(), LayerTimes{});
@@ -207,6 +217,13 @@ Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, 
           }
           out.Add(travel.positioner ? SpanKind::kPositioner : SpanKind::kTravel, travel.time_s, layer, i);
         }
+      }
+      // A dwell where a pass ends (the program switched the arc off, then waited: G-code M5 / M103 then G4, FANUC
+      // Arc End then WAIT) comes after the pass's arc end; a dwell between two weld moves is a pause of the open
+      // pass.
+      if (arc_on && p.dwell_s > 0.0 && !NextMoveWelds(plan, l, i)) {
+        out.Add(SpanKind::kArcEnd, settings.arc_end_s, layer, i);
+        arc_on = false;
       }
       out.Add(SpanKind::kWait, p.dwell_s, layer, i);
       prev = &p;

@@ -153,6 +153,15 @@ std::string MiniUrdf(const std::string& mesh, const std::string& velocity = "vel
   return s + "</robot>\n";
 }
 
+// `urdf` (a MiniUrdf) with joint_1 continuous and without its <limit>.
+std::string ContinuousFirstJoint(std::string urdf) {
+  const std::string revolute = "type=\"revolute\">";
+  urdf.replace(urdf.find(revolute), revolute.size(), "type=\"continuous\">");
+  const std::size_t limit = urdf.find("    <limit");
+  urdf.erase(limit, urdf.find('\n', limit) + 1 - limit);
+  return urdf;
+}
+
 // A scenario whose arm is `urdf`, packages looked up in pkgs/; `extra` more lines of cell.robot.
 std::string UrdfScenario(const std::string& urdf, const std::string& extra = "") {
   return "name: bad_urdf\n"
@@ -378,6 +387,10 @@ std::vector<BadInput> Catalogue() {
       {"urdf-limit-without-velocity", "check", "s.yaml",
        {{"s.yaml", UrdfScenario("arm.urdf")}, {"arm.urdf", MiniUrdf("m.stl", "")}},
        {"arm.urdf:", ": joint 'joint_1': <limit> without velocity (rad/s; waam checks joint speeds)"}},
+      {"urdf-continuous-joint-without-limit", "check", "s.yaml",
+       {{"s.yaml", UrdfScenario("arm.urdf")}, {"arm.urdf", ContinuousFirstJoint(MiniUrdf("m.stl"))}},
+       {"arm.urdf:11: joint 'joint_1' is continuous without <limit velocity>: no bound on its speed (rad/s; waam "
+        "checks joint speeds and bounds the motion between samples by them)"}},
       {"cell-unknown-preset", "check", "s.yaml", {{"s.yaml", CellScenario("  preset: fanuc_m20ia\n")}},
        {"s.yaml:13: cell.preset = 'fanuc_m20ia': unknown value, expected one of fanuc_arcmate100ic, abb_irb1600, "
         "kuka_kr16, yaskawa_mh12, kuka_kr16_turntable, abb_irb1600_table"}},

@@ -135,5 +135,53 @@ TEST(CheckCliTest, BrokenCellModelIsABadInputError) {
   EXPECT_FALSE(fs::exists(dir / "out" / "check.json"));
 }
 
+// `waam check` with cell.checks.mode continuous on the KR 16-2 class arm of tests/data/urdf_fallback/`urdf`; returns
+// check.json (exit code 0 or 3) and the exit code in *code.
+nlohmann::json CheckContinuousUrdf(const std::string& urdf, int* code) {
+  const fs::path dir = TempDir("urdf_" + urdf);
+  std::string scenario = Slurp(fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "urdf_kr16.yaml");
+  const std::string from = "robots/waam_kr16_support/urdf/kr16_2.urdf";
+  scenario.replace(scenario.find(from), from.size(),
+                   (fs::path(WAAM_SOURCE_DIR) / "tests" / "data" / "urdf_fallback" / urdf).string());
+  const std::string checks = "part_collision: true}";
+  scenario.replace(scenario.find(checks), checks.size(), "part_collision: true, mode: continuous}");
+  std::ofstream(dir / "s.yaml") << scenario;
+  std::string err;
+  *code = RunCheckCli(dir / "s.yaml", dir / "out", &err);
+  EXPECT_TRUE(*code == 0 || *code == 3) << err;
+  return nlohmann::json::parse(Slurp(dir / "out" / "check.json"));
+}
+
+// A URDF link drawn but without collision geometry, or a collision mesh that is not closed: the continuous check
+// runs discrete and check.json names the link (one line) in mode_fallback, never silently.
+TEST(CheckCliTest, UrdfLinkWithoutCollisionFallsBackToDiscrete) {
+  int code = 0;
+  const nlohmann::json check = CheckContinuousUrdf("link_without_collision.urdf", &code);
+  EXPECT_EQ(check.at("mode"), "discrete");
+  const std::string why = check.at("mode_fallback").get<std::string>();
+  EXPECT_THAT(why, HasSubstr("link_without_collision.urdf:"));
+  EXPECT_THAT(why, HasSubstr("link 'link_5' has <visual> but no <collision> geometry"));
+  EXPECT_EQ(why.find('\n'), std::string::npos);
+}
+
+TEST(CheckCliTest, UrdfOpenMeshFallsBackToDiscrete) {
+  int code = 0;
+  const nlohmann::json check = CheckContinuousUrdf("open_mesh.urdf", &code);
+  EXPECT_EQ(check.at("mode"), "discrete");
+  const std::string why = check.at("mode_fallback").get<std::string>();
+  EXPECT_THAT(why, HasSubstr("geom link_5_collision0 (body link_5): its mesh is not closed (4 edges"));
+  EXPECT_EQ(why.find('\n'), std::string::npos);
+}
+
+// A continuous joint with a velocity limit: its travel between samples bounds its motion as any axis's does, so the
+// continuous check runs (its range is one turn each way, +-360 deg, for the joint limit check).
+TEST(CheckCliTest, UrdfContinuousJointWithVelocityRunsContinuous) {
+  int code = 0;
+  const nlohmann::json check = CheckContinuousUrdf("continuous_joint.urdf", &code);
+  EXPECT_EQ(code, 0);
+  EXPECT_EQ(check.at("mode"), "continuous");
+  EXPECT_EQ(check.at("mode_fallback"), "");
+}
+
 }  // namespace
 }  // namespace waam::analysis

@@ -3,6 +3,7 @@
 // program exits 2 writing nothing.
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -212,6 +213,37 @@ TEST(ProgramCliTest, BarOnPlateGcodeTimelineHasItsArcTimesAndDwells) {
   }
   EXPECT_NEAR(timeline["wait_s"].get<double>(), 4 * 60.0, 1e-6);
   EXPECT_NEAR(timeline["arc_on_s"].get<double>(), 5 * 15.0, 1e-6);
+}
+
+TEST(ProgramCliTest, WolfSyntaxGcodeRunsThroughThermalWithItsArcTimesAndDwells) {
+  // ORNL's Wolf syntax (tests/data/programs/wolf_bar.gcode: M101 / M103 the arc, F in mm/s, G4 S, packed M5T2D1F0
+  // words) as a scenario's program: for `waam thermal`: three layers of 124 mm at F5, dwells of 30 and 20 s after
+  // the arc ends, the arc's energy all accounted for.
+  const fs::path dir = TempDir("program_wolf_thermal");
+  fs::copy_file(ProgramFixture("wolf_bar.gcode"), dir / "wolf_bar.gcode");
+  WriteFileAtomic(dir / "s.yaml",
+                  "name: wolf\nprogram:\n  file: wolf_bar.gcode\n"
+                  "  gcode: {arc_on: [M101], arc_off: [M103], feed_unit: mm_per_s, dwell_p_unit: s}\n"
+                  "slicing: {layer_height_mm: 2}\npath: {pattern: zigzag, bead_width_mm: 4}\n"
+                  "process:\n  travel_speed_mm_min: 300\n  wire_feed_mm_min: 3000\n  arc_start_s: 0\n"
+                  "  arc_end_s: 0\n  arc: {power_w: 2000, efficiency: 0.8}\n"
+                  "thermal:\n  material: mild_steel\n  cell_mm: 4\n"
+                  "  substrate: {size_mm: [40, 80, 6], centre_mm: [0, 0, -5]}\n"
+                  "  probes: {side: [14, 0, -3]}\n");
+  std::string err;
+  ASSERT_EQ(RunWaam("thermal " + (dir / "s.yaml").string() + " -q --no-images -o " + (dir / "out").string(), &err), 0) << err;
+  const nlohmann::json j = ReadJson(dir / "out" / "thermal.json");
+  const nlohmann::json& timeline = j["timeline"];
+  ASSERT_EQ(timeline["layers"].size(), 3u);
+  for (const nlohmann::json& layer : timeline["layers"]) {
+    EXPECT_NEAR(layer["arc_on_s"].get<double>(), 124.0 / 5.0, 1e-6) << layer.dump();
+    EXPECT_NEAR(layer["end_s"].get<double>() - layer["start_s"].get<double>(), 124.0 / 5.0, 1e-6) << layer.dump();
+  }
+  EXPECT_NEAR(timeline["wait_s"].get<double>(), 30.0 + 20.0, 1e-6);
+  EXPECT_GE(timeline["layers"][1]["start_s"].get<double>() - timeline["layers"][0]["end_s"].get<double>(), 30.0);
+  EXPECT_NEAR(j["energy_balance"]["arc_energy_j"].get<double>(), 2000.0 * 3 * 124.0 / 5.0, 1e-3);
+  EXPECT_LT(std::abs(j["energy_balance"]["relative_error"].get<double>()), 0.01);
+  EXPECT_GT(j["probes"]["side"]["max_c"].get<double>(), 100.0) << "the plate beside the bar heats up";
 }
 
 TEST(ProgramCliTest, BadProgramExitsTwoAndWritesNothing) {

@@ -67,6 +67,56 @@ TEST(GcodeGrammarTest, BarOnPlateTimelineIsPathOverFeedPlusDwells) {
   EXPECT_NE(testing::FindProgramWarning(per_min, "look like mm/s"), nullptr);
 }
 
+GcodeReadOptions Wolf() {
+  GcodeReadOptions options = PerSecond();
+  options.arc_on = {"M101"};
+  options.arc_off = {"M103"};
+  options.dwell_p_unit = GcodeDwellUnit::kS;
+  return options;
+}
+
+TEST(GcodeGrammarTest, OrnlWolfSyntaxRunsWithItsPumpSignalsPackedWordsAndDwells) {
+  // tests/data/programs/wolf_bar.gcode: three layers of two 60 mm tracks 4 mm apart at F5 (mm/s), M101 / M103 the
+  // arc, G4 S30 and S20 between layers; "BEGINNING LAYER" lines, M5T2D1F0 packed words, M6, T1.
+  const std::string text = ReadFile(fs::path(WAAM_SOURCE_DIR) / "tests/data/programs/wolf_bar.gcode");
+  const ParsedProgram program = ReadGcode(text, "wolf_bar.gcode", Wolf());
+  // What the twin does not run is listed with its count and first line, never dropped.
+  const struct {
+    const char* what;
+    int count, first_line;
+  } kWarned[] = {{"statement BEGINNING", 3, 5}, {"F0 programs no feed", 3, 7}, {"M5 not executed", 3, 7},
+                 {"M6 not executed", 3, 16},    {"T1 tool select", 1, 6},      {"T2 tool select", 4, 7}};
+  for (const auto& w : kWarned) {
+    const ProgramWarning* found = testing::FindProgramWarning(program, w.what);
+    ASSERT_NE(found, nullptr) << w.what;
+    EXPECT_EQ(found->count, w.count) << w.what;
+    EXPECT_EQ(found->first_line, w.first_line) << w.what;
+  }
+  EXPECT_EQ(testing::FindProgramWarning(program, "look like"), nullptr) << "F5 read as mm/s";
+  ImportSettings import;
+  import.bead_height_mm = 2.0;
+  const ImportedPlan imported = ProgramToPlan(program, testing::ProgramTestCell(), import);
+  ASSERT_EQ(imported.plan.layers.size(), 3u);
+  TimelineSettings settings;
+  settings.arc_start_s = 0.0;
+  settings.arc_end_s = 0.0;
+  const Timeline timeline = BuildTimeline(imported.plan, {}, AxisLimits{}, settings);
+  ASSERT_EQ(timeline.layers.size(), 3u);
+  for (const LayerTimes& layer : timeline.layers) {
+    // 60 + 4 + 60 mm at 5 mm/s; the F0 before layers 2 and 3 keeps the feed in force (F5), no move runs at zero feed.
+    EXPECT_NEAR(layer.arc_on_s, 124.0 / 5.0, 1e-6) << "layer " << layer.layer;
+    // The G4 after M103 waits after the pass's arc end: the layer ends at its last arc end, not after the dwell.
+    EXPECT_NEAR(layer.end_s - layer.start_s, 124.0 / 5.0, 1e-6) << "layer " << layer.layer;
+  }
+  EXPECT_NEAR(timeline.wait_s, 30.0 + 20.0, 1e-9);
+  EXPECT_GE(timeline.layers[1].start_s - timeline.layers[0].start_s, 124.0 / 5.0 + 30.0);
+  EXPECT_GE(timeline.layers[2].start_s - timeline.layers[1].start_s, 124.0 / 5.0 + 20.0);
+  // With M3 / M5 as the signals (the default), M101 / M103 are warned and nothing is welded.
+  const ParsedProgram plain = ReadGcode(text, "wolf_bar.gcode", PerSecond());
+  EXPECT_NE(testing::FindProgramWarning(plain, "M101 not executed"), nullptr);
+  for (const ProgramMotion& m : plain.motions) EXPECT_FALSE(m.weld) << "line " << m.line;
+}
+
 TEST(GcodeGrammarTest, WordsCommentsLineNumbersAndChecksums) {
   // Compact words, lower case, N numbers, '*' checksums, '( )' and ';' comments, '/' block delete, '%', spaces
   // inside a word, ISG's X= form.
@@ -218,6 +268,7 @@ TEST(GcodeGrammarTest, WhatTheControllerRefusesIsRefusedOnOneLine) {
   EXPECT_THAT(GcodeError("G0 X0\nG4 P10 Y5\n"), HasSubstr("bad.nc:2: G4 with the axis word Y: a dwell moves no axis"));
   EXPECT_THAT(GcodeError("G0 X0\nG1 X#1 F60\n"), HasSubstr("bad.nc:2: X '#1' is not a finite number"));
   EXPECT_THAT(GcodeError("G0 X0\nG1 X1 F60 $\n"), HasSubstr("bad.nc:2: unexpected '$'"));
+  EXPECT_THAT(GcodeError("M5T2D1F-1\nG1 X1\n"), HasSubstr("bad.nc:1: F-1 must be >= 0"));
   GcodeReadOptions bad;
   bad.arc_on = {"X3"};
   EXPECT_THAT(GcodeError("G0 X0\n", bad), HasSubstr("program.gcode.arc_on 'X3': an arc signal is a G or M code"));

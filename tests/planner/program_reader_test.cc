@@ -361,7 +361,7 @@ TEST(ProgramReaderTest, GcodeBadInputsNameTheLine) {
   EXPECT_THAT(ErrorOf(ProgramFormat::kGcode, "G1 X1.2.3 Y0\n"), HasSubstr("bad:1: X '1.2.3' is not a finite number"));
   EXPECT_THAT(ErrorOf(ProgramFormat::kGcode, "G1 X1 A3=0 B3=0 C3=0\n"),
               HasSubstr("bad:1: tool direction A3 B3 C3 of length 0"));
-  EXPECT_THAT(ErrorOf(ProgramFormat::kGcode, "G1 X1 F-5\n"), HasSubstr("bad:1: F-5 must be > 0"));
+  EXPECT_THAT(ErrorOf(ProgramFormat::kGcode, "G1 X1 F-5\n"), HasSubstr("bad:1: F-5 must be >= 0"));
   EXPECT_THAT(ErrorOf(ProgramFormat::kGcode, "G1 X1 (open comment\n"), HasSubstr("bad:1: comment '('"));
 }
 

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/cell_files.h"
+#include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "planner/kinematics/positioner.h"
 #include "planner/scenario/scenario_document.h"
@@ -263,6 +264,20 @@ TEST(CellSweepTest, AnUnboundedGeomFallsBackToDiscreteWithTheReason) {
   const CheckReport report = CheckPlan(cell, SwingPlan(), settings, 100.0, nullptr);
   EXPECT_EQ(report.mode, CheckMode::kDiscrete);
   EXPECT_THAT(report.mode_fallback, ::testing::HasSubstr("floor_bumps"));
+}
+
+// A plane on a body an axis moves cannot reach the distance bounds: MuJoCo 2.2 refuses the model when it loads it
+// (CollisionGeometry() demands planes are static).
+TEST(CellSweepTest, APlaneOnAMovingBodyIsRefusedAtLoad) {
+  std::ifstream in(analysis::BuiltinCellPath());
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string anchor = "<body name=\"link2\" pos=\"0.15 0 0.45\">";
+  ASSERT_NE(xml.find(anchor), std::string::npos);
+  xml.insert(xml.find(anchor) + anchor.size(), "\n<geom name=\"link2_plane\" type=\"plane\" size=\"0.1 0.1 0.01\"/>");
+  const MjcfSource mjcf{.xml = xml, .file = analysis::BuiltinCellPath(), .assets = {}, .builtin = false};
+  EXPECT_THROW(CellModel::FromXml(mjcf, CellModel::RobotInfo{"FANUC ARC Mate 100iC/12", "builtin"},
+                                  Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity()),
+               InputError);
 }
 
 TEST(CellSweepTest, PairsLeaveOutTheModelsExcludedBodies) {

@@ -196,6 +196,7 @@ CellModel UrdfCellModel(const UrdfArm& arm, const MjcfSource& meshes, const Cell
   info.name = settings.preset ? std::string(PresetInfo(*settings.preset).robot_name) : arm.name;
   info.source = settings.preset ? std::string(NameOf(*settings.preset)) : settings.robot_urdf.string();
   info.joints = arm.joint_names;
+  info.incomplete_geometry = arm.link_without_collision;
   MjcfSource mjcf = meshes;
   mjcf.file = settings.robot_urdf;
   // Arm links whose collision shapes (convex hulls of the meshes) already touch at the zero pose touch by design:

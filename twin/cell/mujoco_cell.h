@@ -58,8 +58,8 @@ struct CellCollisionGeometry {
   // them plus the shape's bounding radius), mm; 0 when it does not move it.
   std::vector<Eigen::Matrix<double, 8, 1>> lever_mm;
   std::vector<std::array<int, 2>> pairs;  // indices into `shapes`: the pairs MuJoCo's collision detection tests
-  // Why distances cannot be bounded on this model (names the geom), empty when they can: a height field, or a
-  // plane that an axis moves.
+  // Why distances cannot be bounded on this model, one line, empty when they can: a height field, an empty mesh or
+  // one that is not closed (names the geom and its body), or the model's RobotInfo::incomplete_geometry.
   std::string unsupported;
   // The model's bodies as a tree for ShapePosesAt (MuJoCo's body order: a parent before its children; 0 the world).
   struct Link {
@@ -123,6 +123,9 @@ class CellModel {
     std::string name;
     std::string source;
     std::array<std::string, 6> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
+    // Why the model's geoms do not describe every body (e.g. a URDF link drawn but without collision geometry): one
+    // line, which CollisionGeometry() reports as `unsupported` (the continuous check then runs discrete); empty: none.
+    std::string incomplete_geometry;
   };
   // A cell model (a composed cell, e.g. around a URDF arm, or a preset's) placed like the constructor above and
   // reported as `info`; `mjcf.file` (default: info.source) is the model's file() and names it in messages.

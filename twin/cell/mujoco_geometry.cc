@@ -1,11 +1,15 @@
 // The cell's MuJoCo geoms as convex shapes for distance queries: their pairs as MuJoCo 2.2's collision detection
 // filters them, the lever arm of every axis over every shape, and the shapes' poses.
+#include <array>
 #include <cmath>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "models/core/error.h"
 #include "twin/cell/mujoco_cell.h"
 #include "twin/cell/mujoco_cell_internal.h"
 
@@ -55,7 +59,30 @@ double LeverBound(const mjModel* m, int jnt, int g) {
   return (length + Norm3(m->jnt_pos + 3 * jnt)) * kGeomMm;
 }
 
-// Geom g as a convex shape, or the reason it cannot be one.
+std::string GeomName(const mjModel* m, int g) {
+  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
+  return name ? std::string(name) : "#" + std::to_string(g);
+}
+
+std::string BodyName(const mjModel* m, int g) {
+  const char* name = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
+  return name ? std::string(name) : "world";
+}
+
+// How many edges of a triangle mesh are not shared by exactly two of its faces (0: closed; MuJoCo 2.2 merges repeated
+// vertices when it loads an STL, so faces that meet share vertex indices).
+int OpenEdges(const std::vector<std::array<int, 3>>& faces) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const std::array<int, 3>& f : faces) {
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(f[k], f[(k + 1) % 3])];
+  }
+  int open = 0;
+  for (const auto& [edge, n] : uses) open += n != 2;
+  return open;
+}
+
+// Geom g as a convex shape, or the reason it cannot be one: a height field, an empty mesh or a mesh that is not
+// closed. A plane is one (MuJoCo 2.2 refuses a plane on a body that moves when it loads the model).
 bool ShapeOf(const mjModel* m, int g, ConvexShape* shape, std::string* why) {
   shape->size_mm = Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]) * kGeomMm;
   shape->rbound_mm = m->geom_rbound[g] * kGeomMm;
@@ -80,6 +107,12 @@ bool ShapeOf(const mjModel* m, int g, ConvexShape* shape, std::string* why) {
       }
       const int* face = m->mesh_face + 3 * m->mesh_faceadr[mesh];
       for (int f = 0; f < m->mesh_facenum[mesh]; ++f) shape->faces.push_back({face[3 * f], face[3 * f + 1], face[3 * f + 2]});
+      const int open = OpenEdges(shape->faces);
+      if (open > 0) {
+        *why = "geom " + GeomName(m, g) + " (body " + BodyName(m, g) + "): its mesh is not closed (" +
+               std::to_string(open) + " edges not shared by exactly two faces): no solid to bound the distance to";
+        return false;
+      }
       const int graph = m->mesh_graphadr[mesh];
       if (graph >= 0) {
         // MuJoCo's convex hull: numvert, numface, vert_edgeadr[numvert], vert_globalid[numvert], ...
@@ -94,9 +127,7 @@ bool ShapeOf(const mjModel* m, int g, ConvexShape* shape, std::string* why) {
     default:
       break;
   }
-  const char* name = mj_id2name(m, mjOBJ_GEOM, g);
-  *why = "geom " + (name ? std::string(name) : "#" + std::to_string(g)) +
-         " is a height field or an empty mesh: no distance bound for it";
+  *why = "geom " + GeomName(m, g) + " is a height field or an empty mesh: no distance bound for it";
   return false;
 }
 
@@ -106,6 +137,7 @@ CellCollisionGeometry CellModel::CollisionGeometry() const {
   const mjModel* m = impl_->m;
   CellCollisionGeometry geometry;
   std::vector<int> shape_of(m->ngeom, -1);
+  geometry.unsupported = impl_->robot.incomplete_geometry;
   for (int g = 0; g < m->ngeom; ++g) {
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
     ConvexShape shape;
@@ -118,15 +150,12 @@ CellCollisionGeometry CellModel::CollisionGeometry() const {
     for (int j = 0; j < 8; ++j) {
       if (impl_->jnt[j] >= 0) lever[j] = LeverBound(m, impl_->jnt[j], g);
     }
-    const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[g]);
-    if (shape.type == ConvexShape::Type::kPlane && lever.maxCoeff() > 0.0 && geometry.unsupported.empty()) {
-      geometry.unsupported = "geom " + std::string(mj_id2name(m, mjOBJ_GEOM, g) ? mj_id2name(m, mjOBJ_GEOM, g) : "?") +
-                             " is a plane on a moving body: no bound on how fast it moves";
-    }
+    // MuJoCo 2.2 refuses a plane on a body that is not static ("plane and hfield only allowed in static bodies").
+    WAAM_DEMAND(shape.type != ConvexShape::Type::kPlane || lever.maxCoeff() == 0.0);
     shape_of[g] = static_cast<int>(geometry.shapes.size());
     geometry.shapes.push_back(std::move(shape));
     geometry.geom.push_back(g);
-    geometry.body.push_back(body ? body : "world");
+    geometry.body.push_back(BodyName(m, g));
     geometry.lever_mm.push_back(lever);
   }
   // The tree: every body with its fixed pose in its parent and the axis that turns it.

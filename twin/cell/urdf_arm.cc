@@ -254,6 +254,10 @@ class UrdfReader {
       const UrdfJoint& j = joints_[moving[k]];
       WAAM_THROW_UNLESS(j.type == "continuous" || j.has_limit,
                         file_ << ":" << j.line << ": joint '" << j.name << "' lacks <limit> (lower, upper, velocity)");
+      WAAM_THROW_UNLESS(j.has_velocity || j.type != "continuous",
+                        file_ << ":" << j.line << ": joint '" << j.name
+                              << "' is continuous without <limit velocity>: no bound on its speed (rad/s; waam checks "
+                                 "joint speeds and bounds the motion between samples by them)");
       WAAM_THROW_UNLESS(j.has_velocity, file_ << ":" << j.line << ": joint '" << j.name
                                               << "' lacks <limit velocity> (rad/s; waam checks joint speeds)");
       WAAM_THROW_UNLESS(j.type == "continuous" || j.lower < j.upper,
@@ -310,6 +314,11 @@ class UrdfReader {
         WAAM_THROW(Where(shape) << "unknown collision geometry <" << type << "> (box, cylinder, sphere or mesh)");
       }
       out += geom + "/>\n";
+    }
+    // A link drawn (<visual>) but without <collision> is a body no check can see; the first such link is reported.
+    if (n == 0 && link.element->FirstChildElement("visual") && arm_.link_without_collision.empty()) {
+      arm_.link_without_collision = file_ + ":" + std::to_string(link.line) + ": link '" + link.name +
+                                    "' has <visual> but no <collision> geometry: no collision check sees it";
     }
     return out;
   }

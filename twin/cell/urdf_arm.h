@@ -36,12 +36,15 @@ struct UrdfArm {
   std::string body_mjcf;                   // <body name="robot_base"> ... </body>, "<!--TORCH-->" inside link6
   std::string root_body;                   // the body holding the root link's geoms
   std::vector<UrdfMesh> meshes;            // the collision meshes, in the order of the <mesh .../> elements
+  std::string link_without_collision;      // "<file>:<line>: link 'X' has <visual> but no <collision> ..." for the
+                                           // first such link (one line), empty when every drawn link collides
 };
 
 // Parses the URDF `text` of the file `file` (which names it in messages). Throws InputError naming the file, line
 // and element for: text that is not URDF XML or holds xacro elements, no chain of six revolute joints from the
-// root to the flange, a `joints` entry or flange the URDF lacks, a revolute joint without <limit> or a limit
-// without velocity, a collision geometry other than box, cylinder, sphere or mesh.
+// root to the flange, a `joints` entry or flange the URDF lacks, a revolute joint without <limit>, a continuous
+// joint without <limit velocity> or a limit without velocity, a collision geometry other than box, cylinder,
+// sphere or mesh.
 UrdfArm ParseUrdfArm(const std::string& text, const std::filesystem::path& file, const UrdfArmOptions& options);
 
 }  // namespace waam::twin

@@ -339,15 +339,10 @@ void Relinearise(ThermalState& s, LevelSystem& L) {
   });
 }
 
-// Whether cell i of the level's system and all its neighbours in the system lie in the finer levels' region (depth >
-// level): a finer level solves them again, and no cell this level keeps touches them.
-bool InsideFinerRegion(const ThermalState& s, const LevelSystem& L, int level, std::size_t i) {
-  if (s.depth[L.cells[i]] <= level) return false;
-  for (int f = 0; f < 6; ++f) {
-    const int j = L.neighbour[i][f];
-    if (j >= 0 ? s.depth[L.cells[j]] <= level : L.conductance[i][f] > 0.0) return false;
-  }
-  return true;
+// Whether cell i of the level's system lies in the finer levels' region (depth > level): a finer level solves it
+// again, with its own nonlinear iteration.
+bool InFinerRegion(const ThermalState& s, const LevelSystem& L, int level, std::size_t i) {
+  return s.depth[L.cells[i]] > level;
 }
 
 // Solves the level's backward-Euler step over the candidates: the system linearised at T_old, then, while some
@@ -375,7 +370,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
         const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
         const double change = L.t_new[i] - s.temperature[c];
         converged = converged && (std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
-                                  InsideFinerRegion(s, L, level, i));
+                                  InFinerRegion(s, L, level, i));
         s.iterate_h[c] = h;
         s.chord[c] = t;
       }
