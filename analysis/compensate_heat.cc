@@ -41,7 +41,7 @@ nlohmann::json PrepareHeatShape(const Scenario& scenario, const planner::Plan& p
     interpass[layer.layer] = layer.wait_s > 0.0 || std::isnan(layer.laid_on_c) ? layer.interpass_c : layer.laid_on_c;
     peak[layer.layer] = layer.peak_c;
   }
-  const std::vector<twin::LayerHeat> heat = LayerHeatOf(interpass, peak, scenario.thermal.initial_c);
+  const std::vector<twin::LayerHeat> heat = LayerHeatOf(interpass, peak, scenario.thermal.InitialC());
   double interpass_wait_s = 0.0;
   for (const ThermalLayer& layer : run.layers) interpass_wait_s += layer.wait_s;
   std::vector<double> used_interpass;

@@ -9,11 +9,7 @@ namespace waam::analysis::internal {
 namespace {
 
 void ParseColumns(YamlMap& replay, ReplaySection* out) {
-  if (replay.Has("columns")) {
-    YamlMap columns = replay.Map("columns");
-    ReadFields<ReplayColumns>(columns, kReplayColumnFields, &out->columns);
-    columns.CheckNoUnknownKeys();
-  }
+  ReadFieldMap<ReplayColumns>(replay, "columns", kReplayColumnFields, &out->columns);
   const ReplayColumns& c = out->columns;
   const std::string where = replay.Where("columns");
   const bool volts_amps = !c.voltage_v.empty() || !c.current_a.empty();
@@ -30,15 +26,9 @@ void ParseProbes(YamlMap& replay, ReplaySection* out) {
   WAAM_THROW_UNLESS(replay.Has("probes"), replay.Where("") << ": replay.probes is missing: name at least one "
                                                               "thermocouple as NAME: {column, at_mm: [x, y, z]}");
   YamlMap probes = replay.Map("probes");
-  for (auto it = probes.node().begin(); it != probes.node().end(); ++it) {
+  for (const std::string& name : probes.Names("probe")) {
     ReplayProbe probe;
-    probe.name = it->first.Scalar();
-    probe.where = probes.Where(probe.name);
-    WAAM_THROW_UNLESS(!probe.name.empty() && probe.name.find_first_of("/ \t") == std::string::npos,
-                      probe.where << ": a probe name must be a non-empty word without '/' or spaces");
-    for (const ReplayProbe& other : out->probes) {
-      WAAM_THROW_UNLESS(other.name != probe.name, probe.where << ": a second probe of this name");
-    }
+    probe.name = name;
     YamlMap one = probes.Map(probe.name);
     probe.column = one.String("column");
     const std::vector<double> at = one.Numbers("at_mm", 3, -1e5, 1e5);
@@ -63,16 +53,8 @@ void ParseReplaySection(YamlMap& top, const std::filesystem::path& scenario_dir,
   out->log = replay.File("log", scenario_dir, "process log");
   ReadFields<ReplaySection>(replay, kReplayFields, out);
   ParseColumns(replay, out);
-  if (replay.Has("frame")) {
-    YamlMap frame = replay.Map("frame");
-    ReadFields<ReplaySection>(frame, kReplayFrameFields, out);
-    frame.CheckNoUnknownKeys();
-  }
-  if (replay.Has("bead")) {
-    YamlMap bead = replay.Map("bead");
-    ReadFields<ReplaySection>(bead, kReplayBeadFields, out);
-    bead.CheckNoUnknownKeys();
-  }
+  ReadFieldMap<ReplaySection>(replay, "frame", kReplayFrameFields, out);
+  ReadFieldMap<ReplaySection>(replay, "bead", kReplayBeadFields, out);
   if (replay.Has("ambient_column")) out->columns.ambient = replay.String("ambient_column");
   if (replay.Has("table_column")) out->columns.table = replay.String("table_column");
   ParseProbes(replay, out);

@@ -35,46 +35,7 @@ inline constexpr std::array kSubVolumeFields = {
     CustomField<SubVolumeKeys>("keep", FieldType::kNumbers, "half-spaces n . p <= c, 4 numbers each (nx, ny, nz, c mm)"),
 };
 
-// The sections their parsers read by hand (analysis/thermal_section.cc, planner/scenario/arc_section.cc,
-// planner/program/program_section.cc): documenting rows, so that --set reaches them and the key tables list them.
-inline constexpr std::array kThermalFields = {
-    CustomField<ThermalSection>("material", FieldType::kName, "the deposit's material: a shipped name or a file"),
-    CustomField<ThermalSection>("substrate", FieldType::kMap, "the plate (thermal.substrate)"),
-    CustomField<ThermalSection>("cell_mm", FieldType::kNumber, "grid spacing near the deposit, mm (default 2)"),
-    CustomField<ThermalSection>("ambient_c", FieldType::kNumber, "air temperature, degC (default 20)"),
-    CustomField<ThermalSection>("initial_c", FieldType::kNumber, "the plate's temperature at the start, degC"),
-    CustomField<ThermalSection>("convection_w_m2k", FieldType::kNumber, "h on every exposed face, W/(m^2 K)"),
-    CustomField<ThermalSection>("emissivity", FieldType::kNumber, "of every exposed face; absent = each material's"),
-    CustomField<ThermalSection>("table", FieldType::kMap, "contact with the table (thermal.table)"),
-    CustomField<ThermalSection>("sample_s", FieldType::kNumber, "interval of the probe histories, s (default 1)"),
-    CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
-    CustomField<ThermalSection>("heat_source", FieldType::kName,
-                                "double_ellipsoid (Goldak's pool, default) or uniform_bead (docs/THERMAL.md)"),
-    CustomField<ThermalSection>("pool", FieldType::kMap, "the double ellipsoid's semi-axes (thermal.pool)"),
-    CustomField<ThermalSection>("liquid_conductivity_factor", FieldType::kNumber,
-                                "k above the liquidus times this, 1-100 (default 5)"),
-    CustomField<ThermalSection>("shape", FieldType::kMap, "the heat shapes bead and distortion (thermal.shape)"),
-};
-inline constexpr std::array kThermalPoolFields = {
-    CustomField<ThermalSection>("depth_beads", FieldType::kNumber, "depth b over the bead height (default 2)"),
-    CustomField<ThermalSection>("front_widths", FieldType::kNumber, "c_f ahead of the arc over the bead width (0.5)"),
-    CustomField<ThermalSection>("rear_widths", FieldType::kNumber, "c_r behind the arc over the bead width (2)"),
-};
-inline constexpr std::array kThermalShapeFields = {
-    CustomField<ThermalShape>("bead_model", FieldType::kFile,
-                              "bead-temperature model file (waam fit bead-temperature); absent = planned beads"),
-    CustomField<ThermalShape>("distortion", FieldType::kBool,
-                              "inherent strains follow the layers' interpass and peak temperatures (default false)"),
-};
-inline constexpr std::array kThermalSubstrateFields = {
-    CustomField<ThermalSection>("size_mm", FieldType::kNumbers, "[x, y, z] of the plate, mm (required)"),
-    CustomField<ThermalSection>("centre_mm", FieldType::kNumbers, "its centre; absent = under the part, top at z = 0"),
-    CustomField<ThermalSection>("material", FieldType::kName, "the plate's material (default: the deposit's)"),
-};
-inline constexpr std::array kThermalTableFields = {
-    CustomField<ThermalSection>("conductance_w_m2k", FieldType::kNumber, "plate-table contact, W/(m^2 K)"),
-    CustomField<ThermalSection>("temperature_c", FieldType::kNumber, "the table's temperature, degC"),
-};
+// The sections their parsers read by hand (planner/scenario/arc_section.cc, planner/program/program_section.cc): documenting rows, so that --set reaches them and the key tables list them.
 inline constexpr std::array kArcFields = {
     CustomField<planner::ArcSettings>("power_w", FieldType::kNumber, "arc power, W; or voltage_v and current_a"),
     CustomField<planner::ArcSettings>("voltage_v", FieldType::kNumber, "arc voltage, V"),
@@ -119,12 +80,12 @@ std::vector<SectionKeys> MakeSections() {
       Section("thermal", kThermalFields),
       Section("thermal.substrate", kThermalSubstrateFields),
       Section("thermal.table", kThermalTableFields),
+      Section("thermal.pool", kThermalPoolFields),
+      Section("thermal.shape", kThermalShapeFields),
       Section("replay", kReplayFields),
       Section("replay.columns", kReplayColumnFields),
       Section("replay.frame", kReplayFrameFields),
       Section("replay.bead", kReplayBeadFields),
-      Section("thermal.pool", kThermalPoolFields),
-      Section("thermal.shape", kThermalShapeFields),
   };
   // The top level holds the sections too.
   for (const SectionKeys& s : sections) {
@@ -224,6 +185,7 @@ void ValidateScenario(const Scenario& s) {
   twin::ValidateSimulationSettings(s.simulation);
   CheckFields<RunSettings>(kRunFields, s.run, "run");
   CheckFields<PlaceSettings>(kPlaceFields, s.place, "place");
+  ValidateThermalSection(s.thermal);
   CheckFields<ReplaySection>(kReplayFields, s.replay, "replay");
   CheckFields<ReplaySection>(kReplayFrameFields, s.replay, "replay.frame");
   CheckFields<ReplaySection>(kReplayBeadFields, s.replay, "replay.bead");

@@ -58,21 +58,18 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   s.deposit = thermal.deposit.material;
   s.substrate = thermal.substrate.material;
   s.cell_mm = thermal.cell_mm;
-  s.initial_c = thermal.initial_c;
+  s.initial_c = thermal.InitialC();
   s.ambient_c = thermal.ambient_c;
   s.convection_w_m2k = thermal.convection_w_m2k;
-  s.emissivity = thermal.emissivity;
+  s.emissivity = thermal.Emissivity();
   s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
-  s.table_c = thermal.table_c;
+  s.table_c = thermal.TableC();
   s.heat_source = thermal.heat_source;
   s.pool_depth_beads = thermal.pool_depth_beads;
   s.pool_front_widths = thermal.pool_front_widths;
   s.pool_rear_widths = thermal.pool_rear_widths;
   s.liquid_conductivity_factor = thermal.liquid_conductivity_factor;
-  const Eigen::Vector3d size = thermal.substrate_size_mm;
-  Eigen::Vector3d centre(beads.center().x(), beads.center().y(), -0.5 * size.z());
-  if (thermal.substrate_centre_mm) centre = *thermal.substrate_centre_mm;
-  s.substrate_box_mm = Eigen::AlignedBox3d(centre - 0.5 * size, centre + 0.5 * size);
+  s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
   // The deposit may grow one cell beyond its planned beads (the solver snaps beads to its cells).
   s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - Eigen::Vector3d::Constant(thermal.cell_mm),
                                          beads.max() + Eigen::Vector3d::Constant(thermal.cell_mm));

@@ -6,14 +6,32 @@
 #include "planner/scenario/scenario.h"
 #include "models/core/yaml_map.h"
 
+namespace waam::analysis {
+
+Eigen::AlignedBox3d SubstrateBoxMm(const ThermalSection& thermal, const Eigen::AlignedBox3d& beads_mm) {
+  WAAM_DEMAND(thermal.substrate_size_mm.has_value());
+  const std::array<double, 3>& s = *thermal.substrate_size_mm;
+  const Eigen::Vector3d size(s[0], s[1], s[2]);
+  Eigen::Vector3d centre(beads_mm.center().x(), beads_mm.center().y(), -0.5 * size.z());
+  if (const auto& c = thermal.substrate_centre_mm) centre = Eigen::Vector3d((*c)[0], (*c)[1], (*c)[2]);
+  return Eigen::AlignedBox3d(centre - 0.5 * size, centre + 0.5 * size);
+}
+
+void ValidateThermalSection(const ThermalSection& thermal) {
+  if (!thermal.given) return;
+  WAAM_THROW_UNLESS(thermal.substrate_size_mm.has_value(), "thermal.substrate.size_mm: missing: give the plate's "
+                                                           "size [x, y, z] (mm)");
+  CheckFields<ThermalSection>(kThermalFields, thermal, "thermal");
+  CheckFields<ThermalSection>(kThermalSubstrateFields, thermal, "thermal.substrate");
+  CheckFields<ThermalSection>(kThermalTableFields, thermal, "thermal.table");
+  CheckFields<ThermalSection>(kThermalPoolFields, thermal, "thermal.pool");
+}
+
+}  // namespace waam::analysis
+
 namespace waam::analysis::internal {
 
 namespace {
-
-Eigen::Vector3d Vec3(YamlMap& map, const std::string& key, double min, double max) {
-  const std::vector<double> v = map.Numbers(key, 3, min, max);
-  return {v[0], v[1], v[2]};
-}
 
 void ParseSubstrate(YamlMap& thermal, ThermalSection* out) {
   WAAM_THROW_UNLESS(thermal.Has("substrate"), thermal.Where("") << ": thermal.substrate is missing: give the plate "
@@ -21,8 +39,7 @@ void ParseSubstrate(YamlMap& thermal, ThermalSection* out) {
   YamlMap plate = thermal.Map("substrate");
   out->substrate_where = plate.Where("");
   WAAM_THROW_UNLESS(plate.Has("size_mm"), out->substrate_where << ": give size_mm: [x, y, z] (mm)");
-  out->substrate_size_mm = Vec3(plate, "size_mm", 1.0, 10000.0);
-  if (plate.Has("centre_mm")) out->substrate_centre_mm = Vec3(plate, "centre_mm", -10000.0, 10000.0);
+  ReadFields<ThermalSection>(plate, kThermalSubstrateFields, out);
   if (plate.Has("material")) {
     out->substrate.where = plate.Where("material");
     out->substrate.name_or_path = plate.String("material");
@@ -36,17 +53,9 @@ void ParseSubstrate(YamlMap& thermal, ThermalSection* out) {
 void ParseProbes(YamlMap& thermal, ThermalSection* out) {
   if (!thermal.Has("probes")) return;
   YamlMap probes = thermal.Map("probes");
-  for (auto it = probes.node().begin(); it != probes.node().end(); ++it) {
-    ThermalProbe probe;
-    probe.name = it->first.Scalar();
-    probe.where = probes.Where(probe.name);
-    WAAM_THROW_UNLESS(!probe.name.empty() && probe.name.find_first_of("/ \t") == std::string::npos,
-                      probe.where << ": a probe name must be a non-empty word without '/' or spaces");
-    for (const ThermalProbe& other : out->probes) {
-      WAAM_THROW_UNLESS(other.name != probe.name, probe.where << ": a second probe of this name");
-    }
-    probe.p_mm = Vec3(probes, probe.name, -10000.0, 10000.0);
-    out->probes.push_back(std::move(probe));
+  for (const std::string& name : probes.Names("probe")) {
+    const std::vector<double> p = probes.Numbers(name, 3, -10000.0, 10000.0);
+    out->probes.push_back({name, Eigen::Vector3d(p[0], p[1], p[2]), probes.Where(name)});
   }
   probes.CheckNoUnknownKeys();
 }
@@ -58,7 +67,7 @@ void ParseShape(YamlMap& thermal, ThermalSection* out) {
     out->shape.bead_model_where = shape.Where("bead_model");
     out->shape.bead_model_path = shape.String("bead_model");
   }
-  out->shape.distortion = shape.Bool("distortion", false);
+  ReadFields<ThermalShape>(shape, kThermalShapeFields, &out->shape);
   shape.CheckNoUnknownKeys();
 }
 
@@ -74,29 +83,14 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
   out->deposit.where = thermal.Where("material");
   out->deposit.name_or_path = thermal.String("material");
   ParseSubstrate(thermal, out);
-  out->cell_mm = thermal.Number("cell_mm", 0.1, 50.0, out->cell_mm);
-  out->ambient_c = thermal.Number("ambient_c", -50.0, 200.0, out->ambient_c);
-  out->initial_c = thermal.Number("initial_c", -50.0, 1000.0, out->ambient_c);
-  out->convection_w_m2k = thermal.Number("convection_w_m2k", 0.0, 10000.0, out->convection_w_m2k);
-  out->emissivity = thermal.Has("emissivity") ? thermal.Number("emissivity", 0.0, 1.0) : -1.0;
-  out->table_c = out->ambient_c;
+  ReadFields<ThermalSection>(thermal, kThermalFields, out);
   if (thermal.Has("table")) {
     YamlMap table = thermal.Map("table");
-    out->table_conductance_w_m2k = table.Number("conductance_w_m2k", 0.0, 1.0e6);
-    out->table_c = table.Number("temperature_c", -50.0, 1000.0, out->ambient_c);
+    table.Require("conductance_w_m2k");
+    ReadFields<ThermalSection>(table, kThermalTableFields, out);
     table.CheckNoUnknownKeys();
   }
-  out->sample_s = thermal.Number("sample_s", 0.01, 600.0, out->sample_s);
-  out->heat_source = thermal.Enum("heat_source", out->heat_source);
-  if (thermal.Has("pool")) {
-    YamlMap pool = thermal.Map("pool");
-    out->pool_depth_beads = pool.Number("depth_beads", 0.1, 20.0, out->pool_depth_beads);
-    out->pool_front_widths = pool.Number("front_widths", 0.05, 20.0, out->pool_front_widths);
-    out->pool_rear_widths = pool.Number("rear_widths", 0.05, 20.0, out->pool_rear_widths);
-    pool.CheckNoUnknownKeys();
-  }
-  out->liquid_conductivity_factor =
-      thermal.Number("liquid_conductivity_factor", 1.0, 100.0, out->liquid_conductivity_factor);
+  ReadFieldMap<ThermalSection>(thermal, "pool", kThermalPoolFields, out);
   ParseProbes(thermal, out);
   ParseShape(thermal, out);
   thermal.CheckNoUnknownKeys();

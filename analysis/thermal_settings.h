@@ -2,20 +2,20 @@
 // thermal model (`waam thermal`, docs/THERMAL.md "Commands and outputs").
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "models/bead/bead_temperature_model.h"
+#include "models/core/field_table.h"
 #include "models/thermal/material.h"
 #include "twin/thermal/heat_source.h"
 
-namespace waam {
-class YamlMap;
-}  // namespace waam
 namespace waam::planner {
 struct ProcessSettings;
 }  // namespace waam::planner
@@ -51,17 +51,17 @@ struct ThermalSection {
   std::string where;                 // "file:line: thermal"
   ThermalMaterialChoice deposit;     // thermal.material: the wire's metal (required)
   ThermalMaterialChoice substrate;   // thermal.substrate.material (default: the deposit's)
-  Eigen::Vector3d substrate_size_mm = Eigen::Vector3d::Zero();  // thermal.substrate.size_mm [x, y, z] (required)
+  std::optional<std::array<double, 3>> substrate_size_mm;  // thermal.substrate.size_mm [x, y, z], mm (required)
   // thermal.substrate.centre_mm: the plate's centre in the part frame; absent = centred under the part, top at z = 0.
-  std::optional<Eigen::Vector3d> substrate_centre_mm;
+  std::optional<std::array<double, 3>> substrate_centre_mm;
   std::string substrate_where;       // "file:line: thermal.substrate"
   double cell_mm = 2.0;              // thermal.cell_mm: grid spacing near the deposit, mm
   double ambient_c = 20.0;           // thermal.ambient_c: air (and, by default, plate and table) temperature, degC
-  double initial_c = 20.0;           // thermal.initial_c: the plate's temperature at the start (default ambient), degC
+  std::optional<double> initial_c;   // thermal.initial_c: the plate's temperature at the start (absent: ambient), degC
   double convection_w_m2k = 10.0;    // thermal.convection_w_m2k: h on every exposed face, W/(m^2 K)
-  double emissivity = -1.0;          // thermal.emissivity: < 0 = each material's own
+  std::optional<double> emissivity;  // thermal.emissivity: of every exposed face; absent = each material's own
   double table_conductance_w_m2k = 0.0;  // thermal.table.conductance_w_m2k: plate-table contact (0 = no table)
-  double table_c = 20.0;             // thermal.table.temperature_c (default ambient), degC
+  std::optional<double> table_c;     // thermal.table.temperature_c (absent: ambient), degC
   double sample_s = 1.0;             // thermal.sample_s: interval of the probe histories and interpass checks, s
   // thermal.heat_source and thermal.pool.*: the arc's heat source and its pool's semi-axes over the bead's size
   // (twin::ThermalSettings documents each); thermal.liquid_conductivity_factor: k above the liquidus times this.
@@ -72,7 +72,70 @@ struct ThermalSection {
   double liquid_conductivity_factor = 5.0;
   std::vector<ThermalProbe> probes;  // thermal.probes, in file order
   ThermalShape shape;                // thermal.shape
+
+  // The plate's temperature at the start, degC (thermal.initial_c, or the ambient).
+  double InitialC() const { return initial_c.value_or(ambient_c); }
+  // The table's temperature, degC (thermal.table.temperature_c, or the ambient).
+  double TableC() const { return table_c.value_or(ambient_c); }
+  // The emissivity as twin::ThermalSettings takes it: < 0 = each material's own.
+  double Emissivity() const { return emissivity.value_or(-1.0); }
 };
+
+// The plate as a box in the part frame, mm: thermal.substrate.size_mm around thermal.substrate.centre_mm, or, without
+// a centre, centred under `beads_mm` (the planned or logged beads) with its top at z = 0.
+Eigen::AlignedBox3d SubstrateBoxMm(const ThermalSection& thermal, const Eigen::AlignedBox3d& beads_mm);
+
+// The keys of `thermal:` and its nested maps (models/core/field_table.h); analysis/thermal_section.cc reads the
+// Custom rows (materials, probes, the bead model's file) itself.
+inline constexpr std::array kThermalFields = {
+    CustomField<ThermalSection>("material", FieldType::kName, "the deposit's material: a shipped name or a file"),
+    CustomField<ThermalSection>("substrate", FieldType::kMap, "the plate (thermal.substrate)"),
+    NumField<&ThermalSection::cell_mm>("cell_mm", "mm", 0.1, 50.0, "grid spacing near the deposit"),
+    NumField<&ThermalSection::ambient_c>("ambient_c", "degC", -50.0, 200.0, "air temperature"),
+    NumField<&ThermalSection::initial_c>("initial_c", "degC", -50.0, 1000.0,
+                                         "the plate's temperature at the start; absent = ambient_c"),
+    NumField<&ThermalSection::convection_w_m2k>("convection_w_m2k", "W/(m^2 K)", 0.0, 10000.0,
+                                                "h on every exposed face"),
+    NumField<&ThermalSection::emissivity>("emissivity", "", 0.0, 1.0,
+                                          "of every exposed face; absent = each material's"),
+    CustomField<ThermalSection>("table", FieldType::kMap, "contact with the table (thermal.table)"),
+    NumField<&ThermalSection::sample_s>("sample_s", "s", 0.01, 600.0, "interval of the probe histories"),
+    CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
+    OptField<&ThermalSection::heat_source>("heat_source", "the arc's heat source (docs/THERMAL.md)"),
+    CustomField<ThermalSection>("pool", FieldType::kMap, "the double ellipsoid's semi-axes (thermal.pool)"),
+    NumField<&ThermalSection::liquid_conductivity_factor>("liquid_conductivity_factor", "", 1.0, 100.0,
+                                                          "k above the liquidus times this"),
+    CustomField<ThermalSection>("shape", FieldType::kMap, "the heat shapes bead and distortion (thermal.shape)"),
+};
+inline constexpr std::array kThermalSubstrateFields = {
+    NumField<&ThermalSection::substrate_size_mm>("size_mm", "mm", 1.0, 10000.0, "[x, y, z] of the plate (required)"),
+    NumField<&ThermalSection::substrate_centre_mm>("centre_mm", "mm", -10000.0, 10000.0,
+                                                   "its centre; absent = under the part, top at z = 0"),
+    CustomField<ThermalSection>("material", FieldType::kName, "the plate's material (default: the deposit's)"),
+};
+inline constexpr std::array kThermalTableFields = {
+    NumField<&ThermalSection::table_conductance_w_m2k>("conductance_w_m2k", "W/(m^2 K)", 0.0, 1.0e6,
+                                                       "plate-table contact (required in table)"),
+    NumField<&ThermalSection::table_c>("temperature_c", "degC", -50.0, 1000.0,
+                                       "the table's temperature; absent = ambient_c"),
+};
+inline constexpr std::array kThermalPoolFields = {
+    NumField<&ThermalSection::pool_depth_beads>("depth_beads", "", 0.1, 20.0, "depth b over the bead height"),
+    NumField<&ThermalSection::pool_front_widths>("front_widths", "", 0.05, 20.0,
+                                                 "c_f ahead of the arc over the bead width"),
+    NumField<&ThermalSection::pool_rear_widths>("rear_widths", "", 0.05, 20.0, "c_r behind the arc over the bead width"),
+};
+inline constexpr std::array kThermalShapeFields = {
+    CustomField<ThermalShape>("bead_model", FieldType::kFile,
+                              "bead-temperature model file (waam fit bead-temperature); absent = planned beads"),
+    OptField<&ThermalShape::distortion>("distortion",
+                                        "inherent strains follow the layers' interpass and peak temperatures"),
+};
+
+// Throws InputError "thermal.<key> = value: must be in [min, max]" for a number of a given thermal section outside
+// its key's range, or "thermal.substrate.size_mm: missing" without the plate's size: the check of settings built or
+// changed in code.
+void ValidateThermalSection(const ThermalSection& thermal);
 
 }  // namespace waam::analysis
 

@@ -17,9 +17,11 @@
 // analysis/scenario_keys.cc (docs, --set key paths, validation), and a call in analysis::LoadScenario.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <string>
@@ -72,49 +74,96 @@ template <typename V>
 struct IsArray : std::false_type {};
 template <std::size_t N>
 struct IsArray<std::array<double, N>> : std::true_type {};
+// The value an optional member holds when given (absent = std::nullopt); V itself otherwise.
+template <typename V>
+struct Given {
+  using Type = V;
+  static constexpr bool kOptional = false;
+};
+template <typename V>
+struct Given<std::optional<V>> {
+  using Type = V;
+  static constexpr bool kOptional = true;
+};
 
 std::string ShowNumber(double value);
+
+// Reads the number or the list of numbers `field` names (present) into `out`, each within the field's range.
+template <typename T, typename F>
+void ReadNumbers(YamlMap& map, const F& field, T* out) {
+  const std::string key(field.key);
+  if constexpr (IsArray<T>::value) {
+    const std::vector<double> v = map.Numbers(key, static_cast<int>(T().size()), field.min, field.max);
+    std::copy(v.begin(), v.end(), out->begin());
+  } else if constexpr (std::is_integral_v<T>) {
+    *out = static_cast<T>(map.Integer(key, static_cast<int>(field.min), static_cast<int>(field.max)));
+  } else {
+    *out = static_cast<T>(map.Number(key, field.min, field.max));
+  }
+}
+
+template <typename T>
+std::vector<double> AsNumbers(const T& value) {
+  if constexpr (IsArray<T>::value) {
+    return std::vector<double>(value.begin(), value.end());
+  } else {
+    return {static_cast<double>(value)};
+  }
+}
+
+template <typename T>
+std::string ShowNumbers(const T& value) {
+  if constexpr (IsArray<T>::value) {
+    std::string text = "[";
+    for (double v : value) text += (text.size() > 1 ? ", " : "") + ShowNumber(v);
+    return text + "]";
+  } else {
+    return ShowNumber(static_cast<double>(value));
+  }
+}
 
 }  // namespace field_internal
 
 // A numeric field: a double, an integer (a whole number; min and max within int) or std::array<double, N>, each
-// number within [min, max].
+// number within [min, max]; or a std::optional of one of them, std::nullopt while the key is absent (the docs show
+// no default: say in `doc` what absent means).
 template <auto kMember>
 constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> NumField(std::string_view key,
                                                                                  std::string_view unit, double min,
                                                                                  double max, std::string_view doc) {
   using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
   using V = typename field_internal::MemberOf<decltype(kMember)>::Value;
+  using T = typename field_internal::Given<V>::Type;
+  constexpr bool kOptional = field_internal::Given<V>::kOptional;
+  static_assert(field_internal::IsArray<T>::value || (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>),
+                "NumField<> takes a number or std::array, or a std::optional of one");
   Field<S> f{key, FieldType::kNumber, unit, min, max, doc};
-  if constexpr (field_internal::IsArray<V>::value) {
+  if constexpr (field_internal::IsArray<T>::value) {
     f.type = FieldType::kNumbers;
-    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
-      if (!map.Has(std::string(field.key))) return;
-      const std::vector<double> v =
-          map.Numbers(std::string(field.key), static_cast<int>(V().size()), field.min, field.max);
-      std::copy(v.begin(), v.end(), (s->*kMember).begin());
-    };
-    f.numbers = [](const S& s) { return std::vector<double>((s.*kMember).begin(), (s.*kMember).end()); };
-    f.show = [](const S& s) {
-      std::string text = "[";
-      for (double v : s.*kMember) text += (text.size() > 1 ? ", " : "") + field_internal::ShowNumber(v);
-      return text + "]";
-    };
-  } else {
-    static_assert(std::is_arithmetic_v<V> && !std::is_same_v<V, bool>, "NumField<> takes a number or std::array");
-    if constexpr (std::is_integral_v<V>) f.type = FieldType::kInteger;
-    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
-      if (!map.Has(std::string(field.key))) return;
-      if constexpr (std::is_integral_v<V>) {
-        s->*kMember = static_cast<V>(
-            map.Integer(std::string(field.key), static_cast<int>(field.min), static_cast<int>(field.max)));
-      } else {
-        s->*kMember = static_cast<V>(map.Number(std::string(field.key), field.min, field.max));
-      }
-    };
-    f.numbers = [](const S& s) { return std::vector<double>{static_cast<double>(s.*kMember)}; };
-    f.show = [](const S& s) { return field_internal::ShowNumber(static_cast<double>(s.*kMember)); };
+  } else if constexpr (std::is_integral_v<T>) {
+    f.type = FieldType::kInteger;
   }
+  f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+    if (!map.Has(std::string(field.key))) return;
+    T value{};
+    if constexpr (!kOptional) value = s->*kMember;
+    field_internal::ReadNumbers(map, field, &value);
+    s->*kMember = value;
+  };
+  f.numbers = [](const S& s) {
+    if constexpr (kOptional) {
+      return s.*kMember ? field_internal::AsNumbers(*(s.*kMember)) : std::vector<double>{};
+    } else {
+      return field_internal::AsNumbers(s.*kMember);
+    }
+  };
+  f.show = [](const S& s) {
+    if constexpr (kOptional) {
+      return s.*kMember ? field_internal::ShowNumbers(*(s.*kMember)) : std::string();
+    } else {
+      return field_internal::ShowNumbers(s.*kMember);
+    }
+  };
   return f;
 }
 
@@ -178,6 +227,18 @@ void ReadFields(YamlMap& map, std::span<const Field<S>> fields, S* s) {
   for (const Field<S>& f : fields) {
     if (f.read) f.read(map, f, s);
   }
+}
+
+// Reads the nested mapping `key` of `map` when present (`parent.key: {...}`) with its own table `fields` into `s`, and
+// refuses its unknown keys; returns whether the key was present. For a nested map with Custom rows, read it with
+// map.Map(key), ReadFields and the section's own code, then CheckNoUnknownKeys.
+template <typename S>
+bool ReadFieldMap(YamlMap& map, std::string_view key, std::span<const Field<S>> fields, S* s) {
+  if (!map.Has(std::string(key))) return false;
+  YamlMap nested = map.Map(std::string(key));
+  ReadFields(nested, fields, s);
+  nested.CheckNoUnknownKeys();
+  return true;
 }
 
 // Throws InputError "<section>.<key> = value: must be in [min, max]" for the first number of `s` outside its row's

@@ -1,6 +1,7 @@
 // Strict, typed reading of scenario YAML with messages that name file, line and key.
 #include "models/core/yaml_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <system_error>
@@ -173,6 +174,19 @@ std::vector<YamlMap> YamlMap::Maps(const std::string& key) {
     maps.back().files_ = files_;
   }
   return maps;
+}
+
+std::vector<std::string> YamlMap::Names(const std::string& noun) const {
+  std::vector<std::string> names;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string name = it->first.Scalar();
+    WAAM_THROW_UNLESS(!name.empty() && name.find_first_of("/ \t") == std::string::npos,
+                      Where(name) << ": a " << noun << " name must be a non-empty word without '/' or spaces");
+    WAAM_THROW_UNLESS(std::find(names.begin(), names.end(), name) == names.end(),
+                      Where(name) << ": a second " << noun << " of this name");
+    names.push_back(name);
+  }
+  return names;
 }
 
 void YamlMap::CheckNoUnknownKeys() const {

@@ -64,6 +64,10 @@ class YamlMap {
   YamlMap Map(const std::string& key);
   // A list of mappings.
   std::vector<YamlMap> Maps(const std::string& key);
+  // The keys of this mapping when the user names them (thermal.probes: {NAME: ...}), in file order. Throws
+  // InputError "file:line: key.NAME: a <noun> name must be a non-empty word without '/' or spaces" or "...: a second
+  // <noun> of this name". The caller reads each name's value (which makes it known).
+  std::vector<std::string> Names(const std::string& noun) const;
 
   // The mapping itself.
   const YAML::Node& node() const { return node_; }

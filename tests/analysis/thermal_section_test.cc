@@ -2,6 +2,7 @@
 // refuse what breaks their rules with the key and line named.
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -10,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/scenario.h"
+#include "analysis/scenario_keys.h"
 #include "models/core/error.h"
 
 namespace waam::analysis {
@@ -58,6 +60,16 @@ std::string ErrorOf(const std::string& text) {
   return "";
 }
 
+std::string ErrorOfValidate(const Scenario& scenario) {
+  try {
+    ValidateScenario(scenario);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected ValidateScenario to refuse the scenario";
+  return "";
+}
+
 TEST(ThermalSection, LoadsWithDefaults) {
   const Scenario s = LoadScenario(WriteScenario(ThermalText()));
   EXPECT_TRUE(s.thermal.given);
@@ -70,7 +82,7 @@ TEST(ThermalSection, LoadsWithDefaults) {
   EXPECT_EQ(s.thermal.substrate.material.name, "mild_steel") << "the plate defaults to the deposit's metal";
   EXPECT_FALSE(s.thermal.substrate_centre_mm.has_value());
   EXPECT_EQ(s.thermal.cell_mm, 2.0);
-  EXPECT_EQ(s.thermal.initial_c, s.thermal.ambient_c);
+  EXPECT_EQ(s.thermal.InitialC(), s.thermal.ambient_c);
   EXPECT_EQ(s.thermal.table_conductance_w_m2k, 0.0);
   ASSERT_EQ(s.thermal.probes.size(), 2u);
   EXPECT_EQ(s.thermal.probes[0].name, "plate");
@@ -143,6 +155,61 @@ TEST(ThermalSection, RefusesBrokenKeysNamingThem) {
   no_thermal.replace(no_thermal.find("  arc: {power_w: 2000}\n"), 23, "");
   EXPECT_THAT(ErrorOf(no_thermal), HasSubstr("process.interpass.max_c: an interpass temperature needs the thermal "
                                              "model"));
+}
+
+TEST(ThermalSection, SetOverridesReachEveryTableKeyWithinItsRange) {
+  const fs::path file = WriteScenario(ThermalText());
+  const Scenario s = LoadScenario(file, {"thermal.cell_mm=4", "thermal.initial_c=60", "thermal.table.temperature_c=35",
+                                         "thermal.table.conductance_w_m2k=100",
+                                         "thermal.substrate.centre_mm=[0, 0, -5]", "thermal.pool.depth_beads=1.5",
+                                         "thermal.emissivity=0.4", "thermal.shape.distortion=true"});
+  EXPECT_EQ(s.thermal.cell_mm, 4.0);
+  EXPECT_EQ(s.thermal.InitialC(), 60.0);
+  EXPECT_EQ(s.thermal.TableC(), 35.0);
+  EXPECT_EQ(s.thermal.table_conductance_w_m2k, 100.0);
+  ASSERT_TRUE(s.thermal.substrate_centre_mm.has_value());
+  EXPECT_EQ((*s.thermal.substrate_centre_mm)[2], -5.0);
+  EXPECT_EQ(s.thermal.pool_depth_beads, 1.5);
+  EXPECT_EQ(s.thermal.Emissivity(), 0.4);
+  EXPECT_TRUE(s.thermal.shape.distortion);
+  const Scenario d = LoadScenario(file, {"thermal.ambient_c=30"});
+  EXPECT_EQ(d.thermal.InitialC(), 30.0) << "initial_c follows ambient_c when absent";
+  EXPECT_EQ(d.thermal.TableC(), 30.0) << "the table's temperature follows ambient_c when absent";
+  EXPECT_LT(d.thermal.Emissivity(), 0.0) << "absent: each material's own";
+  try {
+    LoadScenario(file, {"thermal.cell_mm=100"});
+    FAIL() << "expected InputError past thermal.cell_mm's maximum";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("thermal.cell_mm = 100: must be in [0.1, 50]"));
+  }
+  EXPECT_THROW(LoadScenario(file, {"thermal.cel_mm=4"}), InputError);
+}
+
+TEST(ThermalSection, SettingsBuiltInCodeAreCheckedAgainstTheKeysLimits) {
+  Scenario s = LoadScenario(WriteScenario(ThermalText()));
+  EXPECT_NO_THROW(ValidateScenario(s));
+  Scenario coarse = s;
+  coarse.thermal.cell_mm = 0.0;
+  EXPECT_THAT(ErrorOfValidate(coarse), HasSubstr("thermal.cell_mm = 0: must be in [0.1, 50]"));
+  Scenario hot_table = s;
+  hot_table.thermal.table_c = 5000.0;
+  EXPECT_THAT(ErrorOfValidate(hot_table), HasSubstr("thermal.table.temperature_c = 5000: must be in [-50, 1000]"));
+  Scenario thin = s;
+  thin.thermal.substrate_size_mm = std::array<double, 3>{100.0, 40.0, 0.5};
+  EXPECT_THAT(ErrorOfValidate(thin), HasSubstr("thermal.substrate.size_mm = 0.5: must be in [1, 10000]"));
+  Scenario no_plate = s;
+  no_plate.thermal.substrate_size_mm.reset();
+  EXPECT_THAT(ErrorOfValidate(no_plate), HasSubstr("thermal.substrate.size_mm: missing"));
+  Scenario wide_pool = s;
+  wide_pool.thermal.pool_rear_widths = 50.0;
+  EXPECT_THAT(ErrorOfValidate(wide_pool), HasSubstr("thermal.pool.rear_widths = 50"));
+}
+
+TEST(ThermalSection, ProbeNamesAreWordsAndUnique) {
+  EXPECT_THAT(ErrorOf(ThermalText("wall: [0, 0, 3]", "plate: [0, 0, 3]")),
+              HasSubstr("s.yaml:16: thermal.probes.plate: a second probe of this name"));
+  EXPECT_THAT(ErrorOf(ThermalText("wall: [0, 0, 3]", "'a b': [0, 0, 3]")),
+              HasSubstr("thermal.probes.a b: a probe name must be a non-empty word without '/' or spaces"));
 }
 
 }  // namespace
