@@ -147,8 +147,10 @@ double TrapezoidTime(double distance, double max_speed, double max_accel) {
   return 2.0 * std::sqrt(distance / max_accel);
 }
 
-Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, const AxisLimits& limits,
-                       const TimelineSettings& settings) {
+namespace {
+
+// Throws InputError naming the first setting or axis limit that is not finite or out of range.
+void CheckTimelineInputs(const AxisLimits& limits, const TimelineSettings& settings) {
   CheckSetting(settings.arc_start_s, "arc_start_s", false);
   CheckSetting(settings.arc_end_s, "arc_end_s", false);
   CheckSetting(settings.rapid_speed_mm_s, "rapid_speed_mm_s", true);
@@ -158,17 +160,28 @@ Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, 
     CheckSetting(limits.max_speed[j], "axis max_speed", true);
     CheckSetting(limits.max_accel[j], "axis max_accel", true);
   }
+}
 
-  // The motion's samples of each point's move: first_sample[g] .. first_sample[g + 1] (g counted over the plan).
+// The motion's samples of each point's move: first_sample[g] .. first_sample[g + 1] (g counted over the plan);
+// empty without a motion.
+std::vector<std::size_t> FirstSampleOfEachPoint(const Plan& plan, const std::vector<CellSample>& motion) {
+  std::vector<std::size_t> first_sample;
+  if (motion.empty()) return first_sample;
   std::size_t points = 0;
   for (const LayerPath& layer : plan.layers) points += layer.points.size();
-  std::vector<std::size_t> first_sample;
-  if (!motion.empty()) {
-    first_sample.assign(points + 1, motion.size());
-    for (std::size_t k = motion.size(); k-- > 0;) first_sample[static_cast<std::size_t>(motion[k].point)] = k;
-    // The motion must be PlanCellMotion's of this very plan.
-    WAAM_DEMAND(static_cast<std::size_t>(motion.back().point) + 1 == points && first_sample[0] == 0);
-  }
+  first_sample.assign(points + 1, motion.size());
+  for (std::size_t k = motion.size(); k-- > 0;) first_sample[static_cast<std::size_t>(motion[k].point)] = k;
+  // The motion must be PlanCellMotion's of this very plan.
+  WAAM_DEMAND(static_cast<std::size_t>(motion.back().point) + 1 == points && first_sample[0] == 0);
+  return first_sample;
+}
+
+}  // namespace
+
+Timeline BuildTimeline(const Plan& plan, const std::vector<CellSample>& motion, const AxisLimits& limits,
+                       const TimelineSettings& settings) {
+  CheckTimelineInputs(limits, settings);
+  const std::vector<std::size_t> first_sample = FirstSampleOfEachPoint(plan, motion);
 
   Timeline timeline;
   SpanWriter out(&timeline);

@@ -169,6 +169,25 @@ class UrdfReader {
 
   void FindChain() {
     const tinyxml2::XMLElement* robot = doc_.RootElement();
+    FindTree(robot);
+    const std::vector<std::size_t> named = NamedJoints(robot);
+    const std::string flange = PickFlange(named);
+    WAAM_THROW_UNLESS(links_.count(flange), Where(robot) << "the URDF has no link '" << flange
+                                                         << "' to use as flange (cell.robot.flange)");
+    const std::vector<std::size_t> moving = MovingJoints(robot, flange);
+    if (!named.empty()) {
+      WAAM_THROW_UNLESS(named.size() == 6 && named == moving,
+                        Where(robot) << "cell.robot.joints must be the six revolute joints from '" << root_
+                                     << "' to '" << flange << "' in order");
+    }
+    for (int k = 0; k < 6; ++k) TakeArmJoint(k, moving[k]);
+    flange_ = flange;
+    arm_.flange_link = flange;
+  }
+
+  // The joints' parent-child map and the root: the links must form one tree with one root, small enough to recurse
+  // through.
+  void FindTree(const tinyxml2::XMLElement* robot) {
     WAAM_THROW_UNLESS(!links_.empty(), Where(robot) << "the URDF has no <link>");
     for (const UrdfJoint& j : joints_) {
       WAAM_THROW_UNLESS(links_.count(j.parent) && links_.count(j.child),
@@ -183,7 +202,7 @@ class UrdfReader {
     WAAM_THROW_UNLESS(roots.size() == 1, Where(robot) << "the URDF must be one tree of links with one root, has "
                                                       << roots.size() << " roots");
     root_ = roots[0];
-    // Every link must hang below the root (no cycles), and the tree stays small enough to recurse through.
+    // Every link must hang below the root (no cycles).
     WAAM_THROW_UNLESS(links_.size() <= kMaxLinks, Where(robot) << "the URDF has " << links_.size()
                                                                << " links, more than the limit of " << kMaxLinks);
     std::vector<std::string> stack = {root_};
@@ -198,17 +217,19 @@ class UrdfReader {
     }
     WAAM_THROW_UNLESS(reached == links_.size(), Where(robot) << "the links do not form one tree below '" << root_
                                                              << "' (a cycle of joints)");
+  }
 
-    auto path_to = [&](const std::string& link) {
-      std::vector<std::size_t> path;  // joints from the root down to `link`
-      for (std::string l = link; parent_joint_.count(l); l = joints_[parent_joint_.at(l)].parent) {
-        path.insert(path.begin(), parent_joint_.at(l));
-      }
-      return path;
-    };
-    auto revolute = [&](const UrdfJoint& j) { return j.type == "revolute" || j.type == "continuous"; };
+  // The joints from the root down to `link`.
+  std::vector<std::size_t> PathTo(const std::string& link) const {
+    std::vector<std::size_t> path;
+    for (std::string l = link; parent_joint_.count(l); l = joints_[parent_joint_.at(l)].parent) {
+      path.insert(path.begin(), parent_joint_.at(l));
+    }
+    return path;
+  }
 
-    // Named joints must exist.
+  // The indices of the joints cell.robot.joints names, which must exist.
+  std::vector<std::size_t> NamedJoints(const tinyxml2::XMLElement* robot) const {
     std::vector<std::size_t> named;
     for (const std::string& name : options_.joints) {
       std::size_t found = joints_.size();
@@ -219,55 +240,58 @@ class UrdfReader {
                                                              << "', which the URDF lacks");
       named.push_back(found);
     }
-    // The flange: named, else tool0 when it exists, else the deepest link below six revolute joints.
+    return named;
+  }
+
+  // The flange: named, else tool0 when it exists, else the deepest link (below the last named joint, if any).
+  std::string PickFlange(const std::vector<std::size_t>& named) const {
     std::string flange = options_.flange;
     if (flange.empty() && links_.count("tool0")) flange = "tool0";
     if (flange.empty()) {
       std::size_t best = 0;
       for (const auto& [name, link] : links_) {
-        const std::vector<std::size_t> path = path_to(name);
+        const std::vector<std::size_t> path = PathTo(name);
         if (!named.empty() && std::find(path.begin(), path.end(), named.back()) == path.end()) continue;
         if (flange.empty() || path.size() > best) flange = name, best = path.size();
       }
     }
-    WAAM_THROW_UNLESS(links_.count(flange), Where(robot) << "the URDF has no link '" << flange
-                                                         << "' to use as flange (cell.robot.flange)");
-    const std::vector<std::size_t> path = path_to(flange);
+    return flange;
+  }
+
+  // The non-fixed joints from the root to the flange: six revolute (or continuous) joints.
+  std::vector<std::size_t> MovingJoints(const tinyxml2::XMLElement* robot, const std::string& flange) const {
     std::vector<std::size_t> moving;
-    for (std::size_t i : path) {
+    for (std::size_t i : PathTo(flange)) {
       const UrdfJoint& j = joints_[i];
       if (j.type == "fixed") continue;
-      WAAM_THROW_UNLESS(revolute(j), file_ << ":" << j.line << ": joint '" << j.name << "' is " << j.type
-                                           << ": the arm must be a serial chain of six revolute joints from '"
-                                           << root_ << "' to '" << flange << "'");
+      WAAM_THROW_UNLESS(j.type == "revolute" || j.type == "continuous",
+                        file_ << ":" << j.line << ": joint '" << j.name << "' is " << j.type
+                              << ": the arm must be a serial chain of six revolute joints from '" << root_ << "' to '"
+                              << flange << "'");
       moving.push_back(i);
     }
     WAAM_THROW_UNLESS(moving.size() == 6, Where(robot) << "the chain from '" << root_ << "' to '" << flange
                                                        << "' has " << moving.size()
                                                        << " revolute joints: the arm must be a serial chain of six");
-    if (!named.empty()) {
-      WAAM_THROW_UNLESS(named.size() == 6 && named == moving,
-                        Where(robot) << "cell.robot.joints must be the six revolute joints from '" << root_
-                                     << "' to '" << flange << "' in order");
-    }
-    for (int k = 0; k < 6; ++k) {
-      const UrdfJoint& j = joints_[moving[k]];
-      WAAM_THROW_UNLESS(j.type == "continuous" || j.has_limit,
-                        file_ << ":" << j.line << ": joint '" << j.name << "' lacks <limit> (lower, upper, velocity)");
-      WAAM_THROW_UNLESS(j.has_velocity || j.type != "continuous",
-                        file_ << ":" << j.line << ": joint '" << j.name
-                              << "' is continuous without <limit velocity>: no bound on its speed (rad/s; waam checks "
-                                 "joint speeds and bounds the motion between samples by them)");
-      WAAM_THROW_UNLESS(j.has_velocity, file_ << ":" << j.line << ": joint '" << j.name
-                                              << "' lacks <limit velocity> (rad/s; waam checks joint speeds)");
-      WAAM_THROW_UNLESS(j.type == "continuous" || j.lower < j.upper,
-                        file_ << ":" << j.line << ": joint '" << j.name << "': limit lower must be < upper");
-      arm_.joint_names[k] = j.name;
-      arm_.max_speed_deg_s[k] = j.velocity * 180.0 / kPi;
-      arm_index_[moving[k]] = k;
-    }
-    flange_ = flange;
-    arm_.flange_link = flange;
+    return moving;
+  }
+
+  // Joint `ji` as the arm's joint k: its limits and speed must be stated.
+  void TakeArmJoint(int k, std::size_t ji) {
+    const UrdfJoint& j = joints_[ji];
+    WAAM_THROW_UNLESS(j.type == "continuous" || j.has_limit,
+                      file_ << ":" << j.line << ": joint '" << j.name << "' lacks <limit> (lower, upper, velocity)");
+    WAAM_THROW_UNLESS(j.has_velocity || j.type != "continuous",
+                      file_ << ":" << j.line << ": joint '" << j.name
+                            << "' is continuous without <limit velocity>: no bound on its speed (rad/s; waam checks "
+                               "joint speeds and bounds the motion between samples by them)");
+    WAAM_THROW_UNLESS(j.has_velocity, file_ << ":" << j.line << ": joint '" << j.name
+                                            << "' lacks <limit velocity> (rad/s; waam checks joint speeds)");
+    WAAM_THROW_UNLESS(j.type == "continuous" || j.lower < j.upper,
+                      file_ << ":" << j.line << ": joint '" << j.name << "': limit lower must be < upper");
+    arm_.joint_names[k] = j.name;
+    arm_.max_speed_deg_s[k] = j.velocity * 180.0 / kPi;
+    arm_index_[ji] = k;
   }
 
   // <geom> elements of a link's <collision> children.
