@@ -27,6 +27,9 @@ constexpr double kMultigridStiffness = 10.0;
 // (hundreds of K of mismatch), not to polish micro steps.
 constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
+// A step's first linearisation takes the chord of H over [T_old, guess] when they are this far apart (K), else
+// the tangent at T_old (the enthalpy table's segments are 1 K).
+constexpr double kChordMinimumK = 1.0;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
 
@@ -98,13 +101,22 @@ double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
   return factor;
 }
 
+// The secant capacity (H(t_guess) - H(t_old)) / (t_guess - t_old) of a step expected to take a cell from t_old to
+// t_guess, J/(m^3 K): the latent heat the step will cross, spread over the step's change (the chord of the enthalpy
+// method's apparent capacity, Nedjar 2002, Comput. Struct. 80, 9; Swaminathan & Voller 1992's starting
+// linearisation). Within one table segment of t_old (or with no change expected) the tangent dH/dT at t_old.
+double ChordCapacity(const ThermalPropertyTable& table, double t_old, double t_guess) {
+  if (std::abs(t_guess - t_old) < kChordMinimumK) return table.Capacity(t_old);
+  return (table.Enthalpy(t_guess) - table.Enthalpy(t_old)) / (t_guess - t_old);
+}
+
 // Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
-// (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of
-// docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`, faces towards cells of a
-// finer level (depth > level) carry no flux. The terms without the capacity are kept in base_diagonal and base_rhs,
+// (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C the chord capacity over
+// [T_old, guess] (eq. 3 of docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`,
+// faces towards cells of a finer level (depth > level) carry no flux. The terms without the capacity are kept in base_diagonal and base_rhs,
 // so that the nonlinear iteration changes only the capacity (Relinearise).
 void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
-              std::vector<int>& local_of) {
+              const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   L.cells.clear();
   for (int c : candidates) {
@@ -161,7 +173,7 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
       }
       L.base_diagonal[i] = diagonal;
       L.base_rhs[i] = rhs;
-      const double capacity = s.table[s.material[c]].Capacity(t);
+      const double capacity = ChordCapacity(s.table[s.material[c]], t, guess[c]);
       L.capacity[i] = capacity;
       const double storage = capacity * volume / L.seconds;
       L.diagonal[i] = diagonal + storage;
@@ -354,7 +366,7 @@ bool InFinerRegion(const ThermalState& s, const LevelSystem& L, int level, std::
 void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
                const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
-  Assemble(s, level, candidates, m0, m1, finer_apart, local_of);
+  Assemble(s, level, candidates, m0, m1, finer_apart, guess, local_of);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
   std::vector<std::uint8_t> part_converged(Chunks(n));
