@@ -102,9 +102,9 @@ double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
 }
 
 // The secant capacity (H(t_guess) - H(t_old)) / (t_guess - t_old) of a step expected to take a cell from t_old to
-// t_guess, J/(m^3 K): the latent heat the step will cross, spread over the step's change (the chord of the enthalpy
-// method's apparent capacity, Nedjar 2002, Comput. Struct. 80, 9; Swaminathan & Voller 1992's starting
-// linearisation). Within one table segment of t_old (or with no change expected) the tangent dH/dT at t_old.
+// t_guess, J/(m^3 K): the latent heat the step will cross, spread over the step's change (a secant apparent
+// capacity, of the implicit enthalpy schemes reviewed by Voller 1985, IMA J. Numer. Anal. 5, 201; the enthalpy
+// iteration then starts from it). Within 1 K of t_old (no change expected) the tangent dH/dT at t_old.
 double ChordCapacity(const ThermalPropertyTable& table, double t_old, double t_guess) {
   if (std::abs(t_guess - t_old) < kChordMinimumK) return table.Capacity(t_old);
   return (table.Enthalpy(t_guess) - table.Enthalpy(t_old)) / (t_guess - t_old);
