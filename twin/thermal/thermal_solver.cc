@@ -27,9 +27,6 @@ constexpr double kMultigridStiffness = 10.0;
 // (hundreds of K of mismatch), not to polish micro steps.
 constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
-// A step's first linearisation takes the chord of H over [T_old, guess] when they are this far apart (K), else
-// the tangent at T_old (the enthalpy table's segments are 1 K).
-constexpr double kChordMinimumK = 1.0;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
 
@@ -101,22 +98,13 @@ double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
   return factor;
 }
 
-// The secant capacity (H(t_guess) - H(t_old)) / (t_guess - t_old) of a step expected to take a cell from t_old to
-// t_guess, J/(m^3 K): the latent heat the step will cross, spread over the step's change (a secant apparent
-// capacity, of the implicit enthalpy schemes reviewed by Voller 1985, IMA J. Numer. Anal. 5, 201; the enthalpy
-// iteration then starts from it). Within 1 K of t_old (no change expected) the tangent dH/dT at t_old.
-double ChordCapacity(const ThermalPropertyTable& table, double t_old, double t_guess) {
-  if (std::abs(t_guess - t_old) < kChordMinimumK) return table.Capacity(t_old);
-  return (table.Enthalpy(t_guess) - table.Enthalpy(t_old)) / (t_guess - t_old);
-}
-
 // Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
-// (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C the chord capacity over
-// [T_old, guess] (eq. 3 of docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`,
-// faces towards cells of a finer level (depth > level) carry no flux. The terms without the capacity are kept in base_diagonal and base_rhs,
+// (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of
+// docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`, faces towards cells of a
+// finer level (depth > level) carry no flux. The terms without the capacity are kept in base_diagonal and base_rhs,
 // so that the nonlinear iteration changes only the capacity (Relinearise).
 void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
-              const std::vector<double>& guess, std::vector<int>& local_of) {
+              std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   L.cells.clear();
   for (int c : candidates) {
@@ -173,7 +161,7 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
       }
       L.base_diagonal[i] = diagonal;
       L.base_rhs[i] = rhs;
-      const double capacity = ChordCapacity(s.table[s.material[c]], t, guess[c]);
+      const double capacity = s.table[s.material[c]].Capacity(t);
       L.capacity[i] = capacity;
       const double storage = capacity * volume / L.seconds;
       L.diagonal[i] = diagonal + storage;
@@ -357,17 +345,16 @@ bool InFinerRegion(const ThermalState& s, const LevelSystem& L, int level, std::
   return s.depth[L.cells[i]] > level;
 }
 
-// Solves the level's backward-Euler step over the candidates: the system linearised at T_old (with `chord`, its
-// capacity the chord of H over [T_old, guess], else the tangent at T_old), then, while some
+// Solves the level's backward-Euler step over the candidates: the system linearised at T_old, then, while some
 // cell's linearised enthalpy H_k + C_k (T - T_k) maps back to a temperature more than kChordToleranceK + 10 % of its
 // change over the step away from the solved T (a cell melting or freezing in the step), again linearised at that
 // enthalpy (Relinearise): the nonlinear step converged, so that the latent heat cannot be jumped over. `guess` is
 // the first guess by active cell. Only the capacity changes between the rounds, so the conductances and losses are
 // assembled once.
 void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
-               bool chord, const std::vector<double>& guess, std::vector<int>& local_of) {
+               const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
-  Assemble(s, level, candidates, m0, m1, finer_apart, chord ? guess : s.temperature, local_of);
+  Assemble(s, level, candidates, m0, m1, finer_apart, local_of);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
   std::vector<std::uint8_t> part_converged(Chunks(n));
@@ -506,9 +493,7 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   for (int c : present) s.depth[c] = level;
   std::vector<int> near;
   if (!finest) near = FinerRegion(s, present, level, m0, m1, s.level_radius_mm[level + 1], L.seconds);
-  // The chord toward the guess where the guess is worth it: not in the finest steps, whose cells are the arc's (their
-  // last rate says little about the next micro step: in steel the chord added 11 % to the micro steps' solves).
-  SolveStep(s, level, candidates, m0, m1, false, !finest, s.guess, local_of);
+  SolveStep(s, level, candidates, m0, m1, false, s.guess, local_of);
   for (int c : L.cells) s.depth[c] = level;
   if (near.empty()) {
     Update(s, level);
@@ -537,7 +522,7 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   for (int c : L.cells) {
     if (s.depth[c] == level) rest.push_back(c);
   }
-  SolveStep(s, level, rest, m0, m1, true, true, s.bound_end, local_of);
+  SolveStep(s, level, rest, m0, m1, true, s.bound_end, local_of);
   Update(s, level);
   for (int c : near) s.depth[c] = level - 1;
   for (int c : rest) s.depth[c] = level - 1;
