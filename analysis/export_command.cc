@@ -1,7 +1,6 @@
 // `waam export`: plan, move the cell, write one dialect.
 #include "analysis/export_command.h"
 
-#include <iostream>
 
 #include "analysis/cell_files.h"
 #include "analysis/import_command.h"
@@ -87,11 +86,7 @@ ExportResult RunExport(const ExportOptions& options) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   std::optional<planner::ProgramFormat> format = options.format;
   if (!format) format = planner::ProgramFormatOfExtension(options.out_file);
-  planner::PlanResult planned;
-  {
-    Progress progress("plan", 0, "layers", options.quiet);
-    planned = PlanScenarioOrProgram(scenario, &progress);
-  }
+  planner::PlanResult planned = PlanForCommand(scenario, options.quiet);
   const ProgramFiles program =
       ExportPlan(scenario, planned.plan, format, options.station_pulses_per_deg, options.quiet);
   if (program.files.size() == 2) {

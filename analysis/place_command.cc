@@ -343,12 +343,7 @@ nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_
 PlaceResult RunPlace(const PlaceOptions& options) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   ClaimOutputDirectory(options.out_dir);
-  planner::PlanResult planned;
-  {
-    Progress progress("plan", 0, "layers", options.quiet);
-    planned = PlanScenarioOrProgram(scenario, &progress);
-    progress.Finish();
-  }
+  planner::PlanResult planned = PlanForCommand(scenario, options.quiet);
   const planner::Plan& plan = planned.plan;
   const PlaceSettings& place = scenario.place;
   twin::CellSettings cell = scenario.cell;

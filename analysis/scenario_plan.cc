@@ -1,6 +1,8 @@
 // The plan of a scenario: its part planned, or its program read.
 #include "analysis/scenario_plan.h"
 
+#include <iostream>
+
 #include "analysis/program_file.h"
 #include "analysis/stl_file.h"
 #include "models/core/progress.h"
@@ -21,6 +23,14 @@ planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* pr
   }
   if (progress != nullptr) progress->Finish();
   return result;
+}
+
+planner::PlanResult PlanForCommand(const Scenario& scenario, bool quiet) {
+  Progress progress("plan", 0, "layers", quiet);
+  planner::PlanResult planned = PlanScenarioOrProgram(scenario, &progress);
+  // A program made elsewhere: what the twin did not execute, one line each.
+  for (const std::string& warning : planned.warnings) std::cerr << "waam: warning: " << warning << "\n";
+  return planned;
 }
 
 }  // namespace waam::analysis

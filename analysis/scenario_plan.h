@@ -16,4 +16,8 @@ namespace waam::analysis {
 // is filled for a program. Throws InputError for a part that cannot be planned or a program that cannot be read.
 planner::PlanResult PlanScenarioOrProgram(const Scenario& scenario, Progress* progress, ImportReport* report = nullptr);
 
+// PlanScenarioOrProgram for a command: a "plan" progress bar on stderr (none when `quiet`), and each line of the
+// program that the twin does not execute printed to stderr as a warning. Throws as PlanScenarioOrProgram.
+planner::PlanResult PlanForCommand(const Scenario& scenario, bool quiet);
+
 }  // namespace waam::analysis

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -161,13 +160,7 @@ ThermalRunResult RunThermal(const ThermalOptions& options) {
   const Scenario scenario = LoadScenario(options.scenario, options.overrides);
   WAAM_THROW_UNLESS(scenario.thermal.given, options.scenario.string() << ": no thermal: section: waam thermal needs "
                                                                          "the metals and the plate (docs/THERMAL.md)");
-  planner::PlanResult planned;
-  {
-    Progress progress("plan", 0, "layers", options.quiet);
-    planned = PlanScenarioOrProgram(scenario, &progress);
-    progress.Finish();
-  }
-  for (const std::string& warning : planned.warnings) std::cerr << "waam: warning: " << warning << "\n";
+  planner::PlanResult planned = PlanForCommand(scenario, options.quiet);
   return ThermalPlanned(scenario, planned.plan, options);
 }
 

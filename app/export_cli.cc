@@ -4,7 +4,7 @@
 
 #include "analysis/export_command.h"
 #include "app/commands.h"
-#include "models/core/error.h"
+#include "app/format_option.h"
 
 namespace waam::app {
 
@@ -32,12 +32,7 @@ void AddExportCommand(CLI::App& app, CommandRunner* runner) {
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->callback([options, format, runner] {
     *runner = [options, format] {
-      if (*format != "auto") {
-        const auto f = ParseEnum<planner::ProgramFormat>(*format);
-        WAAM_THROW_UNLESS(f.has_value(), "--format " << *format << ": must be auto or one of "
-                                                     << EnumNameList<planner::ProgramFormat>(", "));
-        options->format = f;
-      }
+      if (const auto f = ProgramFormatOption(*format)) options->format = f;
       const analysis::ExportResult result = analysis::RunExport(*options);
       std::cout << "wrote " << NameOf(result.format) << ": " << result.points << " points -> "
                 << options->out_file.string() << "\n";

@@ -4,6 +4,7 @@
 
 #include "analysis/import_command.h"
 #include "app/commands.h"
+#include "app/format_option.h"
 
 namespace waam::app {
 
@@ -43,12 +44,7 @@ void AddImportCommand(CLI::App& app, CommandRunner* runner) {
   command->add_flag("!--no-images", options->layer_images, "Do not draw the per-layer PNGs");
   command->callback([options, format, runner] {
     *runner = [options, format] {
-      if (*format != "auto") {
-        const auto f = ParseEnum<planner::ProgramFormat>(*format);
-        WAAM_THROW_UNLESS(f.has_value(), "--format " << *format << ": must be auto or one of "
-                                                     << EnumNameList<planner::ProgramFormat>(", "));
-        options->format = f;
-      }
+      if (const auto f = ProgramFormatOption(*format)) options->format = f;
       const nlohmann::json summary = analysis::RunImport(*options);
       const nlohmann::json& import = summary["import"];
       std::cout << "imported " << import["format"].get<std::string>() << ": " << import["motions"] << " motions, "
