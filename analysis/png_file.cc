@@ -12,14 +12,12 @@
 namespace waam::analysis::internal {
 namespace {
 
-// The simplified API's 8-bit format with OpenCV's channel order for `channels` = 1, 3 or 4; 0 for any other count.
+bool SupportedChannels(int channels) { return channels == 1 || channels == 3 || channels == 4; }
+
+// The simplified API's 8-bit format with OpenCV's channel order for `channels` = 1, 3 or 4 (PNG_FORMAT_GRAY is 0).
 png_uint_32 FormatOf(int channels) {
-  switch (channels) {
-    case 1: return PNG_FORMAT_GRAY;
-    case 3: return PNG_FORMAT_BGR;
-    case 4: return PNG_FORMAT_BGRA;
-    default: return 0;
-  }
+  WAAM_DEMAND(SupportedChannels(channels));
+  return channels == 1 ? PNG_FORMAT_GRAY : channels == 3 ? PNG_FORMAT_BGR : PNG_FORMAT_BGRA;
 }
 
 png_image NewImage() {
@@ -32,7 +30,7 @@ png_image NewImage() {
 }  // namespace
 
 std::vector<unsigned char> EncodePng(const cv::Mat& image) {
-  WAAM_DEMAND(!image.empty() && image.depth() == CV_8U && FormatOf(image.channels()) != 0);
+  WAAM_DEMAND(!image.empty() && image.depth() == CV_8U && SupportedChannels(image.channels()));
   png_image png = NewImage();
   png.width = static_cast<png_uint_32>(image.cols);
   png.height = static_cast<png_uint_32>(image.rows);
@@ -54,7 +52,7 @@ void WritePngAtomic(const cv::Mat& image, const std::filesystem::path& path) {
 }
 
 cv::Mat DecodePng(std::string_view bytes, int channels, const std::string& name) {
-  WAAM_DEMAND(FormatOf(channels) != 0);
+  WAAM_DEMAND(SupportedChannels(channels));
   png_image png = NewImage();
   WAAM_THROW_UNLESS(png_image_begin_read_from_memory(&png, bytes.data(), bytes.size()),
                     name << ": not a readable PNG (" << png.message << ")");
