@@ -12,6 +12,10 @@
 #include "models/fit/fit_stats.h"
 #include "models/voids/void_length_model.h"
 
+namespace ceres {
+class Manifold;
+}  // namespace ceres
+
 namespace waam::analysis::internal {
 
 // Role -> column name: the model's defaults overridden by the "role=column" items of --columns. Throws InputError
@@ -56,6 +60,10 @@ struct ParameterMap {
   // dx/du at u (> 0 wherever x(u) is not on a bound).
   double Slope(double u) const;
 };
+// The largest change of Ceres' variable u per step (a factor e^2 = 7.4 in x - lo above a lower bound).
+inline constexpr double kMaxFreeStep = 2.0;
+// A new manifold (Ceres owns it once set) that caps each coordinate of Ceres' steps in u at +-kMaxFreeStep.
+ceres::Manifold* NewCappedStep(int n);
 // How far inside a bound a start value on it is moved (scaled units: 1 % of the parameter's scale).
 inline constexpr double kStartInside = 0.01;
 
@@ -81,5 +89,8 @@ struct IdentifiabilityInput {
 // window) is left out of every figure and listed in `blind` and `undetermined`.
 // WAAM_DEMAND on inconsistent sizes.
 nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in);
+// Prints the report `id` (null: nothing): standard deviations, strong correlations (|r| > 0.9), the weakest
+// combination and what is undetermined.
+void PrintIdentifiability(const nlohmann::json& id, std::ostream& out);
 
 }  // namespace waam::analysis::internal

@@ -39,8 +39,6 @@ struct FreeParameter {
 };
 
 constexpr double kNoBound = std::numeric_limits<double>::infinity();
-// The largest change of Ceres' variable u per step (a factor e^2 = 7.4 in x - lo above a lower bound).
-constexpr double kMaxFreeStep = 2.0;
 
 const std::vector<FreeParameter>& AllFree() {
   static const std::vector<FreeParameter> all = {
@@ -318,35 +316,6 @@ class PriorCost : public ceres::CostFunction {
   double weight_;
 };
 
-// Ceres' steps in u, each coordinate capped at +-kMaxFreeStep (Plus; its Jacobian at delta = 0 is the identity). Near
-// a lower bound dx/du is small, so the linearisation in u asks steps of hundreds of units (a factor e^100 in x) that
-// the trust region, scaled by the Jacobian's columns, does not hold back: the cap takes the step part of the way, and
-// the next Jacobian, from a point where dx/du is larger, goes on. The values themselves are never clamped.
-class CappedStep : public ceres::Manifold {
- public:
-  explicit CappedStep(int n) : n_(n) {}
-  int AmbientSize() const override { return n_; }
-  int TangentSize() const override { return n_; }
-  bool Plus(const double* u, const double* delta, double* out) const override {
-    for (int k = 0; k < n_; ++k) out[k] = u[k] + std::clamp(delta[k], -kMaxFreeStep, kMaxFreeStep);
-    return true;
-  }
-  bool PlusJacobian(const double*, double* jacobian) const override { return Identity(jacobian); }
-  bool Minus(const double* y, const double* u, double* delta) const override {
-    for (int k = 0; k < n_; ++k) delta[k] = y[k] - u[k];
-    return true;
-  }
-  bool MinusJacobian(const double*, double* jacobian) const override { return Identity(jacobian); }
-
- private:
-  bool Identity(double* jacobian) const {
-    std::fill(jacobian, jacobian + n_ * n_, 0.0);
-    for (int k = 0; k < n_; ++k) jacobian[k * n_ + k] = 1.0;
-    return true;
-  }
-  int n_;
-};
-
 class ThermalFitStop : public ceres::IterationCallback {
  public:
   ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
@@ -381,7 +350,7 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   PriorCost* prior_cost =
       prior.first > 0.0 ? new PriorCost(residuals.free(), prior.second, prior.first) : nullptr;
   if (prior_cost != nullptr) problem.AddResidualBlock(prior_cost, nullptr, u.data());
-  problem.SetManifold(u.data(), new CappedStep(static_cast<int>(u.size())));  // owned by `problem`
+  problem.SetManifold(u.data(), internal::NewCappedStep(static_cast<int>(u.size())));  // owned by `problem`
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = max_iterations;
@@ -537,31 +506,6 @@ nlohmann::json IdentifiabilityJson(const ReplayResiduals& residuals, const Therm
   return internal::ThermalIdentifiability(in);
 }
 
-// The standard deviations, the strong correlations (|r| > 0.9), the weakest combination and what is undetermined.
-void PrintIdentifiability(const nlohmann::json& id, std::ostream& out) {
-  if (id.is_null()) return;
-  out << std::setprecision(3) << "  1 sd      ";
-  for (const auto& [name, sd] : id["standard_deviation"].items()) out << " " << name << " " << sd.get<double>();
-  if (id["noise_c"].is_number()) out << " (noise " << id["noise_c"].get<double>() << " degC)";
-  out << "\n";
-  for (const auto& [a, row] : id["correlation"].items()) {
-    for (const auto& [b, r] : row.items()) {
-      if (a < b && std::abs(r.get<double>()) > 0.9) {
-        out << "  correlated " << a << ", " << b << ": " << r.get<double>() << "\n";
-      }
-    }
-  }
-  if (id["condition_number"].is_number()) {
-    out << "  weakest    condition " << id["condition_number"].get<double>() << ", 1 sd along:";
-    for (const auto& [name, d] : id["weakest"].items()) out << " " << name << " " << std::showpos << d.get<double>();
-    out << std::noshowpos << "\n";
-  }
-  for (const auto& name : id["undetermined"]) {
-    out << "  note: the window does not determine " << name.get<std::string>() << " (1 sd over "
-        << 100.0 * internal::kUndeterminedFraction << " % of its value): fix it (fewer --free) or add --prior\n";
-  }
-}
-
 }  // namespace
 
 FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out) {
@@ -629,7 +573,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   doc["log"] = {{"file", model.log.file}, {"rows", model.log.time_s.size()}, {"duration_s", model.log.time_s.back()}};
   doc["log_issues"] = LogIssuesJson(model.log);
   PrintThermalFit(free, start, fitted, doc, summary.iterations.size(), residuals.replays(), seconds, out);
-  PrintIdentifiability(doc["identifiability"], out);
+  internal::PrintIdentifiability(doc["identifiability"], out);
   return internal::Finish(converged, message, doc, options, out);
 }
 
