@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <iomanip>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -89,7 +91,7 @@ nlohmann::json SeenIdentifiability(const IdentifiabilityInput& in) {
 nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in) {
   const std::size_t n = in.names.size();
   WAAM_DEMAND(n >= 1 && in.scales.size() == n && in.values.size() == n && in.jacobian.size() == in.m * n);
-  // A parameter whose column is zero (clamped beyond a bound, or not felt in the window) is blind: no figure.
+  // A parameter whose column is zero (not felt in the window) is blind: no figure.
   IdentifiabilityInput seen = in;
   seen.names.clear(), seen.scales.clear(), seen.values.clear(), seen.jacobian.clear();
   std::vector<std::size_t> cols;
@@ -119,6 +121,31 @@ nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in) {
   for (const auto& name : blind) doc["undetermined"].push_back(name);
   doc["blind"] = blind;
   return doc;
+}
+
+// The standard deviations, the strong correlations (|r| > 0.9), the weakest combination and what is undetermined.
+void PrintIdentifiability(const nlohmann::json& id, std::ostream& out) {
+  if (id.is_null()) return;
+  out << std::setprecision(3) << "  1 sd      ";
+  for (const auto& [name, sd] : id["standard_deviation"].items()) out << " " << name << " " << sd.get<double>();
+  if (id["noise_c"].is_number()) out << " (noise " << id["noise_c"].get<double>() << " degC)";
+  out << "\n";
+  for (const auto& [a, row] : id["correlation"].items()) {
+    for (const auto& [b, r] : row.items()) {
+      if (a < b && std::abs(r.get<double>()) > 0.9) {
+        out << "  correlated " << a << ", " << b << ": " << r.get<double>() << "\n";
+      }
+    }
+  }
+  if (id["condition_number"].is_number()) {
+    out << "  weakest    condition " << id["condition_number"].get<double>() << ", 1 sd along:";
+    for (const auto& [name, d] : id["weakest"].items()) out << " " << name << " " << std::showpos << d.get<double>();
+    out << std::noshowpos << "\n";
+  }
+  for (const auto& name : id["undetermined"]) {
+    out << "  note: the window does not determine " << name.get<std::string>() << " (1 sd over "
+        << 100.0 * internal::kUndeterminedFraction << " % of its value): fix it (fewer --free) or add --prior\n";
+  }
 }
 
 }  // namespace waam::analysis::internal
