@@ -1,6 +1,5 @@
 // report.html of `waam bench`: tables, the published figures, model-fit and void plots (inline SVG) and the
 // scenarios' pictures (base64 PNG), in one file with no external resources.
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
@@ -35,11 +34,11 @@ std::string Base64(const std::vector<unsigned char>& bytes) {
 }
 
 // An <img> with the PNG at `path` scaled down to at most `max_width` px, or "" if the file is absent.
+// Throws InputError naming `path` if it is not a readable PNG.
 std::string EmbeddedPng(const fs::path& path, const std::string& caption, int max_width = 600) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return "";
-  cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (image.empty()) return "";
+  cv::Mat image = internal::ReadPng(path, 3);
   if (image.cols > max_width) {
     cv::resize(image, image, cv::Size(max_width, image.rows * max_width / image.cols), 0, 0, cv::INTER_AREA);
   }

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "models/core/error.h"

@@ -10,6 +10,7 @@
 
 #include "analysis/h5_handle.h"
 #include "analysis/replay_command.h"
+#include "analysis/png_file.h"
 #include "analysis/thermal_plot.h"
 #include "models/core/files.h"
 
@@ -134,7 +135,7 @@ void WriteReplayPng(const ReplayModel& model, const ReplaySimulation& simulation
     std::snprintf(text, sizeof(text), "max |err| %.1f degC", e.max_error_c);
     internal::PutLabel(image, text, {lx, ly + 75}, 0.45);
   }
-  internal::WritePngFile(image, path);
+  internal::WritePngAtomic(image, path);
 }
 
 }  // namespace waam::analysis

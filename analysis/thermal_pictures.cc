@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "analysis/thermal_command.h"
+#include "analysis/png_file.h"
 #include "analysis/thermal_plot.h"
 
 namespace waam::analysis {
@@ -84,7 +85,7 @@ void WriteInterpassPng(const ThermalRunResult& result, const planner::InterpassS
     cv::rectangle(image, bottom.Px(i - half, 0.0), bottom.Px(i + half, l.wait_s), SeriesColour(1),
                   cv::FILLED);
   }
-  internal::WritePngFile(image, path);
+  internal::WritePngAtomic(image, path);
 }
 
 void WriteProbesPng(const ThermalRunResult& result, const planner::InterpassSettings& interpass,
@@ -134,7 +135,7 @@ void WriteProbesPng(const ThermalRunResult& result, const planner::InterpassSett
     PutLabel(image, "interpass max_c", {942, y}, 0.45);
     PutLabel(image, Printf("%.0f degC", interpass.max_c), {942, y + 13}, 0.35, {90, 90, 90});
   }
-  internal::WritePngFile(image, path);
+  internal::WritePngAtomic(image, path);
 }
 
 void WriteTemperatureMapPng(const ThermalLayerField& layer_field, const Eigen::AlignedBox3d& deposit_box_mm,
@@ -180,7 +181,7 @@ void WriteTemperatureMapPng(const ThermalLayerField& layer_field, const Eigen::A
            part_name + Printf(": temperature at the end of layer %.0f (t = %.1f s), section ", layer_field.layer,
                   layer_field.time_s) + names[across] + Printf(" = %.1f mm (grey: no metal)", at_mm),
            {10, 28}, 0.5);
-  internal::WritePngFile(image, path);
+  internal::WritePngAtomic(image, path);
 }
 
 }  // namespace waam::analysis

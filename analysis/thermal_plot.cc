@@ -1,15 +1,13 @@
-// Plot frames for the thermal pictures: ticks, axes, colour bars and atomic PNG writing with OpenCV.
+// Plot frames for the thermal pictures: ticks, axes and colour bars drawn with OpenCV (written by png_file.h).
 #include "analysis/thermal_plot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "models/core/error.h"
-#include "models/core/files.h"
 
 namespace waam::analysis::internal {
 
@@ -102,12 +100,6 @@ void DrawColourBar(cv::Mat& image, cv::Rect area, int map, double lo, double hi,
     PutLabel(image, TickText(t), {p.x + 8, p.y + 5}, 0.45);
   }
   PutLabel(image, title, {area.x - 10, area.y - 10});
-}
-
-void WritePngFile(const cv::Mat& image, const std::filesystem::path& path) {
-  std::vector<unsigned char> bytes;
-  WAAM_THROW_UNLESS(cv::imencode(".png", image, bytes), "cannot encode " << path.string() << " as PNG");
-  WriteFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace waam::analysis::internal

@@ -2,7 +2,6 @@
 // ticks in units, a colour bar, a title, and atomic PNG writing.
 #pragma once
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -32,8 +31,5 @@ void DrawColourBar(cv::Mat& image, cv::Rect area, int map, double lo, double hi,
 
 // The colour of `value` in [lo, hi] on colormap `map` (BGR).
 cv::Vec3b MapColour(int map, double value, double lo, double hi);
-
-// Encodes `image` as PNG and writes it atomically. Throws InputError when it cannot.
-void WritePngFile(const cv::Mat& image, const std::filesystem::path& path);
 
 }  // namespace waam::analysis::internal

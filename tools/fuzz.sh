@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds one libFuzzer target (clang, ASan + UBSan, in build-fuzz/) and runs it for a given time.
-#   tools/fuzz.sh <stl|scenario|csv|urdf|mjcf|sweep|fanuc_ls|abb_rapid|gcode|program_csv|kuka_krl|yaskawa_jbi|thermal_material|replay_log> <seconds> [more libFuzzer flags]
+#   tools/fuzz.sh <stl|scenario|csv|urdf|mjcf|sweep|fanuc_ls|abb_rapid|gcode|program_csv|kuka_krl|yaskawa_jbi|thermal_material|replay_log|png> <seconds> [more libFuzzer flags]
 # The seed corpus is the repository's own files (meshes, scenarios, data tables) plus fuzz/regressions/<target>;
 # the growing corpus stays in build-fuzz/corpus/<target>, crashing inputs go to build-fuzz/artifacts/<target>/.
 # The 60 s timeout is for a shared, loaded machine (a unit normally takes milliseconds); a real hang still trips it.
@@ -9,8 +9,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-target=${1:?usage: tools/fuzz.sh <stl|scenario|csv|urdf|mjcf|sweep|fanuc_ls|abb_rapid|gcode|program_csv|kuka_krl|yaskawa_jbi|thermal_material|replay_log> <seconds> [libFuzzer flags]}
-seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv|urdf|mjcf|sweep|fanuc_ls|abb_rapid|gcode|program_csv|kuka_krl|yaskawa_jbi|thermal_material|replay_log> <seconds> [libFuzzer flags]}
+target=${1:?usage: tools/fuzz.sh <stl|scenario|csv|urdf|mjcf|sweep|fanuc_ls|abb_rapid|gcode|program_csv|kuka_krl|yaskawa_jbi|thermal_material|replay_log|png> <seconds> [libFuzzer flags]}
+seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv|urdf|mjcf|sweep|fanuc_ls|abb_rapid|gcode|program_csv|kuka_krl|yaskawa_jbi|thermal_material|replay_log|png> <seconds> [libFuzzer flags]}
 shift 2
 build=${WAAM_FUZZ_BUILD_DIR:-$root/build-fuzz}
 
@@ -29,7 +29,8 @@ case "$target" in
   program_csv) seeds=$(find tests/data/programs -name '*.csv'); max_len=16384 ;;
   thermal_material) seeds=$(find models/data/materials fuzz/regressions/thermal_material -name '*.csv'); max_len=8192 ;;
   replay_log) seeds=$(find fuzz/seeds/replay_log fuzz/regressions/replay_log -type f ! -name README.md); max_len=8192 ;;
-  *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, urdf, mjcf, sweep, fanuc_ls, abb_rapid, gcode, program_csv, kuka_krl, yaskawa_jbi, thermal_material, replay_log)" >&2; exit 2 ;;
+  png) seeds=$(find docs/images -name '*.png' -size -64k); max_len=65536 ;;
+  *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, urdf, mjcf, sweep, fanuc_ls, abb_rapid, gcode, program_csv, kuka_krl, yaskawa_jbi, thermal_material, replay_log, png)" >&2; exit 2 ;;
 esac
 
 if [ ! -f "$build/CMakeCache.txt" ]; then

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libceres-dev libtbb-dev
   libmujoco-dev libqhull-dev libtinyxml2-dev
-  libopencv-dev
+  libopencv-dev libpng-dev
   libhdf5-dev
   libpolyclipping-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev

@@ -9,7 +9,7 @@ namespace waam {
 
 // A temporary file next to `final_path` that becomes `final_path` only on Commit(). If the object is destroyed
 // without Commit() (an exception, an interrupt), the temporary is removed and `final_path` is untouched.
-// Writers that need a file name (HDF5, OpenCV) write to temp_path().
+// Writers that need a file name (HDF5) write to temp_path().
 class AtomicOutput {
  public:
   // Creates the parent directory of `final_path` if needed. Throws OutputError if it cannot be created.

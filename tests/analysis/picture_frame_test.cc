@@ -5,9 +5,9 @@
 #include <filesystem>
 
 #include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis/png_file.h"
 #include "analysis/simulate_command.h"
 
 namespace waam::analysis {
@@ -66,7 +66,7 @@ TEST(PictureFrame, HeightMapHasItsColourBar) {
     for (int i = 0; i < 40; ++i) map.top_mm[j * 40 + i] = static_cast<float>(1.0 + 0.1 * i);
   const fs::path path = fs::path(::testing::TempDir()) / "top_height_frame.png";
   WriteHeightMapPng(map, "plate", path);
-  const cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+  const cv::Mat image = internal::ReadPng(path, 3);
   ASSERT_FALSE(image.empty());
   // The plot is 40 x 20 columns at 16 px each: 640 x 320 px, then the bar.
   const cv::Size margins = FrameMargins(true);

@@ -16,11 +16,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "analysis/bench_command.h"
 #include "analysis/cell_files.h"
 #include "analysis/check_command.h"
+#include "analysis/png_file.h"
 #include "analysis/scenario.h"
 #include "analysis/thermal_run.h"
 #include "planner/plan_scenario.h"
@@ -308,7 +308,7 @@ void ExpectPageLoads(const fs::path& check_dir, const std::string& screenshot_co
 
   const fs::path png = check_dir / "viewer.png";
   Chromium(check_dir / "viewer.html", "--screenshot=" + png.string(), "#t=0.6&view=part");
-  const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+  const cv::Mat image = internal::ReadPng(png, 3);
   ASSERT_FALSE(image.empty()) << "no screenshot at " << png;
   // The 3D view (left of the 320 px panel): many colours, and most pixels not the background.
   const cv::Mat view = image(cv::Rect(0, 0, image.cols - 340, image.rows));
