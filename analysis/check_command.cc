@@ -26,9 +26,8 @@ double Finite(double v) { return std::isfinite(v) ? v : 0.0; }
 
 constexpr std::size_t kMaxViolationsListed = 1000;
 
-}  // namespace
-
-nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const twin::CheckReport& report) {
+// The first kMaxViolationsListed violations of the check, as check.json lists them.
+nlohmann::json ViolationsJson(const twin::CheckReport& report) {
   nlohmann::json violations = nlohmann::json::array();
   for (std::size_t i = 0; i < report.violations.size() && i < kMaxViolationsListed; ++i) {
     const twin::CheckViolation& v = report.violations[i];
@@ -46,7 +45,11 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
     }
     violations.push_back(j);
   }
-  // Positioner angles and torch tilt where each layer's welding starts.
+  return violations;
+}
+
+// Positioner angles and torch tilt where each layer's welding starts.
+nlohmann::json LayerStartsJson(const twin::CheckReport& report) {
   nlohmann::json layers = nlohmann::json::array();
   int last_layer = -1;
   for (const planner::CellSample& s : report.motion) {
@@ -58,9 +61,11 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
                       {"positioner_at_limit", s.positioner_at_limit},
                       {"torch_tilt_deg", s.torch_tilt_rad * 180.0 / kPi}});
   }
-  nlohmann::json accel = nlohmann::json::object();
-  for (int a = 0; a < 8; ++a) accel[twin::AxisName(a)] = Finite(report.max_accel_deg_s2[a]);
-  const twin::CellSettings& c = scenario.cell;
+  return layers;
+}
+
+// How the positioner's redundancy was resolved: the mode and, when optimised, the margins before and after.
+nlohmann::json ResolveJson(const twin::CheckReport& report, const twin::CellSettings& c) {
   const auto margins_json = [&](const twin::CheckMargins& m) {
     return nlohmann::json{{"violation_count", m.violations},
                           {"violating_samples", m.violating_samples},
@@ -85,8 +90,11 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
     resolve["spin_deg"] = {{"min", lo}, {"max", hi}, {"layers_turned", turned}};
     resolve["layer_spin_deg"] = report.resolve.layer_spin_deg;
   }
-  const int worst_point = report.motion.empty() ? 0 : report.motion[report.worst_sample].point;
-  // What the mode covered: the sweep's figures in continuous mode, why it fell back otherwise.
+  return resolve;
+}
+
+// What the mode covered: the sweep's figures in continuous mode, null otherwise (mode_fallback says why).
+nlohmann::json ContinuousJson(const twin::CheckReport& report) {
   nlohmann::json sweep = nullptr;
   if (report.mode == twin::CheckMode::kContinuous) {
     sweep = {{"certified_clearance_mm", Finite(report.certified_clearance_mm)},
@@ -100,11 +108,39 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
              {"part_clearance_mm", std::isfinite(report.part_clearance_mm) ? nlohmann::json(report.part_clearance_mm) : nullptr},
              {"part_queries", report.part_queries}};
   }
+  return sweep;
+}
+
+// The cell the check ran in.
+nlohmann::json CellJson(const twin::CellSettings& c, const fs::path& mjcf, const twin::CheckReport& report) {
+  return {{"mjcf", mjcf.string()},
+          {"robot_base_mm", c.robot_base_mm},
+          {"robot_yaw_deg", c.robot_yaw_deg},
+          {"positioner_base_mm", c.positioner_base_mm},
+          {"positioner_yaw_deg", c.positioner_yaw_deg},
+          {"positioner_type", report.positioner_type},
+          {"positioner_follow", c.positioner_follow},
+          {"positioner_tilt_tolerance_deg", c.positioner_tilt_tolerance_deg},
+          {"part_offset_mm", c.part_offset_mm},
+          {"part_yaw_deg", c.part_yaw_deg},
+          {"joint_margin_deg", c.joint_margin_deg},
+          {"singularity_deg", c.singularity_deg},
+          {"collision_tolerance_mm", c.collision_tolerance_mm}};
+}
+
+}  // namespace
+
+nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const twin::CheckReport& report) {
+  const nlohmann::json violations = ViolationsJson(report);
+  nlohmann::json accel = nlohmann::json::object();
+  for (int a = 0; a < 8; ++a) accel[twin::AxisName(a)] = Finite(report.max_accel_deg_s2[a]);
+  const twin::CellSettings& c = scenario.cell;
+  const int worst_point = report.motion.empty() ? 0 : report.motion[report.worst_sample].point;
   return {
       {"mode", report.mode},
       {"mode_fallback", report.mode_fallback},
       {"distance_queries", report.distance_queries},
-      {"continuous", sweep},
+      {"continuous", ContinuousJson(report)},
       {"scenario", scenario.name},
       {"ok", report.ok},
       {"ik", report.ik},
@@ -127,22 +163,9 @@ nlohmann::json CheckToJson(const Scenario& scenario, const fs::path& mjcf, const
       {"positioner_limit_layers", report.positioner_limit_layers},
       {"max_torch_tilt_deg", Finite(report.max_torch_tilt_deg)},
       {"worst_point", worst_point},
-      {"resolve", resolve},
-      {"layers", layers},
-      {"cell",
-       {{"mjcf", mjcf.string()},
-        {"robot_base_mm", c.robot_base_mm},
-        {"robot_yaw_deg", c.robot_yaw_deg},
-        {"positioner_base_mm", c.positioner_base_mm},
-        {"positioner_yaw_deg", c.positioner_yaw_deg},
-        {"positioner_type", report.positioner_type},
-        {"positioner_follow", c.positioner_follow},
-        {"positioner_tilt_tolerance_deg", c.positioner_tilt_tolerance_deg},
-        {"part_offset_mm", c.part_offset_mm},
-        {"part_yaw_deg", c.part_yaw_deg},
-        {"joint_margin_deg", c.joint_margin_deg},
-        {"singularity_deg", c.singularity_deg},
-        {"collision_tolerance_mm", c.collision_tolerance_mm}}},
+      {"resolve", ResolveJson(report, c)},
+      {"layers", LayerStartsJson(report)},
+      {"cell", CellJson(c, mjcf, report)},
   };
 }
 

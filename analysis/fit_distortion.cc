@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <utility>
 
 #include "analysis/fit_internal.h"
 #include "analysis/scenario.h"
@@ -30,7 +31,10 @@ constexpr double kReferenceSpacingMm = 2.0;
 
 std::string Join(const std::vector<models::DistortionParam>& items) {
   std::string s;
-  for (const models::DistortionParam item : items) s += (s.empty() ? "" : ",") + std::string(NameOf(item));
+  for (const models::DistortionParam item : items) {
+    if (!s.empty()) s += ",";
+    s += NameOf(item);
+  }
   return s;
 }
 
@@ -67,12 +71,58 @@ DistortionFitSetup CheckedSetup(const FitOptions& options) {
   return s;
 }
 
+// Prints the free parameters' start and fitted values, the rms, the solver's summary and the wall time; returns the
+// free parameters' start and fitted values by name.
+std::pair<nlohmann::json, nlohmann::json> PrintFit(const DistortionFitSetup& setup,
+                                                   const twin::DistortionFitResult& result, double wall_s,
+                                                   std::ostream& out) {
+  out << std::setprecision(6);
+  nlohmann::json start_json, fitted_json;
+  for (const models::DistortionParam param : setup.fit.free) {
+    const std::string name(NameOf(param));
+    const double a = models::ParamValue(setup.start, param), b = models::ParamValue(result.params, param);
+    start_json[name] = a;
+    fitted_json[name] = b;
+    out << "  " << std::left << std::setw(26) << name << std::right << " = " << b << "  (start " << a << ")\n";
+  }
+  out << "  rms      = " << result.initial_rms_mm << " mm at the start -> " << result.rms_mm
+      << " mm fitted (point-to-plane residuals, " << result.points << " scan points)\n";
+  PrintSolver(out, result.solver);
+  out << "  wall     = " << std::setprecision(3) << wall_s << " s (plan, deposit and fit)\n";
+  return {start_json, fitted_json};
+}
+
+// The record of the fit written into the model JSON: its inputs, settings, parameters and solver summary.
+nlohmann::json FitRecord(const FitOptions& options, const std::string& scenario_name, const DistortionFitSetup& setup,
+                         const ScanCloud& cloud, const twin::DistortionFitResult& result,
+                         const nlohmann::json& start_json, const nlohmann::json& fitted_json) {
+  return {
+      {"scan", options.data.string()},
+      {"scan_points", cloud.points.size()},
+      {"points_used", result.points},
+      {"weighting", cloud.area_weighted ? "area" : "point"},
+      {"scenario", scenario_name},
+      {"scenario_file", options.scenario.string()},
+      {"overrides", options.overrides},
+      {"start_file", setup.start_path.string()},
+      {"mode", setup.distortion.mode},
+      {"element_mm", setup.distortion.element_mm},
+      {"groups", setup.distortion.groups},
+      {"free", setup.fit.free},
+      {"start", start_json},
+      {"fitted", fitted_json},
+      {"rms_start_mm", result.initial_rms_mm},
+      {"rms_mm", result.rms_mm},
+      {"residual", "signed distance of each scan point to the distorted twin surface, mm (Huber loss, 1 mm)"},
+      {"solver", models::ToJson(result.solver)},
+  };
+}
+
 }  // namespace
 
 FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& out) {
   const auto wall_start = std::chrono::steady_clock::now();
   const DistortionFitSetup setup = CheckedSetup(options);
-  const std::filesystem::path& start_path = setup.start_path;
   const models::DistortionParams& start = setup.start;
   const twin::DistortionOptions& distortion = setup.distortion;
   const twin::DistortionFitOptions& fit = setup.fit;
@@ -108,40 +158,9 @@ FitOutcome internal::RunFitDistortion(const FitOptions& options, std::ostream& o
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
-  out << std::setprecision(6);
-  nlohmann::json start_json, fitted_json;
-  for (const models::DistortionParam param : fit.free) {
-    const std::string name(NameOf(param));
-    const double a = models::ParamValue(start, param), b = models::ParamValue(result.params, param);
-    start_json[name] = a;
-    fitted_json[name] = b;
-    out << "  " << std::left << std::setw(26) << name << std::right << " = " << b << "  (start " << a << ")\n";
-  }
-  out << "  rms      = " << result.initial_rms_mm << " mm at the start -> " << result.rms_mm
-      << " mm fitted (point-to-plane residuals, " << result.points << " scan points)\n";
-  PrintSolver(out, result.solver);
-  out << "  wall     = " << std::setprecision(3) << wall_s << " s (plan, deposit and fit)\n";
-
-  const nlohmann::json record = {
-      {"scan", options.data.string()},
-      {"scan_points", scan.size()},
-      {"points_used", result.points},
-      {"weighting", cloud.area_weighted ? "area" : "point"},
-      {"scenario", scenario.name},
-      {"scenario_file", options.scenario.string()},
-      {"overrides", options.overrides},
-      {"start_file", start_path.string()},
-      {"mode", distortion.mode},
-      {"element_mm", distortion.element_mm},
-      {"groups", distortion.groups},
-      {"free", fit.free},
-      {"start", start_json},
-      {"fitted", fitted_json},
-      {"rms_start_mm", result.initial_rms_mm},
-      {"rms_mm", result.rms_mm},
-      {"residual", "signed distance of each scan point to the distorted twin surface, mm (Huber loss, 1 mm)"},
-      {"solver", models::ToJson(result.solver)},
-  };
+  const auto [start_json, fitted_json] = PrintFit(setup, result, wall_s, out);
+  const nlohmann::json record =
+      FitRecord(options, scenario.name, setup, cloud, result, start_json, fitted_json);
   // A fit Ceres stopped short of convergence (iteration limit, failure) is not written: its parameters are not a fit.
   bool ok = result.solver.usable && result.solver.termination == models::SolverTermination::kConvergence;
   std::string message;

@@ -21,13 +21,8 @@ SectionKeys Section(std::string path, const std::array<Field<S>, N>& fields) {
   return {std::move(path), Describe<S>(fields)};
 }
 
-// The keys of program.frame and slicing.sub_volumes[], which their parsers read by hand.
-struct FrameKeys {
-  std::array<double, 6> user_frame_mm = {};
-};
-inline constexpr std::array kProgramFrameFields = {
-    NumField<&FrameKeys::user_frame_mm>("user_frame_mm", "mm, deg", -1e6, 1e6, "[x, y, z, w, p, r] of the user frame"),
-};
+// The keys of program.frames and slicing.sub_volumes[], which their parsers read by hand.
+struct FrameKeys {};
 struct SubVolumeKeys {};
 inline constexpr std::array kSubVolumeFields = {
     CustomField<SubVolumeKeys>("name", FieldType::kString, "the sub-volume's name"),
@@ -35,18 +30,7 @@ inline constexpr std::array kSubVolumeFields = {
     CustomField<SubVolumeKeys>("keep", FieldType::kNumbers, "half-spaces n . p <= c, 4 numbers each (nx, ny, nz, c mm)"),
 };
 
-// The sections their parsers read by hand (planner/scenario/arc_section.cc, planner/program/program_section.cc): documenting rows, so that --set reaches them and the key tables list them.
-inline constexpr std::array kArcFields = {
-    CustomField<planner::ArcSettings>("power_w", FieldType::kNumber, "arc power, W; or voltage_v and current_a"),
-    CustomField<planner::ArcSettings>("voltage_v", FieldType::kNumber, "arc voltage, V"),
-    CustomField<planner::ArcSettings>("current_a", FieldType::kNumber, "arc current, A"),
-    CustomField<planner::ArcSettings>("efficiency", FieldType::kNumber, "share of the arc power the metal takes"),
-};
-inline constexpr std::array kInterpassFields = {
-    CustomField<planner::InterpassSettings>("max_c", FieldType::kNumber, "the interpass temperature limit, degC"),
-    CustomField<planner::InterpassSettings>("at", FieldType::kName, "next_start, top_max or {probe: NAME}"),
-    CustomField<planner::InterpassSettings>("min_layer_time_s", FieldType::kNumber, "each layer lasts at least, s"),
-};
+// program.frames, read by hand (planner/program/program_section.cc): documenting rows, so that --set reaches them and the key tables list them.
 inline constexpr std::array kProgramFramesFields = {
     CustomField<FrameKeys>("uframe", FieldType::kMap, "N: [x, y, z, w, p, r] (mm, deg) of user frame N"),
     CustomField<FrameKeys>("utool", FieldType::kMap, "N: [x, y, z, w, p, r] of tool N, or torch"),
@@ -61,8 +45,8 @@ std::vector<SectionKeys> MakeSections() {
       Section("path", planner::kPathFields),
       Section("path.void_filling", planner::kVoidFillingFields),
       Section("process", planner::kProcessFields),
-      Section("process.arc", kArcFields),
-      Section("process.interpass", kInterpassFields),
+      Section("process.arc", planner::kArcFields),
+      Section("process.interpass", planner::kInterpassFields),
       Section("cell", twin::kCellFields),
       Section("cell.robot", twin::kCellRobotFields),
       Section("cell.positioner", twin::kCellPositionerFields),
@@ -73,7 +57,7 @@ std::vector<SectionKeys> MakeSections() {
       Section("run", kRunFields),
       Section("place", kPlaceFields),
       Section("program", planner::kProgramFields),
-      Section("program.frame", kProgramFrameFields),
+      Section("program.frame", planner::kProgramFrameFields),
       Section("program.gcode", planner::kProgramGcodeFields),
       Section("program.yaskawa", planner::kProgramYaskawaFields),
       Section("program.frames", kProgramFramesFields),
@@ -181,7 +165,11 @@ void ValidateScenario(const Scenario& s) {
   CheckFields<planner::PathSettings>(planner::kPathFields, s.path, "path");
   CheckFields<planner::VoidFillingSettings>(planner::kVoidFillingFields, s.path.void_filling, "path.void_filling");
   CheckFields<planner::ProcessSettings>(planner::kProcessFields, s.process, "process");
+  planner::ValidateArcAndInterpass(s.process.arc, s.process.interpass);
   twin::ValidateCellSettings(s.cell);
+  CheckFields<planner::ProgramSettings>(planner::kProgramFields, s.program, "program");
+  CheckFields<planner::ProgramSettings>(planner::kProgramFrameFields, s.program, "program.frame");
+  CheckFields<planner::ProgramSettings>(planner::kProgramGcodeFields, s.program, "program.gcode");
   twin::ValidateSimulationSettings(s.simulation);
   CheckFields<RunSettings>(kRunFields, s.run, "run");
   CheckFields<PlaceSettings>(kPlaceFields, s.place, "place");

@@ -66,6 +66,89 @@ std::string SweepRunId(std::size_t index, std::size_t count, const SweepRun& run
   return id;
 }
 
+// Reads the sweep's `set:` mapping (key.path: value, the same for every run) into sweep->set.
+void ParseSweepSet(const fs::path& file, const YAML::Node& key_node, const YAML::Node& value, Sweep* sweep) {
+  WAAM_THROW_UNLESS(value.IsMap(), SweepWhere(file, key_node) << ": set: must be a mapping of key.path: value");
+  for (const auto& kv : value) {
+    const std::string k = SweepKey(file, kv.first, "set");
+    CheckSweepValue(file, k, kv.second);
+    sweep->set.push_back(k + "=" + SweepValueText(kv.second));
+  }
+}
+
+// Reads the sweep's `grid:` mapping (key.path: [values]) into sweep->keys and one run per combination.
+void ParseSweepGrid(const fs::path& file, const YAML::Node& key_node, const YAML::Node& value, Sweep* sweep) {
+  WAAM_THROW_UNLESS(value.IsMap() && value.size() > 0,
+                    SweepWhere(file, key_node) << ": grid: must be a mapping of key.path: [values]");
+  std::vector<std::vector<std::string>> axes;
+  std::size_t count = 1;
+  for (const auto& kv : value) {
+    const std::string k = SweepKey(file, kv.first, "grid");
+    WAAM_THROW_UNLESS(kv.second.IsSequence() && kv.second.size() > 0,
+                      SweepWhere(file, kv.first) << ": grid: " << k << ": must be a non-empty list of values");
+    WAAM_THROW_UNLESS(std::find(sweep->keys.begin(), sweep->keys.end(), k) == sweep->keys.end(),
+                      SweepWhere(file, kv.first) << ": grid: " << k << ": key given twice");
+    std::vector<std::string> values;
+    for (const YAML::Node& v : kv.second) {
+      CheckSweepValue(file, k, v);
+      values.push_back(SweepValueText(v));
+    }
+    count *= values.size();
+    WAAM_THROW_UNLESS(count <= kMaxSweepRuns, SweepWhere(file, key_node) << ": grid: more than " << kMaxSweepRuns
+                                                                         << " runs; split the sweep");
+    sweep->keys.push_back(k);
+    axes.push_back(std::move(values));
+  }
+  // Every combination, the last key varying fastest.
+  for (std::size_t r = 0; r < count; ++r) {
+    SweepRun run;
+    std::size_t rest = r;
+    std::vector<std::pair<std::string, std::string>> values(axes.size());
+    for (std::size_t a = axes.size(); a-- > 0;) {
+      values[a] = {sweep->keys[a], axes[a][rest % axes[a].size()]};
+      rest /= axes[a].size();
+    }
+    run.values = std::move(values);
+    sweep->runs.push_back(std::move(run));
+  }
+}
+
+// Reads the sweep's `list:` of runs (each a mapping of key.path: value) into sweep->keys and sweep->runs.
+void ParseSweepList(const fs::path& file, const YAML::Node& key_node, const YAML::Node& value, Sweep* sweep) {
+  WAAM_THROW_UNLESS(value.IsSequence() && value.size() > 0,
+                    SweepWhere(file, key_node) << ": list: must be a non-empty list of mappings");
+  WAAM_THROW_UNLESS(value.size() <= kMaxSweepRuns,
+                    SweepWhere(file, key_node) << ": list: more than " << kMaxSweepRuns << " runs; split the sweep");
+  for (const YAML::Node& entry : value) {
+    WAAM_THROW_UNLESS(entry.IsMap() && entry.size() > 0,
+                      SweepWhere(file, entry) << ": list: each run must be a mapping of key.path: value");
+    SweepRun run;
+    for (const auto& kv : entry) {
+      const std::string k = SweepKey(file, kv.first, "list");
+      CheckSweepValue(file, k, kv.second);
+      for (const auto& [other, unused] : run.values) {
+        WAAM_THROW_UNLESS(other != k, SweepWhere(file, kv.first) << ": list: " << k << ": key given twice");
+      }
+      run.values.emplace_back(k, SweepValueText(kv.second));
+      if (std::find(sweep->keys.begin(), sweep->keys.end(), k) == sweep->keys.end()) sweep->keys.push_back(k);
+    }
+    sweep->runs.push_back(std::move(run));
+  }
+}
+
+// Reads the sweep's `metrics:` list of step.metric names into sweep->metrics.
+void ParseSweepMetrics(const fs::path& file, const YAML::Node& key_node, const YAML::Node& value, Sweep* sweep) {
+  WAAM_THROW_UNLESS(value.IsSequence(), SweepWhere(file, key_node) << ": metrics: must be a list of step.metric");
+  for (const YAML::Node& m : value) {
+    const std::string name = m.IsScalar() ? m.Scalar() : "";
+    const std::size_t dot = name.find('.');
+    WAAM_THROW_UNLESS(dot != std::string::npos && dot > 0 && dot + 1 < name.size(),
+                      SweepWhere(file, m) << ": metrics: '" << name
+                                          << "' is not step.metric (e.g. simulate.deviation/rms_mm)");
+    sweep->metrics.push_back(name);
+  }
+}
+
 }  // namespace
 
 Sweep ParseSweep(const std::string& text, const fs::path& file) {
@@ -100,78 +183,15 @@ Sweep ParseSweep(const std::string& text, const fs::path& file) {
         sweep.base = (file.parent_path() / value.Scalar()).lexically_normal();
       }
     } else if (key == "set") {
-      WAAM_THROW_UNLESS(value.IsMap(), SweepWhere(file, key_node) << ": set: must be a mapping of key.path: value");
-      for (const auto& kv : value) {
-        const std::string k = SweepKey(file, kv.first, "set");
-        CheckSweepValue(file, k, kv.second);
-        sweep.set.push_back(k + "=" + SweepValueText(kv.second));
-      }
+      ParseSweepSet(file, key_node, value, &sweep);
     } else if (key == "grid") {
       has_grid = true;
-      WAAM_THROW_UNLESS(value.IsMap() && value.size() > 0,
-                        SweepWhere(file, key_node) << ": grid: must be a mapping of key.path: [values]");
-      std::vector<std::vector<std::string>> axes;
-      std::size_t count = 1;
-      for (const auto& kv : value) {
-        const std::string k = SweepKey(file, kv.first, "grid");
-        WAAM_THROW_UNLESS(kv.second.IsSequence() && kv.second.size() > 0,
-                          SweepWhere(file, kv.first) << ": grid: " << k << ": must be a non-empty list of values");
-        WAAM_THROW_UNLESS(std::find(sweep.keys.begin(), sweep.keys.end(), k) == sweep.keys.end(),
-                          SweepWhere(file, kv.first) << ": grid: " << k << ": key given twice");
-        std::vector<std::string> values;
-        for (const YAML::Node& v : kv.second) {
-          CheckSweepValue(file, k, v);
-          values.push_back(SweepValueText(v));
-        }
-        count *= values.size();
-        WAAM_THROW_UNLESS(count <= kMaxSweepRuns, SweepWhere(file, key_node) << ": grid: more than " << kMaxSweepRuns
-                                                                             << " runs; split the sweep");
-        sweep.keys.push_back(k);
-        axes.push_back(std::move(values));
-      }
-      // Every combination, the last key varying fastest.
-      for (std::size_t r = 0; r < count; ++r) {
-        SweepRun run;
-        std::size_t rest = r;
-        std::vector<std::pair<std::string, std::string>> values(axes.size());
-        for (std::size_t a = axes.size(); a-- > 0;) {
-          values[a] = {sweep.keys[a], axes[a][rest % axes[a].size()]};
-          rest /= axes[a].size();
-        }
-        run.values = std::move(values);
-        sweep.runs.push_back(std::move(run));
-      }
+      ParseSweepGrid(file, key_node, value, &sweep);
     } else if (key == "list") {
       has_list = true;
-      WAAM_THROW_UNLESS(value.IsSequence() && value.size() > 0,
-                        SweepWhere(file, key_node) << ": list: must be a non-empty list of mappings");
-      WAAM_THROW_UNLESS(value.size() <= kMaxSweepRuns,
-                        SweepWhere(file, key_node) << ": list: more than " << kMaxSweepRuns << " runs; split the sweep");
-      for (const YAML::Node& entry : value) {
-        WAAM_THROW_UNLESS(entry.IsMap() && entry.size() > 0,
-                          SweepWhere(file, entry) << ": list: each run must be a mapping of key.path: value");
-        SweepRun run;
-        for (const auto& kv : entry) {
-          const std::string k = SweepKey(file, kv.first, "list");
-          CheckSweepValue(file, k, kv.second);
-          for (const auto& [other, unused] : run.values) {
-            WAAM_THROW_UNLESS(other != k, SweepWhere(file, kv.first) << ": list: " << k << ": key given twice");
-          }
-          run.values.emplace_back(k, SweepValueText(kv.second));
-          if (std::find(sweep.keys.begin(), sweep.keys.end(), k) == sweep.keys.end()) sweep.keys.push_back(k);
-        }
-        sweep.runs.push_back(std::move(run));
-      }
+      ParseSweepList(file, key_node, value, &sweep);
     } else if (key == "metrics") {
-      WAAM_THROW_UNLESS(value.IsSequence(), SweepWhere(file, key_node) << ": metrics: must be a list of step.metric");
-      for (const YAML::Node& m : value) {
-        const std::string name = m.IsScalar() ? m.Scalar() : "";
-        const std::size_t dot = name.find('.');
-        WAAM_THROW_UNLESS(dot != std::string::npos && dot > 0 && dot + 1 < name.size(),
-                          SweepWhere(file, m) << ": metrics: '" << name
-                                              << "' is not step.metric (e.g. simulate.deviation/rms_mm)");
-        sweep.metrics.push_back(name);
-      }
+      ParseSweepMetrics(file, key_node, value, &sweep);
     } else {
       WAAM_THROW(SweepWhere(file, key_node) << ": unknown key '" << key
                                             << "' (a sweep has base, name, set, grid or list, metrics)");

@@ -6,6 +6,7 @@
 // To add a field to a section: give the struct a member with its default, then one row in the section's table,
 //   NumField<&SimulationSettings::voxel_mm>("voxel_mm", "mm", 0.1, 2.0, "voxel edge"),      // a number, int or size_t
 //   NumField<&CellSettings::robot_base_mm>("base_mm", "mm", -2e4, 2e4, "arm base position"),  // std::array<double, N>
+//   NanField<&ArcSettings::power_w>("power_w", "W", 1.0, 1e6, "arc power"),   // a double, NaN while absent
 //   OptField<&SimulationSettings::blend>("blend", "corner blending of the executed path"),    // bool, enum, string
 //   CustomField<CellSettings>("mjcf", FieldType::kFile, "MJCF model of the whole cell"),      // read by the section code
 // An enum member must have its EnumNames table (models/core/enum_names.h); its names are listed in the docs and in
@@ -163,6 +164,27 @@ constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> Num
     } else {
       return field_internal::ShowNumbers(s.*kMember);
     }
+  };
+  return f;
+}
+
+// A double whose NaN means "not given" (the parser leaves it NaN while the key is absent; the docs show no default,
+// and the range check skips it): for settings whose absence is a NaN member. Say in `doc` what absent means.
+template <auto kMember>
+constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> NanField(std::string_view key,
+                                                                                 std::string_view unit, double min,
+                                                                                 double max, std::string_view doc) {
+  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
+  static_assert(std::is_same_v<typename field_internal::MemberOf<decltype(kMember)>::Value, double>,
+                "NanField<> takes a double");
+  Field<S> f = NumField<kMember>(key, unit, min, max, doc);
+  f.numbers = [](const S& s) {
+    const double v = s.*kMember;
+    return std::isnan(v) ? std::vector<double>{} : std::vector<double>{v};
+  };
+  f.show = [](const S& s) {
+    const double v = s.*kMember;
+    return std::isnan(v) ? std::string() : field_internal::ShowNumber(v);
   };
   return f;
 }

@@ -68,14 +68,8 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
                                                              << EnumNameList<ProgramFormat>(", "));
     s.format = f;
   }
-  if (section.Has("frame")) {
-    YamlMap frame = section.Map("frame");
-    if (frame.Has("user_frame_mm")) {
-      const std::vector<double> v = frame.Numbers("user_frame_mm", 6, -1e6, 1e6);
-      s.user_frame_mm = std::array<double, 6>{v[0], v[1], v[2], v[3], v[4], v[5]};
-      s.frames.user_frame = true;
-    }
-    frame.CheckNoUnknownKeys();
+  if (ReadFieldMap<ProgramSettings>(section, "frame", kProgramFrameFields, &s)) {
+    s.frames.user_frame = s.user_frame_mm.has_value();
   }
   ReadFields<ProgramSettings>(section, kProgramFields, &s);
   if (section.Has("gcode")) {

@@ -1,7 +1,10 @@
 // The `process.arc` and `process.interpass` scenario keys: the arc's power and efficiency, and the interpass rule.
+#include <cmath>
+#include <string_view>
+
 #include "models/core/error.h"
-#include "planner/scenario/arc_settings.h"
 #include "models/core/yaml_map.h"
+#include "planner/scenario/arc_settings.h"
 
 namespace waam::planner {
 
@@ -18,16 +21,17 @@ void ParseArc(YamlMap& process, ArcSettings* arc) {
                                                        "and current_a (A)");
   WAAM_THROW_UNLESS(!(power && electrical), map.Where("power_w") << ": give power_w, or voltage_v and current_a, "
                                                                     "not both");
+  auto read = [&](std::string_view key) { ReadField<ArcSettings>(map, kArcFields, key, arc); };
   if (power) {
-    arc->power_w = map.Number("power_w", 1.0, 1.0e6);
+    read("power_w");
   } else {
     WAAM_THROW_UNLESS(map.Has("voltage_v") && map.Has("current_a"),
                       arc->where << ": the arc has no power: give both voltage_v (V) and current_a (A), or power_w");
-    arc->voltage_v = map.Number("voltage_v", 1.0, 200.0);
-    arc->current_a = map.Number("current_a", 1.0, 2000.0);
+    read("voltage_v");
+    read("current_a");
     arc->power_w = arc->voltage_v * arc->current_a;
   }
-  arc->efficiency = map.Number("efficiency", 0.05, 1.0, arc->efficiency);
+  read("efficiency");
   map.CheckNoUnknownKeys();
 }
 
@@ -37,7 +41,7 @@ void ParseInterpass(YamlMap& process, InterpassSettings* interpass) {
   interpass->where = map.Where("");
   if (map.Has("max_c")) {
     interpass->max_where = map.Where("max_c");
-    interpass->max_c = map.Number("max_c", -273.15, 3000.0);
+    ReadField<InterpassSettings>(map, kInterpassFields, "max_c", interpass);
   }
   if (map.Has("at")) {
     interpass->at_where = map.Where("at");
@@ -56,7 +60,7 @@ void ParseInterpass(YamlMap& process, InterpassSettings* interpass) {
     WAAM_THROW_UNLESS(interpass->HasMax(), interpass->at_where << ": says where max_c is measured, but "
                                                                   "process.interpass has no max_c");
   }
-  interpass->min_layer_time_s = map.Number("min_layer_time_s", 0.0, 86400.0, 0.0);
+  ReadField<InterpassSettings>(map, kInterpassFields, "min_layer_time_s", interpass);
   map.CheckNoUnknownKeys();
 }
 
@@ -65,6 +69,15 @@ void ParseInterpass(YamlMap& process, InterpassSettings* interpass) {
 void ParseArcAndInterpass(YamlMap& process, ArcSettings* arc, InterpassSettings* interpass) {
   ParseArc(process, arc);
   ParseInterpass(process, interpass);
+}
+
+void ValidateArcAndInterpass(const ArcSettings& arc, const InterpassSettings& interpass) {
+  CheckFields<ArcSettings>(kArcFields, arc, "process.arc");
+  WAAM_THROW_UNLESS(!arc.given || !std::isnan(arc.power_w),
+                    arc.where << ": the arc has no power: give power_w (W), or voltage_v (V) and current_a (A)");
+  CheckFields<InterpassSettings>(kInterpassFields, interpass, "process.interpass");
+  WAAM_THROW_UNLESS(interpass.at != InterpassAt::kProbe || !interpass.probe.empty(),
+                    interpass.at_where << " = probe: name the probe, as at: {probe: NAME}");
 }
 
 }  // namespace waam::planner

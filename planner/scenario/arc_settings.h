@@ -6,6 +6,7 @@
 #include <string>
 
 #include "models/core/enum_names.h"
+#include "models/core/field_table.h"
 
 namespace waam::planner {
 
@@ -49,14 +50,29 @@ struct InterpassSettings {
   bool HasMax() const { return max_c == max_c; }  // not NaN
 };
 
-}  // namespace waam::planner
-namespace waam {
-class YamlMap;
-}  // namespace waam
-namespace waam::planner {
+// The keys of process.arc: power_w, or voltage_v and current_a (one form, read by ParseArcAndInterpass), and the
+// efficiency. The ranges are the parser's and ValidateArcAndInterpass's.
+inline constexpr std::array kArcFields = {
+    NanField<&ArcSettings::power_w>("power_w", "W", 1.0, 1.0e6, "arc power; or voltage_v and current_a"),
+    NanField<&ArcSettings::voltage_v>("voltage_v", "V", 1.0, 200.0, "arc voltage (with current_a)"),
+    NanField<&ArcSettings::current_a>("current_a", "A", 1.0, 2000.0, "arc current (with voltage_v)"),
+    NumField<&ArcSettings::efficiency>("efficiency", "", 0.05, 1.0, "share of the arc power the metal takes"),
+};
+
+// The keys of process.interpass; `at` has two forms (a name, or {probe: NAME}) and is read by ParseArcAndInterpass.
+inline constexpr std::array kInterpassFields = {
+    NanField<&InterpassSettings::max_c>("max_c", "degC", -273.15, 3000.0, "the interpass temperature limit; absent: none"),
+    CustomField<InterpassSettings>("at", FieldType::kName, "next_start (default), top_max or {probe: NAME}"),
+    NumField<&InterpassSettings::min_layer_time_s>("min_layer_time_s", "s", 0.0, 86400.0, "each layer lasts at least"),
+};
+
 // Reads the optional `arc:` and `interpass:` mappings of the scenario's `process` map. Throws InputError naming file,
 // line and key for unknown keys, out-of-range values, an arc without power (neither power_w nor voltage_v and
 // current_a) or with both forms, and `at` not one of next_start, top_max, {probe: NAME}.
 void ParseArcAndInterpass(YamlMap& process, ArcSettings* arc, InterpassSettings* interpass);
+
+// Checks arc and interpass settings built in code against the keys' ranges (kArcFields, kInterpassFields) and rules:
+// a given arc has a power, and at = probe names its probe. Throws InputError "process.arc.KEY = v: must be in [..]".
+void ValidateArcAndInterpass(const ArcSettings& arc, const InterpassSettings& interpass);
 
 }  // namespace waam::planner

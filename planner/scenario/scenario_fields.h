@@ -96,6 +96,10 @@ inline constexpr std::array kProgramFields = {
     CustomField<ProgramSettings>("gcode", FieldType::kMap, "arc signals, feed and dwell units (docs/PROGRAMS.md)"),
     CustomField<ProgramSettings>("yaskawa", FieldType::kMap, "pulses_per_deg [6], station_pulses_per_deg [2]"),
 };
+inline constexpr std::array kProgramFrameFields = {
+    NumField<&ProgramSettings::user_frame_mm>("user_frame_mm", "mm, deg", -1e6, 1e6,
+                                             "[x, y, z, w, p, r] of the user frame; absent: the cell's FANUC world"),
+};
 inline constexpr std::array kProgramGcodeFields = {
     NumField<&ProgramSettings::gcode_arc_on_m>("arc_on_m", "", 0, 999, "M code that starts the arc"),
     NumField<&ProgramSettings::gcode_arc_off_m>("arc_off_m", "", 0, 999, "M code that stops the arc"),

@@ -144,6 +144,105 @@ double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
+// The accepted range of a layer's thickness: h_min and h_max widened by the tolerance, mm.
+struct SliceStep {
+  double lo = 0.0, hi = 0.0;
+};
+
+constexpr double kBaseCutMm = 1e-3;  // the base cut's height above the substrate, and the end layer's margin, mm
+
+// The base: the cut just above the substrate, with its centroid put on z = 0; sets *wall_mm (slicing.wall_mm, or
+// the base section's estimated wall). Throws InputError when there is no such cut or the base is solid.
+SkeletonLayer BaseLayer(const TriangleMesh& mesh, const SkeletonSliceOptions& options, double* wall_mm) {
+  Cut base = CutPlane(mesh, Eigen::Vector3d(0.0, 0.0, kBaseCutMm), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                      std::numeric_limits<double>::infinity());
+  WAAM_THROW_UNLESS(base.found, "skeleton slicing: the part has no section just above the substrate (z = 0)");
+  *wall_mm = options.wall_mm > 0.0 ? options.wall_mm : EstimateWall(base.layer.section);
+  WAAM_THROW_UNLESS(*wall_mm > 0.0, "skeleton slicing: the base section is solid; give slicing.wall_mm for the "
+                                    "mid-wall path of a solid part");
+  base.layer.origin_P.z() = 0.0;
+  base.layer.centroid_P.z() = 0.0;
+  base.layer.mid_curve = MidCurve(base.layer.section, *wall_mm);
+  return base.layer;
+}
+
+// The cut through G along `direction`, re-oriented about G perpendicular to V until gamma = angle(N, V) <= beta
+// (eq. 5.24-5.26). V is taken between the centroids of two parallel cuts, through I_i and through G, both with the
+// candidate normal: an oblique cut of a tapered section shifts its centroid towards the wide side, and measured from
+// I_i of the plane below that shift feeds back into the next tilt (on a cone the plane would run away); two parallel
+// cuts shift alike and the bias cancels.
+Cut OrientedCut(const TriangleMesh& mesh, const SkeletonLayer& below, const Eigen::Vector3d& G,
+                const Eigen::Vector3d& direction, double reach, const SkeletonSliceOptions& options) {
+  Cut cut = CutPlane(mesh, G, direction, below.e1_P, reach, &below.section);
+  for (int turn = 0; cut.found && turn < options.max_iterations; ++turn) {
+    Eigen::Vector3d I_below = below.centroid_P;
+    if (AngleBetween(cut.layer.normal_P, below.normal_P) > 1e-9) {
+      const Cut parallel = CutPlane(mesh, below.centroid_P, cut.layer.normal_P, below.e1_P, reach, &below.section);
+      if (parallel.found) I_below = parallel.layer.centroid_P;
+    }
+    const Eigen::Vector3d V = (cut.layer.centroid_P - I_below).normalized();
+    if (AngleBetween(cut.layer.normal_P, V) <= options.beta_rad) break;
+    // A plane turned more than kMaxTurnRad from the last one is not following the axis (e.g. near an end face).
+    if (AngleBetween(direction, V) > kMaxTurnRad) break;
+    Cut turned = CutPlane(mesh, G, V, below.e1_P, reach, &below.section);
+    if (!turned.found) break;
+    cut = turned;
+  }
+  return cut;
+}
+
+// The layer above `below`: the step h' along `direction` scaled until its thickness is within `limits` (Fig. 56),
+// at most options.max_iterations rounds; *step is the step taken. std::nullopt past the part's top.
+std::optional<SkeletonLayer> NextLayer(const TriangleMesh& mesh, const SkeletonLayer& below,
+                                       const SkeletonSliceOptions& options, double wall_mm, const SliceStep& limits,
+                                       const Eigen::Vector3d& direction, double reach, double* step) {
+  std::optional<SkeletonLayer> accepted;
+  for (int round = 0; round < options.max_iterations; ++round) {
+    const Eigen::Vector3d G = below.centroid_P + *step * direction;
+    Cut cut = OrientedCut(mesh, below, G, direction, reach, options);
+    if (!cut.found) break;
+    cut.layer.mid_curve = MidCurve(cut.layer.section, wall_mm);
+    if (cut.layer.mid_curve.size() < 3) break;
+    cut.layer.step_mm = *step;
+    MeasureThickness(below, &cut.layer);
+    if (cut.layer.min_height_mm <= 0.0) break;  // the plane crosses the one below: not a layer
+    accepted = cut.layer;
+    // Fig. 56: scale h' up when the thinnest point is below h_min, down when the thickest is above h_max.
+    if (cut.layer.min_height_mm < limits.lo && cut.layer.min_height_mm > 0.0) {
+      *step *= options.h_min_mm / cut.layer.min_height_mm;
+    } else if (cut.layer.max_height_mm > limits.hi) {
+      *step *= options.h_max_mm / cut.layer.max_height_mm;
+    } else {
+      break;
+    }
+    *step = std::clamp(*step, 0.25 * options.h_min_mm, 2.0 * options.h_max_mm);
+  }
+  return accepted;
+}
+
+// Past the top: a last, thinner layer up to the end face when it is at least half of h_min thick, appended to out.
+void AddEndLayer(const TriangleMesh& mesh, const SkeletonLayer& below, const SkeletonSliceOptions& options,
+                 const SliceStep& limits, const Eigen::Vector3d& direction, double reach, double step,
+                 SkeletonSlicing* out) {
+  double a = 0.0, b = step;
+  for (int k = 0; k < 20; ++k) {
+    const double mid = 0.5 * (a + b);
+    (CutPlane(mesh, below.centroid_P + mid * direction, direction, below.e1_P, reach, &below.section).found ? a : b) =
+        mid;
+  }
+  const double last = a - kBaseCutMm;
+  if (last < 0.5 * options.h_min_mm) return;
+  Cut cut = CutPlane(mesh, below.centroid_P + last * direction, direction, below.e1_P, reach, &below.section);
+  if (!cut.found) return;
+  cut.layer.mid_curve = MidCurve(cut.layer.section, out->wall_mm);
+  cut.layer.step_mm = last;
+  if (cut.layer.mid_curve.size() < 3) return;
+  MeasureThickness(below, &cut.layer);
+  cut.layer.in_range = cut.layer.max_height_mm <= limits.hi;  // the end layer may be thinner than h_min
+  if (!cut.layer.in_range) ++out->out_of_range_layers;
+  out->layers.push_back(cut.layer);
+}
+
 }  // namespace
 
 void SkeletonSliceOptions::Validate(const std::string& where) const {
@@ -167,29 +266,11 @@ SkeletonSlicing SliceAlongSkeleton(const TriangleMesh& mesh, const SkeletonSlice
   options.Validate("slicing");
   SkeletonSlicing out;
   double z_top = 0.0;
-  double size = 0.0;
-  for (const Eigen::Vector3d& v : mesh.vertices) {
-    z_top = std::max(z_top, v.z());
-    size = std::max(size, v.norm());
-  }
-  // The base: the cut just above the substrate, with its centroid put on z = 0.
-  const double eps = 1e-3;
-  Cut base = CutPlane(mesh, Eigen::Vector3d(0.0, 0.0, eps), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
-                      std::numeric_limits<double>::infinity());
-  WAAM_THROW_UNLESS(base.found, "skeleton slicing: the part has no section just above the substrate (z = 0)");
-  out.wall_mm = options.wall_mm > 0.0 ? options.wall_mm : EstimateWall(base.layer.section);
-  WAAM_THROW_UNLESS(out.wall_mm > 0.0, "skeleton slicing: the base section is solid; give slicing.wall_mm for the "
-                                       "mid-wall path of a solid part");
-  base.layer.origin_P.z() = 0.0;
-  base.layer.centroid_P.z() = 0.0;
-  base.layer.mid_curve = MidCurve(base.layer.section, out.wall_mm);
-  out.base = base.layer;
-
-  const double h_mean = 0.5 * (options.h_min_mm + options.h_max_mm);
-  double step = options.first_step_mm > 0.0 ? options.first_step_mm : h_mean;
+  for (const Eigen::Vector3d& v : mesh.vertices) z_top = std::max(z_top, v.z());
+  out.base = BaseLayer(mesh, options, &out.wall_mm);
+  const SliceStep limits{options.h_min_mm * (1.0 - options.tolerance), options.h_max_mm * (1.0 + options.tolerance)};
+  double step = options.first_step_mm > 0.0 ? options.first_step_mm : 0.5 * (options.h_min_mm + options.h_max_mm);
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // N_i = V_(i-1) (eq. 5.23)
-  const double lo = options.h_min_mm * (1.0 - options.tolerance);
-  const double hi = options.h_max_mm * (1.0 + options.tolerance);
   // The layer count (the base and the layers above it, as the plan has them) is not known before the slicing:
   // estimated from the part's height, raised whenever a bent axis (longer than the height) yields more, and set to
   // the count at the end.
@@ -199,72 +280,13 @@ SkeletonSlicing SliceAlongSkeleton(const TriangleMesh& mesh, const SkeletonSlice
     const SkeletonLayer& below = out.layers.empty() ? out.base : out.layers.back();
     // Reach: the next centroid lies within about half a section of the guess G.
     const double reach = std::max(5.0, 0.5 * Perimeter(below.section.outer) / kPi + 2.0 * options.h_max_mm);
-    std::optional<SkeletonLayer> accepted;
-    for (int round = 0; round < options.max_iterations; ++round) {
-      const Eigen::Vector3d G = below.centroid_P + step * direction;
-      Cut cut = CutPlane(mesh, G, direction, below.e1_P, reach, &below.section);
-      // Re-orient the plane about G perpendicular to V until gamma = angle(N, V) <= beta (eq. 5.24-5.26). V is taken
-      // between the centroids of two parallel cuts, through I_i and through G, both with the candidate normal: an
-      // oblique cut of a tapered section shifts its centroid towards the wide side, and measured from I_i of the
-      // plane below that shift feeds back into the next tilt (on a cone the plane would run away); two parallel cuts
-      // shift alike and the bias cancels.
-      for (int turn = 0; cut.found && turn < options.max_iterations; ++turn) {
-        Eigen::Vector3d I_below = below.centroid_P;
-        if (AngleBetween(cut.layer.normal_P, below.normal_P) > 1e-9) {
-          const Cut parallel =
-              CutPlane(mesh, below.centroid_P, cut.layer.normal_P, below.e1_P, reach, &below.section);
-          if (parallel.found) I_below = parallel.layer.centroid_P;
-        }
-        const Eigen::Vector3d V = (cut.layer.centroid_P - I_below).normalized();
-        if (AngleBetween(cut.layer.normal_P, V) <= options.beta_rad) break;
-        // A plane turned more than kMaxTurnRad from the last one is not following the axis (e.g. near an end face).
-        if (AngleBetween(direction, V) > kMaxTurnRad) break;
-        Cut turned = CutPlane(mesh, G, V, below.e1_P, reach, &below.section);
-        if (!turned.found) break;
-        cut = turned;
-      }
-      if (!cut.found) break;
-      cut.layer.mid_curve = MidCurve(cut.layer.section, out.wall_mm);
-      if (cut.layer.mid_curve.size() < 3) break;
-      cut.layer.step_mm = step;
-      MeasureThickness(below, &cut.layer);
-      if (cut.layer.min_height_mm <= 0.0) break;  // the plane crosses the one below: not a layer
-      accepted = cut.layer;
-      // Fig. 56: scale h' up when the thinnest point is below h_min, down when the thickest is above h_max.
-      if (cut.layer.min_height_mm < lo && cut.layer.min_height_mm > 0.0) {
-        step *= options.h_min_mm / cut.layer.min_height_mm;
-      } else if (cut.layer.max_height_mm > hi) {
-        step *= options.h_max_mm / cut.layer.max_height_mm;
-      } else {
-        break;
-      }
-      step = std::clamp(step, 0.25 * options.h_min_mm, 2.0 * options.h_max_mm);
-    }
+    std::optional<SkeletonLayer> accepted =
+        NextLayer(mesh, below, options, out.wall_mm, limits, direction, reach, &step);
     if (!accepted) {
-      // Past the top: a last, thinner layer up to the end face when it is at least half of h_min thick.
-      double a = 0.0, b = step;
-      for (int k = 0; k < 20; ++k) {
-        const double mid = 0.5 * (a + b);
-        (CutPlane(mesh, below.centroid_P + mid * direction, direction, below.e1_P, reach, &below.section).found ? a
-                                                                                                            : b) = mid;
-      }
-      const double last = a - eps;
-      if (last >= 0.5 * options.h_min_mm) {
-        Cut cut = CutPlane(mesh, below.centroid_P + last * direction, direction, below.e1_P, reach, &below.section);
-        if (cut.found) {
-          cut.layer.mid_curve = MidCurve(cut.layer.section, out.wall_mm);
-          cut.layer.step_mm = last;
-          if (cut.layer.mid_curve.size() >= 3) {
-            MeasureThickness(below, &cut.layer);
-            cut.layer.in_range = cut.layer.max_height_mm <= hi;  // the end layer may be thinner than h_min
-            if (!cut.layer.in_range) ++out.out_of_range_layers;
-            out.layers.push_back(cut.layer);
-          }
-        }
-      }
+      AddEndLayer(mesh, below, options, limits, direction, reach, step, &out);
       break;
     }
-    accepted->in_range = accepted->min_height_mm >= lo && accepted->max_height_mm <= hi;
+    accepted->in_range = accepted->min_height_mm >= limits.lo && accepted->max_height_mm <= limits.hi;
     if (!accepted->in_range) ++out.out_of_range_layers;
     // eq. 5.23: the next plane starts along this layer's V, which the re-orientation made its normal (gamma <= beta).
     direction = accepted->normal_P;

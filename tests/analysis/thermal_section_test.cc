@@ -5,6 +5,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -13,6 +14,7 @@
 #include "analysis/scenario.h"
 #include "analysis/scenario_keys.h"
 #include "models/core/error.h"
+#include "planner/scenario/arc_settings.h"
 
 namespace waam::analysis {
 namespace {
@@ -203,6 +205,46 @@ TEST(ThermalSection, SettingsBuiltInCodeAreCheckedAgainstTheKeysLimits) {
   Scenario wide_pool = s;
   wide_pool.thermal.pool_rear_widths = 50.0;
   EXPECT_THAT(ErrorOfValidate(wide_pool), HasSubstr("thermal.pool.rear_widths = 50"));
+}
+
+TEST(ThermalSection, ArcAndInterpassKeysComeFromTheirFieldTables) {
+  // A file's value out of range names file, line and key.
+  EXPECT_THAT(ErrorOf(ThermalText("arc: {power_w: 2000}", "arc: {voltage_v: 500, current_a: 100}")),
+              HasSubstr("s.yaml:11: process.arc.voltage_v = 500: must be in [1, 200]"));
+  EXPECT_THAT(ErrorOf(ThermalText("max_c: 200", "max_c: 5000")),
+              HasSubstr("s.yaml:12: process.interpass.max_c = 5000: must be in [-273.15, 3000]"));
+  // --set reaches the arc's and the interpass rule's keys, within the same ranges.
+  const fs::path file = WriteScenario(ThermalText());
+  const Scenario s = LoadScenario(file, {"process.arc.power_w=3000", "process.arc.efficiency=0.7",
+                                         "process.interpass.min_layer_time_s=120", "process.interpass.max_c=150"});
+  EXPECT_EQ(s.process.arc.power_w, 3000.0);
+  EXPECT_DOUBLE_EQ(s.process.arc.HeatW(), 0.7 * 3000.0);
+  EXPECT_EQ(s.process.interpass.min_layer_time_s, 120.0);
+  EXPECT_EQ(s.process.interpass.max_c, 150.0);
+  try {
+    LoadScenario(file, {"process.arc.efficiency=1.5"});
+    FAIL() << "expected InputError past process.arc.efficiency's maximum";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("process.arc.efficiency = 1.5: must be in [0.05, 1]"));
+  }
+  // Settings built in code are checked against the same limits.
+  Scenario weak = s;
+  weak.process.arc.efficiency = 0.0;
+  EXPECT_THAT(ErrorOfValidate(weak), HasSubstr("process.arc.efficiency = 0: must be in [0.05, 1]"));
+  Scenario strong = s;
+  strong.process.arc.power_w = 5e6;
+  EXPECT_THAT(ErrorOfValidate(strong), HasSubstr("process.arc.power_w = 5e+06: must be in [1, 1e+06]"));
+  Scenario unpowered = s;
+  unpowered.process.arc.power_w = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THAT(ErrorOfValidate(unpowered), HasSubstr("process.arc: the arc has no power"));
+  Scenario long_layer = s;
+  long_layer.process.interpass.min_layer_time_s = -1.0;
+  EXPECT_THAT(ErrorOfValidate(long_layer), HasSubstr("process.interpass.min_layer_time_s = -1: must be in [0, 86400]"));
+  Scenario unnamed = s;
+  unnamed.process.interpass.probe.clear();
+  EXPECT_THAT(ErrorOfValidate(unnamed), HasSubstr("process.interpass.at = probe: name the probe"));
+  planner::ProcessSettings defaults;
+  EXPECT_NO_THROW(planner::ValidateArcAndInterpass(defaults.arc, defaults.interpass)) << "no arc, no limit: valid";
 }
 
 TEST(ThermalSection, ProbeNamesAreWordsAndUnique) {
