@@ -2,6 +2,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -40,6 +41,24 @@ FitOutcome RunVoidLength(const FitOptions& options, const CsvTable& table, std::
 // Throws InputError for bad input; a fit Ceres did not converge comes back with ok = false and nothing written.
 FitOutcome RunFitDistortion(const FitOptions& options, std::ostream& out);
 
+// The smooth map from an unbounded Ceres variable u to a free thermal parameter in scaled units x = value / scale
+// (analysis/fit_thermal_map.cc). Lower bound only (hi = +inf): x = lo + exp(u), a log scale, as convection and table
+// contact span orders of magnitude. Two bounds: the logistic x = lo + (hi - lo) / (1 + exp(-u)). Every u maps strictly
+// inside the bounds (to them only where exp under- or overflows) and dx/du > 0 there, so no parameter loses its
+// gradient at a bound.
+struct ParameterMap {
+  double lo = 0.0;                                          // lower bound, scaled units
+  double hi = std::numeric_limits<double>::infinity();      // upper bound, scaled units (+inf: none)
+  // x(u), scaled units.
+  double ToScaled(double u) const;
+  // u(x) for lo < x < hi; x on or beyond a bound is first moved kStartInside inside it. WAAM_DEMAND on a NaN.
+  double ToFree(double x) const;
+  // dx/du at u (> 0 wherever x(u) is not on a bound).
+  double Slope(double u) const;
+};
+// How far inside a bound a start value on it is moved (scaled units: 1 % of the parameter's scale).
+inline constexpr double kStartInside = 0.01;
+
 // A parameter is reported undetermined when one standard deviation exceeds this fraction of its value.
 inline constexpr double kUndeterminedFraction = 0.25;
 
@@ -49,6 +68,7 @@ struct IdentifiabilityInput {
   std::vector<double> scales;       // x = value / scale
   std::vector<double> values;       // fitted values, own units
   std::vector<double> jacobian;     // d residual / d x at the fitted point, m x n row-major, degC per scaled unit
+                                    // (x = value / scale: physical units, not the fit's free variable u)
   std::size_t m = 0;                // readings (data residuals)
   double data_cost = 0.0;           // 1/2 sum of the data residuals squared, degC^2 (the prior's part excluded)
   double prior_weight = 0.0;        // --prior W, degC per scaled unit (0: none)
@@ -57,8 +77,8 @@ struct IdentifiabilityInput {
 // pseudo-inverse leaves a null direction out): `standard_deviation` and `correlation` by name, `undetermined` (one
 // standard deviation over kUndeterminedFraction of the value), and from the data alone (J^T J scaled to a unit
 // diagonal) its `condition_number` and `weakest` combination, one standard deviation along it in each parameter's
-// units; `noise_c` = s, `readings` = m, `prior_weight_c` = W. A parameter with a zero column (clamped beyond a
-// bound, or not felt in the window) is left out of every figure and listed in `blind` and `undetermined`.
+// units; `noise_c` = s, `readings` = m, `prior_weight_c` = W. A parameter with a zero column (not felt in the
+// window) is left out of every figure and listed in `blind` and `undetermined`.
 // WAAM_DEMAND on inconsistent sizes.
 nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in);
 

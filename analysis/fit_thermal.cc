@@ -27,23 +27,40 @@ namespace waam::analysis {
 
 namespace {
 
-// A free parameter: its name on the command line, its member, the scale Ceres sees it in and its bounds.
+// A free parameter: its name on the command line, its member, its scale and its bounds.
 struct FreeParameter {
   std::string name;
   double ThermalParameters::*member;
   double scale;       // x = value / scale, so every x is of order 1
-  double lo, hi;      // bounds of the value
+  double lo, hi;      // bounds of the value (hi = +inf: a lower bound only)
   std::string set;    // the scenario key it belongs to (--set)
+  // Ceres' variable u for this parameter: x = map.ToScaled(u) (logistic between two bounds, exp above one).
+  internal::ParameterMap map() const { return {lo / scale, hi / scale}; }
 };
+
+constexpr double kNoBound = std::numeric_limits<double>::infinity();
 
 const std::vector<FreeParameter>& AllFree() {
   static const std::vector<FreeParameter> all = {
       {"efficiency", &ThermalParameters::efficiency, 1.0, 0.2, 1.0, "process.arc.efficiency"},
-      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, 500.0, "thermal.convection_w_m2k"},
-      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, 1.0e5, "thermal.table.conductance_w_m2k"},
+      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, "thermal.convection_w_m2k"},
+      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound,
+       "thermal.table.conductance_w_m2k"},
       {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, "thermal.emissivity"},
   };
   return all;
+}
+
+// Scaled values x of Ceres' variables u, and back.
+std::vector<double> ToScaled(const std::vector<FreeParameter>& free, const double* u) {
+  std::vector<double> x(free.size());
+  for (std::size_t k = 0; k < free.size(); ++k) x[k] = free[k].map().ToScaled(u[k]);
+  return x;
+}
+std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::vector<double>& x) {
+  std::vector<double> u(free.size());
+  for (std::size_t k = 0; k < free.size(); ++k) u[k] = free[k].map().ToFree(x[k]);
+  return u;
 }
 
 // `--set` lines that make a scenario use `p` (emissivity only when set).
@@ -90,21 +107,24 @@ class ReplayResiduals {
   std::size_t size() const { return used_.size(); }
   std::size_t free_count() const { return free_.size(); }
   const FreeParameter& free(std::size_t k) const { return free_[k]; }
+  const std::vector<FreeParameter>& free() const { return free_; }
   const ReplayModel& model() const { return *model_; }
   // The same rows on another grid of the same log (a coarse stage).
   ReplayResiduals OnModel(const ReplayModel& model) const {
     return ReplayResiduals(model, free_, start_, window_);
   }
 
+  // The parameters at scaled values `x` (within the bounds).
   ThermalParameters Parameters(const double* x) const {
     ThermalParameters p = start_;
     for (std::size_t k = 0; k < free_.size(); ++k) {
-      p.*(free_[k].member) = std::clamp(x[k] * free_[k].scale, free_[k].lo, free_[k].hi);
+      p.*(free_[k].member) = x[k] * free_[k].scale;
+      WAAM_DEMAND(p.*(free_[k].member) >= free_[k].lo && p.*(free_[k].member) <= free_[k].hi);
     }
     return p;
   }
 
-  // One replay to the window's end; `keep`: keep the replay when its cost is the lowest so far.
+  // One replay to the window's end at scaled values `x`; `keep`: keep the replay when its cost is the lowest so far.
   void Run(const double* x, double* residuals, bool keep) const {
     auto run = std::make_unique<ReplayRun>(*model_, Parameters(x));
     run->AdvanceTo(window_.second);
@@ -147,11 +167,14 @@ class ReplayResiduals {
   mutable double kept_cost_ = 0.0;
 };
 
-// Forward differences over whole replays, the base replay and the n perturbed ones run in parallel (each its own
-// ThermalSimulation). The step is 1 % of each parameter's scale: the solver's CG tolerance (0.01 K) makes the
-// temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. The last
-// point's residuals are kept, so a Jacobian asked at the point whose cost Ceres just evaluated costs n replays. A
-// `seed` Jacobian (the coarse stage's, m x n row-major) stands in for the differences at the first point only.
+// The residuals at Ceres' variables u (x = map(u)). The Jacobian is differenced in the scaled values x, forward
+// differences over whole replays, the base replay and the n perturbed ones run in parallel (each its own
+// ThermalSimulation), and handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. The step is 1 % of
+// each parameter's scale in x (not in u, whose step would shrink with x - lo toward the solver's noise near a lower
+// bound): the solver's CG tolerance (0.01 K) makes the temperatures noisy at the 1e-3 K level, so Ceres' default
+// relative step (1e-6) would difference noise. The last point's residuals are kept, so a Jacobian asked at the point
+// whose cost Ceres just evaluated costs n replays. A `seed` Jacobian in x (the coarse stage's, m x n row-major)
+// stands in for the differences at the first point only.
 class ReplayCost : public ceres::CostFunction {
  public:
   ReplayCost(const ReplayResiduals& residuals, bool keep, std::vector<double> seed = {})
@@ -161,7 +184,10 @@ class ReplayCost : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const double* x = parameters[0];
+    const double* u = parameters[0];
+    const std::vector<double> xv = ToScaled(residuals_.free(), u);
+    if (!std::all_of(xv.begin(), xv.end(), [](double v) { return std::isfinite(v); })) return false;  // exp overflow
+    const double* x = xv.data();
     const std::size_t m = residuals_.size();
     const bool cached = !cache_x_.empty() && std::equal(cache_x_.begin(), cache_x_.end(), x);
     const bool jacobian = jacobians != nullptr && jacobians[0] != nullptr;
@@ -169,7 +195,7 @@ class ReplayCost : public ceres::CostFunction {
     // Ceres (2.1) asks the Jacobian with the candidate point and again once it accepts it: the second is the first.
     if (cached && (!jacobian || differenced_)) {
       if (residuals != nullptr) std::copy(cache_r_.begin(), cache_r_.end(), residuals);
-      if (jacobian) std::copy(last_jacobian_.begin(), last_jacobian_.end(), jacobians[0]);
+      if (jacobian) ChainRule(u, jacobians[0]);
       return true;
     }
     // Run 0 is the point itself (unless cached), run k + 1 the point with x_k moved by its step.
@@ -206,23 +232,32 @@ class ReplayCost : public ceres::CostFunction {
           for (int k = 0; k < n_; ++k) last_jacobian_[r * n_ + k] = (out[k + 1][r] - out[0][r]) / step[k];
         }
       }
-      std::copy(last_jacobian_.begin(), last_jacobian_.end(), jacobians[0]);
+      ChainRule(u, jacobians[0]);
       jacobians_.emplace_back(cache_x_, last_jacobian_);
     }
     return true;
   }
   const std::string& error() const { return error_; }
-  // The Jacobian handed to Ceres at `x` (the last one when none was made there: a seeded first point).
+  // The Jacobian in x at scaled values `x` (the last one when none was made there: a seeded first point).
   const std::vector<double>& JacobianAt(const std::vector<double>& x) const {
     for (const auto& [at, jacobian] : jacobians_) {
       if (at == x) return jacobian;
     }
     return last_jacobian_;
   }
-  // The last Jacobian handed to Ceres, m x n row-major (the next stage's seed).
+  // The last Jacobian in x, m x n row-major (the next stage's seed).
   const std::vector<double>& last_jacobian() const { return last_jacobian_; }
 
  private:
+  // Ceres' Jacobian in u at `u` from the last one in x: column k times dx_k/du_k.
+  void ChainRule(const double* u, double* out) const {
+    const std::size_t m = residuals_.size();
+    for (int k = 0; k < n_; ++k) {
+      const double slope = residuals_.free(k).map().Slope(u[k]);
+      for (std::size_t r = 0; r < m; ++r) out[r * n_ + k] = last_jacobian_[r * n_ + k] * slope;
+    }
+  }
+
   const ReplayResiduals& residuals_;
   int n_;
   bool keep_;
@@ -234,21 +269,24 @@ class ReplayCost : public ceres::CostFunction {
   mutable std::string error_;
 };
 
-// The weak prior (--prior W): residual k = W (x_k - x0_k), degC, x the scaled parameters, x0 the start's. A change
-// of one scale unit costs as much as one reading W degC off; with thermocouple noise sigma it is a Gaussian prior
-// of standard deviation sigma / W scale units.
+// The weak prior (--prior W): residual k = W (x_k - x0_k), degC, x the scaled parameters (physical units, whatever
+// Ceres' variable u is), x0 the start's. A change of one scale unit costs as much as one reading W degC off; with
+// thermocouple noise sigma it is a Gaussian prior of standard deviation sigma / W scale units. Its Jacobian in u is
+// W dx_k/du_k.
 class PriorCost : public ceres::CostFunction {
  public:
-  PriorCost(std::vector<double> x0, double weight) : x0_(std::move(x0)), weight_(weight) {
+  PriorCost(std::vector<FreeParameter> free, std::vector<double> x0, double weight)
+      : free_(std::move(free)), x0_(std::move(x0)), weight_(weight) {
     mutable_parameter_block_sizes()->push_back(static_cast<int>(x0_.size()));
     set_num_residuals(static_cast<int>(x0_.size()));
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const std::size_t n = x0_.size();
-    for (std::size_t k = 0; k < n; ++k) residuals[k] = weight_ * (parameters[0][k] - x0_[k]);
+    const std::vector<double> x = ToScaled(free_, parameters[0]);
+    for (std::size_t k = 0; k < n; ++k) residuals[k] = weight_ * (x[k] - x0_[k]);
     if (jacobians != nullptr && jacobians[0] != nullptr) {
       std::fill(jacobians[0], jacobians[0] + n * n, 0.0);
-      for (std::size_t k = 0; k < n; ++k) jacobians[0][k * n + k] = weight_;
+      for (std::size_t k = 0; k < n; ++k) jacobians[0][k * n + k] = weight_ * free_[k].map().Slope(parameters[0][k]);
     }
     return true;
   }
@@ -260,6 +298,7 @@ class PriorCost : public ceres::CostFunction {
   }
 
  private:
+  std::vector<FreeParameter> free_;
   std::vector<double> x0_;
   double weight_;
 };
@@ -273,30 +312,31 @@ class ThermalFitStop : public ceres::IterationCallback {
 
 // One stage of the fit: Ceres on one grid, from `x` (scaled values).
 struct StageOutcome {
-  std::vector<double> x;
+  std::vector<double> x;          // the answer, scaled values
   ceres::Solver::Summary summary;
   std::string error;              // why a replay failed (empty: none did)
-  std::vector<double> jacobian;   // the last one Ceres used, m x n row-major
-  std::vector<double> jacobian_at_x;  // the one at the stage's answer x
+  std::vector<double> jacobian;   // the last one Ceres used, in x, m x n row-major
+  std::vector<double> jacobian_at_x;  // the one at the stage's answer x, in x
   double data_cost = 0.0;         // the final cost without the prior's part
   int replays = 0;
   double seconds = 0.0;           // wall
 };
 
 // `prior`: the weak prior's weight (0: none) and x0, the start's scaled values it pulls toward.
-StageOutcome SolveStage(const ReplayResiduals& residuals, std::vector<double> x, int max_iterations, bool keep,
-                        std::vector<double> seed, std::pair<double, std::vector<double>> prior) {
+StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
+                        bool keep, std::vector<double> seed, std::pair<double, std::vector<double>> prior) {
   const auto clock_start = std::chrono::steady_clock::now();
   StageOutcome outcome;
+  // Ceres runs unbounded on u; the bounds are kept by the maps x(u) (ParameterMap): on a bounded problem Ceres 2.1
+  // evaluates every trust-region candidate through a projected line search that asks the gradient, i.e. a
+  // differenced Jacobian (n + 1 replays) at each point it tries instead of one replay.
+  std::vector<double> u = ToFree(residuals.free(), x_start);
   auto* cost = new ReplayCost(residuals, keep, std::move(seed));
   ceres::Problem problem;  // owns `cost` and `prior_cost`
-  problem.AddResidualBlock(cost, nullptr, x.data());
-  PriorCost* prior_cost = prior.first > 0.0 ? new PriorCost(prior.second, prior.first) : nullptr;
-  if (prior_cost != nullptr) problem.AddResidualBlock(prior_cost, nullptr, x.data());
-  // No Ceres bounds: on a bounded problem Ceres 2.1 evaluates every trust-region candidate through a projected line
-  // search that asks the gradient, i.e. a differenced Jacobian (n + 1 replays) at each point it tries instead of one
-  // replay. The bounds are kept by the clamp in ReplayResiduals::Parameters (beyond a bound a parameter has no
-  // effect, so its Jacobian column is zero there and Ceres does not push it further).
+  problem.AddResidualBlock(cost, nullptr, u.data());
+  PriorCost* prior_cost =
+      prior.first > 0.0 ? new PriorCost(residuals.free(), prior.second, prior.first) : nullptr;
+  if (prior_cost != nullptr) problem.AddResidualBlock(prior_cost, nullptr, u.data());
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = max_iterations;
@@ -311,14 +351,11 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, std::vector<double> x,
   solver.callbacks.push_back(&stop);
   ceres::Solve(solver, &problem, &outcome.summary);
   CheckInterrupt();
+  const std::vector<double> x = ToScaled(residuals.free(), u.data());
   outcome.error = cost->error();
   outcome.jacobian = cost->last_jacobian();
   outcome.jacobian_at_x = cost->JacobianAt(x);
   outcome.data_cost = outcome.summary.final_cost - (prior_cost != nullptr ? prior_cost->Cost(x) : 0.0);
-  for (std::size_t k = 0; k < x.size(); ++k) {  // the values the clamp used
-    const FreeParameter& f = residuals.free(k);
-    x[k] = std::clamp(x[k], f.lo / f.scale, f.hi / f.scale);
-  }
   outcome.x = x;
   outcome.replays = residuals.replays();
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
@@ -390,11 +427,13 @@ nlohmann::json ThermalFitDoc(const ReplayModel& model, const std::vector<FreePar
   doc["set"] = SetLines(fitted);
   doc["free"] = nlohmann::json::array();
   for (const FreeParameter& f : free) doc["free"].push_back(f.name);
-  // A value that ended on its bound is a fit the bounds decided, not the data: listed, and said on stdout.
+  // A value that ended at its bound (the map reaches it only in the limit: within 1 % of its scale) is a fit the
+  // bounds decided, not the data: listed, and said on stdout.
   doc["at_bound"] = nlohmann::json::array();
   for (const FreeParameter& f : free) {
     const double v = fitted.*(f.member);
-    if (v <= f.lo + 1e-9 * f.scale || v >= f.hi - 1e-9 * f.scale) doc["at_bound"].push_back(f.name);
+    const double near = internal::kStartInside * f.scale;
+    if (v <= f.lo + near || v >= f.hi - near) doc["at_bound"].push_back(f.name);
   }
   doc["start"] = ThermalValuesJson(free, start);
   doc["fitted"] = ThermalValuesJson(free, fitted);
@@ -426,7 +465,7 @@ void PrintThermalFit(const std::vector<FreeParameter>& free, const ThermalParame
         << "  fitted " << fitted.*(f.member) << "\n";
   }
   for (const auto& name : doc["at_bound"]) {
-    out << "  note: " << name.get<std::string>() << " ended on its bound: the data would move it further\n";
+    out << "  note: " << name.get<std::string>() << " ended at its bound: the data would move it further\n";
   }
   auto rmse = [](const nlohmann::json& j) { return j["overall"]["rmse_c"].dump(); };
   out << "  window   rmse " << rmse(doc["window"]) << " degC (start " << doc["start_window"]["rmse_c"].dump()

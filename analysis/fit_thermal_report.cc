@@ -89,7 +89,7 @@ nlohmann::json SeenIdentifiability(const IdentifiabilityInput& in) {
 nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in) {
   const std::size_t n = in.names.size();
   WAAM_DEMAND(n >= 1 && in.scales.size() == n && in.values.size() == n && in.jacobian.size() == in.m * n);
-  // A parameter whose column is zero (clamped beyond a bound, or not felt in the window) is blind: no figure.
+  // A parameter whose column is zero (not felt in the window) is blind: no figure.
   IdentifiabilityInput seen = in;
   seen.names.clear(), seen.scales.clear(), seen.values.clear(), seen.jacobian.clear();
   std::vector<std::size_t> cols;
