@@ -48,7 +48,8 @@ double CoolAndRead(const ThermalSettings& s, double seconds, EnergyBalance* ener
 }
 
 // A clamp over the whole top face: the plate decays with tau = 8 s; after one tau the rise is 1/e of the start's,
-// within 1 % of the rise (backward Euler at dt = tau / 160 is 0.3 % slow). The heat leaves through the clamps into the table.
+// within 1 % of the rise (backward Euler at dt = tau / 160 is 0.3 % slow). The heat leaves through the clamps into
+// the table.
 TEST(ThermalClamps, AWholeTopClampCoolsALumpedPlateAsTheClosedForm) {
   ThermalSettings s = LumpedPlate();
   s.clamps.push_back({Eigen::AlignedBox2d(Eigen::Vector2d(-20, -20), Eigen::Vector2d(20, 20)), 2000.0});
