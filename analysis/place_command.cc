@@ -8,6 +8,7 @@
 #include <map>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -82,6 +83,7 @@ nlohmann::json ScoreJson(const LayoutScore& s) {
                       {"min_joint_margin_deg", s.min_joint_margin_deg},
                       {"min_j5_deg", s.min_j5_deg},
                       {"min_clearance_mm", s.min_clearance_mm}};
+  if (s.bounded) j["bounded"] = true;
   if (!s.worst.empty()) {
     j["worst_violation"] = {{"what", s.worst}, {s.worst_unit, s.worst_value}, {"layer", s.worst_layer}};
   }
@@ -151,6 +153,7 @@ LayoutScore ScoreLayout(const twin::CheckReport& report, const twin::CellSetting
   s.min_clearance_mm = m.min_clearance_mm;
   s.margin = twin::CheckMargin(m, cell);
   s.abandoned = report.resolve.abandoned;
+  s.bounded = report.bounded;
   return s;
 }
 
@@ -184,10 +187,27 @@ std::vector<Layout> LayoutGrid(const std::vector<std::vector<double>>& values) {
   return layouts;
 }
 
+// The bar a layout's coarse check must beat to reach the whole path: the `keep`-th best of the coarse checks done
+// whole among `scores` (none while fewer than `keep` are). A check proven worse has `keep` layouts better than it
+// and is never among the `keep` the whole path may take (CheckFinalists).
+std::optional<twin::CheckBar> CoarseBar(const std::vector<LayoutScore>& scores, std::size_t keep) {
+  std::vector<const LayoutScore*> whole;
+  for (const LayoutScore& s : scores) {
+    if (!s.bounded) whole.push_back(&s);
+  }
+  if (keep == 0 || whole.size() < keep) return std::nullopt;
+  std::nth_element(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(keep - 1), whole.end(),
+                   [](const LayoutScore* a, const LayoutScore* b) { return BetterLayout(*a, *b); });
+  const LayoutScore& bar = *whole[keep - 1];
+  return twin::CheckBar{bar.violating_samples, bar.margin};
+}
+
 // Coarse pass: `coarse_plan` at a step of at least `coarse_step_mm` with cell.resolve fixed, every layout of
-// `result`, in parallel over layouts; fills result->coarse and coarse_s.
+// `result`, `keep` layouts at a time (in parallel over a batch); with cell.prune, each batch's checks stop once
+// proven worse than CoarseBar of the batches before (a bar that does not depend on the threads). Fills
+// result->coarse, coarse_bounded and coarse_s.
 void CheckCoarse(const planner::Plan& coarse_plan, const twin::CellSettings& cell, double coarse_step_mm,
-                 double rapid_mm_s, const CellModels& models, bool quiet, PlaceResult* result) {
+                 double rapid_mm_s, const CellModels& models, std::size_t keep, bool quiet, PlaceResult* result) {
   const std::size_t count = result->layouts.size();
   result->coarse.resize(count);
   const auto start = std::chrono::steady_clock::now();
@@ -195,17 +215,25 @@ void CheckCoarse(const planner::Plan& coarse_plan, const twin::CellSettings& cel
   Progress progress("place", count, "layouts", quiet);
   std::mutex mutex;
   std::size_t done = 0;
-  ParallelFor(count, [&](std::size_t i) {
-    twin::CellSettings settings = ApplyLayout(cell, result->layouts[i]);
-    settings.step_mm = std::max(settings.step_mm, coarse_step_mm);
-    settings.resolve = twin::CellResolve::kFixed;  // the ranking needs the layout's effect, not the resolution's
-    const twin::CheckReport report =
-        twin::CheckPlan(models.at(ModelKey(result->layouts[i])), coarse_plan, settings, rapid_mm_s, nullptr);
-    result->coarse[i] = ScoreLayout(report, settings, false);
-    const std::lock_guard<std::mutex> lock(mutex);
-    progress.Update(++done);
-  });
+  for (std::size_t first = 0; first < count; first += keep) {
+    const std::size_t batch = std::min(keep, count - first);
+    std::optional<twin::CheckBar> bar;
+    if (cell.prune) bar = CoarseBar({result->coarse.begin(), result->coarse.begin() + first}, keep);
+    ParallelFor(batch, [&](std::size_t k) {
+      const std::size_t i = first + k;
+      twin::CellSettings settings = ApplyLayout(cell, result->layouts[i]);
+      settings.step_mm = std::max(settings.step_mm, coarse_step_mm);
+      settings.resolve = twin::CellResolve::kFixed;  // the ranking needs the layout's effect, not the resolution's
+      const twin::CellModel& model = models.at(ModelKey(result->layouts[i]));
+      const twin::CheckReport report = bar ? twin::CheckPlanBounded(model, coarse_plan, settings, rapid_mm_s, *bar)
+                                           : twin::CheckPlan(model, coarse_plan, settings, rapid_mm_s, nullptr);
+      result->coarse[i] = ScoreLayout(report, settings, false);
+      const std::lock_guard<std::mutex> lock(mutex);
+      progress.Update(++done);
+    });
+  }
   progress.Finish();
+  for (const LayoutScore& s : result->coarse) result->coarse_bounded += s.bounded ? 1 : 0;
   result->coarse_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result->coarse_cpu_s = CpuSince(cpu_start);
 }
@@ -298,7 +326,9 @@ nlohmann::json PlaceJson(const PlaceResult& result, const std::string& scenario_
       {"coarse_layers", coarse_layers},
       {"coarse_step_mm", coarse_step_mm},
       {"full_checks", result.full.size()},
-      {"pruning", {{"enabled", !exhaustive}, {"resolved_checks_abandoned", abandoned}}},
+      {"pruning", {{"enabled", !exhaustive},
+                   {"coarse_bounded", result.coarse_bounded},
+                   {"resolved_checks_abandoned", abandoned}}},
       {"tried", tried},
       {"timing", {{"coarse_s", result.coarse_s},
                   {"full_s", result.full_s},
@@ -338,7 +368,8 @@ PlaceResult RunPlace(const PlaceOptions& options) {
 
   // Coarse pass: a subset of the layers at a coarser step, every layout, in parallel over layouts.
   const planner::Plan coarse_plan = CoarsePlan(plan, place.coarse_layers);
-  CheckCoarse(coarse_plan, cell, place.coarse_step_mm, rapid_mm_s, models, options.quiet, &result);
+  const std::size_t keep = 4 * static_cast<std::size_t>(place.finalists);  // the most the whole path may take
+  CheckCoarse(coarse_plan, cell, place.coarse_step_mm, rapid_mm_s, models, keep, options.quiet, &result);
 
   CheckFinalists(plan, cell, place.finalists, rapid_mm_s, models, options.quiet, &result);
 

@@ -20,7 +20,7 @@ struct PlaceOptions {
   std::vector<std::string> overrides;  // "key.path=value" scenario overrides (--set)
   bool quiet = false;                  // no progress bars
   bool images = true;                  // place_margin.png
-  bool exhaustive = false;             // no pruning (twin::CellSettings::prune false): the same answer, slower
+  bool exhaustive = false;             // no pruning (coarse pass and resolution): the same answer, slower
 };
 
 // The searched variables, in this order in every Layout.
@@ -53,6 +53,10 @@ struct LayoutScore {
   //     clearance / 10 mm). The clearance is capped at the 10 mm contact margin, so the margin is at most 1.
   double margin = 0.0;
   bool abandoned = false;  // the resolved motion's check stopped once proven worse than the fixed rule's (pruned)
+  // The coarse check stopped once proven outside the layouts the whole path may check (branch and bound): `margin`
+  // and the three minima are upper bounds (the smallest found when it stopped), `violating_samples` a lower bound,
+  // `violations` and `worst` not known.
+  bool bounded = false;
 };
 
 // The score of a check report of `cell` settings.
@@ -65,6 +69,7 @@ struct PlaceResult {
   std::vector<std::vector<double>> values;  // per variable: the values searched (one: not searched)
   std::vector<Layout> layouts;           // every layout tried, in grid order (the last variable fastest)
   std::vector<LayoutScore> coarse;       // per layout: the coarse pass
+  std::size_t coarse_bounded = 0;        // coarse checks stopped early (LayoutScore::bounded)
   std::vector<int> full_index;           // layouts that got the full check, in the order checked
   std::vector<LayoutScore> full;         // their full checks, same order
   int best = -1;                         // index into layouts of the best layout (a full check)
@@ -76,7 +81,10 @@ struct PlaceResult {
 };
 
 // Plans the scenario once and searches its `place:` ranges: every layout on the coarse pass (place.coarse_layers
-// layers at coarse_step_mm with cell.resolve fixed, in parallel over layouts), then the best on the whole path with
+// layers at coarse_step_mm with cell.resolve fixed, in parallel over layouts, in batches of 4 x finalists; from the
+// second batch on, unless options.exhaustive, a layout's check stops once it is proven worse than the
+// 4 x finalists-th best layout of the batches before, which the whole path can then never reach), then the best on
+// the whole path with
 // the scenario's cell.resolve, `finalists`
 // at a time, until one passes or the coarse pass's passing layouts (at most 4 x finalists) are used up. Writes
 // place.json, scenario.yaml (the scenario with the best layout and `base_dir` pointing back at its files) and

@@ -33,6 +33,16 @@ cv::Scalar CellColour(const LayoutScore& s) {
   return cv::Scalar(200 - 170 * f, 200 - 170 * f, 255 - 55 * f);
 }
 
+// Grey diagonal hatching over `r`: a cell whose best coarse check was stopped early (its figure is a bound).
+void Hatch(cv::Mat& img, const cv::Rect& r) {
+  const int step = std::max(6, r.width / 6);
+  for (int d = step; d < r.width + r.height; d += step) {
+    const cv::Point a(r.x + std::max(0, d - r.height), r.y + std::min(d, r.height));
+    const cv::Point b(r.x + std::min(d, r.width), r.y + std::max(0, d - r.width));
+    cv::line(img, a, b, cv::Scalar(110, 110, 110), 1, cv::LINE_AA);
+  }
+}
+
 }  // namespace
 
 void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path) {
@@ -59,7 +69,7 @@ void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path) {
   }
 
   const int cell = static_cast<int>(std::clamp<std::size_t>(720 / std::max(nx, ny), 12, 90));
-  const int left = 110, top = 70, bottom = 110;
+  const int left = 110, top = 90, bottom = 110;
   const int width = std::max(720, left + cell * static_cast<int>(nx) + 40);
   const int height = top + cell * static_cast<int>(ny) + bottom;
   cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
@@ -71,6 +81,10 @@ void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path) {
        10, 25, 0.55, cv::Scalar(0, 0, 0));
   text("green: passes (darker = larger margin, 1 = 10 deg / 10 mm); red: violating samples; circle: the answer",
        10, 50, 0.45, cv::Scalar(60, 60, 60));
+  if (result.coarse_bounded > 0) {
+    text("hatched: pruned early (a bound: margin <= / violating samples >= the figure)", 10, 68, 0.45,
+         cv::Scalar(60, 60, 60));
+  }
   const Layout& best = result.layouts[result.best];
   for (std::size_t iy = 0; iy < ny; ++iy) {
     for (std::size_t ix = 0; ix < nx; ++ix) {
@@ -79,9 +93,11 @@ void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path) {
       if (b < 0) continue;
       const LayoutScore& s = result.coarse[b];
       cv::rectangle(img, r, CellColour(s), cv::FILLED);
+      if (s.bounded) Hatch(img, r);
       cv::rectangle(img, r, cv::Scalar(255, 255, 255), 1);
       if (cell >= 40) {
-        const std::string label = s.violating_samples == 0 ? Fixed(s.margin, 2) : std::to_string(s.violating_samples);
+        std::string label = s.violating_samples == 0 ? Fixed(s.margin, 2) : std::to_string(s.violating_samples);
+        if (s.bounded) label = (s.violating_samples == 0 ? "<=" : ">=") + label;
         text(label, r.x + 4, r.y + cell / 2 + 5, 0.4, cv::Scalar(0, 0, 0));
       }
       const bool is_best = (vx < 0 || result.layouts[b][vx] == best[vx]) && (vy < 0 || result.layouts[b][vy] == best[vy]);

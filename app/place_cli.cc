@@ -35,13 +35,14 @@ void AddPlaceCommand(CLI::App& app, CommandRunner* runner) {
   command->add_flag("-q,--quiet", options->quiet, "No progress bar on stderr");
   command->add_flag("!--no-images", options->images, "Do not draw place_margin.png");
   command->add_flag("--exhaustive", options->exhaustive,
-                    "Check every resolved motion whole (no pruning by the fixed rule's margin); the same answer, slower");
+                    "No pruning: every coarse check and every resolved motion checked whole; the same answer, slower");
   command->callback([options, runner] {
     *runner = [options] {
       const analysis::PlaceResult result = analysis::RunPlace(*options);
       const analysis::LayoutScore& s = result.best_score;
       std::cout << (result.feasible ? "feasible" : "NO LAYOUT PASSES") << ": " << result.layouts.size()
-                << " layouts on the coarse pass (" << result.coarse_s << " s), " << result.full.size()
+                << " layouts on the coarse pass (" << result.coarse_bounded << " pruned, " << result.coarse_s << " s), "
+                << result.full.size()
                 << " on the whole path (" << result.full_s << " s); best:";
       for (int v = 0; v < analysis::kPlaceVars; ++v) {
         if (result.values[v].size() > 1) {

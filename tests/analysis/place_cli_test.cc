@@ -1,7 +1,8 @@
 // End-to-end tests of `waam place`: a planted layout fault (the torch meets a clamp) gets a placement that passes,
 // written as a scenario `waam check` passes; a part out of reach everywhere gets no layout, the nearest miss named;
 // the same inputs give the same place.json (timings aside) on one and two threads, and with --exhaustive (no
-// pruning) on four; a bad range is one line.
+// pruning) on four; with the coarse pass's branch and bound at work, the same place.json on one and two threads and
+// the same answer as --exhaustive, each pruned score a bound on the whole one; a bad range is one line.
 #include <filesystem>
 #include <string>
 
@@ -60,6 +61,49 @@ TEST(PlaceCliTest, ThePlantedClampFaultGetsAPlacementThatPasses) {
   c.erase("pruning");
   a.erase("pruning");
   EXPECT_EQ(a, c);
+}
+
+TEST(PlaceCliTest, TheCoarsePassPrunesWithTheSameAnswerOnAnyThreadCount) {
+  // One finalist: the coarse pass runs in batches of 4, so the last two batches meet a bar.
+  const std::string args = " -q --no-images --set place.finalists=1 --set place.coarse_layers=6"
+                           " --set place.part_x_mm=[-20,20,20] --set place.part_y_mm=-20"
+                           " --set place.part_yaw_deg=[45,315,90] -o ";
+  const fs::path one = TempDir("place_prune_1"), two = TempDir("place_prune_2"), whole = TempDir("place_prune_x");
+  std::string err;
+  ASSERT_EQ(RunWaam("place " + Scenario("cell_torch_meets_clamp") + " --threads 1" + args + one.string(), &err), 0)
+      << err;
+  ASSERT_EQ(RunWaam("place " + Scenario("cell_torch_meets_clamp") + " --threads 2" + args + two.string(), &err), 0)
+      << err;
+  ASSERT_EQ(RunWaam("place " + Scenario("cell_torch_meets_clamp") + " --threads 2 --exhaustive" + args +
+                        whole.string(), &err), 0)
+      << err;
+  nlohmann::json a = ReadJson(one / "place.json"), b = ReadJson(two / "place.json"), c = ReadJson(whole / "place.json");
+  a.erase("timing");
+  b.erase("timing");
+  c.erase("timing");
+  EXPECT_EQ(a.dump(2), b.dump(2)) << "place.json (timing aside) differs between one and two threads";
+  ASSERT_GT(a.at("pruning").at("coarse_bounded").get<int>(), 0) << "the case no longer prunes: it tests nothing";
+  EXPECT_EQ(c.at("pruning").at("coarse_bounded").get<int>(), 0);
+  EXPECT_EQ(a.at("best"), c.at("best")) << "pruning changed the answer";
+  EXPECT_EQ(a.at("full_checks"), c.at("full_checks"));
+  ASSERT_EQ(a.at("tried").size(), c.at("tried").size());
+  for (std::size_t i = 0; i < a.at("tried").size(); ++i) {
+    const nlohmann::json& pruned = a.at("tried")[i];
+    const nlohmann::json& exact = c.at("tried")[i];
+    if (!pruned.at("coarse").contains("bounded")) {
+      EXPECT_EQ(pruned, exact) << "layout " << i << " was checked whole: its score is the exhaustive one";
+      continue;
+    }
+    // A bounded score: its margin and minima at least, its violating samples at most, the whole check's.
+    const nlohmann::json& p = pruned.at("coarse");
+    const nlohmann::json& x = exact.at("coarse");
+    EXPECT_GE(p.at("margin").get<double>(), x.at("margin").get<double>()) << "layout " << i;
+    EXPECT_GE(p.at("min_clearance_mm").get<double>(), x.at("min_clearance_mm").get<double>()) << "layout " << i;
+    EXPECT_GE(p.at("min_j5_deg").get<double>(), x.at("min_j5_deg").get<double>()) << "layout " << i;
+    EXPECT_GE(p.at("min_joint_margin_deg").get<double>(), x.at("min_joint_margin_deg").get<double>()) << "layout " << i;
+    EXPECT_LE(p.at("violating_samples").get<int>(), x.at("violating_samples").get<int>()) << "layout " << i;
+    EXPECT_FALSE(pruned.contains("full")) << "a pruned layout got the whole path";
+  }
 }
 
 TEST(PlaceCliTest, APartOutOfReachEverywhereHasNoLayoutAndNamesTheNearestMiss) {

@@ -16,19 +16,18 @@
 #include "twin/cell/cell_compose.h"
 #include "twin/cell/cell_presets.h"
 #include "twin/cell/cell_sweep.h"
+#include "twin/cell/check_bound.h"
 #include "twin/cell/deposit_map.h"
 #include "twin/cell/deposit_sweep.h"
 #include "twin/cell/mujoco_cell.h"
 
 namespace waam::twin {
-namespace {
+using internal::BoundedReport;
+using internal::MotionFigures;
+using internal::MotionFiguresOf;
+using internal::ProvenWorse;
 
-Eigen::Isometry3d PlacementPose(const std::array<double, 3>& p_mm, double yaw_deg) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translate(Eigen::Vector3d(p_mm[0], p_mm[1], p_mm[2]));
-  X.rotate(Eigen::AngleAxisd(yaw_deg / kDeg, Eigen::Vector3d::UnitZ()));
-  return X;
-}
+namespace {
 
 // Collects violations, merging the samples of one layer with the same kind and subject into one entry.
 class ViolationLog {
@@ -92,6 +91,13 @@ struct SampleContacts {
 // Samples per chunk of the parallel collision pass: a fixed number, so the chunks do not depend on the threads.
 constexpr std::size_t kCollisionChunk = 1024;
 
+// When a chunk of the discrete collision pass may stop (CheckPlanBounded): once it holds more than `contacts`
+// contacts, or its clearance term (clearance / CellModel::kClearanceMarginMm) is below `margin`.
+struct ContactStop {
+  std::size_t contacts = std::numeric_limits<std::size_t>::max();
+  double margin = -std::numeric_limits<double>::infinity();
+};
+
 // MuJoCo collision detection at every reachable sample of `motion`, in chunks checked in parallel (one CellState
 // each over the shared model): the contacts deeper than `tolerance_mm`, in sample order, and in `*min_clearance_mm`
 // the smallest clearance between cell bodies found by the detections (capped at CellModel::kClearanceMarginMm). A
@@ -99,10 +105,11 @@ constexpr std::size_t kCollisionChunk = 1024;
 // by at most that. Within a chunk a detection
 // is skipped while no geom has moved by half the clearance found at the last one (conservative advancement: no
 // contact can have appeared); each chunk starts with a detection, so the contacts are those a detection at every
-// sample would find, whatever the chunks and the threads.
-// `*detections` counts the collision detections run.
+// sample would find, whatever the chunks and the threads. A chunk ends early where `stop` says; what it found up to
+// there does not depend on the other chunks. `*detections` counts the collision detections run.
 std::vector<SampleContacts> CellContacts(const CellModel& cell, const std::vector<planner::CellSample>& motion,
-                                         double tolerance_mm, double* min_clearance_mm, std::size_t* detections) {
+                                         double tolerance_mm, const ContactStop& stop, double* min_clearance_mm,
+                                         std::size_t* detections) {
   const std::size_t chunks = (motion.size() + kCollisionChunk - 1) / kCollisionChunk;
   std::vector<std::vector<SampleContacts>> found(chunks);
   std::vector<double> chunk_clearance(chunks, CellModel::kClearanceMarginMm);
@@ -121,6 +128,7 @@ std::vector<SampleContacts> CellContacts(const CellModel& cell, const std::vecto
       ++chunk_detections[c];
       chunk_clearance[c] = std::min(chunk_clearance[c], clearance);
       for (CellContact& contact : contacts) found[c].push_back({i, std::move(contact), -1.0, false});
+      if (found[c].size() > stop.contacts || chunk_clearance[c] / CellModel::kClearanceMarginMm < stop.margin) break;
     }
   });
   *min_clearance_mm = CellModel::kClearanceMarginMm;
@@ -161,9 +169,11 @@ std::vector<SampleContacts> SweptContacts(const CellModel& cell, const CellColli
 
 // The cell bodies' contacts in the mode `settings` asks for: continuous where every geom has a distance bound, else
 // discrete with the reason in report->mode_fallback. Sets the report's mode and collision figures.
+// The discrete pass's chunks stop where `stop` says (the continuous sweep runs whole).
 std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const CellCollisionGeometry& geometry,
                                            const std::vector<planner::CellSample>& motion,
-                                           const twin::CellSettings& settings, CheckReport* report) {
+                                           const twin::CellSettings& settings, const ContactStop& stop,
+                                           CheckReport* report) {
   report->mode = settings.check_mode;
   if (report->mode == CheckMode::kContinuous) {
     if (geometry.unsupported.empty()) {
@@ -172,7 +182,7 @@ std::vector<SampleContacts> ContactsInMode(const CellModel& cell, const CellColl
     report->mode = CheckMode::kDiscrete;
     report->mode_fallback = geometry.unsupported;
   }
-  std::vector<SampleContacts> contacts = CellContacts(cell, motion, settings.collision_tolerance_mm,
+  std::vector<SampleContacts> contacts = CellContacts(cell, motion, settings.collision_tolerance_mm, stop,
                                                       &report->min_clearance_mm, &report->distance_queries);
   report->certified_clearance_mm = report->min_clearance_mm;
   return contacts;
@@ -210,53 +220,6 @@ const char* AxisName(int axis) {
   return (axis >= 0 && axis < 8) ? kNames[axis] : "?";
 }
 
-CellModel BuildCell(const CellSettings& settings, const CellFiles& files) {
-  const Eigen::Isometry3d X_WR = PlacementPose(settings.robot_base_mm, settings.robot_yaw_deg);
-  const Eigen::Isometry3d X_WB = PlacementPose(settings.positioner_base_mm, settings.positioner_yaw_deg);
-  const planner::PositionerType type = settings.positioner_type.value_or(planner::PositionerType::kTiltRotate);
-  const bool builtin = settings.preset ? PresetUrdf(*settings.preset).empty()
-                                       : settings.robot_urdf.empty() && settings.mjcf.empty();
-  if (builtin && type != planner::PositionerType::kTiltRotate) {
-    // The built-in arm with another positioner: the file's text with the positioner composed in.
-    CellModel::RobotInfo info{"FANUC ARC Mate 100iC/12", "builtin"};
-    if (settings.preset) {
-      info = {std::string(PresetInfo(*settings.preset).robot_name), std::string(NameOf(*settings.preset))};
-    }
-    MjcfSource composed = files.mjcf;
-    composed.xml = ComposeBuiltinCell(files.mjcf.xml, type);
-    return CellModel::FromXml(composed, info, X_WR, X_WB);
-  }
-  if (settings.preset && PresetUrdf(*settings.preset).empty()) {
-    // The built-in cell under its preset name.
-    const CellModel::RobotInfo info{std::string(PresetInfo(*settings.preset).robot_name),
-                                    std::string(NameOf(*settings.preset))};
-    return CellModel::FromXml(files.mjcf, info, X_WR, X_WB);
-  }
-  if (!settings.robot_urdf.empty()) {
-    WAAM_DEMAND(files.arm.has_value());
-    return UrdfCellModel(*files.arm, files.arm_meshes, settings, X_WR, X_WB);
-  }
-  CellModel cell(files.mjcf, X_WR, X_WB);
-  // A model file of one's own has the positioner its joints describe; a type the scenario names must be that one.
-  const planner::PositionerType has = cell.kinematics().positioner.type;
-  WAAM_THROW_UNLESS(!settings.positioner_type || *settings.positioner_type == has,
-                    settings.where << ": cell.positioner.type is " << NameOf(*settings.positioner_type) << " but "
-                                   << cell.file().string() << " has a " << NameOf(has)
-                                   << " positioner (its joints pos_tilt, pos_rot)");
-  return cell;
-}
-
-planner::CellKinematics PartKinematics(const CellModel& cell, const twin::CellSettings& settings) {
-  planner::CellKinematics kin = cell.kinematics();
-  // The part frame P sits on the plate top (part_origin) with the scenario's offset and turn.
-  kin.positioner.X_CP = kin.positioner.X_CP * PlacementPose(settings.part_offset_mm, settings.part_yaw_deg);
-  // Accelerations: each axis reaches its rated speed in cell.axis_ramp_s.
-  kin.arm.max_accel = kin.arm.max_speed / settings.axis_ramp_s;
-  kin.positioner.tilt_max_accel = kin.positioner.tilt_max_speed / settings.axis_ramp_s;
-  kin.positioner.rotation_max_accel = kin.positioner.rotation_max_speed / settings.axis_ramp_s;
-  return kin;
-}
-
 namespace {
 
 // The nozzle capsule (TCP frame) and, for the torch against the part, a deposit map over the motion's footprint.
@@ -290,8 +253,9 @@ NozzleAndMap FootprintMap(const CellModel& cell, const std::vector<planner::Cell
 // violations into the log; the state between samples (the last joint velocity, the layer) lives here.
 class SampleChecks {
  public:
+  // The cell bodies' contacts are found here, the discrete pass stopping where `stop` says.
   SampleChecks(const CellModel& cell, const planner::CellKinematics& kin, const twin::CellSettings& settings,
-               CheckReport* report)
+               const ContactStop& stop, CheckReport* report)
       : kin_(kin), settings_(settings), report_(*report), motion_(report->motion),
         nozzle_(FootprintMap(cell, report->motion)) {
     limit_lo_ << kin.arm.lower, kin.positioner.tilt_lower, kin.positioner.rotation_lower;
@@ -301,7 +265,7 @@ class SampleChecks {
     report_.min_arm_margin_deg = std::numeric_limits<double>::infinity();
     report_.min_j5_deg = std::numeric_limits<double>::infinity();
     if (settings.check_mode == CheckMode::kContinuous) geometry_ = cell.CollisionGeometry();
-    cell_contacts_ = ContactsInMode(cell, geometry_, motion_, settings, &report_);
+    cell_contacts_ = ContactsInMode(cell, geometry_, motion_, settings, stop, &report_);
     continuous_ = report_.mode == CheckMode::kContinuous;
     // Continuous: the nozzle against the deposit between the samples too.
     if (continuous_ && settings.part_collision) {
@@ -333,8 +297,8 @@ class SampleChecks {
     if (s.weld && i > 0) nozzle_.deposit.Deposit(motion_[i - 1].p_P, s.p_P, s.bead_width_mm);
   }
 
-  // Whether the cell bodies have a contact anywhere along the motion (each is a collision violation).
-  bool has_cell_contacts() const { return !cell_contacts_.empty(); }
+  // The cell bodies' contacts found along the motion (each is one violating sample of a collision violation).
+  std::size_t cell_contacts() const { return cell_contacts_.size(); }
 
   // The report's violations and summary figures once every sample is checked.
   void Finish() {
@@ -487,30 +451,12 @@ class SampleChecks {
 };
 
 // The check of the motion `options` give on `solve` (the kinematics the motion is planned on, the positioner's limits
-// kept `margin` inside) against the limits of `kin`.
-// Figures of the motion alone (before any collision detection) that bound its check's margin from above: a sample out
-// of reach or an arm joint or |J5| term of CheckMargin below `margin` proves the check worse than one with no
-// violation and that margin (its violating samples can only be more, its margin only smaller).
-bool MotionProvenWorse(const std::vector<planner::CellSample>& motion, const planner::CellKinematics& kin,
-                       const twin::CellSettings& settings, double margin) {
-  for (const planner::CellSample& s : motion) {
-    if (!s.reachable) return true;
-    for (int j = 0; j < 6; ++j) {
-      const double m_deg = JointMarginDeg(s.q, j, kin.arm.lower[j], kin.arm.upper[j]);
-      if ((m_deg - settings.joint_margin_deg) / 10.0 < margin) return true;
-    }
-    if ((J5Deg(s.q) - settings.singularity_deg) / 10.0 < margin) return true;
-  }
-  return false;
-}
-
-// With `beat` (a check with no violation and CheckMargin `*beat`): nothing once the motion or its cell contacts and
-// clearance prove this check worse (any contact is a violation; the clearance term only falls as samples are added).
-std::optional<CheckReport> CheckWithOptions(const CellModel& cell, const planner::CellKinematics& kin,
-                                            const planner::CellKinematics& solve, const planner::Plan& plan,
-                                            const twin::CellSettings& settings,
-                                            const planner::MotionOptions& options, Progress* progress,
-                                            const double* beat = nullptr) {
+// kept `margin` inside) against the limits of `kin`. With `bar`: a bounded report (BoundedReport) as soon as the
+// motion's figures, then the cell contacts and clearance, prove this check worse than `bar`.
+CheckReport CheckWithOptions(const CellModel& cell, const planner::CellKinematics& kin,
+                             const planner::CellKinematics& solve, const planner::Plan& plan,
+                             const twin::CellSettings& settings, const planner::MotionOptions& options,
+                             Progress* progress, const CheckBar* bar = nullptr) {
   CheckReport report;
   report.ik = kin.numeric_ik ? "numerical" : "closed_form";
   report.positioner_type = kin.positioner.type;
@@ -522,11 +468,27 @@ std::optional<CheckReport> CheckWithOptions(const CellModel& cell, const planner
     if (progress) progress->Update(done);
   });
   report.samples = report.motion.size();
-  if (beat && MotionProvenWorse(report.motion, kin, settings, *beat)) return std::nullopt;
+  ContactStop stop;
+  MotionFigures motion;
+  if (bar) {
+    motion = MotionFiguresOf(report.motion, kin, settings);
+    const double term = std::min((motion.min_arm_margin_deg - settings.joint_margin_deg) / 10.0,
+                                 (motion.min_j5_deg - settings.singularity_deg) / 10.0);
+    if (ProvenWorse(*bar, motion.violating_samples, term)) {
+      return BoundedReport(std::move(report), motion, CellModel::kClearanceMarginMm, motion.violating_samples);
+    }
+    // Each chunk of contacts stops once it alone proves it (every contact is one more violating sample).
+    stop.contacts = bar->violating_samples - motion.violating_samples;
+    if (bar->violating_samples == 0) stop.margin = bar->margin;
+  }
 
-  SampleChecks checks(cell, kin, settings, &report);
-  if (beat && (checks.has_cell_contacts() || report.min_clearance_mm / CellModel::kClearanceMarginMm < *beat)) {
-    return std::nullopt;
+  SampleChecks checks(cell, kin, settings, stop, &report);
+  if (bar) {
+    const std::size_t violating = motion.violating_samples + checks.cell_contacts();
+    if (ProvenWorse(*bar, violating, report.min_clearance_mm / CellModel::kClearanceMarginMm)) {
+      const double clearance_mm = report.min_clearance_mm;
+      return BoundedReport(std::move(report), motion, clearance_mm, violating);
+    }
   }
   for (std::size_t i = 0; i < report.motion.size(); ++i) {
     checks.Sample(i);
@@ -547,12 +509,12 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   const planner::CellKinematics solve = MarginKinematics(kin, settings);
   planner::MotionOptions options = MotionOptionsOf(settings, rapid_speed_mm_s);  // the spins are set below
   if (settings.resolve == CellResolve::kFixed) {
-    return *CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
+    return CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
   }
 
   // optimise: the fixed rule's check, the spins per layer, the check of their motion; the better of the two is kept.
   // The progress bar runs once for the fixed check and again for the resolved one.
-  CheckReport fixed = *CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
+  CheckReport fixed = CheckWithOptions(cell, kin, solve, plan, settings, options, progress);
   ResolveSummary summary;
   summary.mode = CellResolve::kOptimise;
   summary.before = MarginsOf(fixed);
@@ -574,9 +536,11 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   }
   // A fixed rule with no violation is a bar: the resolved motion's check stops once it is proven below it.
   const double bar = CheckMargin(summary.before, settings);
+  const CheckBar beat{0, bar};
   const bool prune = settings.prune && summary.before.violating_samples == 0;
   std::optional<CheckReport> resolved =
-      CheckWithOptions(cell, kin, solve, plan, settings, options, progress, prune ? &bar : nullptr);
+      CheckWithOptions(cell, kin, solve, plan, settings, options, progress, prune ? &beat : nullptr);
+  if (resolved->bounded) resolved.reset();
   if (resolved) summary.after = MarginsOf(*resolved);
   const bool worse = !resolved || summary.after.violating_samples > summary.before.violating_samples ||
                      (summary.after.violating_samples == summary.before.violating_samples &&
@@ -591,6 +555,15 @@ CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const tw
   }
   resolved->resolve = std::move(summary);
   return std::move(*resolved);
+}
+
+CheckReport CheckPlanBounded(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
+                             double rapid_speed_mm_s, const CheckBar& bar) {
+  planner::CellKinematics kin = PartKinematics(cell, settings);
+  if (plan.X_FT) kin.X_FT = *plan.X_FT;
+  const planner::CellKinematics solve = MarginKinematics(kin, settings);
+  const planner::MotionOptions options = MotionOptionsOf(settings, rapid_speed_mm_s);
+  return CheckWithOptions(cell, kin, solve, plan, settings, options, nullptr, &bar);
 }
 
 }  // namespace waam::twin

@@ -66,6 +66,13 @@ struct CheckMargins {
   double max_joint_speed_ratio = 0.0;
 };
 
+// A check to beat: a check stopped early (CheckPlanBounded) only once it is proven worse than one with these
+// figures (more violating samples; with none, any violation or a CheckMargin below `margin`).
+struct CheckBar {
+  std::size_t violating_samples = 0;
+  double margin = 0.0;
+};
+
 // What `cell.resolve` did (check.json `resolve`).
 struct ResolveSummary {
   CellResolve mode = CellResolve::kFixed;
@@ -119,9 +126,14 @@ struct CheckReport {
   // deposit-map distance bounds it took.
   double part_clearance_mm = std::numeric_limits<double>::infinity();
   std::size_t part_queries = 0;
+  // CheckPlanBounded stopped before the check was whole: `violations` is empty, `violating_samples_found` counts the
+  // violating samples found before the stop (a lower bound), and min_arm_margin_deg, min_j5_deg and
+  // min_clearance_mm are the smallest found so far (so CheckMargin is an upper bound on the whole check's).
+  bool bounded = false;
+  std::size_t violating_samples_found = 0;
 };
 
-// The figures of `report` the resolution and `waam place` compare.
+// The figures of `report` the resolution and `waam place` compare (a bounded report's: its bounds).
 CheckMargins MarginsOf(const CheckReport& report);
 // The smallest margin, each in excess of its violation threshold and scaled so that 1 is comfortable:
 // min((arm joint margin - joint_margin_deg) / 10 deg, (|J5| - singularity_deg) / 10 deg, clearance / 10 mm).
@@ -157,5 +169,13 @@ planner::MotionOptions MotionOptionsOf(const twin::CellSettings& settings, doubl
 // is the better of that motion's check and the fixed rule's. `progress` may be null.
 CheckReport CheckPlan(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
                       double rapid_speed_mm_s, Progress* progress);
+
+// CheckPlan with cell.resolve fixed that stops as soon as its figures prove the check worse than `bar` (branch and
+// bound; `waam place`'s coarse pass): the motion's unreachable samples, joint-limit and |J5| figures first, then the
+// cell bodies' contacts and clearance (discrete mode: each 1024-sample chunk stops on its own once it proves it,
+// so the figures found do not depend on the threads). The report is then `bounded`; otherwise it is CheckPlan's.
+// Throws what CheckPlan throws.
+CheckReport CheckPlanBounded(const CellModel& cell, const planner::Plan& plan, const twin::CellSettings& settings,
+                             double rapid_speed_mm_s, const CheckBar& bar);
 
 }  // namespace waam::twin
