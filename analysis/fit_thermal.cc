@@ -39,6 +39,8 @@ struct FreeParameter {
 };
 
 constexpr double kNoBound = std::numeric_limits<double>::infinity();
+// The largest change of Ceres' variable u per step (a factor e^2 = 7.4 in x - lo above a lower bound).
+constexpr double kMaxFreeStep = 2.0;
 
 const std::vector<FreeParameter>& AllFree() {
   static const std::vector<FreeParameter> all = {
@@ -125,24 +127,29 @@ class ReplayResiduals {
   }
 
   // One replay to the window's end at scaled values `x`; `keep`: keep the replay when its cost is the lowest so far.
-  void Run(const double* x, double* residuals, bool keep) const {
+  // Returns how many compared rows the replay has no temperature at (NaN: no metal at the probe yet, which the log
+  // alone decides; a replay that blows up has more).
+  std::size_t Run(const double* x, double* residuals, bool keep) const {
     auto run = std::make_unique<ReplayRun>(*model_, Parameters(x));
     run->AdvanceTo(window_.second);
     const ReplaySimulation sim = run->Result();
     ++replays_;
     double cost = 0.0;
+    std::size_t missing = 0;
     for (std::size_t r = 0; r < used_.size(); ++r) {
       const auto [p, i] = used_[r];
       const double s = sim.probe_c[p][i];
       residuals[r] = std::isfinite(s) ? s - model_->log.probe_c[p][i] : 0.0;
+      missing += std::isfinite(s) ? 0 : 1;
       cost += residuals[r] * residuals[r];
     }
-    if (!keep) return;
+    if (!keep) return missing;
     const std::lock_guard<std::mutex> lock(kept_mutex_);
     if (kept_ == nullptr || cost < kept_cost_) {
       kept_ = std::move(run);
       kept_cost_ = cost;
     }
+    return missing;
   }
   // The kept replay if it was made with the parameters of `x`, else null.
   std::unique_ptr<ReplayRun> TakeKept(const double* x) const {
@@ -175,6 +182,8 @@ class ReplayResiduals {
 // relative step (1e-6) would difference noise. The last point's residuals are kept, so a Jacobian asked at the point
 // whose cost Ceres just evaluated costs n replays. A `seed` Jacobian in x (the coarse stage's, m x n row-major)
 // stands in for the differences at the first point only.
+// A replay with more rows without a temperature than the first one (blown up) is refused: Ceres counts the point as
+// an unsuccessful step and shrinks its trust region.
 class ReplayCost : public ceres::CostFunction {
  public:
   ReplayCost(const ReplayResiduals& residuals, bool keep, std::vector<double> seed = {})
@@ -206,16 +215,21 @@ class ReplayCost : public ceres::CostFunction {
       const FreeParameter& f = residuals_.free(k);
       step[k] = (x[k] + 0.01) * f.scale > f.hi ? -0.01 : 0.01;  // backward at the upper bound
     }
+    std::vector<std::size_t> missing(runs, 0);
     try {
       ParallelFor(runs, [&](std::size_t run) {
         if (run == 0 && cached) return;
         std::vector<double> xs(x, x + n_);
         if (run > 0) xs[run - 1] += step[run - 1];
-        residuals_.Run(xs.data(), out[run].data(), keep_ && run == 0);
+        missing[run] = residuals_.Run(xs.data(), out[run].data(), keep_ && run == 0);
       });
     } catch (const std::exception& e) {  // an exception must not cross Ceres
       error_ = e.what();
       return false;
+    }
+    if (first_missing_ < 0) first_missing_ = static_cast<long>(missing[0]);
+    for (std::size_t run = cached ? 1 : 0; run < runs; ++run) {
+      if (static_cast<long>(missing[run]) > first_missing_) return false;
     }
     if (cached) out[0] = cache_r_;
     cache_x_.assign(x, x + n_);
@@ -264,6 +278,7 @@ class ReplayCost : public ceres::CostFunction {
   std::vector<double> seed_;
   mutable bool seed_used_ = false;
   mutable bool differenced_ = false;  // last_jacobian_ was differenced at cache_x_
+  mutable long first_missing_ = -1;       // rows without a temperature in the first replay
   mutable std::vector<double> cache_x_, cache_r_, last_jacobian_;
   mutable std::vector<std::pair<std::vector<double>, std::vector<double>>> jacobians_;  // every point's (x, J)
   mutable std::string error_;
@@ -303,6 +318,35 @@ class PriorCost : public ceres::CostFunction {
   double weight_;
 };
 
+// Ceres' steps in u, each coordinate capped at +-kMaxFreeStep (Plus; its Jacobian at delta = 0 is the identity). Near
+// a lower bound dx/du is small, so the linearisation in u asks steps of hundreds of units (a factor e^100 in x) that
+// the trust region, scaled by the Jacobian's columns, does not hold back: the cap takes the step part of the way, and
+// the next Jacobian, from a point where dx/du is larger, goes on. The values themselves are never clamped.
+class CappedStep : public ceres::Manifold {
+ public:
+  explicit CappedStep(int n) : n_(n) {}
+  int AmbientSize() const override { return n_; }
+  int TangentSize() const override { return n_; }
+  bool Plus(const double* u, const double* delta, double* out) const override {
+    for (int k = 0; k < n_; ++k) out[k] = u[k] + std::clamp(delta[k], -kMaxFreeStep, kMaxFreeStep);
+    return true;
+  }
+  bool PlusJacobian(const double*, double* jacobian) const override { return Identity(jacobian); }
+  bool Minus(const double* y, const double* u, double* delta) const override {
+    for (int k = 0; k < n_; ++k) delta[k] = y[k] - u[k];
+    return true;
+  }
+  bool MinusJacobian(const double*, double* jacobian) const override { return Identity(jacobian); }
+
+ private:
+  bool Identity(double* jacobian) const {
+    std::fill(jacobian, jacobian + n_ * n_, 0.0);
+    for (int k = 0; k < n_; ++k) jacobian[k * n_ + k] = 1.0;
+    return true;
+  }
+  int n_;
+};
+
 class ThermalFitStop : public ceres::IterationCallback {
  public:
   ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
@@ -337,6 +381,7 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   PriorCost* prior_cost =
       prior.first > 0.0 ? new PriorCost(residuals.free(), prior.second, prior.first) : nullptr;
   if (prior_cost != nullptr) problem.AddResidualBlock(prior_cost, nullptr, u.data());
+  problem.SetManifold(u.data(), new CappedStep(static_cast<int>(u.size())));  // owned by `problem`
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = max_iterations;

@@ -1,7 +1,9 @@
 // The process-log reader (dialects, reported rows, refused rows), the replay's metrics, and the round trip: a log
 // made by the thermal model with seeded noise and known parameters, replayed and fitted back.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -269,6 +271,83 @@ TEST(ThermalIdentifiability, MatchesTheGaussNewtonCovarianceOfASmallJacobian) {
   EXPECT_FALSE(id["standard_deviation"].contains("b"));
   EXPECT_NEAR(id["standard_deviation"]["a"].get<double>(), std::sqrt(2.0 * 4.0 / 3.0) / 3.0, 1e-12) << "m - n = 3";
   EXPECT_EQ(id["undetermined"], nlohmann::json::array({"a", "b"}));
+}
+
+// The fit's maps from Ceres' unbounded u to the scaled parameters: x(u(x)) = x inside the bounds, dx/du equal to a
+// central difference, x strictly inside the bounds and dx/du > 0 even far out in u, a start on a bound moved inside.
+TEST(ThermalFitMap, RoundTripsAndItsSlopeMatchesAFiniteDifference) {
+  const internal::ParameterMap lower{0.0, std::numeric_limits<double>::infinity()};  // convection, contact
+  const internal::ParameterMap two{0.2, 1.0};                                          // efficiency
+  for (const auto& map : {lower, two}) {
+    for (const double x : {0.21, 0.5, 0.84, 0.99}) {
+      EXPECT_NEAR(map.ToScaled(map.ToFree(x)), x, 1e-12) << "lo " << map.lo;
+    }
+    for (const double u : {-8.0, -1.0, 0.0, 0.7, 3.0}) {
+      const double h = 1e-6;
+      const double fd = (map.ToScaled(u + h) - map.ToScaled(u - h)) / (2.0 * h);
+      EXPECT_NEAR(map.Slope(u), fd, 1e-7 * std::max(1.0, std::abs(fd))) << "u " << u << " lo " << map.lo;
+      EXPECT_GT(map.Slope(u), 0.0) << "a gradient at every u";
+      EXPECT_GT(map.ToScaled(u), map.lo);
+    }
+  }
+  EXPECT_NEAR(lower.ToScaled(lower.ToFree(300.0)), 300.0, 1e-9) << "no upper bound";
+  EXPECT_LT(two.ToScaled(30.0), 1.0);
+  EXPECT_EQ(two.ToScaled(1e3), 1.0) << "the logistic saturates, never overflows";
+  EXPECT_EQ(two.ToScaled(-1e3), 0.2);
+  EXPECT_NEAR(lower.ToScaled(lower.ToFree(0.0)), internal::kStartInside, 1e-15) << "a start on the bound";
+  EXPECT_NEAR(two.ToScaled(two.ToFree(1.0)), 1.0 - internal::kStartInside, 1e-12);
+  EXPECT_NEAR(two.ToScaled(two.ToFree(0.1)), 0.2 + internal::kStartInside, 1e-12) << "beyond the bound";
+}
+
+// The identifiability report is in physical (scaled) units whatever variable Ceres moves: the report of J_x equals
+// the report of J_u = J_x diag(dx/du) mapped back by the delta method, sd_x = dx/du sd_u, same correlations.
+TEST(ThermalIdentifiability, IsTheSameInPhysicalUnitsAsInCeresVariables) {
+  const internal::ParameterMap map_a{0.2, 1.0}, map_b{0.0, std::numeric_limits<double>::infinity()};
+  const double u_a = map_a.ToFree(0.75), u_b = map_b.ToFree(2.0);  // efficiency 0.75, convection 20 (scale 10)
+  const double slope_a = map_a.Slope(u_a), slope_b = map_b.Slope(u_b);
+  internal::IdentifiabilityInput x_in;
+  x_in.names = {"efficiency", "convection"};
+  x_in.scales = {1.0, 10.0};
+  x_in.values = {0.75, 20.0};
+  x_in.m = 4;
+  x_in.jacobian = {300, 2, 250, -1, 100, -3, 40, -2.5};  // degC per scaled unit
+  x_in.data_cost = 0.5 * 2.0 * 1.0;                      // s = 1 degC
+  internal::IdentifiabilityInput u_in = x_in;
+  u_in.scales = {1.0, 1.0};
+  for (std::size_t r = 0; r < x_in.m; ++r) u_in.jacobian[2 * r] *= slope_a, u_in.jacobian[2 * r + 1] *= slope_b;
+  const nlohmann::json in_x = internal::ThermalIdentifiability(x_in);
+  const nlohmann::json in_u = internal::ThermalIdentifiability(u_in);
+  EXPECT_NEAR(in_x["standard_deviation"]["efficiency"].get<double>(),
+              slope_a * in_u["standard_deviation"]["efficiency"].get<double>(), 1e-12);
+  EXPECT_NEAR(in_x["standard_deviation"]["convection"].get<double>(),
+              10.0 * slope_b * in_u["standard_deviation"]["convection"].get<double>(), 1e-9);
+  EXPECT_NEAR(in_x["correlation"]["efficiency"]["convection"].get<double>(),
+              in_u["correlation"]["efficiency"]["convection"].get<double>(), 1e-12);
+  // Closed form for the efficiency's: s^2 (J^T J)^-1 of the 2 x 2 normal matrix in x.
+  double a = 0, b = 0, c = 0;
+  for (std::size_t r = 0; r < 4; ++r) {
+    const double ja = x_in.jacobian[2 * r], jb = x_in.jacobian[2 * r + 1];
+    a += ja * ja, b += ja * jb, c += jb * jb;
+  }
+  EXPECT_NEAR(in_x["standard_deviation"]["efficiency"].get<double>(), std::sqrt(c / (a * c - b * b)), 1e-12);
+  EXPECT_NEAR(in_x["standard_deviation"]["convection"].get<double>(), 10.0 * std::sqrt(a / (a * c - b * b)), 1e-9);
+}
+
+// Started on the bounds (convection 0, its lower bound; efficiency 0.99, next to its upper one 1), where a clamped
+// parameter stepping past its bound had a zero Jacobian column and stayed there: the maps keep a gradient, so the
+// fit walks back to the log's values (efficiency 0.7, convection 25 W/(m^2 K)), nothing at a bound or blind.
+TEST(ReplayRoundTrip, AFitStartedOnTheBoundsRecoversTheTrueValues) {
+  FitOptions options = RoundTripFit(cli_test::TempDir("replay_fit_bounds"), "fitted.json");
+  options.overrides = {"thermal.convection_w_m2k=0", "process.arc.efficiency=0.99"};
+  std::ostringstream out;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  const nlohmann::json fitted = cli_test::ReadJson(options.output);
+  EXPECT_EQ(fitted["start"]["convection"].get<double>(), 0.0);
+  EXPECT_NEAR(fitted["fitted"]["efficiency"].get<double>(), 0.7, 0.01) << out.str();
+  EXPECT_NEAR(fitted["fitted"]["convection"].get<double>(), 25.0, 5.0) << out.str();
+  EXPECT_TRUE(fitted["at_bound"].empty()) << out.str();
+  EXPECT_TRUE(fitted["identifiability"]["blind"].empty()) << out.str();
+  EXPECT_LT(fitted["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
 }
 
 // Coarse to fine (--coarse-cell 4 on the 2 mm grid): the coarse stage only chooses the start of the fit on the
