@@ -52,6 +52,7 @@ ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log) {
   s.emissivity = thermal.Emissivity();
   s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
   s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
+  s.clamps = ClampPatches(thermal, s.substrate_box_mm);
   const Eigen::Vector3d cell = Eigen::Vector3d::Constant(thermal.cell_mm);
   s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - cell, beads.max() + cell);
   for (const ReplayProbe& probe : model.probes) CheckProbeInMetal(s, probe.at_mm, probe.where);

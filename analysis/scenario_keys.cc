@@ -64,6 +64,7 @@ std::vector<SectionKeys> MakeSections() {
       Section("thermal", kThermalFields),
       Section("thermal.substrate", kThermalSubstrateFields),
       Section("thermal.table", kThermalTableFields),
+      Section("thermal.clamps[]", kThermalClampFields),
       Section("thermal.pool", kThermalPoolFields),
       Section("thermal.shape", kThermalShapeFields),
       Section("replay", kReplayFields),

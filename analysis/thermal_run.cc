@@ -70,6 +70,7 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   s.pool_rear_widths = thermal.pool_rear_widths;
   s.liquid_conductivity_factor = thermal.liquid_conductivity_factor;
   s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
+  s.clamps = ClampPatches(thermal, s.substrate_box_mm);
   // The deposit may grow one cell beyond its planned beads (the solver snaps beads to its cells).
   s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - Eigen::Vector3d::Constant(thermal.cell_mm),
                                          beads.max() + Eigen::Vector3d::Constant(thermal.cell_mm));

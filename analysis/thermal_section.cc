@@ -17,6 +17,26 @@ Eigen::AlignedBox3d SubstrateBoxMm(const ThermalSection& thermal, const Eigen::A
   return Eigen::AlignedBox3d(centre - 0.5 * size, centre + 0.5 * size);
 }
 
+std::vector<twin::ClampPatch> ClampPatches(const ThermalSection& thermal, const Eigen::AlignedBox3d& plate_mm) {
+  std::vector<twin::ClampPatch> patches;
+  const Eigen::Vector2d lo = plate_mm.min().head<2>(), hi = plate_mm.max().head<2>();
+  constexpr double kToleranceMm = 1e-6;
+  for (const ThermalClamp& clamp : thermal.clamps) {
+    const Eigen::Vector2d centre(clamp.centre_mm[0], clamp.centre_mm[1]);
+    const Eigen::Vector2d half(0.5 * clamp.size_mm[0], 0.5 * clamp.size_mm[1]);
+    const Eigen::AlignedBox2d patch(centre - half, centre + half);
+    const bool on_plate = (patch.min().array() >= lo.array() - kToleranceMm).all() &&
+                          (patch.max().array() <= hi.array() + kToleranceMm).all();
+    WAAM_THROW_UNLESS(on_plate, clamp.where << ": the patch (x " << patch.min().x() << " to " << patch.max().x()
+                                            << ", y " << patch.min().y() << " to " << patch.max().y()
+                                            << " mm) reaches off the plate's top face (x " << lo.x() << " to "
+                                            << hi.x() << ", y " << lo.y() << " to " << hi.y()
+                                            << " mm): a clamp's contact patch must lie on the plate");
+    patches.push_back({patch, clamp.conductance_w_m2k, clamp.under_conductance_w_m2k.value_or(-1.0)});
+  }
+  return patches;
+}
+
 void ValidateThermalSection(const ThermalSection& thermal) {
   if (!thermal.given) return;
   WAAM_THROW_UNLESS(thermal.substrate_size_mm.has_value(), "thermal.substrate.size_mm: missing: give the plate's "
@@ -25,6 +45,9 @@ void ValidateThermalSection(const ThermalSection& thermal) {
   CheckFields<ThermalSection>(kThermalSubstrateFields, thermal, "thermal.substrate");
   CheckFields<ThermalSection>(kThermalTableFields, thermal, "thermal.table");
   CheckFields<ThermalSection>(kThermalPoolFields, thermal, "thermal.pool");
+  for (std::size_t n = 0; n < thermal.clamps.size(); ++n) {
+    CheckFields<ThermalClamp>(kThermalClampFields, thermal.clamps[n], "thermal.clamps[" + std::to_string(n) + "]");
+  }
 }
 
 }  // namespace waam::analysis
@@ -60,6 +83,20 @@ void ParseProbes(YamlMap& thermal, ThermalSection* out) {
   probes.CheckNoUnknownKeys();
 }
 
+void ParseClamps(YamlMap& thermal, ThermalSection* out) {
+  if (!thermal.Has("clamps")) return;
+  for (YamlMap& map : thermal.Maps("clamps")) {
+    ThermalClamp clamp;
+    clamp.where = map.Where("");
+    for (const char* key : {"centre_mm", "size_mm", "conductance_w_m2k"}) {
+      ReadField<ThermalClamp>(map, kThermalClampFields, key, &clamp, true);
+    }
+    ReadField<ThermalClamp>(map, kThermalClampFields, "under_conductance_w_m2k", &clamp);
+    map.CheckNoUnknownKeys();
+    out->clamps.push_back(std::move(clamp));
+  }
+}
+
 void ParseShape(YamlMap& thermal, ThermalSection* out) {
   if (!thermal.Has("shape")) return;
   YamlMap shape = thermal.Map("shape");
@@ -92,6 +129,7 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
   }
   ReadFieldMap<ThermalSection>(thermal, "pool", kThermalPoolFields, out);
   ParseProbes(thermal, out);
+  ParseClamps(thermal, out);
   ParseShape(thermal, out);
   thermal.CheckNoUnknownKeys();
 }

@@ -15,6 +15,7 @@
 #include "models/core/field_table.h"
 #include "models/thermal/material.h"
 #include "twin/thermal/heat_source.h"
+#include "twin/thermal/thermal_simulation.h"
 
 namespace waam::planner {
 struct ProcessSettings;
@@ -46,6 +47,17 @@ struct ThermalShape {
   bool Any() const { return !bead_model_path.empty() || distortion; }
 };
 
+// A clamp holding the plate down (thermal.clamps[]): its contact patch on the plate's top face, through which heat
+// flows into the clamp, a steel mass bolted to the table and taken at the table's temperature (docs/THERMAL.md
+// "Clamps"). No default conductance: clamp contact is a fitted or assumed parameter (see the docs).
+struct ThermalClamp {
+  std::array<double, 2> centre_mm = {0.0, 0.0};  // the patch's centre in the part frame, x and y, mm
+  std::array<double, 2> size_mm = {0.0, 0.0};    // the patch along x and y, mm
+  double conductance_w_m2k = 0.0;                // plate top to the clamp, W/(m^2 K) (required)
+  std::optional<double> under_conductance_w_m2k; // the plate's bottom under the patch to the table; absent = table's
+  std::string where;                             // "file:line: thermal.clamps[N]"
+};
+
 struct ThermalSection {
   bool given = false;                // the scenario has a thermal: section
   std::string where;                 // "file:line: thermal"
@@ -71,6 +83,7 @@ struct ThermalSection {
   double pool_rear_widths = 2.0;
   double liquid_conductivity_factor = 5.0;
   std::vector<ThermalProbe> probes;  // thermal.probes, in file order
+  std::vector<ThermalClamp> clamps;  // thermal.clamps, in file order
   ThermalShape shape;                // thermal.shape
 
   // The plate's temperature at the start, degC (thermal.initial_c, or the ambient).
@@ -101,6 +114,7 @@ inline constexpr std::array kThermalFields = {
     CustomField<ThermalSection>("table", FieldType::kMap, "contact with the table (thermal.table)"),
     NumField<&ThermalSection::sample_s>("sample_s", "s", 0.01, 600.0, "interval of the probe histories"),
     CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
+    CustomField<ThermalSection>("clamps", FieldType::kList, "contact patches on the plate's top (thermal.clamps[])"),
     OptField<&ThermalSection::heat_source>("heat_source", "the arc's heat source (docs/THERMAL.md)"),
     CustomField<ThermalSection>("pool", FieldType::kMap, "the double ellipsoid's semi-axes (thermal.pool)"),
     NumField<&ThermalSection::liquid_conductivity_factor>("liquid_conductivity_factor", "", 1.0, 100.0,
@@ -119,6 +133,16 @@ inline constexpr std::array kThermalTableFields = {
     NumField<&ThermalSection::table_c>("temperature_c", "degC", -50.0, 1000.0,
                                        "the table's temperature; absent = ambient_c"),
 };
+inline constexpr std::array kThermalClampFields = {
+    NumField<&ThermalClamp::centre_mm>("centre_mm", "mm", -10000.0, 10000.0,
+                                       "[x, y] of the patch's centre in the part frame (required)"),
+    NumField<&ThermalClamp::size_mm>("size_mm", "mm", 0.01, 10000.0, "[x, y] of the patch (required)"),
+    NumField<&ThermalClamp::conductance_w_m2k>("conductance_w_m2k", "W/(m^2 K)", 0.0, 1.0e6,
+                                               "plate top to the clamp at the table's temperature (required)"),
+    NumField<&ThermalClamp::under_conductance_w_m2k>("under_conductance_w_m2k", "W/(m^2 K)", 0.0, 1.0e6,
+                                                     "the plate's underside below the patch to the table; absent = "
+                                                     "thermal.table's"),
+};
 inline constexpr std::array kThermalPoolFields = {
     NumField<&ThermalSection::pool_depth_beads>("depth_beads", "", 0.1, 20.0, "depth b over the bead height"),
     NumField<&ThermalSection::pool_front_widths>("front_widths", "", 0.05, 20.0,
@@ -131,6 +155,10 @@ inline constexpr std::array kThermalShapeFields = {
     OptField<&ThermalShape::distortion>("distortion",
                                         "inherent strains follow the layers' interpass and peak temperatures"),
 };
+
+// The clamps as the solver takes them. Throws InputError naming thermal.clamps[N] for a patch that reaches off the
+// top face of `plate_mm` (the plate in the part frame).
+std::vector<twin::ClampPatch> ClampPatches(const ThermalSection& thermal, const Eigen::AlignedBox3d& plate_mm);
 
 // Throws InputError "thermal.<key> = value: must be in [min, max]" for a number of a given thermal section outside
 // its key's range, or "thermal.substrate.size_mm: missing" without the plate's size: the check of settings built or

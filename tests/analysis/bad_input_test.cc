@@ -114,6 +114,12 @@ std::string ThermalScenario(const std::string& from, const std::string& to) {
   return text;
 }
 
+// ThermalScenario with one 20 x 10 mm clamp (line 18) at `centre` of conductance `g`.
+std::string ClampScenario(const std::string& centre, const std::string& g) {
+  return ThermalScenario("[0, 10, -2]}\n", "[0, 10, -2]}\n  clamps: [{centre_mm: " + centre +
+                                               ", size_mm: [20, 10], conductance_w_m2k: " + g + "}]\n");
+}
+
 // A replay scenario (waam thermal replay, waam fit thermal) and its log, every value valid; `from` is replaced by
 // `to` in the scenario. Lines: 20 replay.probes.tc; log rows on lines 2-6.
 std::string ReplayScenario(const std::string& from = "", const std::string& to = "") {
@@ -438,6 +444,10 @@ std::vector<BadInput> Catalogue() {
       {"thermal-interpass-below-ambient", "thermal", "s.yaml",
        {{"s.yaml", ThermalScenario("max_c: 200", "max_c: 10")}},
        {"s.yaml:13: process.interpass.max_c = 10: below the ambient temperature 20 degC (thermal.ambient_c)"}},
+      {"thermal-clamp-off-plate", "thermal", "s.yaml", {{"s.yaml", ClampScenario("[45, 0]", "1000")}},
+       {"s.yaml:18: thermal.clamps[0]: the patch (x 35 to 55, y -5 to 5 mm) reaches off the plate's top face"}},
+      {"thermal-clamp-negative-conductance", "thermal", "s.yaml", {{"s.yaml", ClampScenario("[40, 0]", "-5")}},
+       {"s.yaml:18: thermal.clamps[0].conductance_w_m2k = -5"}},
       {"thermal-arc-without-power", "thermal", "s.yaml",
        {{"s.yaml", ThermalScenario("arc: {power_w: 2000}", "arc: {efficiency: 0.8}")}},
        {"s.yaml:12: process.arc: the arc has no power: give power_w (W), or voltage_v (V) and current_a (A)"}},

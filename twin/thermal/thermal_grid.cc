@@ -58,8 +58,57 @@ Eigen::Vector3d ThermalState::Centre(int i, int j, int k) const {
   return origin_mm + dx_mm * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
 }
 
-bool ThermalState::IsTableFace(int cell, int face) const {
-  return face == 4 && material[cell] == kSubstrate && CellIndex(grid_of[cell]).z() == plate_bottom_k;
+void ThermalState::FaceContact(int cell, int face, double* conductance_w_m2k, double* air) const {
+  *conductance_w_m2k = 0.0;
+  *air = 1.0;
+  if ((face != 4 && face != 5) || material[cell] != kSubstrate) return;
+  const Eigen::Vector3i ijk = CellIndex(grid_of[cell]);
+  if (face == 4 && ijk.z() == plate_bottom_k) {
+    if (contact.empty()) {
+      *conductance_w_m2k = settings.table_conductance_w_m2k;
+      *air = settings.table_conductance_w_m2k > 0.0 ? 0.0 : 1.0;
+      return;
+    }
+    const ColumnContact& c = contact[static_cast<std::size_t>(ijk.x() + size.x() * ijk.y())];
+    *conductance_w_m2k = c.bottom_w_m2k;
+    *air = c.bottom_air;
+  } else if (face == 5 && ijk.z() == plate_top_k && !contact.empty()) {
+    const ColumnContact& c = contact[static_cast<std::size_t>(ijk.x() + size.x() * ijk.y())];
+    *conductance_w_m2k = c.top_w_m2k;
+    *air = c.top_air;
+  }
+}
+
+void BuildColumnContacts(ThermalState& s) {
+  const ThermalSettings& st = s.settings;
+  s.contact.clear();
+  if (st.clamps.empty()) return;
+  const double table = st.table_conductance_w_m2k;
+  s.contact.assign(static_cast<std::size_t>(s.size.x()) * s.size.y(), ColumnContact{});
+  for (int j = 0; j < s.size.y(); ++j) {
+    for (int i = 0; i < s.size.x(); ++i) {
+      const Eigen::Vector2d lo = s.origin_mm.head<2>() + s.dx_mm * Eigen::Vector2d(i, j);
+      const Eigen::AlignedBox2d face(lo, lo + Eigen::Vector2d::Constant(s.dx_mm));
+      double covered = 0.0, top = 0.0, under = 0.0, under_air = 0.0;
+      for (const ClampPatch& clamp : st.clamps) {
+        const Eigen::AlignedBox2d overlap = face.intersection(clamp.xy_mm);
+        if (overlap.isEmpty()) continue;
+        const double share = overlap.volume() / (s.dx_mm * s.dx_mm);
+        covered += share;
+        top += share * clamp.conductance_w_m2k;
+        const double below = clamp.under_conductance_w_m2k < 0.0 ? table : clamp.under_conductance_w_m2k;
+        under += share * below;
+        if (below > 0.0) under_air += share;
+      }
+      covered = std::min(covered, 1.0);
+      ColumnContact& c = s.contact[static_cast<std::size_t>(i + s.size.x() * j)];
+      c.top_w_m2k = top;
+      c.top_air = 1.0 - covered;
+      // Outside the patches the bottom lies on the table (or, with no table contact, in the air).
+      c.bottom_w_m2k = under + (1.0 - covered) * table;
+      c.bottom_air = table > 0.0 ? 0.0 : 1.0 - std::min(under_air, 1.0);
+    }
+  }
 }
 
 int ThermalState::Activate(int grid, int material_index, double h, int born_step) {
@@ -122,6 +171,7 @@ void InitialiseThermalState(ThermalState& s) {
   s.kind.assign(count, CellKind::kEmpty);
   s.active_of.assign(count, kNoCell);
   s.plate_bottom_k = s.size.z();
+  s.plate_top_k = -1;
   for (int k = 0; k < s.size.z(); ++k) {
     for (int j = 0; j < s.size.y(); ++j) {
       for (int i = 0; i < s.size.x(); ++i) {
@@ -130,6 +180,7 @@ void InitialiseThermalState(ThermalState& s) {
         if (CentreIn(st.substrate_box_mm, c)) {
           kind = CellKind::kPlate;
           s.plate_bottom_k = std::min(s.plate_bottom_k, k);
+          s.plate_top_k = std::max(s.plate_top_k, k);
         } else if (CentreIn(st.deposit_box_mm, c)) {
           kind = CellKind::kDeposit;
         }
@@ -143,6 +194,7 @@ void InitialiseThermalState(ThermalState& s) {
   }
   WAAM_THROW_UNLESS(!s.grid_of.empty(), "thermal substrate box holds no cell centre at cell_mm = "
                                             << st.cell_mm << ": the plate must be at least one cell thick");
+  BuildColumnContacts(s);
 }
 
 std::vector<int> LayPiece(ThermalState& s, const ArcPiece& piece, int step) {

@@ -30,6 +30,32 @@ void CheckBox(const Eigen::AlignedBox3d& box, const char* name) {
                                        << box.max().transpose() << " mm): it must have a positive size along x, y, z");
 }
 
+// Each clamp: a patch of positive size inside the plate's top face (x, y), with finite conductances >= 0.
+void CheckClamps(const ThermalSettings& st) {
+  const Eigen::AlignedBox2d top(st.substrate_box_mm.min().head<2>(), st.substrate_box_mm.max().head<2>());
+  constexpr double kToleranceMm = 1e-6;
+  for (std::size_t n = 0; n < st.clamps.size(); ++n) {
+    const ClampPatch& c = st.clamps[n];
+    const bool finite = c.xy_mm.min().allFinite() && c.xy_mm.max().allFinite();
+    WAAM_THROW_UNLESS(finite && (c.xy_mm.sizes().array() > 0.0).all(),
+                      "thermal setting clamps[" << n << "] is empty (min " << c.xy_mm.min().transpose() << ", max "
+                                                << c.xy_mm.max().transpose() << " mm): it must have a positive size");
+    const bool inside = (c.xy_mm.min().array() >= top.min().array() - kToleranceMm).all() &&
+                        (c.xy_mm.max().array() <= top.max().array() + kToleranceMm).all();
+    WAAM_THROW_UNLESS(inside, "thermal setting clamps[" << n << "] (x, y from " << c.xy_mm.min().transpose() << " to "
+                                                        << c.xy_mm.max().transpose()
+                                                        << " mm) reaches off the plate's top face (from "
+                                                        << top.min().transpose() << " to " << top.max().transpose()
+                                                        << " mm): a clamp's contact patch must lie on the plate");
+    WAAM_THROW_UNLESS(std::isfinite(c.conductance_w_m2k) && c.conductance_w_m2k >= 0.0,
+                      "thermal setting clamps[" << n << "].conductance_w_m2k = " << c.conductance_w_m2k
+                                                << ": must be >= 0");
+    WAAM_THROW_UNLESS(std::isfinite(c.under_conductance_w_m2k),
+                      "thermal setting clamps[" << n << "].under_conductance_w_m2k = " << c.under_conductance_w_m2k
+                                                << ": must be finite (< 0: the table's)");
+  }
+}
+
 // One arc piece per micro step's travel (at most a cell) and per max_arc_step_s of time.
 std::vector<internal::ArcPiece> CutIntoPieces(const ThermalState& s, const internal::ArcPiece& weld) {
   const double length = (weld.p1_mm - weld.p0_mm).norm();
@@ -139,6 +165,7 @@ void CheckThermalSettings(const ThermalSettings& st) {
              "must be <= 1 (< 0: each material's own)");
   CheckRange(std::isfinite(st.table_conductance_w_m2k) && st.table_conductance_w_m2k >= 0.0,
              "table_conductance_w_m2k", st.table_conductance_w_m2k, "must be >= 0 (0: insulated)");
+  CheckClamps(st);
   CheckRange(std::isfinite(st.arc_step_cells) && st.arc_step_cells > 0.0, "arc_step_cells", st.arc_step_cells,
              "must be > 0");
   CheckRange(std::isfinite(st.max_arc_step_s) && st.max_arc_step_s > 0.0, "max_arc_step_s", st.max_arc_step_s,

@@ -15,6 +15,15 @@
 
 namespace waam::twin {
 
+// A clamp on the plate: a contact patch on the plate's top face through which heat flows into the clamp, a steel
+// mass bolted to the table and taken at the table's temperature (docs/THERMAL.md "Clamps"). Where the clamp presses
+// the plate onto the table, the plate's bottom under the patch may take its own table contact.
+struct ClampPatch {
+  Eigen::AlignedBox2d xy_mm;               // the patch on the plate's top face, part frame x and y, mm
+  double conductance_w_m2k = 0.0;          // plate top to the clamp (at table_c), W/(m^2 K)
+  double under_conductance_w_m2k = -1.0;   // plate bottom under the patch to the table; < 0 = table_conductance
+};
+
 // Everything the solver needs, resolved (lengths in mm, temperatures in degC, SI otherwise).
 struct ThermalSettings {
   models::ThermalMaterial deposit;          // the wire's metal
@@ -30,6 +39,9 @@ struct ThermalSettings {
   // and radiation there instead).
   double table_conductance_w_m2k = 0.0;     // W/(m^2 K)
   double table_c = 20.0;                    // table temperature, degC
+  // Clamps on the plate's top face, each inside the plate's top face (x and y); a face partly under a patch loses
+  // through the patch in proportion to the area covered, and by convection and radiation through the rest.
+  std::vector<ClampPatch> clamps;
 
   // The arc's heat source (docs/THERMAL.md, "Heat source and activation"). The double ellipsoid's semi-axes follow
   // each bead: a = width / 2, b = pool_depth_beads x height, c_f = pool_front_widths x width, c_r =
@@ -76,7 +88,7 @@ struct EnergyBalance {
   double lost_j = 0.0;         // convection + radiation + table
   double convection_j = 0.0;
   double radiation_j = 0.0;
-  double table_j = 0.0;
+  double table_j = 0.0;         // into the table, through the plate's bottom and the clamps
   double RelativeError() const;  // |input - stored - lost| / input (0 when input is 0)
 };
 

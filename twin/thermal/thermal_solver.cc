@@ -44,7 +44,8 @@ double Bound(const ThermalState& s, int cell, double t) {
   return s.bound_start[cell] + f * (s.bound_end[cell] - s.bound_start[cell]);
 }
 
-// Convection, radiation (linearised about the state's temperature t_old) and table losses of one face at t, W.
+// Convection, radiation (linearised about the state's temperature t_old) and table (and clamp) losses of one face
+// at t, W.
 struct FaceLoss {
   double convection = 0.0, radiation = 0.0, table = 0.0;
 };
@@ -52,15 +53,16 @@ FaceLoss LossOfFace(const ThermalState& s, int cell, int face, double t_old, dou
   const ThermalSettings& st = s.settings;
   const double area = s.dx_m * s.dx_m;
   FaceLoss loss;
-  if (st.table_conductance_w_m2k > 0.0 && s.IsTableFace(cell, face)) {
-    loss.table = st.table_conductance_w_m2k * area * (t - st.table_c);
-    return loss;
-  }
-  loss.convection = st.convection_w_m2k * area * (t - st.ambient_c);
+  double contact = 0.0, air = 1.0;
+  s.FaceContact(cell, face, &contact, &air);
+  loss.table = contact * area * (t - st.table_c);
+  if (air <= 0.0) return loss;
+  loss.convection = air * st.convection_w_m2k * area * (t - st.ambient_c);
   const double eps = s.emissivity[s.material[cell]];
   const double tk = t_old + kKelvin;
   const double ta = st.ambient_c + kKelvin;
-  loss.radiation = eps * kStefanBoltzmann * area * (tk * tk * tk * tk - ta * ta * ta * ta + 4.0 * tk * tk * tk * (t - t_old));
+  loss.radiation =
+      air * eps * kStefanBoltzmann * area * (tk * tk * tk * tk - ta * ta * ta * ta + 4.0 * tk * tk * tk * (t - t_old));
   return loss;
 }
 

@@ -106,6 +106,16 @@ struct LevelSystem : StencilSystem {
   int m0 = 0, m1 = 0;                                  // the micro steps [m0, m1) of the batch the step spans
 };
 
+// The contacts of one column (i, j) of the grid with the clamps and the table, area-weighted over the column's face:
+// a face's loss to the table's temperature is conductance x area x (T - table_c), and by convection and radiation
+// over its `air` share.
+struct ColumnContact {
+  double top_w_m2k = 0.0;     // the plate's top face to the clamps, W/(m^2 K)
+  double top_air = 1.0;       // share of the top face open to the air
+  double bottom_w_m2k = 0.0;  // the plate's bottom face to the table, W/(m^2 K)
+  double bottom_air = 1.0;    // share of the bottom face open to the air
+};
+
 struct ThermalState {
   ThermalSettings settings;
   Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();  // corner of the grid's first cell
@@ -113,6 +123,9 @@ struct ThermalState {
   double dx_mm = 2.0;
   double dx_m = 0.002;
   int plate_bottom_k = 0;                               // z index of the plate's lowest cells
+  int plate_top_k = 0;                                  // z index of the plate's highest cells
+  // Per column i + size.x j, with settings.clamps only (empty: no clamp; the bottom's contact is the table's).
+  std::vector<ColumnContact> contact;
   std::array<ThermalPropertyTable, 2> table;            // deposit, substrate
   std::array<double, 2> emissivity = {0.0, 0.0};        // per material
   std::array<double, 2> reference_h = {0.0, 0.0};       // J/m^3 of a cell as it starts (plate) or switches on
@@ -175,8 +188,14 @@ struct ThermalState {
   Eigen::Vector3d Centre(int i, int j, int k) const;
   // Switches on the cell `grid` (plate or deposit) at the enthalpy `h`, linking its neighbours; returns its id.
   int Activate(int grid, int material_index, double h, int born_step);
-  bool IsTableFace(int cell, int face) const;
+  // The contact of face `face` of active cell `cell` with the table or a clamp: conductance (W/(m^2 K)) to the
+  // table's temperature and the share of the face open to the air. Faces of neither kind: (0, 1).
+  void FaceContact(int cell, int face, double* conductance_w_m2k, double* air) const;
 };
+
+// Fills s.contact from the settings' clamps (the grid already built): each column's share of each patch, exact
+// for a patch that cuts a column's face.
+void BuildColumnContacts(ThermalState& s);
 
 // The active cell whose temperature TemperatureAt(p_mm) reads among the cells present at batch boundary `boundary`
 // (born before it; INT_MAX: every active cell): the cell holding the point, else the nearest-centred active cell of
