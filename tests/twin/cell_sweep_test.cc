@@ -73,7 +73,7 @@ CellModel CellWithPlate(const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W) 
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
   X_WB.translate(Eigen::Vector3d(1050.0, 0.0, 0.0));
   X_WB.rotate(Eigen::AngleAxisd(kPi / 2.0, Eigen::Vector3d::UnitZ()));
-  const CellModel::RobotInfo info{"FANUC ARC Mate 100iC/12", "builtin"};
+  const CellModel::RobotInfo info{.name = "FANUC ARC Mate 100iC/12", .source = "builtin"};
   return CellModel::FromXml(MjcfSource{.xml = xml, .file = analysis::BuiltinCellPath(), .assets = {}, .builtin = false},
                             info, Eigen::Isometry3d::Identity(), X_WB);
 }

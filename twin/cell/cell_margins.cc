@@ -30,9 +30,10 @@ CellModel BuildCell(const CellSettings& settings, const CellFiles& files) {
                                        : settings.robot_urdf.empty() && settings.mjcf.empty();
   if (builtin && type != planner::PositionerType::kTiltRotate) {
     // The built-in arm with another positioner: the file's text with the positioner composed in.
-    CellModel::RobotInfo info{"FANUC ARC Mate 100iC/12", "builtin"};
+    CellModel::RobotInfo info{.name = "FANUC ARC Mate 100iC/12", .source = "builtin"};
     if (settings.preset) {
-      info = {std::string(PresetInfo(*settings.preset).robot_name), std::string(NameOf(*settings.preset))};
+      info = {.name = std::string(PresetInfo(*settings.preset).robot_name),
+              .source = std::string(NameOf(*settings.preset))};
     }
     MjcfSource composed = files.mjcf;
     composed.xml = ComposeBuiltinCell(files.mjcf.xml, type);
@@ -40,8 +41,8 @@ CellModel BuildCell(const CellSettings& settings, const CellFiles& files) {
   }
   if (settings.preset && PresetUrdf(*settings.preset).empty()) {
     // The built-in cell under its preset name.
-    const CellModel::RobotInfo info{std::string(PresetInfo(*settings.preset).robot_name),
-                                    std::string(NameOf(*settings.preset))};
+    const CellModel::RobotInfo info{.name = std::string(PresetInfo(*settings.preset).robot_name),
+                                    .source = std::string(NameOf(*settings.preset))};
     return CellModel::FromXml(files.mjcf, info, X_WR, X_WB);
   }
   if (!settings.robot_urdf.empty()) {

@@ -125,7 +125,7 @@ class CellModel {
     std::array<std::string, 6> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
     // Why the model's geoms do not describe every body (e.g. a URDF link drawn but without collision geometry): one
     // line, which CollisionGeometry() reports as `unsupported` (the continuous check then runs discrete); empty: none.
-    std::string incomplete_geometry;
+    std::string incomplete_geometry = {};
   };
   // A cell model (a composed cell, e.g. around a URDF arm, or a preset's) placed like the constructor above and
   // reported as `info`; `mjcf.file` (default: info.source) is the model's file() and names it in messages.
