@@ -20,6 +20,7 @@ struct ThermalParameters {
   double convection_w_m2k = 10.0;         // h on every exposed face, W/(m^2 K)
   double table_conductance_w_m2k = 0.0;   // plate-table contact, W/(m^2 K)
   double emissivity = -1.0;               // of every exposed face; < 0 = each material's own
+  bool operator==(const ThermalParameters&) const = default;
 };
 
 // Everything a replay needs, resolved from the scenario and the log.

@@ -1,0 +1,434 @@
+// `waam fit thermal`'s cost: the replays' residuals, their Jacobian (differenced over whole replays, or updated by a
+// secant between two accepted points), the weak prior, and one stage of the fit with Ceres.
+#include "analysis/fit_thermal_cost.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "models/core/error.h"
+#include "models/core/parallel.h"
+#include "models/core/progress.h"
+
+namespace waam::analysis::internal {
+
+namespace {
+
+constexpr double kNoBound = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+const std::vector<FreeParameter>& AllThermalFree() {
+  static const std::vector<FreeParameter> all = {
+      {"efficiency", &ThermalParameters::efficiency, 1.0, 0.2, 1.0, "process.arc.efficiency"},
+      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, "thermal.convection_w_m2k"},
+      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound,
+       "thermal.table.conductance_w_m2k"},
+      {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, "thermal.emissivity"},
+  };
+  return all;
+}
+
+std::vector<FreeParameter> ResolveThermalFree(const std::vector<std::string>& names) {
+  WAAM_THROW_UNLESS(!names.empty(), "--free: name at least one of efficiency, convection, contact, emissivity");
+  std::vector<FreeParameter> free;
+  for (const std::string& name : names) {
+    const auto& all = AllThermalFree();
+    const auto it = std::find_if(all.begin(), all.end(), [&](const auto& f) { return f.name == name; });
+    WAAM_THROW_UNLESS(it != all.end(), "--free '" << name << "': must be efficiency, convection, contact or "
+                                                     "emissivity");
+    for (const FreeParameter& f : free) WAAM_THROW_UNLESS(f.name != name, "--free '" << name << "': given twice");
+    free.push_back(*it);
+  }
+  return free;
+}
+
+std::vector<double> ToScaled(const std::vector<FreeParameter>& free, const double* u) {
+  std::vector<double> x(free.size());
+  for (std::size_t k = 0; k < free.size(); ++k) x[k] = free[k].map().ToScaled(u[k]);
+  return x;
+}
+
+std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::vector<double>& x) {
+  std::vector<double> u(free.size());
+  for (std::size_t k = 0; k < free.size(); ++k) u[k] = free[k].map().ToFree(x[k]);
+  return u;
+}
+
+ReplayResiduals::ReplayResiduals(const ReplayModel& model, const std::vector<FreeParameter>& free,
+                                 const ThermalParameters& start, std::pair<double, double> window)
+    : model_(&model), free_(free), start_(start), window_(window) {
+  // A probe not yet in metal at the start gives 0 there later too.
+  for (std::size_t p = 0; p < model.probes.size(); ++p) {
+    for (std::size_t i = 0; i < model.log.time_s.size(); ++i) {
+      const double t = model.log.time_s[i];
+      if (t >= window.first && t <= window.second && std::isfinite(model.log.probe_c[p][i])) used_.push_back({p, i});
+    }
+  }
+}
+
+ThermalParameters ReplayResiduals::Parameters(const double* x) const {
+  ThermalParameters p = start_;
+  for (std::size_t k = 0; k < free_.size(); ++k) {
+    p.*(free_[k].member) = x[k] * free_[k].scale;
+    WAAM_DEMAND(p.*(free_[k].member) >= free_[k].lo && p.*(free_[k].member) <= free_[k].hi);
+  }
+  return p;
+}
+
+std::size_t ReplayResiduals::Run(const double* x, double* residuals, bool keep) const {
+  auto run = std::make_unique<ReplayRun>(*model_, Parameters(x));
+  run->AdvanceTo(window_.second);
+  const ReplaySimulation sim = run->Result();
+  ++replays_;
+  double cost = 0.0;
+  std::size_t missing = 0;
+  for (std::size_t r = 0; r < used_.size(); ++r) {
+    const auto [p, i] = used_[r];
+    const double s = sim.probe_c[p][i];
+    residuals[r] = std::isfinite(s) ? s - model_->log.probe_c[p][i] : 0.0;
+    missing += std::isfinite(s) ? 0 : 1;
+    cost += residuals[r] * residuals[r];
+  }
+  if (!keep) return missing;
+  const std::lock_guard<std::mutex> lock(kept_mutex_);
+  if (kept_ == nullptr || cost < kept_cost_) {
+    kept_ = std::move(run);
+    kept_cost_ = cost;
+  }
+  return missing;
+}
+
+std::unique_ptr<ReplayRun> ReplayResiduals::TakeKept(const double* x) const {
+  if (kept_ == nullptr) return nullptr;
+  return Parameters(x) == kept_->parameters() ? std::move(kept_) : nullptr;
+}
+
+namespace {
+
+enum class JacobianKind { kDifferenced, kSecant, kSeed };
+
+// The residuals at Ceres' variables u (x = map(u)), and their Jacobian, asked by Ceres (2.1, unbounded) at the
+// start and at each point it accepts. Two kinds:
+// - differenced in the scaled values x: forward differences over whole replays, the n perturbed ones in parallel
+//   (each its own ThermalSimulation); the step is 1 % of each parameter's scale (not a step in u, which would shrink
+//   with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K) makes the
+//   temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. n replays.
+// - a secant (Broyden's update, Dennis & Schnabel 1983, "Numerical Methods for Unconstrained Optimization and
+//   Nonlinear Equations", eq. 8.1.4): between the last accepted point and this one, s = x - x_a and y = r - r_a,
+//   J = J_a + (y - J_a s) s^T / (s^T s), the least change of J_a that maps s onto the change y the replays made.
+//   No replay (the residuals at an accepted point are those of the candidate Ceres tried).
+// Each is handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A point's Jacobian is differenced at
+// the first point, after RequestDifference(), and else updated by a secant; a `seed` Jacobian in x (the coarse
+// stage's, m x n row-major) stands in at the first point. A replay with more rows without a temperature than the
+// first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks its trust region.
+class ReplayCost : public ceres::CostFunction {
+ public:
+  ReplayCost(const ReplayResiduals& residuals, bool keep, std::vector<double> seed)
+      : residuals_(residuals), n_(static_cast<int>(residuals.free_count())), keep_(keep), seed_(std::move(seed)) {
+    mutable_parameter_block_sizes()->push_back(n_);
+    set_num_residuals(static_cast<int>(residuals.size()));
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* u = parameters[0];
+    const std::vector<double> x = ToScaled(residuals_.free(), u);
+    if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) return false;  // exp overflow
+    try {
+      if (jacobians == nullptr || jacobians[0] == nullptr) {
+        const std::vector<double>* r = ResidualsAt(x);
+        if (r == nullptr) return false;
+        if (residuals != nullptr) std::copy(r->begin(), r->end(), residuals);
+        return true;
+      }
+      if (!JacobianAt(x)) return false;
+    } catch (const std::exception& e) {  // an exception must not cross Ceres
+      error_ = e.what();
+      return false;
+    }
+    if (residuals != nullptr) std::copy(point_r_.begin(), point_r_.end(), residuals);
+    for (int k = 0; k < n_; ++k) {
+      const double slope = residuals_.free(k).map().Slope(u[k]);
+      for (std::size_t r = 0; r < residuals_.size(); ++r) jacobians[0][r * n_ + k] = point_j_[r * n_ + k] * slope;
+    }
+    return true;
+  }
+
+  // The next Jacobian (at the accepted point, or at the last one when Ceres starts there again) is differenced.
+  void RequestDifference() { refresh_ = true; }
+  // The Jacobian at the last accepted point is a secant's or a seed (not differenced on this grid).
+  bool Undifferenced() const { return have_point_ && point_kind_ != JacobianKind::kDifferenced; }
+  const std::string& error() const { return error_; }
+  // The Jacobian in x at `x` and whether it was differenced (the last one when none was made there).
+  std::pair<const std::vector<double>*, bool> JacobianOf(const std::vector<double>& x) const {
+    for (auto it = made_.rbegin(); it != made_.rend(); ++it) {
+      if (it->x == x) return {&it->j, it->kind == JacobianKind::kDifferenced};
+    }
+    return {&point_j_, false};
+  }
+  const std::vector<double>& last_jacobian() const { return point_j_; }
+  int Count(JacobianKind kind) const {
+    return static_cast<int>(std::count_if(made_.begin(), made_.end(), [&](const Made& m) { return m.kind == kind; }));
+  }
+
+ private:
+  struct Made {
+    std::vector<double> x, j;
+    JacobianKind kind;
+  };
+
+  // The residuals at `x`: the last point tried or accepted, else one replay. Null when the replay blew up.
+  const std::vector<double>* ResidualsAt(const std::vector<double>& x) const {
+    if (have_point_ && x == point_x_) return &point_r_;
+    if (!tried_x_.empty() && x == tried_x_) return &tried_r_;
+    std::vector<double> r(residuals_.size());
+    const std::size_t missing = residuals_.Run(x.data(), r.data(), keep_);
+    if (first_missing_ < 0) first_missing_ = static_cast<long>(missing);
+    if (static_cast<long>(missing) > first_missing_) return nullptr;
+    tried_x_ = x;
+    tried_r_ = std::move(r);
+    return &tried_r_;
+  }
+
+  // Makes the Jacobian at `x` (Ceres' current point) the point's; false when a replay blew up.
+  bool JacobianAt(const std::vector<double>& x) const {
+    const bool same = have_point_ && x == point_x_;
+    if (same && !(refresh_ && point_kind_ != JacobianKind::kDifferenced)) return true;
+    const std::vector<double>* r = ResidualsAt(x);
+    if (r == nullptr) return false;
+    std::vector<double> r_new = *r;
+    JacobianKind kind = JacobianKind::kDifferenced;
+    std::vector<double> j;
+    if (!seed_.empty() && !have_point_) {
+      kind = JacobianKind::kSeed, j = seed_;
+    } else if (have_point_ && !same && !refresh_) {
+      kind = JacobianKind::kSecant, j = Secant(x, r_new);
+    } else if (!Difference(x, r_new, &j)) {
+      return false;
+    }
+    point_x_ = x;
+    point_r_ = std::move(r_new);
+    point_j_ = j;
+    point_kind_ = kind;
+    have_point_ = true;
+    refresh_ = false;
+    made_.push_back({x, std::move(j), kind});
+    return true;
+  }
+
+  // Broyden's update from the last accepted point to (x, r).
+  std::vector<double> Secant(const std::vector<double>& x, const std::vector<double>& r) const {
+    std::vector<double> j = point_j_;
+    std::vector<double> s(n_);
+    double ss = 0.0;
+    for (int k = 0; k < n_; ++k) s[k] = x[k] - point_x_[k], ss += s[k] * s[k];
+    if (ss == 0.0) return j;
+    for (std::size_t row = 0; row < residuals_.size(); ++row) {
+      double predicted = 0.0;
+      for (int k = 0; k < n_; ++k) predicted += point_j_[row * n_ + k] * s[k];
+      const double miss = (r[row] - point_r_[row]) - predicted;
+      for (int k = 0; k < n_; ++k) j[row * n_ + k] += miss * s[k] / ss;
+    }
+    return j;
+  }
+
+  // Forward differences at `x` (residuals r there): the n perturbed replays in parallel.
+  bool Difference(const std::vector<double>& x, const std::vector<double>& r, std::vector<double>* j) const {
+    const std::size_t m = residuals_.size();
+    std::vector<std::vector<double>> out(n_, std::vector<double>(m));
+    std::vector<double> step(n_);
+    for (int k = 0; k < n_; ++k) {
+      const FreeParameter& f = residuals_.free(k);
+      step[k] = (x[k] + 0.01) * f.scale > f.hi ? -0.01 : 0.01;  // backward at the upper bound
+    }
+    std::vector<std::size_t> missing(n_, 0);
+    ParallelFor(static_cast<std::size_t>(n_), [&](std::size_t k) {
+      std::vector<double> xs = x;
+      xs[k] += step[k];
+      missing[k] = residuals_.Run(xs.data(), out[k].data(), false);
+    });
+    for (int k = 0; k < n_; ++k) {
+      if (static_cast<long>(missing[k]) > first_missing_) return false;
+    }
+    j->assign(m * n_, 0.0);
+    for (std::size_t row = 0; row < m; ++row) {
+      for (int k = 0; k < n_; ++k) (*j)[row * n_ + k] = (out[k][row] - r[row]) / step[k];
+    }
+    return true;
+  }
+
+  const ReplayResiduals& residuals_;
+  int n_;
+  bool keep_;
+  std::vector<double> seed_;
+  mutable bool refresh_ = false;  // difference the next Jacobian
+  mutable long first_missing_ = -1;         // rows without a temperature in the first replay
+  mutable std::vector<double> tried_x_, tried_r_;  // the last point tried (a candidate) and its residuals
+  mutable bool have_point_ = false;           // the point Ceres stands on (the start or the last accepted)
+  mutable std::vector<double> point_x_, point_r_, point_j_;
+  mutable JacobianKind point_kind_ = JacobianKind::kDifferenced;
+  mutable std::vector<Made> made_;            // every Jacobian made, in order
+  mutable std::string error_;
+};
+
+// The weak prior (--prior W): residual k = W (x_k - x0_k), degC, x the scaled parameters (physical units, whatever
+// Ceres' variable u is), x0 the start's. A change of one scale unit costs as much as one reading W degC off; with
+// thermocouple noise sigma it is a Gaussian prior of standard deviation sigma / W scale units. Its Jacobian in u is
+// W dx_k/du_k.
+class PriorCost : public ceres::CostFunction {
+ public:
+  PriorCost(std::vector<FreeParameter> free, std::vector<double> x0, double weight)
+      : free_(std::move(free)), x0_(std::move(x0)), weight_(weight) {
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(x0_.size()));
+    set_num_residuals(static_cast<int>(x0_.size()));
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const std::size_t n = x0_.size();
+    const std::vector<double> x = ToScaled(free_, parameters[0]);
+    for (std::size_t k = 0; k < n; ++k) residuals[k] = weight_ * (x[k] - x0_[k]);
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      std::fill(jacobians[0], jacobians[0] + n * n, 0.0);
+      for (std::size_t k = 0; k < n; ++k) jacobians[0][k * n + k] = weight_ * free_[k].map().Slope(parameters[0][k]);
+    }
+    return true;
+  }
+  // 1/2 sum of the residuals squared at `x`.
+  double Cost(const std::vector<double>& x) const {
+    double c = 0.0;
+    for (std::size_t k = 0; k < x0_.size(); ++k) c += 0.5 * std::pow(weight_ * (x[k] - x0_[k]), 2);
+    return c;
+  }
+
+ private:
+  std::vector<FreeParameter> free_;
+  std::vector<double> x0_;
+  double weight_;
+};
+
+// Ends a Ceres run on Ctrl-C (abort), and when a step from a secant's (or a seed's) Jacobian failed: the stage runs
+// Ceres again from the same point with a differenced one rather than shrinking the trust region around a model that
+// may be wrong.
+class StageCallback : public ceres::IterationCallback {
+ public:
+  explicit StageCallback(const ReplayCost& cost) : cost_(cost) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    if (InterruptRequested()) return ceres::SOLVER_ABORT;
+    if (s.iteration > 0 && !s.step_is_successful && cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const ReplayCost& cost_;
+};
+
+// One Ceres run from `u` (changed in place) with at most `iterations` iterations.
+ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<double>& u, int iterations,
+                                double function_tolerance) {
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
+  ceres::Problem problem(problem_options);
+  problem.AddResidualBlock(&cost, nullptr, u.data());
+  if (prior != nullptr) problem.AddResidualBlock(prior, nullptr, u.data());
+  problem.SetManifold(u.data(), NewCappedStep(static_cast<int>(u.size())));  // owned by `problem`
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = iterations;
+  solver.function_tolerance = function_tolerance;
+  // Off: a step too small to matter changes the cost by less than the function tolerance, which then ends the run
+  // (a relative step in u means nothing: u = 0 is an arbitrary point of each map).
+  solver.parameter_tolerance = 1e-12;
+  solver.gradient_tolerance = 1e-10;
+  solver.logging_type = ceres::SILENT;
+  solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
+  StageCallback callback(cost);
+  solver.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  return summary;
+}
+
+}  // namespace
+
+StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
+                        bool keep, std::vector<double> seed, std::pair<double, std::vector<double>> prior) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const int replays_before = residuals.replays();
+  StageOutcome outcome;
+  // Ceres runs unbounded on u; the bounds are kept by the maps x(u) (ParameterMap): on a bounded problem Ceres 2.1
+  // evaluates every trust-region candidate through a projected line search that asks the gradient, i.e. a
+  // differenced Jacobian (n + 1 replays) at each point it tries instead of one replay.
+  std::vector<double> u = ToFree(residuals.free(), x_start);
+  ReplayCost cost(residuals, keep, std::move(seed));
+  std::unique_ptr<PriorCost> prior_cost =
+      prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
+  // The function tolerance from the noise: with m readings, n free parameters and the cost C near the minimum,
+  // s^2 = 2 C / (m - n) estimates one reading's variance, and a step that moves the parameters by one standard
+  // deviation (Gauss-Newton's covariance s^2 (J^T J)^-1) changes the cost by s^2 / 2 (Delta chi^2 = 1). A change
+  // below that is one the noise alone could make: no progress. Ceres compares |change| with tolerance x C, so
+  // tolerance = (s^2 / 2) / C = 1 / (m - n).
+  const double m = static_cast<double>(residuals.size()), n = static_cast<double>(residuals.free_count());
+  outcome.function_tolerance = 1.0 / std::max(m - n, 1.0);
+  int left = max_iterations;
+  // A run that ends on an undifferenced Jacobian (a failed secant step, or convergence judged on a secant) is run
+  // again from its answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
+  while (true) {
+    ceres::Solver::Summary summary = RunCeres(cost, prior_cost.get(), u, left, outcome.function_tolerance);
+    CheckInterrupt();
+    left -= static_cast<int>(summary.iterations.size()) - 1;
+    const bool again = summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() && left > 0 &&
+                       (summary.termination_type == ceres::USER_SUCCESS ||
+                        summary.termination_type == ceres::CONVERGENCE);
+    outcome.runs.push_back(std::move(summary));
+    if (!again) break;
+    cost.RequestDifference();
+  }
+  const ceres::Solver::Summary& last = outcome.runs.back();
+  outcome.usable = last.IsSolutionUsable();
+  outcome.termination = ceres::TerminationTypeToString(last.termination_type);
+  outcome.message = last.message;
+  if (last.termination_type == ceres::USER_SUCCESS) {
+    outcome.termination = "NO_CONVERGENCE";
+    outcome.message = "the iterations ran out before a differenced Jacobian confirmed the answer";
+  }
+  const std::vector<double> x = ToScaled(residuals.free(), u.data());
+  outcome.error = cost.error();
+  outcome.jacobian = cost.last_jacobian();
+  const auto [jacobian, differenced] = cost.JacobianOf(x);
+  outcome.jacobian_at_x = *jacobian;
+  outcome.differenced_at_x = differenced;
+  outcome.data_cost = last.final_cost - (prior_cost != nullptr ? prior_cost->Cost(x) : 0.0);
+  outcome.x = x;
+  outcome.differenced = cost.Count(JacobianKind::kDifferenced);
+  outcome.secant = cost.Count(JacobianKind::kSecant);
+  outcome.seeded = cost.Count(JacobianKind::kSeed);
+  outcome.replays = residuals.replays() - replays_before;
+  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return outcome;
+}
+
+nlohmann::json StageSolverJson(const StageOutcome& stage) {
+  int iterations = 0, successful = 0, unsuccessful = 0, residual_evaluations = 0, jacobian_evaluations = 0;
+  for (const ceres::Solver::Summary& s : stage.runs) {
+    iterations += static_cast<int>(s.iterations.size()) - 1;
+    successful += s.num_successful_steps;
+    unsuccessful += s.num_unsuccessful_steps;
+    residual_evaluations += s.num_residual_evaluations;
+    jacobian_evaluations += s.num_jacobian_evaluations;
+  }
+  return {{"termination", stage.termination},
+          {"message", stage.message},
+          {"iterations", iterations},
+          {"runs", stage.runs.size()},
+          {"initial_cost", stage.runs.front().initial_cost},
+          {"final_cost", stage.runs.back().final_cost},
+          {"function_tolerance", stage.function_tolerance},
+          {"replays", stage.replays},
+          {"jacobians", {{"differenced", stage.differenced}, {"secant", stage.secant}, {"seeded", stage.seeded}}},
+          {"successful_steps", successful},
+          {"unsuccessful_steps", unsuccessful},
+          {"residual_evaluations", residual_evaluations},
+          {"jacobian_evaluations", jacobian_evaluations},
+          {"report", stage.runs.back().BriefReport()}};
+}
+
+}  // namespace waam::analysis::internal

@@ -1,0 +1,103 @@
+// Internal to `waam fit thermal`: its free parameters, the replays' residuals, and one stage of the fit (Ceres on one
+// grid, its Jacobians differenced over whole replays or updated by secants between them).
+#pragma once
+
+#include <atomic>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <ceres/ceres.h>
+
+#include "analysis/fit_internal.h"
+#include "analysis/replay_run.h"
+
+namespace waam::analysis::internal {
+
+// A free parameter: its name on the command line, its member, its scale and its bounds.
+struct FreeParameter {
+  std::string name;
+  double ThermalParameters::*member;
+  double scale;       // x = value / scale, so every x is of order 1
+  double lo, hi;      // bounds of the value (hi = +inf: a lower bound only)
+  std::string set;    // the scenario key it belongs to (--set)
+  // Ceres' variable u for this parameter: x = map.ToScaled(u) (logistic between two bounds, exp above one).
+  ParameterMap map() const { return {lo / scale, hi / scale}; }
+};
+
+// Every parameter `--free` may name, in the order of the docs.
+const std::vector<FreeParameter>& AllThermalFree();
+// The free parameters named. Throws InputError for an unknown name, one given twice, or none.
+std::vector<FreeParameter> ResolveThermalFree(const std::vector<std::string>& names);
+// Scaled values x of Ceres' variables u (n = free.size()), and back.
+std::vector<double> ToScaled(const std::vector<FreeParameter>& free, const double* u);
+std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::vector<double>& x);
+
+// The residuals of one replay to the window's end: simulated - measured at every compared row, degC. The replay of
+// the best point so far (lowest cost) may be kept, so the held-out rows continue it from the window's end.
+class ReplayResiduals {
+ public:
+  // The rows compared: measured inside `window` (s). `model` must outlive this.
+  ReplayResiduals(const ReplayModel& model, const std::vector<FreeParameter>& free, const ThermalParameters& start,
+                  std::pair<double, double> window);
+  std::size_t size() const { return used_.size(); }
+  std::size_t free_count() const { return free_.size(); }
+  const FreeParameter& free(std::size_t k) const { return free_[k]; }
+  const std::vector<FreeParameter>& free() const { return free_; }
+  const ReplayModel& model() const { return *model_; }
+  // The same rows on another grid of the same log (a coarse stage).
+  ReplayResiduals OnModel(const ReplayModel& model) const { return ReplayResiduals(model, free_, start_, window_); }
+  // The parameters at scaled values `x` (within the bounds).
+  ThermalParameters Parameters(const double* x) const;
+  // One replay to the window's end at scaled values `x` into `residuals` (size()); `keep`: keep the replay when its
+  // cost is the lowest so far. Returns how many compared rows the replay has no temperature at (NaN: no metal at the
+  // probe yet, which the log alone decides; a replay that blows up has more). Throws as ReplayRun.
+  std::size_t Run(const double* x, double* residuals, bool keep) const;
+  // The kept replay if it was made with the parameters of `x`, else null.
+  std::unique_ptr<ReplayRun> TakeKept(const double* x) const;
+  int replays() const { return replays_.load(); }
+
+ private:
+  const ReplayModel* model_;
+  std::vector<FreeParameter> free_;
+  ThermalParameters start_;
+  std::pair<double, double> window_;
+  std::vector<std::pair<std::size_t, std::size_t>> used_;  // (probe, row)
+  mutable std::atomic<int> replays_{0};
+  mutable std::mutex kept_mutex_;
+  mutable std::unique_ptr<ReplayRun> kept_;
+  mutable double kept_cost_ = 0.0;
+};
+
+// One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on a secant
+// Jacobian is run again from a differenced one: fit_thermal_cost.cc).
+struct StageOutcome {
+  std::vector<double> x;                        // the answer, scaled values
+  std::vector<ceres::Solver::Summary> runs;     // every Ceres run, in order
+  bool usable = false;                          // the last run's IsSolutionUsable()
+  std::string termination;                      // CONVERGENCE, NO_CONVERGENCE (iterations spent), FAILURE...
+  std::string message;                          // the last run's message, or why the stage stopped
+  std::string error;                            // why a replay failed (empty: none did)
+  std::vector<double> jacobian;                 // the last one Ceres used, in x, m x n row-major
+  std::vector<double> jacobian_at_x;            // the one at the stage's answer x, in x
+  bool differenced_at_x = false;                // jacobian_at_x was differenced (not a secant's or a seed)
+  double data_cost = 0.0;                       // the final cost without the prior's part
+  double function_tolerance = 0.0;              // Ceres' relative tolerance on a change of cost (from the noise)
+  int differenced = 0, secant = 0, seeded = 0;  // the Jacobians Ceres was given, by kind
+  int replays = 0;
+  double seconds = 0.0;                         // wall
+};
+
+// Runs a stage with at most `max_iterations` Ceres iterations over all its runs; `keep` keeps the best replay
+// (ReplayResiduals::Run); `seed`: a Jacobian in x (m x n) for the first point instead of differences; `prior`: the
+// weak prior's weight W (0: none) and x0, the start's scaled values it pulls toward. Throws Interrupted on Ctrl-C.
+StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
+                        bool keep, std::vector<double> seed, std::pair<double, std::vector<double>> prior);
+
+// The stage's solver record for fitted.json (docs/REPLAY.md, `solver`).
+nlohmann::json StageSolverJson(const StageOutcome& stage);
+
+}  // namespace waam::analysis::internal
