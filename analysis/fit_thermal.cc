@@ -25,12 +25,12 @@ using internal::FreeParameter;
 using internal::ReplayResiduals;
 using internal::StageOutcome;
 
-// `--set` lines that make a scenario use `p` (emissivity only when set).
+// `--set` lines that make a scenario use `p` (emissivity only when set, the clamp factor only when not 1).
 nlohmann::json SetLines(const ThermalParameters& p) {
   nlohmann::json lines = nlohmann::json::array();
   for (const FreeParameter& f : internal::AllThermalFree()) {
     const double v = p.*(f.member);
-    if (f.name == "emissivity" && v < 0.0) continue;
+    if ((f.name == "emissivity" && v < 0.0) || (f.name == "clamps" && v == 1.0)) continue;
     std::ostringstream s;
     s << f.set << "=" << std::setprecision(8) << v;
     lines.push_back(s.str());
@@ -172,6 +172,11 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   WAAM_THROW_UNLESS(!options.window.empty(), "--window START:END is required: the part of the log fitted, in s");
   const ReplayModel model = LoadReplayModel(options.data, options.overrides, options.start);
   const std::pair<double, double> window = ParseLogWindow(options.window, model.log, "--window");
+  for (const FreeParameter& f : free) {
+    WAAM_THROW_UNLESS(f.name != "clamps" || !model.clamp_w_m2k.empty(),
+                      options.data.string() << ": --free clamps: the scenario has no thermal.clamps[] (nothing to "
+                                               "scale)");
+  }
   const ThermalParameters start = FitStart(model, free);
   const ReplayResiduals residuals(model, free, start, window);
   WAAM_THROW_UNLESS(residuals.size() > free.size(),

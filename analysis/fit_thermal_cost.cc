@@ -25,18 +25,20 @@ const std::vector<FreeParameter>& AllThermalFree() {
       {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound,
        "thermal.table.conductance_w_m2k"},
       {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, "thermal.emissivity"},
+      {"clamps", &ThermalParameters::clamp_factor, 1.0, 0.0, kNoBound, "thermal.clamp_conductance_factor"},
   };
   return all;
 }
 
 std::vector<FreeParameter> ResolveThermalFree(const std::vector<std::string>& names) {
-  WAAM_THROW_UNLESS(!names.empty(), "--free: name at least one of efficiency, convection, contact, emissivity");
+  WAAM_THROW_UNLESS(!names.empty(), "--free: name at least one of efficiency, convection, contact, emissivity, "
+                                    "clamps");
   std::vector<FreeParameter> free;
   for (const std::string& name : names) {
     const auto& all = AllThermalFree();
     const auto it = std::find_if(all.begin(), all.end(), [&](const auto& f) { return f.name == name; });
-    WAAM_THROW_UNLESS(it != all.end(), "--free '" << name << "': must be efficiency, convection, contact or "
-                                                     "emissivity");
+    WAAM_THROW_UNLESS(it != all.end(), "--free '" << name << "': must be efficiency, convection, contact, "
+                                                     "emissivity or clamps");
     for (const FreeParameter& f : free) WAAM_THROW_UNLESS(f.name != name, "--free '" << name << "': given twice");
     free.push_back(*it);
   }

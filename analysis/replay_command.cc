@@ -25,19 +25,22 @@ ThermalParameters ReadThermalParameters(const std::filesystem::path& file, const
   const std::map<std::string, double*> keys = {{"efficiency", &p.efficiency},
                                                {"convection_w_m2k", &p.convection_w_m2k},
                                                {"table_conductance_w_m2k", &p.table_conductance_w_m2k},
-                                               {"emissivity", &p.emissivity}};
+                                               {"emissivity", &p.emissivity},
+                                               {"clamp_conductance_factor", &p.clamp_factor}};
   for (const auto& [key, value] : doc["parameters"].items()) {
     const auto it = keys.find(key);
     WAAM_THROW_UNLESS(it != keys.end(), file.string() << ": parameters." << key << ": unknown (efficiency, "
-                                                         "convection_w_m2k, table_conductance_w_m2k, emissivity)");
+                                                         "convection_w_m2k, table_conductance_w_m2k, emissivity, clamp_conductance_factor)");
     WAAM_THROW_UNLESS(value.is_number() && std::isfinite(value.get<double>()),
                       file.string() << ": parameters." << key << ": must be a number");
     *it->second = value.get<double>();
   }
   WAAM_THROW_UNLESS(p.efficiency > 0.0 && p.efficiency <= 1.0,
                     file.string() << ": parameters.efficiency = " << p.efficiency << ": must be in (0, 1]");
-  WAAM_THROW_UNLESS(p.convection_w_m2k >= 0.0 && p.table_conductance_w_m2k >= 0.0 && p.emissivity <= 1.0,
-                    file.string() << ": parameters: convection and conductance must be >= 0, emissivity <= 1");
+  WAAM_THROW_UNLESS(p.convection_w_m2k >= 0.0 && p.table_conductance_w_m2k >= 0.0 && p.emissivity <= 1.0 &&
+                        p.clamp_factor >= 0.0,
+                    file.string() << ": parameters: convection, conductance and clamp factor must be >= 0, "
+                                     "emissivity <= 1");
   return p;
 }
 
@@ -45,7 +48,8 @@ nlohmann::json ThermalParametersJson(const ThermalParameters& p) {
   return {{"efficiency", p.efficiency},
           {"convection_w_m2k", p.convection_w_m2k},
           {"table_conductance_w_m2k", p.table_conductance_w_m2k},
-          {"emissivity", p.emissivity}};
+          {"emissivity", p.emissivity},
+          {"clamp_conductance_factor", p.clamp_factor}};
 }
 
 ReplayModel LoadReplayModel(const std::filesystem::path& scenario_file, const std::vector<std::string>& overrides,

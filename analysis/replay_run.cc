@@ -53,10 +53,12 @@ ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log) {
   s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
   s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
   s.clamps = ClampPatches(thermal, s.substrate_box_mm);
+  for (const ThermalClamp& clamp : thermal.clamps) model.clamp_w_m2k.push_back(clamp.conductance_w_m2k);
   const Eigen::Vector3d cell = Eigen::Vector3d::Constant(thermal.cell_mm);
   s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - cell, beads.max() + cell);
   for (const ReplayProbe& probe : model.probes) CheckProbeInMetal(s, probe.at_mm, probe.where);
-  model.parameters = {scenario.process.arc.efficiency, s.convection_w_m2k, s.table_conductance_w_m2k, s.emissivity};
+  model.parameters = {scenario.process.arc.efficiency, s.convection_w_m2k, s.table_conductance_w_m2k, s.emissivity,
+                      thermal.clamp_conductance_factor};
   model.log = std::move(log);
   return model;
 }
@@ -71,6 +73,11 @@ twin::ThermalSettings ReplaySettings(const ReplayModel& model, const ThermalPara
   settings.convection_w_m2k = parameters.convection_w_m2k;
   settings.table_conductance_w_m2k = parameters.table_conductance_w_m2k;
   settings.emissivity = parameters.emissivity;
+  WAAM_THROW_UNLESS(std::isfinite(parameters.clamp_factor) && parameters.clamp_factor >= 0.0,
+                    "clamp conductance factor = " << parameters.clamp_factor << ": must be >= 0");
+  for (std::size_t k = 0; k < settings.clamps.size(); ++k) {
+    settings.clamps[k].conductance_w_m2k = model.clamp_w_m2k[k] * parameters.clamp_factor;
+  }
   return settings;
 }
 

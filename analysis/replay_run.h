@@ -20,6 +20,7 @@ struct ThermalParameters {
   double convection_w_m2k = 10.0;         // h on every exposed face, W/(m^2 K)
   double table_conductance_w_m2k = 0.0;   // plate-table contact, W/(m^2 K)
   double emissivity = -1.0;               // of every exposed face; < 0 = each material's own
+  double clamp_factor = 1.0;              // every clamp's conductance_w_m2k times this (thermal.clamps[]), 1
   bool operator==(const ThermalParameters&) const = default;
 };
 
@@ -29,6 +30,7 @@ struct ReplayModel {
   ThermalParameters parameters;     // the scenario's values (process.arc.efficiency, thermal.*)
   ReplayLog log;
   std::vector<ReplayProbe> probes;  // replay.probes, in file order
+  std::vector<double> clamp_w_m2k;  // each clamp's conductance_w_m2k as the scenario gives it (factor 1), W/(m^2 K)
   double bead_width_mm = 6.0;
   double bead_height_mm = 2.0;
 };

@@ -32,7 +32,8 @@ std::vector<twin::ClampPatch> ClampPatches(const ThermalSection& thermal, const 
                                             << " mm) reaches off the plate's top face (x " << lo.x() << " to "
                                             << hi.x() << ", y " << lo.y() << " to " << hi.y()
                                             << " mm): a clamp's contact patch must lie on the plate");
-    patches.push_back({patch, clamp.conductance_w_m2k, clamp.under_conductance_w_m2k.value_or(-1.0)});
+    patches.push_back({patch, clamp.conductance_w_m2k * thermal.clamp_conductance_factor,
+                       clamp.under_conductance_w_m2k.value_or(-1.0)});
   }
   return patches;
 }

@@ -84,6 +84,7 @@ struct ThermalSection {
   double liquid_conductivity_factor = 5.0;
   std::vector<ThermalProbe> probes;  // thermal.probes, in file order
   std::vector<ThermalClamp> clamps;  // thermal.clamps, in file order
+  double clamp_conductance_factor = 1.0;  // thermal.clamp_conductance_factor: every clamp's conductance_w_m2k times this
   ThermalShape shape;                // thermal.shape
 
   // The plate's temperature at the start, degC (thermal.initial_c, or the ambient).
@@ -115,6 +116,9 @@ inline constexpr std::array kThermalFields = {
     NumField<&ThermalSection::sample_s>("sample_s", "s", 0.01, 600.0, "interval of the probe histories"),
     CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
     CustomField<ThermalSection>("clamps", FieldType::kList, "contact patches on the plate's top (thermal.clamps[])"),
+    NumField<&ThermalSection::clamp_conductance_factor>("clamp_conductance_factor", "", 0.0, 1000.0,
+                                                        "every clamp's conductance_w_m2k times this (the factor "
+                                                        "waam fit thermal --free clamps fits)"),
     OptField<&ThermalSection::heat_source>("heat_source", "the arc's heat source (docs/THERMAL.md)"),
     CustomField<ThermalSection>("pool", FieldType::kMap, "the double ellipsoid's semi-axes (thermal.pool)"),
     NumField<&ThermalSection::liquid_conductivity_factor>("liquid_conductivity_factor", "", 1.0, 100.0,

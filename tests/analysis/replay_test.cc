@@ -121,23 +121,24 @@ TEST(ReplayErrors, MatchHandComputedValuesAndLeaveOutMissingRows) {
   EXPECT_EQ(held.n, 1u) << "outside [0.5, 3]: only t = 0";
 }
 
-// A replay scenario for the round trip: a 40 mm wall on a 70 x 30 x 6 mm mild-steel plate, two thermocouples.
-std::string RoundTripScenario() {
+// A replay scenario for the round trip: a 40 mm wall on a 70 x 30 x 6 mm mild-steel plate, two thermocouples;
+// `thermal_extra`: more lines of its thermal: section.
+std::string RoundTripScenario(const std::string& thermal_extra = "") {
   return "name: replay_round_trip\n"
          "part:\n  generator: {type: box, size_mm: [40, 6, 4]}\n"
          "slicing:\n  layer_height_mm: 2\npath:\n  pattern: zigzag\n  bead_width_mm: 6\n"
          "process:\n  travel_speed_mm_min: 480\n  wire_feed_mm_min: 3200\n"
          "  arc: {power_w: 2000, efficiency: 0.84}\n"
          "thermal:\n  material: mild_steel\n  substrate: {size_mm: [70, 30, 6]}\n  cell_mm: 2\n"
-         "  convection_w_m2k: 10\n"
+         "  convection_w_m2k: 10\n" + thermal_extra +
          "replay:\n  log: wall.csv\n  columns: {power_w: power_w}\n  bead: {width_mm: 6, height_mm: 2}\n"
          "  probes:\n    near: {column: T1, at_mm: [0, 7, -1]}\n    far: {column: T2, at_mm: [25, -10, -4]}\n";
 }
 
 // Writes the scenario and a log the model made with `truth` (noise 1 degC, seed 7); returns the scenario path.
-fs::path WriteRoundTrip(const fs::path& dir, const ThermalParameters& truth) {
+fs::path WriteRoundTrip(const fs::path& dir, const ThermalParameters& truth, const std::string& thermal_extra = "") {
   const fs::path scenario = dir / "scenario.yaml";
-  std::ofstream(scenario) << RoundTripScenario();
+  std::ofstream(scenario) << RoundTripScenario(thermal_extra);
   WallBuildSpec spec;
   spec.layers = 2;
   spec.length_mm = 40.0;
@@ -348,6 +349,44 @@ TEST(ReplayRoundTrip, AFitStartedOnTheBoundsRecoversTheTrueValues) {
   EXPECT_TRUE(fitted["at_bound"].empty()) << out.str();
   EXPECT_TRUE(fitted["identifiability"]["blind"].empty()) << out.str();
   EXPECT_LT(fitted["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
+}
+
+// The clamps' conductance as a free parameter (--free clamps: one factor on every thermal.clamps[] conductance): a
+// clamp over the plate's end near the far thermocouple, 1000 W/(m^2 K) in the scenario, 3000 in the log (factor 3).
+// Fitted with the efficiency on the first 60 s, the factor comes back and the fitted file replays with it.
+TEST(ReplayRoundTrip, FitRecoversTheClampsConductanceFactor) {
+  const fs::path dir = cli_test::TempDir("replay_fit_clamps");
+  ThermalParameters truth;
+  truth.efficiency = 0.7;
+  truth.convection_w_m2k = 10.0;
+  truth.clamp_factor = 3.0;
+  FitOptions options;
+  options.model = waam::analysis::FitModel::kThermal;
+  options.data = WriteRoundTrip(dir, truth, "  clamps:\n    - {centre_mm: [28, 0], size_mm: [10, 24], conductance_w_m2k: 1000}\n");
+  options.output = dir / "fitted.json";
+  options.free = {"efficiency", "clamps"};
+  options.window = "0:60";
+  std::ostringstream out;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  std::cout << out.str();
+  const nlohmann::json fitted = cli_test::ReadJson(options.output);
+  EXPECT_EQ(fitted["start"]["clamps"].get<double>(), 1.0);
+  EXPECT_NEAR(fitted["fitted"]["efficiency"].get<double>(), 0.7, 0.01) << out.str();
+  EXPECT_NEAR(fitted["fitted"]["clamps"].get<double>(), 3.0, 0.3) << out.str();
+  EXPECT_LT(fitted["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
+  const double factor = fitted["parameters"]["clamp_conductance_factor"].get<double>();
+  EXPECT_EQ(factor, fitted["fitted"]["clamps"].get<double>());
+  bool set_line = false;
+  for (const auto& line : fitted["set"]) set_line = set_line || line.get<std::string>().rfind("thermal.clamp_conductance_factor=", 0) == 0;
+  EXPECT_TRUE(set_line) << fitted["set"].dump();
+  EXPECT_NEAR(LoadReplayModel(options.data, {}, options.output).parameters.clamp_factor, factor, 1e-12);
+  // The scenario key scales the clamps as the fitted factor does: a replay with --set at the log's factor is the noise.
+  const ReplayModel model = LoadReplayModel(options.data, {"thermal.clamp_conductance_factor=3"});
+  ThermalParameters at_truth = model.parameters;
+  at_truth.efficiency = 0.7;
+  EXPECT_EQ(at_truth.clamp_factor, 3.0);
+  const nlohmann::json errors = ReplayErrorsJson(model, SimulateReplay(model, at_truth), 0.0, model.log.time_s.back());
+  EXPECT_NEAR(errors["overall"]["rmse_c"].get<double>(), 1.0, 0.1);
 }
 
 // Coarse to fine (--coarse-cell 4 on the 2 mm grid): the coarse stage only chooses the start of the fit on the
