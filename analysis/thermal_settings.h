@@ -84,7 +84,7 @@ struct ThermalSection {
   double liquid_conductivity_factor = 5.0;
   std::vector<ThermalProbe> probes;  // thermal.probes, in file order
   std::vector<ThermalClamp> clamps;  // thermal.clamps, in file order
-  double clamp_conductance_factor = 1.0;  // thermal.clamp_conductance_factor: every clamp's conductance_w_m2k times this
+  double clamp_conductance_factor = 1.0;  // thermal.clamp_conductance_factor: each clamp conductance times this
   ThermalShape shape;                // thermal.shape
 
   // The plate's temperature at the start, degC (thermal.initial_c, or the ambient).

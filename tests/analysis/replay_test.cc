@@ -136,7 +136,8 @@ std::string RoundTripScenario(const std::string& thermal_extra = "") {
 }
 
 // Writes the scenario and a log the model made with `truth` (noise 1 degC, seed 7); returns the scenario path.
-fs::path WriteRoundTrip(const fs::path& dir, const ThermalParameters& truth, const std::string& thermal_extra = "") {
+fs::path WriteRoundTrip(const fs::path& dir, const ThermalParameters& truth,
+                        const std::string& thermal_extra = "") {
   const fs::path scenario = dir / "scenario.yaml";
   std::ofstream(scenario) << RoundTripScenario(thermal_extra);
   WallBuildSpec spec;
@@ -362,7 +363,8 @@ TEST(ReplayRoundTrip, FitRecoversTheClampsConductanceFactor) {
   truth.clamp_factor = 3.0;
   FitOptions options;
   options.model = waam::analysis::FitModel::kThermal;
-  options.data = WriteRoundTrip(dir, truth, "  clamps:\n    - {centre_mm: [28, 0], size_mm: [10, 24], conductance_w_m2k: 1000}\n");
+  options.data =
+      WriteRoundTrip(dir, truth, "  clamps:\n    - {centre_mm: [28, 0], size_mm: [10, 24], conductance_w_m2k: 1000}\n");
   options.output = dir / "fitted.json";
   options.free = {"efficiency", "clamps"};
   options.window = "0:60";
@@ -372,12 +374,14 @@ TEST(ReplayRoundTrip, FitRecoversTheClampsConductanceFactor) {
   const nlohmann::json fitted = cli_test::ReadJson(options.output);
   EXPECT_EQ(fitted["start"]["clamps"].get<double>(), 1.0);
   EXPECT_NEAR(fitted["fitted"]["efficiency"].get<double>(), 0.7, 0.01) << out.str();
-  EXPECT_NEAR(fitted["fitted"]["clamps"].get<double>(), 3.0, 0.3) << out.str();
+  EXPECT_NEAR(fitted["fitted"]["clamps"].get<double>(), 3.0, 0.1) << out.str();
   EXPECT_LT(fitted["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
   const double factor = fitted["parameters"]["clamp_conductance_factor"].get<double>();
   EXPECT_EQ(factor, fitted["fitted"]["clamps"].get<double>());
   bool set_line = false;
-  for (const auto& line : fitted["set"]) set_line = set_line || line.get<std::string>().rfind("thermal.clamp_conductance_factor=", 0) == 0;
+  for (const auto& line : fitted["set"]) {
+    set_line = set_line || line.get<std::string>().rfind("thermal.clamp_conductance_factor=", 0) == 0;
+  }
   EXPECT_TRUE(set_line) << fitted["set"].dump();
   EXPECT_NEAR(LoadReplayModel(options.data, {}, options.output).parameters.clamp_factor, factor, 1e-12);
   // The scenario key scales the clamps as the fitted factor does: a replay with --set at the log's factor is the noise.
