@@ -1,8 +1,9 @@
 // Peer driver: solves the conduction problem of tools/peers/thermal_wall.json on waam's thermal model
 // (twin::ThermalSimulation) and prints the probe histories as JSON, as tools/peers/thermal_fenicsx.py does for FEniCSx.
-// Usage: waam_thermal_peer <problem.json> [far_step_s [refine]]  (tools/peers.sh runs both and compares them).
-// Without far_step_s (or with "-") the solver's default time stepping (ThermalSettings) is used; 0 solves the whole
-// model every micro step. refine (default 1) splits each problem cell into refine^3 cells with the same source: the
+// Usage: waam_thermal_peer <problem.json> [stepping [refine]]  (tools/peers.sh runs both and compares them).
+// stepping: "-" (or none) for the solver's default multirate stepping (ThermalSettings), 0 to solve the whole model
+// every micro step (single-rate), a number for far_step_s, or key=value pairs (ApplyStepping). The probes are
+// recorded inside the solver's batches, so the multirate levels keep their steps. refine (default 1) splits each problem cell into refine^3 cells with the same source: the
 // heat of a step goes into the same 2 x 2 x 2 problem cells, so the refined runs converge to the problem's answer.
 #include <chrono>
 #include <cmath>
@@ -103,6 +104,26 @@ void ApplyStepping(const std::string& stepping, waam::twin::ThermalSettings& st)
   }
 }
 
+// The stepping as thermal_compare.py prints it: "single-rate" or the multirate levels' steps and reaches.
+std::string StepLabel(const waam::twin::ThermalSettings& st) {
+  if (st.far_step_s <= 0.0) return "single-rate";
+  std::string text = "multirate: the whole model every ";
+  char part[120];
+  if (st.whole_step_s > st.far_step_s) {
+    std::snprintf(part, sizeof part, "%g s, within %g mm every %g s", st.whole_step_s, st.whole_radius_mm,
+                  st.far_step_s);
+  } else {
+    std::snprintf(part, sizeof part, "%g s", st.far_step_s);
+  }
+  text += part;
+  if (st.near_step_s > 0.0) {
+    std::snprintf(part, sizeof part, ", within %g mm every %g s", st.near_radius_mm, st.near_step_s);
+    text += part;
+  }
+  std::snprintf(part, sizeof part, ", within %g mm every micro step", st.arc_radius_mm);
+  return text + part;
+}
+
 json Run(const json& spec, const std::string& stepping, int refine) {
   waam::twin::ThermalSettings st;
   st.deposit = st.substrate = ConstantMaterial(spec);
@@ -180,7 +201,8 @@ json Run(const json& spec, const std::string& stepping, int refine) {
   const waam::twin::EnergyBalance energy = sim.Energy();
   return {{"peer", "waam"}, {"wall_s", wall_s}, {"cpu_s", cpu_s}, {"setup_s", setup_wall_s},
           {"setup_cpu_s", setup_cpu_s}, {"cells", stats.active_cells},
-          {"steps", stats.steps}, {"iterations", stats.iterations}, {"far_step_s", st.far_step_s}, {"refine", refine},
+          {"steps", stats.steps}, {"iterations", stats.iterations}, {"far_step_s", st.far_step_s},
+          {"stepping", StepLabel(st)}, {"refine", refine},
           {"energy_relative_error", energy.RelativeError()}, {"time_s", times}, {"probes_c", history}};
 }
 
@@ -188,7 +210,7 @@ json Run(const json& spec, const std::string& stepping, int refine) {
 
 int main(int argc, char** argv) {
   if (argc < 2 || argc > 4) {
-    std::fprintf(stderr, "usage: waam_thermal_peer <problem.json> [far_step_s|- [refine]]\n");
+    std::fprintf(stderr, "usage: waam_thermal_peer <problem.json> [stepping|- [refine]]\n");
     return 2;
   }
   try {
