@@ -3,8 +3,9 @@
 // Usage: waam_thermal_peer <problem.json> [stepping [refine]]  (tools/peers.sh runs both and compares them).
 // stepping: "-" (or none) for the solver's default multirate stepping (ThermalSettings), 0 to solve the whole model
 // every micro step (single-rate), a number for far_step_s, or key=value pairs (ApplyStepping). The probes are
-// recorded inside the solver's batches, so the multirate levels keep their steps. refine (default 1) splits each problem cell into refine^3 cells with the same source: the
-// heat of a step goes into the same 2 x 2 x 2 problem cells, so the refined runs converge to the problem's answer.
+// recorded inside the solver's batches, so the multirate levels keep their steps. refine (default 1) splits each
+// problem cell into refine^3 cells with the same source: the heat of a step goes into the same 2 x 2 x 2 problem
+// cells, so the refined runs converge to the problem's answer.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -45,16 +46,16 @@ waam::models::ThermalMaterial ConstantMaterial(const json& spec) {
   return m;
 }
 
-// The temperature at p as FEniCSx evaluates its field at the point: trilinear in the values of the 8 cell centres
-// around it (a cell's value is its centre's to second order); at a cell centre, that cell's value. Registers those
-// centres as the simulation's probes (ThermalSimulation::AddProbe, recorded inside the solver's batches) with their
-// weights. `origin` is the grid's corner as ThermalSimulation lays it (x, y at the boxes' corner, z shifted to put the
-// plate's top on a face).
+// One problem probe read as FEniCSx evaluates its field at the point: trilinear in the values of the 8 cell centres
+// around it (a cell's value is its centre's to second order); at a cell centre, that cell's value.
 struct ProbeStencil {
-  std::vector<std::size_t> probes;  // ThermalSimulation probe indices
+  std::vector<std::size_t> probes;  // the centres' ThermalSimulation probe indices
   std::vector<double> weights;      // trilinear weights, summing to 1
 };
 
+// Registers the centres around p (mm) as the simulation's probes (ThermalSimulation::AddProbe, recorded inside the
+// solver's batches) with their weights. `origin` is the grid's corner as ThermalSimulation lays it (x, y at the
+// boxes' corner, z shifted to put the plate's top on a face).
 ProbeStencil AddProbeStencil(waam::twin::ThermalSimulation& sim, const Eigen::Vector3d& p,
                              const Eigen::Vector3d& origin, double cell_mm) {
   const Eigen::Vector3d u = (p - origin) / cell_mm - Eigen::Vector3d::Constant(0.5);
@@ -186,15 +187,7 @@ json Run(const json& spec, const std::string& stepping, int refine) {
     times.push_back(sim.time_s() - t0);
     records.push_back(sim.RecordProbes());
   }
-  json history = json::object();
-  for (std::size_t r = 0; r < records.size(); ++r) {
-    const std::vector<double> values = sim.ProbeRecord(records[r]);
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      double value = 0.0;
-      for (std::size_t c = 0; c < stencils[i].probes.size(); ++c) value += stencils[i].weights[c] * values[stencils[i].probes[c]];
-      history[names[i]].push_back(value);
-    }
-  }
+  const json history = ProbeHistories(sim, records, names, stencils);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const waam::twin::ThermalStats stats = sim.Stats();
