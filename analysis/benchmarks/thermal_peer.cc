@@ -74,6 +74,22 @@ ProbeStencil AddProbeStencil(waam::twin::ThermalSimulation& sim, const Eigen::Ve
   return stencil;
 }
 
+// Each problem probe's temperatures (degC) over the records, by name.
+json ProbeHistories(const waam::twin::ThermalSimulation& sim, const std::vector<std::size_t>& records,
+                    const std::vector<std::string>& names, const std::vector<ProbeStencil>& stencils) {
+  json history = json::object();
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    const std::vector<double> values = sim.ProbeRecord(records[r]);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const ProbeStencil& stencil = stencils[i];
+      double value = 0.0;
+      for (std::size_t c = 0; c < stencil.probes.size(); ++c) value += stencil.weights[c] * values[stencil.probes[c]];
+      history[names[i]].push_back(value);
+    }
+  }
+  return history;
+}
+
 // The time stepping: "-" or empty keeps ThermalSettings' defaults; a number sets far_step_s (0: single-rate); else
 // comma-separated key=value pairs of the multirate settings (far_step_s, whole_step_s, whole_radius_mm,
 // near_step_s, near_radius_mm, arc_radius_mm, max_step_s, step_growth).
