@@ -393,15 +393,15 @@ void PrintFinished(const Job& job, std::size_t finished, std::size_t n) {
 }
 
 // The finished jobs' entries (moved out of `work`) with their counts by outcome, wall time and reused results.
-struct Entries {
+struct BenchEntries {
   nlohmann::json entries = nlohmann::json::array();
   nlohmann::json counts;
   double wall_s = 0.0;
   std::size_t reused = 0;
 };
 
-Entries CollectEntries(std::vector<Job>* work) {
-  Entries e;
+BenchEntries CollectEntries(std::vector<Job>* work) {
+  BenchEntries e;
   e.counts = {{"pass", 0}, {"expected_fail", 0}, {"fail", 0}, {"total", work->size()}};
   for (Job& job : *work) {
     const std::string outcome = job.entry["outcome"];
@@ -447,7 +447,7 @@ nlohmann::json RunBench(const BenchOptions& options) {
   }
   RunJobs(&work, jobs, budget_mb, report);
 
-  const Entries e = CollectEntries(&work);
+  const BenchEntries e = CollectEntries(&work);
   const fs::path perf_dir = options.perf_dir.empty() ? options.out_dir / "perf" : options.perf_dir;
   nlohmann::json bench = {
       {"scenarios", e.entries},
