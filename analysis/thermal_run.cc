@@ -63,6 +63,8 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   s.convection_w_m2k = thermal.convection_w_m2k;
   s.emissivity = thermal.Emissivity();
   s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
+  s.table_thickness_mm = thermal.table_thickness_mm;
+  s.table_margin_mm = thermal.table_margin_mm;
   s.table_c = thermal.TableC();
   s.heat_source = thermal.heat_source;
   s.pool_depth_beads = thermal.pool_depth_beads;
@@ -79,9 +81,12 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
 }
 
 void CheckProbeInMetal(const twin::ThermalSettings& settings, const Eigen::Vector3d& p_mm, const std::string& where) {
-  WAAM_THROW_UNLESS(settings.substrate_box_mm.contains(p_mm) || settings.deposit_box_mm.contains(p_mm),
+  const Eigen::AlignedBox3d table = twin::TableBoxMm(settings);
+  WAAM_THROW_UNLESS(settings.substrate_box_mm.contains(p_mm) || settings.deposit_box_mm.contains(p_mm) ||
+                        table.contains(p_mm),
                     where << " = [" << p_mm.x() << ", " << p_mm.y() << ", " << p_mm.z() << "]: outside the plate "
                           << BoxText(settings.substrate_box_mm) << " and the part " << BoxText(settings.deposit_box_mm)
+                          << (table.isEmpty() ? "" : " and the table " + BoxText(table))
                           << "; a probe must lie in the metal");
 }
 

@@ -126,6 +126,9 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
     YamlMap table = thermal.Map("table");
     table.Require("conductance_w_m2k");
     ReadFields<ThermalSection>(table, kThermalTableFields, out);
+    WAAM_THROW_UNLESS(out->table_thickness_mm == 0.0 || out->table_conductance_w_m2k > 0.0,
+                      table.Where("conductance_w_m2k") << " = 0 with thickness_mm = " << out->table_thickness_mm
+                                                       << ": a table body needs a contact conductance > 0");
     table.CheckNoUnknownKeys();
   }
   ReadFieldMap<ThermalSection>(thermal, "pool", kThermalPoolFields, out);

@@ -74,6 +74,8 @@ struct ThermalSection {
   std::optional<double> emissivity;  // thermal.emissivity: of every exposed face; absent = each material's own
   double table_conductance_w_m2k = 0.0;  // thermal.table.conductance_w_m2k: plate-table contact (0 = no table)
   std::optional<double> table_c;     // thermal.table.temperature_c (absent: ambient), degC
+  double table_thickness_mm = 0.0;   // thermal.table.thickness_mm: the table as a body under the plate (0 = a sink)
+  double table_margin_mm = 0.0;      // thermal.table.margin_mm: how far that body reaches beyond the plate, mm
   double sample_s = 1.0;             // thermal.sample_s: interval of the probe histories and interpass checks, s
   // thermal.heat_source and thermal.pool.*: the arc's heat source and its pool's semi-axes over the bead's size
   // (twin::ThermalSettings documents each); thermal.liquid_conductivity_factor: k above the liquidus times this.
@@ -136,6 +138,11 @@ inline constexpr std::array kThermalTableFields = {
                                                        "plate-table contact (required in table)"),
     NumField<&ThermalSection::table_c>("temperature_c", "degC", -50.0, 1000.0,
                                        "the table's temperature; absent = ambient_c"),
+    NumField<&ThermalSection::table_thickness_mm>("thickness_mm", "mm", 0.0, 1000.0,
+                                                  "the table as a body of this thickness under the plate; 0 = a "
+                                                  "sink at temperature_c"),
+    NumField<&ThermalSection::table_margin_mm>("margin_mm", "mm", 0.0, 5000.0,
+                                               "how far the table body reaches beyond the plate on every side"),
 };
 inline constexpr std::array kThermalClampFields = {
     NumField<&ThermalClamp::centre_mm>("centre_mm", "mm", -10000.0, 10000.0,

@@ -13,8 +13,9 @@ intervals, and the probes against the thermocouples (docs/THERMAL.md "A real G-c
   log's first arc-on row; the shift is printed.
 - A probe NAME is compared with the column given by --column NAME=COLUMN, else with "Thermocouple <n>" for a probe
   named tc<n>; the simulated history is interpolated linearly at the log's rows inside the simulated span.
-Prints two tables (layers; probes: peak, time of peak, rmse, mean error) and writes the figure (probes, measured and
-simulated) when --figure is given. Exits 2 with one line on stderr on a missing file or column.
+Prints three tables (layers; probes: peak, time of peak, peak error, rmse, mean absolute error, mean error; the
+mean over the compared probes at each logged layer's last arc off and at the end of the log, measured and simulated)
+and writes the figure (probes, measured and simulated) when --figure is given. Exits 2 with one line on stderr on a missing file or column.
 """
 import argparse
 import json
@@ -129,8 +130,9 @@ def main():
         histories = {n: f[f"probes/{n}"][:] for n in names}
     rows = []
     inside = (t_log >= t_sim[0]) & (t_log <= t_sim[-1])
-    print(f"\n{'probe':>6} | {'peak log':>8} {'at':>6} | {'peak sim':>8} {'at':>6} | {'rmse':>6} {'mean err':>8}  (degC, s;"
-          f" over the {inside.sum()} log rows the run spans)")
+    print(f"\n{'probe':>6} | {'peak log':>8} {'at':>6} | {'peak sim':>8} {'at':>6} | {'peak err':>8} | {'rmse':>6} "
+          f"{'mae':>6} {'mean err':>8}  (degC, s; simulated minus measured over the {inside.sum()} log rows the run "
+          f"spans)")
     for n in names:
         match = re.fullmatch(r"tc(\d+)", n)
         column = columns.get(n, f"Thermocouple {match.group(1)}" if match else None)
@@ -144,7 +146,21 @@ def main():
         km, ks = np.argmax(np.where(valid, measured, -np.inf)), np.argmax(histories[n])
         rows.append((n, column, measured, simulated, valid))
         print(f"{n:>6} | {measured[km]:8.1f} {t_log[km]:6.0f} | {histories[n][ks]:8.1f} {t_sim[ks]:6.0f} | "
-              f"{np.sqrt(np.mean(err ** 2)):6.1f} {np.mean(err):8.1f}")
+              f"{histories[n][ks] - measured[km]:+8.1f} | {np.sqrt(np.mean(err ** 2)):6.1f} {np.mean(np.abs(err)):6.1f} "
+              f"{np.mean(err):+8.1f}")
+
+    if rows:
+        # The mean over the compared probes where both have a value: how the part's heat level climbs layer by layer.
+        ends = [layer[-1][1] for layer in logged] + [t_log[inside][-1]]
+        print(f"\n{'at log t':>8} | {'mean log':>8} {'mean sim':>8} {'diff':>6}  (degC; the mean of the compared probes at "
+              f"each logged layer's last arc off, then at the run's last log row)")
+        for te in ends:
+            k = int(np.argmin(np.abs(t_log - te)))
+            pairs = [(m[k], s[k]) for _, _, m, s, v in rows if v[k]]
+            if not pairs:
+                continue
+            ml, ms = np.mean([p[0] for p in pairs]), np.mean([p[1] for p in pairs])
+            print(f"{t_log[k]:8.0f} | {ml:8.1f} {ms:8.1f} {ms - ml:+6.1f}")
 
     if a.figure and rows:
         import matplotlib

@@ -448,6 +448,11 @@ std::vector<BadInput> Catalogue() {
        {"s.yaml:18: thermal.clamps[0]: the patch (x 35 to 55, y -5 to 5 mm) reaches off the plate's top face"}},
       {"thermal-clamp-negative-conductance", "thermal", "s.yaml", {{"s.yaml", ClampScenario("[40, 0]", "-5")}},
        {"s.yaml:18: thermal.clamps[0].conductance_w_m2k = -5"}},
+      {"thermal-table-body-without-contact", "thermal", "s.yaml",
+       {{"s.yaml", ThermalScenario("[0, 10, -2]}\n",
+                                   "[0, 10, -2]}\n  table: {conductance_w_m2k: 0, thickness_mm: 25}\n")}},
+       {"s.yaml:18: thermal.table.conductance_w_m2k = 0 with thickness_mm = 25: a table body needs a contact "
+        "conductance > 0"}},
       {"thermal-arc-without-power", "thermal", "s.yaml",
        {{"s.yaml", ThermalScenario("arc: {power_w: 2000}", "arc: {efficiency: 0.8}")}},
        {"s.yaml:12: process.arc: the arc has no power: give power_w (W), or voltage_v (V) and current_a (A)"}},

@@ -79,6 +79,15 @@ void ThermalState::FaceContact(int cell, int face, double* conductance_w_m2k, do
   }
 }
 
+double ThermalState::InterfaceContact(int cell, int face) const {
+  if (!table_body || (face != 4 && face != 5) || material[cell] != kSubstrate) return 0.0;
+  const Eigen::Vector3i ijk = CellIndex(grid_of[cell]);
+  if (ijk.z() != (face == 4 ? plate_bottom_k : plate_bottom_k - 1)) return 0.0;
+  // The clamps' columns carry the contact under each patch (BuildColumnContacts); elsewhere it is the table's.
+  if (contact.empty()) return settings.table_conductance_w_m2k;
+  return contact[static_cast<std::size_t>(ijk.x() + size.x() * ijk.y())].bottom_w_m2k;
+}
+
 void BuildColumnContacts(ThermalState& s) {
   const ThermalSettings& st = s.settings;
   s.contact.clear();
@@ -154,12 +163,43 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   return id;
 }
 
+namespace {
+
+// The table body's cells: round(thickness / cell) layers (at least one) under the plate's lowest cells, every column
+// whose centre lies in the table's footprint, at the table's temperature.
+void AddTableBody(ThermalState& s, const Eigen::AlignedBox3d& table_mm) {
+  const int layers = std::max(1, static_cast<int>(std::lround(s.settings.table_thickness_mm / s.dx_mm)));
+  s.table_bottom_k = s.plate_bottom_k - layers;
+  WAAM_DEMAND(s.table_bottom_k >= 0);
+  const double h = s.table[kSubstrate].Enthalpy(s.settings.table_c);
+  const Eigen::AlignedBox2d footprint(table_mm.min().head<2>(), table_mm.max().head<2>());
+  for (int k = s.table_bottom_k; k < s.plate_bottom_k; ++k) {
+    for (int j = 0; j < s.size.y(); ++j) {
+      for (int i = 0; i < s.size.x(); ++i) {
+        if (!footprint.contains(s.Centre(i, j, k).head<2>())) continue;
+        const int g = s.GridIndex(i, j, k);
+        s.kind[g] = CellKind::kPlate;
+        s.Activate(g, kSubstrate, h, -1);
+        s.start_enthalpy_j += h * s.CellVolume();
+      }
+    }
+  }
+}
+
+}  // namespace
+
 void InitialiseThermalState(ThermalState& s) {
   const ThermalSettings& st = s.settings;
   s.dx_mm = st.cell_mm;
   s.dx_m = st.cell_mm * 1e-3;
   Eigen::AlignedBox3d all = st.substrate_box_mm;
   all.extend(st.deposit_box_mm);
+  const Eigen::AlignedBox3d table_mm = TableBoxMm(st);
+  s.table_body = !table_mm.isEmpty();
+  if (s.table_body) {
+    all.extend(table_mm);
+    all.extend(Eigen::Vector3d(table_mm.min().x(), table_mm.min().y(), table_mm.min().z() - 2.0 * s.dx_mm));
+  }
   // x and y start at the boxes' corner; z is shifted so that the plate's top is a cell face.
   const double top = st.substrate_box_mm.max().z();
   s.origin_mm = all.min();
@@ -194,6 +234,7 @@ void InitialiseThermalState(ThermalState& s) {
   }
   WAAM_THROW_UNLESS(!s.grid_of.empty(), "thermal substrate box holds no cell centre at cell_mm = "
                                             << st.cell_mm << ": the plate must be at least one cell thick");
+  if (s.table_body) AddTableBody(s, table_mm);
   BuildColumnContacts(s);
 }
 

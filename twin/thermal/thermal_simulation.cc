@@ -139,6 +139,15 @@ void Pump(ThermalState& s, bool flush) {
 
 }  // namespace
 
+Eigen::AlignedBox3d TableBoxMm(const ThermalSettings& st) {
+  if (!(st.table_thickness_mm > 0.0)) return Eigen::AlignedBox3d();
+  const Eigen::Vector3d margin(st.table_margin_mm, st.table_margin_mm, 0.0);
+  Eigen::Vector3d lo = st.substrate_box_mm.min() - margin, hi = st.substrate_box_mm.max() + margin;
+  hi.z() = st.substrate_box_mm.min().z();
+  lo.z() = hi.z() - st.table_thickness_mm;
+  return Eigen::AlignedBox3d(lo, hi);
+}
+
 double EnergyBalance::RelativeError() const {
   return input_j > 0.0 ? std::abs(input_j - stored_j - lost_j) / input_j : 0.0;
 }
@@ -149,8 +158,15 @@ void CheckThermalSettings(const ThermalSettings& st) {
   CheckBox(st.substrate_box_mm, "substrate_box_mm");
   CheckBox(st.deposit_box_mm, "deposit_box_mm");
   CheckRange(std::isfinite(st.cell_mm) && st.cell_mm > 0.0, "cell_mm", st.cell_mm, "must be > 0");
+  CheckRange(std::isfinite(st.table_thickness_mm) && st.table_thickness_mm >= 0.0, "table_thickness_mm",
+             st.table_thickness_mm, "must be >= 0 (0: no table body)");
+  CheckRange(std::isfinite(st.table_margin_mm) && st.table_margin_mm >= 0.0, "table_margin_mm", st.table_margin_mm,
+             "must be >= 0");
+  CheckRange(st.table_thickness_mm == 0.0 || st.table_conductance_w_m2k > 0.0, "table_conductance_w_m2k",
+             st.table_conductance_w_m2k, "must be > 0 with a table body (table_thickness_mm > 0)");
   Eigen::AlignedBox3d all = st.substrate_box_mm;
   all.extend(st.deposit_box_mm);
+  if (st.table_thickness_mm > 0.0) all.extend(TableBoxMm(st));
   const Eigen::Vector3d cells = all.sizes() / st.cell_mm + Eigen::Vector3d::Constant(2.0);
   CheckRange(cells.prod() <= kMaxGridCells, "cell_mm", st.cell_mm,
              "the grid over the plate and the deposit box would exceed 6.4e7 cells: use larger cells");
@@ -412,7 +428,7 @@ EnergyBalance ThermalSimulation::Energy() const {
   EnergyBalance e = s.energy;
   e.stored_j = 0.0;
   for (std::size_t c = 0; c < s.enthalpy.size(); ++c) e.stored_j += s.enthalpy[c] - s.reference_h[s.material[c]];
-  e.stored_j *= s.CellVolume();
+  e.stored_j = e.stored_j * s.CellVolume() - s.start_enthalpy_j;
   e.lost_j = e.convection_j + e.radiation_j + e.table_j;
   return e;
 }

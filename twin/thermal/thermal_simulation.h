@@ -39,6 +39,13 @@ struct ThermalSettings {
   // and radiation there instead).
   double table_conductance_w_m2k = 0.0;     // W/(m^2 K)
   double table_c = 20.0;                    // table temperature, degC
+  // The table as a body (docs/THERMAL.md "The table as a body"): with table_thickness_mm > 0, a slab of the plate's
+  // material that thick lies under the plate, reaching table_margin_mm beyond it on every side and starting at
+  // table_c; the plate's bottom conducts into it through table_conductance_w_m2k (under a clamp: the clamp's
+  // under_conductance_w_m2k) in series with the two half cells, and the slab's other faces lose by convection and
+  // radiation. 0 = no body: the plate's bottom loses to a table held at table_c.
+  double table_thickness_mm = 0.0;          // mm, >= 0
+  double table_margin_mm = 0.0;             // mm, >= 0
   // Clamps on the plate's top face, each inside the plate's top face (x and y); a face partly under a patch loses
   // through the patch in proportion to the area covered, and by convection and radiation through the rest.
   std::vector<ClampPatch> clamps;
@@ -75,6 +82,10 @@ struct ThermalSettings {
   double step_growth = 1.5;                 // each step with no arc at most this times the previous one
   double solver_tolerance_c = 0.01;         // CG stops when every Jacobi correction is below this, K
 };
+
+// The table body's box in the part frame, mm: under the plate, table_margin_mm wider on every side, table_thickness_mm
+// thick; empty without a table body (table_thickness_mm = 0). On the grid its top is the plate's lowest cell face.
+Eigen::AlignedBox3d TableBoxMm(const ThermalSettings& settings);
 
 // Throws InputError naming the first setting out of its range (e.g. "thermal setting cell_mm = 0: must be > 0"),
 // or a material table that is not a function of temperature or has a value <= 0.

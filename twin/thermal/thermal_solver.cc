@@ -146,7 +146,12 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
           const double kj = s.conductivity[j];
           // Two half cells in series: G = A / (dx/2k + dx/2kj), A = dx^2, times the factor of each re-entrant
           // edge the face touches.
-          const double g = 2.0 * k * kj / (k + kj) * s.dx_m * EdgeFactor(s, c, j, f, m1);
+          double g = 2.0 * k * kj / (k + kj) * s.dx_m * EdgeFactor(s, c, j, f, m1);
+          // The plate's bottom on a table body: the contact conductance h A in series (docs/THERMAL.md).
+          if (s.table_body) {
+            const double h = s.InterfaceContact(c, f);
+            if (h > 0.0) g = 1.0 / (1.0 / g + 1.0 / (h * s.dx_m * s.dx_m));
+          }
           L.conductance[i][f] = g;
           diagonal += g;
           if (local_of[j] != kNoCell) {

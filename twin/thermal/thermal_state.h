@@ -124,6 +124,11 @@ struct ThermalState {
   double dx_m = 0.002;
   int plate_bottom_k = 0;                               // z index of the plate's lowest cells
   int plate_top_k = 0;                                  // z index of the plate's highest cells
+  // The table body (settings.table_thickness_mm > 0): its cells (plate cells of the substrate's material) fill the
+  // z indices [table_bottom_k, plate_bottom_k) under the table's footprint and start at settings.table_c.
+  bool table_body = false;
+  int table_bottom_k = 0;
+  double start_enthalpy_j = 0.0;                        // J: the table body's enthalpy at t = 0 (plate reference)
   // Per column i + size.x j, with settings.clamps only (empty: no clamp; the bottom's contact is the table's).
   std::vector<ColumnContact> contact;
   std::array<ThermalPropertyTable, 2> table;            // deposit, substrate
@@ -191,6 +196,9 @@ struct ThermalState {
   // The contact of face `face` of active cell `cell` with the table or a clamp: conductance (W/(m^2 K)) to the
   // table's temperature and the share of the face open to the air. Faces of neither kind: (0, 1).
   void FaceContact(int cell, int face, double* conductance_w_m2k, double* air) const;
+  // With a table body: the contact conductance (W/(m^2 K)) across face `face` of active cell `cell` when that face
+  // joins the plate's bottom to the table's top, else 0.
+  double InterfaceContact(int cell, int face) const;
 };
 
 // Fills s.contact from the settings' clamps (the grid already built): each column's share of each patch, exact
