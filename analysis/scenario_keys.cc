@@ -184,7 +184,6 @@ void ValidateScenario(const Scenario& s) {
   CheckFields<planner::ProgramSettings>(planner::kProgramFields, s.program, "program");
   CheckFields<planner::ProgramSettings>(planner::kProgramFrameFields, s.program, "program.frame");
   CheckFields<planner::ProgramSettings>(planner::kProgramGcodeFields, s.program, "program.gcode");
-  CheckFields<planner::ProgramSettings>(planner::kProgramYaskawaFields, s.program, "program.yaskawa");
   CheckFields<planner::ProgramFrames>(planner::kProgramFramesFields, s.program.frames, "program.frames");
   twin::ValidateSimulationSettings(s.simulation);
   CheckFields<RunSettings>(kRunFields, s.run, "run");
