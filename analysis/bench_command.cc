@@ -376,7 +376,11 @@ void CheckBenchOverrides(const std::vector<BenchRun>& runs, const BenchOptions& 
   }
 }
 
-nlohmann::json RunBench(const BenchOptions& options) {
+namespace {
+
+// Every run of the bench before sharding: the options' runs, or one per scenario file. Throws InputError for options
+// out of range, a missing waam executable or two runs with one result folder.
+std::vector<BenchRun> AllRuns(const BenchOptions& options) {
   std::error_code ec;
   WAAM_THROW_UNLESS(fs::is_regular_file(options.waam_binary, ec),
                     "waam executable " << options.waam_binary.string() << " not found");
@@ -393,6 +397,44 @@ nlohmann::json RunBench(const BenchOptions& options) {
       WAAM_THROW_UNLESS(all[i].id != all[j].id, "two runs share the result folder '" << all[i].id << "'");
     }
   }
+  return all;
+}
+
+// One line on stderr for the `finished`-th of `n` runs to end.
+void PrintFinished(const Job& job, std::size_t finished, std::size_t n) {
+  const nlohmann::json& entry = job.entry;
+  std::fprintf(stderr, "bench [%zu/%zu] %s: %s (exit %d) %.1f s, %.0f MiB peak%s%s%s\n", finished, n,
+               job.run.id.c_str(), entry["outcome"].get<std::string>().c_str(), entry["exit_code"].get<int>(),
+               entry["timing"].value("wall_s", 0.0), entry["timing"].value("peak_rss_mb", 0.0),
+               job.reused ? " (result reused)" : "", entry.contains("error") ? ": " : "",
+               entry.contains("error") ? entry["error"].get<std::string>().c_str() : "");
+}
+
+// The finished jobs' entries (moved out of `work`) with their counts by outcome, wall time and reused results.
+struct BenchEntries {
+  nlohmann::json entries = nlohmann::json::array();
+  nlohmann::json counts;
+  double wall_s = 0.0;
+  std::size_t reused = 0;
+};
+
+BenchEntries CollectEntries(std::vector<Job>* work) {
+  BenchEntries e;
+  e.counts = {{"pass", 0}, {"expected_fail", 0}, {"fail", 0}, {"total", work->size()}};
+  for (Job& job : *work) {
+    const std::string outcome = job.entry["outcome"];
+    e.counts[outcome] = e.counts[outcome].get<int>() + 1;
+    e.wall_s += job.entry["timing"].value("wall_s", 0.0);
+    e.reused += job.reused ? 1 : 0;
+    e.entries.push_back(std::move(job.entry));
+  }
+  return e;
+}
+
+}  // namespace
+
+nlohmann::json RunBench(const BenchOptions& options) {
+  const std::vector<BenchRun> all = AllRuns(options);
   // The shard: every shard_count-th run, so shards of a sorted folder get a mix of scenarios.
   std::vector<BenchRun> runs;
   for (std::size_t i = options.shard_index; i < all.size(); i += options.shard_count) runs.push_back(all[i]);
@@ -412,13 +454,7 @@ nlohmann::json RunBench(const BenchOptions& options) {
   std::size_t finished = 0;
   auto report = [&](Job& job) {
     ++finished;
-    if (options.quiet) return;
-    const nlohmann::json& entry = job.entry;
-    std::fprintf(stderr, "bench [%zu/%zu] %s: %s (exit %d) %.1f s, %.0f MiB peak%s%s%s\n", finished, n,
-                 job.run.id.c_str(), entry["outcome"].get<std::string>().c_str(), entry["exit_code"].get<int>(),
-                 entry["timing"].value("wall_s", 0.0), entry["timing"].value("peak_rss_mb", 0.0),
-                 job.reused ? " (result reused)" : "", entry.contains("error") ? ": " : "",
-                 entry.contains("error") ? entry["error"].get<std::string>().c_str() : "");
+    if (!options.quiet) PrintFinished(job, finished, n);
   };
   for (Job& job : work) {
     if (job.done) report(job);
@@ -430,26 +466,16 @@ nlohmann::json RunBench(const BenchOptions& options) {
   }
   RunJobs(&work, jobs, budget_mb, report);
 
-  nlohmann::json entries = nlohmann::json::array();
-  nlohmann::json counts = {{"pass", 0}, {"expected_fail", 0}, {"fail", 0}, {"total", n}};
-  double entries_wall_s = 0.0;
-  std::size_t reused_count = 0;
-  for (Job& job : work) {
-    const std::string outcome = job.entry["outcome"];
-    counts[outcome] = counts[outcome].get<int>() + 1;
-    entries_wall_s += job.entry["timing"].value("wall_s", 0.0);
-    reused_count += job.reused ? 1 : 0;
-    entries.push_back(std::move(job.entry));
-  }
+  const BenchEntries e = CollectEntries(&work);
   const fs::path perf_dir = options.perf_dir.empty() ? options.out_dir / "perf" : options.perf_dir;
   nlohmann::json bench = {
-      {"scenarios", entries},
-      {"counts", counts},
-      {"reference", ReferenceComparison(entries)},
+      {"scenarios", e.entries},
+      {"counts", e.counts},
+      {"reference", ReferenceComparison(e.entries)},
       {"timing",
        {{"total_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
-        {"scenarios_wall_s", entries_wall_s},
-        {"reused_results", reused_count},
+        {"scenarios_wall_s", e.wall_s},
+        {"reused_results", e.reused},
         {"hardware_threads", std::thread::hardware_concurrency()},
         {"jobs", jobs},
         {"threads_per_job", child_threads},

@@ -30,15 +30,17 @@ bool SameFolder(const fs::path& a, const fs::path& b) {
   return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
 }
 
-}  // namespace
+// One bench folder given to --merge and its bench.json.
+struct Part {
+  fs::path dir;
+  nlohmann::json bench;
+};
 
-nlohmann::json MergeBench(const std::vector<fs::path>& dirs, const fs::path& out_dir) {
-  WAAM_THROW_UNLESS(!dirs.empty(), "--merge needs at least one bench folder");
-  const auto start = std::chrono::steady_clock::now();
-  struct Part {
-    fs::path dir;
-    nlohmann::json bench;
-  };
+// A scenario entry of a bench.json and the folder holding its results.
+using Entries = std::vector<std::pair<nlohmann::json, fs::path>>;
+
+// Reads the bench.json of each folder; throws InputError for one that waam bench did not write.
+std::vector<Part> ReadParts(const std::vector<fs::path>& dirs) {
   std::vector<Part> parts;
   for (const fs::path& dir : dirs) {
     const fs::path file = dir / "bench.json";
@@ -48,54 +50,72 @@ nlohmann::json MergeBench(const std::vector<fs::path>& dirs, const fs::path& out
                       file.string() << ": not a bench.json written by waam bench");
     parts.push_back({dir, bench});
   }
+  return parts;
+}
 
-  // Shards go back in the order of one run (run i is entry i / count of shard i % count); unsharded benches are
-  // concatenated.
-  const bool sharded = parts.front().bench.contains("shard");
-  std::vector<std::pair<nlohmann::json, fs::path>> entries;  // entry, the folder holding its results
-  if (sharded) {
-    const nlohmann::json& first = parts.front().bench["shard"];
-    const int count = first.value("count", 0);
-    const std::size_t total = first.value("runs_total", std::size_t{0});
-    std::vector<const Part*> by_index(static_cast<std::size_t>(std::max(count, 0)), nullptr);
-    for (const Part& part : parts) {
-      WAAM_THROW_UNLESS(part.bench.contains("shard"), (part.dir / "bench.json").string()
-                                                          << ": not a shard, but " << (parts.front().dir / "bench.json").string()
-                                                          << " is; merge the shards of one bench");
-      const nlohmann::json& shard = part.bench["shard"];
-      const int index = shard.value("index", -1);
-      WAAM_THROW_UNLESS(shard.value("count", 0) == count && shard.value("runs_total", std::size_t{0}) == total &&
-                            index >= 0 && index < count,
-                        (part.dir / "bench.json").string() << ": shard " << index << "/" << shard.value("count", 0)
-                                                           << " of " << shard.value("runs_total", std::size_t{0})
-                                                           << " runs is not of the same bench as shard 0.."
-                                                           << count - 1 << " of " << total << " runs");
-      WAAM_THROW_UNLESS(by_index[index] == nullptr, "shard " << index << "/" << count << " given twice: "
-                                                             << by_index[index]->dir.string() << " and "
-                                                             << part.dir.string());
-      WAAM_THROW_UNLESS(part.bench.value("sweep", nlohmann::json()) == parts.front().bench.value("sweep", nlohmann::json()),
-                        part.dir.string() << " and " << parts.front().dir.string() << " hold different sweeps");
-      by_index[index] = &part;
-    }
-    for (int k = 0; k < count; ++k) {
-      WAAM_THROW_UNLESS(by_index[k] != nullptr, "shard " << k << "/" << count << " missing from --merge");
-    }
-    for (std::size_t i = 0; i < total; ++i) {
-      const Part& part = *by_index[i % count];
-      const std::size_t m = i / count;
-      WAAM_THROW_UNLESS(m < part.bench["scenarios"].size(),
-                        (part.dir / "bench.json").string() << ": shard holds " << part.bench["scenarios"].size()
-                                                           << " scenarios, fewer than its share of " << total);
-      entries.emplace_back(part.bench["scenarios"][m], part.dir);
-    }
-  } else {
-    for (const Part& part : parts) {
-      WAAM_THROW_UNLESS(!part.bench.contains("shard"), (part.dir / "bench.json").string()
-                                                           << ": a shard, but " << (parts.front().dir / "bench.json").string()
-                                                           << " is not; merge the shards of one bench");
-      for (const nlohmann::json& e : part.bench["scenarios"]) entries.emplace_back(e, part.dir);
-    }
+// The shards ordered by index; throws InputError for a part that is not a shard of the same bench as the first,
+// a shard given twice or missing.
+std::vector<const Part*> ShardsByIndex(const std::vector<Part>& parts) {
+  const nlohmann::json& first = parts.front().bench["shard"];
+  const int count = first.value("count", 0);
+  const std::size_t total = first.value("runs_total", std::size_t{0});
+  std::vector<const Part*> by_index(static_cast<std::size_t>(std::max(count, 0)), nullptr);
+  for (const Part& part : parts) {
+    WAAM_THROW_UNLESS(part.bench.contains("shard"), (part.dir / "bench.json").string()
+                                                        << ": not a shard, but " << (parts.front().dir / "bench.json").string()
+                                                        << " is; merge the shards of one bench");
+    const nlohmann::json& shard = part.bench["shard"];
+    const int index = shard.value("index", -1);
+    WAAM_THROW_UNLESS(shard.value("count", 0) == count && shard.value("runs_total", std::size_t{0}) == total &&
+                          index >= 0 && index < count,
+                      (part.dir / "bench.json").string() << ": shard " << index << "/" << shard.value("count", 0)
+                                                         << " of " << shard.value("runs_total", std::size_t{0})
+                                                         << " runs is not of the same bench as shard 0.."
+                                                         << count - 1 << " of " << total << " runs");
+    WAAM_THROW_UNLESS(by_index[index] == nullptr, "shard " << index << "/" << count << " given twice: "
+                                                           << by_index[index]->dir.string() << " and "
+                                                           << part.dir.string());
+    WAAM_THROW_UNLESS(part.bench.value("sweep", nlohmann::json()) == parts.front().bench.value("sweep", nlohmann::json()),
+                      part.dir.string() << " and " << parts.front().dir.string() << " hold different sweeps");
+    by_index[index] = &part;
   }
+  for (int k = 0; k < count; ++k) {
+    WAAM_THROW_UNLESS(by_index[k] != nullptr, "shard " << k << "/" << count << " missing from --merge");
+  }
+  return by_index;
+}
+
+// The shards' entries in the order of one run: run i is entry i / count of shard i % count.
+Entries ShardEntries(const std::vector<Part>& parts) {
+  const std::vector<const Part*> by_index = ShardsByIndex(parts);
+  const std::size_t count = by_index.size();
+  const std::size_t total = parts.front().bench["shard"].value("runs_total", std::size_t{0});
+  Entries entries;
+  for (std::size_t i = 0; i < total; ++i) {
+    const Part& part = *by_index[i % count];
+    const std::size_t m = i / count;
+    WAAM_THROW_UNLESS(m < part.bench["scenarios"].size(),
+                      (part.dir / "bench.json").string() << ": shard holds " << part.bench["scenarios"].size()
+                                                         << " scenarios, fewer than its share of " << total);
+    entries.emplace_back(part.bench["scenarios"][m], part.dir);
+  }
+  return entries;
+}
+
+// The entries of unsharded benches, one after the other; throws InputError for a shard among them.
+Entries ConcatenatedEntries(const std::vector<Part>& parts) {
+  Entries entries;
+  for (const Part& part : parts) {
+    WAAM_THROW_UNLESS(!part.bench.contains("shard"), (part.dir / "bench.json").string()
+                                                         << ": a shard, but " << (parts.front().dir / "bench.json").string()
+                                                         << " is not; merge the shards of one bench");
+    for (const nlohmann::json& e : part.bench["scenarios"]) entries.emplace_back(e, part.dir);
+  }
+  return entries;
+}
+
+// Throws InputError for an entry without a usable folder name as id, or an id in two entries.
+void CheckUniqueIds(const Entries& entries) {
   std::map<std::string, fs::path> seen;
   for (const auto& [entry, dir] : entries) {
     const std::string id = entry.value("id", "");
@@ -104,6 +124,17 @@ nlohmann::json MergeBench(const std::vector<fs::path>& dirs, const fs::path& out
     const auto [it, fresh] = seen.emplace(id, dir);
     WAAM_THROW_UNLESS(fresh, "scenario '" << id << "' is in both " << it->second.string() << " and " << dir.string());
   }
+}
+
+}  // namespace
+
+nlohmann::json MergeBench(const std::vector<fs::path>& dirs, const fs::path& out_dir) {
+  WAAM_THROW_UNLESS(!dirs.empty(), "--merge needs at least one bench folder");
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Part> parts = ReadParts(dirs);
+  // Shards go back in the order of one run; unsharded benches are concatenated.
+  Entries entries = parts.front().bench.contains("shard") ? ShardEntries(parts) : ConcatenatedEntries(parts);
+  CheckUniqueIds(entries);
 
   ClaimOutputDirectory(out_dir);
   nlohmann::json scenarios = nlohmann::json::array();

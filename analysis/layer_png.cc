@@ -25,6 +25,7 @@ constexpr int kMargin = 40;      // px
 struct LayerView {
   Eigen::Vector2d min;
   double scale = 1.0;  // px per mm
+  int width = kImageSize;
   int height = kImageSize;
   cv::Point ToPixel(const Eigen::Vector2d& p) const {
     return {kMargin + static_cast<int>(std::lround((p.x() - min.x()) * scale)),
@@ -58,19 +59,8 @@ void DashedLine(cv::Mat& image, cv::Point a, cv::Point b, const cv::Scalar& colo
   }
 }
 
-}  // namespace
-
-void WriteLayerPng(const planner::LayerPath& layer, const std::string& part, const std::filesystem::path& path) {
-  // Draw in the slice plane, seen along the build direction, so the slice and the path overlay; a cone or cylinder
-  // layer (slice in the development plane) shows its path seen from +z and no slice.
-  const std::vector<planner::PolygonWithHoles> no_slice;
-  const std::vector<planner::PolygonWithHoles>& slice = layer.slice_in_plane ? layer.slice : no_slice;
-  const Eigen::Matrix<double, 3, 2> axes =
-      layer.slice_in_plane ? layer.slice_axes_P : Eigen::Matrix<double, 3, 2>::Identity();
-  const Eigen::Vector3d origin = layer.slice_in_plane ? layer.slice_origin_P : Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector2d> at(layer.points.size());  // the points in the picture's plane
-  for (std::size_t i = 0; i < at.size(); ++i) at[i] = axes.transpose() * (layer.points[i].p_P - origin);
-
+// The view that fits the slice's outer boundaries and the points `at` (mm, the picture's plane) into the image.
+LayerView FitView(const std::vector<planner::PolygonWithHoles>& slice, const std::vector<Eigen::Vector2d>& at) {
   Eigen::Vector2d lo(1e300, 1e300);
   Eigen::Vector2d hi(-1e300, -1e300);
   auto grow = [&](const Eigen::Vector2d& p) {
@@ -82,16 +72,17 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::string& part, con
   }
   for (const Eigen::Vector2d& p : at) grow(p);
   if (lo.x() > hi.x()) lo = hi = Eigen::Vector2d::Zero();
-
   const Eigen::Vector2d extent = (hi - lo).cwiseMax(1e-6);
   LayerView view;
   view.min = lo;
   view.scale = (kImageSize - 2 * kMargin) / std::max(extent.x(), extent.y());
-  const int width = 2 * kMargin + static_cast<int>(std::ceil(extent.x() * view.scale));
+  view.width = 2 * kMargin + static_cast<int>(std::ceil(extent.x() * view.scale));
   view.height = 2 * kMargin + static_cast<int>(std::ceil(extent.y() * view.scale));
-  cv::Mat image(view.height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  return view;
+}
 
-  // Slice: outer boundaries grey, holes back to white.
+// Slice: outer boundaries grey, holes back to white.
+void DrawSlice(const std::vector<planner::PolygonWithHoles>& slice, const LayerView& view, cv::Mat& image) {
   for (const planner::PolygonWithHoles& region : slice) {
     std::vector<std::vector<cv::Point>> outer = {ToPixels(region.outer, view)};
     cv::fillPoly(image, outer, cv::Scalar(225, 225, 225), cv::LINE_AA);
@@ -100,22 +91,26 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::string& part, con
       cv::fillPoly(image, h, cv::Scalar(255, 255, 255), cv::LINE_AA);
     }
   }
+}
 
-  // Beads at their planned width, translucent, so uncovered parts of the slice stay visible.
-  const std::size_t n = layer.points.size();
-  {
-    cv::Mat beads = image.clone();
-    for (std::size_t i = 1; i < n; ++i) {
-      if (!layer.points[i].weld) continue;
-      const int thickness = std::max(1, static_cast<int>(std::lround(layer.points[i].bead_width_mm * view.scale)));
-      cv::line(beads, view.ToPixel(at[i - 1]), view.ToPixel(at[i]), cv::Scalar(150, 200, 245), thickness,
-               cv::LINE_AA);
-    }
-    cv::addWeighted(beads, 0.6, image, 0.4, 0.0, image);
+// Beads at their planned width, translucent, so uncovered parts of the slice stay visible.
+void DrawBeads(const planner::LayerPath& layer, const std::vector<Eigen::Vector2d>& at, const LayerView& view,
+               cv::Mat& image) {
+  cv::Mat beads = image.clone();
+  for (std::size_t i = 1; i < layer.points.size(); ++i) {
+    if (!layer.points[i].weld) continue;
+    const int thickness = std::max(1, static_cast<int>(std::lround(layer.points[i].bead_width_mm * view.scale)));
+    cv::line(beads, view.ToPixel(at[i - 1]), view.ToPixel(at[i]), cv::Scalar(150, 200, 245), thickness, cv::LINE_AA);
   }
+  cv::addWeighted(beads, 0.6, image, 0.4, 0.0, image);
+}
 
-  // Path centre line: weld moves in sequence colours, travel dashed grey; green dot at arc start, red cross at stop.
-  // Colour by path length travelled, so the sequence reads the same however finely a curve is divided.
+// Path centre line: weld moves in sequence colours, travel dashed grey; green dot at arc start, red cross at stop.
+// Coloured by path length travelled, so the sequence reads the same however finely a curve is divided. Returns the
+// length of the colour scale (mm).
+double DrawPath(const planner::LayerPath& layer, const std::vector<Eigen::Vector2d>& at, const LayerView& view,
+                cv::Mat& image) {
+  const std::size_t n = layer.points.size();
   std::vector<double> along(n, 0.0);
   for (std::size_t i = 1; i < n; ++i) along[i] = along[i - 1] + (layer.points[i].p_P - layer.points[i - 1].p_P).norm();
   const double total = n > 0 ? std::max(along.back(), 1e-9) : 1.0;
@@ -136,26 +131,50 @@ void WriteLayerPng(const planner::LayerPath& layer, const std::string& part, con
       cv::drawMarker(image, view.ToPixel(at[i]), cv::Scalar(0, 0, 220), cv::MARKER_TILTED_CROSS, 14, 2);
     }
   }
+  return total;
+}
 
-  char caption[128];
+// The note in the picture's corner on how the layer is seen: a curved layer from +z, a tilted one along its build
+// direction; none for a flat layer seen from +z.
+void DrawViewNote(const planner::LayerPath& layer, cv::Mat& image) {
+  char note[128];
   const Eigen::Vector3d& dir = layer.build_dir_P;
   if (!layer.slice_in_plane) {
-    std::snprintf(caption, sizeof(caption), "curved layer seen from +z; its slice (development plane) not drawn");
+    std::snprintf(note, sizeof(note), "curved layer seen from +z; its slice (development plane) not drawn");
   } else if ((dir - Eigen::Vector3d::UnitZ()).norm() > 1e-9) {
-    std::snprintf(caption, sizeof(caption), "seen along the build direction (%.2f, %.2f, %.2f)", dir.x(), dir.y(),
-                  dir.z());
+    std::snprintf(note, sizeof(note), "seen along the build direction (%.2f, %.2f, %.2f)", dir.x(), dir.y(), dir.z());
   } else {
-    caption[0] = '\0';
+    return;
   }
-  if (caption[0] != '\0') {
-    cv::putText(image, caption, cv::Point(10, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  }
+  cv::putText(image, note, cv::Point(10, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+void WriteLayerPng(const planner::LayerPath& layer, const std::string& part, const std::filesystem::path& path) {
+  // Draw in the slice plane, seen along the build direction, so the slice and the path overlay; a cone or cylinder
+  // layer (slice in the development plane) shows its path seen from +z and no slice.
+  const std::vector<planner::PolygonWithHoles> no_slice;
+  const std::vector<planner::PolygonWithHoles>& slice = layer.slice_in_plane ? layer.slice : no_slice;
+  const Eigen::Matrix<double, 3, 2> axes =
+      layer.slice_in_plane ? layer.slice_axes_P : Eigen::Matrix<double, 3, 2>::Identity();
+  const Eigen::Vector3d origin = layer.slice_in_plane ? layer.slice_origin_P : Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector2d> at(layer.points.size());  // the points in the picture's plane
+  for (std::size_t i = 0; i < at.size(); ++i) at[i] = axes.transpose() * (layer.points[i].p_P - origin);
+
+  const LayerView view = FitView(slice, at);
+  cv::Mat image(view.height, view.width, CV_8UC3, cv::Scalar(255, 255, 255));
+  DrawSlice(slice, view, image);
+  DrawBeads(layer, at, view, image);
+  const double total = DrawPath(layer, at, view, image);
+  DrawViewNote(layer, image);
 
   // The picture spans its margins too: x_mm = lo.x + (px - kMargin) / scale, rows with y up.
-  const double x0 = lo.x() - kMargin / view.scale, y0 = lo.y() - kMargin / view.scale;
+  const double x0 = view.min.x() - kMargin / view.scale, y0 = view.min.y() - kMargin / view.scale;
   const ColourScale sequence = ColourMapScale(cv::COLORMAP_JET, 0.0, total, "weld path [mm]");
   const bool xy = layer.slice_in_plane ? layer.slice_axes_P.isApprox(Eigen::Matrix<double, 3, 2>::Identity(), 1e-9)
                                        : true;
+  char caption[128];
   std::snprintf(caption, sizeof(caption), "%s: layer %d, z = %.2f mm: weld path by sequence; green start, red stop",
                 part.c_str(), layer.index, layer.z_mm);
   const FramedPicture framed = FramePicture(image, x0, x0 + image.cols / view.scale, y0, y0 + image.rows / view.scale,

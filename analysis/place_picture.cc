@@ -43,91 +43,131 @@ void Hatch(cv::Mat& img, const cv::Rect& r) {
   }
 }
 
-}  // namespace
+// The picture's grid: the first two searched variables vx, vy (-1: one or none searched, a strip or a single cell),
+// nx x ny cells, per cell the best layout over the other variables by the coarse pass (-1: none).
+struct MarginGrid {
+  int vx = -1, vy = -1;
+  std::size_t nx = 1, ny = 1;
+  std::vector<int> cell_best;
+};
 
-void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path) {
-  // The axes: the first two searched variables (one or none searched: a strip or a single cell).
+MarginGrid BestPerCell(const PlaceResult& result) {
+  MarginGrid g;
   std::vector<int> axes;
   for (int v = 0; v < kPlaceVars && axes.size() < 2; ++v) {
     if (result.values[v].size() > 1) axes.push_back(v);
   }
-  const int vx = axes.empty() ? -1 : axes[0];
-  const int vy = axes.size() < 2 ? -1 : axes[1];
-  const std::size_t nx = vx < 0 ? 1 : result.values[vx].size();
-  const std::size_t ny = vy < 0 ? 1 : result.values[vy].size();
+  g.vx = axes.empty() ? -1 : axes[0];
+  g.vy = axes.size() < 2 ? -1 : axes[1];
+  g.nx = g.vx < 0 ? 1 : result.values[g.vx].size();
+  g.ny = g.vy < 0 ? 1 : result.values[g.vy].size();
   const auto index_of = [&](int v, double value) {
     if (v < 0) return std::size_t{0};
     const std::vector<double>& values = result.values[v];
     return static_cast<std::size_t>(std::find(values.begin(), values.end(), value) - values.begin());
   };
-  // Per cell the best layout over the other variables, by the coarse pass.
-  std::vector<int> cell_best(nx * ny, -1);
+  g.cell_best.assign(g.nx * g.ny, -1);
   for (std::size_t i = 0; i < result.layouts.size(); ++i) {
-    const std::size_t c = index_of(vy, vy < 0 ? 0.0 : result.layouts[i][vy]) * nx +
-                          index_of(vx, vx < 0 ? 0.0 : result.layouts[i][vx]);
-    if (cell_best[c] < 0 || BetterLayout(result.coarse[i], result.coarse[cell_best[c]])) cell_best[c] = static_cast<int>(i);
+    const std::size_t c = index_of(g.vy, g.vy < 0 ? 0.0 : result.layouts[i][g.vy]) * g.nx +
+                          index_of(g.vx, g.vx < 0 ? 0.0 : result.layouts[i][g.vx]);
+    int& best = g.cell_best[c];
+    if (best < 0 || BetterLayout(result.coarse[i], result.coarse[best])) best = static_cast<int>(i);
   }
+  return g;
+}
 
-  const int cell = static_cast<int>(std::clamp<std::size_t>(720 / std::max(nx, ny), 12, 90));
-  const int left = 110, top = 90, bottom = 110;
-  const int width = std::max(720, left + cell * static_cast<int>(nx) + 40);
-  const int height = top + cell * static_cast<int>(ny) + bottom;
-  cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  const auto text = [&](const std::string& s, int x, int y, double scale, const cv::Scalar& colour) {
+// The image and where the grid sits in it: cells `cell` px square, the first column at `left`, the top row at `top`.
+struct MarginCanvas {
+  cv::Mat img;
+  int cell = 0, left = 110, top = 90;
+  void Text(const std::string& s, int x, int y, double scale, const cv::Scalar& colour) {
     cv::putText(img, s, {x, y}, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
-  };
-  text(std::string("waam place: ") + (result.feasible ? "feasible" : "no layout passes") +
-           " - best margin per cell over the other variables (coarse pass)",
-       10, 25, 0.55, cv::Scalar(0, 0, 0));
-  text("green: passes (darker = larger margin, 1 = 10 deg / 10 mm); red: violating samples; circle: the answer",
-       10, 50, 0.45, cv::Scalar(60, 60, 60));
-  if (result.coarse_bounded > 0) {
-    text("hatched: pruned early (a bound: margin <= / violating samples >= the figure)", 10, 68, 0.45,
-         cv::Scalar(60, 60, 60));
   }
+};
+
+// Each cell: its colour, hatching when pruned early, its figure when it fits, a circle on the answer's cell.
+void DrawCells(const PlaceResult& result, const MarginGrid& g, MarginCanvas& canvas) {
   const Layout& best = result.layouts[result.best];
-  for (std::size_t iy = 0; iy < ny; ++iy) {
-    for (std::size_t ix = 0; ix < nx; ++ix) {
-      const int b = cell_best[iy * nx + ix];
-      const cv::Rect r(left + static_cast<int>(ix) * cell, top + static_cast<int>(ny - 1 - iy) * cell, cell, cell);
+  const int cell = canvas.cell;
+  for (std::size_t iy = 0; iy < g.ny; ++iy) {
+    for (std::size_t ix = 0; ix < g.nx; ++ix) {
+      const int b = g.cell_best[iy * g.nx + ix];
+      const cv::Rect r(canvas.left + static_cast<int>(ix) * cell, canvas.top + static_cast<int>(g.ny - 1 - iy) * cell,
+                       cell, cell);
       if (b < 0) continue;
       const LayoutScore& s = result.coarse[b];
-      cv::rectangle(img, r, CellColour(s), cv::FILLED);
-      if (s.bounded) Hatch(img, r);
-      cv::rectangle(img, r, cv::Scalar(255, 255, 255), 1);
+      cv::rectangle(canvas.img, r, CellColour(s), cv::FILLED);
+      if (s.bounded) Hatch(canvas.img, r);
+      cv::rectangle(canvas.img, r, cv::Scalar(255, 255, 255), 1);
       if (cell >= 40) {
         std::string label = s.violating_samples == 0 ? Fixed(s.margin, 2) : std::to_string(s.violating_samples);
         if (s.bounded) label = (s.violating_samples == 0 ? "<=" : ">=") + label;
-        text(label, r.x + 4, r.y + cell / 2 + 5, 0.4, cv::Scalar(0, 0, 0));
+        canvas.Text(label, r.x + 4, r.y + cell / 2 + 5, 0.4, cv::Scalar(0, 0, 0));
       }
-      const bool is_best = (vx < 0 || result.layouts[b][vx] == best[vx]) && (vy < 0 || result.layouts[b][vy] == best[vy]);
-      if (is_best) cv::circle(img, {r.x + cell / 2, r.y + cell / 2}, cell / 3, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+      const bool is_best =
+          (g.vx < 0 || result.layouts[b][g.vx] == best[g.vx]) && (g.vy < 0 || result.layouts[b][g.vy] == best[g.vy]);
+      if (is_best) {
+        cv::circle(canvas.img, {r.x + cell / 2, r.y + cell / 2}, cell / 3, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+      }
     }
   }
-  // Axis labels: every value when they fit, else every k-th.
+}
+
+// Axis labels (every value when they fit, else every k-th) and the axes' names.
+void DrawAxes(const PlaceResult& result, const MarginGrid& g, MarginCanvas& canvas) {
+  const int cell = canvas.cell, left = canvas.left, top = canvas.top;
+  const int ny = static_cast<int>(g.ny);
   const int every_x = std::max(1, 60 / cell);
-  for (std::size_t ix = 0; ix < nx; ix += every_x) {
-    if (vx < 0) break;
-    text(Fixed(result.values[vx][ix], 0), left + static_cast<int>(ix) * cell + 2, top + static_cast<int>(ny) * cell + 18,
-         0.4, cv::Scalar(0, 0, 0));
+  for (std::size_t ix = 0; ix < g.nx; ix += every_x) {
+    if (g.vx < 0) break;
+    canvas.Text(Fixed(result.values[g.vx][ix], 0), left + static_cast<int>(ix) * cell + 2, top + ny * cell + 18, 0.4,
+                cv::Scalar(0, 0, 0));
   }
   const int every_y = std::max(1, 20 / cell);
-  for (std::size_t iy = 0; iy < ny; iy += every_y) {
-    if (vy < 0) break;
-    text(Fixed(result.values[vy][iy], 0), left - 50, top + static_cast<int>(ny - 1 - iy) * cell + cell / 2 + 5, 0.4,
-         cv::Scalar(0, 0, 0));
+  for (std::size_t iy = 0; iy < g.ny; iy += every_y) {
+    if (g.vy < 0) break;
+    canvas.Text(Fixed(result.values[g.vy][iy], 0), left - 50, top + (ny - 1 - static_cast<int>(iy)) * cell + cell / 2 + 5,
+                0.4, cv::Scalar(0, 0, 0));
   }
-  text(vx < 0 ? "(nothing searched)" : PlaceVariableName(vx), left, top + static_cast<int>(ny) * cell + 45, 0.5,
-       cv::Scalar(0, 0, 0));
-  if (vy >= 0) text(PlaceVariableName(vy), 10, top - 8, 0.5, cv::Scalar(0, 0, 0));
+  canvas.Text(g.vx < 0 ? "(nothing searched)" : PlaceVariableName(g.vx), left, top + ny * cell + 45, 0.5,
+              cv::Scalar(0, 0, 0));
+  if (g.vy >= 0) canvas.Text(PlaceVariableName(g.vy), 10, top - 8, 0.5, cv::Scalar(0, 0, 0));
+}
+
+// The answer's line: the searched variables' values and its margin.
+std::string AnswerLine(const PlaceResult& result) {
+  const Layout& best = result.layouts[result.best];
   std::string answer = "answer:";
   for (int v = 0; v < kPlaceVars; ++v) {
     if (result.values[v].size() > 1) answer += std::string(" ") + PlaceVariableName(v) + "=" + Fixed(best[v], 0);
   }
   answer += "  margin " + Fixed(result.best_score.margin, 2) + (result.feasible ? "" : ", still violating");
-  text(answer, 10, height - 25, 0.5, cv::Scalar(0, 0, 0));
+  return answer;
+}
 
-  internal::WritePngAtomic(img, path);
+}  // namespace
+
+void WritePlaceMarginPng(const PlaceResult& result, const fs::path& path) {
+  const MarginGrid g = BestPerCell(result);
+  MarginCanvas canvas;
+  canvas.cell = static_cast<int>(std::clamp<std::size_t>(720 / std::max(g.nx, g.ny), 12, 90));
+  const int bottom = 110;
+  const int width = std::max(720, canvas.left + canvas.cell * static_cast<int>(g.nx) + 40);
+  const int height = canvas.top + canvas.cell * static_cast<int>(g.ny) + bottom;
+  canvas.img = cv::Mat(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  canvas.Text(std::string("waam place: ") + (result.feasible ? "feasible" : "no layout passes") +
+                  " - best margin per cell over the other variables (coarse pass)",
+              10, 25, 0.55, cv::Scalar(0, 0, 0));
+  canvas.Text("green: passes (darker = larger margin, 1 = 10 deg / 10 mm); red: violating samples; circle: the answer",
+              10, 50, 0.45, cv::Scalar(60, 60, 60));
+  if (result.coarse_bounded > 0) {
+    canvas.Text("hatched: pruned early (a bound: margin <= / violating samples >= the figure)", 10, 68, 0.45,
+                cv::Scalar(60, 60, 60));
+  }
+  DrawCells(result, g, canvas);
+  DrawAxes(result, g, canvas);
+  canvas.Text(AnswerLine(result), 10, height - 25, 0.5, cv::Scalar(0, 0, 0));
+  internal::WritePngAtomic(canvas.img, path);
 }
 
 }  // namespace waam::analysis

@@ -4,6 +4,8 @@
 
 #include <png.h>
 
+#include <cctype>
+#include <cstdint>
 #include <cstring>
 
 #include "models/core/error.h"
@@ -18,6 +20,30 @@ bool SupportedChannels(int channels) { return channels == 1 || channels == 3 || 
 png_uint_32 FormatOf(int channels) {
   WAAM_DEMAND(SupportedChannels(channels));
   return channels == 1 ? PNG_FORMAT_GRAY : channels == 3 ? PNG_FORMAT_BGR : PNG_FORMAT_BGRA;
+}
+
+// Refuses a chunk whose declared length (PNG spec sec. 5.3: at most 2^31 - 1) runs past the end of `bytes`, before
+// libpng sees it: libpng allocates a chunk's buffer from its declared length, so a 400-byte file declaring a 1 GiB
+// text chunk would allocate and clear 1 GiB before finding the file short. Stops at IEND; a file that is not a PNG
+// is left to libpng to name.
+void CheckChunkLengths(std::string_view bytes, const std::string& name) {
+  constexpr std::size_t kSignature = 8;
+  if (bytes.size() < kSignature || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, kSignature) != 0) {
+    return;
+  }
+  std::size_t at = kSignature;
+  while (at + 8 <= bytes.size()) {
+    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + at);
+    const std::uint32_t length = (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+    std::string type(bytes.substr(at + 4, 4));
+    for (char& c : type) c = std::isalpha(static_cast<unsigned char>(c)) ? c : '?';  // the message stays one line
+    const std::size_t left = at + 12 <= bytes.size() ? bytes.size() - at - 12 : 0;  // besides length, type, CRC
+    WAAM_THROW_UNLESS(at + 12 <= bytes.size() && length <= left,
+                      name << ": corrupt PNG (chunk '" << type << "' at byte " << at << " declares " << length
+                           << " bytes, " << left << " follow)");
+    if (type == "IEND") return;
+    at += 12 + std::size_t{length};
+  }
 }
 
 png_image NewImage() {
@@ -53,6 +79,7 @@ void WritePngAtomic(const cv::Mat& image, const std::filesystem::path& path) {
 
 cv::Mat DecodePng(std::string_view bytes, int channels, const std::string& name) {
   WAAM_DEMAND(SupportedChannels(channels));
+  CheckChunkLengths(bytes, name);
   png_image png = NewImage();
   WAAM_THROW_UNLESS(png_image_begin_read_from_memory(&png, bytes.data(), bytes.size()),
                     name << ": not a readable PNG (" << png.message << ")");

@@ -133,6 +133,102 @@ void SearchShift(double unit_shift, double half_mm, const TuneVoidsOptions& opti
   tuning->lambda = unit_shift > 0.0 ? best.shift_mm / unit_shift : 0.0;
 }
 
+// The junction class `name` described from its representative `junction`, before any trial: centre, ribs, turning
+// points, angles and the sharpest turn.
+JunctionTuning DescribeJunction(const std::string& name, const planner::Junction& junction) {
+  JunctionTuning tuning;
+  tuning.junction_class = name;
+  tuning.centre_mm = junction.centre;
+  tuning.ribs = junction.ribs;
+  tuning.eta = static_cast<int>(junction.turning_points.size());
+  tuning.angles_deg = junction.angles_deg;
+  tuning.theta_min_deg = junction.turning_points[junction.SharpestTurn()].theta_rad * 180.0 / kPi;
+  return tuning;
+}
+
+// What every junction class is tuned with (the scenario planned without void filling, the classes, the bead width w
+// and wall spacing l, mm) and the progress shared by the classes' trials.
+class ClassTuner {
+ public:
+  ClassTuner(const Scenario& scenario, const planner::PlanResult& planned, const TuneVoidsOptions& options,
+             std::set<std::string> all_classes, double l, std::size_t class_count)
+      : scenario_(scenario),
+        planned_(planned),
+        options_(options),
+        all_classes_(std::move(all_classes)),
+        w_(planned.bead_width_mm),
+        l_(l),
+        progress_("tune-voids", class_count * static_cast<std::size_t>(options.max_trials + 3), "trials",
+                  options.quiet) {}
+
+  // Tunes class `name` (numbered `index` in the pictures' names) on its representative `junction`: the plain and
+  // geometric trials side by side, then the search one trial at a time (each shift follows from the voids the
+  // previous ones left), then the final shift again with its picture.
+  JunctionTuning Tune(const std::string& name, const planner::Junction& junction, int index) {
+    JunctionTuning tuning = DescribeJunction(name, junction);
+    const double theta_min = junction.turning_points[junction.SharpestTurn()].theta_rad;
+    const double unit_shift = l_ * (1.0 / std::sin(0.5 * theta_min) - 1.0);  // eq. 4.3 (lambda = 1)
+    internal::JunctionCrop crop;
+    crop.centre = junction.centre;
+    crop.half_mm = options_.crop_mm > 0.0 ? options_.crop_mm : 5.0 * w_;
+    // Voids of the junction lie within the gap corners (l / (2 sin(theta/2)) out) plus two bead widths (as the
+    // X-junction reproduction in tests/twin/voids_test.cc measures them).
+    crop.reach_mm = l_ / (2.0 * std::sin(0.5 * theta_min)) + 2.0 * w_;
+
+    const std::string stem = "junction_" + std::to_string(index);
+    TuneTrial first_two[2];
+    ParallelFor(2, [&](std::size_t t) {
+      first_two[t] = t == 0 ? Trial(name, crop, 0.0, options_.images ? stem + "_plain.png" : "")
+                            : Trial(name, crop, unit_shift, "");
+    });
+    tuning.plain = first_two[0];
+    tuning.geometric = first_two[1];
+    tuning.history = {tuning.plain, tuning.geometric};
+    SearchShift(unit_shift, crop.half_mm, options_, [&](double shift) { return Trial(name, crop, shift, ""); },
+                &tuning);
+    if (options_.images) {
+      // Re-run the final shift with its picture (deterministic: the same numbers as the search found).
+      const std::string picture = stem + "_tuned.png";
+      Trial(name, crop, tuning.tuned.shift_mm, picture);
+      tuning.pictures = {stem + "_plain.png", picture};
+    }
+    return tuning;
+  }
+
+  void Finish() { progress_.Finish(); }
+
+ private:
+  // Deposits the simulated layers with class `name` shifted by `shift` mm (every other class unshifted) and measures
+  // the voids in `crop`; its picture into `picture` under the output folder when not empty.
+  TuneTrial Trial(const std::string& name, const internal::JunctionCrop& crop, double shift,
+                  const std::string& picture) {
+    CheckInterrupt();
+    planner::VoidFillingSettings settings = scenario_.path.void_filling;
+    settings.mode = planner::VoidFillingMode::kTuned;
+    settings.spacing_mm = l_;
+    for (const std::string& c : all_classes_) settings.shift_by_class_mm[c] = 0.0;
+    settings.shift_by_class_mm[name] = shift;
+    const planner::VoidFiller filler(settings, w_, l_);
+    const planner::Plan plan = internal::TrialPlan(planned_.plan, options_.layers, filler, crop);
+    const double rapid_mm_s = scenario_.process.rapid_speed_mm_min / 60.0;
+    TuneTrial trial = internal::SimulateTrial(plan, scenario_.simulation, rapid_mm_s, crop,
+                                              picture.empty() ? std::filesystem::path() : options_.out_dir / picture);
+    trial.shift_mm = shift;
+    std::lock_guard<std::mutex> lock(progress_mutex_);
+    progress_.Update(++done_);
+    return trial;
+  }
+
+  const Scenario& scenario_;
+  const planner::PlanResult& planned_;
+  const TuneVoidsOptions& options_;
+  const std::set<std::string> all_classes_;
+  double w_, l_;
+  Progress progress_;
+  std::mutex progress_mutex_;
+  std::size_t done_ = 0;
+};
+
 }  // namespace
 
 TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
@@ -152,7 +248,6 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
   result.spacing_mm = scenario.path.void_filling.spacing_mm > 0.0
                           ? scenario.path.void_filling.spacing_mm
                           : planner::OverlapSpacingFor(scenario.path.overlap_model, w).contour_to_contour_mm;
-  const double l = result.spacing_mm;
   const int min_ribs = scenario.path.void_filling.min_ribs;
 
   // Junction classes over the simulated layers; the first junction of each class (on layer 0) is the one simulated.
@@ -164,71 +259,15 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
                                                  << " or more ribs on the first layer (is path.pattern eulerian or "
                                                     "contour on a rib-web part?)");
 
-  const double rapid_mm_s = scenario.process.rapid_speed_mm_min / 60.0;
-  Progress progress("tune-voids", representative.size() * static_cast<std::size_t>(options.max_trials + 3),
-                    "trials", options.quiet);
-  std::size_t done = 0;
-  std::mutex progress_mutex;
-  // The junction classes are tuned in parallel, each into its own slot (a class's trials are its own deposits); within
-  // a class the plain and geometric trials run side by side, and the search after them one trial at a time (each
-  // shift follows from the voids the previous ones left).
+  // The junction classes are tuned in parallel, each into its own slot (a class's trials are its own deposits).
   const std::vector<std::pair<std::string, planner::Junction>> classes(representative.begin(), representative.end());
+  ClassTuner tuner(scenario, planned, options, std::move(all_classes), result.spacing_mm, classes.size());
   std::vector<JunctionTuning> tunings(classes.size());
-  ParallelFor(classes.size(), [&](std::size_t class_index) {
-    const std::string& name = classes[class_index].first;
-    const planner::Junction& junction = classes[class_index].second;
-    const int index = static_cast<int>(class_index) + 1;
-    JunctionTuning& tuning = tunings[class_index];
-    tuning.junction_class = name;
-    tuning.centre_mm = junction.centre;
-    tuning.ribs = junction.ribs;
-    tuning.eta = static_cast<int>(junction.turning_points.size());
-    tuning.angles_deg = junction.angles_deg;
-    const double theta_min = junction.turning_points[junction.SharpestTurn()].theta_rad;
-    tuning.theta_min_deg = theta_min * 180.0 / kPi;
-    const double unit_shift = l * (1.0 / std::sin(0.5 * theta_min) - 1.0);  // eq. 4.3 (lambda = 1)
-
-    internal::JunctionCrop crop;
-    crop.centre = junction.centre;
-    crop.half_mm = options.crop_mm > 0.0 ? options.crop_mm : 5.0 * w;
-    // Voids of the junction lie within the gap corners (l / (2 sin(theta/2)) out) plus two bead widths (as the
-    // X-junction reproduction in tests/twin/voids_test.cc measures them).
-    crop.reach_mm = l / (2.0 * std::sin(0.5 * theta_min)) + 2.0 * w;
-
-    auto run = [&](double shift, const std::string& picture) {
-      CheckInterrupt();
-      planner::VoidFillingSettings settings = scenario.path.void_filling;
-      settings.mode = planner::VoidFillingMode::kTuned;
-      settings.spacing_mm = l;
-      for (const std::string& c : all_classes) settings.shift_by_class_mm[c] = 0.0;
-      settings.shift_by_class_mm[name] = shift;
-      const planner::VoidFiller filler(settings, w, l);
-      const planner::Plan plan = internal::TrialPlan(planned.plan, options.layers, filler, crop);
-      TuneTrial trial = internal::SimulateTrial(plan, scenario.simulation, rapid_mm_s, crop,
-                                                picture.empty() ? std::filesystem::path() : options.out_dir / picture);
-      trial.shift_mm = shift;
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      progress.Update(++done);
-      return trial;
-    };
-    const std::string stem = "junction_" + std::to_string(index);
-    TuneTrial first_two[2];
-    ParallelFor(2, [&](std::size_t t) {
-      first_two[t] = t == 0 ? run(0.0, options.images ? stem + "_plain.png" : "") : run(unit_shift, "");
-    });
-    tuning.plain = first_two[0];
-    tuning.geometric = first_two[1];
-    tuning.history = {tuning.plain, tuning.geometric};
-    SearchShift(unit_shift, crop.half_mm, options, [&](double shift) { return run(shift, ""); }, &tuning);
-    if (options.images) {
-      // Re-run the final shift with its picture (deterministic: the same numbers as the search found).
-      const std::string picture = stem + "_tuned.png";
-      run(tuning.tuned.shift_mm, picture);
-      tuning.pictures = {stem + "_plain.png", picture};
-    }
+  ParallelFor(classes.size(), [&](std::size_t i) {
+    tunings[i] = tuner.Tune(classes[i].first, classes[i].second, static_cast<int>(i) + 1);
   });
   result.junctions = std::move(tunings);
-  progress.Finish();
+  tuner.Finish();
 
   if (!options.training_csv.empty()) WriteFileAtomic(options.training_csv, TrainingCsv(result, options));
   WriteFileAtomic(options.out_dir / "tune.json", TuneToJson(options, result).dump(2) + "\n");

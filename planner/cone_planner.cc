@@ -176,6 +176,98 @@ void AppendLayer(LayerPath layer, const std::vector<std::string>& notes, PlanRes
   result->plan.layers.push_back(std::move(layer));
 }
 
+// Sets `result`'s bead of cone layers `d` mm high: the scenario's width, the straight-line speed of `bead` (with
+// the CSW model's clamp), the area from the wire feed at that speed and the layer growth at the zigzag spacing.
+void SetConeBead(const PlannerSections& scenario, const ConeBead& bead, double d, PlanResult* result) {
+  const double width = scenario.path.bead_width_mm;
+  models::SpeedClamp straight_clamp = models::SpeedClamp::kNone;
+  result->layer_height_mm = d;
+  result->bead_width_mm = width;
+  result->travel_speed_mm_min = bead.Speed(kInf, &straight_clamp);
+  result->speed_clamp = models::ToString(straight_clamp);
+  result->bead_area_mm2 = bead.Area(result->travel_speed_mm_min);
+  result->bead_height_mm = 1.5 * result->bead_area_mm2 / width;
+  result->layer_growth_mm = result->bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
+}
+
+// Each of the `layer_count` layers sliced at its middle surface (offset (i + 0.5) d from `base`) and flattened onto
+// the development plane, in parallel; nothing where the surface misses the part.
+std::vector<std::optional<FlatLayer>> FlattenLayers(const TriangleMesh& mesh, const ConeSurface& base, double d,
+                                                    double step_rad, int layer_count) {
+  std::vector<std::optional<FlatLayer>> flats(layer_count);
+  ParallelFor(layer_count, [&](std::size_t i) {
+    CheckInterrupt();
+    // Slice at the layer's middle, weld on its top: both are equidistant surfaces of the first one (sec. 5).
+    const ConeSurface middle = base.Offset((i + 0.5) * d);
+    const std::vector<Contour3d> contours = SliceWithCone(mesh, middle, nullptr);
+    if (!contours.empty()) flats[i] = FlattenLayer(contours, middle, step_rad);
+  });
+  return flats;
+}
+
+// The path points of flat moves mapped back onto the top surface of the layer whose middle surface is `middle`
+// (`d` mm thick), the tool along the surface normal, each bead from the flat path's curvature radius over
+// `window_mm`; sets the layer's mean build direction and z.
+void MapBackToSurface(const std::vector<Move2D>& moves, const ConeSurface& middle, double alpha, double d,
+                      const ConeBead& bead, double window_mm, LayerPath* layer) {
+  std::vector<Eigen::Vector2d> q_flat;
+  std::vector<bool> weld;
+  DensifyMoves(moves, middle, &q_flat, &weld);
+  const std::vector<double> radius = PathRadii(q_flat, weld, window_mm);
+  Eigen::Vector3d dir_sum = Eigen::Vector3d::Zero();
+  double z_sum = 0.0;
+  for (std::size_t j = 0; j < q_flat.size(); ++j) {
+    const Eigen::Vector3d p_middle = middle.Unflatten(q_flat[j], alpha);
+    const Eigen::Vector3d n = middle.Normal(p_middle);
+    PathPoint point;
+    point.p_P = p_middle + 0.5 * d * n;  // on the top surface, offset (i + 1) d
+    point.tool_dir_P = n;
+    point.weld = weld[j];
+    bead.Fill(radius[j], &point);
+    dir_sum += n;
+    z_sum += point.p_P.z();
+    layer->points.push_back(point);
+  }
+  if (!layer->points.empty()) {
+    layer->build_dir_P = dir_sum.normalized();
+    layer->z_mm = z_sum / static_cast<double>(layer->points.size());
+  }
+}
+
+// What every cone layer is planned with: the scenario, the first surface, the layer height d (mm), the bead, the
+// pattern options and the curvature window (mm).
+struct ConeLayerContext {
+  const PlannerSections& scenario;
+  const std::string& where;
+  const ConeSurface& base;
+  double d;
+  const ConeBead& bead;
+  const PatternOptions& options;
+  double window_mm;
+};
+
+// Plans cone layer `i` (numbered `plan_index` in the plan) from its flattened slice: the pattern on the development
+// plane, mapped back. Throws InputError when the flattening failed or the pattern found no weld path where a bead
+// fits.
+LayerPath PlanConeLayer(const ConeLayerContext& c, int i, const FlatLayer& flat, int plan_index,
+                        std::vector<std::string>* notes) {
+  const ConeSurface middle = c.base.Offset((i + 0.5) * c.d);
+  WAAM_THROW_UNLESS(flat.ok, c.where << ": layer " << i << " (surface R = " << middle.R << " mm): " << flat.message);
+  LayerPath layer;
+  layer.index = plan_index;
+  layer.slice = flat.regions;
+  layer.slice_in_plane = false;  // the development plane
+  PatternOptions layer_options = c.options;
+  layer_options.layer_index = layer.index;
+  const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, layer_options, notes);
+  WAAM_THROW_UNLESS(HasWeldOrNoRoom(flat.regions, moves, c.scenario.path.bead_width_mm),
+                    c.where << ": layer " << i << " (surface R = " << middle.R << " mm): path.pattern '"
+                            << NameOf(c.scenario.path.pattern) << "' found no weld path in the flattened slice of "
+                            << Area(flat.regions) << " mm^2; try path.pattern: contour");
+  MapBackToSurface(moves, middle, flat.alpha, c.d, c.bead, c.window_mm, &layer);
+  return layer;
+}
+
 }  // namespace
 
 PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress) {
@@ -189,40 +281,23 @@ PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress)
   base.R = slicing.cone_R_mm;
   base.H = slicing.type == SlicingType::kCylinder ? kInf : slicing.cone_H_mm;
   const double d = slicing.layer_height_mm;
-
   const int layer_count = ConeLayerCount(result.mesh, base, d, where);
   if (progress) progress->SetTotal(layer_count);
 
   const ConeBead bead(scenario);
-  const double width = scenario.path.bead_width_mm;
-  models::SpeedClamp straight_clamp = models::SpeedClamp::kNone;
-  result.layer_height_mm = d;
-  result.bead_width_mm = width;
-  result.travel_speed_mm_min = bead.Speed(kInf, &straight_clamp);
-  result.speed_clamp = models::ToString(straight_clamp);
-  result.bead_area_mm2 = bead.Area(result.travel_speed_mm_min);
-  result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
-  result.layer_growth_mm =
-      result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
-
-  PatternOptions options = PatternOptionsFor(scenario, width);
+  SetConeBead(scenario, bead, d, &result);
+  const PatternOptions options = PatternOptionsFor(scenario, result.bead_width_mm);
   result.contour_tolerance_mm = options.contour_tolerance_mm;
   const double step_rad = slicing.cone_rotation_step_deg * kPi / 180.0;
-  const double window_mm = std::max(0.5 * width, 2.0 * kPointStepMm);
+  const double window_mm = std::max(0.5 * result.bead_width_mm, 2.0 * kPointStepMm);
+  const ConeLayerContext context{scenario, where, base, d, bead, options, window_mm};
 
   result.plan.name = scenario.name;
   // The layers are independent once each knows its index in the plan (the count of non-empty layers below it, which
   // seeds its start point): slice and flatten every surface in parallel, number the layers, then plan and map them
   // back in parallel, each into its own slot. An error is thrown for the lowest layer that has one, as a serial loop
   // would, so the plan and its errors are the same on any number of threads.
-  std::vector<std::optional<FlatLayer>> flats(layer_count);
-  ParallelFor(layer_count, [&](std::size_t i) {
-    CheckInterrupt();
-    // Slice at the layer's middle, weld on its top: both are equidistant surfaces of the first one (sec. 5).
-    const ConeSurface middle = base.Offset((i + 0.5) * d);
-    const std::vector<Contour3d> contours = SliceWithCone(result.mesh, middle, nullptr);
-    if (!contours.empty()) flats[i] = FlattenLayer(contours, middle, step_rad);
-  });
+  const std::vector<std::optional<FlatLayer>> flats = FlattenLayers(result.mesh, base, d, step_rad, layer_count);
   std::vector<int> plan_index(layer_count, -1);
   int planned = 0;
   for (int i = 0; i < layer_count; ++i) {
@@ -235,42 +310,7 @@ PlanResult PlanConeScenario(const PlannerSections& scenario, Progress* progress)
   ParallelFor(layer_count, [&](std::size_t i) {
     CheckInterrupt();
     if (!flats[i]) return;
-    const ConeSurface middle = base.Offset((i + 0.5) * d);
-    const FlatLayer& flat = *flats[i];
-    WAAM_THROW_UNLESS(flat.ok, where << ": layer " << i << " (surface R = " << middle.R << " mm): " << flat.message);
-    LayerPath& layer = layers[i];
-    layer.index = plan_index[i];
-    layer.slice = flat.regions;
-    layer.slice_in_plane = false;  // the development plane
-    PatternOptions layer_options = options;
-    layer_options.layer_index = layer.index;
-    const std::vector<Move2D> moves = PlanLayerPattern(flat.regions, layer_options, &layer_notes[i]);
-    WAAM_THROW_UNLESS(HasWeldOrNoRoom(flat.regions, moves, width),
-                      where << ": layer " << i << " (surface R = " << middle.R << " mm): path.pattern '"
-                            << NameOf(scenario.path.pattern) << "' found no weld path in the flattened slice of "
-                            << Area(flat.regions) << " mm^2; try path.pattern: contour");
-    std::vector<Eigen::Vector2d> q_flat;
-    std::vector<bool> weld;
-    DensifyMoves(moves, middle, &q_flat, &weld);
-    const std::vector<double> radius = PathRadii(q_flat, weld, window_mm);
-    Eigen::Vector3d dir_sum = Eigen::Vector3d::Zero();
-    double z_sum = 0.0;
-    for (std::size_t j = 0; j < q_flat.size(); ++j) {
-      const Eigen::Vector3d p_middle = middle.Unflatten(q_flat[j], flat.alpha);
-      const Eigen::Vector3d n = middle.Normal(p_middle);
-      PathPoint point;
-      point.p_P = p_middle + 0.5 * d * n;  // on the top surface, offset (i + 1) d
-      point.tool_dir_P = n;
-      point.weld = weld[j];
-      bead.Fill(radius[j], &point);
-      dir_sum += n;
-      z_sum += point.p_P.z();
-      layer.points.push_back(point);
-    }
-    if (!layer.points.empty()) {
-      layer.build_dir_P = dir_sum.normalized();
-      layer.z_mm = z_sum / static_cast<double>(layer.points.size());
-    }
+    layers[i] = PlanConeLayer(context, static_cast<int>(i), *flats[i], plan_index[i], &layer_notes[i]);
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       progress->Update(++layers_done);

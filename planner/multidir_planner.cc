@@ -13,7 +13,6 @@
 
 #include <Eigen/Geometry>
 
-#include "models/bead/parabolic_bead.h"
 #include "models/core/error.h"
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
@@ -144,6 +143,87 @@ bool FillLayerPoints(const std::vector<Move2D>& moves, const Eigen::Matrix3d& R_
   return true;
 }
 
+// The sub-volumes: the user's split planes, or those of the centroid-shift decomposition (003 sec. 5.4), whose
+// features' largest lean (deg) goes into `lean_deg` by sub-volume name.
+std::vector<SubVolumeSpec> SubVolumeSpecs(const PlannerSections& scenario, const TriangleMesh& mesh,
+                                          const std::string& where, std::map<std::string, double>* lean_deg) {
+  if (scenario.slicing.split != SplitMethod::kCentroidShift) return scenario.slicing.sub_volumes;
+  CentroidSplitOptions split;
+  split.step_mm = scenario.slicing.layer_height_mm;
+  split.overhang_deg = scenario.slicing.overhang_deg;
+  const CentroidDecomposition decomposition = DecomposeByCentroidShift(mesh, split, where);
+  for (const OverhangFeature& f : decomposition.features) (*lean_deg)[f.name] = f.max_gamma_deg;
+  return decomposition.sub_volumes;
+}
+
+// The moves and pattern notes of each non-empty layer of a sub-volume, planned in parallel (each into its own slot);
+// the layers are numbered in the plan from `first_index` on.
+void PlanSubVolumeMoves(const std::vector<std::vector<PolygonWithHoles>>& kept, const PatternOptions& options,
+                        int first_index, std::vector<std::vector<Move2D>>* layer_moves,
+                        std::vector<std::vector<std::string>>* layer_notes) {
+  const int count = static_cast<int>(kept.size());
+  std::vector<int> plan_index(count, -1);
+  for (int i = 0, next = first_index; i < count; ++i) {
+    if (!kept[i].empty()) plan_index[i] = next++;
+  }
+  layer_moves->assign(count, {});
+  layer_notes->assign(count, {});
+  ParallelFor(count, [&](std::size_t i) {
+    CheckInterrupt();
+    if (kept[i].empty()) return;
+    PatternOptions layer_options = options;
+    layer_options.layer_index = plan_index[i];
+    (*layer_moves)[i] = PlanLayerPattern(kept[i], layer_options, &(*layer_notes)[i]);
+  });
+}
+
+// Plans sub-volume `spec` at about `d` mm per layer (its layers appended to `result`'s plan, their notes to its
+// warnings; its layer thickness times its layers added to `height_sum`, mm) and returns its report. Throws InputError
+// (`where` names the scenario) when it holds no metal along its direction.
+SubVolumeReport PlanSubVolume(const TriangleMesh& mesh, const SubVolumeSpec& spec, const PatternOptions& options,
+                              double d, const std::string& where, PlanResult* result, double* height_sum) {
+  const Eigen::Vector3d n(spec.direction[0], spec.direction[1], spec.direction[2]);
+  const SubVolumeSlices sliced = SliceSubVolume(mesh, spec, n, d, where);
+  const std::vector<std::vector<PolygonWithHoles>>& kept = sliced.kept;
+  const int count = static_cast<int>(kept.size());
+  const double h = sliced.h;
+
+  SubVolumeReport report;
+  report.name = spec.name;
+  report.direction = n;
+  report.first_layer = static_cast<int>(result->plan.layers.size());
+  report.keep = spec.keep;
+  for (int i = 0; i < count; ++i) report.volume_mm3 += Area(kept[i]) * h;
+  report.support_mm3 = SupportVolume(kept, h);
+  std::vector<std::vector<Move2D>> layer_moves;
+  std::vector<std::vector<std::string>> layer_notes;
+  PlanSubVolumeMoves(kept, options, report.first_layer, &layer_moves, &layer_notes);
+  PathPoint bead;
+  bead.tool_dir_P = n;
+  bead.bead_width_mm = result->bead_width_mm;
+  bead.bead_height_mm = result->bead_height_mm;
+  bead.speed_mm_s = result->travel_speed_mm_min / 60.0;
+  for (int i = 0; i < count; ++i) {
+    if (kept[i].empty()) continue;
+    LayerPath layer;
+    layer.index = static_cast<int>(result->plan.layers.size());
+    layer.slice = kept[i];
+    layer.slice_axes_P = sliced.R_PS.leftCols<2>();
+    layer.build_dir_P = n;
+    for (const std::string& note : layer_notes[i]) {
+      result->warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
+    }
+    if (!FillLayerPoints(layer_moves[i], sliced.R_PS, sliced.lo + (i + 1) * h, bead, &layer)) {
+      report.unwelded_mm3 += Area(kept[i]) * h;  // the pattern found no path in this slice
+      continue;
+    }
+    result->plan.layers.push_back(std::move(layer));
+    ++report.layers;
+  }
+  *height_sum += h * report.layers;
+  return report;
+}
+
 }  // namespace
 
 PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progress* progress) {
@@ -154,90 +234,20 @@ PlanResult PlanMultiDirectionalScenario(const PlannerSections& scenario, Progres
                                                       << ": multi_directional plans with volume_balance only");
   PlanResult result;
   result.mesh = PartMesh(scenario.part, kWeldToleranceMm, &result.mesh_report);
-
-  // The sub-volumes: the user's split planes, or those of the centroid-shift decomposition (003 sec. 5.4).
-  std::vector<SubVolumeSpec> specs = scenario.slicing.sub_volumes;
   std::map<std::string, double> lean_deg;
-  if (scenario.slicing.split == SplitMethod::kCentroidShift) {
-    CentroidSplitOptions split;
-    split.step_mm = scenario.slicing.layer_height_mm;
-    split.overhang_deg = scenario.slicing.overhang_deg;
-    const CentroidDecomposition decomposition = DecomposeByCentroidShift(result.mesh, split, where);
-    specs = decomposition.sub_volumes;
-    for (const OverhangFeature& f : decomposition.features) lean_deg[f.name] = f.max_gamma_deg;
-  }
-
-  // The bead from the wire-feed volume balance (003 eq. 3.4, 3.3), as in the planar planner.
-  const double width = scenario.path.bead_width_mm;
-  result.travel_speed_mm_min = process.travel_speed_mm_min;
-  result.bead_width_mm = width;
-  result.bead_area_mm2 = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
-                                                      process.travel_speed_mm_min, process.deposition_efficiency);
-  result.bead_height_mm = 1.5 * result.bead_area_mm2 / width;
-  result.layer_growth_mm = result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, width).zigzag_mm;
-  const PatternOptions options = PatternOptionsFor(scenario, width);
+  const std::vector<SubVolumeSpec> specs = SubVolumeSpecs(scenario, result.mesh, where, &lean_deg);
+  SetVolumeBalanceBead(scenario, &result);
+  const PatternOptions options = PatternOptionsFor(scenario, result.bead_width_mm);
   result.contour_tolerance_mm = options.contour_tolerance_mm;
-  const double d = scenario.slicing.layer_height_mm;
   if (progress) progress->SetTotal(static_cast<int>(specs.size()));
 
   result.plan.name = scenario.name;
   double height_sum = 0.0;
   int sub_index = 0;
   for (const SubVolumeSpec& spec : specs) {
-    const Eigen::Vector3d n(spec.direction[0], spec.direction[1], spec.direction[2]);
-    const SubVolumeSlices sliced = SliceSubVolume(result.mesh, spec, n, d, where);
-    const Eigen::Matrix3d& R_PS = sliced.R_PS;
-    const std::vector<std::vector<PolygonWithHoles>>& kept = sliced.kept;
-    const int count = static_cast<int>(kept.size());
-    const double lo = sliced.lo, h = sliced.h;
-
-    SubVolumeReport report;
-    report.name = spec.name;
-    report.direction = n;
-    report.first_layer = static_cast<int>(result.plan.layers.size());
-    report.keep = spec.keep;
+    SubVolumeReport report =
+        PlanSubVolume(result.mesh, spec, options, scenario.slicing.layer_height_mm, where, &result, &height_sum);
     if (lean_deg.count(spec.name)) report.centroid_lean_deg = lean_deg.at(spec.name);
-    for (int i = 0; i < count; ++i) report.volume_mm3 += Area(kept[i]) * h;
-    report.support_mm3 = SupportVolume(kept, h);
-    std::vector<int> plan_index(count, -1);
-    for (int i = 0, next = static_cast<int>(result.plan.layers.size()); i < count; ++i) {
-      if (!kept[i].empty()) plan_index[i] = next++;
-    }
-    std::vector<std::vector<Move2D>> layer_moves(count);
-    std::vector<std::vector<std::string>> layer_notes(count);
-    ParallelFor(count, [&](std::size_t i) {
-      CheckInterrupt();
-      if (kept[i].empty()) return;
-      PatternOptions layer_options = options;
-      layer_options.layer_index = plan_index[i];
-      layer_moves[i] = PlanLayerPattern(kept[i], layer_options, &layer_notes[i]);
-    });
-    for (int i = 0; i < count; ++i) {
-      if (kept[i].empty()) continue;
-      LayerPath layer;
-      layer.index = static_cast<int>(result.plan.layers.size());
-      layer.slice = kept[i];
-      layer.slice_axes_P = R_PS.leftCols<2>();
-      layer.build_dir_P = n;
-      const double top = lo + (i + 1) * h;
-      const std::vector<std::string>& notes = layer_notes[i];
-      const std::vector<Move2D>& moves = layer_moves[i];
-      for (const std::string& note : notes) {
-        result.warnings.push_back("layer " + std::to_string(layer.index) + ": " + note);
-      }
-      PathPoint bead;
-      bead.tool_dir_P = n;
-      bead.bead_width_mm = width;
-      bead.bead_height_mm = result.bead_height_mm;
-      bead.speed_mm_s = process.travel_speed_mm_min / 60.0;
-      if (!FillLayerPoints(moves, R_PS, top, bead, &layer)) {
-        report.unwelded_mm3 += Area(kept[i]) * h;  // the pattern found no path in this slice
-        continue;
-      }
-      result.plan.layers.push_back(std::move(layer));
-      ++report.layers;
-    }
-    height_sum += h * report.layers;
     result.sub_volumes.push_back(report);
     if (progress) progress->Update(++sub_index);
   }

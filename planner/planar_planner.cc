@@ -46,7 +46,117 @@ PatternOptions PatternOptionsFor(const PlannerSections& scenario, double bead_wi
   return options;
 }
 
+void SetVolumeBalanceBead(const PlannerSections& scenario, PlanResult* result) {
+  const ProcessSettings& process = scenario.process;
+  result->travel_speed_mm_min = process.travel_speed_mm_min;
+  result->bead_width_mm = scenario.path.bead_width_mm;
+  result->bead_area_mm2 = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
+                                                       process.travel_speed_mm_min, process.deposition_efficiency);
+  result->bead_height_mm = 1.5 * result->bead_area_mm2 / result->bead_width_mm;
+  result->layer_growth_mm =
+      result->bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, result->bead_width_mm).zigzag_mm;
+}
+
 namespace {
+
+// The bead of planar layers `layer_height` (mm) high: either the scenario's speed and width with the height from the
+// wire-feed volume balance, or the speed for the layer height and the width that comes with it from the fitted models
+// (sec. 6.3.2.1, eq. 6.6-6.7). Overlapping beads at the zigzag spacing l grow a layer by A / l; when that differs
+// from the slicing step, the twin shows the part ending high or low, as a real build would.
+void SetPlanarBead(const PlannerSections& scenario, double layer_height, PlanResult* result) {
+  const ProcessSettings& process = scenario.process;
+  result->layer_height_mm = layer_height;
+  if (process.bead_model != BeadModel::kSpeedHeight) {
+    SetVolumeBalanceBead(scenario, result);
+    return;
+  }
+  WAAM_DEMAND(process.speed_height != nullptr && process.width_height != nullptr);
+  const models::BeadSetpoint setpoint =
+      models::SetpointForHeight(*process.speed_height, *process.width_height, layer_height);
+  result->travel_speed_mm_min = setpoint.speed.speed_mm_per_min;
+  result->bead_width_mm = setpoint.width_mm;
+  result->speed_clamp = models::ToString(setpoint.speed.clamp);
+  result->bead_height_mm = setpoint.speed.achieved_mm;
+  result->bead_area_mm2 = models::ParabolicBead{result->bead_width_mm, result->bead_height_mm}.Area();
+  result->layer_growth_mm =
+      result->bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, result->bead_width_mm).zigzag_mm;
+}
+
+// Each layer's moves, with the junction void filling applied, its corner corrections and its pattern's notes.
+struct PlanarLayerMoves {
+  std::vector<std::vector<Move2D>> moves;
+  std::vector<std::vector<CornerCorrection>> corrections;
+  std::vector<std::vector<std::string>> notes;
+};
+
+// A layer's pattern depends only on its slice and its index (the start shift and any random choice are seeded by
+// the index): the layers are planned in parallel, each into its own slot, so the plan is the same on any number of
+// threads.
+PlanarLayerMoves PlanLayerMoves(const std::vector<std::vector<PolygonWithHoles>>& slices,
+                                const PatternOptions& options, const VoidFiller& void_filler, Progress* progress) {
+  const std::size_t layer_count = slices.size();
+  PlanarLayerMoves out;
+  out.moves.resize(layer_count);
+  out.corrections.resize(layer_count);
+  out.notes.resize(layer_count);
+  std::mutex progress_mutex;
+  int layers_done = 0;
+  ParallelFor(layer_count, [&](std::size_t i) {
+    PatternOptions layer_options = options;
+    layer_options.layer_index = static_cast<int>(i);
+    out.moves[i] = void_filler.Apply(slices[i], PlanLayerPattern(slices[i], layer_options, &out.notes[i]),
+                                     static_cast<int>(i), &out.corrections[i]);
+    if (progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress->Update(++layers_done);
+    }
+  });
+  return out;
+}
+
+// The path points of layer `layer` from its moves at its top z, with the result's bead and speed.
+void FillPlanarPoints(const std::vector<Move2D>& moves, const PlanResult& result, LayerPath* layer) {
+  const double speed_mm_s = result.travel_speed_mm_min / 60.0;
+  for (const Move2D& move : moves) {
+    PathPoint point;
+    point.p_P = Eigen::Vector3d(move.p.x(), move.p.y(), layer->z_mm);
+    point.tool_dir_P = Eigen::Vector3d::UnitZ();
+    point.bead_width_mm = result.bead_width_mm;
+    point.bead_height_mm = result.bead_height_mm;
+    point.speed_mm_s = speed_mm_s;
+    point.weld = move.weld;
+    layer->points.push_back(point);
+  }
+}
+
+// Appends the planned layers to `result`'s plan, their notes to its warnings and their corrections to its void
+// corrections. Throws InputError (naming the part) for a layer whose pattern found no weld path where a bead fits,
+// or a plan over the point limit.
+void AppendPlanarLayers(const PlannerSections& scenario, const std::vector<std::vector<PolygonWithHoles>>& slices,
+                        const PlanarLayerMoves& planned, PlanResult* result) {
+  const int layer_count = static_cast<int>(slices.size());
+  result->plan.layers.reserve(layer_count);
+  std::size_t points = 0;
+  for (int i = 0; i < layer_count; ++i) {
+    LayerPath layer;
+    layer.index = i;
+    layer.z_mm = (i + 1) * result->layer_height_mm;
+    layer.slice = slices[i];
+    for (const std::string& note : planned.notes[i]) {
+      result->warnings.push_back("layer " + std::to_string(i) + ": " + note);
+    }
+    result->void_corrections.insert(result->void_corrections.end(), planned.corrections[i].begin(),
+                                    planned.corrections[i].end());
+    WAAM_THROW_UNLESS(HasWeldOrNoRoom(layer.slice, planned.moves[i], result->bead_width_mm),
+                      scenario.part.where << ": layer " << i << " (z = " << layer.z_mm << " mm): path.pattern '"
+                                          << NameOf(scenario.path.pattern) << "' found no weld path in the slice of "
+                                          << Area(layer.slice) << " mm^2; try path.pattern: contour");
+    FillPlanarPoints(planned.moves[i], *result, &layer);
+    points += layer.points.size();
+    CheckPathPoints(points, i, scenario.part.where);
+    result->plan.layers.push_back(std::move(layer));
+  }
+}
 
 }  // namespace
 
@@ -62,95 +172,21 @@ PlanResult PlanPlanarScenario(const PlannerSections& scenario, Progress* progres
   const int layer_count = std::max(1, static_cast<int>(std::lround(part_height / h)));
   std::vector<double> heights(layer_count);
   for (int i = 0; i < layer_count; ++i) heights[i] = (i + 0.5) * part_height / layer_count;
-  const double layer_height = part_height / layer_count;
   if (progress) progress->SetTotal(layer_count);
-
   const std::vector<std::vector<PolygonWithHoles>> slices = SlicePlanar(result.mesh, heights);
 
-  // The bead: either the scenario's speed and width with the height from the wire-feed volume balance (003
-  // eq. 3.4: area = efficiency * wire area * wire feed / travel speed; eq. 3.3: A = 2wh/3), or the speed for the
-  // layer height and the width that comes with it from the fitted models (sec. 6.3.2.1, eq. 6.6-6.7).
-  const ProcessSettings& process = scenario.process;
-  result.layer_height_mm = layer_height;
-  result.travel_speed_mm_min = process.travel_speed_mm_min;
-  result.bead_width_mm = scenario.path.bead_width_mm;
-  if (process.bead_model == BeadModel::kSpeedHeight) {
-    WAAM_DEMAND(process.speed_height != nullptr && process.width_height != nullptr);
-    const models::BeadSetpoint setpoint =
-        models::SetpointForHeight(*process.speed_height, *process.width_height, layer_height);
-    result.travel_speed_mm_min = setpoint.speed.speed_mm_per_min;
-    result.bead_width_mm = setpoint.width_mm;
-    result.speed_clamp = models::ToString(setpoint.speed.clamp);
-    result.bead_height_mm = setpoint.speed.achieved_mm;
-    result.bead_area_mm2 = models::ParabolicBead{result.bead_width_mm, result.bead_height_mm}.Area();
-  } else {
-    result.bead_area_mm2 = models::BeadAreaFromWireFeed(process.wire_diameter_mm, process.wire_feed_mm_min,
-                                                        process.travel_speed_mm_min, process.deposition_efficiency);
-    result.bead_height_mm = 1.5 * result.bead_area_mm2 / result.bead_width_mm;
-  }
-  // Overlapping beads at the zigzag spacing l grow a layer by A / l; when that differs from the slicing step, the
-  // twin shows the part ending high or low, as a real build would.
-  result.layer_growth_mm =
-      result.bead_area_mm2 / OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).zigzag_mm;
-  CheckWeldLengthEstimate(slices, OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).zigzag_mm,
-                          scenario.part.where);
-
-  PatternOptions options = PatternOptionsFor(scenario, result.bead_width_mm);
+  SetPlanarBead(scenario, part_height / layer_count, &result);
+  const double zigzag_mm = OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).zigzag_mm;
+  CheckWeldLengthEstimate(slices, zigzag_mm, scenario.part.where);
+  const PatternOptions options = PatternOptionsFor(scenario, result.bead_width_mm);
   result.contour_tolerance_mm = options.contour_tolerance_mm;
-  const double speed_mm_s = result.travel_speed_mm_min / 60.0;
   // Junction void filling on the planned moves; l is the spacing of the two beads of a wall (d2).
   const double l_mm = OverlapSpacingFor(scenario.path.overlap_model, result.bead_width_mm).contour_to_contour_mm;
   const VoidFiller void_filler(scenario.path.void_filling, result.bead_width_mm, l_mm);
 
-  // A layer's pattern depends only on its slice and its index (the start shift and any random choice are seeded by
-  // the index): the layers are planned in parallel, each into its own slot, so the plan is the same on any number of
-  // threads.
-  std::vector<std::vector<Move2D>> layer_moves(layer_count);
-  std::vector<std::vector<CornerCorrection>> layer_corrections(layer_count);
-  std::vector<std::vector<std::string>> layer_notes(layer_count);
-  std::mutex progress_mutex;
-  int layers_done = 0;
-  ParallelFor(layer_count, [&](std::size_t i) {
-    PatternOptions layer_options = options;
-    layer_options.layer_index = static_cast<int>(i);
-    layer_moves[i] = void_filler.Apply(slices[i], PlanLayerPattern(slices[i], layer_options, &layer_notes[i]),
-                                       static_cast<int>(i), &layer_corrections[i]);
-    if (progress) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      progress->Update(++layers_done);
-    }
-  });
-
+  const PlanarLayerMoves planned = PlanLayerMoves(slices, options, void_filler, progress);
   result.plan.name = scenario.name;
-  result.plan.layers.reserve(layer_count);
-  std::size_t points = 0;
-  for (int i = 0; i < layer_count; ++i) {
-    LayerPath layer;
-    layer.index = i;
-    layer.z_mm = (i + 1) * layer_height;
-    layer.slice = slices[i];
-    const std::vector<Move2D>& moves = layer_moves[i];
-    for (const std::string& note : layer_notes[i]) result.warnings.push_back("layer " + std::to_string(i) + ": " + note);
-    result.void_corrections.insert(result.void_corrections.end(), layer_corrections[i].begin(),
-                                   layer_corrections[i].end());
-    WAAM_THROW_UNLESS(HasWeldOrNoRoom(layer.slice, moves, result.bead_width_mm),
-                      scenario.part.where << ": layer " << i << " (z = " << layer.z_mm << " mm): path.pattern '"
-                                          << NameOf(scenario.path.pattern) << "' found no weld path in the slice of "
-                                          << Area(layer.slice) << " mm^2; try path.pattern: contour");
-    for (const Move2D& move : moves) {
-      PathPoint point;
-      point.p_P = Eigen::Vector3d(move.p.x(), move.p.y(), layer.z_mm);
-      point.tool_dir_P = Eigen::Vector3d::UnitZ();
-      point.bead_width_mm = result.bead_width_mm;
-      point.bead_height_mm = result.bead_height_mm;
-      point.speed_mm_s = speed_mm_s;
-      point.weld = move.weld;
-      layer.points.push_back(point);
-    }
-    points += layer.points.size();
-    CheckPathPoints(points, i, scenario.part.where);
-    result.plan.layers.push_back(std::move(layer));
-  }
+  AppendPlanarLayers(scenario, slices, planned, &result);
   if (progress) progress->Finish();
   result.stats = ComputeStats(result.plan);
   result.layer_height_min_mm = result.layer_height_max_mm = result.layer_height_mm;

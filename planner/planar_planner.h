@@ -71,4 +71,9 @@ PlanResult PlanPlanarScenario(const PlannerSections& scenario, Progress* progres
 // simplified to kContourToleranceFraction of the width; shared by the planar, cone and multi-directional planners.
 PatternOptions PatternOptionsFor(const PlannerSections& scenario, double bead_width_mm);
 
+// Sets `result`'s bead from the scenario's travel speed (mm/min) and bead width (mm) with the height from the
+// wire-feed volume balance (003 eq. 3.4: area = efficiency * wire area * wire feed / travel speed; eq. 3.3:
+// A = 2wh/3), and the layer growth A / l at the zigzag spacing l; shared by the planar and multi-directional planners.
+void SetVolumeBalanceBead(const PlannerSections& scenario, PlanResult* result);
+
 }  // namespace waam::planner

@@ -14,6 +14,13 @@ import sys
 
 ROOTS = ["models", "planner", "twin", "analysis", "app", "python", "fuzz", "tests"]
 
+# Functions allowed past 120 lines because they are data tables (one entry a few lines, nothing to split out):
+# (path, name) -> why.
+DATA_TABLES = {
+    ("tests/analysis/bad_input_test.cc", "Catalogue"): "the bad-input cases: per case its command, files and expected message",
+    ("planner/mesh/generators.cc", "Registry"): "the part generators: per type its parameters (default, range, doc) and builder",
+}
+
 
 def blank(src):
     """`src` with comments and string/char literals emptied, newlines kept."""
@@ -102,7 +109,11 @@ def main():
     print(f"functions over 120 lines: {sum(1 for f in funcs if f[0] > 120)}, over 80: {sum(1 for f in funcs if f[0] > 80)}")
     print(f"the {top} longest functions:")
     for n, path, start, name in funcs[:top]:
-        print(f"{n:5d}  {path}:{start}  {name}")
+        why = DATA_TABLES.get((path, name))
+        print(f"{n:5d}  {path}:{start}  {name}" + (f"  (data table: {why})" if why else ""))
+    for n, path, start, name in funcs:
+        if n > 120 and (path, name) not in DATA_TABLES:
+            print(f"function over 120 lines that is not a listed data table: {path}:{start} {name} ({n})")
 
 
 if __name__ == "__main__":

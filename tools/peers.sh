@@ -14,6 +14,8 @@
 #    problem on cells refined twice (1 mm, the same source and 0.4 s steps; docs/THERMAL.md, "FEniCSx comparison"),
 #    and the 2 mm runs measured against those finer ones (which side the 2 mm difference comes from); with
 #    WAAM_PEERS_THERMAL_Q2=1 as well FEniCSx's Q2 elements on the 2 mm mesh as one more finer run (~80 s CPU).
+#    waam runs single-rate there, then with its multirate steppings (WAAM_PEERS_THERMAL_MULTIRATE, a list of
+#    waam_thermal_peer stepping arguments; default: the solver's default and one with 1.2 s far steps).
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
 # Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam); WAAM_PEERS_ONLY=thermal runs the
 # FEniCSx comparison alone. Times are wall clock (the thermal comparison also prints CPU time), one run each; a ratio
@@ -136,21 +138,36 @@ fi
 
 # FEniCSx and waam's thermal model on the same wall (same cells, step, source, losses; constant properties). The
 # FEniCSx setup includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
+# waam steps single-rate (the whole model every 0.4 s step, as FEniCSx); then, against the same FEniCSx run, with
+# each multirate stepping of WAAM_PEERS_THERMAL_MULTIRATE (waam_thermal_peer's stepping argument; "-" is the solver's
+# default), the probes recorded inside the batches as `waam replay` records them.
 thermal="$repo/tools/peers/thermal_wall.json"
+multirate=(${WAAM_PEERS_THERMAL_MULTIRATE:-- whole_step_s=0,far_step_s=1.2,near_step_s=0.4})
 [ -x build/analysis/benchmarks/waam_thermal_peer ] || cmake --build build --target waam_thermal_peer > /dev/null
-build/analysis/benchmarks/waam_thermal_peer "$thermal" > "$out/thermal_waam.json" ||
-  { echo "peers: waam_thermal_peer failed" >&2; exit 1; }
-OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" > "$out/thermal_fenicsx.json" \
-  2> "$out/thermal_fenicsx.log" || { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx.log)" >&2; exit 1; }
-/usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam.json" "$out/thermal_fenicsx.json" "$thermal"
+# thermal_pair <refine> <suffix>: waam single-rate, FEniCSx, the comparison, then waam's multirate steppings.
+thermal_pair() {
+  local refine="$1" suffix="$2" n=0
+  build/analysis/benchmarks/waam_thermal_peer "$thermal" 0 "$refine" > "$out/thermal_waam$suffix.json" ||
+    { echo "peers: waam_thermal_peer failed (refine $refine)" >&2; exit 1; }
+  OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" --refine "$refine" \
+    > "$out/thermal_fenicsx$suffix.json" 2> "$out/thermal_fenicsx$suffix.log" ||
+    { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx$suffix.log)" >&2; exit 1; }
+  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam$suffix.json" "$out/thermal_fenicsx$suffix.json" \
+    "$thermal"
+  echo "waam's multirate stepping against the same FEniCSx run:"
+  for stepping in "${multirate[@]}"; do
+    n=$((n + 1))
+    build/analysis/benchmarks/waam_thermal_peer "$thermal" "$stepping" "$refine" \
+      > "$out/thermal_waam${suffix}_multirate$n.json" ||
+      { echo "peers: waam_thermal_peer $stepping failed (refine $refine)" >&2; exit 1; }
+    /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam${suffix}_multirate$n.json" \
+      "$out/thermal_fenicsx$suffix.json" "$thermal" --brief
+  done
+}
+thermal_pair 1 ""
 if [ "${WAAM_PEERS_THERMAL_FINE:-0}" = 1 ]; then
   echo "the same problem on 1 mm cells (refine 2):"
-  build/analysis/benchmarks/waam_thermal_peer "$thermal" - 2 > "$out/thermal_waam_1mm.json" ||
-    { echo "peers: waam_thermal_peer failed on 1 mm cells" >&2; exit 1; }
-  OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" --refine 2 \
-    > "$out/thermal_fenicsx_1mm.json" 2> "$out/thermal_fenicsx_1mm.log" ||
-    { echo "peers: thermal_fenicsx.py failed (see $out/thermal_fenicsx_1mm.log)" >&2; exit 1; }
-  /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json" "$thermal"
+  thermal_pair 2 _1mm
   finer=("$out/thermal_waam_1mm.json" "$out/thermal_fenicsx_1mm.json")
   if [ "${WAAM_PEERS_THERMAL_Q2:-0}" = 1 ]; then
     OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" --degree 2 \

@@ -68,12 +68,12 @@ void Report(benchmark::State& state, const waam::twin::Depositor& d, double seco
 
 // About one build hour: a 100 x 100 mm block of 24 layers, 6 mm beads at 8 mm/s: 51 m of bead, 106 min of arc
 // time. Argument: voxel size in 1/100 mm.
-void BM_DepositBuildHour(benchmark::State& state) {
+// Deposits `plan` at `voxel_mm` once per iteration, timed by hand (the plan is built outside the timing).
+void DepositTimed(benchmark::State& state, const Plan& plan, double voxel_mm) {
   waam::twin::SimulationSettings settings;
   settings.csw = std::make_shared<const waam::models::CswModel>(
       waam::models::CswModel::Load(waam::models::DefaultModelPath("csw")));  // as the scenario loader does
-  settings.voxel_mm = state.range(0) / 100.0;
-  const Plan plan = SerpentineBlock(100.0, 24, 6.0, 2.0, 8.0);
+  settings.voxel_mm = voxel_mm;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     const waam::twin::Depositor d = waam::twin::DepositPlan(plan, settings, 100.0, nullptr);
@@ -81,25 +81,16 @@ void BM_DepositBuildHour(benchmark::State& state) {
     state.SetIterationTime(seconds);
     Report(state, d, seconds);
   }
+}
+
+void BM_DepositBuildHour(benchmark::State& state) {
+  DepositTimed(state, SerpentineBlock(100.0, 24, 6.0, 2.0, 8.0), state.range(0) / 100.0);
 }
 BENCHMARK(BM_DepositBuildHour)->Arg(100)->Arg(50)->Arg(25)->UseManualTime()->Iterations(1)->Unit(benchmark::kSecond);
 
 // The largest part of the brief: a 200 x 200 mm block 100 mm high (56 layers, about 500 m of bead) at 0.5 mm, for
 // the peak memory.
-void BM_DepositLargePart(benchmark::State& state) {
-  waam::twin::SimulationSettings settings;
-  settings.csw = std::make_shared<const waam::models::CswModel>(
-      waam::models::CswModel::Load(waam::models::DefaultModelPath("csw")));  // as the scenario loader does
-  settings.voxel_mm = 0.5;
-  const Plan plan = SerpentineBlock(200.0, 56, 6.0, 2.0, 8.0);
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    const waam::twin::Depositor d = waam::twin::DepositPlan(plan, settings, 100.0, nullptr);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    state.SetIterationTime(seconds);
-    Report(state, d, seconds);
-  }
-}
+void BM_DepositLargePart(benchmark::State& state) { DepositTimed(state, SerpentineBlock(200.0, 56, 6.0, 2.0, 8.0), 0.5); }
 BENCHMARK(BM_DepositLargePart)->UseManualTime()->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace

@@ -6,33 +6,17 @@
 
 #include <benchmark/benchmark.h>
 
+#include "analysis/benchmarks/bench_shapes.h"
 #include "planner/geometry/polygon.h"
 #include "planner/kinematics/opw_arm.h"
 
 namespace {
 
 using waam::planner::PolygonWithHoles;
-using waam::planner::Ring;
-
-Ring Rect(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
-
-// A 200 x 150 mm plate with a square hole, a 22 mm round bore (96-gon) and a tilted slot.
-PolygonWithHoles Plate() {
-  PolygonWithHoles plate{Rect(0, 0, 200, 150), {}};
-  plate.holes.push_back(Rect(30, 30, 70, 70));
-  Ring bore;
-  for (int k = 0; k < 96; ++k) {
-    const double a = 2.0 * std::numbers::pi * k / 96;
-    bore.emplace_back(140 + 22 * std::cos(a), 90 + 22 * std::sin(a));
-  }
-  plate.holes.push_back(bore);
-  plate.holes.push_back({{40, 105}, {95, 115}, {92, 130}, {37, 120}});
-  return plate;
-}
 
 // One inward offset of the plate (round joins), the step of every contour ring: offsets per second.
 void BM_OffsetPlateInward(benchmark::State& state) {
-  const std::vector<PolygonWithHoles> plate = {Plate()};
+  const std::vector<PolygonWithHoles> plate = {waam::bench::HoledPlate(96)};
   const double delta_mm = -static_cast<double>(state.range(0));
   std::size_t regions = 0;
   for (auto _ : state) {

@@ -252,6 +252,93 @@ VoidLengthNetwork VoidLengthNetwork::FromJson(const nlohmann::json& j, const std
                            FitInfoFromJson(j, where), j.value("training", nlohmann::json()));
 }
 
+namespace {
+
+// Training inputs and targets mapped to [-1, 1] by their min/max over the samples (MATLAB mapminmax).
+struct NormalisedSamples {
+  std::vector<double> in_min, in_max;
+  double out_min = INFINITY, out_max = -INFINITY;
+  std::vector<std::vector<double>> x;
+  std::vector<double> y;
+};
+
+NormalisedSamples NormaliseSamples(const std::vector<JunctionSample>& samples, AngleOrder order) {
+  const int n = static_cast<int>(samples.size());
+  NormalisedSamples d;
+  d.in_min.assign(VoidLengthNetwork::kInputs, INFINITY);
+  d.in_max.assign(VoidLengthNetwork::kInputs, -INFINITY);
+  for (const JunctionSample& s : samples) {
+    const std::vector<double> x = NetworkInputs(s.junction, order);
+    for (int k = 0; k < VoidLengthNetwork::kInputs; ++k) {
+      d.in_min[k] = std::min(d.in_min[k], x[k]);
+      d.in_max[k] = std::max(d.in_max[k], x[k]);
+    }
+    d.out_min = std::min(d.out_min, s.void_length_mm);
+    d.out_max = std::max(d.out_max, s.void_length_mm);
+  }
+  if (!(d.out_max > d.out_min)) d.out_max = d.out_min + 1.0;  // constant target: any scale works
+  d.x.resize(n);
+  d.y.resize(n);
+  for (int i = 0; i < n; ++i) {
+    d.x[i] = NetworkInputs(samples[i].junction, order);
+    for (int k = 0; k < VoidLengthNetwork::kInputs; ++k) d.x[i][k] = Normalise(d.x[i][k], d.in_min[k], d.in_max[k]);
+    d.y[i] = Normalise(samples[i].void_length_mm, d.out_min, d.out_max);
+  }
+  return d;
+}
+
+// Seeded initial weights of one restart: LeCun-uniform weights (unit-variance pre-activations for inputs in
+// [-1, 1]), small biases.
+std::vector<double> InitialWeights(const std::vector<int>& sizes, unsigned long long seed, int restart) {
+  std::seed_seq seq{seed, static_cast<unsigned long long>(restart)};
+  std::mt19937_64 rng(seq);
+  std::vector<double> w(VoidLengthNetwork::NumWeights(sizes));
+  std::size_t k = 0;
+  for (std::size_t l = 0; l + 1 < sizes.size(); ++l) {
+    const double a = std::sqrt(3.0 / sizes[l]);
+    std::uniform_real_distribution<double> weight(-a, a), bias(-0.1, 0.1);
+    for (int i = 0; i < sizes[l] * sizes[l + 1]; ++i) w[k++] = weight(rng);
+    for (int i = 0; i < sizes[l + 1]; ++i) w[k++] = bias(rng);
+  }
+  return w;
+}
+
+// What the seeded restarts gave: the best run and its weights, every usable run's weights, the log.
+struct Restarts {
+  RunResult best;
+  std::vector<double> best_weights;  // empty when no restart was usable
+  std::vector<std::vector<double>> usable_weights;
+  double gamma_sum = 0.0;  // sum of the usable runs' effective parameter counts
+  nlohmann::json log = nlohmann::json::array();
+  std::string last_failure;  // the last unusable restart's Ceres message
+};
+
+Restarts RunRestarts(const std::vector<int>& sizes, const NormalisedSamples& d, const VoidNetworkOptions& options,
+                     bool bayesian) {
+  Restarts r;
+  for (int restart = 0; restart < options.restarts; ++restart) {
+    CheckInterrupt();
+    std::vector<double> w = InitialWeights(sizes, options.seed, restart);
+    const RunResult run = TrainOnce(sizes, d.x, d.y, options.l2, bayesian, options.max_iterations, &w);
+    r.log.push_back({{"restart", restart}, {"usable", run.report.usable}, {"objective", run.objective},
+                     {"l2", run.l2}, {"iterations", run.report.iterations}});
+    if (!run.report.usable) {
+      r.last_failure = "restart " + std::to_string(restart) + ": Ceres " +
+                       std::string(NameOf(run.report.termination)) + ": " + run.report.message;
+      continue;
+    }
+    r.usable_weights.push_back(w);
+    r.gamma_sum += run.effective_params;
+    if (r.best_weights.empty() || run.objective < r.best.objective) {
+      r.best = run;
+      r.best_weights = w;
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
 VoidNetworkFit TrainVoidLengthNetwork(const std::vector<JunctionSample>& samples, const DataSource& data,
                                       const VoidNetworkOptions& options) {
   options.Validate();
@@ -265,106 +352,52 @@ VoidNetworkFit TrainVoidLengthNetwork(const std::vector<JunctionSample>& samples
   WAAM_THROW_UNLESS(n >= 2, data.file << ": " << n << " junctions: the network needs at least 2");
   for (int i = 0; i < n; ++i) samples[i].junction.Validate(data.file + ": junction " + samples[i].label);
 
-  // Min/max normalisation from the training data (mapminmax).
-  std::vector<double> in_min(VoidLengthNetwork::kInputs, INFINITY), in_max(VoidLengthNetwork::kInputs, -INFINITY);
-  double out_min = INFINITY, out_max = -INFINITY;
-  for (const JunctionSample& s : samples) {
-    const std::vector<double> x = NetworkInputs(s.junction, options.angle_order);
-    for (int k = 0; k < VoidLengthNetwork::kInputs; ++k) {
-      in_min[k] = std::min(in_min[k], x[k]);
-      in_max[k] = std::max(in_max[k], x[k]);
-    }
-    out_min = std::min(out_min, s.void_length_mm);
-    out_max = std::max(out_max, s.void_length_mm);
-  }
-  if (!(out_max > out_min)) out_max = out_min + 1.0;  // constant target: any scale works
-  std::vector<std::vector<double>> x(n);
-  std::vector<double> y(n);
-  for (int i = 0; i < n; ++i) {
-    x[i] = NetworkInputs(samples[i].junction, options.angle_order);
-    for (int k = 0; k < VoidLengthNetwork::kInputs; ++k) x[i][k] = Normalise(x[i][k], in_min[k], in_max[k]);
-    y[i] = Normalise(samples[i].void_length_mm, out_min, out_max);
-  }
-
+  const NormalisedSamples d = NormaliseSamples(samples, options.angle_order);
   std::vector<int> sizes = {VoidLengthNetwork::kInputs};
   sizes.insert(sizes.end(), options.hidden.begin(), options.hidden.end());
   sizes.push_back(1);
   const int num_weights = VoidLengthNetwork::NumWeights(sizes);
+  const bool bayesian = options.l2 == 0.0 ? false : options.bayesian;
+  const Restarts r = RunRestarts(sizes, d, options, bayesian);
 
   VoidNetworkFit fit;
-  std::vector<double> best_weights;
-  std::vector<std::vector<double>> usable_weights;
-  double gamma_sum = 0.0;
-  RunResult best;
-  nlohmann::json restart_log = nlohmann::json::array();
-  const bool bayesian = options.l2 == 0.0 ? false : options.bayesian;
-  for (int restart = 0; restart < options.restarts; ++restart) {
-    CheckInterrupt();
-    std::seed_seq seq{options.seed, static_cast<unsigned long long>(restart)};
-    std::mt19937_64 rng(seq);
-    std::vector<double> w(num_weights);
-    std::size_t k = 0;
-    for (std::size_t l = 0; l + 1 < sizes.size(); ++l) {
-      // LeCun-uniform weights (unit-variance pre-activations for inputs in [-1, 1]), small biases.
-      const double a = std::sqrt(3.0 / sizes[l]);
-      std::uniform_real_distribution<double> weight(-a, a), bias(-0.1, 0.1);
-      for (int i = 0; i < sizes[l] * sizes[l + 1]; ++i) w[k++] = weight(rng);
-      for (int i = 0; i < sizes[l + 1]; ++i) w[k++] = bias(rng);
-    }
-    const RunResult run = TrainOnce(sizes, x, y, options.l2, bayesian, options.max_iterations, &w);
-    restart_log.push_back({{"restart", restart}, {"usable", run.report.usable}, {"objective", run.objective},
-                           {"l2", run.l2}, {"iterations", run.report.iterations}});
-    if (!run.report.usable) {
-      fit.message = "restart " + std::to_string(restart) + ": Ceres " + std::string(NameOf(run.report.termination)) + ": " +
-                    run.report.message;
-      continue;
-    }
-    ++fit.usable_restarts;
-    usable_weights.push_back(w);
-    gamma_sum += run.effective_params;
-    if (best_weights.empty() || run.objective < best.objective) {
-      best = run;
-      best_weights = w;
-    }
-  }
-  if (best_weights.empty()) {
-    fit.message = "no restart gave a usable solution; last: " + fit.message;
+  fit.usable_restarts = static_cast<int>(r.usable_weights.size());
+  if (r.best_weights.empty()) {
+    fit.message = "no restart gave a usable solution; last: " + r.last_failure;
     return fit;
   }
-
   FitInfo info;
   info.fitted = true;
   info.data = data;
-  info.solver = best.report;
+  info.solver = r.best.report;
   nlohmann::json training = {{"hidden", options.hidden},
                              {"l2_initial", options.l2},
-                             {"l2_final", best.l2},
+                             {"l2_final", r.best.l2},
                              {"bayesian", bayesian},
-                             {"effective_params", best.effective_params},
+                             {"effective_params", r.best.effective_params},
                              {"num_weights", num_weights},
                              {"restarts", options.restarts},
                              {"seed", options.seed},
-                             {"restart_log", restart_log}};
+                             {"restart_log", r.log}};
   // An ensemble's effective parameter count is taken as the mean over its members.
-  const double gamma = options.ensemble ? gamma_sum / fit.usable_restarts : best.effective_params;
+  const double gamma = options.ensemble ? r.gamma_sum / fit.usable_restarts : r.best.effective_params;
   training["ensemble"] = options.ensemble;
   training["effective_params"] = gamma;
   const std::vector<std::vector<double>> members =
-      options.ensemble ? usable_weights : std::vector<std::vector<double>>{best_weights};
-  fit.model = std::make_unique<VoidLengthNetwork>(sizes, members, in_min, in_max, out_min, out_max,
-                                                  options.angle_order, info, training);
+      options.ensemble ? r.usable_weights : std::vector<std::vector<double>>{r.best_weights};
+  const VoidLengthNetwork unscored(sizes, members, d.in_min, d.in_max, d.out_min, d.out_max, options.angle_order,
+                                   info, training);
   std::vector<double> measured(n), predicted(n);
   for (int i = 0; i < n; ++i) {
     measured[i] = samples[i].void_length_mm;
-    predicted[i] = fit.model->PredictMm(samples[i].junction);
+    predicted[i] = unscored.PredictMm(samples[i].junction);
   }
   // With a penalty the network has fewer effective parameters than weights (gamma); rmse_dof uses gamma.
   info.stats = ComputeFitStats(measured, predicted, num_weights);
   if (n > gamma) info.stats.rmse_dof = std::sqrt(info.stats.sse / (n - gamma));
-  fit.model = std::make_unique<VoidLengthNetwork>(sizes, members, in_min, in_max, out_min, out_max,
+  fit.model = std::make_unique<VoidLengthNetwork>(sizes, members, d.in_min, d.in_max, d.out_min, d.out_max,
                                                   options.angle_order, info, training);
   fit.ok = true;
-  fit.message.clear();
   return fit;
 }
 

@@ -274,29 +274,29 @@ Ring CleanRing(const Ring& in, bool ccw, double tol, double straight_mm, bool gr
 // What EliminateOneNotch did.
 enum class NotchStep { kNoNotchLeft, kCut, kNoUsableCut };
 
-// Chooses and applies the cut that removes the notch with the greatest interior angle. Returns kNoNotchLeft if the
-// region is convex, kNoUsableCut if degenerate geometry leaves the notch without a usable cut.
-NotchStep EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* cycles_out) {
+// The notch with the greatest interior angle (Ding eq. (1)-(2)); cycle -1 when the region is convex.
+Vertex WidestNotch(const WorkRegion& region) {
   Vertex ref;
   double best_phi = std::numbers::pi + 1e-9;
   for (int ci = 0; ci < static_cast<int>(region.cycles.size()); ++ci) {
     for (int i = 0; i < static_cast<int>(region.cycles[ci].size()); ++i) {
-      const double phi = std::numbers::pi - Turn(region.cycles[ci], i);  // interior angle, Ding eq. (1)-(2)
+      const double phi = std::numbers::pi - Turn(region.cycles[ci], i);  // interior angle
       if (phi > best_phi) {
         best_phi = phi;
         ref = Vertex{ci, i};
       }
     }
   }
-  if (ref.cycle < 0) return NotchStep::kNoNotchLeft;
+  return ref;
+}
+
+// Scan zone of notch `ref` (at p, its edges' extensions r1 and r2, bisector between them): the visible vertices
+// strictly inside the cone between r1 and r2 (see the file comment) that can take the cut, nearest the bisector
+// line: the best notch and the best other vertex (cycle -1 where there is none).
+void ScanZone(const WorkRegion& region, const Vertex& ref, const Vec& bisector, double tol, Vertex* best_notch,
+              Vertex* best_vertex) {
   const Ring& c = region.cycles[ref.cycle];
   const Vec p = c[ref.index];
-  const Vec r1 = (p - At(c, ref.index - 1)).normalized();  // extension of V_{i-1} V_i
-  const Vec r2 = (p - At(c, ref.index + 1)).normalized();  // extension of V_{i+1} V_i
-  const Vec bisector = (r1 + r2).normalized();
-
-  // Scan zone: visible vertices strictly inside the cone between r1 and r2 (see the file comment).
-  Vertex best_notch, best_vertex;
   double notch_dist = std::numeric_limits<double>::infinity(), vertex_dist = notch_dist;
   for (int cj = 0; cj < static_cast<int>(region.cycles.size()); ++cj) {
     const Ring& cc = region.cycles[cj];
@@ -307,29 +307,28 @@ NotchStep EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ri
       if (CutAngleAt(cc, j, -w) < kMinCutAngleRad || !SegmentClear(p, cc[j], region, tol)) continue;
       const double dist = std::abs(Cross(bisector, w));  // distance to the bisector line
       if (IsNotch(cc, j)) {
-        if (dist < notch_dist) notch_dist = dist, best_notch = Vertex{cj, j};
+        if (dist < notch_dist) notch_dist = dist, *best_notch = Vertex{cj, j};
       } else if (dist < vertex_dist) {
-        vertex_dist = dist, best_vertex = Vertex{cj, j};
+        vertex_dist = dist, *best_vertex = Vertex{cj, j};
       }
     }
   }
-  if (best_notch.cycle >= 0) {  // notch-notch routine
-    *cycles_out = ApplyCut(region, ref, best_notch, nullptr);
-    return NotchStep::kCut;
-  }
-  if (best_vertex.cycle >= 0) {  // notch-vertex routine
-    *cycles_out = ApplyCut(region, ref, best_vertex, nullptr);
-    return NotchStep::kCut;
-  }
-  // Notch-line routine: the bisector to the first edge. If it lands on a vertex that cannot take the cut, or meets
-  // the edge at a grazing angle (a sliver), tilt it inside the cone; the steepest usable direction wins.
-  struct LineCut {
-    Vertex target;
-    Vec h;
-    bool on_edge = false;
-    double angle = -1.0;
-  };
-  LineCut best_line;
+}
+
+// A notch-line cut: to a vertex, or to the point h on an edge (`on_edge`, the edge's first vertex as target), and
+// the angle it makes there (rad; -1: none found).
+struct NotchLineCut {
+  Vertex target;
+  Vec h;
+  bool on_edge = false;
+  double angle = -1.0;
+};
+
+// Notch-line routine from p (its edges' extensions r1 and r2): the bisector to the first edge. If it lands on a
+// vertex that cannot take the cut, or meets the edge at a grazing angle (a sliver), tilt it inside the cone; the
+// steepest usable direction wins.
+NotchLineCut BestLineCut(const WorkRegion& region, const Vec& p, const Vec& r1, const Vec& r2, double tol) {
+  NotchLineCut best_line;
   for (double alpha : {0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.1, 0.9}) {
     const Vec dir = (alpha * r1 + (1.0 - alpha) * r2).normalized();
     const Hit hit = CastRay(p, dir, region, tol);
@@ -337,9 +336,11 @@ NotchStep EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ri
     const Ring& hc = region.cycles[hit.cycle];
     const Vec h = p + hit.t * dir;
     const int n = static_cast<int>(hc.size());
-    LineCut cut{Vertex{hit.cycle, hit.edge}, h, true, 0.0};
+    NotchLineCut cut{Vertex{hit.cycle, hit.edge}, h, true, 0.0};
     for (int end : {hit.edge, (hit.edge + 1) % n}) {
-      if (cut.on_edge && (h - hc[end]).norm() <= 1e3 * tol) cut = LineCut{Vertex{hit.cycle, end}, hc[end], false, 0.0};
+      if (cut.on_edge && (h - hc[end]).norm() <= 1e3 * tol) {
+        cut = NotchLineCut{Vertex{hit.cycle, end}, hc[end], false, 0.0};
+      }
     }
     if (cut.on_edge) {
       const Vec e = (At(hc, hit.edge + 1) - hc[hit.edge]).normalized();
@@ -353,6 +354,32 @@ NotchStep EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ri
     if (cut.angle > best_line.angle) best_line = cut;
     if (best_line.angle >= kMinCutAngleRad) break;
   }
+  return best_line;
+}
+
+// Chooses and applies the cut that removes the notch with the greatest interior angle: to the notch nearest its
+// bisector in its scan zone (notch-notch), else the nearest vertex (notch-vertex), else along a line (notch-line).
+// Returns kNoNotchLeft if the region is convex, kNoUsableCut if degenerate geometry leaves the notch without a usable
+// cut.
+NotchStep EliminateOneNotch(const WorkRegion& region, double tol, std::vector<Ring>* cycles_out) {
+  const Vertex ref = WidestNotch(region);
+  if (ref.cycle < 0) return NotchStep::kNoNotchLeft;
+  const Ring& c = region.cycles[ref.cycle];
+  const Vec p = c[ref.index];
+  const Vec r1 = (p - At(c, ref.index - 1)).normalized();  // extension of V_{i-1} V_i
+  const Vec r2 = (p - At(c, ref.index + 1)).normalized();  // extension of V_{i+1} V_i
+  const Vec bisector = (r1 + r2).normalized();
+  Vertex best_notch, best_vertex;
+  ScanZone(region, ref, bisector, tol, &best_notch, &best_vertex);
+  if (best_notch.cycle >= 0) {  // notch-notch routine
+    *cycles_out = ApplyCut(region, ref, best_notch, nullptr);
+    return NotchStep::kCut;
+  }
+  if (best_vertex.cycle >= 0) {  // notch-vertex routine
+    *cycles_out = ApplyCut(region, ref, best_vertex, nullptr);
+    return NotchStep::kCut;
+  }
+  const NotchLineCut best_line = BestLineCut(region, p, r1, r2, tol);
   if (best_line.angle >= 0.0) {
     *cycles_out = best_line.on_edge ? ApplyCut(region, ref, best_line.target, &best_line.h)
                                     : ApplyCut(region, ref, best_line.target, nullptr);

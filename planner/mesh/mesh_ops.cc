@@ -107,6 +107,90 @@ std::vector<int> DistinctPoints(const std::vector<Eigen::Vector3d>& corners, std
   return index_of;
 }
 
+// Welds points into the vertices of `mesh`: a point within the tolerance of a vertex (the lowest-numbered one) is
+// that vertex, any other becomes a new one. Tolerance <= 0 welds bit-identical points only.
+class VertexWelder {
+ public:
+  VertexWelder(double weld_tolerance_mm, std::size_t expected, TriangleMesh* mesh)
+      : mesh_(mesh),
+        head_(expected),
+        exact_(weld_tolerance_mm <= 0.0),
+        tol2_(weld_tolerance_mm * weld_tolerance_mm),
+        inv_cell_(exact_ ? 0.0 : 0.5 / weld_tolerance_mm) {}
+
+  int FindOrAdd(const Eigen::Vector3d& p) { return exact_ ? FindOrAddExact(p) : FindOrAddNear(p); }
+
+ private:
+  int FindOrAddExact(const Eigen::Vector3d& p) {
+    int best = std::numeric_limits<int>::max();
+    const int* last = head_.Find(BitsKey(p));
+    for (int v = last == nullptr ? -1 : *last; v >= 0; v = next_[v]) {
+      if (mesh_->vertices[v] == p) best = std::min(best, v);
+    }
+    if (best != std::numeric_limits<int>::max()) return best;
+    return Add(BitsKey(p), p);
+  }
+
+  // Cells are 2 tol wide, so along each axis a point is within tol of its own cell and at most one neighbour:
+  // 8 cells to search instead of 27.
+  int FindOrAddNear(const Eigen::Vector3d& p) {
+    int best = std::numeric_limits<int>::max();
+    std::int64_t cell[3];
+    std::int64_t other[3];
+    for (int a = 0; a < 3; ++a) {
+      // Clamped so the cast stays defined for absurd coordinates (points there simply share far cells).
+      const double u = std::clamp(p[a] * inv_cell_, -1e15, 1e15);
+      cell[a] = static_cast<std::int64_t>(std::floor(u));
+      other[a] = u - static_cast<double>(cell[a]) < 0.5 ? cell[a] - 1 : cell[a] + 1;
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+      const int* last = head_.Find(CellKey(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1],
+                                           corner & 4 ? other[2] : cell[2]));
+      if (last == nullptr) continue;
+      for (int v = *last; v >= 0; v = next_[v]) {
+        if (v < best && (mesh_->vertices[v] - p).squaredNorm() <= tol2_) best = v;
+      }
+    }
+    if (best != std::numeric_limits<int>::max()) return best;
+    return Add(CellKey(cell[0], cell[1], cell[2]), p);
+  }
+
+  // Adds `p` as a new vertex at the head of the list of cell `key`.
+  int Add(std::uint64_t key, const Eigen::Vector3d& p) {
+    const int id = static_cast<int>(mesh_->vertices.size());
+    mesh_->vertices.push_back(p);
+    auto [slot, inserted] = head_.TryEmplace(key, id);
+    next_.push_back(inserted ? -1 : *slot);
+    *slot = id;
+    return id;
+  }
+
+  TriangleMesh* mesh_;
+  CellTable head_;         // cell key -> last vertex inserted in that cell
+  std::vector<int> next_;  // vertex -> previous vertex in the same cell list
+  bool exact_;
+  double tol2_;
+  double inv_cell_;
+};
+
+// Removes the vertices no facet uses (ids keep their first-seen order).
+void DropUnusedVertices(TriangleMesh* mesh) {
+  std::vector<int> new_id(mesh->vertices.size(), -1);
+  for (const std::array<int, 3>& f : mesh->facets) {
+    for (int v : f) new_id[v] = 0;
+  }
+  int kept = 0;
+  for (std::size_t v = 0; v < mesh->vertices.size(); ++v) {
+    if (new_id[v] < 0) continue;
+    new_id[v] = kept;
+    mesh->vertices[kept++] = mesh->vertices[v];
+  }
+  mesh->vertices.resize(kept);
+  for (std::array<int, 3>& f : mesh->facets) {
+    for (int& v : f) v = new_id[v];
+  }
+}
+
 }  // namespace
 
 bool IsDegenerateFacet(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -124,55 +208,9 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
   // of its first corner: the same vertices, numbered the same, as looking up every corner.
   std::vector<Eigen::Vector3d> distinct;
   const std::vector<int> distinct_of = DistinctPoints(corners, &distinct);
-  CellTable head(distinct.size());  // cell key -> last vertex inserted in that cell
-  std::vector<int> next;            // vertex -> previous vertex in the same cell list
-  const bool exact = weld_tolerance_mm <= 0.0;
-  const double tol2 = weld_tolerance_mm * weld_tolerance_mm;
-  const double inv_cell = exact ? 0.0 : 0.5 / weld_tolerance_mm;
-
-  auto find_or_add = [&](const Eigen::Vector3d& p) -> int {
-    int best = std::numeric_limits<int>::max();
-    if (exact) {
-      const int* last = head.Find(BitsKey(p));
-      for (int v = last == nullptr ? -1 : *last; v >= 0; v = next[v]) {
-        if (mesh.vertices[v] == p) best = std::min(best, v);
-      }
-      if (best != std::numeric_limits<int>::max()) return best;
-      const int id = static_cast<int>(mesh.vertices.size());
-      mesh.vertices.push_back(p);
-      auto [slot, inserted] = head.TryEmplace(BitsKey(p), id);
-      next.push_back(inserted ? -1 : *slot);
-      *slot = id;
-      return id;
-    }
-    // Cells are 2 tol wide, so along each axis a point is within tol of its own cell and at most one neighbour:
-    // 8 cells to search instead of 27.
-    std::int64_t cell[3];
-    std::int64_t other[3];
-    for (int a = 0; a < 3; ++a) {
-      // Clamped so the cast stays defined for absurd coordinates (points there simply share far cells).
-      const double u = std::clamp(p[a] * inv_cell, -1e15, 1e15);
-      cell[a] = static_cast<std::int64_t>(std::floor(u));
-      other[a] = u - static_cast<double>(cell[a]) < 0.5 ? cell[a] - 1 : cell[a] + 1;
-    }
-    for (int corner = 0; corner < 8; ++corner) {
-      const int* last = head.Find(CellKey(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1],
-                                          corner & 4 ? other[2] : cell[2]));
-      if (last == nullptr) continue;
-      for (int v = *last; v >= 0; v = next[v]) {
-        if (v < best && (mesh.vertices[v] - p).squaredNorm() <= tol2) best = v;
-      }
-    }
-    if (best != std::numeric_limits<int>::max()) return best;
-    const int id = static_cast<int>(mesh.vertices.size());
-    mesh.vertices.push_back(p);
-    auto [slot, inserted] = head.TryEmplace(CellKey(cell[0], cell[1], cell[2]), id);
-    next.push_back(inserted ? -1 : *slot);
-    *slot = id;
-    return id;
-  };
+  VertexWelder welder(weld_tolerance_mm, distinct.size(), &mesh);
   std::vector<int> vertex_of(distinct.size());
-  for (std::size_t d = 0; d < distinct.size(); ++d) vertex_of[d] = find_or_add(distinct[d]);
+  for (std::size_t d = 0; d < distinct.size(); ++d) vertex_of[d] = welder.FindOrAdd(distinct[d]);
 
   std::size_t dropped = 0;
   mesh.facets.reserve(corners.size() / 3);
@@ -187,23 +225,7 @@ TriangleMesh WeldTriangles(const std::vector<Eigen::Vector3d>& corners, double w
     mesh.facets.push_back(ids);
   }
   if (degenerate) *degenerate = dropped;
-  if (dropped > 0) {
-    // Vertices used only by dropped facets are removed (ids keep their first-seen order).
-    std::vector<int> new_id(mesh.vertices.size(), -1);
-    for (const std::array<int, 3>& f : mesh.facets) {
-      for (int v : f) new_id[v] = 0;
-    }
-    int kept = 0;
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-      if (new_id[v] < 0) continue;
-      new_id[v] = kept;
-      mesh.vertices[kept++] = mesh.vertices[v];
-    }
-    mesh.vertices.resize(kept);
-    for (std::array<int, 3>& f : mesh.facets) {
-      for (int& v : f) v = new_id[v];
-    }
-  }
+  if (dropped > 0) DropUnusedVertices(&mesh);  // vertices used only by dropped facets
   return mesh;
 }
 

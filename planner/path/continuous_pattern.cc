@@ -304,90 +304,123 @@ Prepared SeparateRoundHoles(const PolygonWithHoles& region, const OverlapSpacing
   return out;
 }
 
+// The convex pieces of a prepared region, per piece edge whether it is a line shared with another piece, and the
+// shared lines, longest first.
+struct Pieces {
+  std::vector<Ring> pieces;
+  std::vector<std::vector<bool>> piece_shared;
+  std::vector<SharedEdge> shared;
+};
+
+// Decomposes each region of `prepared` into convex pieces (shallow notches filled first); false with the reason in
+// `failure` when degenerate geometry defeated the decomposition.
+bool DecomposeRegions(const Prepared& prepared, double bead_width_mm, Pieces* out, std::string* failure) {
+  for (const PolygonWithHoles& exact : prepared.regions) {
+    PolygonWithHoles part{FillShallowNotches(exact.outer, kCurveToleranceFraction * bead_width_mm), {}};
+    for (const Ring& hole : exact.holes) {
+      part.holes.push_back(FillShallowNotches(hole, kCurveToleranceFraction * bead_width_mm));
+    }
+    const ConvexDecomposition decomposition = DecomposeConvex(part);
+    if (!decomposition.ok()) {
+      *failure = decomposition.failure;
+      return false;
+    }
+    const std::vector<Ring>& part_pieces = decomposition.pieces;
+    for (SharedEdge edge : FindSharedEdges(part_pieces, part)) {
+      edge.piece_a += static_cast<int>(out->pieces.size());
+      edge.piece_b += static_cast<int>(out->pieces.size());
+      out->shared.push_back(edge);
+    }
+    out->pieces.insert(out->pieces.end(), part_pieces.begin(), part_pieces.end());
+    for (const Ring& piece : part_pieces) out->piece_shared.push_back(SharedEdgeFlags(piece, part));
+  }
+  std::stable_sort(out->shared.begin(), out->shared.end(), [](const SharedEdge& x, const SharedEdge& y) {
+    return (x.b - x.a).norm() > (y.b - y.a).norm();
+  });
+  return true;
+}
+
+// One covering loop per piece (none for a degenerate sliver), then one per round hole's ring.
+std::vector<TaggedLoop> CoveringLoops(const Pieces& p, const std::vector<Ring>& hole_rings,
+                                      const PatternOptions& options, const OverlapSpacing& spacing) {
+  std::vector<TaggedLoop> loops(p.pieces.size());
+  for (std::size_t i = 0; i < p.pieces.size(); ++i) {
+    if (ConvexHull(p.pieces[i]).size() < 3) continue;  // a degenerate sliver: no path, nothing to join
+    const double angle = options.zigzag_auto ? MinimumWidthDirection(p.pieces[i], nullptr) : options.zigzag_angle_rad;
+    const bool mirror = options.alternate_start && options.layer_index % 2 == 1;
+    loops[i].p = BetterCoveringLoop(p.pieces[i], p.piece_shared[i], angle, options.bead_width_mm, spacing, mirror);
+    loops[i].piece.assign(loops[i].p.size(), static_cast<int>(i));
+  }
+  for (const Ring& ring : hole_rings) {
+    loops.push_back(TaggedLoop{ring, std::vector<int>(ring.size(), static_cast<int>(loops.size()))});
+  }
+  return loops;
+}
+
+// Kruskal over the shared lines, longest first: every accepted line joins two loops into one. loops[root] holds the
+// joined loop of a tree; a join must keep inside `strict` (or `loose`, see JoinLoops).
+void JoinAlongSharedEdges(const Pieces& p, double w, const OverlapSpacing& spacing,
+                          const std::vector<PolygonWithHoles>& strict, const std::vector<PolygonWithHoles>& loose,
+                          std::vector<TaggedLoop>* loops) {
+  std::vector<int> parent(p.pieces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const SharedEdge& edge : p.shared) {
+    const int ra = Find(parent, edge.piece_a), rb = Find(parent, edge.piece_b);
+    if (ra == rb || (*loops)[ra].p.size() < 3 || (*loops)[rb].p.size() < 3) continue;
+    TaggedLoop joined;
+    if (!JoinLoops((*loops)[ra], (*loops)[rb], SharedEdgeSites(edge, w), spacing.zigzag_mm, strict, loose, &joined)) {
+      continue;
+    }
+    (*loops)[ra] = std::move(joined);
+    (*loops)[rb] = TaggedLoop{};
+    parent[rb] = ra;
+  }
+}
+
+// Loops still apart (hole rings, pieces across a piece too thin for a path) are joined where they come closest.
+void JoinNearestLoops(double w, const OverlapSpacing& spacing, const std::vector<PolygonWithHoles>& strict,
+                      const std::vector<PolygonWithHoles>& loose, std::vector<TaggedLoop>* loops) {
+  std::vector<TaggedLoop>& l = *loops;
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (std::size_t i = 0; i < l.size() && !progress; ++i) {
+      for (std::size_t j = i + 1; j < l.size() && !progress; ++j) {
+        if (l[i].p.size() < 3 || l[j].p.size() < 3) continue;
+        TaggedLoop joined;
+        if (JoinLoops(l[i], l[j], NearestSites(l[i], l[j], 2.0 * w), spacing.zigzag_mm, strict, loose, &joined)) {
+          l[i] = std::move(joined);
+          l[j] = TaggedLoop{};
+          progress = true;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void PlanContinuous(const PolygonWithHoles& region, const PatternOptions& options, const OverlapSpacing& spacing,
                     std::vector<Move2D>* moves, std::vector<std::string>* notes) {
   WAAM_DEMAND(moves != nullptr && notes != nullptr);  // a fallback to the hybrid pattern is always reported
   const Prepared prepared = SeparateRoundHoles(region, spacing);
-  std::vector<Ring> pieces;
-  std::vector<std::vector<bool>> piece_shared;  // per piece edge: a line shared with another piece
-  std::vector<SharedEdge> shared;
-  for (const PolygonWithHoles& exact : prepared.regions) {
-    PolygonWithHoles part{FillShallowNotches(exact.outer, kCurveToleranceFraction * options.bead_width_mm), {}};
-    for (const Ring& hole : exact.holes) {
-      part.holes.push_back(FillShallowNotches(hole, kCurveToleranceFraction * options.bead_width_mm));
-    }
-    const ConvexDecomposition decomposition = DecomposeConvex(part);
-    if (!decomposition.ok()) {
-      // Degenerate geometry defeated the decomposition: this region gets the hybrid baseline, and the plan says so.
-      const Eigen::Vector2d c = region.outer.empty() ? Eigen::Vector2d::Zero() : region.outer.front();
-      std::ostringstream note;
-      note << "the region at (" << c.x() << ", " << c.y() << ") mm was planned with the hybrid pattern: convex "
-           << "decomposition failed: " << decomposition.failure;
-      notes->push_back(note.str());
-      PlanHybrid(region, options, spacing, moves);
-      return;
-    }
-    const std::vector<Ring>& part_pieces = decomposition.pieces;
-    for (SharedEdge edge : FindSharedEdges(part_pieces, part)) {
-      edge.piece_a += static_cast<int>(pieces.size());
-      edge.piece_b += static_cast<int>(pieces.size());
-      shared.push_back(edge);
-    }
-    pieces.insert(pieces.end(), part_pieces.begin(), part_pieces.end());
-    for (const Ring& piece : part_pieces) {
-      piece_shared.push_back(SharedEdgeFlags(piece, part));
-    }
+  Pieces pieces;
+  std::string failure;
+  if (!DecomposeRegions(prepared, options.bead_width_mm, &pieces, &failure)) {
+    // Degenerate geometry defeated the decomposition: this region gets the hybrid baseline, and the plan says so.
+    const Eigen::Vector2d c = region.outer.empty() ? Eigen::Vector2d::Zero() : region.outer.front();
+    std::ostringstream note;
+    note << "the region at (" << c.x() << ", " << c.y() << ") mm was planned with the hybrid pattern: convex "
+         << "decomposition failed: " << failure;
+    notes->push_back(note.str());
+    PlanHybrid(region, options, spacing, moves);
+    return;
   }
-  std::stable_sort(shared.begin(), shared.end(), [](const SharedEdge& x, const SharedEdge& y) {
-    return (x.b - x.a).norm() > (y.b - y.a).norm();
-  });
   const double w = options.bead_width_mm;
-  std::vector<TaggedLoop> loops(pieces.size());
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    if (ConvexHull(pieces[i]).size() < 3) continue;  // a degenerate sliver: no path, nothing to join
-    const double angle = options.zigzag_auto ? MinimumWidthDirection(pieces[i], nullptr) : options.zigzag_angle_rad;
-    const bool mirror = options.alternate_start && options.layer_index % 2 == 1;
-    loops[i].p = BetterCoveringLoop(pieces[i], piece_shared[i], angle, options.bead_width_mm, spacing, mirror);
-    loops[i].piece.assign(loops[i].p.size(), static_cast<int>(i));
-  }
-  for (const Ring& ring : prepared.hole_rings) {
-    loops.push_back(TaggedLoop{ring, std::vector<int>(ring.size(), static_cast<int>(loops.size()))});
-  }
-  // Kruskal over the shared lines, longest first: every accepted line joins two loops into one. loops[root] holds
-  // the joined loop of a tree.
+  std::vector<TaggedLoop> loops = CoveringLoops(pieces, prepared.hole_rings, options, spacing);
   const std::vector<PolygonWithHoles> strict = Offset({region}, -(spacing.boundary_offset_mm - 0.01));
   const std::vector<PolygonWithHoles> loose = Offset({region}, -0.01);
-  std::vector<int> parent(pieces.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const SharedEdge& edge : shared) {
-    const int ra = Find(parent, edge.piece_a), rb = Find(parent, edge.piece_b);
-    if (ra == rb || loops[ra].p.size() < 3 || loops[rb].p.size() < 3) continue;
-    TaggedLoop joined;
-    if (!JoinLoops(loops[ra], loops[rb], SharedEdgeSites(edge, w), spacing.zigzag_mm, strict, loose, &joined)) {
-      continue;
-    }
-    loops[ra] = std::move(joined);
-    loops[rb] = TaggedLoop{};
-    parent[rb] = ra;
-  }
-  // Loops still apart (hole rings, pieces across a piece too thin for a path) are joined where they come closest.
-  for (bool progress = true; progress;) {
-    progress = false;
-    for (std::size_t i = 0; i < loops.size() && !progress; ++i) {
-      for (std::size_t j = i + 1; j < loops.size() && !progress; ++j) {
-        if (loops[i].p.size() < 3 || loops[j].p.size() < 3) continue;
-        TaggedLoop joined;
-        if (JoinLoops(loops[i], loops[j], NearestSites(loops[i], loops[j], 2.0 * w), spacing.zigzag_mm, strict,
-                      loose, &joined)) {
-          loops[i] = std::move(joined);
-          loops[j] = TaggedLoop{};
-          progress = true;
-        }
-      }
-    }
-  }
+  JoinAlongSharedEdges(pieces, w, spacing, strict, loose, &loops);
+  JoinNearestLoops(w, spacing, strict, loose, &loops);
   // Each remaining loop is one pass; the start rotates along the outline layer by layer and odd layers run the
   // loop the other way, so arc starts and the direction of travel do not stack up.
   const Vec start = PointAlongRing(region.outer, StartFraction(options));

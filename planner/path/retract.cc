@@ -187,6 +187,66 @@ double DistanceToWelded(const Plan& plan, std::size_t layer, std::size_t before,
 
 }  // namespace internal
 
+namespace {
+
+// Travel points, each with its layer.
+using Route = std::vector<std::pair<std::size_t, PathPoint>>;
+
+// `p` moved `r` mm up its torch axis, as a travel point.
+PathPoint Lifted(const PathPoint& p, double r) { return TravelPoint(p, p.p_P + r * p.tool_dir_P, p.tool_dir_P); }
+
+// Where the previous pass ended: its last weld point A and the lift L = A + r t_A above it, in layer `layer`.
+struct PassEnd {
+  PathPoint end;
+  PathPoint lift;
+  std::size_t layer = 0;
+  bool any = false;  // false before the first pass
+};
+
+// True when the route from `from` keeps `limit_mm` from every welded segment.
+bool RouteClear(WeldedGrid& welded, Vector3d from, const Route& route, double limit_mm) {
+  for (const auto& [layer, q] : route) {
+    if (welded.Closer(from, q.p_P, limit_mm)) return false;
+    from = q.p_P;
+  }
+  return true;
+}
+
+// Out of the welded bounding box grown by `r` mm along each torch axis, over its top, back down to the approach
+// point of start `s` (layer `l`). The crossing is the move into the new layer, so a positioner that turns per layer
+// turns while the torch is above the part.
+Route OverTheTop(const WeldedGrid& welded, double r, const PassEnd& from, const PathPoint& s, std::size_t l,
+                 const PathPoint& approach) {
+  const Vector3d lo = welded.lo().array() - r, hi = welded.hi().array() + r;
+  const Vector3d t_a = from.end.tool_dir_P, t_s = s.tool_dir_P;
+  const Vector3d e_a = LeaveBox(from.lift.p_P, t_a, lo, hi), e_s = LeaveBox(approach.p_P, t_s, lo, hi);
+  const Vector3d q_a(e_a.x(), e_a.y(), std::max(e_a.z(), hi.z())), q_s(e_s.x(), e_s.y(), std::max(e_s.z(), hi.z()));
+  Route route;
+  route.emplace_back(from.layer, TravelPoint(from.lift, e_a, t_a));
+  route.emplace_back(from.layer, TravelPoint(from.lift, q_a, t_a));
+  route.emplace_back(l, TravelPoint(s, q_s, t_s));
+  route.emplace_back(l, TravelPoint(s, e_s, t_s));
+  route.emplace_back(l, approach);
+  return route;
+}
+
+// The travel to start `s` (layer `l`) of a pass: the planner's travel points `between`, lifted, then down to `s`
+// along its torch axis from the approach point; over the top when that would come closer than `limit_mm` to the
+// metal welded so far (the approach to the first pass comes from outside).
+Route TravelTo(WeldedGrid& welded, double r, double limit_mm, const PassEnd& from, const Route& between,
+               const PathPoint& s, std::size_t l, RetractReport* report) {
+  ++report->travels;
+  const PathPoint approach = Lifted(s, r);
+  Route route;
+  for (const auto& [layer, q] : between) route.emplace_back(layer, Lifted(q, r));
+  route.emplace_back(l, approach);
+  if (!from.any || RouteClear(welded, from.lift.p_P, route, limit_mm)) return route;
+  ++report->via_top;
+  return OverTheTop(welded, r, from, s, l, approach);
+}
+
+}  // namespace
+
 RetractReport AddRetracts(double clearance_mm, Plan* plan) {
   RetractReport report;
   if (!(clearance_mm > 0.0) || plan->layers.empty()) return report;
@@ -202,12 +262,8 @@ RetractReport AddRetracts(double clearance_mm, Plan* plan) {
 
   PathOut out(plan->layers.size());
   WeldedGrid welded(std::max(r, 5.0));
-  PathPoint end_of_pass;                      // A: the last weld point of the previous pass
-  PathPoint lift;                             // L = A + r t_A
-  std::size_t lift_layer = 0;
-  bool have_lift = false;
-  std::vector<std::pair<std::size_t, PathPoint>> between;  // the planner's travel points after A, with their layer
-
+  PassEnd pass_end;
+  Route between;  // the planner's travel points after the end of the previous pass
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t l = order[k].first;
     const PathPoint& p = at(k);
@@ -217,61 +273,21 @@ RetractReport AddRetracts(double clearance_mm, Plan* plan) {
       out.Push(l, p);
       if (!next_welds) {
         // End of a pass: lift along the torch axis.
-        end_of_pass = p;
-        lift = TravelPoint(p, p.p_P + r * p.tool_dir_P, p.tool_dir_P);
-        lift_layer = l;
-        have_lift = true;
-        out.Push(l, lift);
+        pass_end = PassEnd{p, Lifted(p, r), l, true};
+        out.Push(l, pass_end.lift);
         between.clear();
       }
-      continue;
-    }
-    if (!next_welds) {
+    } else if (!next_welds) {
       between.emplace_back(l, p);  // a travel point on the way; decided at the next start
-      continue;
+    } else {
+      // p is the start S of a pass.
+      for (const auto& [layer, q] : TravelTo(welded, r, limit, pass_end, between, p, l, &report)) out.Push(layer, q);
+      out.Push(l, p);
+      between.clear();
     }
-
-    // p is the start S of a pass: come down to it along its torch axis from the approach point P.
-    ++report.travels;
-    const PathPoint approach = TravelPoint(p, p.p_P + r * p.tool_dir_P, p.tool_dir_P);
-    std::vector<std::pair<std::size_t, PathPoint>> route;
-    for (const auto& [layer, q] : between) {
-      route.emplace_back(layer, TravelPoint(q, q.p_P + r * q.tool_dir_P, q.tool_dir_P));
-    }
-    route.emplace_back(l, approach);
-    // The planner's travel, lifted, if it keeps the clearance (the approach to the first pass comes from outside).
-    bool clear = true;
-    if (have_lift) {
-      Vector3d from = lift.p_P;
-      for (const auto& [layer, q] : route) {
-        if (welded.Closer(from, q.p_P, limit)) {
-          clear = false;
-          break;
-        }
-        from = q.p_P;
-      }
-    }
-    if (!clear) {
-      // Out of the grown bounding box along each torch axis, over its top, back down. The crossing is the move into
-      // the new layer, so a positioner that turns per layer turns while the torch is above the part.
-      ++report.via_top;
-      const Vector3d lo = welded.lo().array() - r, hi = welded.hi().array() + r;
-      const Vector3d t_a = end_of_pass.tool_dir_P, t_s = p.tool_dir_P;
-      const Vector3d e_a = LeaveBox(lift.p_P, t_a, lo, hi), e_s = LeaveBox(approach.p_P, t_s, lo, hi);
-      const Vector3d q_a(e_a.x(), e_a.y(), std::max(e_a.z(), hi.z())), q_s(e_s.x(), e_s.y(), std::max(e_s.z(), hi.z()));
-      route.clear();
-      route.emplace_back(lift_layer, TravelPoint(lift, e_a, t_a));
-      route.emplace_back(lift_layer, TravelPoint(lift, q_a, t_a));
-      route.emplace_back(l, TravelPoint(p, q_s, t_s));
-      route.emplace_back(l, TravelPoint(p, e_s, t_s));
-      route.emplace_back(l, approach);
-    }
-    for (const auto& [layer, q] : route) out.Push(layer, q);
-    out.Push(l, p);
-    between.clear();
   }
   // Travel points after the last pass stay, lifted.
-  for (const auto& [layer, q] : between) out.Push(layer, TravelPoint(q, q.p_P + r * q.tool_dir_P, q.tool_dir_P));
+  for (const auto& [layer, q] : between) out.Push(layer, Lifted(q, r));
 
   for (std::size_t l = 0; l < plan->layers.size(); ++l) plan->layers[l].points = std::move(out.layer(l));
   return report;

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/png_file.h"
 #include "analysis/scenario.h"
 #include "analysis/sweep.h"
 #include "analysis/thermal_material_io.h"
@@ -80,6 +81,12 @@ TEST(FuzzRegressions, SweepInputsGiveASweepOrAnInputError) {
   Replay("sweep", [](const fs::path& input) {
     const analysis::Sweep sweep = analysis::ParseSweep(ReadFile(input), input);
     (void)analysis::SweepBenchRuns(sweep);
+  });
+}
+
+TEST(FuzzRegressions, PngInputsGiveAPictureOrAnInputError) {
+  Replay("png", [](const fs::path& input) {
+    for (const int channels : {1, 3, 4}) (void)analysis::internal::ReadPng(input, channels);
   });
 }
 

@@ -87,6 +87,21 @@ TEST(PngFile, NotAPngOrTruncatedIsAnInputErrorNamingTheFile) {
   }
 }
 
+TEST(PngFile, AChunkLongerThanTheFileIsRefusedBeforeItIsAllocated) {
+  // A real picture's header followed by a text chunk that declares 1 GiB (found by fuzz/png_fuzzer.cc: libpng
+  // allocated and cleared the whole chunk before finding the file short).
+  const std::vector<unsigned char> bytes = EncodePng(KnownPixels(30, 30, CV_8UC3));
+  std::string png(reinterpret_cast<const char*>(bytes.data()), 8 + 25);  // signature and IHDR
+  png += std::string("\x40\x00\x00\x39", 4) + "tEXtSoftware";
+  try {
+    DecodePng(png, 3, "shot.png");
+    ADD_FAILURE() << "accepted a chunk longer than the file";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("shot.png: corrupt PNG (chunk 'tEXt' at byte 33 declares 1073741881 bytes"))
+        << e.what();
+  }
+}
+
 TEST(PngFile, AWriteUnderARegularFileIsAnOutputErrorNamingThePathAndReason) {
   const fs::path dir = fs::path(::testing::TempDir()) / "png_file_under_file";
   fs::create_directories(dir);

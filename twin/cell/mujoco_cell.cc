@@ -16,7 +16,6 @@
 #include "models/core/numbers.h"
 #include "twin/cell/mujoco_cell_internal.h"
 
-
 namespace waam::twin {
 namespace fs = std::filesystem;
 using planner::Joints8;
@@ -44,10 +43,6 @@ Eigen::Isometry3d Pose(const mjtNum* pos, const mjtNum* mat) {
   X.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(mat);
   return X;
 }
-
-}  // namespace
-
-namespace {
 
 // The MJCF text and its assets in a MuJoCo virtual file system, which mj_loadXML reads instead of the disk.
 class Vfs {
@@ -166,18 +161,10 @@ void PlaceBody(mjModel* m, int body, const Eigen::Isometry3d& X) {
   m->body_quat[4 * body + 3] = q.z();
 }
 
-// Reads the kinematics, the closed-form test and the nozzle from the model at the zero pose.
-void ReadKinematics(CellModel::Impl* impl) {
+// Reads the arm from the model at the zero pose `d`: OPW parameters, offsets and sign corrections from the joint
+// axes (whatever the convention), joint limits and speeds. Returns the OPW model, or nothing (the reason in impl).
+std::optional<planner::OpwArm> ReadArm(CellModel::Impl* impl, const mjData* d, const Eigen::Isometry3d& X_RW) {
   const mjModel* m = impl->m;
-  ScratchData scratch(m);
-  mjData* d = scratch.get();
-  mj_kinematics(m, d);
-
-  planner::CellKinematics& cell = impl->kinematics;
-  const int rb = impl->robot_base;
-  cell.X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
-  const Eigen::Isometry3d X_RW = cell.X_WR.inverse();
-  // OPW parameters, offsets and sign corrections from the joint axes at the zero pose, whatever the convention.
   const int fl = impl->flange;
   planner::ArmAxes axes;
   for (int j = 0; j < 6; ++j) {
@@ -187,7 +174,7 @@ void ReadKinematics(CellModel::Impl* impl) {
   }
   axes.X_RF0 = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
   const std::optional<planner::OpwArm> opw = planner::OpwFromAxes(axes, &impl->not_opw_reason);
-  planner::OpwArm& arm = cell.arm;
+  planner::OpwArm& arm = impl->kinematics.arm;
   if (opw) arm = *opw;
   arm.name = "arm of " + impl->file.filename().string();
   const mjtNum* speed = m->numeric_data + m->numeric_adr[impl->speeds];
@@ -197,12 +184,17 @@ void ReadKinematics(CellModel::Impl* impl) {
     arm.max_speed[j] = speed[j] * kPi / 180.0;
   }
   arm.max_accel = arm.max_speed / planner::kAxisRampTimeS;  // no model gives accelerations (opw_arm.h)
+  return opw;
+}
 
-  // Tool: the tcp site in the flange frame.
+// Reads the tool from the model at the zero pose `d`: the tcp site in the flange frame and the nozzle capsule in
+// the TCP frame (rigid on the flange, so any pose gives it).
+void ReadTool(CellModel::Impl* impl, const mjData* d) {
+  const mjModel* m = impl->m;
+  const int fl = impl->flange;
   const int ts = impl->tcp;
-  cell.X_FT = Pose(d->xpos + 3 * fl, d->xmat + 9 * fl).inverse() * Pose(d->site_xpos + 3 * ts, d->site_xmat + 9 * ts);
-
-  // Nozzle capsule in the TCP frame (rigid on the flange, so any pose gives it).
+  impl->kinematics.X_FT =
+      Pose(d->xpos + 3 * fl, d->xmat + 9 * fl).inverse() * Pose(d->site_xpos + 3 * ts, d->site_xmat + 9 * ts);
   const int g = impl->nozzle;
   const Eigen::Isometry3d X_TG =
       Pose(d->site_xpos + 3 * ts, d->site_xmat + 9 * ts).inverse() * Pose(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
@@ -210,74 +202,112 @@ void ReadKinematics(CellModel::Impl* impl) {
   impl->nozzle_a_T = X_TG * Eigen::Vector3d(0.0, 0.0, -half);
   impl->nozzle_b_T = X_TG * Eigen::Vector3d(0.0, 0.0, half);
   impl->nozzle_radius_mm = m->geom_size[3 * g] * kMm;
+}
 
-  // Positioner chain: B -> tilt axis frame A -> table frame C -> plate top (part_origin). A turntable has no A (the
-  // table frame C sits on B, p_BA holds its offset), no positioner no C either (the plate is fixed: C = B).
+// The tilt-rotate positioner's offsets and tilt limits; throws InputError unless its bodies are unrotated with the
+// tilt about x and the rotation about z. Returns X_WC, the table frame in world.
+Eigen::Isometry3d ReadTiltRotate(CellModel::Impl* impl, const mjData* d) {
+  const mjModel* m = impl->m;
+  planner::CellKinematics& cell = impl->kinematics;
+  const int tilt_body = m->jnt_bodyid[impl->jnt[6]];
+  const int rot_body = m->jnt_bodyid[impl->jnt[7]];
+  const Eigen::Isometry3d X_WA = Pose(d->xpos + 3 * tilt_body, d->xmat + 9 * tilt_body);
+  const Eigen::Isometry3d X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
+  const Eigen::Isometry3d X_BA = cell.X_WB.inverse() * X_WA;
+  const Eigen::Isometry3d X_AC = X_WA.inverse() * X_WC;
+  const Eigen::Vector3d tilt_axis(m->jnt_axis + 3 * impl->jnt[6]);
+  const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
+  WAAM_THROW_UNLESS(X_BA.linear().isIdentity(1e-9) && X_AC.linear().isIdentity(1e-9) &&
+                        (tilt_axis - Eigen::Vector3d::UnitX()).norm() < 1e-9 &&
+                        (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 &&
+                        tilt_body == m->body_parentid[rot_body] && m->body_parentid[tilt_body] == impl->positioner_base,
+                    impl->file.string() << ": the positioner must be positioner_base -> body with pos_tilt (axis 1 0 0) "
+                                           "-> body with pos_rot (axis 0 0 1), without rotated body frames");
+  cell.positioner.p_BA = X_BA.translation();
+  cell.positioner.p_AC = X_AC.translation();
+  cell.positioner.tilt_lower = m->jnt_range[2 * impl->jnt[6]];
+  cell.positioner.tilt_upper = m->jnt_range[2 * impl->jnt[6] + 1];
+  return X_WC;
+}
+
+// The turntable's offset (in p_BA); throws InputError unless its body is unrotated and turns about z. Returns X_WC.
+Eigen::Isometry3d ReadTurntable(CellModel::Impl* impl, const mjData* d) {
+  const mjModel* m = impl->m;
+  planner::CellKinematics& cell = impl->kinematics;
+  const int rot_body = m->jnt_bodyid[impl->jnt[7]];
+  const Eigen::Isometry3d X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
+  const Eigen::Isometry3d X_BC = cell.X_WB.inverse() * X_WC;
+  const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
+  WAAM_THROW_UNLESS(X_BC.linear().isIdentity(1e-9) && (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 &&
+                        m->body_parentid[rot_body] == impl->positioner_base,
+                    impl->file.string() << ": the turntable must be positioner_base -> body with pos_rot (axis 0 0 1), "
+                                           "without a rotated body frame");
+  cell.positioner.p_BA = X_BC.translation();
+  return X_WC;
+}
+
+// Reads the positioner chain from the model at the zero pose `d`: B -> tilt axis frame A -> table frame C -> plate
+// top (part_origin). A turntable has no A (the table frame C sits on B, p_BA holds its offset), no positioner no C
+// either (the plate is fixed: C = B).
+void ReadPositioner(CellModel::Impl* impl, const mjData* d) {
+  const mjModel* m = impl->m;
+  planner::CellKinematics& cell = impl->kinematics;
   const int pb = impl->positioner_base;
   cell.X_WB = Pose(d->xpos + 3 * pb, d->xmat + 9 * pb);
   cell.positioner.type = impl->positioner_type;
   Eigen::Isometry3d X_WC = cell.X_WB;
-  if (impl->positioner_type == planner::PositionerType::kTiltRotate) {
-    const int tilt_body = m->jnt_bodyid[impl->jnt[6]];
-    const int rot_body = m->jnt_bodyid[impl->jnt[7]];
-    const Eigen::Isometry3d X_WA = Pose(d->xpos + 3 * tilt_body, d->xmat + 9 * tilt_body);
-    X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
-    const Eigen::Isometry3d X_BA = cell.X_WB.inverse() * X_WA;
-    const Eigen::Isometry3d X_AC = X_WA.inverse() * X_WC;
-    const Eigen::Vector3d tilt_axis(m->jnt_axis + 3 * impl->jnt[6]);
-    const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
-    WAAM_THROW_UNLESS(X_BA.linear().isIdentity(1e-9) && X_AC.linear().isIdentity(1e-9) &&
-                          (tilt_axis - Eigen::Vector3d::UnitX()).norm() < 1e-9 &&
-                          (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 &&
-                          tilt_body == m->body_parentid[rot_body] && m->body_parentid[tilt_body] == pb,
-                      impl->file.string() << ": the positioner must be positioner_base -> body with pos_tilt (axis 1 0 0) "
-                                             "-> body with pos_rot (axis 0 0 1), without rotated body frames");
-    cell.positioner.p_BA = X_BA.translation();
-    cell.positioner.p_AC = X_AC.translation();
-    cell.positioner.tilt_lower = m->jnt_range[2 * impl->jnt[6]];
-    cell.positioner.tilt_upper = m->jnt_range[2 * impl->jnt[6] + 1];
-  } else {
-    cell.positioner.p_BA = Eigen::Vector3d::Zero();
-    cell.positioner.p_AC = Eigen::Vector3d::Zero();
-    cell.positioner.tilt_lower = cell.positioner.tilt_upper = 0.0;
-    cell.positioner.rotation_lower = cell.positioner.rotation_upper = 0.0;
-  }
-  if (impl->positioner_type == planner::PositionerType::kTurntable) {
-    const int rot_body = m->jnt_bodyid[impl->jnt[7]];
-    X_WC = Pose(d->xpos + 3 * rot_body, d->xmat + 9 * rot_body);
-    const Eigen::Isometry3d X_BC = cell.X_WB.inverse() * X_WC;
-    const Eigen::Vector3d rot_axis(m->jnt_axis + 3 * impl->jnt[7]);
-    WAAM_THROW_UNLESS(X_BC.linear().isIdentity(1e-9) && (rot_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-9 &&
-                          m->body_parentid[rot_body] == pb,
-                      impl->file.string() << ": the turntable must be positioner_base -> body with pos_rot (axis 0 0 1), "
-                                             "without a rotated body frame");
-    cell.positioner.p_BA = X_BC.translation();
-  }
+  cell.positioner.p_BA = Eigen::Vector3d::Zero();
+  cell.positioner.p_AC = Eigen::Vector3d::Zero();
+  cell.positioner.tilt_lower = cell.positioner.tilt_upper = 0.0;
+  cell.positioner.rotation_lower = cell.positioner.rotation_upper = 0.0;
+  if (impl->positioner_type == planner::PositionerType::kTiltRotate) X_WC = ReadTiltRotate(impl, d);
+  if (impl->positioner_type == planner::PositionerType::kTurntable) X_WC = ReadTurntable(impl, d);
   if (impl->positioner_type != planner::PositionerType::kNone) {
     cell.positioner.rotation_lower = m->jnt_range[2 * impl->jnt[7]];
     cell.positioner.rotation_upper = m->jnt_range[2 * impl->jnt[7] + 1];
   }
   const int po = impl->part_origin;
   cell.positioner.X_CP = X_WC.inverse() * Pose(d->site_xpos + 3 * po, d->site_xmat + 9 * po);
+  const mjtNum* speed = m->numeric_data + m->numeric_adr[impl->speeds];
   cell.positioner.tilt_max_speed = speed[6] * kPi / 180.0;
   cell.positioner.rotation_max_speed = speed[7] * kPi / 180.0;
   cell.positioner.tilt_max_accel = cell.positioner.tilt_max_speed / planner::kAxisRampTimeS;
   cell.positioner.rotation_max_accel = cell.positioner.rotation_max_speed / planner::kAxisRampTimeS;
+}
 
-  // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
+// The largest flange error (mm, plus 1000 x the rotation matrices' difference) of the closed form against
+// MuJoCo's forward kinematics on 50 seeded random joint vectors within the limits; `d` is moved.
+double ClosedFormError(const CellModel::Impl& impl, mjData* d, const Eigen::Isometry3d& X_RW) {
+  const planner::OpwArm& arm = impl.kinematics.arm;
+  const int fl = impl.flange;
   std::mt19937_64 rng(2024);
   double worst = 0.0;
-  for (int trial = 0; opw && trial < 50; ++trial) {
+  for (int trial = 0; trial < 50; ++trial) {
     planner::Joints6 q;
     for (int j = 0; j < 6; ++j) q[j] = std::uniform_real_distribution<double>(arm.lower[j], arm.upper[j])(rng);
-    for (int j = 0; j < 6; ++j) d->qpos[impl->qadr[j]] = q[j];
-    mj_kinematics(m, d);
+    for (int j = 0; j < 6; ++j) d->qpos[impl.qadr[j]] = q[j];
+    mj_kinematics(impl.m, d);
     const Eigen::Isometry3d X_RF = X_RW * Pose(d->xpos + 3 * fl, d->xmat + 9 * fl);
     const Eigen::Isometry3d X_fk = planner::ForwardKinematics(arm, q);
     worst = std::max(worst, (X_RF.translation() - X_fk.translation()).norm() +
                                 1000.0 * (X_RF.linear() - X_fk.linear()).norm());
   }
-  impl->closed_form = opw.has_value() && worst < 1e-6;
+  return worst;
+}
+
+// Reads the kinematics, the closed-form test and the nozzle from the model at the zero pose.
+void ReadKinematics(CellModel::Impl* impl) {
+  ScratchData scratch(impl->m);
+  mjData* d = scratch.get();
+  mj_kinematics(impl->m, d);
+  const int rb = impl->robot_base;
+  impl->kinematics.X_WR = Pose(d->xpos + 3 * rb, d->xmat + 9 * rb);
+  const Eigen::Isometry3d X_RW = impl->kinematics.X_WR.inverse();
+  const std::optional<planner::OpwArm> opw = ReadArm(impl, d, X_RW);
+  ReadTool(impl, d);
+  ReadPositioner(impl, d);
+  // The closed form must reproduce MuJoCo's forward kinematics of the flange (to 1e-6 mm) on random joints.
+  impl->closed_form = opw.has_value() && ClosedFormError(*impl, d, X_RW) < 1e-6;
   if (opw && !impl->closed_form) impl->not_opw_reason = "the OPW model differs from MuJoCo's forward kinematics";
 }
 

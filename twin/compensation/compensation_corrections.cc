@@ -181,43 +181,99 @@ Eigen::Vector3d SectionShift::Outline(const Eigen::Vector3d& p, const Bracket& b
   return d * e;
 }
 
+namespace {
+
+// The in-plane axes carried along the axis (parallel transport), so that angle k means the same side of the part at
+// every station, also through a bend where unitOrthogonal() would switch branches.
+void TransportAxes(SectionShift* a) {
+  for (std::size_t i = 0; i < a->stations.size(); ++i) {
+    const Eigen::Vector3d& n = a->stations[i].normal;
+    Eigen::Vector3d t = i == 0 ? n.unitOrthogonal() : a->t1[i - 1];
+    t -= t.dot(n) * n;
+    a->t1.push_back(t.norm() > 1e-6 ? Eigen::Vector3d(t.normalized()) : n.unitOrthogonal());
+  }
+}
+
+// Measures station i's section of the scan against the reference's (slabs `slab` mm thick): its axis shift and
+// outline move, and marks it measured; a section that is not complete in both is left unmeasured.
+void MeasureStation(const std::vector<Eigen::Vector3d>& reference, const std::vector<Eigen::Vector3d>& scan,
+                    double slab, std::size_t i, SectionShift* a) {
+  const AxisStation& s = a->stations[i];
+  const double reach = 1.5 * s.radius_mm + 2.0 * slab + 5.0;
+  const SectionMeasure t = MeasureSection(reference, s, slab, reach);
+  const SectionMeasure m = MeasureSection(scan, s, slab, reach);
+  // A complete section only: a slab past the shortened, tilted top cuts a partial ring whose centre is not the axis.
+  if (m.points == 0 || t.points == 0 || m.d_min_mm < 0.7 * t.d_min_mm || m.d_max_mm < 0.7 * t.d_max_mm ||
+      m.d_max_mm > 1.25 * t.d_max_mm) {
+    return;
+  }
+  const std::vector<Eigen::Vector3d> scan_in = InSlab(scan, s, slab, reach);
+  const std::vector<Eigen::Vector3d> reference_in = InSlab(reference, s, slab, reach);
+  if (!Surrounds(scan_in, s, a->t1[i], m.centroid) || !Surrounds(reference_in, s, a->t1[i], t.centroid)) return;
+  const Eigen::Vector3d d = m.centroid - t.centroid;
+  a->shift[i] = d - d.dot(s.normal) * s.normal;
+  const std::array<double, SectionShift::kDirections> hs = Support(scan_in, s, a->t1[i], m.centroid);
+  const std::array<double, SectionShift::kDirections> hr = Support(reference_in, s, a->t1[i], t.centroid);
+  for (int k = 0; k < SectionShift::kDirections; ++k) a->outline[i][k] = hs[k] - hr[k];
+  a->measured[i] = 1;
+}
+
+// Top: the last outline, and a straight line through the last measured axis offsets `ok` (up to 5 stations) in the
+// arc length s, projected into each plane; the line is trusted over the shortened top end only (at most
+// kExtrapolateMm of axis), then held.
+void ExtrapolateTop(const std::vector<std::size_t>& ok, SectionShift* a) {
+  const std::size_t n_fit = std::min<std::size_t>(ok.size(), 5);
+  Eigen::Vector3d slope = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
+  double s_mean = 0.0;
+  for (std::size_t k = ok.size() - n_fit; k < ok.size(); ++k) {
+    mean += a->shift[ok[k]];
+    s_mean += a->stations[ok[k]].s_mm;
+  }
+  mean /= static_cast<double>(n_fit);
+  s_mean /= static_cast<double>(n_fit);
+  double ss = 0.0;
+  for (std::size_t k = ok.size() - n_fit; k < ok.size(); ++k) {
+    const double ds = a->stations[ok[k]].s_mm - s_mean;
+    slope += ds * (a->shift[ok[k]] - mean);
+    ss += ds * ds;
+  }
+  if (ss > 0.0) slope /= ss;
+  constexpr double kExtrapolateMm = 20.0;
+  const double s_last = a->stations[ok.back()].s_mm;
+  for (std::size_t i = ok.back() + 1; i < a->stations.size(); ++i) {
+    const double s_i = std::min(a->stations[i].s_mm, s_last + kExtrapolateMm);
+    const Eigen::Vector3d d = mean + slope * (s_i - s_mean);
+    a->shift[i] = d - d.dot(a->stations[i].normal) * a->stations[i].normal;
+    a->outline[i] = a->outline[ok.back()];
+  }
+}
+
+// Gaps between the measured stations `ok`: linear between the measured neighbours.
+void InterpolateGaps(const std::vector<std::size_t>& ok, SectionShift* a) {
+  for (std::size_t k = 1; k < ok.size(); ++k) {
+    for (std::size_t i = ok[k - 1] + 1; i < ok[k]; ++i) {
+      const double t = static_cast<double>(i - ok[k - 1]) / static_cast<double>(ok[k] - ok[k - 1]);
+      a->shift[i] = (1.0 - t) * a->shift[ok[k - 1]] + t * a->shift[ok[k]];
+      for (int d = 0; d < SectionShift::kDirections; ++d) {
+        a->outline[i][d] = (1.0 - t) * a->outline[ok[k - 1]][d] + t * a->outline[ok[k]][d];
+      }
+    }
+  }
+}
+
+}  // namespace
+
 SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
                                  const std::vector<Eigen::Vector3d>& scan, double step_mm) {
   SectionShift a;
   const double slab = 0.5 * step_mm;
   a.stations = CentralAxis(reference, step_mm, slab);
-  // The in-plane axes carried along the axis (parallel transport), so that angle k means the same side of the part
-  // at every station, also through a bend where unitOrthogonal() would switch branches.
-  for (std::size_t i = 0; i < a.stations.size(); ++i) {
-    const Eigen::Vector3d& n = a.stations[i].normal;
-    Eigen::Vector3d t = i == 0 ? n.unitOrthogonal() : a.t1[i - 1];
-    t -= t.dot(n) * n;
-    a.t1.push_back(t.norm() > 1e-6 ? Eigen::Vector3d(t.normalized()) : n.unitOrthogonal());
-  }
+  TransportAxes(&a);
   a.shift.assign(a.stations.size(), Eigen::Vector3d::Zero());
   a.outline.assign(a.stations.size(), std::array<double, SectionShift::kDirections>{});
   a.measured.assign(a.stations.size(), 0);
   // Each station's section is measured on its own (its own slots), in parallel; the largest shift is taken after.
-  ParallelFor(a.stations.size(), [&](std::size_t i) {
-    const AxisStation& s = a.stations[i];
-    const double reach = 1.5 * s.radius_mm + 2.0 * slab + 5.0;
-    const SectionMeasure t = MeasureSection(reference, s, slab, reach);
-    const SectionMeasure m = MeasureSection(scan, s, slab, reach);
-    // A complete section only: a slab past the shortened, tilted top cuts a partial ring whose centre is not the axis.
-    if (m.points == 0 || t.points == 0 || m.d_min_mm < 0.7 * t.d_min_mm || m.d_max_mm < 0.7 * t.d_max_mm ||
-        m.d_max_mm > 1.25 * t.d_max_mm) {
-      return;
-    }
-    const std::vector<Eigen::Vector3d> scan_in = InSlab(scan, s, slab, reach);
-    const std::vector<Eigen::Vector3d> reference_in = InSlab(reference, s, slab, reach);
-    if (!Surrounds(scan_in, s, a.t1[i], m.centroid) || !Surrounds(reference_in, s, a.t1[i], t.centroid)) return;
-    const Eigen::Vector3d d = m.centroid - t.centroid;
-    a.shift[i] = d - d.dot(s.normal) * s.normal;
-    const std::array<double, SectionShift::kDirections> hs = Support(scan_in, s, a.t1[i], m.centroid);
-    const std::array<double, SectionShift::kDirections> hr = Support(reference_in, s, a.t1[i], t.centroid);
-    for (int k = 0; k < SectionShift::kDirections; ++k) a.outline[i][k] = hs[k] - hr[k];
-    a.measured[i] = 1;
-  });
+  ParallelFor(a.stations.size(), [&](std::size_t i) { MeasureStation(reference, scan, slab, i, &a); });
   std::vector<std::size_t> ok;
   for (std::size_t i = 0; i < a.stations.size(); ++i) {
     if (!a.measured[i]) continue;
@@ -225,47 +281,13 @@ SectionShift MeasureSectionShift(const std::vector<Eigen::Vector3d>& reference,
     a.max_measured_mm = std::max(a.max_measured_mm, a.shift[i].norm());
   }
   if (ok.empty()) return a;
-  // Bottom: hold the first measured values. Top: the last outline, and a straight line through the last measured
-  // axis offsets (up to 5 stations) in the arc length s, projected into each plane.
+  // Bottom: hold the first measured values.
   for (std::size_t i = 0; i < ok.front(); ++i) {
     a.shift[i] = a.shift[ok.front()];
     a.outline[i] = a.outline[ok.front()];
   }
-  const std::size_t n_fit = std::min<std::size_t>(ok.size(), 5);
-  Eigen::Vector3d slope = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
-  double s_mean = 0.0;
-  for (std::size_t k = ok.size() - n_fit; k < ok.size(); ++k) {
-    mean += a.shift[ok[k]];
-    s_mean += a.stations[ok[k]].s_mm;
-  }
-  mean /= static_cast<double>(n_fit);
-  s_mean /= static_cast<double>(n_fit);
-  double ss = 0.0;
-  for (std::size_t k = ok.size() - n_fit; k < ok.size(); ++k) {
-    const double ds = a.stations[ok[k]].s_mm - s_mean;
-    slope += ds * (a.shift[ok[k]] - mean);
-    ss += ds * ds;
-  }
-  if (ss > 0.0) slope /= ss;
-  // The line is trusted over the shortened top end only (at most kExtrapolateMm of axis), then held.
-  constexpr double kExtrapolateMm = 20.0;
-  const double s_last = a.stations[ok.back()].s_mm;
-  for (std::size_t i = ok.back() + 1; i < a.stations.size(); ++i) {
-    const double s_i = std::min(a.stations[i].s_mm, s_last + kExtrapolateMm);
-    const Eigen::Vector3d d = mean + slope * (s_i - s_mean);
-    a.shift[i] = d - d.dot(a.stations[i].normal) * a.stations[i].normal;
-    a.outline[i] = a.outline[ok.back()];
-  }
-  // Gaps inside: linear between the measured neighbours.
-  for (std::size_t k = 1; k < ok.size(); ++k) {
-    for (std::size_t i = ok[k - 1] + 1; i < ok[k]; ++i) {
-      const double t = static_cast<double>(i - ok[k - 1]) / static_cast<double>(ok[k] - ok[k - 1]);
-      a.shift[i] = (1.0 - t) * a.shift[ok[k - 1]] + t * a.shift[ok[k]];
-      for (int d = 0; d < SectionShift::kDirections; ++d) {
-        a.outline[i][d] = (1.0 - t) * a.outline[ok[k - 1]][d] + t * a.outline[ok[k]][d];
-      }
-    }
-  }
+  ExtrapolateTop(ok, &a);
+  InterpolateGaps(ok, &a);
   return a;
 }
 

@@ -22,13 +22,9 @@ namespace {
 // Corner c of a cell is at offset (c & 1, c >> 1 & 1, c >> 2 & 1).
 constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
 
-}  // namespace
-
-planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
-  planner::TriangleMesh mesh;
-  const double v = grid.voxel_mm();
-  constexpr int B = VoxelGrid::kBlock;
-  // Cell blocks to visit: every block with metal and its neighbours on the low side (cells reaching into it).
+// The cell blocks to visit, sorted: every block with metal and its neighbours on the low side (cells reaching
+// into it).
+std::vector<Eigen::Vector3i> CellBlocks(const VoxelGrid& grid) {
   std::unordered_set<std::uint64_t> seen;
   std::vector<Eigen::Vector3i> cell_blocks;
   grid.ForEach([&](const VoxelIndex& idx, const VoxelData&) {
@@ -41,75 +37,111 @@ planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
   std::sort(cell_blocks.begin(), cell_blocks.end(), [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
     return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
   });
-  std::unordered_map<std::uint64_t, int> vertex_of;  // edge midpoint in half-voxel units -> vertex
-  auto vertex = [&](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
-    const Eigen::Vector3i key = a + b + Eigen::Vector3i::Ones();  // 2 x midpoint / v
-    auto [it, inserted] = vertex_of.emplace(CellKey(key), static_cast<int>(mesh.vertices.size()));
-    if (inserted) mesh.vertices.push_back(key.cast<double>() * (0.5 * v));
-    return it->second;
-  };
-  std::array<std::uint8_t, (B + 1) * (B + 1) * (B + 1)> occ{};
-  for (const Eigen::Vector3i& cb : cell_blocks) {
-    CheckInterrupt();
+  return cell_blocks;
+}
+
+// Marches the cells of the grid into `mesh`, block by block; vertices at edge midpoints are shared.
+class TetMarcher {
+ public:
+  TetMarcher(const VoxelGrid& grid, planner::TriangleMesh* mesh) : grid_(grid), mesh_(mesh) {}
+
+  // The cells of cell block `cb` (B^3 cells, the lowest at voxel cb * B).
+  void Block(const Eigen::Vector3i& cb) {
     const Eigen::Vector3i origin = cb * B;
     for (int z = 0; z <= B; ++z)
       for (int y = 0; y <= B; ++y)
         for (int x = 0; x <= B; ++x)
-          occ[(z * (B + 1) + y) * (B + 1) + x] = grid.Occupied(origin + Eigen::Vector3i(x, y, z)) ? 1 : 0;
+          occ_[(z * (B + 1) + y) * (B + 1) + x] = grid_.Occupied(origin + Eigen::Vector3i(x, y, z)) ? 1 : 0;
     for (int z = 0; z < B; ++z) {
       for (int y = 0; y < B; ++y) {
         for (int x = 0; x < B; ++x) {
           std::array<std::uint8_t, 8> in;
           int count = 0;
           for (int c = 0; c < 8; ++c) {
-            in[c] = occ[((z + (c >> 2 & 1)) * (B + 1) + y + (c >> 1 & 1)) * (B + 1) + x + (c & 1)];
+            in[c] = occ_[((z + (c >> 2 & 1)) * (B + 1) + y + (c >> 1 & 1)) * (B + 1) + x + (c & 1)];
             count += in[c];
           }
           if (count == 0 || count == 8) continue;
-          const Eigen::Vector3i base = origin + Eigen::Vector3i(x, y, z);
-          auto corner = [&](int c) -> Eigen::Vector3i { return base + Eigen::Vector3i(c & 1, c >> 1 & 1, c >> 2 & 1); };
-          for (const auto& tet : kTets) {
-            std::array<int, 4> inside{}, outside{};
-            int ni = 0, no = 0;
-            for (int t : tet) (in[t] ? inside[ni++] : outside[no++]) = t;
-            if (ni == 0 || no == 0) continue;
-            // Reference direction from the inside corners to the outside corners, for the facet orientation.
-            Eigen::Vector3d ci = Eigen::Vector3d::Zero(), co = Eigen::Vector3d::Zero();
-            for (int q = 0; q < ni; ++q) ci += corner(inside[q]).cast<double>() / ni;
-            for (int q = 0; q < no; ++q) co += corner(outside[q]).cast<double>() / no;
-            const Eigen::Vector3d out_dir = co - ci;
-            auto emit = [&](int a, int b, int c) {
-              const Eigen::Vector3d n =
-                  (mesh.vertices[b] - mesh.vertices[a]).cross(mesh.vertices[c] - mesh.vertices[a]);
-              if (n.dot(out_dir) >= 0.0) {
-                mesh.facets.push_back({a, b, c});
-              } else {
-                mesh.facets.push_back({a, c, b});
-              }
-            };
-            if (ni == 1 || no == 1) {
-              const int apex = ni == 1 ? inside[0] : outside[0];
-              const std::array<int, 3> others = ni == 1 ? std::array<int, 3>{outside[0], outside[1], outside[2]}
-                                                        : std::array<int, 3>{inside[0], inside[1], inside[2]};
-              emit(vertex(corner(apex), corner(others[0])), vertex(corner(apex), corner(others[1])),
-                   vertex(corner(apex), corner(others[2])));
-            } else {
-              // Two in, two out: the quad i0o0, i0o1, i1o1, i1o0.
-              const int a = vertex(corner(inside[0]), corner(outside[0]));
-              const int b = vertex(corner(inside[0]), corner(outside[1]));
-              const int c = vertex(corner(inside[1]), corner(outside[1]));
-              const int d = vertex(corner(inside[1]), corner(outside[0]));
-              emit(a, b, c);
-              emit(a, c, d);
-            }
-          }
+          Cell(origin + Eigen::Vector3i(x, y, z), in);
         }
       }
     }
   }
+
+  // Frees the vertex map (a voxel part's surface has ~10^7 facets).
+  void Finish() { std::unordered_map<std::uint64_t, int>().swap(vertex_of_); }
+
+ private:
+  static constexpr int B = VoxelGrid::kBlock;
+
+  // The six tetrahedra of the cell at `base` with corners `in` (1 = metal).
+  void Cell(const Eigen::Vector3i& base, const std::array<std::uint8_t, 8>& in) {
+    auto corner = [&](int c) -> Eigen::Vector3i { return base + Eigen::Vector3i(c & 1, c >> 1 & 1, c >> 2 & 1); };
+    for (const auto& tet : kTets) {
+      std::array<int, 4> inside{}, outside{};
+      int ni = 0, no = 0;
+      for (int t : tet) (in[t] ? inside[ni++] : outside[no++]) = t;
+      if (ni == 0 || no == 0) continue;
+      // Reference direction from the inside corners to the outside corners, for the facet orientation.
+      Eigen::Vector3d ci = Eigen::Vector3d::Zero(), co = Eigen::Vector3d::Zero();
+      for (int q = 0; q < ni; ++q) ci += corner(inside[q]).cast<double>() / ni;
+      for (int q = 0; q < no; ++q) co += corner(outside[q]).cast<double>() / no;
+      const Eigen::Vector3d out_dir = co - ci;
+      if (ni == 1 || no == 1) {
+        const int apex = ni == 1 ? inside[0] : outside[0];
+        const std::array<int, 3> others = ni == 1 ? std::array<int, 3>{outside[0], outside[1], outside[2]}
+                                                  : std::array<int, 3>{inside[0], inside[1], inside[2]};
+        Emit(Vertex(corner(apex), corner(others[0])), Vertex(corner(apex), corner(others[1])),
+             Vertex(corner(apex), corner(others[2])), out_dir);
+      } else {
+        // Two in, two out: the quad i0o0, i0o1, i1o1, i1o0.
+        const int a = Vertex(corner(inside[0]), corner(outside[0]));
+        const int b = Vertex(corner(inside[0]), corner(outside[1]));
+        const int c = Vertex(corner(inside[1]), corner(outside[1]));
+        const int d = Vertex(corner(inside[1]), corner(outside[0]));
+        Emit(a, b, c, out_dir);
+        Emit(a, c, d, out_dir);
+      }
+    }
+  }
+
+  // The vertex at the midpoint of the cell edge between voxel centres a and b.
+  int Vertex(const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+    const Eigen::Vector3i key = a + b + Eigen::Vector3i::Ones();  // 2 x midpoint / v
+    auto [it, inserted] = vertex_of_.emplace(CellKey(key), static_cast<int>(mesh_->vertices.size()));
+    if (inserted) mesh_->vertices.push_back(key.cast<double>() * (0.5 * grid_.voxel_mm()));
+    return it->second;
+  }
+
+  // The facet a, b, c, turned so that its normal points along `out_dir`.
+  void Emit(int a, int b, int c, const Eigen::Vector3d& out_dir) {
+    const auto& p = mesh_->vertices;
+    const Eigen::Vector3d n = (p[b] - p[a]).cross(p[c] - p[a]);
+    if (n.dot(out_dir) >= 0.0) {
+      mesh_->facets.push_back({a, b, c});
+    } else {
+      mesh_->facets.push_back({a, c, b});
+    }
+  }
+
+  const VoxelGrid& grid_;
+  planner::TriangleMesh* mesh_;
+  std::unordered_map<std::uint64_t, int> vertex_of_;  // edge midpoint in half-voxel units -> vertex
+  std::array<std::uint8_t, (B + 1) * (B + 1) * (B + 1)> occ_{};
+};
+
+}  // namespace
+
+planner::TriangleMesh ExtractSurface(const VoxelGrid& grid) {
+  planner::TriangleMesh mesh;
+  TetMarcher marcher(grid, &mesh);
+  for (const Eigen::Vector3i& cb : CellBlocks(grid)) {
+    CheckInterrupt();
+    marcher.Block(cb);
+  }
   // The vertex map first, then the slack of the arrays grown by push_back (a voxel part's surface has ~10^7 facets:
   // up to half their size again).
-  std::unordered_map<std::uint64_t, int>().swap(vertex_of);
+  marcher.Finish();
   mesh.vertices.shrink_to_fit();
   mesh.facets.shrink_to_fit();
   return mesh;

@@ -112,6 +112,87 @@ std::vector<EmptyRegion> SectionVoids(const VoxelGrid& grid, const TargetVolume&
   return regions;
 }
 
+namespace {
+
+// The target's box padded with one ring of air in x and y: origin lo, nx x ny x nz voxels.
+struct PaddedBox {
+  VoxelIndex lo;
+  int nx = 0, ny = 0, nz = 0;
+  std::size_t At(int i, int j, int k) const { return (static_cast<std::size_t>(k) * ny + j) * nx + i; }
+  std::size_t Column(int i, int j) const { return static_cast<std::size_t>(j) * nx + i; }
+};
+
+// Per voxel of `box`, 1 where no outside air reaches it in its horizontal cut, it is empty and inside the target
+// (`enclosed`); per column, the highest occupied k in box coordinates, -1 for none, counting metal up to 64 voxels
+// above the box, which still caps a void (`column_top`).
+void MarkEnclosed(const VoxelGrid& grid, const TargetVolume& target, const PaddedBox& box,
+                  std::vector<std::uint8_t>* enclosed, std::vector<int>* column_top) {
+  const VoxelIndex& lo = box.lo;
+  enclosed->assign(static_cast<std::size_t>(box.nx) * box.ny * box.nz, 0);
+  column_top->assign(static_cast<std::size_t>(box.nx) * box.ny, -1);
+  std::vector<std::uint8_t> reached;
+  for (int k = 0; k < box.nz; ++k) {
+    const int kz = lo.z() + k;
+    if (kz < 0) continue;  // substrate
+    CheckInterrupt();
+    FloodCut(grid, lo, box.nx, box.ny, kz, &reached);
+    for (int j = 1; j + 1 < box.ny; ++j) {
+      for (int i = 1; i + 1 < box.nx; ++i) {
+        const VoxelIndex vox(lo.x() + i, lo.y() + j, kz);
+        if (grid.Occupied(vox)) {
+          (*column_top)[box.Column(i, j)] = k;
+          continue;
+        }
+        if (!reached[box.Column(i, j)] && target.Inside(vox)) (*enclosed)[box.At(i, j, k)] = 1;
+      }
+    }
+  }
+  for (int j = 1; j + 1 < box.ny; ++j) {
+    for (int i = 1; i + 1 < box.nx; ++i) {
+      for (int kz = lo.z() + box.nz; kz < lo.z() + box.nz + 64; ++kz) {
+        if (grid.Occupied(VoxelIndex(lo.x() + i, lo.y() + j, kz))) (*column_top)[box.Column(i, j)] = kz - lo.z();
+      }
+    }
+  }
+}
+
+// The 6-connected region of enclosed voxels from (i, j, k), marked 2 in `enclosed` as it is taken, into `cells`;
+// true when it is open (a voxel of it has no metal above it).
+bool TakeRegion(const PaddedBox& box, const std::vector<int>& column_top, int i, int j, int k,
+                std::vector<std::uint8_t>* enclosed, std::vector<VoxelIndex>* cells) {
+  cells->clear();
+  bool open = false;
+  std::vector<Eigen::Vector3i> stack(1, Eigen::Vector3i(i, j, k));
+  (*enclosed)[box.At(i, j, k)] = 2;
+  while (!stack.empty()) {
+    const Eigen::Vector3i c = stack.back();
+    stack.pop_back();
+    cells->push_back(box.lo + c);
+    open = open || column_top[box.Column(c.x(), c.y())] < c.z();
+    for (const Eigen::Vector3i& d : {Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(-1, 0, 0), Eigen::Vector3i(0, 1, 0),
+                                    Eigen::Vector3i(0, -1, 0), Eigen::Vector3i(0, 0, 1), Eigen::Vector3i(0, 0, -1)}) {
+      const Eigen::Vector3i q = c + d;
+      if (q.x() < 0 || q.y() < 0 || q.z() < 0 || q.x() >= box.nx || q.y() >= box.ny || q.z() >= box.nz) continue;
+      if ((*enclosed)[box.At(q.x(), q.y(), q.z())] != 1) continue;
+      (*enclosed)[box.At(q.x(), q.y(), q.z())] = 2;
+      stack.push_back(q);
+    }
+  }
+  return open;
+}
+
+// Sorts regions by volume, largest first, and adds up their volume and longest length.
+void SortRegions(std::vector<EmptyRegion>& regions, double* volume, double* max_length) {
+  std::sort(regions.begin(), regions.end(),
+            [](const EmptyRegion& a, const EmptyRegion& b) { return a.volume_mm3 > b.volume_mm3; });
+  for (const EmptyRegion& r : regions) {
+    *volume += r.volume_mm3;
+    *max_length = std::max(*max_length, r.length_mm);
+  }
+}
+
+}  // namespace
+
 VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target, double min_volume_mm3) {
   const double v = grid.voxel_mm();
   WAAM_THROW_UNLESS(std::abs(target.voxel_mm() - v) < 1e-12,
@@ -120,64 +201,17 @@ VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target, double m
   report.min_volume_mm3 = min_volume_mm3;
   const Eigen::Vector3i n = target.size();
   if ((n.array() <= 0).any()) return report;
-  // Padded box: one ring of air around the target in x and y.
-  const VoxelIndex lo = target.lo() - VoxelIndex(1, 1, 0);
-  const int nx = n.x() + 2;
-  const int ny = n.y() + 2;
-  const int nz = n.z();
-  auto at = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * ny + j) * nx + i; };
-  std::vector<std::uint8_t> enclosed(static_cast<std::size_t>(nx) * ny * nz, 0);
-  std::vector<std::uint8_t> reached;
-  std::vector<int> column_top(static_cast<std::size_t>(nx) * ny, -1);  // highest occupied k, padded-box coordinates
-  for (int k = 0; k < nz; ++k) {
-    const int kz = lo.z() + k;
-    if (kz < 0) continue;  // substrate
-    CheckInterrupt();
-    FloodCut(grid, lo, nx, ny, kz, &reached);
-    for (int j = 1; j + 1 < ny; ++j) {
-      for (int i = 1; i + 1 < nx; ++i) {
-        const VoxelIndex vox(lo.x() + i, lo.y() + j, kz);
-        if (grid.Occupied(vox)) {
-          column_top[static_cast<std::size_t>(j) * nx + i] = k;
-          continue;
-        }
-        if (!reached[static_cast<std::size_t>(j) * nx + i] && target.Inside(vox)) enclosed[at(i, j, k)] = 1;
-      }
-    }
-  }
-  // Metal above the top of the target box still caps a void.
-  for (int j = 1; j + 1 < ny; ++j) {
-    for (int i = 1; i + 1 < nx; ++i) {
-      for (int kz = lo.z() + nz; kz < lo.z() + nz + 64; ++kz) {
-        if (grid.Occupied(VoxelIndex(lo.x() + i, lo.y() + j, kz))) column_top[static_cast<std::size_t>(j) * nx + i] = kz - lo.z();
-      }
-    }
-  }
-  // 6-connected regions of enclosed voxels.
+  const PaddedBox box{target.lo() - VoxelIndex(1, 1, 0), n.x() + 2, n.y() + 2, n.z()};
+  std::vector<std::uint8_t> enclosed;
+  std::vector<int> column_top;
+  MarkEnclosed(grid, target, box, &enclosed, &column_top);
+  // 6-connected regions of enclosed voxels: capped voids, open valleys, or too small to count.
   std::vector<VoxelIndex> cells;
-  std::vector<Eigen::Vector3i> stack;
-  for (int k = 0; k < nz; ++k) {
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        if (enclosed[at(i, j, k)] != 1) continue;
-        cells.clear();
-        bool open = false;
-        stack.assign(1, Eigen::Vector3i(i, j, k));
-        enclosed[at(i, j, k)] = 2;
-        while (!stack.empty()) {
-          const Eigen::Vector3i c = stack.back();
-          stack.pop_back();
-          cells.push_back(lo + c);
-          open = open || column_top[static_cast<std::size_t>(c.y()) * nx + c.x()] < c.z();
-          for (const Eigen::Vector3i& d : {Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(-1, 0, 0), Eigen::Vector3i(0, 1, 0),
-                                          Eigen::Vector3i(0, -1, 0), Eigen::Vector3i(0, 0, 1), Eigen::Vector3i(0, 0, -1)}) {
-            const Eigen::Vector3i q = c + d;
-            if (q.x() < 0 || q.y() < 0 || q.z() < 0 || q.x() >= nx || q.y() >= ny || q.z() >= nz) continue;
-            if (enclosed[at(q.x(), q.y(), q.z())] != 1) continue;
-            enclosed[at(q.x(), q.y(), q.z())] = 2;
-            stack.push_back(q);
-          }
-        }
+  for (int k = 0; k < box.nz; ++k) {
+    for (int j = 0; j < box.ny; ++j) {
+      for (int i = 0; i < box.nx; ++i) {
+        if (enclosed[box.At(i, j, k)] != 1) continue;
+        const bool open = TakeRegion(box, column_top, i, j, k, &enclosed, &cells);
         const EmptyRegion region = Describe(cells, v);
         if (region.volume_mm3 < min_volume_mm3) {
           ++report.small_regions;
@@ -188,16 +222,8 @@ VoidReport FindVoids(const VoxelGrid& grid, const TargetVolume& target, double m
       }
     }
   }
-  auto finish = [](std::vector<EmptyRegion>& regions, double* volume, double* max_length) {
-    std::sort(regions.begin(), regions.end(),
-              [](const EmptyRegion& a, const EmptyRegion& b) { return a.volume_mm3 > b.volume_mm3; });
-    for (const EmptyRegion& r : regions) {
-      *volume += r.volume_mm3;
-      *max_length = std::max(*max_length, r.length_mm);
-    }
-  };
-  finish(report.voids, &report.void_volume_mm3, &report.void_max_length_mm);
-  finish(report.valleys, &report.valley_volume_mm3, &report.valley_max_length_mm);
+  SortRegions(report.voids, &report.void_volume_mm3, &report.void_max_length_mm);
+  SortRegions(report.valleys, &report.valley_volume_mm3, &report.valley_max_length_mm);
   return report;
 }
 

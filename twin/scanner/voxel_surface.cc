@@ -257,15 +257,9 @@ std::array<LineIndex, 3> IndexCorners(const std::vector<Quad>& quads) {
   return lines;
 }
 
-}  // namespace
-
-planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max_faces) {
-  if (ExposedFaces(grid) > max_faces) return {};  // counted on the occupancy bits, without building anything
-  MeshOccupancy occ(grid);
-  std::vector<Eigen::Vector3i> surface;
-  if (!SurfaceVoxels(grid, &occ, max_faces, &surface)) return {};
-  CheckInterrupt();
-  // The exposed faces of the surface voxels (with the filled voxels counted as metal).
+// The exposed faces of the surface voxels (with the filled voxels counted as metal), sorted, each once.
+std::vector<Face> ExposedFaceList(const std::vector<Eigen::Vector3i>& surface, const MeshOccupancy& occ,
+                                  std::size_t max_faces) {
   std::vector<Face> faces;
   for (const Eigen::Vector3i& v : surface) {
     for (int d = 0; d < 6; ++d) {
@@ -274,80 +268,117 @@ planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max
       faces.push_back({d, v[axis] + (d % 2 == 0 ? 1 : 0), v[(axis + 2) % 3], v[(axis + 1) % 3]});
     }
   }
-  if (faces.size() > max_faces) return {};
+  if (faces.size() > max_faces) return faces;
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());  // a voxel may be listed twice
-  const std::vector<Quad> quads = MergeFaces(faces);
-  std::vector<Face>().swap(faces);
-  CheckInterrupt();
+  return faces;
+}
 
-  const std::array<LineIndex, 3> lines = IndexCorners(quads);
+// The mesh's vertices, numbered in the order the rectangles first use them (the order RemoveFlatVertices visits
+// them), and each rectangle's ring of corners.
+class QuadRings {
+ public:
+  explicit QuadRings(const std::array<LineIndex, 3>& lines) : lines_(lines), vertex_of_(lines[0].keys.size(), -1) {}
 
-  planner::TriangleMesh mesh;
-  const double half_voxel = 0.5 * grid.voxel_mm();
-  // Vertices numbered in the order the rectangles first use them (the order RemoveFlatVertices visits them).
-  std::vector<int> vertex_of(lines[0].keys.size(), -1);  // corner id -> vertex
-  std::vector<Eigen::Vector3i> points;                   // the vertices' doubled corner coordinates
-  auto vertex = [&](std::uint32_t corner, const Eigen::Vector3i& p) {
-    int& id = vertex_of[corner];
-    if (id < 0) {
-      id = static_cast<int>(points.size());
-      points.push_back(2 * p);
-    }
-    return id;
-  };
-  std::vector<int> ring;
-  std::vector<Eigen::Vector3i> corner_points;  // the ring's points, doubled coordinates
-  for (const Quad& q : quads) {
+  // The ring of rectangle `q` counter-clockwise seen from outside, with every corner of a neighbouring rectangle
+  // that lies on its edges: vertex ids into `ring`, their doubled coordinates into `corner_points`.
+  void Ring(const Quad& q, std::vector<int>* ring, std::vector<Eigen::Vector3i>* corner_points) {
     const int axis = q.d / 2;
     // The rectangle's corners counter-clockwise seen from outside: e_(a+1) x e_(a+2) = e_a for the + faces.
     std::array<Eigen::Vector3i, 4> c = {Corner(axis, q.plane, q.u0, q.v0), Corner(axis, q.plane, q.u1 + 1, q.v0),
                                         Corner(axis, q.plane, q.u1 + 1, q.v1 + 1),
                                         Corner(axis, q.plane, q.u0, q.v1 + 1)};
     if (q.d % 2 == 1) std::swap(c[1], c[3]);
-    ring.clear();
-    corner_points.clear();
+    ring->clear();
+    corner_points->clear();
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector3i& a = c[static_cast<std::size_t>(k)];
       const Eigen::Vector3i& b = c[static_cast<std::size_t>((k + 1) % 4)];
       int along = 0;
       while (a[along] == b[along]) ++along;
-      const LineIndex& line = lines[static_cast<std::size_t>(along)];
+      const LineIndex& line = lines_[static_cast<std::size_t>(along)];
       const bool forward = a[along] < b[along];
       // The corners strictly between a and b, in order from a.
       const auto first = std::upper_bound(line.keys.begin(), line.keys.end(), line.Key(forward ? a : b));
       const auto last = std::lower_bound(first, line.keys.end(), line.Key(forward ? b : a));
       const auto at_a = forward ? first - 1 : last;
-      ring.push_back(vertex(line.id[static_cast<std::size_t>(at_a - line.keys.begin())], a));
-      corner_points.push_back(2 * a);
-      const std::size_t start = ring.size();
+      ring->push_back(Vertex(line.id[static_cast<std::size_t>(at_a - line.keys.begin())], a));
+      corner_points->push_back(2 * a);
+      const std::size_t start = ring->size();
       for (auto it = first; it != last; ++it) {
         const Eigen::Vector3i p = line.Point(*it);
-        ring.push_back(vertex(line.id[static_cast<std::size_t>(it - line.keys.begin())], p));
-        corner_points.push_back(2 * p);
+        ring->push_back(Vertex(line.id[static_cast<std::size_t>(it - line.keys.begin())], p));
+        corner_points->push_back(2 * p);
       }
       if (!forward) {
-        std::reverse(ring.begin() + static_cast<std::ptrdiff_t>(start), ring.end());
-        std::reverse(corner_points.begin() + static_cast<std::ptrdiff_t>(start), corner_points.end());
+        std::reverse(ring->begin() + static_cast<std::ptrdiff_t>(start), ring->end());
+        std::reverse(corner_points->begin() + static_cast<std::ptrdiff_t>(start), corner_points->end());
       }
     }
+  }
+
+  // The vertices' doubled corner coordinates.
+  const std::vector<Eigen::Vector3i>& points() const { return points_; }
+
+ private:
+  int Vertex(std::uint32_t corner, const Eigen::Vector3i& p) {
+    int& id = vertex_of_[corner];
+    if (id < 0) {
+      id = static_cast<int>(points_.size());
+      points_.push_back(2 * p);
+    }
+    return id;
+  }
+
+  const std::array<LineIndex, 3>& lines_;
+  std::vector<int> vertex_of_;  // corner id -> vertex
+  std::vector<Eigen::Vector3i> points_;
+};
+
+// Keeps only the vertices `mesh`'s facets use (doubled corner coordinates `points`, scaled by `half_voxel` mm), in
+// the order the facets first use them.
+void KeepUsedVertices(const std::vector<Eigen::Vector3i>& points, double half_voxel, planner::TriangleMesh* mesh) {
+  std::vector<int> renumbered(points.size(), -1);
+  for (std::array<int, 3>& t : mesh->facets) {
+    for (int& c : t) {
+      int& id = renumbered[static_cast<std::size_t>(c)];
+      if (id < 0) {
+        id = static_cast<int>(mesh->vertices.size());
+        mesh->vertices.push_back(points[static_cast<std::size_t>(c)].cast<double>() * half_voxel);
+      }
+      c = id;
+    }
+  }
+}
+
+}  // namespace
+
+planner::TriangleMesh ExtractVoxelSurface(const VoxelGrid& grid, std::size_t max_faces) {
+  if (ExposedFaces(grid) > max_faces) return {};  // counted on the occupancy bits, without building anything
+  MeshOccupancy occ(grid);
+  std::vector<Eigen::Vector3i> surface;
+  if (!SurfaceVoxels(grid, &occ, max_faces, &surface)) return {};
+  CheckInterrupt();
+  std::vector<Face> faces = ExposedFaceList(surface, occ, max_faces);
+  if (faces.size() > max_faces) return {};
+  const std::vector<Quad> quads = MergeFaces(faces);
+  std::vector<Face>().swap(faces);
+  CheckInterrupt();
+
+  const std::array<LineIndex, 3> lines = IndexCorners(quads);
+  planner::TriangleMesh mesh;
+  QuadRings rings(lines);
+  std::vector<int> ring;
+  std::vector<Eigen::Vector3i> corner_points;  // the ring's points, doubled coordinates
+  for (const Quad& q : quads) {
+    rings.Ring(q, &ring, &corner_points);
     Triangulate(ring, corner_points, &mesh.facets);
   }
   CheckInterrupt();
   // The rectangles' corners inside a plane's region or on a straight crease are not needed: removed, so each plane's
   // region becomes one polygon (with holes) cut into triangles over the corners of its outline.
-  RemoveFlatVertices(points, &mesh.facets);
-  std::vector<int> renumbered(points.size(), -1);
-  for (std::array<int, 3>& t : mesh.facets) {
-    for (int& c : t) {
-      int& id = renumbered[static_cast<std::size_t>(c)];
-      if (id < 0) {
-        id = static_cast<int>(mesh.vertices.size());
-        mesh.vertices.push_back(points[static_cast<std::size_t>(c)].cast<double>() * half_voxel);
-      }
-      c = id;
-    }
-  }
+  RemoveFlatVertices(rings.points(), &mesh.facets);
+  KeepUsedVertices(rings.points(), 0.5 * grid.voxel_mm(), &mesh);
   return mesh;
 }
 

@@ -299,6 +299,35 @@ void ThermalSimulation::Cool(double seconds) {
   }
 }
 
+std::size_t ThermalSimulation::LayAtAmbient(const Eigen::AlignedBox3d& box_mm) {
+  WAAM_THROW_UNLESS(box_mm.min().allFinite() && box_mm.max().allFinite(),
+                    "thermal lay: the box (min " << box_mm.min().transpose() << ", max " << box_mm.max().transpose()
+                                                 << " mm) is not finite");
+  ThermalState& s = impl_->s;
+  Pump(s, true);  // the cells switch on after the motion held back, present (born -1) from now on
+  if (box_mm.isEmpty()) return 0;
+  Eigen::Vector3i lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(0, static_cast<int>(std::floor((box_mm.min()[a] - s.origin_mm[a]) / s.dx_mm - 0.5)));
+    hi[a] = std::min(s.size[a] - 1, static_cast<int>(std::ceil((box_mm.max()[a] - s.origin_mm[a]) / s.dx_mm - 0.5)));
+  }
+  std::size_t laid = 0;
+  for (int k = lo.z(); k <= hi.z(); ++k) {
+    for (int j = lo.y(); j <= hi.y(); ++j) {
+      for (int i = lo.x(); i <= hi.x(); ++i) {
+        const int g = s.GridIndex(i, j, k);
+        const Eigen::Vector3d c = s.Centre(i, j, k);
+        const bool inside = (c.array() >= box_mm.min().array() - kSlack).all() &&
+                            (c.array() <= box_mm.max().array() + kSlack).all();
+        if (!inside || s.kind[g] != internal::CellKind::kDeposit || s.active_of[g] != internal::kNoCell) continue;
+        s.Activate(g, internal::kDeposit, s.reference_h[internal::kDeposit], -1);
+        ++laid;
+      }
+    }
+  }
+  return laid;
+}
+
 void ThermalSimulation::SetBoundaryTemperatures(double ambient_c, double table_c) {
   WAAM_THROW_UNLESS(std::isfinite(ambient_c) && ambient_c > -273.15,
                     "thermal ambient_c = " << ambient_c << ": must be above absolute zero");

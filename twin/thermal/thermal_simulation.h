@@ -129,6 +129,11 @@ class ThermalSimulation {
             double heat_w, double seconds, const Eigen::Vector3d& travel = Eigen::Vector3d::Zero());
   // Advances `seconds` with no heat input (travel, waits).
   void Cool(double seconds);
+  // Switches on, at time_s() and with no heat, the deposit cells (those of deposit_box_mm) whose centres lie in box_mm,
+  // at the ambient temperature (where a laid bead's cells start): metal already standing when the clock starts, laid
+  // without solving the micro steps a zero-heat Weld along it would take. Solves the arc motion held back first;
+  // returns the number of cells switched on. Throws InputError for a box that is not finite.
+  std::size_t LayAtAmbient(const Eigen::AlignedBox3d& box_mm);
   // Sets the air temperature (convection, radiation) and the table's temperature from now on, degC (a measured
   // ambient drives the losses). Throws InputError unless both are finite and above absolute zero.
   void SetBoundaryTemperatures(double ambient_c, double table_c);

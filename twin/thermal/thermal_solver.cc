@@ -341,22 +341,30 @@ void Relinearise(ThermalState& s, LevelSystem& L) {
   });
 }
 
-// Whether cell i of the level's system lies in the finer levels' region (depth > level): a finer level solves it
-// again, with its own nonlinear iteration.
-bool InFinerRegion(const ThermalState& s, const LevelSystem& L, int level, std::size_t i) {
-  return s.depth[L.cells[i]] > level;
+// What a level's solve of a step is: the predictor (all the level's cells; with a finer region, its temperatures are
+// the finer levels' boundary values and the corrector's first guess) or the corrector (the cells left to the level,
+// with the energy the finer levels passed).
+enum class StepRole { kPredictor, kCorrector };
+
+// Whether the enthalpy iteration must converge on cell c of a step of `level`: a predictor's need not converge in the
+// finer region (depth > level), which the finer levels solve again with their own enthalpy iteration.
+bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
+  return role != StepRole::kPredictor || s.depth[c] <= level;
 }
 
-// Solves the level's backward-Euler step over the candidates: the system linearised at T_old, then, while some
-// cell's linearised enthalpy H_k + C_k (T - T_k) maps back to a temperature more than kChordToleranceK + 10 % of its
-// change over the step away from the solved T (a cell melting or freezing in the step), again linearised at that
-// enthalpy (Relinearise): the nonlinear step converged, so that the latent heat cannot be jumped over. `guess` is
-// the first guess by active cell. Only the capacity changes between the rounds, so the conductances and losses are
-// assembled once.
-void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
+// Solves the level's backward-Euler step over the candidates: the system linearised at T_old (a corrector: at the
+// predictor's last iterate, H_k and T_k = T(H_k), which the finer levels leave to the cells outside their region),
+// then, while some cell's linearised enthalpy H_k + C_k (T - T_k) maps back to a temperature more than
+// kChordToleranceK + 10 % of its change over the step away from the solved T (a cell melting or freezing in the
+// step), again linearised at that enthalpy (Relinearise): the nonlinear step converged (on the cells MustConverge
+// names), so that the latent heat cannot be jumped over. `guess` is the first guess by active cell. Only the
+// capacity changes between the rounds, so the conductances and losses are assembled once.
+void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, StepRole role,
                const std::vector<double>& guess, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
-  Assemble(s, level, candidates, m0, m1, finer_apart, local_of);
+  const bool corrector = role == StepRole::kCorrector;
+  Assemble(s, level, candidates, m0, m1, corrector, local_of);
+  if (corrector) Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
   std::vector<std::uint8_t> part_converged(Chunks(n));
@@ -366,13 +374,14 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
       bool converged = true;
       for (std::size_t i = begin; i < end; ++i) {
         const int c = L.cells[i];
-        const double t_k = round == 0 ? s.temperature[c] : s.chord[c];
-        const double h_k = round == 0 ? s.enthalpy[c] : s.iterate_h[c];
+        const bool at_old = round == 0 && !corrector;
+        const double t_k = at_old ? s.temperature[c] : s.chord[c];
+        const double h_k = at_old ? s.enthalpy[c] : s.iterate_h[c];
         const double h = h_k + L.capacity[i] * (L.t_new[i] - t_k);
         const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
         const double change = L.t_new[i] - s.temperature[c];
         converged = converged && (std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
-                                  InFinerRegion(s, L, level, i));
+                                  !MustConverge(s, role, c, level));
         s.iterate_h[c] = h;
         s.chord[c] = t;
       }
@@ -495,7 +504,7 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   for (int c : present) s.depth[c] = level;
   std::vector<int> near;
   if (!finest) near = FinerRegion(s, present, level, m0, m1, s.level_radius_mm[level + 1], L.seconds);
-  SolveStep(s, level, candidates, m0, m1, false, s.guess, local_of);
+  SolveStep(s, level, candidates, m0, m1, StepRole::kPredictor, s.guess, local_of);
   for (int c : L.cells) s.depth[c] = level;
   if (near.empty()) {
     Update(s, level);
@@ -524,7 +533,7 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   for (int c : L.cells) {
     if (s.depth[c] == level) rest.push_back(c);
   }
-  SolveStep(s, level, rest, m0, m1, true, s.bound_end, local_of);
+  SolveStep(s, level, rest, m0, m1, StepRole::kCorrector, s.bound_end, local_of);
   Update(s, level);
   for (int c : near) s.depth[c] = level - 1;
   for (int c : rest) s.depth[c] = level - 1;
