@@ -358,6 +358,24 @@ void ParseShard(const std::string& text, int* index, int* count) {
   WAAM_THROW_UNLESS(ok, "--shard '" << text << "': expected K/N with 0 <= K < N, e.g. 0/4 for the first of 4 shards");
 }
 
+void CheckBenchOverrides(const std::vector<BenchRun>& runs, const BenchOptions& options) {
+  for (const BenchRun& run : runs) {
+    std::vector<std::string> overrides = options.overrides;
+    overrides.insert(overrides.end(), run.overrides.begin(), run.overrides.end());
+    if (overrides.empty()) continue;
+    try {
+      (void)LoadScenario(run.file, overrides);
+    } catch (const InputError& e) {
+      try {
+        (void)LoadScenario(run.file);
+      } catch (const InputError&) {
+        continue;  // the scenario is bad on its own: its run records that (a bad-input scenario expects exit 2)
+      }
+      WAAM_THROW("run " << run.id << ": " << e.what());
+    }
+  }
+}
+
 namespace {
 
 // Every run of the bench before sharding: the options' runs, or one per scenario file. Throws InputError for options
@@ -420,6 +438,7 @@ nlohmann::json RunBench(const BenchOptions& options) {
   // The shard: every shard_count-th run, so shards of a sorted folder get a mix of scenarios.
   std::vector<BenchRun> runs;
   for (std::size_t i = options.shard_index; i < all.size(); i += options.shard_count) runs.push_back(all[i]);
+  CheckBenchOverrides(runs, options);
   ClaimOutputDirectory(options.out_dir);
   const auto start = std::chrono::steady_clock::now();
   const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(runs.size())));

@@ -52,6 +52,11 @@ void ParseShard(const std::string& text, int* index, int* count);
 // running children have stopped).
 nlohmann::json RunBench(const BenchOptions& options);
 
+// Throws InputError "run <id>: <the loader's message>" for the first run whose scenario loads on its own but not with
+// the --set overrides (options.overrides, then the run's: a sweep's values): a value out of its key's limits, say.
+// RunBench and the sweeps call it before any run starts; a scenario that is bad on its own is left to its run.
+void CheckBenchOverrides(const std::vector<BenchRun>& runs, const BenchOptions& options);
+
 // Merges the bench.json of the shard folders `dirs` (each written by RunBench with a shard, all shards of one bench,
 // in any order; or unsharded benches, concatenated in the order given) into <out_dir>/bench.json and report.html,
 // the scenarios' folders hard-linked (or copied) into out_dir. The entries come back in the order of one unsharded

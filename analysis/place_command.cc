@@ -15,6 +15,7 @@
 
 #include "analysis/cell_files.h"
 #include "analysis/import_command.h"
+#include "analysis/scenario_keys.h"
 #include "analysis/scenario_plan.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -380,6 +381,10 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   const std::vector<std::string> best_overrides = LayoutOverrides(best, current, cell.robot_base_mm[2]);
   overrides.insert(overrides.end(), best_overrides.begin(), best_overrides.end());
   if (result.feasible) overrides.push_back("run.expected_exit_code=0");
+  // The placed scenario meets every key's limits (the cell's included) before it is written.
+  Scenario placed = scenario;
+  placed.cell = ApplyLayout(scenario.cell, best);
+  ValidateScenario(placed);
   const std::string text = PlacedScenarioYaml(options, scenario, overrides, result.feasible);
   WriteFileAtomic(outputs.Add(options.out_dir / "scenario.yaml"), text);
   if (options.images) WritePlaceMarginPng(result, outputs.Add(options.out_dir / "place_margin.png"));

@@ -164,6 +164,8 @@ Scenario ParseScenario(YamlMap& top) {
   internal::LoadThermalMaterials(dir, &scenario.thermal);
   internal::LoadThermalShape(dir, &scenario.thermal);
   LoadScenarioFiles(&scenario);
+  // Every scenario handed out meets the tables' limits, the values a preset or the loader filled in as well.
+  ValidateScenario(scenario);
   return scenario;
 }
 

@@ -1,6 +1,7 @@
 // The scenario's key paths, docs tables and validation, from each module's field tables.
 #include "analysis/scenario_keys.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "analysis/place_settings.h"
@@ -21,27 +22,25 @@ SectionKeys Section(std::string path, const std::array<Field<S>, N>& fields) {
   return {std::move(path), Describe<S>(fields)};
 }
 
-// The keys of program.frames and slicing.sub_volumes[], which their parsers read by hand.
-struct FrameKeys {};
-struct SubVolumeKeys {};
-inline constexpr std::array kSubVolumeFields = {
-    CustomField<SubVolumeKeys>("name", FieldType::kString, "the sub-volume's name"),
-    CustomField<SubVolumeKeys>("direction", FieldType::kNumbers, "build direction [3], not zero"),
-    CustomField<SubVolumeKeys>("keep", FieldType::kNumbers, "half-spaces n . p <= c, 4 numbers each (nx, ny, nz, c mm)"),
-};
-
-// program.frames, read by hand (planner/program/program_section.cc): documenting rows, so that --set reaches them and the key tables list them.
-inline constexpr std::array kProgramFramesFields = {
-    CustomField<FrameKeys>("uframe", FieldType::kMap, "N: [x, y, z, w, p, r] (mm, deg) of user frame N"),
-    CustomField<FrameKeys>("utool", FieldType::kMap, "N: [x, y, z, w, p, r] of tool N, or torch"),
-};
+// part.generator: its type, then one section per type of that type's parameters (planner/mesh/generators.h).
+void AddGeneratorSections(std::vector<SectionKeys>* sections) {
+  sections->push_back({"part.generator",
+                       {{"type", FieldType::kName, "", "", EnumNameList<planner::PartGenerator>(),
+                         "the generator (required); its parameters below"}}});
+  for (const EnumName<planner::PartGenerator>& entry : EnumNames(planner::PartGenerator{})) {
+    sections->push_back({"part.generator",
+                         Describe<planner::GeneratorParams>(planner::GeneratorFields(entry.value),
+                                                            planner::GeneratorDefaults(entry.value)),
+                         std::string(entry.name)});
+  }
+}
 
 std::vector<SectionKeys> MakeSections() {
   std::vector<SectionKeys> sections = {
       Section("", planner::kScenarioTopFields),
       Section("part", planner::kPartFields),
       Section("slicing", planner::kSlicingFields),
-      Section("slicing.sub_volumes[]", kSubVolumeFields),
+      Section("slicing.sub_volumes[]", planner::kSubVolumeFields),
       Section("path", planner::kPathFields),
       Section("path.void_filling", planner::kVoidFillingFields),
       Section("process", planner::kProcessFields),
@@ -60,7 +59,7 @@ std::vector<SectionKeys> MakeSections() {
       Section("program.frame", planner::kProgramFrameFields),
       Section("program.gcode", planner::kProgramGcodeFields),
       Section("program.yaskawa", planner::kProgramYaskawaFields),
-      Section("program.frames", kProgramFramesFields),
+      Section("program.frames", planner::kProgramFramesFields),
       Section("thermal", kThermalFields),
       Section("thermal.substrate", kThermalSubstrateFields),
       Section("thermal.table", kThermalTableFields),
@@ -72,6 +71,10 @@ std::vector<SectionKeys> MakeSections() {
       Section("replay.frame", kReplayFrameFields),
       Section("replay.bead", kReplayBeadFields),
   };
+  AddGeneratorSections(&sections);
+  std::stable_partition(sections.begin(), sections.end(), [](const SectionKeys& s) {
+    return s.path.empty() || s.path == "part" || s.path.rfind("part.", 0) == 0;
+  });
   // The top level holds the sections too.
   for (const SectionKeys& s : sections) {
     if (s.path.empty() || s.path.find('.') != std::string::npos) continue;
@@ -85,6 +88,17 @@ std::vector<SectionKeys> MakeSections() {
 const SectionKeys* FindSection(const std::string& path) {
   for (const SectionKeys& s : ScenarioSections()) {
     if (s.path == path) return &s;
+  }
+  return nullptr;
+}
+
+// The row of `key` in any section at `path` (part.generator has one section per generator type).
+const FieldInfo* FindKey(const std::string& path, const std::string& key) {
+  for (const SectionKeys& s : ScenarioSections()) {
+    if (s.path != path) continue;
+    for (const FieldInfo& f : s.fields) {
+      if (f.key == key) return &f;
+    }
   }
   return nullptr;
 }
@@ -104,14 +118,11 @@ bool IsScenarioKeyPath(const std::string& key_path) {
     const std::size_t dot = section.rfind('.');
     const std::string parent = dot == std::string::npos ? "" : section.substr(0, dot);
     const std::string rest = key_path.substr(parent.empty() ? 0 : parent.size() + 1);
-    if (const SectionKeys* s = FindSection(parent)) {
+    if (FindSection(parent)) {
       const std::string key = rest.substr(0, rest.find('.'));
-      for (const FieldInfo& f : s->fields) {
-        if (f.key != key) continue;
-        // A key itself, or a key below a mapping or list that its parser reads by hand.
-        return rest == key || f.type == FieldType::kMap || f.type == FieldType::kList;
-      }
-      return false;
+      const FieldInfo* f = FindKey(parent, key);
+      // A key itself, or a key below a mapping or list (program.frames.uframe.6).
+      return f && (rest == key || f->type == FieldType::kMap || f->type == FieldType::kList);
     }
     if (dot == std::string::npos) return false;
     section = parent;
@@ -151,7 +162,8 @@ std::string ScenarioKeysMarkdown() {
       << "(`waam scenario-keys > docs/SCENARIO_KEYS.md`; a test fails when this file differs). Ranges are inclusive;\n"
       << "a default is the value when the key is absent. `--set key.path=value` and a sweep take these key paths.\n";
   for (const SectionKeys& s : ScenarioSections()) {
-    out << "\n## " << (s.path.empty() ? "(top level)" : "`" + s.path + "`") << "\n\n"
+    out << "\n## " << (s.path.empty() ? "(top level)" : "`" + s.path + "`")
+        << (s.variant.empty() ? "" : " (type: " + s.variant + ")") << "\n\n"
         << "| key | type | unit | default | range | meaning |\n| --- | --- | --- | --- | --- | --- |\n";
     for (const FieldInfo& f : s.fields) {
       out << "| `" << f.key << "` | " << NameOf(f.type) << " | " << f.unit << " | " << f.default_text << " | "
@@ -162,6 +174,7 @@ std::string ScenarioKeysMarkdown() {
 }
 
 void ValidateScenario(const Scenario& s) {
+  if (s.part.generator) planner::ResolveGeneratorParams(*s.part.generator, s.part.params, "part.generator");
   CheckFields<planner::SlicingSettings>(planner::kSlicingFields, s.slicing, "slicing");
   CheckFields<planner::PathSettings>(planner::kPathFields, s.path, "path");
   CheckFields<planner::VoidFillingSettings>(planner::kVoidFillingFields, s.path.void_filling, "path.void_filling");
@@ -171,6 +184,7 @@ void ValidateScenario(const Scenario& s) {
   CheckFields<planner::ProgramSettings>(planner::kProgramFields, s.program, "program");
   CheckFields<planner::ProgramSettings>(planner::kProgramFrameFields, s.program, "program.frame");
   CheckFields<planner::ProgramSettings>(planner::kProgramGcodeFields, s.program, "program.gcode");
+  CheckFields<planner::ProgramFrames>(planner::kProgramFramesFields, s.program.frames, "program.frames");
   twin::ValidateSimulationSettings(s.simulation);
   CheckFields<RunSettings>(kRunFields, s.run, "run");
   CheckFields<PlaceSettings>(kPlaceFields, s.place, "place");

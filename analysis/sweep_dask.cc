@@ -45,6 +45,10 @@ nlohmann::json RunSweepOnDask(const Sweep& sweep, const BenchOptions& options, c
   WAAM_THROW_UNLESS(!scheduler.empty(), "--dask: give the scheduler's address, e.g. tcp://127.0.0.1:8786");
   WAAM_THROW_UNLESS(options.shard_count <= 1, "--dask runs every run of the sweep: leave out --shard");
   WAAM_THROW_UNLESS(!sweep.runs.empty(), sweep.file.string() << ": the sweep has no runs");
+  BenchOptions checked = options;
+  checked.overrides = sweep.set;
+  checked.overrides.insert(checked.overrides.end(), options.overrides.begin(), options.overrides.end());
+  CheckBenchOverrides(SweepBenchRuns(sweep), checked);
   const char* python_env = std::getenv("WAAM_PYTHON");
   const std::string python = python_env != nullptr && *python_env != '\0' ? python_env : "/usr/bin/python3";
   const fs::path driver = DataDir() / "analysis" / "data" / "dask" / "dask_sweep.py";

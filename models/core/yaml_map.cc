@@ -2,6 +2,7 @@
 #include "models/core/yaml_map.h"
 
 #include <algorithm>
+#include <exception>
 #include <cmath>
 #include <sstream>
 #include <system_error>
@@ -187,6 +188,32 @@ std::vector<std::string> YamlMap::Names(const std::string& noun) const {
     names.push_back(name);
   }
   return names;
+}
+
+std::vector<std::pair<int, std::string>> YamlMap::NumberKeys(const std::string& noun, int min, int max) const {
+  std::vector<std::pair<int, std::string>> keys;
+  for (const std::string& name : Names(noun)) {
+    int n = min - 1;
+    try {
+      std::size_t used = 0;
+      n = std::stoi(name, &used);
+      if (used != name.size()) n = min - 1;
+    } catch (const std::exception&) {
+      n = min - 1;
+    }
+    WAAM_THROW_UNLESS(n >= min && n <= max, Where(name) << ": must be a " << noun << " number in [" << min << ", "
+                                                        << max << "]");
+    for (const auto& [m, other] : keys) {
+      WAAM_THROW_UNLESS(m != n, Where(name) << ": a second " << noun << " " << n << " (also given as '" << other << "')");
+    }
+    keys.emplace_back(n, name);
+  }
+  return keys;
+}
+
+bool YamlMap::IsList(const std::string& key) {
+  YAML::Node value = Get(key);
+  return value && value.IsSequence();
 }
 
 void YamlMap::CheckNoUnknownKeys() const {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -68,6 +69,12 @@ class YamlMap {
   // InputError "file:line: key.NAME: a <noun> name must be a non-empty word without '/' or spaces" or "...: a second
   // <noun> of this name". The caller reads each name's value (which makes it known).
   std::vector<std::string> Names(const std::string& noun) const;
+  // The keys of this mapping when they are whole numbers (program.frames.uframe: {6: ...}), with their text, in file
+  // order. Throws InputError "file:line: key.K: must be a <noun> number in [min, max]" for another key, or "...: a
+  // second <noun> N" for a number given twice (6 and 06).
+  std::vector<std::pair<int, std::string>> NumberKeys(const std::string& noun, int min, int max) const;
+  // True if `key` holds a list (a value with two forms: a number or a list, numbers or a word).
+  bool IsList(const std::string& key);
 
   // The mapping itself.
   const YAML::Node& node() const { return node_; }

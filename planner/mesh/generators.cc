@@ -63,7 +63,19 @@ struct GeneratorSpec {
   std::vector<ParamSpec> params;
   std::function<TriangleMesh(const Args&)> build;
   bool keep_frame = false;  // true: the part stays in the frame it was built in (not centred, not set on z = 0)
+  // The parameters as field-table rows and their defaults (made from `params` once the registry is built).
+  std::vector<Field<GeneratorParams>> fields = {};
+  GeneratorParams defaults = {};
 };
+
+// A parameter's row of the field table: its unit from its name (_mm, _deg).
+Field<GeneratorParams> ParamRow(const ParamSpec& p) {
+  const auto ends = [&](std::string_view tail) {
+    return p.name.size() > tail.size() && p.name.compare(p.name.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  const std::string_view unit = ends("_mm") ? "mm" : ends("_deg") ? "deg" : "";
+  return EntryField<GeneratorParams>(p.name, unit, p.min, p.max, static_cast<int>(p.count), p.integer, p.help);
+}
 
 Ring Polygon(std::initializer_list<std::pair<double, double>> points, double scale) {
   Ring ring;
@@ -401,6 +413,12 @@ const std::map<PartGenerator, GeneratorSpec>& Registry() {
                                      {}},
                                     a("height_mm"));
                    }};
+    for (auto& [type, spec] : r) {
+      for (const ParamSpec& p : spec.params) {
+        spec.fields.push_back(ParamRow(p));
+        spec.defaults[p.name] = p.default_value;
+      }
+    }
     return r;
   }();
   return registry;
@@ -440,24 +458,15 @@ GeneratorParams ResolveGeneratorParams(PartGenerator generator, const GeneratorP
                        << ")");
     }
   }
-  std::map<std::string, std::vector<double>> values;
-  for (const ParamSpec& p : spec.params) {
-    const auto given = params.find(p.name);
-    const std::vector<double>& v = given == params.end() ? p.default_value : given->second;
-    WAAM_THROW_UNLESS(p.count == 0 || v.size() == p.count, where << ": " << type << "." << p.name << " = " << Join(v)
-                                                                 << ": needs " << p.count << " value"
-                                                                 << (p.count > 1 ? "s" : "") << " (" << p.help << ")");
-    for (double x : v) {
-      WAAM_THROW_UNLESS(std::isfinite(x) && x >= p.min && x <= p.max,
-                        where << ": " << type << "." << p.name << " = " << Join(v) << ": each value must be in ["
-                              << p.min << ", " << p.max << "] (" << p.help << ")");
-      WAAM_THROW_UNLESS(!p.integer || x == std::round(x),
-                        where << ": " << type << "." << p.name << " = " << Join(v) << ": must be whole numbers");
-    }
-    values[p.name] = v;
-  }
+  GeneratorParams values = spec.defaults;
+  for (const auto& param : params) values[param.first] = param.second;
+  CheckFields<GeneratorParams>(spec.fields, values, where + ": " + type);
   return values;
 }
+
+std::span<const Field<GeneratorParams>> GeneratorFields(PartGenerator type) { return Registry().at(type).fields; }
+
+const GeneratorParams& GeneratorDefaults(PartGenerator type) { return Registry().at(type).defaults; }
 
 TriangleMesh GeneratePart(const std::string& type, const GeneratorParams& params, const std::string& where) {
   return GeneratePart(ParsePartGenerator(type, where), params, where);

@@ -4,10 +4,12 @@
 
 #include <array>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "models/core/enum_names.h"
+#include "models/core/field_table.h"
 #include "planner/mesh/triangle_mesh.h"
 
 namespace waam::planner {
@@ -43,6 +45,13 @@ PartGenerator ParsePartGenerator(const std::string& name, const std::string& whe
 
 // Parameter values by name; each is a number or a list of numbers (units in the name: _mm, counts unitless).
 using GeneratorParams = std::map<std::string, std::vector<double>>;
+
+// The parameters of `type`, one row each (models/core/field_table.h: EntryField; the unit from the name's _mm or
+// _deg): they read part.generator with file:line errors, check parameters built in code (ResolveGeneratorParams) and
+// make the key tables of docs/SCENARIO_KEYS.md.
+std::span<const Field<GeneratorParams>> GeneratorFields(PartGenerator type);
+// The default of every parameter of `type`.
+const GeneratorParams& GeneratorDefaults(PartGenerator type);
 
 // Builds the part `type` with `params` (missing ones take their defaults; see GeneratorHelp()). The mesh is closed,
 // with outward normals, deterministic, in mm, centred on x = y = 0 (bounding box centre) and sitting on z = 0,

@@ -5,46 +5,6 @@
 #include "planner/scenario/scenario_fields.h"
 
 namespace waam::planner {
-namespace {
-
-// frames: {uframe: {6: [x, y, z, w, p, r]}, utool: {5: [...] or torch}} (mm, deg).
-ProgramFrames ParseProgramFrames(YamlMap& frames) {
-  ProgramFrames out;
-  for (const char* kind : {"uframe", "utool"}) {
-    if (!frames.Has(kind)) continue;
-    YamlMap table = frames.Map(kind);
-    for (const auto& entry : table.node()) {
-      WAAM_THROW_UNLESS(entry.first.IsScalar(), table.Where("") << ": keys must be frame numbers");
-      const std::string key = entry.first.as<std::string>();
-      int n = -1;
-      try {
-        std::size_t used = 0;
-        n = std::stoi(key, &used);
-        if (used != key.size()) n = -1;
-      } catch (const std::exception&) {
-        n = -1;
-      }
-      WAAM_THROW_UNLESS(n >= 1 && n <= 999, table.Where(key) << ": must be a frame number in [1, 999]");
-      const bool torch = entry.second.IsScalar() && entry.second.as<std::string>() == "torch";
-      WAAM_THROW_UNLESS(!torch || std::string(kind) == "utool",
-                        table.Where(key) << " = torch: only a tool (utool) can be the cell's torch");
-      if (torch) {
-        (void)table.String(key);
-        out.utool[n] = std::nullopt;
-        continue;
-      }
-      const std::vector<double> v = table.Numbers(key, 6, -1e6, 1e6);
-      const std::array<double, 6> f = {v[0], v[1], v[2], v[3], v[4], v[5]};
-      if (std::string(kind) == "uframe") out.uframe[n] = f;
-      else out.utool[n] = f;
-    }
-    table.CheckNoUnknownKeys();
-  }
-  frames.CheckNoUnknownKeys();
-  return out;
-}
-
-}  // namespace
 
 ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& scenario_dir) {
   ProgramSettings s;
@@ -88,10 +48,17 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
     gcode.CheckNoUnknownKeys();
   }
   if (section.Has("frames")) {
+    // A frame is never the torch (the word a tool may be): said before the numbers' message.
     YamlMap frames = section.Map("frames");
-    const bool user_frame = s.frames.user_frame;
-    s.frames = ParseProgramFrames(frames);
-    s.frames.user_frame = user_frame;
+    if (frames.Has("uframe")) {
+      YamlMap uframe = frames.Map("uframe");
+      for (const auto& entry : uframe.NumberKeys("frame", 1, 999)) {
+        const YAML::Node value = uframe.node()[entry.second];
+        WAAM_THROW_UNLESS(!value.IsScalar() || value.Scalar() != "torch",
+                          uframe.Where(entry.second) << " = torch: only a tool (utool) can be the cell's torch");
+      }
+    }
+    ReadFieldMap<ProgramFrames>(section, "frames", kProgramFramesFields, &s.frames);
   }
   if (section.Has("yaskawa")) {
     YamlMap yaskawa = section.Map("yaskawa");

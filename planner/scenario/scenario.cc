@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // part: either `mesh: file.stl` (relative to the scenario file) or `generator: {type: name, <param>: value...}`.
-PartSpec ParsePart(YamlMap part, const YAML::Node& node, const fs::path& scenario_dir) {
+PartSpec ParsePart(YamlMap part, const fs::path& scenario_dir) {
   PartSpec spec;
   spec.where = part.Where("");
   const bool has_mesh = part.Has("mesh");
@@ -29,19 +29,26 @@ PartSpec ParsePart(YamlMap part, const YAML::Node& node, const fs::path& scenari
     YamlMap generator = part.Map("generator");
     spec.where = generator.Where("");
     spec.generator = ParsePartGenerator(generator.String("type"), spec.where);
-    // Every other key is a numeric parameter (a number or a list); the generator checks names and ranges.
-    const YAML::Node gen_node = node["generator"];
-    for (auto it = gen_node.begin(); it != gen_node.end(); ++it) {
-      const std::string key = it->first.Scalar();
-      if (key == "type") continue;
-      spec.params[key] = it->second.IsSequence() ? generator.Numbers(key, -1, -1e9, 1e9)
-                                                 : std::vector<double>{generator.Number(key, -1e9, 1e9)};
-    }
+    // Every other key is a parameter of the type, from its field table (planner/mesh/generators.h).
+    ReadFields<GeneratorParams>(generator, GeneratorFields(*spec.generator), &spec.params);
     generator.CheckNoUnknownKeys();
   }
   part.CheckNoUnknownKeys();
   return spec;
 }
+
+}  // namespace
+
+void FinishSubVolume(YamlMap& element, SubVolumeSpec* sub) {
+  element.Require("name");
+  element.Require("direction");
+  const std::array<double, 3>& d = sub->direction;
+  const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  WAAM_THROW_UNLESS(norm > 1e-9, element.Where("direction") << ": must not be the zero vector");
+  for (double& x : sub->direction) x /= norm;
+}
+
+namespace {
 
 // slicing: the keys of its type, the sub-volumes of a multi-directional split by planes.
 void ParseSlicing(YamlMap& top, SlicingSettings* out) {
@@ -78,22 +85,7 @@ void ParseSlicing(YamlMap& top, SlicingSettings* out) {
     }
   }
   if (sl.type == SlicingType::kMultiDirectional && sl.split == SplitMethod::kPlanes) {
-    for (YamlMap sub : slicing.Maps("sub_volumes")) {
-      SubVolumeSpec spec;
-      spec.name = sub.String("name");
-      const std::vector<double> d = sub.Numbers("direction", 3, -1e3, 1e3);
-      const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      WAAM_THROW_UNLESS(norm > 1e-9, sub.Where("direction") << ": must not be the zero vector");
-      for (int k = 0; k < 3; ++k) spec.direction[k] = d[k] / norm;
-      const std::vector<double> keep = sub.Numbers("keep", -1, -1e6, 1e6, {});
-      WAAM_THROW_UNLESS(keep.size() % 4 == 0, sub.Where("keep") << ": " << keep.size()
-                            << " numbers: give 4 per half-space n . p <= c (nx, ny, nz, c in mm)");
-      for (std::size_t k = 0; k < keep.size(); k += 4) {
-        spec.keep.push_back({keep[k], keep[k + 1], keep[k + 2], keep[k + 3]});
-      }
-      sub.CheckNoUnknownKeys();
-      sl.sub_volumes.push_back(std::move(spec));
-    }
+    read("sub_volumes");
     WAAM_THROW_UNLESS(!sl.sub_volumes.empty(),
                       slicing.Where("sub_volumes") << ": give at least one sub-volume");
   }
@@ -180,7 +172,7 @@ PlannerSections ParsePlannerSections(YamlMap& top) {
   const bool from_program = root.IsMap() && root["program"];
   WAAM_THROW_UNLESS(!from_program || !root["part"],
                     top.Where("part") << ": give either part (planned here) or program (planned elsewhere), not both");
-  if (!from_program) scenario.part = ParsePart(top.Map("part"), root["part"], scenario.dir);
+  if (!from_program) scenario.part = ParsePart(top.Map("part"), scenario.dir);
 
   if (!from_program || top.Has("slicing")) ParseSlicing(top, &scenario.slicing);
   if (!from_program || top.Has("path")) ParsePath(top, scenario.slicing.type, scenario.dir, &scenario.path);

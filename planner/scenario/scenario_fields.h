@@ -22,6 +22,17 @@ inline constexpr std::array kPartFields = {
     CustomField<PartSpec>("generator", FieldType::kMap, "type: a generator (waam generate --help), then its parameters"),
 };
 
+// Finishes a sub-volume read from `element` (slicing.sub_volumes[i]): name and direction are required, the direction
+// must not be zero and is made unit. Throws InputError naming the element's key.
+void FinishSubVolume(YamlMap& element, SubVolumeSpec* sub);
+
+inline constexpr std::array kSubVolumeFields = {
+    OptField<&SubVolumeSpec::name>("name", "the sub-volume's name (required)"),
+    NumField<&SubVolumeSpec::direction>("direction", "", -1e3, 1e3, "build direction (required), not zero; made unit"),
+    NumField<&SubVolumeSpec::keep>("keep", "mm", -1e6, 1e6,
+                                   "half-spaces n . p <= c, 4 numbers each (nx, ny, nz, c mm); absent: none"),
+};
+
 inline constexpr std::array kSlicingFields = {
     OptField<&SlicingSettings::type>("type", "how the part is cut into layers"),
     NumField<&SlicingSettings::layer_height_mm>("layer_height_mm", "mm", 0.05, 20.0,
@@ -32,8 +43,8 @@ inline constexpr std::array kSlicingFields = {
     NumField<&SlicingSettings::cone_rotation_step_deg>("rotation_step_deg", "deg", 1.0, 180.0,
                                                   "cone, cylinder: rotation step before flattening"),
     OptField<&SlicingSettings::split>("split", "multi_directional: the user's sub_volumes or the overhang split"),
-    CustomField<SlicingSettings>("sub_volumes", FieldType::kList,
-                            "multi_directional planes: {name, direction [3], keep [n, c]...} in build order"),
+    ListField<&SlicingSettings::sub_volumes, kSubVolumeFields, &FinishSubVolume>(
+        "sub_volumes", "multi_directional, split planes: the sub-volumes in build order (slicing.sub_volumes[])"),
     NumField<&SlicingSettings::overhang_deg>("overhang_deg", "deg", 1.0, 80.0, "centroid_shift: self-supporting overhang"),
     NumField<&SlicingSettings::h_min_mm>("h_min_mm", "mm", 0.05, 20.0, "skeleton: thinnest layer"),
     NumField<&SlicingSettings::h_max_mm>("h_max_mm", "mm", 0.05, 20.0, "skeleton: thickest layer, >= h_min_mm"),
@@ -99,6 +110,13 @@ inline constexpr std::array kProgramFields = {
 inline constexpr std::array kProgramFrameFields = {
     NumField<&ProgramSettings::user_frame_mm>("user_frame_mm", "mm, deg", -1e6, 1e6,
                                              "[x, y, z, w, p, r] of the user frame; absent: the cell's FANUC world"),
+};
+inline constexpr std::array kProgramFramesFields = {
+    NumberMapField<&ProgramFrames::uframe>("uframe", "frame", 1, 999, "mm, deg", -1e6, 1e6,
+                                           "N: [x, y, z, w, p, r] of user frame N (FANUC UFRAME, KUKA BASE_DATA)"),
+    NumberMapField<&ProgramFrames::utool>("utool", "tool", 1, 999, "mm, deg", -1e6, 1e6,
+                                          "N: [x, y, z, w, p, r] of tool N (FANUC UTOOL, KUKA TOOL_DATA), or torch",
+                                          "torch"),
 };
 inline constexpr std::array kProgramGcodeFields = {
     NumField<&ProgramSettings::gcode_arc_on_m>("arc_on_m", "", 0, 999, "M code that starts the arc"),

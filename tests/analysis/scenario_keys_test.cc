@@ -9,6 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "analysis/place_command.h"
 #include "models/core/error.h"
 #include "twin/cell/cell_settings.h"
 
@@ -66,6 +67,70 @@ TEST(ScenarioKeys, CellSettingsBuiltInCodeAreCheckedAgainstTheKeysLimits) {
   Scenario scenario;
   scenario.cell.torch.tcp_mm = {0.0, 0.0, 20.0};
   EXPECT_THROW(ValidateScenario(scenario), InputError);
+}
+
+std::string ValidationError(const Scenario& scenario) {
+  try {
+    ValidateScenario(scenario);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(ScenarioKeys, ListsKeyedMapsAndGeneratorsBuiltInCodeAreCheckedByTheirTables) {
+  EXPECT_EQ(ValidationError(Scenario{}), "(no error)");
+  Scenario s;
+  s.slicing.sub_volumes.push_back({"a", {0.0, 0.0, 1.0}, {{0.0, 0.0, 1.0, 10.0}}});
+  EXPECT_EQ(ValidationError(s), "(no error)");
+  s.slicing.sub_volumes.push_back({"b", {0.0, 0.0, 2000.0}, {}});
+  EXPECT_THAT(ValidationError(s), HasSubstr("slicing.sub_volumes[1].direction = 2000: must be in [-1000, 1000]"));
+  s = Scenario{};
+  s.slicing.sub_volumes.push_back({"a", {0.0, 0.0, 1.0}, {{0.0, 0.0, 1.0, 2e6}}});
+  EXPECT_THAT(ValidationError(s), HasSubstr("slicing.sub_volumes[0].keep = 2e+06: must be in [-1e+06, 1e+06]"));
+  s = Scenario{};
+  s.program.frames.uframe[1000] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  EXPECT_THAT(ValidationError(s), HasSubstr("program.frames.uframe.1000: must be a frame number in [1, 999]"));
+  s = Scenario{};
+  s.program.frames.utool[5] = std::nullopt;  // the torch
+  s.program.frames.utool[6] = std::array<double, 6>{0.0, 0.0, 3e6, 0.0, 0.0, 0.0};
+  EXPECT_THAT(ValidationError(s), HasSubstr("program.frames.utool.6 = 3e+06: must be in [-1e+06, 1e+06]"));
+  s = Scenario{};
+  s.part.generator = planner::PartGenerator::kBox;
+  s.part.params = {{"size_mm", {100.0, 60.0, 40.0}}};
+  EXPECT_EQ(ValidationError(s), "(no error)");
+  s.part.params = {{"size_mm", {1.0, 2.0}}};
+  EXPECT_THAT(ValidationError(s), HasSubstr("part.generator: box.size_mm = [1, 2]: needs 3 values"));
+  s.part.params = {{"radius_mm", {1.0}}};
+  EXPECT_THAT(ValidationError(s), HasSubstr("part.generator: unknown parameter 'radius_mm' for generator box"));
+}
+
+TEST(ScenarioKeys, GeneratorParametersFramesAndSubVolumesHaveKeyPaths) {
+  for (const char* key : {"part.generator.type", "part.generator.size_mm", "part.generator.arm_angles_deg",
+                          "program.frames.uframe.6", "program.frames.utool", "slicing.sub_volumes"}) {
+    EXPECT_TRUE(IsScenarioKeyPath(key)) << key;
+  }
+  for (const char* key : {"part.generator.sizes_mm", "program.frames.tool.6"}) {
+    EXPECT_FALSE(IsScenarioKeyPath(key)) << key;
+  }
+  const std::string md = ScenarioKeysMarkdown();
+  EXPECT_THAT(md, HasSubstr("## `part.generator` (type: box)"));
+  EXPECT_THAT(md, HasSubstr("| `size_mm` | list of numbers | mm | [100, 60, 40] | [0.1, 5000] |"));
+  EXPECT_THAT(md, HasSubstr("| `utool` | mapping | mm, deg |  | tool 1-999: [-1000000, 1000000] or torch |"));
+}
+
+TEST(ScenarioKeys, APlacedLayoutOutOfTheCellsLimitsIsRefusedNamingTheKey) {
+  const twin::CellSettings cell;
+  Layout layout{};
+  layout[kTableRotation] = 120.0;
+  EXPECT_NO_THROW(ApplyLayout(cell, layout));
+  layout[kTableRotation] = 300.0;
+  try {
+    ApplyLayout(cell, layout);
+    FAIL() << "expected InputError for a table rotation past the cell's limit";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("cell.positioner.rotation_deg = 300: must be in [-240, 240]"));
+  }
 }
 
 }  // namespace
