@@ -215,7 +215,7 @@ TEST_F(ScenarioTest, SubVolumeKeys) {
   text = Valid();
   text.replace(text.find("type: planar"), 12,
                "type: multi_directional\n  sub_volumes:\n    - {name: hub, direction: [0, 0, 1], keep: [1, 0, 0]}");
-  EXPECT_THAT(ErrorOf(text), HasSubstr("keep: 3 numbers: give 4 per half-space"));
+  EXPECT_THAT(ErrorOf(text), HasSubstr("keep: 3 numbers: give 4 per entry"));
 }
 
 TEST_F(ScenarioTest, ConeSlicingKeys) {

@@ -17,7 +17,7 @@ std::filesystem::path WriteScenario(const std::string& name, const std::string& 
   const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / (name + ".yaml");
   std::ofstream out(path);
   out << "name: " << name << "\n"
-      << "part: {generator: {type: box, size: [20, 20, 10]}}\n"
+      << "part: {generator: {type: box, size_mm: [20, 20, 10]}}\n"
       << "slicing: {layer_height_mm: 1.5}\n"
       << "path: {pattern: continuous, bead_width_mm: 6}\n"
       << "process: {travel_speed_mm_min: 400, wire_feed_mm_min: 3200}\n"
