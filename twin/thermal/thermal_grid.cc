@@ -132,6 +132,7 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   inflow_j.push_back(0.0);
   rate.push_back(0.0);
   heat_rate.push_back(0.0);
+  rate_step_s.push_back(0.0);
   guess.push_back(0.0);
   chord.push_back(0.0);
   iterate_h.push_back(0.0);

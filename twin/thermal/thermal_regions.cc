@@ -1,49 +1,33 @@
-// Which cells of a multirate level take the finer level's steps: those near the arc's beads and those whose enthalpy
-// changes fast, closed so that no coarse cell is wrapped in finer ones (docs/THERMAL.md, "Time stepping").
+// Which cells of a multirate level take the finer level's steps: those near the arc's beads and those whose estimated
+// backward-Euler error over the level's step is too large, closed so that no coarse cell is wrapped in finer ones
+// (docs/THERMAL.md, "Time stepping").
+#include <algorithm>
 #include <cmath>
 
 #include "twin/thermal/thermal_state.h"
 
 namespace waam::twin::internal {
+namespace {
 
-// The region's rules are documented at the declaration (thermal_state.h); why the closing: a coarse cell wrapped in
-// finer ones is a Dirichlet value to them for the whole coarse step while they pass it far more energy than its own
-// small capacity holds (scattered fast cells made such cells hundreds of K wrong in the multirate test).
-std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, int level, int m0, int m1,
-                             double radius_mm, double seconds) {
-  Eigen::AlignedBox3d box;
-  for (int m = m0; m < m1; ++m) {
-    if (!s.batch[m].swept_mm.isEmpty()) box.extend(s.batch[m].swept_mm);
-  }
-  if (!box.isEmpty()) {
-    box.min().array() -= radius_mm;
-    box.max().array() += radius_mm;
-  }
-  auto join = [&](int c, std::vector<int>& near) {
-    near.push_back(c);
-    s.depth[c] = level + 1;
-  };
-  // Whether cell j of this level, present in the interval, is outside the finer region so far.
-  auto outside = [&](int j) { return j != kNoCell && s.depth[j] == level && s.born[j] < m1; };
-  std::vector<int> near, fast;
-  for (int c : region) {
-    const Eigen::Vector3i g = s.CellIndex(s.grid_of[c]);
-    if (!box.isEmpty() && box.contains(s.Centre(g.x(), g.y(), g.z()))) {
-      join(c, near);
-    } else if (std::abs(s.heat_rate[c]) * seconds > s.fast_h[s.material[c]]) {
-      join(c, near);
-      fast.push_back(c);
-    }
-  }
-  for (int c : fast) {
-    for (int f = 0; f < 6; ++f) {
-      if (outside(s.neighbour[c][f])) join(s.neighbour[c][f], near);
-    }
-  }
-  for (std::size_t q = 0; q < near.size(); ++q) {
+// Whether cell j, present before micro step m1, is left to `level` so far (outside the finer region).
+bool Outside(const ThermalState& s, int j, int level, int m1) {
+  return j != kNoCell && s.depth[j] == level && s.born[j] < m1;
+}
+
+void Join(ThermalState& s, int c, int level, std::vector<int>& near) {
+  near.push_back(c);
+  s.depth[c] = level + 1;
+}
+
+// Closes the region from near[first] on: repeatedly, every cell left to the level with at least half of its present
+// neighbours in the region joins it. Why: a coarse cell wrapped in finer ones is a Dirichlet value to them for the
+// whole coarse step while they pass it far more energy than its own small capacity holds (scattered finer cells made
+// such cells hundreds of K wrong in the multirate test).
+void CloseRegion(ThermalState& s, std::vector<int>& near, std::size_t first, int level, int m1) {
+  for (std::size_t q = first; q < near.size(); ++q) {
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[near[q]][f];
-      if (!outside(j)) continue;
+      if (!Outside(s, j, level, m1)) continue;
       int inside = 0, present = 0;
       for (int e = 0; e < 6; ++e) {
         const int k = s.neighbour[j][e];
@@ -51,10 +35,57 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
         ++present;
         if (s.depth[k] == level + 1) ++inside;
       }
-      if (2 * inside >= present) join(j, near);
+      if (2 * inside >= present) Join(s, j, level, near);
     }
   }
+}
+
+}  // namespace
+
+std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, int level, int m0, int m1,
+                             double radius_mm) {
+  Eigen::AlignedBox3d box;
+  for (int m = m0; m < m1; ++m) {
+    if (!s.batch[m].swept_mm.isEmpty()) box.extend(s.batch[m].swept_mm);
+  }
+  std::vector<int> near;
+  if (box.isEmpty()) return near;
+  box.min().array() -= radius_mm;
+  box.max().array() += radius_mm;
+  for (int c : region) {
+    const Eigen::Vector3i g = s.CellIndex(s.grid_of[c]);
+    if (box.contains(s.Centre(g.x(), g.y(), g.z()))) Join(s, c, level, near);
+  }
+  CloseRegion(s, near, 0, level, m1);
   return near;
+}
+
+// The estimate: a cell's mean rates over two successive steps of dt_prev and dt, r_old = heat_rate and
+// r_new = (H_pred - H_old) / dt, differ by about d2H/dt2 (dt_prev + dt) / 2, so backward Euler's local error
+// dt^2/2 |d2H/dt2| is about dt^2 |r_new - r_old| / (dt + dt_prev) = dt / (dt + dt_prev) |H_pred - (H_old + dt r_old)|:
+// the predictor against the cell's last rate carried over the step. It needs no extra solve and reads only the cell's
+// own values, so the region does not depend on the order or the thread count.
+void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near) {
+  const LevelSystem& L = s.levels[level];
+  const double dt = L.seconds;
+  const std::size_t first = near.size();
+  for (int c : L.cells) {
+    if (s.depth[c] != level) continue;
+    const double change = s.iterate_h[c] - s.enthalpy[c];
+    const double error = std::abs(change - dt * s.heat_rate[c]) * dt / (dt + s.rate_step_s[c]);
+    if (error > std::max(s.step_error_h[s.material[c]], kStepErrorShare * std::abs(s.enthalpy[c]))) {
+      Join(s, c, level, near);
+    }
+  }
+  // One cell of margin around the inaccurate cells, then the closing.
+  const std::size_t inaccurate = near.size();
+  for (std::size_t q = first; q < inaccurate; ++q) {
+    for (int f = 0; f < 6; ++f) {
+      const int j = s.neighbour[near[q]][f];
+      if (Outside(s, j, level, L.m1)) Join(s, j, level, near);
+    }
+  }
+  CloseRegion(s, near, first, level, L.m1);
 }
 
 }  // namespace waam::twin::internal

@@ -232,7 +232,7 @@ ThermalSimulation::ThermalSimulation(const ThermalSettings& settings) : impl_(st
                                                 settings.liquid_conductivity_factor);
     s.emissivity[m] = settings.emissivity >= 0.0 ? settings.emissivity : material.emissivity;
     s.reference_h[m] = 0.0;
-    s.fast_h[m] = internal::kFastChangeK * s.table[m].Capacity(reference);
+    s.step_error_h[m] = internal::kStepErrorK * s.table[m].Capacity(reference);
   }
   if (settings.far_step_s > 0.0) {
     s.level_step_s = {settings.far_step_s};

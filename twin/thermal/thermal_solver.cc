@@ -478,6 +478,7 @@ void Update(ThermalState& s, int level) {
       if (s.sample_head[c] >= 0) RecordSamples(s, L, c, s.temperature[c], t);
       s.rate[c] = (t - s.temperature[c]) / dt;
       s.heat_rate[c] = dh[i] / dt;
+      s.rate_step_s[c] = dt;
       s.temperature[c] = t;
       s.conductivity[c] = s.table[s.material[c]].Conductivity(t);
     }
@@ -508,8 +509,9 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   // The predictor's nonlinear iteration need not converge in the finer region: the finer levels solve it again.
   for (int c : present) s.depth[c] = level;
   std::vector<int> near;
-  if (!finest) near = FinerRegion(s, present, level, m0, m1, s.level_radius_mm[level + 1], L.seconds);
+  if (!finest) near = FinerRegion(s, present, level, m0, m1, s.level_radius_mm[level + 1]);
   SolveStep(s, level, candidates, m0, m1, StepRole::kPredictor, s.guess, local_of);
+  if (!finest) AddInaccurateCells(s, level, near);
   for (int c : L.cells) s.depth[c] = level;
   if (near.empty()) {
     Update(s, level);

@@ -28,9 +28,12 @@ constexpr int kNoCell = -1;
 constexpr double kReentrantFaceFactor = 1.2626829;
 constexpr int kDeposit = 0;    // material index of the deposit
 constexpr int kSubstrate = 1;  // material index of the plate
-// A cell whose enthalpy would move by more than this many K of heating at its material's reference temperature over
-// a level's step (at the rate of its last step) takes the finer level's steps (docs/THERMAL.md, "Time stepping").
-constexpr double kFastChangeK = 50.0;
+// The local error a level's backward-Euler step may make in a cell, K of heating at its material's reference
+// temperature: a cell whose estimated error over the level's step exceeds it takes the finer level's steps
+// (docs/THERMAL.md, "Time stepping").
+constexpr double kStepErrorK = 1.0;
+// ... or this share of the cell's enthalpy above its start (its rise, at the reference capacity), whichever is larger.
+constexpr double kStepErrorShare = 0.02;
 
 // Cells per chunk of the deterministic parallel loops: every reduction sums per-chunk partials in chunk order, and
 // the chunks do not depend on the thread count, so the results are bit-identical on any number of threads.
@@ -134,9 +137,9 @@ struct ThermalState {
   std::array<ThermalPropertyTable, 2> table;            // deposit, substrate
   std::array<double, 2> emissivity = {0.0, 0.0};        // per material
   std::array<double, 2> reference_h = {0.0, 0.0};       // J/m^3 of a cell as it starts (plate) or switches on
-  // J/m^3 per material: a coarse step that would move a cell's enthalpy by more than this (kFastChangeK of heating
-  // at the reference temperature) is too coarse for it, and it takes the finer level's steps.
-  std::array<double, 2> fast_h = {0.0, 0.0};
+  // J/m^3 per material: a step whose estimated local error in a cell's enthalpy exceeds this (kStepErrorK of
+  // heating at the reference temperature) is too coarse for it, and it takes the finer level's steps.
+  std::array<double, 2> step_error_h = {0.0, 0.0};
 
   std::vector<CellKind> kind;      // per grid cell
   std::vector<int> active_of;      // per grid cell: its active-cell id or kNoCell
@@ -154,6 +157,7 @@ struct ThermalState {
   std::vector<double> conductivity; // W/(m K) at that temperature
   std::vector<double> rate;         // dT/dt over the cell's last step, K/s (extrapolated for the solver's first guess)
   std::vector<double> heat_rate;    // dH/dt over the cell's last step, W/m^3 (latent heat included)
+  std::vector<double> rate_step_s;  // length of that step, s (0: none yet)
   std::vector<double> guess;        // scratch: the solver's first guess, degC
   std::vector<double> chord;        // scratch: the nonlinear iteration's temperature T_k = T(H_k), degC
   std::vector<double> iterate_h;    // scratch: the nonlinear iteration's enthalpy H_k, J/m^3
@@ -222,13 +226,17 @@ std::vector<int> LayPiece(ThermalState& s, const ArcPiece& piece, int step);
 std::vector<std::pair<int, double>> HeatPiece(ThermalState& s, const ArcPiece& piece, int step,
                                               Eigen::AlignedBox3d* heated_mm);
 
-// The cells of `region` (multirate level `level`'s, depth == level, present before micro step m1) that take the finer
-// level's steps over micro steps [m0, m1) of `seconds`, marked depth = level + 1: those whose centres lie within
-// `radius_mm` of the beads laid in the interval; those whose enthalpy, at the rate of their last step, would move by
-// more than fast_h over `seconds` (cells cooling fast behind the arc, melting or freezing ones), with their face
-// neighbours; then, repeatedly, every cell with at least half of its present neighbours in the region.
+// The cells of `region` (multirate level `level`'s, depth == level, present before micro step m1) that lie within
+// `radius_mm` of the beads laid in micro steps [m0, m1), and then, repeatedly, every cell with at least half of its
+// present neighbours among them: they take the finer level's steps, marked depth = level + 1.
 std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, int level, int m0, int m1,
-                             double radius_mm, double seconds);
+                             double radius_mm);
+
+// After the predictor of level `level` (s.levels[level] solved, s.iterate_h its enthalpies) adds to `near` the cells
+// left to the level whose estimated local error over the step exceeds step_error_h (backward Euler's
+// dt^2/2 |d2H/dt2|, from the change of the cell's rate between its last step and the predicted one), with their face
+// neighbours, then closes the region as FinerRegion does; marks them depth = level + 1.
+void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near);
 
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
 void SolveBatch(ThermalState& s);
