@@ -57,6 +57,27 @@ TEST(ThermalTableBody, ThePlateAndTheTableExchangeHeatAsTwoLumpedSlabs) {
       << "the heat the plate gave is in the table (stored " << e.stored_j << " J)";
 }
 
+// A table margin that is not a multiple of the cell (3 mm on 2 mm cells) leaves the plate's cells where they are:
+// its edges are cell faces, so its metal spans x = -20 ... 20 mm exactly (a grid started at the table's corner,
+// x = -23 mm, put cell centres on the plate's edges and made it 42 mm wide).
+TEST(ThermalTableBody, TheMarginDoesNotMoveThePlatesEdges) {
+  ThermalSettings s = PlateOnTableBody(2000.0);
+  s.table_margin_mm = 3.0;
+  const TemperatureField f = ThermalSimulation(s).Field();
+  const int j = static_cast<int>(std::floor((1.0 - f.origin_mm.y()) / f.cell_mm));
+  const int k = static_cast<int>(std::floor((-1.0 - f.origin_mm.z()) / f.cell_mm));  // the plate's top row
+  int first = -1, last = -1;
+  for (int i = 0; i < f.size.x(); ++i) {
+    const std::size_t c = static_cast<std::size_t>(i + f.size.x() * (j + f.size.y() * k));
+    if (!std::isfinite(f.temperature_c[c])) continue;
+    if (first < 0) first = i;
+    last = i;
+  }
+  ASSERT_GE(first, 0) << "no metal in the plate's top row";
+  EXPECT_NEAR(f.origin_mm.x() + first * f.cell_mm, -20.0, 1e-9);
+  EXPECT_NEAR(f.origin_mm.x() + (last + 1) * f.cell_mm, 20.0, 1e-9);
+}
+
 // Without a contact the body is refused; a negative thickness or margin likewise.
 TEST(ThermalTableBody, ABodyWithoutContactOrANegativeSizeIsRefused) {
   ThermalSettings s = PlateOnTableBody(0.0);

@@ -201,10 +201,14 @@ void InitialiseThermalState(ThermalState& s) {
     all.extend(table_mm);
     all.extend(Eigen::Vector3d(table_mm.min().x(), table_mm.min().y(), table_mm.min().z() - 2.0 * s.dx_mm));
   }
-  // x and y start at the boxes' corner; z is shifted so that the plate's top is a cell face.
-  const double top = st.substrate_box_mm.max().z();
-  s.origin_mm = all.min();
-  s.origin_mm.z() = top - std::ceil((top - all.min().z()) / s.dx_mm - 1e-9) * s.dx_mm;
+  // The grid is shifted so that the plate's lowest x and y corner and its top are cell faces: the plate's cells
+  // then do not depend on how far the table body or the deposit reach beyond it (a table margin that is not a
+  // multiple of the cell would otherwise move the plate's edges by up to half a cell).
+  const Eigen::Vector3d plate_corner(st.substrate_box_mm.min().x(), st.substrate_box_mm.min().y(),
+                                     st.substrate_box_mm.max().z());
+  for (int a = 0; a < 3; ++a) {
+    s.origin_mm[a] = plate_corner[a] - std::ceil((plate_corner[a] - all.min()[a]) / s.dx_mm - 1e-9) * s.dx_mm;
+  }
   for (int a = 0; a < 3; ++a) {
     s.size[a] = std::max(1, static_cast<int>(std::ceil((all.max()[a] - s.origin_mm[a]) / s.dx_mm - 1e-9)));
   }
