@@ -233,9 +233,9 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
                              double radius_mm);
 
 // After the predictor of level `level` (s.levels[level] solved, s.iterate_h its enthalpies) adds to `near` the cells
-// left to the level whose estimated local error over the step exceeds step_error_h (backward Euler's
-// dt^2/2 |d2H/dt2|, from the change of the cell's rate between its last step and the predicted one), with their face
-// neighbours, then closes the region as FinerRegion does; marks them depth = level + 1.
+// left to the level whose estimated local error over the step exceeds step_error_h or kStepErrorShare of the cell's
+// enthalpy (backward Euler's dt^2/2 |d2H/dt2|, from the change of the cell's rate between its last step and the
+// predicted one), with their face neighbours, then closes the region as FinerRegion does; marks them depth = level + 1.
 void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near);
 
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
