@@ -6,7 +6,7 @@
 #include <string>
 
 #include "models/core/field_table.h"
-
+#include "twin/cell/cell_settings.h"
 
 namespace waam::analysis {
 
@@ -39,14 +39,23 @@ inline constexpr PlaceRange kDefaultPartYaw{0.0, 315.0, 45.0};
 // The `place:` section, one row per key (models/core/field_table.h). Each range's limits are those of the cell key
 // it searches (twin/cell/cell_settings.h).
 inline constexpr std::array kPlaceFields = {
-    CustomField<PlaceSettings>("part_x_mm", FieldType::kNumbers, "[min, max, step] or one value of cell.part.offset_mm[0]"),
-    CustomField<PlaceSettings>("part_y_mm", FieldType::kNumbers, "... of cell.part.offset_mm[1]"),
-    CustomField<PlaceSettings>("part_z_mm", FieldType::kNumbers, "... of cell.part.offset_mm[2] (a riser)"),
-    CustomField<PlaceSettings>("part_yaw_deg", FieldType::kNumbers, "... of cell.part.yaw_deg"),
-    CustomField<PlaceSettings>("table_rotation_deg", FieldType::kNumbers, "... of cell.positioner.rotation_deg"),
-    CustomField<PlaceSettings>("positioner_yaw_deg", FieldType::kNumbers, "... of cell.positioner.yaw_deg"),
-    CustomField<PlaceSettings>("robot_x_mm", FieldType::kNumbers, "... of cell.robot.base_mm[0]"),
-    CustomField<PlaceSettings>("robot_y_mm", FieldType::kNumbers, "... of cell.robot.base_mm[1]"),
+    RangeField<&PlaceSettings::part_x_mm>("part_x_mm", RowOf(twin::kCellPartFields, "offset_mm"),
+                                          "[min, max, step] or one value of cell.part.offset_mm[0]"),
+    RangeField<&PlaceSettings::part_y_mm>("part_y_mm", RowOf(twin::kCellPartFields, "offset_mm"),
+                                          "... of cell.part.offset_mm[1]"),
+    RangeField<&PlaceSettings::part_z_mm>("part_z_mm", RowOf(twin::kCellPartFields, "offset_mm"),
+                                          "... of cell.part.offset_mm[2] (a riser)"),
+    RangeField<&PlaceSettings::part_yaw_deg>("part_yaw_deg", RowOf(twin::kCellPartFields, "yaw_deg"),
+                                             "... of cell.part.yaw_deg"),
+    RangeField<&PlaceSettings::table_rotation_deg>("table_rotation_deg",
+                                                   RowOf(twin::kCellPositionerFields, "rotation_deg"),
+                                                   "... of cell.positioner.rotation_deg"),
+    RangeField<&PlaceSettings::positioner_yaw_deg>("positioner_yaw_deg", RowOf(twin::kCellPositionerFields, "yaw_deg"),
+                                                   "... of cell.positioner.yaw_deg"),
+    RangeField<&PlaceSettings::robot_x_mm>("robot_x_mm", RowOf(twin::kCellRobotFields, "base_mm"),
+                                           "... of cell.robot.base_mm[0]"),
+    RangeField<&PlaceSettings::robot_y_mm>("robot_y_mm", RowOf(twin::kCellRobotFields, "base_mm"),
+                                           "... of cell.robot.base_mm[1]"),
     NumField<&PlaceSettings::coarse_layers>("coarse_layers", "", 2, 100000, "layers the coarse pass checks"),
     NumField<&PlaceSettings::coarse_step_mm>("coarse_step_mm", "mm", 0.1, 100.0, "sample spacing of the coarse pass"),
     NumField<&PlaceSettings::finalists>("finalists", "", 1, 1000, "layouts that get the full check"),
@@ -54,6 +63,10 @@ inline constexpr std::array kPlaceFields = {
 
 // Most layouts one search may try.
 inline constexpr std::size_t kMaxPlaceLayouts = 20000;
+
+// Throws InputError "place: the ranges give more than kMaxPlaceLayouts layouts; ..." (`where` names the section) for
+// ranges whose grid is too large to search.
+void CheckPlaceLayouts(const PlaceSettings& place, const std::string& where);
 
 }  // namespace waam::analysis
 

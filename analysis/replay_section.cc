@@ -43,14 +43,13 @@ void ParseProbes(YamlMap& replay, ReplaySection* out) {
 
 }  // namespace
 
-void ParseReplaySection(YamlMap& top, const std::filesystem::path& scenario_dir, ReplaySection* out) {
+void ParseReplaySection(YamlMap& top, ReplaySection* out) {
   if (!top.Has("replay")) return;
   YamlMap replay = top.Map("replay");
   out->given = true;
   out->where = replay.Where("");
   WAAM_THROW_UNLESS(replay.Has("log"), out->where << ": replay.log is missing: name the process log (CSV)");
   out->log_where = replay.Where("log");
-  out->log = replay.File("log", scenario_dir, "process log");
   ReadFields<ReplaySection>(replay, kReplayFields, out);
   ParseColumns(replay, out);
   ReadFieldMap<ReplaySection>(replay, "frame", kReplayFrameFields, out);

@@ -73,7 +73,7 @@ struct ReplaySection {
 
 // The keys of `replay:` (models/core/field_table.h); the nested maps are read by analysis/replay_section.cc.
 inline constexpr std::array kReplayFields = {
-    CustomField<ReplaySection>("log", FieldType::kFile, "the process log, a CSV file (relative to the scenario)"),
+    FileField<&ReplaySection::log>("log", "process log", "the process log, a CSV file (relative to the scenario)"),
     NumField<&ReplaySection::header_rows>("header_rows", "", 0, 1000, "metadata lines before the column names"),
     OptField<&ReplaySection::time_unit>("time_unit", "how the time column is written"),
     OptField<&ReplaySection::delimiter>("delimiter", "cell separator; auto: from the line of column names"),
@@ -111,7 +111,7 @@ inline constexpr std::array kReplayBeadFields = {
 
 namespace waam::analysis::internal {
 // Reads the optional `replay:` mapping of the scenario's top level into `out`; the log path is resolved against
-// `scenario_dir` and must exist. Throws InputError naming file:line and key for unknown keys, out-of-range values,
+// top.base_dir() and must exist. Throws InputError naming file:line and key for unknown keys, out-of-range values,
 // a missing log, no power column (or both forms), a column named twice, and duplicate probe names.
-void ParseReplaySection(YamlMap& top, const std::filesystem::path& scenario_dir, ReplaySection* out);
+void ParseReplaySection(YamlMap& top, ReplaySection* out);
 }  // namespace waam::analysis::internal

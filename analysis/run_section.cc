@@ -9,12 +9,8 @@ namespace waam::analysis::internal {
 void ParseRunSection(YamlMap& top, RunSettings* out) {
   if (!top.Has("run")) return;
   YamlMap run = top.Map("run");
-  if (run.Has("steps")) {
-    out->where = run.Where("steps");
-    out->steps = run.Strings("steps", {});
-    WAAM_THROW_UNLESS(!out->steps.empty(), out->where << ": must list at least one step, e.g. [plan, check]");
-  }
-  ReadField<RunSettings>(run, kRunFields, "expected_exit_code", out);
+  if (run.Has("steps")) out->where = run.Where("steps");
+  ReadFields<RunSettings>(run, kRunFields, out);
   WAAM_THROW_UNLESS(out->expected_exit_code == 0 || out->expected_exit_code == 3,
                     run.Where("expected_exit_code") << " = " << out->expected_exit_code
                     << ": must be 0 (success) or 3 (check violations)");

@@ -20,7 +20,7 @@ struct RunSettings {
 
 // The `run:` section, one row per key (models/core/field_table.h).
 inline constexpr std::array kRunFields = {
-    CustomField<RunSettings>("steps", FieldType::kList, "steps in order (waam run --help); absent: the default chain"),
+    WordsField<&RunSettings::steps>("steps", "step", 0, "steps in order (waam run --help); absent: the default chain"),
     NumField<&RunSettings::expected_exit_code>("expected_exit_code", "", 0, 3, "0, or 3 for a planted cell fault"),
 };
 

@@ -149,13 +149,13 @@ Scenario ParseScenario(YamlMap& top) {
   std::error_code ec;
   WAAM_THROW_UNLESS(scenario.base_dir_where.empty() || std::filesystem::is_directory(dir, ec),
                     scenario.base_dir_where << ": folder " << dir.string() << " not found");
-  scenario.cell = twin::ParseCellSection(top, dir);
-  twin::ParseSimulationSection(top, &scenario.simulation, dir);
+  scenario.cell = twin::ParseCellSection(top);
+  twin::ParseSimulationSection(top, &scenario.simulation);
   internal::ParseRunSection(top, &scenario.run);
   internal::ParsePlaceSection(top, &scenario.place);
   internal::ParseThermalSection(top, &scenario.thermal);
-  internal::ParseReplaySection(top, dir, &scenario.replay);
-  scenario.program = planner::ParseProgramSection(top, dir);
+  internal::ParseReplaySection(top, &scenario.replay);
+  scenario.program = planner::ParseProgramSection(top);
   // The CSW radius clamp is one rule for the planner's speed and the twin's bead width (simulation section).
   scenario.process.csw_min_radius_mm = scenario.simulation.csw_min_radius_mm;
   top.CheckNoUnknownKeys();

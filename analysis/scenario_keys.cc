@@ -71,6 +71,10 @@ std::vector<SectionKeys> MakeSections() {
       Section("replay.frame", kReplayFrameFields),
       Section("replay.bead", kReplayBeadFields),
   };
+  // The top level's `target` is read with the program section (planner/scenario/scenario_fields.h).
+  for (FieldInfo& f : Describe<planner::ProgramSettings>(planner::kProgramTargetFields)) {
+    sections.front().fields.push_back(std::move(f));
+  }
   AddGeneratorSections(&sections);
   std::stable_partition(sections.begin(), sections.end(), [](const SectionKeys& s) {
     return s.path.empty() || s.path == "part" || s.path.rfind("part.", 0) == 0;
@@ -188,6 +192,7 @@ void ValidateScenario(const Scenario& s) {
   twin::ValidateSimulationSettings(s.simulation);
   CheckFields<RunSettings>(kRunFields, s.run, "run");
   CheckFields<PlaceSettings>(kPlaceFields, s.place, "place");
+  CheckPlaceLayouts(s.place, "place");
   ValidateThermalSection(s.thermal);
   CheckFields<ReplaySection>(kReplayFields, s.replay, "replay");
   CheckFields<ReplaySection>(kReplayFrameFields, s.replay, "replay.frame");

@@ -11,11 +11,10 @@ void ValidateSimulationSettings(const SimulationSettings& s) {
   CheckFields<SimulationSettings>(kSimulationFields, s, "simulation");
 }
 
-void ParseSimulationSection(YamlMap& top, SimulationSettings* out, const std::filesystem::path& base_dir) {
+void ParseSimulationSection(YamlMap& top, SimulationSettings* out) {
   if (!top.Has("simulation")) return;
   YamlMap sim = top.Map("simulation");
   ReadFields<SimulationSettings>(sim, kSimulationFields, out);
-  if (sim.Has("csw_model")) out->csw_model = sim.File("csw_model", base_dir, "model file");
   sim.CheckNoUnknownKeys();
 }
 

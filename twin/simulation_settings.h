@@ -115,7 +115,7 @@ inline constexpr std::array kSimulationFields = {
     NumField<&SimulationSettings::edge_spread_factor>("edge_spread_factor", "", 0.0, 1.0,
                                                  "metal wets lower ground up to (0.5 + this) x w from the path"),
     OptField<&SimulationSettings::curvature_width>("curvature_width", "csw = wider, lower beads on curves (Dai et al.)"),
-    CustomField<SimulationSettings>("csw_model", FieldType::kFile, "CSW model JSON (waam fit csw); absent = the default"),
+    FileField<&SimulationSettings::csw_model>("csw_model", "model file", "CSW model JSON (waam fit csw); absent = the default"),
     NumField<&SimulationSettings::csw_min_radius_mm>("csw_min_radius_mm", "mm", 1.0, 10000.0,
                                                 "radii below this count as this (the CSW fit's smallest)"),
     NumField<&SimulationSettings::step_mm>("step_mm", "mm", 0.0, 10.0, "deposition step along the path; 0 = one voxel"),
@@ -127,8 +127,8 @@ inline constexpr std::array kSimulationFields = {
 void ValidateSimulationSettings(const SimulationSettings& settings);
 
 // Reads the optional `simulation:` mapping of the scenario's top level into `out` (defaults where a key is absent);
-// a relative csw_model path is taken from `base_dir` (the scenario's folder). Throws InputError naming file, line and
-// key for unknown keys, out-of-range values and a model file that does not exist.
-void ParseSimulationSection(YamlMap& top, SimulationSettings* out, const std::filesystem::path& base_dir = {});
+// a relative csw_model path is taken from top.base_dir() (the scenario's folder; the loader checks the file).
+// Throws InputError naming file, line and key for unknown keys and out-of-range values.
+void ParseSimulationSection(YamlMap& top, SimulationSettings* out);
 
 }  // namespace waam::twin

@@ -11,4 +11,12 @@ std::string ShowNumber(double value) {
   return out.str();
 }
 
+void CheckRange(double min, double max, double step, const std::string& where) {
+  WAAM_THROW_UNLESS(min <= max, where << " = [" << ShowNumber(min) << ", " << ShowNumber(max) << ", "
+                                      << ShowNumber(step) << "]: min must not exceed max ([min, max, step])");
+  WAAM_THROW_UNLESS(step >= 0.0, where << ": step " << ShowNumber(step) << " must not be negative");
+  WAAM_THROW_UNLESS(step > 0.0 || min == max,
+                    where << ": step 0 with min < max; give a step, or one number for a single value");
+}
+
 }  // namespace waam::field_internal

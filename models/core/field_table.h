@@ -12,13 +12,19 @@
 //   ListField<&SlicingSettings::sub_volumes, kSubVolumeFields, &FinishSubVolume>("sub_volumes", "..."),  // list of maps
 //   NumberMapField<&ProgramFrames::uframe>("uframe", "frame", 1, 999, "mm, deg", -1e6, 1e6, "..."),  // {6: [...]}
 //   EntryField<GeneratorParams>("size_mm", "mm", 0.1, 5000, 3, false, "..."),  // std::map<std::string, numbers>
+//   OptField<&ProgramSettings::format>("format", "...", "auto"),   // std::optional<enum>; "auto" stands for nullopt
+//   WordsField<&CellSettings::robot_joints>("joints", "joint", 6, "..."),   // std::vector<std::string>, 6 words
+//   FileField<&CellSettings::mjcf>("mjcf", "MJCF file", "..."),     // std::filesystem::path, relative to the scenario
+//   FoldersField<&CellSettings::robot_package_paths>("package_paths", "..."),   // std::vector<std::filesystem::path>
+//   RangeField<&PlaceSettings::part_x_mm>("part_x_mm", RowOf(kCellPartFields, "offset_mm"), "..."),  // [min, max, step]
 // An enum member must have its EnumNames table (models/core/enum_names.h); its names are listed in the docs and in
 // the parser's error. A list of maps has its element's own table (ListField: each element read, checked and named
 // `key[i]`); a map keyed by numbers (NumberMapField: program.frames.uframe.6) holds numbers per key; an EntryField
 // stores its value under its key in a std::map (tables built at run time, as the generators' parameters are, whose
-// defaults come with the table: Describe(fields, defaults)). A Custom row reads nothing itself: the section's parser
-// reads it (a path resolved against the scenario's folder, a value with two forms) and the row documents it and makes
-// it a known key.
+// defaults come with the table: Describe(fields, defaults)). A file is taken relative to YamlMap::base_dir() (the
+// scenario's folder) and checked where the document is loaded. A range's limits are another row's (RowOf), written
+// once. A Custom row reads nothing itself: the section's parser reads it (a nested section with its own table, a value
+// with two forms) and the row documents it and makes it a known key. The kinds past OptField live in field_kinds.h.
 // Then run `waam scenario-keys > docs/SCENARIO_KEYS.md` (a test fails while the committed file differs).
 // To add a section: a table `inline constexpr std::array kXFields = {...}` next to its struct, a parser that calls
 // ReadFields (or ReadField per key where a key exists only for some types), a line in the section list of
@@ -29,9 +35,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -227,13 +235,16 @@ constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> Nan
   return f;
 }
 
-// A field without a range: bool, an enum with an EnumNames table, or std::string.
+// A field without a range: bool, an enum with an EnumNames table, std::string, or a std::optional of an enum (absent:
+// std::nullopt; with `word`, that word stands for std::nullopt too: program.format: auto).
 template <auto kMember>
 constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> OptField(std::string_view key,
-                                                                                 std::string_view doc) {
+                                                                                 std::string_view doc,
+                                                                                 std::string_view word = {}) {
   using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
   using V = typename field_internal::MemberOf<decltype(kMember)>::Value;
   Field<S> f{key, FieldType::kBool, "", 0.0, 0.0, doc};
+  f.word = word;
   if constexpr (std::is_same_v<V, bool>) {
     f.read = [](YamlMap& map, const Field<S>& field, S* s) {
       s->*kMember = map.Bool(std::string(field.key), s->*kMember);
@@ -246,6 +257,27 @@ constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> Opt
     };
     f.show = [](const Field<S>&, const S& s) { return std::string(NameOf(s.*kMember)); };
     f.names = [] { return EnumNameList<V>(); };
+  } else if constexpr (field_internal::Given<V>::kOptional) {
+    using E = typename field_internal::Given<V>::Type;
+    static_assert(std::is_enum_v<E>, "OptField<> takes a std::optional of an enum");
+    f.type = FieldType::kName;
+    f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+      const std::string k(field.key);
+      if (!map.Has(k)) return;
+      if (field.word.empty()) {
+        s->*kMember = map.Enum<E>(k);
+        return;
+      }
+      const std::string name = map.String(k);
+      const std::optional<E> value = ParseEnum<E>(name);
+      WAAM_THROW_UNLESS(value || name == field.word, map.Where(k) << " = '" << name << "': must be " << field.word
+                                                                  << " or one of " << EnumNameList<E>());
+      s->*kMember = value;
+    };
+    f.show = [](const Field<S>& field, const S& s) {
+      return s.*kMember ? std::string(NameOf(*(s.*kMember))) : std::string(field.word);
+    };
+    f.names = [] { return EnumNameList<E>(); };
   } else {
     static_assert(std::is_same_v<V, std::string>, "OptField<> takes a bool, an enum or a std::string");
     f.type = FieldType::kString;
@@ -255,6 +287,16 @@ constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> Opt
     f.show = [](const Field<S>&, const S& s) { return s.*kMember; };
   }
   return f;
+}
+
+// The row of `key` in a table, in a constant expression (a table's limits taken by another's row: RangeField); a key
+// without a row does not compile.
+template <typename S, std::size_t N>
+constexpr const Field<S>& RowOf(const std::array<Field<S>, N>& fields, std::string_view key) {
+  for (const Field<S>& f : fields) {
+    if (f.key == key) return f;
+  }
+  throw std::logic_error("RowOf: no row of this key");
 }
 
 // A key the section's parser reads itself; the row documents it and makes it a known key.
@@ -315,152 +357,6 @@ void CheckFields(std::span<const Field<S>> fields, const S& s, std::string_view 
   }
 }
 
-// A list of maps (`key: [{...}, {...}]`), a std::vector<E> member whose element E has its own table kElementFields:
-// each element read by ReadFields, then `kFinish(element_map, &e)` when given (required keys, rules across the
-// element's keys), then its unknown keys refused; messages name `key[i]`. Absent: the member keeps its value.
-template <auto kMember, const auto& kElementFields, auto kFinish = nullptr>
-constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> ListField(std::string_view key,
-                                                                                  std::string_view doc) {
-  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
-  using E = typename field_internal::MemberOf<decltype(kMember)>::Value::value_type;
-  Field<S> f{key, FieldType::kList, "", 0.0, 0.0, doc};
-  f.read = [](YamlMap& map, const Field<S>& field, S* s) {
-    if (!map.Has(std::string(field.key))) return;
-    std::vector<E> list;
-    for (YamlMap element : map.Maps(std::string(field.key))) {
-      E e{};
-      ReadFields<E>(element, kElementFields, &e);
-      if constexpr (!std::is_null_pointer_v<decltype(kFinish)>) kFinish(element, &e);
-      element.CheckNoUnknownKeys();
-      list.push_back(std::move(e));
-    }
-    s->*kMember = std::move(list);
-  };
-  f.check = [](const Field<S>& field, const S& s, std::string_view section) {
-    const std::vector<E>& list = s.*kMember;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      std::ostringstream path;
-      path << section << "." << field.key << "[" << i << "]";
-      CheckFields<E>(kElementFields, list[i], path.str());
-    }
-  };
-  return f;
-}
-
-// A map from whole numbers to numbers (`key: {6: [x, y, z, w, p, r]}`): a std::map<int, V> member, V a
-// std::array<double, N> each within [min, max], or a std::optional of one that `word` ("torch") leaves empty. Keys
-// are `noun` numbers in [key_min, key_max]. Given, the map replaces the member's.
-template <auto kMember>
-constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> NumberMapField(
-    std::string_view key, std::string_view noun, int key_min, int key_max, std::string_view unit, double min,
-    double max, std::string_view doc, std::string_view word = {}) {
-  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
-  using M = typename field_internal::MemberOf<decltype(kMember)>::Value;
-  using V = typename M::mapped_type;
-  using T = typename field_internal::Given<V>::Type;
-  static_assert(std::is_same_v<typename M::key_type, int> && field_internal::IsArray<T>::value,
-                "NumberMapField<> takes a std::map<int, std::array<double, N>> or of a std::optional of one");
-  Field<S> f{key, FieldType::kMap, unit, min, max, doc};
-  f.ranged = true;
-  f.key_noun = noun;
-  f.key_min = key_min;
-  f.key_max = key_max;
-  f.word = word;
-  f.read = [](YamlMap& map, const Field<S>& field, S* s) {
-    if (!map.Has(std::string(field.key))) return;
-    YamlMap table = map.Map(std::string(field.key));
-    M out;
-    for (const auto& [n, name] : table.NumberKeys(std::string(field.key_noun), field.key_min, field.key_max)) {
-      if constexpr (field_internal::Given<V>::kOptional) {
-        if (!field.word.empty() && !table.IsList(name) && table.String(name) == field.word) {
-          out[n] = std::nullopt;
-          continue;
-        }
-      }
-      T value{};
-      const std::vector<double> v = table.Numbers(name, static_cast<int>(value.size()), field.min, field.max);
-      std::copy(v.begin(), v.end(), value.begin());
-      out[n] = value;
-    }
-    table.CheckNoUnknownKeys();
-    s->*kMember = std::move(out);
-  };
-  f.check = [](const Field<S>& field, const S& s, std::string_view section) {
-    for (const auto& [n, value] : s.*kMember) {
-      WAAM_THROW_UNLESS(n >= field.key_min && n <= field.key_max,
-                        section << "." << field.key << "." << n << ": must be a " << field.key_noun
-                                << " number in [" << field.key_min << ", " << field.key_max << "]");
-      std::vector<double> numbers;
-      if constexpr (field_internal::Given<V>::kOptional) {
-        if (value) numbers = field_internal::AsNumbers(*value);
-      } else {
-        numbers = field_internal::AsNumbers(value);
-      }
-      for (double v : numbers) {
-        WAAM_THROW_UNLESS(std::isfinite(v) && v >= field.min && v <= field.max,
-                          section << "." << field.key << "." << n << " = " << v << ": must be in [" << field.min
-                                  << ", " << field.max << "]");
-      }
-    }
-  };
-  f.show = [](const Field<S>&, const S&) { return std::string(); };
-  return f;
-}
-
-// Numbers kept under their key in a std::map<std::string, std::vector<double>> (S): for tables built at run time
-// whose keys depend on another key (part.generator's parameters by its type). `count`: 1 one number (or a list of
-// one), N a list of N, 0 a list of any length; `integer`: whole numbers. The default is the defaults' entry
-// (Describe(fields, defaults)). Messages of the check name "<section>.<key> = [values]".
-template <typename S>
-Field<S> EntryField(std::string_view key, std::string_view unit, double min, double max, int count, bool integer,
-                    std::string_view doc) {
-  Field<S> f{key, count == 1 ? (integer ? FieldType::kInteger : FieldType::kNumber) : FieldType::kNumbers,
-             unit, min, max, doc};
-  f.ranged = true;
-  f.count = count;
-  f.integer = integer;
-  f.read = [](YamlMap& map, const Field<S>& field, S* s) {
-    const std::string k(field.key);
-    if (!map.Has(k)) return;
-    std::vector<double> v = map.IsList(k) ? map.Numbers(k, field.count == 0 ? -1 : field.count, field.min, field.max)
-                                          : std::vector<double>{map.Number(k, field.min, field.max)};
-    WAAM_THROW_UNLESS(field.count <= 1 || static_cast<int>(v.size()) == field.count,
-                      map.Where(k) << ": must be a list of " << field.count << " numbers (" << field.doc << ")");
-    for (double x : v) {
-      WAAM_THROW_UNLESS(!field.integer || x == std::round(x), map.Where(k) << " = " << x << ": must be a whole number");
-    }
-    (*s)[k] = std::move(v);
-  };
-  f.check = [](const Field<S>& field, const S& s, std::string_view section) {
-    const auto it = s.find(std::string(field.key));
-    if (it == s.end()) return;
-    const std::vector<double>& v = it->second;
-    std::string text = "[";
-    for (double x : v) text += (text.size() > 1 ? ", " : "") + field_internal::ShowNumber(x);
-    text += "]";
-    const std::string where = std::string(section) + "." + std::string(field.key) + " = " + text;
-    WAAM_THROW_UNLESS(field.count == 0 || static_cast<int>(v.size()) == field.count,
-                      where << ": needs " << field.count << " value" << (field.count > 1 ? "s" : "") << " ("
-                            << field.doc << ")");
-    for (double x : v) {
-      WAAM_THROW_UNLESS(std::isfinite(x) && x >= field.min && x <= field.max,
-                        where << ": each value must be in [" << field.min << ", " << field.max << "] (" << field.doc
-                              << ")");
-      WAAM_THROW_UNLESS(!field.integer || x == std::round(x), where << ": must be whole numbers");
-    }
-  };
-  f.show = [](const Field<S>& field, const S& s) {
-    const auto it = s.find(std::string(field.key));
-    if (it == s.end()) return std::string();
-    std::string text = it->second.size() == 1 && field.count == 1 ? "" : "[";
-    for (std::size_t i = 0; i < it->second.size(); ++i) {
-      text += (i ? ", " : "") + field_internal::ShowNumber(it->second[i]);
-    }
-    return text + (text.empty() || text[0] != '[' ? "" : "]");
-  };
-  return f;
-}
-
 // A field as the docs show it: settings-type free, for the key tables and the `--set` key paths.
 struct FieldInfo {
   std::string key;
@@ -478,7 +374,7 @@ std::vector<FieldInfo> Describe(std::span<const Field<S>> fields, const S& defau
   for (const Field<S>& f : fields) {
     FieldInfo info{std::string(f.key), f.type, std::string(f.unit), f.show ? f.show(f, defaults) : "", "",
                    std::string(f.doc)};
-    if (f.names) info.range = f.names();
+    if (f.names) info.range = f.word.empty() ? f.names() : std::string(f.word) + ", " + f.names();
     if (f.ranged) {
       // Appended piece by piece: GCC 12's -Wrestrict misfires on `"[" + std::string&&` (its bug 105329).
       if (f.key_max > f.key_min) {
@@ -511,3 +407,6 @@ std::vector<FieldInfo> Describe(std::span<const Field<S>> fields) {
 }
 
 }  // namespace waam
+
+// The field kinds beyond numbers, names and words: lists, keyed maps, entries, files, folders and ranges.
+#include "models/core/field_kinds.h"  // IWYU pragma: export

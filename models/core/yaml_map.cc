@@ -16,7 +16,8 @@ YamlMap::YamlMap(YAML::Node node, std::string key_path, std::string file)
     : node_(std::move(node)),
       key_path_(std::move(key_path)),
       file_(std::move(file)),
-      files_(std::make_shared<std::vector<NamedFile>>()) {
+      files_(std::make_shared<std::vector<NamedFile>>()),
+      base_dir_(std::make_shared<std::filesystem::path>()) {
   WAAM_THROW_UNLESS(node_.IsMap(), Where("") << ": must be a mapping of keys to values");
 }
 
@@ -150,9 +151,21 @@ std::filesystem::path YamlMap::File(const std::string& key, const std::filesyste
   return file.lexically_normal();
 }
 
+std::filesystem::path YamlMap::base_dir() const {
+  if (!base_dir_->empty()) return *base_dir_;
+  std::error_code ec;
+  return std::filesystem::absolute(file_, ec).lexically_normal().parent_path();
+}
+
+bool YamlMap::IsMapping(const std::string& key) {
+  return Has(key) && node_[key].IsMap();
+}
+
 void CheckNamedFiles(const std::vector<NamedFile>& files) {
   for (const NamedFile& f : files) {
     std::error_code ec;
+    WAAM_THROW_UNLESS(!std::filesystem::is_directory(f.path, ec),
+                      f.where << ": " << f.path.string() << " is a directory, expected a file (" << f.noun << ")");
     WAAM_THROW_UNLESS(std::filesystem::is_regular_file(f.path, ec),
                       f.where << ": " << f.noun << " " << f.path.string() << " not found");
   }
@@ -163,6 +176,7 @@ YamlMap YamlMap::Map(const std::string& key) {
   WAAM_THROW_UNLESS(value && !value.IsNull(), Where("") << ": missing required section '" << key << "'");
   YamlMap child(value, Child(key), file_);
   child.files_ = files_;
+  child.base_dir_ = base_dir_;
   return child;
 }
 
@@ -173,6 +187,7 @@ std::vector<YamlMap> YamlMap::Maps(const std::string& key) {
   for (std::size_t i = 0; i < value.size(); ++i) {
     maps.emplace_back(value[i], Child(key) + "[" + std::to_string(i) + "]", file_);
     maps.back().files_ = files_;
+    maps.back().base_dir_ = base_dir_;
   }
   return maps;
 }

@@ -61,6 +61,12 @@ class YamlMap {
   // records it in named_files() without touching the file system (the section parsers of the planner and the twin
   // open no file): the loader checks them all with CheckNamedFiles.
   std::filesystem::path File(const std::string& key, const std::filesystem::path& dir, const std::string& noun);
+  // The folder relative paths are taken from (FileField, PathsField): the one SetBaseDir gave this map or the map it
+  // was taken from, else the folder of the file. Set on the top level before its sections are read.
+  std::filesystem::path base_dir() const;
+  void SetBaseDir(const std::filesystem::path& dir) { *base_dir_ = dir; }
+  // True if `key` holds a mapping (a value with two forms: a word or a mapping).
+  bool IsMapping(const std::string& key);
   // A nested mapping.
   YamlMap Map(const std::string& key);
   // A list of mappings.
@@ -103,9 +109,11 @@ class YamlMap {
   std::string file_;
   std::set<std::string> known_;
   std::shared_ptr<std::vector<NamedFile>> files_;  // shared with the maps taken from this one
+  std::shared_ptr<std::filesystem::path> base_dir_;  // shared with the maps taken from this one; empty: the file's
 };
 
-// Throws InputError "file:line: key: <noun> <path> not found" for the first of `files` that is not a regular file.
+// Throws InputError "file:line: key: <noun> <path> not found" (or "...: <path> is a directory, expected a file
+// (<noun>)") for the first of `files` that is not a regular file.
 void CheckNamedFiles(const std::vector<NamedFile>& files);
 
 // Parses a YAML document from a file, throwing InputError with file:line for syntax errors.

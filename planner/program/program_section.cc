@@ -6,28 +6,19 @@
 
 namespace waam::planner {
 
-ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& scenario_dir) {
+ProgramSettings ParseProgramSection(YamlMap& top) {
   ProgramSettings s;
   if (top.Has("target")) {
     // The intended part of a program made elsewhere (a planned part is its own target).
     WAAM_THROW_UNLESS(top.Has("program"), top.Where("target") << ": only with a program: section (a part: is its own "
                                                                  "target)");
-    WAAM_THROW_UNLESS(!top.String("target").empty(), top.Where("target") << ": must name an STL file");
-    s.target = top.File("target", scenario_dir, "target file");
+    ReadField<ProgramSettings>(top, kProgramTargetFields, "target", &s);
   }
   if (!top.Has("program")) return s;
   YamlMap section = top.Map("program");
   s.present = true;
   s.where = section.Where("");
-  WAAM_THROW_UNLESS(!section.String("file").empty(), section.Where("file") << ": must name the program file");
-  s.file = section.File("file", scenario_dir, "program file");
-  const std::string format = section.String("format", "auto");
-  if (format != "auto") {
-    const std::optional<ProgramFormat> f = ParseEnum<ProgramFormat>(format);
-    WAAM_THROW_UNLESS(f.has_value(), section.Where("format") << " = '" << format << "': must be auto or one of "
-                                                             << EnumNameList<ProgramFormat>(", "));
-    s.format = f;
-  }
+  ReadField<ProgramSettings>(section, kProgramFields, "file", &s, true);
   if (ReadFieldMap<ProgramSettings>(section, "frame", kProgramFrameFields, &s)) {
     s.frames.user_frame = s.user_frame_mm.has_value();
   }
@@ -37,14 +28,6 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
     ReadFields<ProgramSettings>(gcode, kProgramGcodeFields, &s);
     WAAM_THROW_UNLESS(s.gcode_arc_on_m != s.gcode_arc_off_m,
                       gcode.Where("arc_off_m") << " = " << s.gcode_arc_off_m << ": must differ from arc_on_m");
-    s.gcode_feed_unit = gcode.Enum("feed_unit", GcodeFeedUnit::kMmPerMin);
-    s.gcode_dwell_p_unit = gcode.Enum("dwell_p_unit", GcodeDwellUnit::kMs);
-    for (const char* key : {"arc_on", "arc_off"}) {
-      std::vector<std::string>& list = std::string(key) == "arc_on" ? s.gcode_arc_on : s.gcode_arc_off;
-      list = gcode.Strings(key, {});
-      WAAM_THROW_UNLESS(!gcode.Has(key) || !list.empty(), gcode.Where(key) << ": must list at least one signal");
-      for (const std::string& signal : list) CheckGcodeSignal(signal, gcode.Where(key));
-    }
     gcode.CheckNoUnknownKeys();
   }
   if (section.Has("frames")) {
@@ -53,8 +36,8 @@ ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& s
     if (frames.Has("uframe")) {
       YamlMap uframe = frames.Map("uframe");
       for (const auto& entry : uframe.NumberKeys("frame", 1, 999)) {
-        const YAML::Node value = uframe.node()[entry.second];
-        WAAM_THROW_UNLESS(!value.IsScalar() || value.Scalar() != "torch",
+        WAAM_THROW_UNLESS(uframe.IsList(entry.second) || uframe.IsMapping(entry.second) ||
+                              uframe.String(entry.second) != "torch",
                           uframe.Where(entry.second) << " = torch: only a tool (utool) can be the cell's torch");
       }
     }

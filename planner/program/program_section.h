@@ -12,6 +12,6 @@ namespace waam::planner {
 // exist; format auto or a dialect name; frame.user_frame_mm; frames.uframe.<n> / frames.utool.<n>; layers;
 // layer_tolerance_mm; gcode.arc_on_m / arc_off_m / feed_unit; yaskawa.pulses_per_deg,
 // yaskawa.station_pulses_per_deg). Throws InputError naming file:line and key.
-ProgramSettings ParseProgramSection(YamlMap& top, const std::filesystem::path& scenario_dir);
+ProgramSettings ParseProgramSection(YamlMap& top);
 
 }  // namespace waam::planner

@@ -45,7 +45,7 @@ void ParseInterpass(YamlMap& process, InterpassSettings* interpass) {
   }
   if (map.Has("at")) {
     interpass->at_where = map.Where("at");
-    if (map.node()["at"].IsMap()) {
+    if (map.IsMapping("at")) {
       // at: {probe: NAME}
       YamlMap at = map.Map("at");
       interpass->at = InterpassAt::kProbe;

@@ -14,17 +14,15 @@ namespace fs = std::filesystem;
 namespace {
 
 // part: either `mesh: file.stl` (relative to the scenario file) or `generator: {type: name, <param>: value...}`.
-PartSpec ParsePart(YamlMap part, const fs::path& scenario_dir) {
+PartSpec ParsePart(YamlMap part) {
   PartSpec spec;
   spec.where = part.Where("");
   const bool has_mesh = part.Has("mesh");
   const bool has_generator = part.Has("generator");
   WAAM_THROW_UNLESS(has_mesh != has_generator, spec.where << ": give exactly one of 'mesh' or 'generator'");
   if (has_mesh) {
-    spec.mesh_path = fs::path(part.String("mesh"));
-    if (spec.mesh_path.is_relative()) spec.mesh_path = scenario_dir / spec.mesh_path;
-    spec.mesh_path = spec.mesh_path.lexically_normal();
-    spec.mesh_where = part.Where("mesh");  // the scenario loader (analysis/) reads the file and checks it is one
+    ReadField<PartSpec>(part, kPartFields, "mesh", &spec);  // the loader checks the file is there, then reads it
+    spec.mesh_where = part.Where("mesh");
   } else {
     YamlMap generator = part.Map("generator");
     spec.where = generator.Where("");
@@ -93,7 +91,7 @@ void ParseSlicing(YamlMap& top, SlicingSettings* out) {
 }
 
 // path: the pattern (as the slicing type allows), the bead width, the void filling.
-void ParsePath(YamlMap& top, SlicingType slicing_type, const fs::path& dir, PathSettings* out) {
+void ParsePath(YamlMap& top, SlicingType slicing_type, PathSettings* out) {
   PathSettings& s = *out;
   YamlMap path = top.Map("path");
   const bool skeleton = slicing_type == SlicingType::kSkeleton;
@@ -120,12 +118,12 @@ void ParsePath(YamlMap& top, SlicingType slicing_type, const fs::path& dir, Path
     }
   }
   for (const char* key : {"alternate_start", "seed", "retract_mm", "island_order"}) read(key);
-  internal::ParseVoidFillingSection(path, dir, &s.void_filling);
+  internal::ParseVoidFillingSection(path, &s.void_filling);
   path.CheckNoUnknownKeys();
 }
 
 // process: speeds, wire, the bead model (as the slicing type allows), the model files, arc and interpass.
-void ParseProcess(YamlMap& top, SlicingType slicing_type, const fs::path& dir, ProcessSettings* out) {
+void ParseProcess(YamlMap& top, SlicingType slicing_type, ProcessSettings* out) {
   ProcessSettings& p = *out;
   YamlMap process = top.Map("process");
   // Skeleton slicing takes the speed at every point from the speed-height model (eq. 6.6).
@@ -141,12 +139,10 @@ void ParseProcess(YamlMap& top, SlicingType slicing_type, const fs::path& dir, P
   WAAM_THROW_UNLESS(!curved || p.bead_model != BeadModel::kSpeedHeight, process.Where("bead_model")
                         << " = speed_height: not available with slicing.type " << NameOf(slicing_type)
                         << " (use csw or volume_balance)");
-  for (auto [key, target] : {std::pair{"csw_model", &p.csw_model},
-                             std::pair{"speed_height_model", &p.speed_height_model},
-                             std::pair{"width_height_model", &p.width_height_model}}) {
-    if (process.Has(key)) *target = process.File(key, dir, "model file");
+  for (const char* key : {"csw_model", "speed_height_model", "width_height_model", "rapid_speed_mm_min", "arc_start_s",
+                          "arc_end_s"}) {
+    read(key);
   }
-  for (const char* key : {"rapid_speed_mm_min", "arc_start_s", "arc_end_s"}) read(key);
   ParseArcAndInterpass(process, &p.arc, &p.interpass);
   process.CheckNoUnknownKeys();
 }
@@ -163,20 +159,20 @@ PlannerSections ParsePlannerSections(YamlMap& top) {
     scenario.dir = (base.is_relative() ? scenario.dir / base : base).lexically_normal();
     scenario.base_dir_where = top.Where("base_dir");  // the scenario loader checks the folder
   }
-  const YAML::Node root = top.node();
+  top.SetBaseDir(scenario.dir);  // every section's files are taken from it
 
-  scenario.name = top.String("name");
+  ReadField<PlannerSections>(top, kScenarioTopFields, "name", &scenario, true);
   WAAM_THROW_UNLESS(!scenario.name.empty(), top.Where("name") << ": must not be empty");
 
   // A scenario with a program: section (planner/program/program_section.h) needs no part, slicing or path.
-  const bool from_program = root.IsMap() && root["program"];
-  WAAM_THROW_UNLESS(!from_program || !root["part"],
+  const bool from_program = top.Has("program");
+  WAAM_THROW_UNLESS(!from_program || !top.Has("part"),
                     top.Where("part") << ": give either part (planned here) or program (planned elsewhere), not both");
-  if (!from_program) scenario.part = ParsePart(top.Map("part"), scenario.dir);
+  if (!from_program) scenario.part = ParsePart(top.Map("part"));
 
   if (!from_program || top.Has("slicing")) ParseSlicing(top, &scenario.slicing);
-  if (!from_program || top.Has("path")) ParsePath(top, scenario.slicing.type, scenario.dir, &scenario.path);
-  ParseProcess(top, scenario.slicing.type, scenario.dir, &scenario.process);
+  if (!from_program || top.Has("path")) ParsePath(top, scenario.slicing.type, &scenario.path);
+  ParseProcess(top, scenario.slicing.type, &scenario.process);
   return scenario;
 }
 

@@ -11,14 +11,13 @@
 namespace waam::planner {
 
 inline constexpr std::array kScenarioTopFields = {
-    CustomField<PlannerSections>("name", FieldType::kString, "the scenario's name (output folders, reports)"),
+    OptField<&PlannerSections::name>("name", "the scenario's name (output folders, reports); required"),
     CustomField<PlannerSections>("base_dir", FieldType::kString, "folder relative paths are taken from; absent: the file's"),
     CustomField<PlannerSections>("part", FieldType::kMap, "the part to plan (or program:, a program made elsewhere)"),
-    CustomField<PlannerSections>("target", FieldType::kFile, "the intended part of a program made elsewhere (STL)"),
 };
 
 inline constexpr std::array kPartFields = {
-    CustomField<PartSpec>("mesh", FieldType::kFile, "an STL file"),
+    FileField<&PartSpec::mesh_path>("mesh", "mesh file", "an STL file"),
     CustomField<PartSpec>("generator", FieldType::kMap, "type: a generator (waam generate --help), then its parameters"),
 };
 
@@ -73,8 +72,8 @@ inline constexpr std::array kVoidFillingFields = {
     NumField<&VoidFillingSettings::lambda>("lambda", "", 0.0, 100.0, "weight of eq. 4.5 for mode fixed"),
     NumField<&VoidFillingSettings::spacing_mm>("spacing_mm", "mm", 0.0, 100.0, "bead centre distance; 0 = overlap d2"),
     NumField<&VoidFillingSettings::min_ribs>("min_ribs", "", 2, 12, "correct junctions of at least this many ribs"),
-    CustomField<VoidFillingSettings>("model", FieldType::kFile, "void-length model JSON (mode model)"),
-    CustomField<VoidFillingSettings>("tune_file", FieldType::kFile, "tune.json of waam tune-voids (mode tuned)"),
+    FileField<&VoidFillingSettings::model>("model", "model file", "void-length model JSON (mode model)"),
+    FileField<&VoidFillingSettings::tune_file>("tune_file", "tune file", "tune.json of waam tune-voids (mode tuned)"),
 };
 
 inline constexpr std::array kProcessFields = {
@@ -86,9 +85,9 @@ inline constexpr std::array kProcessFields = {
     NumField<&ProcessSettings::deposition_efficiency>("deposition_efficiency", "", 0.05, 1.0,
                                                  "share of the wire that lands in the bead (eq. 3.4)"),
     OptField<&ProcessSettings::bead_model>("bead_model", "where the bead comes from"),
-    CustomField<ProcessSettings>("csw_model", FieldType::kFile, "CSW model JSON (waam fit csw)"),
-    CustomField<ProcessSettings>("speed_height_model", FieldType::kFile, "speed-height model JSON"),
-    CustomField<ProcessSettings>("width_height_model", FieldType::kFile, "width-height model JSON"),
+    FileField<&ProcessSettings::csw_model>("csw_model", "model file", "CSW model JSON (waam fit csw)"),
+    FileField<&ProcessSettings::speed_height_model>("speed_height_model", "model file", "speed-height model JSON"),
+    FileField<&ProcessSettings::width_height_model>("width_height_model", "model file", "width-height model JSON"),
     NumField<&ProcessSettings::rapid_speed_mm_min>("rapid_speed_mm_min", "mm/min", 100.0, 100000.0, "arc-off travel"),
     NumField<&ProcessSettings::arc_start_s>("arc_start_s", "s", 0.0, 60.0, "ignition before each pass (docs/TIMELINE.md)"),
     NumField<&ProcessSettings::arc_end_s>("arc_end_s", "s", 0.0, 60.0, "crater fill after each pass (docs/TIMELINE.md)"),
@@ -97,8 +96,9 @@ inline constexpr std::array kProcessFields = {
 };
 
 inline constexpr std::array kProgramFields = {
-    CustomField<ProgramSettings>("file", FieldType::kFile, "the program (required)"),
-    CustomField<ProgramSettings>("format", FieldType::kName, "auto (default) or a dialect"),
+    FileField<&ProgramSettings::file>("file", "program file", "the program (required)"),
+    OptField<&ProgramSettings::format>("format", "the program's dialect; auto: from the extension, then the first lines",
+                                       "auto"),
     CustomField<ProgramSettings>("frame", FieldType::kMap, "user_frame_mm: [x, y, z, w, p, r] of the user frame"),
     CustomField<ProgramSettings>("frames", FieldType::kMap, "numbered user frames and tools (program.frames)"),
     OptField<&ProgramSettings::layers>("layers", "how moves are grouped into layers"),
@@ -106,6 +106,10 @@ inline constexpr std::array kProgramFields = {
                                               "layer grouping tolerance; 0 = half the bead height"),
     CustomField<ProgramSettings>("gcode", FieldType::kMap, "arc signals, feed and dwell units (docs/PROGRAMS.md)"),
     CustomField<ProgramSettings>("yaskawa", FieldType::kMap, "pulses_per_deg [6], station_pulses_per_deg [2]"),
+};
+// The scenario's top-level `target:` (read with the program section).
+inline constexpr std::array kProgramTargetFields = {
+    FileField<&ProgramSettings::target>("target", "target file", "the intended part of a program made elsewhere (STL)"),
 };
 inline constexpr std::array kProgramFrameFields = {
     NumField<&ProgramSettings::user_frame_mm>("user_frame_mm", "mm, deg", -1e6, 1e6,
@@ -121,10 +125,12 @@ inline constexpr std::array kProgramFramesFields = {
 inline constexpr std::array kProgramGcodeFields = {
     NumField<&ProgramSettings::gcode_arc_on_m>("arc_on_m", "", 0, 999, "M code that starts the arc"),
     NumField<&ProgramSettings::gcode_arc_off_m>("arc_off_m", "", 0, 999, "M code that stops the arc"),
-    CustomField<ProgramSettings>("arc_on", FieldType::kList, "signals that start the arc: [M3], [G82], [M62 P1]..."),
-    CustomField<ProgramSettings>("arc_off", FieldType::kList, "signals that stop the arc: [M5], [G83], [M63 P1]..."),
-    CustomField<ProgramSettings>("feed_unit", FieldType::kName, "unit of F: mm_per_min (default) or mm_per_s"),
-    CustomField<ProgramSettings>("dwell_p_unit", FieldType::kName, "unit of G4 P: ms (default) or s"),
+    WordsField<&ProgramSettings::gcode_arc_on, &CheckGcodeSignal>(
+        "arc_on", "signal", 0, "signals that start the arc: [M3], [G82], [M62 P1]...; absent: M<arc_on_m>"),
+    WordsField<&ProgramSettings::gcode_arc_off, &CheckGcodeSignal>(
+        "arc_off", "signal", 0, "signals that stop the arc: [M5], [G83], [M63 P1]...; absent: M<arc_off_m>"),
+    OptField<&ProgramSettings::gcode_feed_unit>("feed_unit", "unit of F"),
+    OptField<&ProgramSettings::gcode_dwell_p_unit>("dwell_p_unit", "unit of G4 P"),
 };
 inline constexpr std::array kProgramYaskawaFields = {
     NumField<&ProgramSettings::yaskawa_pulses_per_deg>("pulses_per_deg", "", 1e-3, 1e7, "encoder pulses per degree"),

@@ -42,7 +42,7 @@ namespace internal {
 // Reads the optional `void_filling:` mapping of the scenario's `path` map into `out`; relative files are resolved
 // against `scenario_dir`. Throws InputError naming file, line and key for unknown keys, out-of-range values, a
 // missing file, or a mode without what it needs.
-void ParseVoidFillingSection(YamlMap& path, const std::filesystem::path& scenario_dir, VoidFillingSettings* out);
+void ParseVoidFillingSection(YamlMap& path, VoidFillingSettings* out);
 }  // namespace internal
 
 }  // namespace waam::planner

@@ -108,7 +108,7 @@ TEST_F(CellSectionTest, UrdfArmKeysAreChecked) {
   EXPECT_THAT(ErrorOf("cell:\n  robot: {urdf: none.urdf}\n"), HasSubstr("cell.robot.urdf: URDF file"));
   EXPECT_THAT(ErrorOf("cell:\n  mjcf: my_cell.xml\n  robot: {urdf: arm.urdf}\n"),
               HasSubstr("give cell.mjcf or cell.robot.urdf, not both"));
-  EXPECT_THAT(ErrorOf("cell:\n  robot: {urdf: arm.urdf, joints: [a, b]}\n"), HasSubstr("name the six arm joints"));
+  EXPECT_THAT(ErrorOf("cell:\n  robot: {urdf: arm.urdf, joints: [a, b]}\n"), HasSubstr("cell.robot.joints: must list 6 joints, got 2"));
   EXPECT_THAT(ErrorOf("cell:\n  torch: {tcp_mm: [0, 0, 10]}\n"), HasSubstr("at least 50 mm"));
   EXPECT_THAT(ErrorOf("cell:\n  torch: {tcp_mm: [0, 0, 100], nozzle_length_mm: 90}\n"),
               HasSubstr("shorter than the torch"));

@@ -31,7 +31,7 @@ class FitDistortionTest : public ::testing::Test {
   // One twin scan for the suite: the small tube at the part-I demo parameters (reduced mode).
   static void SetUpTestSuite() {
     // Per process: ctest runs each test of the suite as its own process, in parallel with -j.
-    dir_ = new fs::path(fs::path(::testing::TempDir()) / ("fit_distortion_test_" + std::to_string(::getpid())));
+    dir_ = new fs::path(fs::path(::waam_test_env::TempDir()) / ("fit_distortion_test_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     truth_ = new models::DistortionParams(
@@ -89,7 +89,7 @@ TEST(DistortionModelFile, RoundTripsThroughItsFieldTable) {
         << name << ": every key written once, mechanical_melting_c with its default";
     for (const auto& [key, value] : original["params"].items()) EXPECT_EQ(written["params"][key], value) << key;
     EXPECT_EQ(written["mode"], original["mode"]);
-    const fs::path again = fs::path(::testing::TempDir()) / (std::string("again_") + name);
+    const fs::path again = fs::path(::waam_test_env::TempDir()) / (std::string("again_") + name);
     WriteFileAtomic(again, written.dump(2));
     const nlohmann::json reread = models::DistortionParamsToJson(models::ReadDistortionParams(again));
     EXPECT_EQ(reread, written) << name;
@@ -97,7 +97,7 @@ TEST(DistortionModelFile, RoundTripsThroughItsFieldTable) {
   }
   nlohmann::json bad = nlohmann::json::parse(ReadFile(kSource / "models" / "data" / "distortion.json"));
   bad["params"]["poisson"] = 0.7;
-  const fs::path file = fs::path(::testing::TempDir()) / "bad_poisson.json";
+  const fs::path file = fs::path(::waam_test_env::TempDir()) / "bad_poisson.json";
   WriteFileAtomic(file, bad.dump());
   EXPECT_THAT([&] { models::ReadDistortionParams(file); },
               ::testing::ThrowsMessage<InputError>(HasSubstr("bad_poisson.json: poisson = 0.7: must be in [0, 0.49]")));

@@ -64,7 +64,7 @@ TEST(PictureFrame, HeightMapHasItsColourBar) {
   map.top_mm.resize(40 * 20);
   for (int j = 0; j < 20; ++j)
     for (int i = 0; i < 40; ++i) map.top_mm[j * 40 + i] = static_cast<float>(1.0 + 0.1 * i);
-  const fs::path path = fs::path(::testing::TempDir()) / "top_height_frame.png";
+  const fs::path path = fs::path(::waam_test_env::TempDir()) / "top_height_frame.png";
   WriteHeightMapPng(map, "plate", path);
   const cv::Mat image = internal::ReadPng(path, 3);
   ASSERT_FALSE(image.empty());

@@ -43,7 +43,7 @@ int DifferentBytes(const cv::Mat& a, const cv::Mat& b) {
 }
 
 TEST(PngFile, GreyBgrAndBgraRoundTripEveryPixel) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "png_file_round_trip";
+  const fs::path dir = fs::path(::waam_test_env::TempDir()) / "png_file_round_trip";
   for (const int type : {CV_8UC1, CV_8UC3, CV_8UC4}) {
     const cv::Mat image = KnownPixels(37, 53, type);
     const fs::path path = dir / ("image_" + std::to_string(CV_MAT_CN(type)) + ".png");
@@ -103,7 +103,7 @@ TEST(PngFile, AChunkLongerThanTheFileIsRefusedBeforeItIsAllocated) {
 }
 
 TEST(PngFile, AWriteUnderARegularFileIsAnOutputErrorNamingThePathAndReason) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "png_file_under_file";
+  const fs::path dir = fs::path(::waam_test_env::TempDir()) / "png_file_under_file";
   fs::create_directories(dir);
   std::ofstream(dir / "a_file") << "x";
   const fs::path path = dir / "a_file" / "picture.png";

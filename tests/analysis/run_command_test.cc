@@ -30,7 +30,7 @@ constexpr const char* kTinyScenario = cli_test::kTinyBlockScenario;
 
 fs::path WriteScenario(const std::string& name, const std::string& text) {
   // Per process: tests writing the same scenario run in parallel under ctest -j.
-  const fs::path dir = fs::path(::testing::TempDir()) / ("waam_test_run_scenarios_" + std::to_string(::getpid()));
+  const fs::path dir = fs::path(::waam_test_env::TempDir()) / ("waam_test_run_scenarios_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / (name + ".yaml");
   std::ofstream(file) << text;
@@ -40,7 +40,7 @@ fs::path WriteScenario(const std::string& name, const std::string& text) {
 RunOptions TinyRun(const std::string& out_name) {
   RunOptions options;
   options.scenario = WriteScenario("tiny_block", kTinyScenario);
-  options.out_dir = fs::path(::testing::TempDir()) / out_name;
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / out_name;
   options.quiet = true;
   options.images = false;
   fs::remove_all(options.out_dir);
@@ -161,7 +161,7 @@ TEST(RunCommand, BadRunSectionIsRefused) {
 }
 
 TEST(BenchCommand, RunsEachScenarioInAChildAndResumes) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "waam_test_bench_scenarios";
+  const fs::path dir = fs::path(::waam_test_env::TempDir()) / "waam_test_bench_scenarios";
   fs::remove_all(dir);
   fs::create_directories(dir / "faults");
   std::ofstream(dir / "tiny.yaml") << kTinyScenario << "run:\n  steps: [plan, simulate]\n";
@@ -169,7 +169,7 @@ TEST(BenchCommand, RunsEachScenarioInAChildAndResumes) {
   std::ofstream(dir / "faults" / "broken.yaml") << "name: broken\n";
   BenchOptions options;
   options.scenarios = {dir};
-  options.out_dir = fs::path(::testing::TempDir()) / "waam_test_bench_out";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "waam_test_bench_out";
   fs::remove_all(options.out_dir);
   options.waam_binary = WAAM_BINARY;
   options.quiet = true;
@@ -272,7 +272,7 @@ namespace {
 int RunWaamCli(const std::string& arguments, std::string* err) {
   // Per process: the RunCli tests run in parallel under ctest -j, each in its own process.
   const fs::path err_file =
-      fs::path(::testing::TempDir()) / ("waam_test_run_cli_" + std::to_string(::getpid()) + ".stderr");
+      fs::path(::waam_test_env::TempDir()) / ("waam_test_run_cli_" + std::to_string(::getpid()) + ".stderr");
   const std::string command = std::string(WAAM_BINARY) + " " + arguments + " >/dev/null 2>" + err_file.string();
   const int status = std::system(command.c_str());
   *err = ReadFile(err_file);
@@ -280,7 +280,7 @@ int RunWaamCli(const std::string& arguments, std::string* err) {
 }
 
 TEST(RunCli, PlantedCellFaultExitsThreeAsExpected) {
-  const fs::path out = fs::path(::testing::TempDir()) / "waam_test_run_cli_fault";
+  const fs::path out = fs::path(::waam_test_env::TempDir()) / "waam_test_run_cli_fault";
   fs::remove_all(out);
   std::string err;
   const fs::path scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "cell_out_of_reach.yaml";
@@ -296,7 +296,7 @@ TEST(RunCli, PlantedCellFaultExitsThreeAsExpected) {
 TEST(RunCli, StepsCommaOrSpaceSeparated) {
   const fs::path scenario = WriteScenario("tiny_block", kTinyScenario);
   for (const std::string steps : {"plan,simulate", "plan simulate", "plan, simulate"}) {
-    const fs::path out = fs::path(::testing::TempDir()) / "waam_test_run_cli_steps";
+    const fs::path out = fs::path(::waam_test_env::TempDir()) / "waam_test_run_cli_steps";
     fs::remove_all(out);
     std::string err;
     ASSERT_EQ(RunWaamCli("run " + scenario.string() + " -o " + out.string() + " -q --no-images --steps " + steps,
@@ -307,7 +307,7 @@ TEST(RunCli, StepsCommaOrSpaceSeparated) {
     EXPECT_EQ(summary["steps"][1]["name"], "simulate");
   }
   std::string err;
-  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + ::testing::TempDir() + "/waam_test_run_cli_steps_bad" +
+  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + ::waam_test_env::TempDir() + "/waam_test_run_cli_steps_bad" +
                        " -q --steps plan,weld", &err), 2);
   EXPECT_THAT(err, HasSubstr("weld"));
   EXPECT_THAT(err, ::testing::Not(HasSubstr("plan,weld"))) << "the list is split before the names are checked";
@@ -317,7 +317,7 @@ TEST(RunCli, BadScenarioIsExitTwoWithOneLine) {
   const fs::path scenario = WriteScenario("tiny_bad_layer", "name: x\npart:\n  generator: {type: box}\n"
                                                             "slicing:\n  layer_height_mm: -1\n");
   std::string err;
-  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + ::testing::TempDir() + "/waam_test_run_cli_bad", &err), 2);
+  EXPECT_EQ(RunWaamCli("run " + scenario.string() + " -o " + ::waam_test_env::TempDir() + "/waam_test_run_cli_bad", &err), 2);
   EXPECT_THAT(err, HasSubstr("waam: error:"));
   EXPECT_THAT(err, HasSubstr("slicing.layer_height_mm"));
 }

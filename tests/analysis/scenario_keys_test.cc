@@ -105,6 +105,37 @@ TEST(ScenarioKeys, ListsKeyedMapsAndGeneratorsBuiltInCodeAreCheckedByTheirTables
   EXPECT_THAT(ValidationError(s), HasSubstr("part.generator: unknown parameter 'radius_mm' for generator box"));
 }
 
+// The rows of ranges, word lists and optional names check settings built in code as the parser checks the file.
+TEST(ScenarioKeys, RangesWordListsAndCellRowsBuiltInCodeAreCheckedByTheirTables) {
+  Scenario s;
+  s.place.table_rotation_deg = PlaceRange{0.0, 120.0, 30.0};
+  EXPECT_EQ(ValidationError(s), "(no error)");
+  s.place.table_rotation_deg = PlaceRange{0.0, 300.0, 30.0};
+  EXPECT_THAT(ValidationError(s), HasSubstr("place.table_rotation_deg = 300: must be in [-240, 240]"));
+  s.place.table_rotation_deg = PlaceRange{10.0, -10.0, 5.0};
+  EXPECT_THAT(ValidationError(s), HasSubstr("place.table_rotation_deg = [10, -10, 5]: min must not exceed max"));
+  s.place.table_rotation_deg = PlaceRange{-10.0, 10.0, 0.0};
+  EXPECT_THAT(ValidationError(s), HasSubstr("place.table_rotation_deg: step 0 with min < max"));
+  s = Scenario{};
+  s.place.part_x_mm = s.place.part_y_mm = s.place.part_yaw_deg = PlaceRange{-100.0, 100.0, 0.5};
+  EXPECT_THAT(ValidationError(s), HasSubstr("place: the ranges give more than 20000 layouts"));
+  s = Scenario{};
+  s.cell.robot_joints = {"a", "b"};
+  EXPECT_THAT(ValidationError(s), HasSubstr("cell.robot.joints: must list 6 joints, got 2"));
+  s = Scenario{};
+  s.cell.axis_ramp_s = 50.0;
+  EXPECT_THAT(ValidationError(s), HasSubstr("cell.axis_ramp_s = 50: must be in [0.01, 10]"));
+  s = Scenario{};
+  s.program.gcode_arc_on = {"M62 P1"};
+  EXPECT_EQ(ValidationError(s), "(no error)");
+  s.program.gcode_arc_on = {"X3"};
+  EXPECT_THAT(ValidationError(s), HasSubstr("program.gcode.arc_on 'X3': an arc signal is a G or M code"));
+  const std::string md = ScenarioKeysMarkdown();
+  EXPECT_THAT(md, HasSubstr("| `format` | name |  | auto | auto, "));
+  EXPECT_THAT(md, HasSubstr("| `table_rotation_deg` | list of numbers | deg |  | [-240, 240] |"));
+  EXPECT_THAT(md, HasSubstr("| `joints` | list |  |  |  |"));
+}
+
 TEST(ScenarioKeys, GeneratorParametersFramesAndSubVolumesHaveKeyPaths) {
   for (const char* key : {"part.generator.type", "part.generator.size_mm", "part.generator.arm_angles_deg",
                           "program.frames.uframe.6", "program.frames.utool", "slicing.sub_volumes"}) {

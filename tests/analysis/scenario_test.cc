@@ -131,7 +131,7 @@ TEST_F(ScenarioTest, MissingMeshFileIsNamed) {
 }
 
 TEST_F(ScenarioTest, MeshPathThatIsADirectoryIsRefused) {
-  EXPECT_THAT(ErrorOf(Valid("  mesh: meshes/adir.stl\n")), HasSubstr("is a directory, expected an STL file"));
+  EXPECT_THAT(ErrorOf(Valid("  mesh: meshes/adir.stl\n")), HasSubstr("is a directory, expected a file (mesh file)"));
 }
 
 TEST_F(ScenarioTest, MeshAndGeneratorTogetherAreRefused) {

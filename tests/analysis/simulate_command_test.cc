@@ -61,7 +61,7 @@ Fixture SmallBlock() {
 TEST(SimulateCommand, DeviationOfTheWrittenPartStlMatchesSimulateJson) {
   const Fixture f = SmallBlock();
   SimulateOptions options;
-  options.out_dir = fs::path(::testing::TempDir()) / "simulate_stl_deviation";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "simulate_stl_deviation";
   options.quiet = true;
   options.images = false;
   SimulatePlanned(f.scenario, f.planned, options);
@@ -113,7 +113,7 @@ TEST(SimulateCommand, DeviationOfTheWrittenPartStlMatchesSimulateJson) {
 TEST(SimulateCommand, WritesTheContract) {
   const Fixture f = SmallBlock();
   SimulateOptions options;
-  options.out_dir = fs::path(::testing::TempDir()) / "simulate_contract";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "simulate_contract";
   options.quiet = true;
   const twin::TwinResult result = SimulatePlanned(f.scenario, f.planned, options);
   for (const char* name : {"simulate.json", "part.stl", "part.h5", "top_height.png", "section_xz.png",
@@ -172,7 +172,7 @@ TEST(SimulateCommand, TopSurfaceMeasuresAreNullWithAReasonOnAMultiDirectionalPar
   SimulateOptions options;
   options.quiet = true;
   options.images = false;
-  options.out_dir = fs::path(::testing::TempDir()) / "simulate_planar";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "simulate_planar";
   SimulatePlanned(f.scenario, f.planned, options);
   const nlohmann::json planar = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
   EXPECT_TRUE(planar["ra_mm"].is_number()) << planar["ra_mm"];
@@ -180,7 +180,7 @@ TEST(SimulateCommand, TopSurfaceMeasuresAreNullWithAReasonOnAMultiDirectionalPar
   EXPECT_TRUE(planar["not_applicable"].is_object() && planar["not_applicable"].empty()) << planar["not_applicable"];
 
   f.planned.plan.layers.back().build_dir_P = Eigen::Vector3d::UnitX();
-  options.out_dir = fs::path(::testing::TempDir()) / "simulate_multidir";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "simulate_multidir";
   SimulatePlanned(f.scenario, f.planned, options);
   const nlohmann::json multi = nlohmann::json::parse(ReadFile(options.out_dir / "simulate.json"));
   for (const char* key : {"ra_mm", "waviness_mm", "boundary_lag_mm"}) {
@@ -220,7 +220,7 @@ TEST(SimulateCommand, IsDeterministic) {
   nlohmann::json json[2];
   for (int run = 0; run < 2; ++run) {
     SimulateOptions options;
-    options.out_dir = fs::path(::testing::TempDir()) / ("simulate_determinism_" + std::to_string(run));
+    options.out_dir = fs::path(::waam_test_env::TempDir()) / ("simulate_determinism_" + std::to_string(run));
     options.quiet = true;
     options.images = false;
     SimulatePlanned(f.scenario, f.planned, options);
@@ -239,7 +239,7 @@ TEST(SimulateCommand, EmptyPlanGivesAnEmptyPart) {
     for (auto& p : layer.points) p.weld = false;
   }
   SimulateOptions options;
-  options.out_dir = fs::path(::testing::TempDir()) / "simulate_empty";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "simulate_empty";
   options.quiet = true;
   const twin::TwinResult r = SimulatePlanned(f.scenario, f.planned, options);
   EXPECT_EQ(r.measures.voxels, 0u);
@@ -252,7 +252,7 @@ TEST(SimulateCommand, VoxelLimitIsCheckedUpFront) {
   f.scenario.simulation.max_voxels = 5000;
   SimulateOptions options;
   options.scenario = "block.yaml";
-  options.out_dir = fs::path(::testing::TempDir()) / "simulate_limit";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "simulate_limit";
   options.quiet = true;
   try {
     SimulatePlanned(f.scenario, f.planned, options);
@@ -264,7 +264,7 @@ TEST(SimulateCommand, VoxelLimitIsCheckedUpFront) {
 }
 
 fs::path ScenarioFile(const std::string& name, const std::string& simulation) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("waam_simulate_" + std::to_string(::getpid())) / name;
+  const fs::path dir = fs::path(::waam_test_env::TempDir()) / ("waam_simulate_" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "scenario.yaml") << "name: " << name << "\n"

@@ -14,7 +14,7 @@ namespace {
 using ::testing::HasSubstr;
 
 std::filesystem::path WriteScenario(const std::string& name, const std::string& simulation) {
-  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / (name + ".yaml");
+  const std::filesystem::path path = std::filesystem::path(::waam_test_env::TempDir()) / (name + ".yaml");
   std::ofstream out(path);
   out << "name: " << name << "\n"
       << "part: {generator: {type: box, size_mm: [20, 20, 10]}}\n"

@@ -37,7 +37,7 @@ std::string FirstDataHeader(const fs::path& csv) {
 TEST(TuneVoids, CrossJunctionVoidFallsAsTheShiftGrows) {
   TuneVoidsOptions options;
   options.scenario = kCross;
-  options.out_dir = fs::path(::testing::TempDir()) / "tune_cross";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "tune_cross";
   options.training_csv = options.out_dir / "junctions.csv";
   options.quiet = true;
   const TuneVoidsResult result = RunTuneVoids(options);
@@ -84,7 +84,7 @@ TEST(TuneVoids, SameTuneJsonOnOneAndFourThreads) {
   for (const int threads : {1, 4}) {
     TuneVoidsOptions options;
     options.scenario = fs::path(WAAM_SOURCE_DIR) / "scenarios/ribweb/rib_web_eulerian.yaml";
-    options.out_dir = fs::path(::testing::TempDir()) / ("tune_threads_" + std::to_string(threads));
+    options.out_dir = fs::path(::waam_test_env::TempDir()) / ("tune_threads_" + std::to_string(threads));
     options.quiet = true;
     options.images = false;
     SetThreadCount(threads);
@@ -101,7 +101,7 @@ TEST(TuneVoids, SameTuneJsonOnOneAndFourThreads) {
 TEST(TuneVoids, BadInputIsNamed) {
   TuneVoidsOptions options;
   options.scenario = kCross;
-  options.out_dir = fs::path(::testing::TempDir()) / "tune_bad";
+  options.out_dir = fs::path(::waam_test_env::TempDir()) / "tune_bad";
   options.quiet = true;
   options.layers = 1;
   try {

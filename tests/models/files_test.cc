@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 fs::path TempDir() {
-  fs::path dir = fs::temp_directory_path() / ("waam_files_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::path dir = fs::path(::waam_test_env::TempDir()) / "waam_files_test";
   fs::create_directories(dir);
   return dir;
 }

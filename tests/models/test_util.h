@@ -12,7 +12,7 @@ namespace waam::testing {
 // A fresh directory under the system temp dir, unique per test.
 inline std::filesystem::path TestDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path dir = std::filesystem::temp_directory_path() /
+  std::filesystem::path dir = std::filesystem::path(::waam_test_env::TempDir()) /
                               ("waam_models_" + std::string(info->test_suite_name()) + "_" + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);

@@ -20,7 +20,7 @@ inline TriangleMesh ReadStl(const std::filesystem::path& path, double weld_toler
 // A folder unique to the running test, emptied on creation.
 inline std::filesystem::path TestDir() {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "waam_mesh_tests" /
+  const std::filesystem::path dir = std::filesystem::path(::waam_test_env::TempDir()) / "waam_mesh_tests" /
                                     (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);

@@ -41,7 +41,7 @@ TEST(PlanLimitsTest, TooManyLayersIsRefusedBeforeSlicing) {
   // A 10 m tall column (an STL, since the generators stop at 5 m) at 0.05 mm: 200 000 layers.
   TriangleMesh column = GeneratePart("box", {{"size_mm", {10, 10, 5000}}}, "test");
   for (Eigen::Vector3d& v : column.vertices) v.z() *= 2.0;
-  const std::filesystem::path stl = std::filesystem::temp_directory_path() / "waam_plan_limits_column.stl";
+  const std::filesystem::path stl = std::filesystem::path(::waam_test_env::TempDir()) / "waam_plan_limits_column.stl";
   analysis::WriteStlBinary(column, stl);
   PlannerSections s = LimitsBox(10, 10, 10, 0.05);
   s.part.generator.reset();

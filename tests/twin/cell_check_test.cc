@@ -256,7 +256,7 @@ class PlantedFaultTest : public ::testing::Test {
   static twin::CellSettings Settings(const std::string& name) {
     const fs::path file = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / (name + ".yaml");
     YamlMap top = YamlMap(LoadYamlFile(file.string()), "", file.string());
-    return ParseCellSection(top, file.parent_path());
+    return ParseCellSection(top);
   }
   CheckReport Check(const twin::CellSettings& settings) {
     return CheckPlan(LoadCell(settings), testing::RectangleWall(10, 100.0, 60.0, 1.5, 400.0 / 60.0), settings, 100.0, nullptr);

@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 twin::CellSettings OkSettings() {
   const fs::path file = fs::path(WAAM_SOURCE_DIR) / "scenarios" / "cell" / "cell_ok.yaml";
   YamlMap top(LoadYamlFile(file.string()), "", file.string());  // the document as analysis::LoadScenarioTop reads it
-  twin::CellSettings settings = ParseCellSection(top, file.parent_path());
+  twin::CellSettings settings = ParseCellSection(top);
   settings.part_collision = false;           // the cell bodies only
   settings.resolve = CellResolve::kFixed;    // the motion as planned
   return settings;

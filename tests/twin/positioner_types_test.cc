@@ -207,7 +207,7 @@ TEST(PositionerTypes, PresetsCarryTheirTypeAndTheScenarioOverridesIt) {
   const fs::path file = dir / "s.yaml";
   std::ofstream(file) << "name: s\ncell:\n  preset: kuka_kr16_turntable\n  positioner: {type: none}\n";
   YamlMap top = YamlMap(LoadYamlFile(file.string()), "", file.string());
-  const CellSettings settings = ParseCellSection(top, dir);
+  const CellSettings settings = ParseCellSection(top);
   ASSERT_TRUE(settings.positioner_type.has_value());
   EXPECT_EQ(*settings.positioner_type, PositionerType::kNone);
   EXPECT_EQ(LoadCell(settings).kinematics().positioner.type, PositionerType::kNone);
@@ -226,7 +226,7 @@ class PositionerBadInputTest : public ::testing::Test {
     std::ofstream(file) << yaml;
     try {
       YamlMap top = YamlMap(LoadYamlFile(file.string()), "", file.string());
-      LoadCell(ParseCellSection(top, dir_));
+      LoadCell(ParseCellSection(top));
     } catch (const InputError& e) {
       return e.what();
     }

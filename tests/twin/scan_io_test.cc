@@ -22,7 +22,7 @@ using analysis::ReadPointCloud;
 using analysis::WritePlyWithDeviation;
 
 std::filesystem::path Write(const std::string& name, const std::string& text) {
-  const std::filesystem::path p = std::filesystem::temp_directory_path() / ("waam_scan_io_" + name);
+  const std::filesystem::path p = std::filesystem::path(::waam_test_env::TempDir()) / ("waam_scan_io_" + name);
   std::ofstream(p, std::ios::binary) << text;
   return p;
 }
@@ -38,7 +38,7 @@ TEST(PointCloud, ReadsAsciiPlyWithExtraPropertiesAndFaces) {
 }
 
 TEST(PointCloud, BinaryPlyRoundTripsTheWriter) {
-  const auto p = std::filesystem::temp_directory_path() / "waam_scan_io_b.ply";
+  const auto p = std::filesystem::path(::waam_test_env::TempDir()) / "waam_scan_io_b.ply";
   WritePlyWithDeviation(p, {{1, 2, 3}, {-4, 5.5, 6}}, {0.5, -0.25});
   const auto pts = ReadPointCloud(p);
   ASSERT_EQ(pts.size(), 2u);

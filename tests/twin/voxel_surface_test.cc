@@ -23,7 +23,7 @@ namespace {
 
 // The report the slicer's STL reader gives for `mesh` written to and read back from a binary STL.
 planner::MeshReport ReadBack(const planner::TriangleMesh& mesh, const std::string& name) {
-  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / (name + ".stl");
+  const std::filesystem::path path = std::filesystem::path(::waam_test_env::TempDir()) / (name + ".stl");
   analysis::WriteStlBinary(mesh, path, name);
   planner::MeshReport report;
   planner::ParseStl(ReadFile(path), path, 1e-4, &report);

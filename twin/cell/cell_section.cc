@@ -7,7 +7,6 @@
 #include "twin/cell/cell_presets.h"
 
 namespace waam::twin {
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -21,20 +20,14 @@ void CheckTorch(const TorchSettings& torch, const std::string& where_tcp, const 
                                     "must be shorter than the torch");
 }
 
-void ParseRobot(YamlMap& map, const fs::path& scenario_dir, CellSettings* cell) {
+// cell.robot: the URDF keys only with a URDF arm (a preset's arm is not renamed), then the placement.
+void ParseRobot(YamlMap& map, CellSettings* cell) {
   YamlMap robot = map.Map("robot");
   if (robot.Has("urdf")) {
     WAAM_THROW_UNLESS(!map.Has("mjcf"), robot.Where("urdf") << ": give cell.mjcf or cell.robot.urdf, not both");
-    cell->robot_urdf = robot.File("urdf", scenario_dir, "URDF file");
-    for (const std::string& dir : robot.Strings("package_paths", {})) {
-      fs::path d(dir);
-      if (d.is_relative()) d = scenario_dir / d;
-      cell->robot_package_paths.push_back(d.lexically_normal());
+    for (const char* key : {"urdf", "package_paths", "joints", "flange"}) {
+      ReadField<CellSettings>(robot, kCellRobotFields, key, cell);
     }
-    cell->robot_joints = robot.Strings("joints", {});
-    WAAM_THROW_UNLESS(cell->robot_joints.empty() || cell->robot_joints.size() == 6,
-                      robot.Where("joints") << ": name the six arm joints, got " << cell->robot_joints.size());
-    ReadField<CellSettings>(robot, kCellRobotFields, "flange", cell);
   }
   ReadField<CellSettings>(robot, kCellRobotFields, "base_mm", cell);
   ReadField<CellSettings>(robot, kCellRobotFields, "yaw_deg", cell);
@@ -44,6 +37,7 @@ void ParseRobot(YamlMap& map, const fs::path& scenario_dir, CellSettings* cell) 
 }  // namespace
 
 void ValidateCellSettings(const CellSettings& cell) {
+  CheckFields<CellSettings>(kCellFields, cell, "cell");
   CheckFields<CellSettings>(kCellRobotFields, cell, "cell.robot");
   CheckFields<CellSettings>(kCellPositionerFields, cell, "cell.positioner");
   CheckFields<TorchSettings>(kTorchFields, cell.torch, "cell.torch");
@@ -52,24 +46,24 @@ void ValidateCellSettings(const CellSettings& cell) {
   CheckTorch(cell.torch, "cell.torch.tcp_mm", "cell.torch.nozzle_length_mm");
 }
 
-CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
+CellSettings ParseCellSection(YamlMap& top) {
   CellSettings cell;
   if (!top.Has("cell")) return cell;
   YamlMap map = top.Map("cell");
   cell.where = map.Where("");
   if (map.Has("preset")) {
     // A whole cell; a model of one's own is a different cell, so it may not be given too.
-    const CellPreset preset = map.Enum<CellPreset>("preset");
+    ReadField<CellSettings>(map, kCellFields, "preset", &cell);
+    const CellPreset preset = *cell.preset;
     const bool urdf = map.Has("robot") && map.Map("robot").Has("urdf");
     WAAM_THROW_UNLESS(!map.Has("mjcf") && !urdf, map.Where("preset") << ": give cell.preset or cell."
                                                                      << (urdf ? "robot.urdf" : "mjcf") << ", not both");
     ApplyPreset(preset, &cell);
   }
-  if (map.Has("mjcf")) cell.mjcf = map.File("mjcf", scenario_dir, "MJCF file");
-  if (map.Has("robot")) ParseRobot(map, scenario_dir, &cell);
+  ReadField<CellSettings>(map, kCellFields, "mjcf", &cell);
+  if (map.Has("robot")) ParseRobot(map, &cell);
   if (map.Has("positioner")) {
     YamlMap pos = map.Map("positioner");
-    if (pos.Has("type")) cell.positioner_type = pos.Enum<planner::PositionerType>("type");
     ReadFields<CellSettings>(pos, kCellPositionerFields, &cell);
     pos.CheckNoUnknownKeys();
   }
@@ -79,7 +73,8 @@ CellSettings ParseCellSection(YamlMap& top, const fs::path& scenario_dir) {
     CheckTorch(cell.torch, torch.Where("tcp_mm"), torch.Where("nozzle_length_mm"));
     torch.CheckNoUnknownKeys();
   }
-  ReadFields<CellSettings>(map, kCellFields, &cell);
+  ReadField<CellSettings>(map, kCellFields, "resolve", &cell);
+  ReadField<CellSettings>(map, kCellFields, "axis_ramp_s", &cell);
   if (map.Has("part")) {
     YamlMap part = map.Map("part");
     ReadFields<CellSettings>(part, kCellPartFields, &cell);

@@ -8,9 +8,9 @@
 
 namespace waam::twin {
 
-// Reads `cell:` from the scenario's top-level map (defaults when absent); relative `mjcf` paths are resolved against
-// `scenario_dir`. Throws InputError naming file:line and the key for a wrong type, range or unknown key, or a
+// Reads `cell:` from the scenario's top-level map (defaults when absent); relative file paths are resolved against
+// top.base_dir(). Throws InputError naming file:line and the key for a wrong type, range or unknown key, or a
 // missing MJCF file.
-CellSettings ParseCellSection(YamlMap& top, const std::filesystem::path& scenario_dir);
+CellSettings ParseCellSection(YamlMap& top);
 
 }  // namespace waam::twin

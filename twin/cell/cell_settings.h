@@ -113,8 +113,8 @@ struct CellSettings {
 // The `cell:` section and its sub-sections, one row per key (models/core/field_table.h).
 inline constexpr double kCellReachMm = 20000.0;  // any position in the cell, +-mm
 inline constexpr std::array kCellFields = {
-    CustomField<CellSettings>("preset", FieldType::kName, "a complete cell (twin/cell/cell_presets.h)"),
-    CustomField<CellSettings>("mjcf", FieldType::kFile, "MuJoCo model of the whole cell; absent = the built-in cell"),
+    OptField<&CellSettings::preset>("preset", "a complete cell (twin/cell/cell_presets.h); absent: none"),
+    FileField<&CellSettings::mjcf>("mjcf", "MJCF file", "MuJoCo model of the whole cell; absent = the built-in cell"),
     CustomField<CellSettings>("robot", FieldType::kMap, "the arm (cell.robot)"),
     CustomField<CellSettings>("positioner", FieldType::kMap, "the positioner (cell.positioner)"),
     CustomField<CellSettings>("torch", FieldType::kMap, "the torch of a URDF arm (cell.torch)"),
@@ -125,15 +125,15 @@ inline constexpr std::array kCellFields = {
     CustomField<CellSettings>("checks", FieldType::kMap, "the margins of waam check (cell.checks)"),
 };
 inline constexpr std::array kCellRobotFields = {
-    CustomField<CellSettings>("urdf", FieldType::kFile, "the arm from a URDF file (twin/cell/urdf_arm.h)"),
-    CustomField<CellSettings>("package_paths", FieldType::kList, "folders: package://NAME/... is DIR/NAME/..."),
-    CustomField<CellSettings>("joints", FieldType::kList, "the six arm joints; absent: root to flange"),
+    FileField<&CellSettings::robot_urdf>("urdf", "URDF file", "the arm from a URDF file (twin/cell/urdf_arm.h)"),
+    FoldersField<&CellSettings::robot_package_paths>("package_paths", "folders: package://NAME/... is DIR/NAME/..."),
+    WordsField<&CellSettings::robot_joints>("joints", "joint", 6, "the six arm joints; absent: root to flange"),
     OptField<&CellSettings::robot_flange>("flange", "the flange link; empty: tool0 or the chain's end"),
     NumField<&CellSettings::robot_base_mm>("base_mm", "mm", -kCellReachMm, kCellReachMm, "arm base frame R in the world"),
     NumField<&CellSettings::robot_yaw_deg>("yaw_deg", "deg", -360.0, 360.0, "turn of R about world z"),
 };
 inline constexpr std::array kCellPositionerFields = {
-    CustomField<CellSettings>("type", FieldType::kName, "none, turntable or tilt_rotate; absent: the cell model's"),
+    OptField<&CellSettings::positioner_type>("type", "the positioner's axes; absent: the preset's or the cell model's"),
     NumField<&CellSettings::positioner_base_mm>("base_mm", "mm", -kCellReachMm, kCellReachMm,
                                            "positioner base frame B in the world"),
     NumField<&CellSettings::positioner_yaw_deg>("yaw_deg", "deg", -360.0, 360.0, "turn of B about world z"),
