@@ -1,10 +1,13 @@
-// `waam fit thermal`'s cost: the replays' residuals, their Jacobian (differenced over whole replays, or updated by a
-// secant between two accepted points), the weak prior, and one stage of the fit with Ceres.
+// `waam fit thermal`'s cost: the replays' residuals, their Jacobian (differenced over whole replays), the weak prior,
+// and one stage of the fit with Ceres.
 #include "analysis/fit_thermal_cost.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
+
+#include <Eigen/Dense>
 
 #include "models/core/error.h"
 #include "models/core/parallel.h"
@@ -15,21 +18,17 @@ namespace waam::analysis::internal {
 namespace {
 
 constexpr double kNoBound = std::numeric_limits<double>::infinity();
-// Secant Jacobians between accepted points: off. On BM_FitHalfHour/1/0 with the tolerance 1 / (m - n) they ran out
-// of --max-iter (30 steps, 43 replays, 435 s of CPU against 346 s and 41 replays differenced): every Ceres run after
-// the first restarts its trust region (docs/REPLAY.md "Benchmark"). Kept for that measurement's next round.
-constexpr bool kUseSecants = false;
 
 }  // namespace
 
 const std::vector<FreeParameter>& AllThermalFree() {
   static const std::vector<FreeParameter> all = {
-      {"efficiency", &ThermalParameters::efficiency, 1.0, 0.2, 1.0, "process.arc.efficiency"},
-      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, "thermal.convection_w_m2k"},
-      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound,
+      {"efficiency", &ThermalParameters::efficiency, 1.0, 0.2, 1.0, 0.01, "process.arc.efficiency"},
+      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, 0.1, "thermal.convection_w_m2k"},
+      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound, 0.1,
        "thermal.table.conductance_w_m2k"},
-      {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, "thermal.emissivity"},
-      {"clamps", &ThermalParameters::clamp_factor, 1.0, 0.0, kNoBound, "thermal.clamp_conductance_factor"},
+      {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, 0.05, "thermal.emissivity"},
+      {"clamps", &ThermalParameters::clamp_factor, 1.0, 0.0, kNoBound, 0.05, "thermal.clamp_conductance_factor"},
   };
   return all;
 }
@@ -98,36 +97,59 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, bool keep) 
   }
   if (!keep) return missing;
   const std::lock_guard<std::mutex> lock(kept_mutex_);
+  std::shared_ptr<ReplayRun> shared = std::move(run);
+  if (!first_made_) first_ = shared, first_made_ = true;
   if (kept_ == nullptr || cost < kept_cost_) {
-    kept_ = std::move(run);
+    kept_ = shared;
     kept_cost_ = cost;
   }
   return missing;
 }
 
-std::unique_ptr<ReplayRun> ReplayResiduals::TakeKept(const double* x) const {
-  if (kept_ == nullptr) return nullptr;
-  return Parameters(x) == kept_->parameters() ? std::move(kept_) : nullptr;
+std::shared_ptr<ReplayRun> ReplayResiduals::TakeKept(const double* x) const {
+  const std::lock_guard<std::mutex> lock(kept_mutex_);
+  if (kept_ == nullptr || !(Parameters(x) == kept_->parameters())) return nullptr;
+  return std::move(kept_);
+}
+
+std::shared_ptr<ReplayRun> ReplayResiduals::TakeFirst() const {
+  const std::lock_guard<std::mutex> lock(kept_mutex_);
+  return std::move(first_);
 }
 
 namespace {
 
-enum class JacobianKind { kDifferenced, kSecant, kSeed };
+enum class JacobianKind { kDifferenced, kSeed };
+
+// Gauss-Newton's predicted decrease of the cost at x: 1/2 |A dx|^2 for the least-squares step dx of A dx = -b, with
+// A the Jacobian in x (m x n row-major) over the prior's rows W I and b the residuals over W (x - x0). The same in
+// Ceres' variables u (their Jacobian is A's columns scaled by dx/du, which spans the same space).
+double GaussNewtonDecrease(const std::vector<double>& j, const std::vector<double>& r, int n,
+                           const std::vector<double>& x, double weight, const std::vector<double>& x0) {
+  const Eigen::Index m = static_cast<Eigen::Index>(r.size());
+  const Eigen::Index rows = m + (weight > 0.0 ? n : 0);
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, n);
+  Eigen::VectorXd b(rows);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    b(i) = r[i];
+    for (int k = 0; k < n; ++k) a(i, k) = j[i * n + k];
+  }
+  for (int k = 0; k < n && weight > 0.0; ++k) a(m + k, k) = weight, b(m + k) = weight * (x[k] - x0[k]);
+  const Eigen::VectorXd dx = a.colPivHouseholderQr().solve(-b);
+  return 0.5 * (a * dx).squaredNorm();
+}
 
 // The residuals at Ceres' variables u (x = map(u)), and their Jacobian, asked by Ceres (2.1, unbounded) at the
-// start and at each point it accepts. Two kinds:
-// - differenced in the scaled values x: forward differences over whole replays, the n perturbed ones in parallel
-//   (each its own ThermalSimulation); the step is 1 % of each parameter's scale (not a step in u, which would shrink
-//   with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K) makes the
-//   temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. n replays.
-// - a secant (Broyden's update, Dennis & Schnabel 1983, "Numerical Methods for Unconstrained Optimization and
-//   Nonlinear Equations", eq. 8.1.4): between the last accepted point and this one, s = x - x_a and y = r - r_a,
-//   J = J_a + (y - J_a s) s^T / (s^T s), the least change of J_a that maps s onto the change y the replays made.
-//   No replay (the residuals at an accepted point are those of the candidate Ceres tried).
-// Each is handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A point's Jacobian is differenced at
-// the first point, after RequestDifference(), and else updated by a secant; a `seed` Jacobian in x (the coarse
-// stage's, m x n row-major) stands in at the first point. A replay with more rows without a temperature than the
-// first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks its trust region.
+// start and at each point it accepts. The Jacobian is differenced in the scaled values x: forward differences over
+// whole replays, the n perturbed ones in parallel (each its own ThermalSimulation), n replays (the point's residuals
+// are those of the candidate Ceres tried); the step is each parameter's FreeParameter::step in x (not a step in u,
+// which would shrink with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K)
+// makes the temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise,
+// and so would 1 % of the loss coefficients' scales (docs/REPLAY.md "Why this scheme"). It is
+// handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A `seed` Jacobian in x (the coarse stage's,
+// m x n row-major) stands in at the first point until RequestDifference(). A replay with more rows without a
+// temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
+// its trust region.
 class ReplayCost : public ceres::CostFunction {
  public:
   ReplayCost(const ReplayResiduals& residuals, bool keep, std::vector<double> seed)
@@ -162,9 +184,15 @@ class ReplayCost : public ceres::CostFunction {
 
   // The next Jacobian (at the accepted point, or at the last one when Ceres starts there again) is differenced.
   void RequestDifference() { refresh_ = true; }
-  // The Jacobian at the last accepted point is a secant's or a seed (not differenced on this grid).
+  // The Jacobian at the last accepted point is the seed (not differenced on this grid).
   bool Undifferenced() const { return have_point_ && point_kind_ != JacobianKind::kDifferenced; }
   const std::string& error() const { return error_; }
+  // Gauss-Newton's predicted decrease of the cost from the point Ceres stands on, from its differenced Jacobian
+  // (prior: W and x0, W = 0 for none); -1 without one there (no point yet, or the seed's Jacobian).
+  double PredictedDecrease(double weight, const std::vector<double>& x0) const {
+    if (!have_point_ || point_kind_ != JacobianKind::kDifferenced) return -1.0;
+    return GaussNewtonDecrease(point_j_, point_r_, n_, point_x_, weight, x0);
+  }
   // The Jacobian in x at `x` and whether it was differenced (the last one when none was made there).
   std::pair<const std::vector<double>*, bool> JacobianOf(const std::vector<double>& x) const {
     for (auto it = made_.rbegin(); it != made_.rend(); ++it) {
@@ -207,8 +235,6 @@ class ReplayCost : public ceres::CostFunction {
     std::vector<double> j;
     if (!seed_.empty() && !have_point_) {
       kind = JacobianKind::kSeed, j = seed_;
-    } else if (kUseSecants && have_point_ && !same && !refresh_) {
-      kind = JacobianKind::kSecant, j = Secant(x, r_new);
     } else if (!Difference(x, r_new, &j)) {
       return false;
     }
@@ -222,22 +248,6 @@ class ReplayCost : public ceres::CostFunction {
     return true;
   }
 
-  // Broyden's update from the last accepted point to (x, r).
-  std::vector<double> Secant(const std::vector<double>& x, const std::vector<double>& r) const {
-    std::vector<double> j = point_j_;
-    std::vector<double> s(n_);
-    double ss = 0.0;
-    for (int k = 0; k < n_; ++k) s[k] = x[k] - point_x_[k], ss += s[k] * s[k];
-    if (ss == 0.0) return j;
-    for (std::size_t row = 0; row < residuals_.size(); ++row) {
-      double predicted = 0.0;
-      for (int k = 0; k < n_; ++k) predicted += point_j_[row * n_ + k] * s[k];
-      const double miss = (r[row] - point_r_[row]) - predicted;
-      for (int k = 0; k < n_; ++k) j[row * n_ + k] += miss * s[k] / ss;
-    }
-    return j;
-  }
-
   // Forward differences at `x` (residuals r there): the n perturbed replays in parallel.
   bool Difference(const std::vector<double>& x, const std::vector<double>& r, std::vector<double>* j) const {
     const std::size_t m = residuals_.size();
@@ -245,7 +255,7 @@ class ReplayCost : public ceres::CostFunction {
     std::vector<double> step(n_);
     for (int k = 0; k < n_; ++k) {
       const FreeParameter& f = residuals_.free(k);
-      step[k] = (x[k] + 0.01) * f.scale > f.hi ? -0.01 : 0.01;  // backward at the upper bound
+      step[k] = (x[k] + f.step) * f.scale > f.hi ? -f.step : f.step;  // backward at the upper bound
     }
     std::vector<std::size_t> missing(n_, 0);
     ParallelFor(static_cast<std::size_t>(n_), [&](std::size_t k) {
@@ -311,25 +321,40 @@ class PriorCost : public ceres::CostFunction {
   double weight_;
 };
 
-// Ends a Ceres run on Ctrl-C (abort), and when a step from a secant's (or a seed's) Jacobian failed: the stage runs
-// Ceres again from the same point with a differenced one rather than shrinking the trust region around a model that
-// may be wrong.
+// The stopping rule on Gauss-Newton's predicted decrease: its tolerance (relative to the cost, as Ceres' function
+// tolerance), the prior (W, x0), and the decrease that ended the run (-1: none did).
+struct PredictedStop {
+  double tolerance = 0.0;
+  double weight = 0.0;
+  const std::vector<double>* x0 = nullptr;
+  double decrease = -1.0, cost = 0.0;
+};
+
+// Ends a Ceres run on Ctrl-C (abort); when a step from the seed's Jacobian failed (the stage runs Ceres again from
+// the same point with a differenced one rather than shrinking the trust region around a model that may be wrong);
+// and at a point whose differenced Jacobian predicts a decrease of at most the tolerance x cost for the full
+// Gauss-Newton step (the point Ceres' function tolerance would stop at one trial step later: that replay is saved).
 class StageCallback : public ceres::IterationCallback {
  public:
-  explicit StageCallback(const ReplayCost& cost) : cost_(cost) {}
+  StageCallback(const ReplayCost& cost, PredictedStop* stop) : cost_(cost), stop_(stop) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (InterruptRequested()) return ceres::SOLVER_ABORT;
     if (s.iteration > 0 && !s.step_is_successful && cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    return ceres::SOLVER_CONTINUE;
+    if (!s.step_is_successful) return ceres::SOLVER_CONTINUE;
+    const double decrease = cost_.PredictedDecrease(stop_->weight, *stop_->x0);
+    if (decrease < 0.0 || decrease > stop_->tolerance * s.cost) return ceres::SOLVER_CONTINUE;
+    stop_->decrease = decrease, stop_->cost = s.cost;
+    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
   }
 
  private:
   const ReplayCost& cost_;
+  PredictedStop* stop_;
 };
 
 // One Ceres run from `u` (changed in place) with at most `iterations` iterations.
 ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<double>& u, int iterations,
-                                double function_tolerance) {
+                                PredictedStop* stop) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
   ceres::Problem problem(problem_options);
@@ -339,14 +364,12 @@ ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = iterations;
-  solver.function_tolerance = function_tolerance;
-  // Off: a step too small to matter changes the cost by less than the function tolerance, which then ends the run
-  // (a relative step in u means nothing: u = 0 is an arbitrary point of each map).
-  solver.parameter_tolerance = kUseSecants ? 1e-12 : 1e-3;
+  solver.function_tolerance = stop->tolerance;
+  solver.parameter_tolerance = 1e-3;
   solver.gradient_tolerance = 1e-8;
   solver.logging_type = ceres::SILENT;
   solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
-  StageCallback callback(cost);
+  StageCallback callback(cost, stop);
   solver.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
@@ -367,18 +390,13 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   ReplayCost cost(residuals, keep, std::move(seed));
   std::unique_ptr<PriorCost> prior_cost =
       prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
-  // The function tolerance from the noise: with m readings, n free parameters and the cost C near the minimum,
-  // s^2 = 2 C / (m - n) estimates one reading's variance, and a step that moves the parameters by one standard
-  // deviation (Gauss-Newton's covariance s^2 (J^T J)^-1) changes the cost by s^2 / 2 (Delta chi^2 = 1). A change
-  // below that is one the noise alone could make: no progress. Ceres compares |change| with tolerance x C, so
-  // tolerance = (s^2 / 2) / C = 1 / (m - n).
-  const double m = static_cast<double>(residuals.size()), n = static_cast<double>(residuals.free_count());
-  outcome.function_tolerance = kUseSecants ? 1.0 / std::max(m - n, 1.0) : 1e-3;
+  outcome.function_tolerance = 1e-3;
+  PredictedStop stop{outcome.function_tolerance, prior.first, &prior.second};
   int left = max_iterations;
-  // A run that ends on an undifferenced Jacobian (a failed secant step, or convergence judged on a secant) is run
-  // again from its answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
+  // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
+  // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
   while (true) {
-    ceres::Solver::Summary summary = RunCeres(cost, prior_cost.get(), u, left, outcome.function_tolerance);
+    ceres::Solver::Summary summary = RunCeres(cost, prior_cost.get(), u, left, &stop);
     CheckInterrupt();
     left -= static_cast<int>(summary.iterations.size()) - 1;
     const bool again = summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() && left > 0 &&
@@ -392,7 +410,14 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   outcome.usable = last.IsSolutionUsable();
   outcome.termination = ceres::TerminationTypeToString(last.termination_type);
   outcome.message = last.message;
-  if (last.termination_type == ceres::USER_SUCCESS) {
+  if (last.termination_type == ceres::USER_SUCCESS && stop.decrease >= 0.0) {
+    outcome.termination = "CONVERGENCE";
+    outcome.predicted = true;
+    std::ostringstream message;
+    message << "Gauss-Newton's predicted decrease " << stop.decrease << " <= " << stop.tolerance << " x cost "
+            << stop.cost;
+    outcome.message = message.str();
+  } else if (last.termination_type == ceres::USER_SUCCESS) {
     outcome.termination = "NO_CONVERGENCE";
     outcome.message = "the iterations ran out before a differenced Jacobian confirmed the answer";
   }
@@ -405,7 +430,6 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   outcome.data_cost = last.final_cost - (prior_cost != nullptr ? prior_cost->Cost(x) : 0.0);
   outcome.x = x;
   outcome.differenced = cost.Count(JacobianKind::kDifferenced);
-  outcome.secant = cost.Count(JacobianKind::kSecant);
   outcome.seeded = cost.Count(JacobianKind::kSeed);
   outcome.replays = residuals.replays() - replays_before;
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
@@ -429,7 +453,7 @@ nlohmann::json StageSolverJson(const StageOutcome& stage) {
           {"final_cost", stage.runs.back().final_cost},
           {"function_tolerance", stage.function_tolerance},
           {"replays", stage.replays},
-          {"jacobians", {{"differenced", stage.differenced}, {"secant", stage.secant}, {"seeded", stage.seeded}}},
+          {"jacobians", {{"differenced", stage.differenced}, {"seeded", stage.seeded}}},
           {"successful_steps", successful},
           {"unsuccessful_steps", unsuccessful},
           {"residual_evaluations", residual_evaluations},

@@ -1,5 +1,5 @@
 // Internal to `waam fit thermal`: its free parameters, the replays' residuals, and one stage of the fit (Ceres on one
-// grid, its Jacobians differenced over whole replays or updated by secants between them).
+// grid, its Jacobians differenced over whole replays).
 #pragma once
 
 #include <atomic>
@@ -23,6 +23,7 @@ struct FreeParameter {
   double ThermalParameters::*member;
   double scale;       // x = value / scale, so every x is of order 1
   double lo, hi;      // bounds of the value (hi = +inf: a lower bound only)
+  double step;        // the Jacobian's forward-difference step in x (docs/REPLAY.md "Why this scheme")
   std::string set;    // the scenario key it belongs to (--set)
   // Ceres' variable u for this parameter: x = map.ToScaled(u) (logistic between two bounds, exp above one).
   ParameterMap map() const { return {lo / scale, hi / scale}; }
@@ -57,7 +58,9 @@ class ReplayResiduals {
   // probe yet, which the log alone decides; a replay that blows up has more). Throws as ReplayRun.
   std::size_t Run(const double* x, double* residuals, bool keep) const;
   // The kept replay if it was made with the parameters of `x`, else null.
-  std::unique_ptr<ReplayRun> TakeKept(const double* x) const;
+  std::shared_ptr<ReplayRun> TakeKept(const double* x) const;
+  // The first kept replay (at Ceres' first point: the start values, or the coarse stage's answer), else null.
+  std::shared_ptr<ReplayRun> TakeFirst() const;
   int replays() const { return replays_.load(); }
 
  private:
@@ -68,25 +71,28 @@ class ReplayResiduals {
   std::vector<std::pair<std::size_t, std::size_t>> used_;  // (probe, row)
   mutable std::atomic<int> replays_{0};
   mutable std::mutex kept_mutex_;
-  mutable std::unique_ptr<ReplayRun> kept_;
+  mutable std::shared_ptr<ReplayRun> kept_;
   mutable double kept_cost_ = 0.0;
+  mutable std::shared_ptr<ReplayRun> first_;
+  mutable bool first_made_ = false;
 };
 
-// One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on a secant
-// Jacobian is run again from a differenced one: fit_thermal_cost.cc).
+// One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on the coarse
+// stage's seed Jacobian is run again from a differenced one: fit_thermal_cost.cc).
 struct StageOutcome {
   std::vector<double> x;                        // the answer, scaled values
   std::vector<ceres::Solver::Summary> runs;     // every Ceres run, in order
   bool usable = false;                          // the last run's IsSolutionUsable()
   std::string termination;                      // CONVERGENCE, NO_CONVERGENCE (iterations spent), FAILURE...
+  bool predicted = false;                       // converged on Gauss-Newton's predicted decrease (no last trial)
   std::string message;                          // the last run's message, or why the stage stopped
   std::string error;                            // why a replay failed (empty: none did)
   std::vector<double> jacobian;                 // the last one Ceres used, in x, m x n row-major
   std::vector<double> jacobian_at_x;            // the one at the stage's answer x, in x
-  bool differenced_at_x = false;                // jacobian_at_x was differenced (not a secant's or a seed)
+  bool differenced_at_x = false;                // jacobian_at_x was differenced (not the seed)
   double data_cost = 0.0;                       // the final cost without the prior's part
   double function_tolerance = 0.0;              // Ceres' relative tolerance on a change of cost (from the noise)
-  int differenced = 0, secant = 0, seeded = 0;  // the Jacobians Ceres was given, by kind
+  int differenced = 0, seeded = 0;              // the Jacobians Ceres was given, by kind
   int replays = 0;
   double seconds = 0.0;                         // wall
 };
