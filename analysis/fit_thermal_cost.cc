@@ -24,11 +24,11 @@ constexpr double kNoBound = std::numeric_limits<double>::infinity();
 const std::vector<FreeParameter>& AllThermalFree() {
   static const std::vector<FreeParameter> all = {
       {"efficiency", &ThermalParameters::efficiency, 1.0, 0.2, 1.0, 0.01, "process.arc.efficiency"},
-      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, 0.1, "thermal.convection_w_m2k"},
-      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound, 0.1,
+      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, 0.01, "thermal.convection_w_m2k"},
+      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound, 0.01,
        "thermal.table.conductance_w_m2k"},
-      {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, 0.05, "thermal.emissivity"},
-      {"clamps", &ThermalParameters::clamp_factor, 1.0, 0.0, kNoBound, 0.05, "thermal.clamp_conductance_factor"},
+      {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, 0.01, "thermal.emissivity"},
+      {"clamps", &ThermalParameters::clamp_factor, 1.0, 0.0, kNoBound, 0.01, "thermal.clamp_conductance_factor"},
   };
   return all;
 }
@@ -142,10 +142,10 @@ double GaussNewtonDecrease(const std::vector<double>& j, const std::vector<doubl
 // The residuals at Ceres' variables u (x = map(u)), and their Jacobian, asked by Ceres (2.1, unbounded) at the
 // start and at each point it accepts. The Jacobian is differenced in the scaled values x: forward differences over
 // whole replays, the n perturbed ones in parallel (each its own ThermalSimulation), n replays (the point's residuals
-// are those of the candidate Ceres tried); the step is each parameter's FreeParameter::step in x (not a step in u,
-// which would shrink with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K)
-// makes the temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise,
-// and so would 1 % of the loss coefficients' scales (docs/REPLAY.md "Why this scheme"). It is
+// are those of the candidate Ceres tried); the step is each parameter's FreeParameter::step in x, 1 % of its scale
+// (not a step in u, which would shrink with x - lo toward the solver's noise near a lower bound): the solver's CG
+// tolerance (0.01 K) makes the temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would
+// difference noise (docs/REPLAY.md "Why this scheme"). It is
 // handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A `seed` Jacobian in x (the coarse stage's,
 // m x n row-major) stands in at the first point until RequestDifference(). A replay with more rows without a
 // temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
