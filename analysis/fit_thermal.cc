@@ -1,6 +1,5 @@
 // `waam fit thermal`: Ceres moves the free thermal parameters until the replayed thermocouples match the measured
 // ones inside a window of the log; the rest of the log is predicted (held out).
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -92,13 +91,6 @@ nlohmann::json RunCoarseStage(const FitOptions& options, const ReplayModel& mode
           {"iterations", solver["iterations"]},
           {"replays", stage.replays},
           {"time_s", stage.seconds}};
-}
-
-// Whether `a` and `b` hold the same free values to rounding (a value mapped to Ceres' variable and back).
-bool SameFreeValues(const std::vector<FreeParameter>& free, const ThermalParameters& a, const ThermalParameters& b) {
-  return std::all_of(free.begin(), free.end(), [&](const FreeParameter& f) {
-    return std::abs(a.*(f.member) - b.*(f.member)) <= 1e-12 * std::max(1.0, std::abs(b.*(f.member)));
-  });
 }
 
 // The fit's record without its timings: the values, those that ended on a bound, the errors of the fitted and the
@@ -213,20 +205,13 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   if (!converged) message = fine.termination + " after " + std::to_string(iterations) + " iterations: " + message;
   // The whole log with the fitted values (the replay of the fitted point continued from the window's end) and with
   // the start values: the window's fit and the held-out prediction.
-  // The start's continues Ceres' first replay when that was made at the start values (no coarse stage moved them).
-  std::shared_ptr<ReplayRun> start_replay = residuals.TakeFirst();
-  if (start_replay == nullptr || !SameFreeValues(free, start_replay->parameters(), start)) {
-    start_replay = std::make_shared<ReplayRun>(model, start);
-  }
-  std::shared_ptr<ReplayRun> fitted_replay = converged ? residuals.TakeKept(fine.x.data()) : nullptr;
-  if (converged && fitted_replay == nullptr) fitted_replay = std::make_shared<ReplayRun>(model, fitted);
-  const double end = std::numeric_limits<double>::infinity();
-  start_replay->AdvanceTo(end);
-  const ReplaySimulation start_run = start_replay->Result();
+  const ReplaySimulation start_run = SimulateReplay(model, start);
   ReplaySimulation fitted_run = start_run;
   if (converged) {
-    fitted_replay->AdvanceTo(end);  // nothing left to drive when it is the start's replay
-    fitted_run = fitted_replay->Result();
+    std::unique_ptr<ReplayRun> run = residuals.TakeKept(fine.x.data());
+    if (run == nullptr) run = std::make_unique<ReplayRun>(model, fitted);
+    run->AdvanceTo(std::numeric_limits<double>::infinity());
+    fitted_run = run->Result();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, solver);

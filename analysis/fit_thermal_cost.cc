@@ -5,9 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
-
-#include <Eigen/Dense>
 
 #include "models/core/error.h"
 #include "models/core/parallel.h"
@@ -23,12 +20,12 @@ constexpr double kNoBound = std::numeric_limits<double>::infinity();
 
 const std::vector<FreeParameter>& AllThermalFree() {
   static const std::vector<FreeParameter> all = {
-      {"efficiency", &ThermalParameters::efficiency, 1.0, 0.2, 1.0, 0.01, "process.arc.efficiency"},
-      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, 0.01, "thermal.convection_w_m2k"},
-      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound, 0.01,
+      {"efficiency", &ThermalParameters::efficiency, 1.0, 0.2, 1.0, "process.arc.efficiency"},
+      {"convection", &ThermalParameters::convection_w_m2k, 10.0, 0.0, kNoBound, "thermal.convection_w_m2k"},
+      {"contact", &ThermalParameters::table_conductance_w_m2k, 100.0, 0.0, kNoBound,
        "thermal.table.conductance_w_m2k"},
-      {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, 0.01, "thermal.emissivity"},
-      {"clamps", &ThermalParameters::clamp_factor, 1.0, 0.0, kNoBound, 0.01, "thermal.clamp_conductance_factor"},
+      {"emissivity", &ThermalParameters::emissivity, 1.0, 0.02, 1.0, "thermal.emissivity"},
+      {"clamps", &ThermalParameters::clamp_factor, 1.0, 0.0, kNoBound, "thermal.clamp_conductance_factor"},
   };
   return all;
 }
@@ -97,55 +94,28 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, bool keep) 
   }
   if (!keep) return missing;
   const std::lock_guard<std::mutex> lock(kept_mutex_);
-  std::shared_ptr<ReplayRun> shared = std::move(run);
-  if (!first_made_) first_ = shared, first_made_ = true;
   if (kept_ == nullptr || cost < kept_cost_) {
-    kept_ = shared;
+    kept_ = std::move(run);
     kept_cost_ = cost;
   }
   return missing;
 }
 
-std::shared_ptr<ReplayRun> ReplayResiduals::TakeKept(const double* x) const {
-  const std::lock_guard<std::mutex> lock(kept_mutex_);
-  if (kept_ == nullptr || !(Parameters(x) == kept_->parameters())) return nullptr;
-  return std::move(kept_);
-}
-
-std::shared_ptr<ReplayRun> ReplayResiduals::TakeFirst() const {
-  const std::lock_guard<std::mutex> lock(kept_mutex_);
-  return std::move(first_);
+std::unique_ptr<ReplayRun> ReplayResiduals::TakeKept(const double* x) const {
+  if (kept_ == nullptr) return nullptr;
+  return Parameters(x) == kept_->parameters() ? std::move(kept_) : nullptr;
 }
 
 namespace {
 
 enum class JacobianKind { kDifferenced, kSeed };
 
-// Gauss-Newton's predicted decrease of the cost at x: 1/2 |A dx|^2 for the least-squares step dx of A dx = -b, with
-// A the Jacobian in x (m x n row-major) over the prior's rows W I and b the residuals over W (x - x0). The same in
-// Ceres' variables u (their Jacobian is A's columns scaled by dx/du, which spans the same space).
-double GaussNewtonDecrease(const std::vector<double>& j, const std::vector<double>& r, int n,
-                           const std::vector<double>& x, double weight, const std::vector<double>& x0) {
-  const Eigen::Index m = static_cast<Eigen::Index>(r.size());
-  const Eigen::Index rows = m + (weight > 0.0 ? n : 0);
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, n);
-  Eigen::VectorXd b(rows);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    b(i) = r[i];
-    for (int k = 0; k < n; ++k) a(i, k) = j[i * n + k];
-  }
-  for (int k = 0; k < n && weight > 0.0; ++k) a(m + k, k) = weight, b(m + k) = weight * (x[k] - x0[k]);
-  const Eigen::VectorXd dx = a.colPivHouseholderQr().solve(-b);
-  return 0.5 * (a * dx).squaredNorm();
-}
-
 // The residuals at Ceres' variables u (x = map(u)), and their Jacobian, asked by Ceres (2.1, unbounded) at the
 // start and at each point it accepts. The Jacobian is differenced in the scaled values x: forward differences over
 // whole replays, the n perturbed ones in parallel (each its own ThermalSimulation), n replays (the point's residuals
-// are those of the candidate Ceres tried); the step is each parameter's FreeParameter::step in x, 1 % of its scale
-// (not a step in u, which would shrink with x - lo toward the solver's noise near a lower bound): the solver's CG
-// tolerance (0.01 K) makes the temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would
-// difference noise (docs/REPLAY.md "Why this scheme"). It is
+// are those of the candidate Ceres tried); the step is 1 % of each parameter's scale (not a step in u, which would
+// shrink with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K) makes the
+// temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. It is
 // handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A `seed` Jacobian in x (the coarse stage's,
 // m x n row-major) stands in at the first point until RequestDifference(). A replay with more rows without a
 // temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
@@ -187,12 +157,6 @@ class ReplayCost : public ceres::CostFunction {
   // The Jacobian at the last accepted point is the seed (not differenced on this grid).
   bool Undifferenced() const { return have_point_ && point_kind_ != JacobianKind::kDifferenced; }
   const std::string& error() const { return error_; }
-  // Gauss-Newton's predicted decrease of the cost from the point Ceres stands on, from its differenced Jacobian
-  // (prior: W and x0, W = 0 for none); -1 without one there (no point yet, or the seed's Jacobian).
-  double PredictedDecrease(double weight, const std::vector<double>& x0) const {
-    if (!have_point_ || point_kind_ != JacobianKind::kDifferenced) return -1.0;
-    return GaussNewtonDecrease(point_j_, point_r_, n_, point_x_, weight, x0);
-  }
   // The Jacobian in x at `x` and whether it was differenced (the last one when none was made there).
   std::pair<const std::vector<double>*, bool> JacobianOf(const std::vector<double>& x) const {
     for (auto it = made_.rbegin(); it != made_.rend(); ++it) {
@@ -255,7 +219,7 @@ class ReplayCost : public ceres::CostFunction {
     std::vector<double> step(n_);
     for (int k = 0; k < n_; ++k) {
       const FreeParameter& f = residuals_.free(k);
-      step[k] = (x[k] + f.step) * f.scale > f.hi ? -f.step : f.step;  // backward at the upper bound
+      step[k] = (x[k] + 0.01) * f.scale > f.hi ? -0.01 : 0.01;  // backward at the upper bound
     }
     std::vector<std::size_t> missing(n_, 0);
     ParallelFor(static_cast<std::size_t>(n_), [&](std::size_t k) {
@@ -321,40 +285,25 @@ class PriorCost : public ceres::CostFunction {
   double weight_;
 };
 
-// The stopping rule on Gauss-Newton's predicted decrease: its tolerance (relative to the cost, as Ceres' function
-// tolerance), the prior (W, x0), and the decrease that ended the run (-1: none did).
-struct PredictedStop {
-  double tolerance = 0.0;
-  double weight = 0.0;
-  const std::vector<double>* x0 = nullptr;
-  double decrease = -1.0, cost = 0.0;
-};
-
-// Ends a Ceres run on Ctrl-C (abort); when a step from the seed's Jacobian failed (the stage runs Ceres again from
-// the same point with a differenced one rather than shrinking the trust region around a model that may be wrong);
-// and at a point whose differenced Jacobian predicts a decrease of at most the tolerance x cost for the full
-// Gauss-Newton step (the point Ceres' function tolerance would stop at one trial step later: that replay is saved).
+// Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
+// from the same point with a differenced one rather than shrinking the trust region around a model that may be
+// wrong.
 class StageCallback : public ceres::IterationCallback {
  public:
-  StageCallback(const ReplayCost& cost, PredictedStop* stop) : cost_(cost), stop_(stop) {}
+  explicit StageCallback(const ReplayCost& cost) : cost_(cost) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (InterruptRequested()) return ceres::SOLVER_ABORT;
     if (s.iteration > 0 && !s.step_is_successful && cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    if (!s.step_is_successful) return ceres::SOLVER_CONTINUE;
-    const double decrease = cost_.PredictedDecrease(stop_->weight, *stop_->x0);
-    if (decrease < 0.0 || decrease > stop_->tolerance * s.cost) return ceres::SOLVER_CONTINUE;
-    stop_->decrease = decrease, stop_->cost = s.cost;
-    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    return ceres::SOLVER_CONTINUE;
   }
 
  private:
   const ReplayCost& cost_;
-  PredictedStop* stop_;
 };
 
 // One Ceres run from `u` (changed in place) with at most `iterations` iterations.
 ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<double>& u, int iterations,
-                                PredictedStop* stop) {
+                                double function_tolerance) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
   ceres::Problem problem(problem_options);
@@ -364,12 +313,12 @@ ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = iterations;
-  solver.function_tolerance = stop->tolerance;
+  solver.function_tolerance = function_tolerance;
   solver.parameter_tolerance = 1e-3;
   solver.gradient_tolerance = 1e-8;
   solver.logging_type = ceres::SILENT;
   solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
-  StageCallback callback(cost, stop);
+  StageCallback callback(cost);
   solver.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
@@ -391,12 +340,11 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   std::unique_ptr<PriorCost> prior_cost =
       prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
   outcome.function_tolerance = 1e-3;
-  PredictedStop stop{outcome.function_tolerance, prior.first, &prior.second};
   int left = max_iterations;
   // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
   // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
   while (true) {
-    ceres::Solver::Summary summary = RunCeres(cost, prior_cost.get(), u, left, &stop);
+    ceres::Solver::Summary summary = RunCeres(cost, prior_cost.get(), u, left, outcome.function_tolerance);
     CheckInterrupt();
     left -= static_cast<int>(summary.iterations.size()) - 1;
     const bool again = summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() && left > 0 &&
@@ -410,14 +358,7 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   outcome.usable = last.IsSolutionUsable();
   outcome.termination = ceres::TerminationTypeToString(last.termination_type);
   outcome.message = last.message;
-  if (last.termination_type == ceres::USER_SUCCESS && stop.decrease >= 0.0) {
-    outcome.termination = "CONVERGENCE";
-    outcome.predicted = true;
-    std::ostringstream message;
-    message << "Gauss-Newton's predicted decrease " << stop.decrease << " <= " << stop.tolerance << " x cost "
-            << stop.cost;
-    outcome.message = message.str();
-  } else if (last.termination_type == ceres::USER_SUCCESS) {
+  if (last.termination_type == ceres::USER_SUCCESS) {
     outcome.termination = "NO_CONVERGENCE";
     outcome.message = "the iterations ran out before a differenced Jacobian confirmed the answer";
   }

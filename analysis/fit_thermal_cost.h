@@ -23,7 +23,6 @@ struct FreeParameter {
   double ThermalParameters::*member;
   double scale;       // x = value / scale, so every x is of order 1
   double lo, hi;      // bounds of the value (hi = +inf: a lower bound only)
-  double step;        // the Jacobian's forward-difference step in x (docs/REPLAY.md "Why this scheme")
   std::string set;    // the scenario key it belongs to (--set)
   // Ceres' variable u for this parameter: x = map.ToScaled(u) (logistic between two bounds, exp above one).
   ParameterMap map() const { return {lo / scale, hi / scale}; }
@@ -58,9 +57,7 @@ class ReplayResiduals {
   // probe yet, which the log alone decides; a replay that blows up has more). Throws as ReplayRun.
   std::size_t Run(const double* x, double* residuals, bool keep) const;
   // The kept replay if it was made with the parameters of `x`, else null.
-  std::shared_ptr<ReplayRun> TakeKept(const double* x) const;
-  // The first kept replay (at Ceres' first point: the start values, or the coarse stage's answer), else null.
-  std::shared_ptr<ReplayRun> TakeFirst() const;
+  std::unique_ptr<ReplayRun> TakeKept(const double* x) const;
   int replays() const { return replays_.load(); }
 
  private:
@@ -71,10 +68,8 @@ class ReplayResiduals {
   std::vector<std::pair<std::size_t, std::size_t>> used_;  // (probe, row)
   mutable std::atomic<int> replays_{0};
   mutable std::mutex kept_mutex_;
-  mutable std::shared_ptr<ReplayRun> kept_;
+  mutable std::unique_ptr<ReplayRun> kept_;
   mutable double kept_cost_ = 0.0;
-  mutable std::shared_ptr<ReplayRun> first_;
-  mutable bool first_made_ = false;
 };
 
 // One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on the coarse
@@ -84,7 +79,6 @@ struct StageOutcome {
   std::vector<ceres::Solver::Summary> runs;     // every Ceres run, in order
   bool usable = false;                          // the last run's IsSolutionUsable()
   std::string termination;                      // CONVERGENCE, NO_CONVERGENCE (iterations spent), FAILURE...
-  bool predicted = false;                       // converged on Gauss-Newton's predicted decrease (no last trial)
   std::string message;                          // the last run's message, or why the stage stopped
   std::string error;                            // why a replay failed (empty: none did)
   std::vector<double> jacobian;                 // the last one Ceres used, in x, m x n row-major
