@@ -1,5 +1,5 @@
-// `waam fit thermal`'s cost: the replays' residuals, their Jacobian (differenced over whole replays, or updated by a
-// secant between two accepted points), the weak prior, and one stage of the fit with Ceres.
+// `waam fit thermal`'s cost: the replays' residuals, their Jacobian (differenced over whole replays), the weak prior,
+// and one stage of the fit with Ceres.
 #include "analysis/fit_thermal_cost.h"
 
 #include <algorithm>
@@ -15,10 +15,6 @@ namespace waam::analysis::internal {
 namespace {
 
 constexpr double kNoBound = std::numeric_limits<double>::infinity();
-// Secant Jacobians between accepted points: off. On BM_FitHalfHour/1/0 with the tolerance 1 / (m - n) they ran out
-// of --max-iter (30 steps, 43 replays, 435 s of CPU against 346 s and 41 replays differenced): every Ceres run after
-// the first restarts its trust region (docs/REPLAY.md "Benchmark"). Kept for that measurement's next round.
-constexpr bool kUseSecants = false;
 
 }  // namespace
 
@@ -112,22 +108,18 @@ std::unique_ptr<ReplayRun> ReplayResiduals::TakeKept(const double* x) const {
 
 namespace {
 
-enum class JacobianKind { kDifferenced, kSecant, kSeed };
+enum class JacobianKind { kDifferenced, kSeed };
 
 // The residuals at Ceres' variables u (x = map(u)), and their Jacobian, asked by Ceres (2.1, unbounded) at the
-// start and at each point it accepts. Two kinds:
-// - differenced in the scaled values x: forward differences over whole replays, the n perturbed ones in parallel
-//   (each its own ThermalSimulation); the step is 1 % of each parameter's scale (not a step in u, which would shrink
-//   with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K) makes the
-//   temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. n replays.
-// - a secant (Broyden's update, Dennis & Schnabel 1983, "Numerical Methods for Unconstrained Optimization and
-//   Nonlinear Equations", eq. 8.1.4): between the last accepted point and this one, s = x - x_a and y = r - r_a,
-//   J = J_a + (y - J_a s) s^T / (s^T s), the least change of J_a that maps s onto the change y the replays made.
-//   No replay (the residuals at an accepted point are those of the candidate Ceres tried).
-// Each is handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A point's Jacobian is differenced at
-// the first point, after RequestDifference(), and else updated by a secant; a `seed` Jacobian in x (the coarse
-// stage's, m x n row-major) stands in at the first point. A replay with more rows without a temperature than the
-// first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks its trust region.
+// start and at each point it accepts. The Jacobian is differenced in the scaled values x: forward differences over
+// whole replays, the n perturbed ones in parallel (each its own ThermalSimulation), n replays (the point's residuals
+// are those of the candidate Ceres tried); the step is 1 % of each parameter's scale (not a step in u, which would
+// shrink with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K) makes the
+// temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. It is
+// handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A `seed` Jacobian in x (the coarse stage's,
+// m x n row-major) stands in at the first point until RequestDifference(). A replay with more rows without a
+// temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
+// its trust region.
 class ReplayCost : public ceres::CostFunction {
  public:
   ReplayCost(const ReplayResiduals& residuals, bool keep, std::vector<double> seed)
@@ -162,7 +154,7 @@ class ReplayCost : public ceres::CostFunction {
 
   // The next Jacobian (at the accepted point, or at the last one when Ceres starts there again) is differenced.
   void RequestDifference() { refresh_ = true; }
-  // The Jacobian at the last accepted point is a secant's or a seed (not differenced on this grid).
+  // The Jacobian at the last accepted point is the seed (not differenced on this grid).
   bool Undifferenced() const { return have_point_ && point_kind_ != JacobianKind::kDifferenced; }
   const std::string& error() const { return error_; }
   // The Jacobian in x at `x` and whether it was differenced (the last one when none was made there).
@@ -207,8 +199,6 @@ class ReplayCost : public ceres::CostFunction {
     std::vector<double> j;
     if (!seed_.empty() && !have_point_) {
       kind = JacobianKind::kSeed, j = seed_;
-    } else if (kUseSecants && have_point_ && !same && !refresh_) {
-      kind = JacobianKind::kSecant, j = Secant(x, r_new);
     } else if (!Difference(x, r_new, &j)) {
       return false;
     }
@@ -220,22 +210,6 @@ class ReplayCost : public ceres::CostFunction {
     refresh_ = false;
     made_.push_back({x, std::move(j), kind});
     return true;
-  }
-
-  // Broyden's update from the last accepted point to (x, r).
-  std::vector<double> Secant(const std::vector<double>& x, const std::vector<double>& r) const {
-    std::vector<double> j = point_j_;
-    std::vector<double> s(n_);
-    double ss = 0.0;
-    for (int k = 0; k < n_; ++k) s[k] = x[k] - point_x_[k], ss += s[k] * s[k];
-    if (ss == 0.0) return j;
-    for (std::size_t row = 0; row < residuals_.size(); ++row) {
-      double predicted = 0.0;
-      for (int k = 0; k < n_; ++k) predicted += point_j_[row * n_ + k] * s[k];
-      const double miss = (r[row] - point_r_[row]) - predicted;
-      for (int k = 0; k < n_; ++k) j[row * n_ + k] += miss * s[k] / ss;
-    }
-    return j;
   }
 
   // Forward differences at `x` (residuals r there): the n perturbed replays in parallel.
@@ -311,9 +285,9 @@ class PriorCost : public ceres::CostFunction {
   double weight_;
 };
 
-// Ends a Ceres run on Ctrl-C (abort), and when a step from a secant's (or a seed's) Jacobian failed: the stage runs
-// Ceres again from the same point with a differenced one rather than shrinking the trust region around a model that
-// may be wrong.
+// Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
+// from the same point with a differenced one rather than shrinking the trust region around a model that may be
+// wrong.
 class StageCallback : public ceres::IterationCallback {
  public:
   explicit StageCallback(const ReplayCost& cost) : cost_(cost) {}
@@ -340,9 +314,7 @@ ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = iterations;
   solver.function_tolerance = function_tolerance;
-  // Off: a step too small to matter changes the cost by less than the function tolerance, which then ends the run
-  // (a relative step in u means nothing: u = 0 is an arbitrary point of each map).
-  solver.parameter_tolerance = kUseSecants ? 1e-12 : 1e-3;
+  solver.parameter_tolerance = 1e-3;
   solver.gradient_tolerance = 1e-8;
   solver.logging_type = ceres::SILENT;
   solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
@@ -367,16 +339,10 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   ReplayCost cost(residuals, keep, std::move(seed));
   std::unique_ptr<PriorCost> prior_cost =
       prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
-  // The function tolerance from the noise: with m readings, n free parameters and the cost C near the minimum,
-  // s^2 = 2 C / (m - n) estimates one reading's variance, and a step that moves the parameters by one standard
-  // deviation (Gauss-Newton's covariance s^2 (J^T J)^-1) changes the cost by s^2 / 2 (Delta chi^2 = 1). A change
-  // below that is one the noise alone could make: no progress. Ceres compares |change| with tolerance x C, so
-  // tolerance = (s^2 / 2) / C = 1 / (m - n).
-  const double m = static_cast<double>(residuals.size()), n = static_cast<double>(residuals.free_count());
-  outcome.function_tolerance = kUseSecants ? 1.0 / std::max(m - n, 1.0) : 1e-3;
+  outcome.function_tolerance = 1e-3;
   int left = max_iterations;
-  // A run that ends on an undifferenced Jacobian (a failed secant step, or convergence judged on a secant) is run
-  // again from its answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
+  // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
+  // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
   while (true) {
     ceres::Solver::Summary summary = RunCeres(cost, prior_cost.get(), u, left, outcome.function_tolerance);
     CheckInterrupt();
@@ -405,7 +371,6 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   outcome.data_cost = last.final_cost - (prior_cost != nullptr ? prior_cost->Cost(x) : 0.0);
   outcome.x = x;
   outcome.differenced = cost.Count(JacobianKind::kDifferenced);
-  outcome.secant = cost.Count(JacobianKind::kSecant);
   outcome.seeded = cost.Count(JacobianKind::kSeed);
   outcome.replays = residuals.replays() - replays_before;
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
@@ -429,7 +394,7 @@ nlohmann::json StageSolverJson(const StageOutcome& stage) {
           {"final_cost", stage.runs.back().final_cost},
           {"function_tolerance", stage.function_tolerance},
           {"replays", stage.replays},
-          {"jacobians", {{"differenced", stage.differenced}, {"secant", stage.secant}, {"seeded", stage.seeded}}},
+          {"jacobians", {{"differenced", stage.differenced}, {"seeded", stage.seeded}}},
           {"successful_steps", successful},
           {"unsuccessful_steps", unsuccessful},
           {"residual_evaluations", residual_evaluations},

@@ -1,5 +1,5 @@
 // Internal to `waam fit thermal`: its free parameters, the replays' residuals, and one stage of the fit (Ceres on one
-// grid, its Jacobians differenced over whole replays or updated by secants between them).
+// grid, its Jacobians differenced over whole replays).
 #pragma once
 
 #include <atomic>
@@ -72,8 +72,8 @@ class ReplayResiduals {
   mutable double kept_cost_ = 0.0;
 };
 
-// One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on a secant
-// Jacobian is run again from a differenced one: fit_thermal_cost.cc).
+// One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on the coarse
+// stage's seed Jacobian is run again from a differenced one: fit_thermal_cost.cc).
 struct StageOutcome {
   std::vector<double> x;                        // the answer, scaled values
   std::vector<ceres::Solver::Summary> runs;     // every Ceres run, in order
@@ -83,10 +83,10 @@ struct StageOutcome {
   std::string error;                            // why a replay failed (empty: none did)
   std::vector<double> jacobian;                 // the last one Ceres used, in x, m x n row-major
   std::vector<double> jacobian_at_x;            // the one at the stage's answer x, in x
-  bool differenced_at_x = false;                // jacobian_at_x was differenced (not a secant's or a seed)
+  bool differenced_at_x = false;                // jacobian_at_x was differenced (not the seed)
   double data_cost = 0.0;                       // the final cost without the prior's part
   double function_tolerance = 0.0;              // Ceres' relative tolerance on a change of cost (from the noise)
-  int differenced = 0, secant = 0, seeded = 0;  // the Jacobians Ceres was given, by kind
+  int differenced = 0, seeded = 0;              // the Jacobians Ceres was given, by kind
   int replays = 0;
   double seconds = 0.0;                         // wall
 };
