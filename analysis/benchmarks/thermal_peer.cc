@@ -210,7 +210,7 @@ json Run(const json& spec, const std::string& stepping, int refine) {
   const waam::twin::EnergyBalance energy = sim.Energy();
   return {{"peer", "waam"}, {"wall_s", wall_s}, {"cpu_s", cpu_s}, {"setup_s", setup_wall_s},
           {"setup_cpu_s", setup_cpu_s}, {"cells", stats.active_cells},
-          {"steps", stats.steps}, {"iterations", stats.iterations}, {"far_step_s", st.far_step_s},
+          {"steps", stats.steps}, {"iterations", stats.iterations}, {"coupling_retries", stats.coupling_retries}, {"far_step_s", st.far_step_s},
           {"stepping", StepLabel(st)}, {"refine", refine},
           {"energy_relative_error", energy.RelativeError()}, {"time_s", times}, {"probes_c", history}};
 }

@@ -40,10 +40,15 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
       if (outside(s.neighbour[c][f])) join(s.neighbour[c][f], near);
     }
   }
-  for (std::size_t q = 0; q < near.size(); ++q) {
+  CloseFinerRegion(s, near, 0, level, m1);
+  return near;
+}
+
+void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from, int level, int m1) {
+  for (std::size_t q = from; q < near.size(); ++q) {
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[near[q]][f];
-      if (!outside(j)) continue;
+      if (j == kNoCell || s.depth[j] != level || s.born[j] >= m1) continue;
       int inside = 0, present = 0;
       for (int e = 0; e < 6; ++e) {
         const int k = s.neighbour[j][e];
@@ -51,10 +56,12 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
         ++present;
         if (s.depth[k] == level + 1) ++inside;
       }
-      if (2 * inside >= present) join(j, near);
+      if (2 * inside >= present) {
+        near.push_back(j);
+        s.depth[j] = level + 1;
+      }
     }
   }
-  return near;
 }
 
 }  // namespace waam::twin::internal

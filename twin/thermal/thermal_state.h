@@ -230,6 +230,11 @@ std::vector<std::pair<int, double>> HeatPiece(ThermalState& s, const ArcPiece& p
 std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, int level, int m0, int m1,
                              double radius_mm, double seconds);
 
+// Closes the finer region `near` of level `level + 1` (cells marked depth = level + 1) from its entry `from` on:
+// repeatedly joins every cell of `level` (depth == level, present before micro step m1) with at least half of its
+// present neighbours in the region. Cells that join are appended to `near`.
+void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from, int level, int m1);
+
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
 void SolveBatch(ThermalState& s);
 // Advances the whole state by one backward-Euler step of `seconds` with no heat input.
