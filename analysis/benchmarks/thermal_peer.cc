@@ -210,8 +210,9 @@ json Run(const json& spec, const std::string& stepping, int refine) {
   const waam::twin::EnergyBalance energy = sim.Energy();
   return {{"peer", "waam"}, {"wall_s", wall_s}, {"cpu_s", cpu_s}, {"setup_s", setup_wall_s},
           {"setup_cpu_s", setup_cpu_s}, {"cells", stats.active_cells},
-          {"steps", stats.steps}, {"iterations", stats.iterations},
-          {"level_solves", stats.level_solves}, {"level_cell_solves", stats.level_cell_solves}, {"far_step_s", st.far_step_s},
+          {"steps", stats.steps}, {"iterations", stats.iterations}, {"coupling_retries", stats.coupling_retries},
+          {"level_solves", stats.level_solves}, {"level_cell_solves", stats.level_cell_solves},
+          {"far_step_s", st.far_step_s},
           {"stepping", StepLabel(st)}, {"refine", refine},
           {"energy_relative_error", energy.RelativeError()}, {"time_s", times}, {"probes_c", history}};
 }

@@ -19,12 +19,13 @@ void Join(ThermalState& s, int c, int level, std::vector<int>& near) {
   s.depth[c] = level + 1;
 }
 
-// Closes the region from near[first] on: repeatedly, every cell left to the level with at least half of its present
-// neighbours in the region joins it. Why: a coarse cell wrapped in finer ones is a Dirichlet value to them for the
+}  // namespace
+
+// The closing (declared in thermal_state.h). Why: a coarse cell wrapped in finer ones is a Dirichlet value to them for the
 // whole coarse step while they pass it far more energy than its own small capacity holds (scattered finer cells made
 // such cells hundreds of K wrong in the multirate test).
-void CloseRegion(ThermalState& s, std::vector<int>& near, std::size_t first, int level, int m1) {
-  for (std::size_t q = first; q < near.size(); ++q) {
+void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from, int level, int m1) {
+  for (std::size_t q = from; q < near.size(); ++q) {
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[near[q]][f];
       if (!Outside(s, j, level, m1)) continue;
@@ -40,8 +41,6 @@ void CloseRegion(ThermalState& s, std::vector<int>& near, std::size_t first, int
   }
 }
 
-}  // namespace
-
 std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, int level, int m0, int m1,
                              double radius_mm) {
   Eigen::AlignedBox3d box;
@@ -56,7 +55,7 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
     const Eigen::Vector3i g = s.CellIndex(s.grid_of[c]);
     if (box.contains(s.Centre(g.x(), g.y(), g.z()))) Join(s, c, level, near);
   }
-  CloseRegion(s, near, 0, level, m1);
+  CloseFinerRegion(s, near, 0, level, m1);
   return near;
 }
 
@@ -85,7 +84,7 @@ void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near) {
       if (Outside(s, j, level, L.m1)) Join(s, j, level, near);
     }
   }
-  CloseRegion(s, near, first, level, L.m1);
+  CloseFinerRegion(s, near, first, level, L.m1);
 }
 
 }  // namespace waam::twin::internal

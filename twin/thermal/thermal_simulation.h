@@ -112,6 +112,9 @@ struct ThermalStats {
   // Per multirate level (0: the whole model, then finer): linear systems solved (predictor, corrector and chord
   // re-solves each count) and their cells summed over those solves (cell-solves), and CG iterations.
   std::vector<std::size_t> level_solves, level_cell_solves, level_iterations;
+  // Level steps whose finer levels and corrector ran again over a larger finer region, the corrector having left
+  // cells outside the maximum principle's bounds (docs/THERMAL.md, "Why the coupling between levels is monotone").
+  std::size_t coupling_retries = 0;
 };
 
 // The temperature field on the solver's grid (for thermal.h5 and the pictures): cell (i, j, k) is centred at

@@ -29,6 +29,9 @@ constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
+// A level's step runs its finer levels and its corrector at most this many times: again while the corrector leaves
+// cells outside the maximum principle's bounds, those cells then in the finer region (CouplingViolations).
+constexpr int kCouplingRounds = 20;
 
 double Sum(const std::vector<double>& partial) {
   double total = 0.0;
@@ -485,6 +488,124 @@ void Update(ThermalState& s, int level) {
   });
 }
 
+// A level's state before its finer levels run: what they and the level's corrector change, so that the level's step
+// can run them again over a larger finer region (CouplingViolations).
+struct CouplingSnapshot {
+  std::vector<int> cells;                // the predictor's cells
+  std::vector<double> predicted;         // the predictor's temperatures, degC (the finer levels' boundary line)
+  std::vector<double> enthalpy, temperature, conductivity, rate, heat_rate, inflow, chord, iterate_h;
+  std::vector<std::pair<int, double>> outside_inflow;  // inflow_j of present cells outside the level's region, J
+  EnergyBalance energy;
+};
+
+CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level) {
+  CouplingSnapshot snap;
+  snap.cells = L.cells;
+  snap.predicted = L.t_new;
+  for (auto* v : {&snap.enthalpy, &snap.temperature, &snap.conductivity, &snap.rate, &snap.heat_rate, &snap.inflow,
+                  &snap.chord, &snap.iterate_h}) {
+    v->reserve(L.cells.size());
+  }
+  for (int c : L.cells) {
+    snap.enthalpy.push_back(s.enthalpy[c]);
+    snap.temperature.push_back(s.temperature[c]);
+    snap.conductivity.push_back(s.conductivity[c]);
+    snap.rate.push_back(s.rate[c]);
+    snap.heat_rate.push_back(s.heat_rate[c]);
+    snap.inflow.push_back(s.inflow_j[c]);
+    snap.chord.push_back(s.chord[c]);
+    snap.iterate_h.push_back(s.iterate_h[c]);
+    for (int f = 0; f < 6; ++f) {
+      const int j = s.neighbour[c][f];
+      if (j != kNoCell && s.born[j] < L.m1 && s.depth[j] < level) snap.outside_inflow.emplace_back(j, s.inflow_j[j]);
+    }
+  }
+  snap.energy = s.energy;
+  return snap;
+}
+
+void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {
+  for (std::size_t i = 0; i < snap.cells.size(); ++i) {
+    const int c = snap.cells[i];
+    s.enthalpy[c] = snap.enthalpy[i];
+    s.temperature[c] = snap.temperature[i];
+    s.conductivity[c] = snap.conductivity[i];
+    s.rate[c] = snap.rate[i];
+    s.heat_rate[c] = snap.heat_rate[i];
+    s.inflow_j[c] = snap.inflow[i];
+    s.chord[c] = snap.chord[i];
+    s.iterate_h[c] = snap.iterate_h[i];
+  }
+  for (const auto& [j, joules] : snap.outside_inflow) s.inflow_j[j] = joules;
+  s.energy = snap.energy;
+}
+
+// The discrete maximum principle on the cells the level's corrector updated (L.cells): backward Euler with
+// conductances and losses makes the new temperatures weighted means of the old ones, the boundary lines' ends of the
+// cells outside the level, the finer neighbours' over the step (taken between their old and new values), and the
+// ambient and table temperatures: none may lie below the least of those values, nor above the greatest unless a
+// cell has a source. The finer levels' energy, taken at a fixed boundary line, breaks it where that line runs away
+// from what the coarse cell did (docs/THERMAL.md, "Why the coupling between levels is monotone"). Returns the cells
+// outside those bounds by more than the slack (five solver tolerances and, with latent heat, the enthalpy
+// iteration's own mismatch |T(H) - T_solved|). `local_of` is scratch (all kNoCell), returned so.
+std::vector<int> CouplingViolations(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, int level,
+                                    std::vector<int>& local_of) {
+  for (std::size_t i = 0; i < snap.cells.size(); ++i) local_of[snap.cells[i]] = static_cast<int>(i);
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  auto take = [&](double t) {
+    low = std::min(low, t);
+    high = std::max(high, t);
+  };
+  bool source = false;
+  for (std::size_t i = 0; i < L.cells.size(); ++i) {
+    const int c = L.cells[i];
+    take(snap.temperature[static_cast<std::size_t>(local_of[c])]);
+    source = source || L.source_w[i] > 0.0;
+    for (int f = 0; f < 6; ++f) {
+      const int j = s.neighbour[c][f];
+      if (j == kNoCell || s.born[j] >= L.m1) {
+        take(s.settings.ambient_c);
+        take(s.settings.table_c);
+      } else if (s.depth[j] > level) {
+        take(snap.temperature[static_cast<std::size_t>(local_of[j])]);
+        take(s.temperature[j]);
+      } else if (local_of[j] == kNoCell) {
+        take(Bound(s, j, L.end_time_s));
+      }
+    }
+  }
+  const double slack = s.settings.solver_tolerance_c;
+  std::vector<int> violations;
+  for (std::size_t i = 0; i < L.cells.size(); ++i) {
+    const int c = L.cells[i];
+    const double t = s.temperature[c];
+    const double margin = slack + std::abs(t - L.t_new[i]);
+    if (t < low - margin || (!source && t > high + margin)) violations.push_back(c);
+  }
+  for (int c : snap.cells) local_of[c] = kNoCell;
+  return violations;
+}
+
+void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
+             std::vector<int>& local_of);
+
+// The finer levels over the level's interval [m0, m1): sub-intervals of at least the finer level's step, cut at
+// micro-step boundaries, each an Advance of level + 1 over the finer region `near` (left marked depth = level + 1).
+void RunFinerLevels(ThermalState& s, int level, const std::vector<int>& near, int m0, int m1,
+                    std::vector<int>& local_of) {
+  const double step = s.level_step_s[level + 1];
+  int a = m0;
+  while (a < m1) {
+    int b = a;
+    double length = 0.0;
+    while (b < m1 && (b == a || length < step * (1.0 - 1e-9))) length += s.batch[b++].seconds;
+    for (int c : near) s.depth[c] = level + 1;
+    Advance(s, level + 1, near, a, b, local_of);
+    a = b;
+  }
+  for (int c : near) s.depth[c] = level + 1;
+}
+
 // One level of the multirate scheme over micro steps [m0, m1) (docs/THERMAL.md, "Multirate"): a backward-Euler
 // step of the whole region; near the arc, finer steps with this step's temperatures as their boundary moving
 // linearly in time; then the cells left to this level solved again, implicitly, with the energy the finer steps
@@ -518,30 +639,36 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
     for (int c : L.cells) s.depth[c] = level - 1;
     return;
   }
-  for (std::size_t i = 0; i < L.cells.size(); ++i) {
-    const int c = L.cells[i];
-    s.bound_start[c] = s.temperature[c];
-    s.bound_end[c] = L.t_new[i];
-    s.bound_level[c] = level;
-  }
-  // Sub-intervals of at least the finer level's step, cut at micro-step boundaries.
-  const double step = s.level_step_s[level + 1];
-  int a = m0;
-  while (a < m1) {
-    int b = a;
-    double length = 0.0;
-    while (b < m1 && (b == a || length < step * (1.0 - 1e-9))) length += s.batch[b++].seconds;
-    for (int c : near) s.depth[c] = level + 1;
-    Advance(s, level + 1, near, a, b, local_of);
-    a = b;
-  }
-  for (int c : near) s.depth[c] = level + 1;
+  const CouplingSnapshot snap = TakeSnapshot(s, L, level);
   std::vector<int> rest;
-  for (int c : L.cells) {
-    if (s.depth[c] == level) rest.push_back(c);
+  for (int round = 0;; ++round) {
+    for (std::size_t i = 0; i < snap.cells.size(); ++i) {
+      const int c = snap.cells[i];
+      s.bound_start[c] = s.temperature[c];
+      s.bound_end[c] = snap.predicted[i];
+      s.bound_level[c] = level;
+    }
+    RunFinerLevels(s, level, near, m0, m1, local_of);
+    rest.clear();
+    for (int c : snap.cells) {
+      if (s.depth[c] == level) rest.push_back(c);
+    }
+    SolveStep(s, level, rest, m0, m1, StepRole::kCorrector, s.bound_end, local_of);
+    Update(s, level);
+    // Where the step broke the maximum principle, those cells join the finer region and the finer levels and the
+    // corrector run again from the predictor (docs/THERMAL.md, "Why the coupling between levels is monotone").
+    if (round + 1 >= kCouplingRounds) break;
+    const std::vector<int> violations = CouplingViolations(s, L, snap, level, local_of);
+    if (violations.empty()) break;
+    RestoreSnapshot(s, snap);
+    const std::size_t from = near.size();
+    for (int c : violations) {
+      near.push_back(c);
+      s.depth[c] = level + 1;
+    }
+    CloseFinerRegion(s, near, from, level, m1);
+    s.stats.coupling_retries += 1;
   }
-  SolveStep(s, level, rest, m0, m1, StepRole::kCorrector, s.bound_end, local_of);
-  Update(s, level);
   for (int c : near) s.depth[c] = level - 1;
   for (int c : rest) s.depth[c] = level - 1;
 }

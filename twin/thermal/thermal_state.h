@@ -238,6 +238,11 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
 // predicted one), with their face neighbours, then closes the region as FinerRegion does; marks them depth = level + 1.
 void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near);
 
+// Closes the finer region `near` of level `level + 1` (cells marked depth = level + 1) from its entry `from` on:
+// repeatedly joins every cell of `level` (depth == level, present before micro step m1) with at least half of its
+// present neighbours in the region. Cells that join are appended to `near`.
+void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from, int level, int m1);
+
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
 void SolveBatch(ThermalState& s);
 // Advances the whole state by one backward-Euler step of `seconds` with no heat input.
