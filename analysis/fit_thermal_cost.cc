@@ -15,7 +15,6 @@ namespace waam::analysis::internal {
 namespace {
 
 constexpr double kNoBound = std::numeric_limits<double>::infinity();
-constexpr double kTrustRadius = 100.0;  // Ceres' initial and largest trust region radius (RunCeres)
 
 }  // namespace
 
@@ -303,12 +302,6 @@ ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<
   solver.function_tolerance = function_tolerance;
   solver.parameter_tolerance = 1e-3;
   solver.gradient_tolerance = 1e-8;
-  // Levenberg-Marquardt's damping is 1 / radius on the Jacobian-scaled problem; above a radius of about 100 it no
-  // longer shortens the steps (the cap in u is all that does). Ceres' default start (1e4) and growth (x3 per good
-  // step, to 1e16) let the radius reach 9e4 after two good steps, and a bad step then failed 5 times (a replay each)
-  // before the radius fell to where the step shortens: the radius starts at and is held to kTrustRadius.
-  solver.initial_trust_region_radius = kTrustRadius;
-  solver.max_trust_region_radius = kTrustRadius;
   solver.logging_type = ceres::SILENT;
   solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
   StageCallback callback(cost);
