@@ -75,7 +75,7 @@ nlohmann::json RunCoarseStage(const FitOptions& options, const ReplayModel& mode
   const ReplayResiduals coarse = residuals.OnModel(coarse_model);
   std::vector<double> x0 = x;
   const StageOutcome stage =
-      internal::SolveStage(coarse, x, options.max_iterations, false, {}, {options.prior_weight, x0});
+      internal::SolveStage(coarse, x, options.max_iterations, {}, {options.prior_weight, x0});
   const bool usable = stage.usable && stage.error.empty();
   if (usable) x = stage.x, seed = stage.jacobian;
   const ThermalParameters reached = coarse.Parameters(stage.x.data());
@@ -194,7 +194,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   const std::vector<double> x0 = x;  // before the coarse stage moves x
   const nlohmann::json coarse_doc = RunCoarseStage(options, model, residuals, free, x, seed, out);
   const StageOutcome fine =
-      internal::SolveStage(residuals, x, options.max_iterations, true, std::move(seed), {options.prior_weight, x0});
+      internal::SolveStage(residuals, x, options.max_iterations, std::move(seed), {options.prior_weight, x0});
   const nlohmann::json solver = internal::StageSolverJson(fine);
   const int iterations = solver["iterations"].get<int>();
 
@@ -203,16 +203,12 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   std::string message = fine.message;
   if (!fine.error.empty()) message = fine.error;
   if (!converged) message = fine.termination + " after " + std::to_string(iterations) + " iterations: " + message;
-  // The whole log with the fitted values (the replay of the fitted point continued from the window's end) and with
-  // the start values: the window's fit and the held-out prediction.
+  // The whole log with the fitted values and with the start values, each a fresh replay of the log (as `waam thermal
+  // replay --parameters fitted.json` gives): the window's fit and the held-out prediction. Not the fit's own replay
+  // continued from the window's end: that one stopped there, which ends a multirate batch, and differs by more than
+  // the solver's tolerance.
   const ReplaySimulation start_run = SimulateReplay(model, start);
-  ReplaySimulation fitted_run = start_run;
-  if (converged) {
-    std::unique_ptr<ReplayRun> run = residuals.TakeKept(fine.x.data());
-    if (run == nullptr) run = std::make_unique<ReplayRun>(model, fitted);
-    run->AdvanceTo(std::numeric_limits<double>::infinity());
-    fitted_run = run->Result();
-  }
+  const ReplaySimulation fitted_run = converged ? SimulateReplay(model, fitted) : start_run;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, solver);
   doc["coarse"] = coarse_doc;

@@ -78,32 +78,19 @@ ThermalParameters ReplayResiduals::Parameters(const double* x) const {
   return p;
 }
 
-std::size_t ReplayResiduals::Run(const double* x, double* residuals, bool keep) const {
-  auto run = std::make_unique<ReplayRun>(*model_, Parameters(x));
-  run->AdvanceTo(window_.second);
-  const ReplaySimulation sim = run->Result();
+std::size_t ReplayResiduals::Run(const double* x, double* residuals) const {
+  ReplayRun run(*model_, Parameters(x));
+  run.AdvanceTo(window_.second);
+  const ReplaySimulation sim = run.Result();
   ++replays_;
-  double cost = 0.0;
   std::size_t missing = 0;
   for (std::size_t r = 0; r < used_.size(); ++r) {
     const auto [p, i] = used_[r];
     const double s = sim.probe_c[p][i];
     residuals[r] = std::isfinite(s) ? s - model_->log.probe_c[p][i] : 0.0;
     missing += std::isfinite(s) ? 0 : 1;
-    cost += residuals[r] * residuals[r];
-  }
-  if (!keep) return missing;
-  const std::lock_guard<std::mutex> lock(kept_mutex_);
-  if (kept_ == nullptr || cost < kept_cost_) {
-    kept_ = std::move(run);
-    kept_cost_ = cost;
   }
   return missing;
-}
-
-std::unique_ptr<ReplayRun> ReplayResiduals::TakeKept(const double* x) const {
-  if (kept_ == nullptr) return nullptr;
-  return Parameters(x) == kept_->parameters() ? std::move(kept_) : nullptr;
 }
 
 namespace {
@@ -122,8 +109,8 @@ enum class JacobianKind { kDifferenced, kSeed };
 // its trust region.
 class ReplayCost : public ceres::CostFunction {
  public:
-  ReplayCost(const ReplayResiduals& residuals, bool keep, std::vector<double> seed)
-      : residuals_(residuals), n_(static_cast<int>(residuals.free_count())), keep_(keep), seed_(std::move(seed)) {
+  ReplayCost(const ReplayResiduals& residuals, std::vector<double> seed)
+      : residuals_(residuals), n_(static_cast<int>(residuals.free_count())), seed_(std::move(seed)) {
     mutable_parameter_block_sizes()->push_back(n_);
     set_num_residuals(static_cast<int>(residuals.size()));
   }
@@ -180,7 +167,7 @@ class ReplayCost : public ceres::CostFunction {
     if (have_point_ && x == point_x_) return &point_r_;
     if (!tried_x_.empty() && x == tried_x_) return &tried_r_;
     std::vector<double> r(residuals_.size());
-    const std::size_t missing = residuals_.Run(x.data(), r.data(), keep_);
+    const std::size_t missing = residuals_.Run(x.data(), r.data());
     if (first_missing_ < 0) first_missing_ = static_cast<long>(missing);
     if (static_cast<long>(missing) > first_missing_) return nullptr;
     tried_x_ = x;
@@ -225,7 +212,7 @@ class ReplayCost : public ceres::CostFunction {
     ParallelFor(static_cast<std::size_t>(n_), [&](std::size_t k) {
       std::vector<double> xs = x;
       xs[k] += step[k];
-      missing[k] = residuals_.Run(xs.data(), out[k].data(), false);
+      missing[k] = residuals_.Run(xs.data(), out[k].data());
     });
     for (int k = 0; k < n_; ++k) {
       if (static_cast<long>(missing[k]) > first_missing_) return false;
@@ -239,7 +226,6 @@ class ReplayCost : public ceres::CostFunction {
 
   const ReplayResiduals& residuals_;
   int n_;
-  bool keep_;
   std::vector<double> seed_;
   mutable bool refresh_ = false;  // difference the next Jacobian
   mutable long first_missing_ = -1;         // rows without a temperature in the first replay
@@ -328,7 +314,7 @@ ceres::Solver::Summary RunCeres(ReplayCost& cost, PriorCost* prior, std::vector<
 }  // namespace
 
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
-                        bool keep, std::vector<double> seed, std::pair<double, std::vector<double>> prior) {
+                        std::vector<double> seed, std::pair<double, std::vector<double>> prior) {
   const auto clock_start = std::chrono::steady_clock::now();
   const int replays_before = residuals.replays();
   StageOutcome outcome;
@@ -336,7 +322,7 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   // evaluates every trust-region candidate through a projected line search that asks the gradient, i.e. a
   // differenced Jacobian (n + 1 replays) at each point it tries instead of one replay.
   std::vector<double> u = ToFree(residuals.free(), x_start);
-  ReplayCost cost(residuals, keep, std::move(seed));
+  ReplayCost cost(residuals, std::move(seed));
   std::unique_ptr<PriorCost> prior_cost =
       prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
   outcome.function_tolerance = 1e-3;

@@ -5,7 +5,6 @@
 #include <atomic>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,8 +35,7 @@ std::vector<FreeParameter> ResolveThermalFree(const std::vector<std::string>& na
 std::vector<double> ToScaled(const std::vector<FreeParameter>& free, const double* u);
 std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::vector<double>& x);
 
-// The residuals of one replay to the window's end: simulated - measured at every compared row, degC. The replay of
-// the best point so far (lowest cost) may be kept, so the held-out rows continue it from the window's end.
+// The residuals of one replay to the window's end: simulated - measured at every compared row, degC.
 class ReplayResiduals {
  public:
   // The rows compared: measured inside `window` (s). `model` must outlive this.
@@ -52,12 +50,9 @@ class ReplayResiduals {
   ReplayResiduals OnModel(const ReplayModel& model) const { return ReplayResiduals(model, free_, start_, window_); }
   // The parameters at scaled values `x` (within the bounds).
   ThermalParameters Parameters(const double* x) const;
-  // One replay to the window's end at scaled values `x` into `residuals` (size()); `keep`: keep the replay when its
-  // cost is the lowest so far. Returns how many compared rows the replay has no temperature at (NaN: no metal at the
+  // One replay to the window's end at scaled values `x` into `residuals` (size()). Returns how many compared rows the replay has no temperature at (NaN: no metal at the
   // probe yet, which the log alone decides; a replay that blows up has more). Throws as ReplayRun.
-  std::size_t Run(const double* x, double* residuals, bool keep) const;
-  // The kept replay if it was made with the parameters of `x`, else null.
-  std::unique_ptr<ReplayRun> TakeKept(const double* x) const;
+  std::size_t Run(const double* x, double* residuals) const;
   int replays() const { return replays_.load(); }
 
  private:
@@ -67,9 +62,6 @@ class ReplayResiduals {
   std::pair<double, double> window_;
   std::vector<std::pair<std::size_t, std::size_t>> used_;  // (probe, row)
   mutable std::atomic<int> replays_{0};
-  mutable std::mutex kept_mutex_;
-  mutable std::unique_ptr<ReplayRun> kept_;
-  mutable double kept_cost_ = 0.0;
 };
 
 // One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on the coarse
@@ -91,11 +83,10 @@ struct StageOutcome {
   double seconds = 0.0;                         // wall
 };
 
-// Runs a stage with at most `max_iterations` Ceres iterations over all its runs; `keep` keeps the best replay
-// (ReplayResiduals::Run); `seed`: a Jacobian in x (m x n) for the first point instead of differences; `prior`: the
+// Runs a stage with at most `max_iterations` Ceres iterations over all its runs; `seed`: a Jacobian in x (m x n) for the first point instead of differences; `prior`: the
 // weak prior's weight W (0: none) and x0, the start's scaled values it pulls toward. Throws Interrupted on Ctrl-C.
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
-                        bool keep, std::vector<double> seed, std::pair<double, std::vector<double>> prior);
+                        std::vector<double> seed, std::pair<double, std::vector<double>> prior);
 
 // The stage's solver record for fitted.json (docs/REPLAY.md, `solver`).
 nlohmann::json StageSolverJson(const StageOutcome& stage);
