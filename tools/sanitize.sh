@@ -28,12 +28,13 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # faults are sanitized by PlantedFaultTest.*.
 # Tests that rerun a whole command on 1 and 4 threads to compare the outputs (24-32 s apiece here) check determinism,
 # which the Release build checks as well; the code they run is sanitized by the single-run tests of the same
-# commands. The planted-clamp placement search (75 s here) has a smaller sanitized sibling
+# commands. So does ThermalMultirate.ResultsDoNotDependOnTheThreadCount (13 s in Release), whose solver the other
+# ThermalMultirate tests sanitize. The planted-clamp placement search (75 s here) has a smaller sanitized sibling
 # (PlaceCliTest.APartOutOfReachEverywhere...), and the viewer's headless-Chromium page tests (5-17 s) time the
 # browser; the viewer's data is sanitized by ViewerTest.*.
 release_only='^(ThermalCli\.(WaitsHold|ProbeHistories|RunStep)|ThermalRun\.(InterpassWaits|WithoutTheLimit|EnergyBalanceCloses)'
 release_only+='|PlanCommandTest\.SamePlanOnOneAndFourThreads|Compensation\.SameOnOneAndFourThreads'
 release_only+='|ParallelCheck\.SameCheckJsonOnOneAndFourThreads|PlaceCliTest\.ThePlantedClampFaultGetsAPlacementThatPasses'
 release_only+='|Compensation\.BentTubeConvergesWithinTwoIterations|CheckCliTest\.EveryOtherCellScenario'
-release_only+='|ViewerBrowserTest\.)'
+release_only+='|ViewerBrowserTest\.|ThermalMultirate\.ResultsDoNotDependOnTheThreadCount)'
 ctest --test-dir "$build" --output-on-failure -j"$jobs" -LE cluster -E "$release_only" "$@"
