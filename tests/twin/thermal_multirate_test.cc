@@ -103,12 +103,12 @@ TEST(ThermalMultirate, PlateProbeBesideAPassFollowsSingleRate) {
                                 << rise << " K";
 }
 
-// The discrete maximum principle across the levels: a wall standing on a plate, all at 20 degC with the air at 20 degC
-// (no sink below it), takes one pass and cools, at the default levels (tools/peers/thermal_wall_small.json's
-// problem, 2 mm cells). No cell of the wall or the plate may read below 20 degC (less 0.1 K): every cell is recorded at every
-// 0.4 s step inside the solver's batches, so the levels keep their steps. (Without the levels' maximum-principle check
-// a wall cell at a finer region's border went to 14.90 degC: docs/THERMAL.md, "Why the coupling between levels is
-// monotone".)
+// The discrete maximum principle across the levels: a wall standing on a plate, all at 20 degC with the air at
+// 20 degC (no sink below it), takes one pass and cools, at the default levels (tools/peers/thermal_wall_small.json's
+// problem, 2 mm cells). No cell of the wall or the plate may read below 20 degC (less 0.1 K): every cell is recorded
+// at every 0.4 s step inside the solver's batches, so the levels keep their steps. (Without the levels'
+// maximum-principle check a wall cell at a finer region's border went to 14.90 degC: docs/THERMAL.md, "Why the
+// coupling between levels is monotone".)
 TEST(ThermalMultirate, NoCellFallsBelowTheColdestStartWithoutASink) {
   ThermalSettings st;
   st.deposit = st.substrate = testing::ConstantMaterial(40.0, 7850.0, 600.0);

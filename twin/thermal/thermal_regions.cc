@@ -21,9 +21,9 @@ void Join(ThermalState& s, int c, int level, std::vector<int>& near) {
 
 }  // namespace
 
-// The closing (declared in thermal_state.h). Why: a coarse cell wrapped in finer ones is a Dirichlet value to them for the
-// whole coarse step while they pass it far more energy than its own small capacity holds (scattered finer cells made
-// such cells hundreds of K wrong in the multirate test).
+// The closing (declared in thermal_state.h). Why: a coarse cell wrapped in finer ones is a Dirichlet value to them
+// for the whole coarse step while they pass it far more energy than its own small capacity holds (scattered finer
+// cells made such cells hundreds of K wrong in the multirate test).
 void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from, int level, int m1) {
   for (std::size_t q = from; q < near.size(); ++q) {
     for (int f = 0; f < 6; ++f) {
