@@ -44,12 +44,9 @@ case "$target" in
 esac
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  launcher=()
-  if command -v ccache >/dev/null; then
-    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-  fi
+  # ccache comes from CMakeLists.txt (WAAM_CCACHE, with CCACHE_BASEDIR), so a fresh worktree hits an earlier one's cache.
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-    -DWAAM_BUILD_FUZZERS=ON -DWAAM_BUILD_TESTS=OFF -DWAAM_BUILD_BENCHMARKS=OFF "${launcher[@]}"
+    -DWAAM_BUILD_FUZZERS=ON -DWAAM_BUILD_TESTS=OFF -DWAAM_BUILD_BENCHMARKS=OFF
 fi
 cmake --build "$build" -j"${WAAM_FUZZ_JOBS:-2}" --target "waam_fuzz_$target"
 
