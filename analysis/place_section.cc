@@ -10,9 +10,13 @@
 namespace waam::analysis::internal {
 namespace {
 
+// The range's values; more than kMaxPlaceLayouts counts as kMaxPlaceLayouts + 1 (the count of a step of 1e-300
+// fits no integer type).
 std::size_t Count(const std::optional<PlaceRange>& r) {
   if (!r || r->step <= 0.0) return 1;
-  return static_cast<std::size_t>(std::floor((r->max - r->min) / r->step + 1e-9)) + 1;
+  const double n = std::floor((r->max - r->min) / r->step + 1e-9) + 1.0;
+  if (!(n <= static_cast<double>(kMaxPlaceLayouts))) return kMaxPlaceLayouts + 1;
+  return static_cast<std::size_t>(n);
 }
 
 }  // namespace

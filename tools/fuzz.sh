@@ -14,32 +14,39 @@ seconds=${2:?usage: tools/fuzz.sh <stl|scenario|csv|urdf|mjcf|sweep|fanuc_ls|abb
 shift 2
 build=${WAAM_FUZZ_BUILD_DIR:-$root/build-fuzz}
 
+# find over the named folders that exist: a target's fuzz/seeds/<target> folder is optional.
+find_seeds() {
+  local dirs=()
+  while [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; do
+    if [ -e "$1" ]; then dirs+=("$1"); fi
+    shift
+  done
+  find "${dirs[@]}" "$@"
+}
+
 case "$target" in
-  stl) seeds=$(find scenarios/meshes fuzz/seeds/stl -name '*.stl' -size -64k); max_len=65536 ;;
-  scenario) seeds=$(find scenarios fuzz/seeds/scenario -name '*.yaml'); max_len=4096 ;;
-  csv) seeds=$(find models/data fuzz/seeds/csv -name '*.csv'); max_len=8192 ;;
-  urdf) seeds=$(find scenarios/cell/robots -name '*.urdf'); max_len=16384 ;;
-  mjcf) seeds=$(find twin/data -name '*.xml'); max_len=16384 ;;
-  sweep) seeds=$(find docs fuzz/regressions/sweep -name '*sweep*.yaml'); max_len=4096 ;;
-  fanuc_ls) seeds=$(find tests/data/programs -name '*.ls'); max_len=16384 ;;
-  abb_rapid) seeds=$(find tests/data/programs -name '*.mod'); max_len=16384 ;;
-  gcode) seeds=$(find tests/data/programs -name '*.nc'); max_len=16384 ;;
+  stl) seeds=$(find_seeds scenarios/meshes fuzz/seeds/stl -name '*.stl' -size -64k); max_len=65536 ;;
+  scenario) seeds=$(find_seeds scenarios fuzz/seeds/scenario -name '*.yaml'); max_len=4096 ;;
+  csv) seeds=$(find_seeds models/data fuzz/seeds/csv -name '*.csv'); max_len=8192 ;;
+  urdf) seeds=$(find_seeds scenarios/cell/robots -name '*.urdf'); max_len=16384 ;;
+  mjcf) seeds=$(find_seeds twin/data -name '*.xml'); max_len=16384 ;;
+  sweep) seeds=$(find_seeds docs fuzz/regressions/sweep -name '*sweep*.yaml'); max_len=4096 ;;
+  fanuc_ls) seeds=$(find_seeds tests/data/programs -name '*.ls'); max_len=16384 ;;
+  abb_rapid) seeds=$(find_seeds tests/data/programs -name '*.mod'); max_len=16384 ;;
+  gcode) seeds=$(find_seeds tests/data/programs -name '*.nc'); max_len=16384 ;;
   kuka_krl) seeds=$(mkdir -p build-fuzz/seeds && for p in wall base_tool; do cat tests/data/programs/$p.src tests/data/programs/$p.dat > build-fuzz/seeds/${p}_krl.src; echo build-fuzz/seeds/${p}_krl.src; done); max_len=16384 ;;
-  yaskawa_jbi) seeds=$(find tests/data/programs fuzz/seeds/yaskawa_jbi -name '*.JBI'); max_len=16384 ;;
-  program_csv) seeds=$(find tests/data/programs -name '*.csv'); max_len=16384 ;;
-  thermal_material) seeds=$(find models/data/materials fuzz/regressions/thermal_material -name '*.csv'); max_len=8192 ;;
-  replay_log) seeds=$(find fuzz/seeds/replay_log fuzz/regressions/replay_log -type f ! -name README.md); max_len=8192 ;;
-  png) seeds=$(find docs/images -name '*.png' -size -64k); max_len=65536 ;;
+  yaskawa_jbi) seeds=$(find_seeds tests/data/programs fuzz/seeds/yaskawa_jbi -name '*.JBI'); max_len=16384 ;;
+  program_csv) seeds=$(find_seeds tests/data/programs -name '*.csv'); max_len=16384 ;;
+  thermal_material) seeds=$(find_seeds models/data/materials fuzz/regressions/thermal_material -name '*.csv'); max_len=8192 ;;
+  replay_log) seeds=$(find_seeds fuzz/seeds/replay_log fuzz/regressions/replay_log -type f ! -name README.md); max_len=8192 ;;
+  png) seeds=$(find_seeds docs/images -name '*.png' -size -64k); max_len=65536 ;;
   *) echo "fuzz.sh: unknown target '$target' (stl, scenario, csv, urdf, mjcf, sweep, fanuc_ls, abb_rapid, gcode, program_csv, kuka_krl, yaskawa_jbi, thermal_material, replay_log, png)" >&2; exit 2 ;;
 esac
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  launcher=()
-  if command -v ccache >/dev/null; then
-    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-  fi
+  # ccache comes from CMakeLists.txt (WAAM_CCACHE, with CCACHE_BASEDIR), so a fresh worktree hits an earlier one's cache.
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-    -DWAAM_BUILD_FUZZERS=ON -DWAAM_BUILD_TESTS=OFF -DWAAM_BUILD_BENCHMARKS=OFF "${launcher[@]}"
+    -DWAAM_BUILD_FUZZERS=ON -DWAAM_BUILD_TESTS=OFF -DWAAM_BUILD_BENCHMARKS=OFF
 fi
 cmake --build "$build" -j"${WAAM_FUZZ_JOBS:-2}" --target "waam_fuzz_$target"
 

@@ -120,6 +120,9 @@ TEST(ScenarioKeys, RangesWordListsAndCellRowsBuiltInCodeAreCheckedByTheirTables)
   s.place.part_x_mm = s.place.part_y_mm = s.place.part_yaw_deg = PlaceRange{-100.0, 100.0, 0.5};
   EXPECT_THAT(ValidationError(s), HasSubstr("place: the ranges give more than 20000 layouts"));
   s = Scenario{};
+  s.place.part_x_mm = PlaceRange{-20.0, 20.0, 1e-300};  // 4e301 values: a count no integer type holds
+  EXPECT_THAT(ValidationError(s), HasSubstr("place: the ranges give more than 20000 layouts"));
+  s = Scenario{};
   s.cell.robot_joints = {"a", "b"};
   EXPECT_THAT(ValidationError(s), HasSubstr("cell.robot.joints: must list 6 joints, got 2"));
   s = Scenario{};
