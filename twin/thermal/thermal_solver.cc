@@ -546,7 +546,7 @@ void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {
 // ambient and table temperatures: none may lie below the least of those values, nor above the greatest unless a
 // cell has a source. The finer levels' energy, taken at a fixed boundary line, breaks it where that line runs away
 // from what the coarse cell did (docs/THERMAL.md, "Why the coupling between levels is monotone"). Returns the cells
-// outside those bounds by more than the slack (five solver tolerances and, with latent heat, the enthalpy
+// outside those bounds by more than the slack (one solver tolerance and, with latent heat, the enthalpy
 // iteration's own mismatch |T(H) - T_solved|). `local_of` is scratch (all kNoCell), returned so.
 std::vector<int> CouplingViolations(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, int level,
                                     std::vector<int>& local_of) {
