@@ -211,6 +211,7 @@ json Run(const json& spec, const std::string& stepping, int refine) {
   return {{"peer", "waam"}, {"wall_s", wall_s}, {"cpu_s", cpu_s}, {"setup_s", setup_wall_s},
           {"setup_cpu_s", setup_cpu_s}, {"cells", stats.active_cells},
           {"steps", stats.steps}, {"iterations", stats.iterations}, {"coupling_retries", stats.coupling_retries},
+          {"coupling_repairs", stats.coupling_repairs},
           {"level_solves", stats.level_solves}, {"level_cell_solves", stats.level_cell_solves},
           {"far_step_s", st.far_step_s},
           {"stepping", StepLabel(st)}, {"refine", refine},

@@ -115,6 +115,9 @@ struct ThermalStats {
   // Level steps whose finer levels and corrector ran again over a larger finer region, the corrector having left
   // cells outside the maximum principle's bounds (docs/THERMAL.md, "Why the coupling between levels is monotone").
   std::size_t coupling_retries = 0;
+  // Cells a level's step left outside those bounds (within the step's accuracy, or after its retry) and repaired:
+  // set to the bound, the energy from the cells around them (Shashkov & Wendroff 2004; docs/THERMAL.md).
+  std::size_t coupling_repairs = 0;
 };
 
 // The temperature field on the solver's grid (for thermal.h5 and the pictures): cell (i, j, k) is centred at

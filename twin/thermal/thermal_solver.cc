@@ -1,11 +1,10 @@
-// The thermal solver: one backward-Euler step of a region of active cells (system assembly, Jacobi-preconditioned
-// conjugate gradients, conservative enthalpy update) and the multirate recursion over regions nearer and nearer
-// the arc. Derivations and stability in docs/THERMAL.md.
+// The thermal solver: one backward-Euler step of a region of active cells (system assembly, the enthalpy iteration
+// around the linear solve of thermal_cg.cc, conservative enthalpy update) and the multirate recursion over regions
+// nearer and nearer the arc, coupled as thermal_coupling.cc checks. Derivations and stability in docs/THERMAL.md.
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
-#include <limits>
 
 #include "models/core/error.h"
 #include "models/core/parallel.h"
@@ -14,14 +13,6 @@
 namespace waam::twin::internal {
 namespace {
 
-constexpr int kMaxIterations = 2000;
-// Systems of at least this many cells are preconditioned by multigrid, smaller ones by their diagonal.
-constexpr std::size_t kMultigridCells = 512;
-// ... and stiff: conduction (the sum of the face conductances) at least this many times the storage and losses
-// (the rest of the diagonal), summed over the system. Milder systems converge in a few diagonally preconditioned
-// iterations, each a fraction of a V-cycle's cost (at 30, aluminium's 1 s and micro steps took 24 of them a solve,
-// about 7 and 17 V-cycles now; docs/THERMAL.md, "Benchmark").
-constexpr double kMultigridStiffness = 10.0;
 // The nonlinear (chord) iteration of a step stops when every cell's enthalpy maps back to within this + 10 % of its
 // temperature change, or after kChordRounds re-solves: it exists to keep big steps from jumping the latent heat
 // (hundreds of K of mismatch), not to polish micro steps.
@@ -29,23 +20,11 @@ constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
-// A level's step runs its finer levels and its corrector at most this many times: again while the corrector leaves
-// cells outside the maximum principle's bounds, those cells then in the finer region (CouplingViolations).
-constexpr int kCouplingRounds = 20;
+// A level's step runs its finer levels and its corrector at most this many times: again when the corrector leaves
+// cells outside the maximum principle's bounds by more than the step's accuracy, those cells then in the finer
+// region (CouplingViolations); after the last round the cells still outside are repaired (RepairBounds).
+constexpr int kCouplingRounds = 2;
 
-double Sum(const std::vector<double>& partial) {
-  double total = 0.0;
-  for (double v : partial) total += v;
-  return total;
-}
-
-// The Dirichlet value a finer level sees on a cell outside its region at time t: linear in time between the
-// values the coarser level that owns the cell had at its interval's ends.
-double Bound(const ThermalState& s, int cell, double t) {
-  const auto [t0, t1] = s.level_interval[s.bound_level[cell]];
-  const double f = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
-  return s.bound_start[cell] + f * (s.bound_end[cell] - s.bound_start[cell]);
-}
 
 // Convection, radiation (linearised about the state's temperature t_old) and table (and clamp) losses of one face
 // at t, W.
@@ -179,140 +158,6 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
     }
   });
   for (int c : L.cells) local_of[c] = kNoCell;
-}
-
-// Conjugate gradients on the level's system from the scratch's x and r = b - A x, preconditioned by one multigrid
-// V-cycle (`multigrid`) or the diagonal, until every Jacobi correction |r_i / A_ii| is below the tolerance. Each
-// iteration takes one stencil product: p = z + beta p and A p = A z + beta (A p)_old in one pass. Returns the
-// iterations. With `same_faces` the cells are those of the last solve, whose grid coordinates L.ijk still holds.
-int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
-  LevelScratch& w = L.scratch;
-  const PaddedStencil& a = w.stencil;
-  const std::size_t n = L.cells.size();
-  double* x = w.x.data();
-  double* p = w.p.data();
-  double* r = w.r.data();
-  double* z = w.z.data();
-  double* ap = w.ap.data();
-  const double* inv = w.inverse_diagonal.data();
-  if (multigrid && !(same_faces && L.ijk.size() == n)) {
-    L.ijk.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
-      L.ijk[i] = {g.x(), g.y(), g.z()};
-    }
-  }
-  if (multigrid) L.multigrid.Setup(a, L.ijk);
-  // z = B r; returns r.z.
-  auto precondition = [&]() {
-    if (multigrid) L.multigrid.Apply(w.r, w.z);
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double rz = 0.0;
-      for (std::size_t i = begin; i < end; ++i) {
-        if (!multigrid) z[i] = r[i] * inv[i];
-        rz += r[i] * z[i];
-      }
-      w.part_a[c] = rz;
-    });
-    return Sum(w.part_a);
-  };
-  const double tolerance = s.settings.solver_tolerance_c;
-  double rz = precondition();
-  double beta = 0.0;
-  int iterations = 0;
-  while (iterations < kMaxIterations) {
-    const bool first = iterations == 0;
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double pap = 0.0;
-      for (std::size_t i = begin; i < end; ++i) {
-        const double az = a.Row(z, i);
-        p[i] = first ? z[i] : z[i] + beta * p[i];
-        ap[i] = first ? az : az + beta * ap[i];
-        pap += p[i] * ap[i];
-      }
-      w.part_a[c] = pap;
-    });
-    const double alpha = rz / Sum(w.part_a);
-    // x and r; with the diagonal preconditioner z = r / A_ii and r.z in the same pass.
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-      double most = 0.0, rz_part = 0.0;
-      for (std::size_t i = begin; i < end; ++i) {
-        x[i] += alpha * p[i];
-        r[i] -= alpha * ap[i];
-        const double correction = r[i] * inv[i];
-        most = std::max(most, std::abs(correction));
-        if (!multigrid) {
-          z[i] = correction;
-          rz_part += r[i] * correction;
-        }
-      }
-      w.part_max[c] = most;
-      w.part_a[c] = rz_part;
-    });
-    ++iterations;
-    if (*std::max_element(w.part_max.begin(), w.part_max.end()) <= tolerance) break;
-    const double rz_new = multigrid ? precondition() : Sum(w.part_a);
-    beta = rz_new / rz;
-    rz = rz_new;
-  }
-  return iterations;
-}
-
-// Solves the level's system by preconditioned conjugate gradients from `guess` (degC by active cell), until every
-// Jacobi correction |r_i / A_ii| (the temperature correction a Jacobi sweep would make) is below the tolerance.
-// Stiff systems of kMultigridCells cells or more are preconditioned by one additive-correction multigrid V-cycle
-// (thermal_multigrid.h), the others by the diagonal. With `same_faces` the system differs from the one last solved
-// only in its diagonal and right-hand side (a nonlinear round), so only the diagonal is copied. Returns the iterations.
-int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces) {
-  const std::size_t n = L.cells.size();
-  if (n == 0) return 0;
-  LevelScratch& w = L.scratch;
-  const PaddedStencil& a = w.stencil;
-  if (same_faces) {
-    std::copy(L.diagonal.begin(), L.diagonal.end(), w.stencil.diagonal.begin());
-  } else {
-    w.stencil.Assign(L);
-    L.ijk.clear();  // other cells: their grid coordinates are found again if the multigrid is taken
-  }
-  // x, z and p are multiplied by the matrix: n + 1 values, the last the zero slot.
-  w.x.resize(n + 1);
-  w.z.resize(n + 1);
-  w.p.resize(n + 1);
-  w.x[n] = w.z[n] = w.p[n] = 0.0;
-  w.r.resize(n);
-  w.ap.resize(n);
-  w.inverse_diagonal.resize(n);
-  const std::size_t chunks = Chunks(n);
-  w.part_a.resize(chunks);
-  w.part_b.resize(chunks);
-  w.part_max.resize(chunks);
-  double* x = w.x.data();
-  double* r = w.r.data();
-  double* inv = w.inverse_diagonal.data();
-  for (std::size_t i = 0; i < n; ++i) x[i] = guess[L.cells[i]];
-  // The first residual, the Jacobi corrections and the stiffness: conduction over storage and losses, summed.
-  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
-    double worst = 0.0, conduction = 0.0, rest = 0.0;
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::array<double, 6>& g = a.conductance[i];
-      const double faces = g[0] + g[1] + g[2] + g[3] + g[4] + g[5];
-      conduction += faces;
-      rest += a.diagonal[i] - faces;
-      inv[i] = 1.0 / a.diagonal[i];
-      r[i] = L.rhs[i] - a.Row(x, i);
-      worst = std::max(worst, std::abs(r[i] * inv[i]));
-    }
-    w.part_max[c] = worst;
-    w.part_a[c] = conduction;
-    w.part_b[c] = rest;
-  });
-  int iterations = 0;
-  if (*std::max_element(w.part_max.begin(), w.part_max.end()) > s.settings.solver_tolerance_c) {
-    const bool multigrid = n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness * Sum(w.part_b);
-    iterations = Iterate(s, L, multigrid, same_faces);
-  }
-  std::copy(x, x + n, L.t_new.begin());
-  return iterations;
 }
 
 // Adds one solve of `cells` cells taking `iterations` CG iterations at `level` to the statistics.
@@ -488,104 +333,6 @@ void Update(ThermalState& s, int level) {
   });
 }
 
-// A level's state before its finer levels run: what they and the level's corrector change, so that the level's step
-// can run them again over a larger finer region (CouplingViolations).
-struct CouplingSnapshot {
-  std::vector<int> cells;                // the predictor's cells
-  std::vector<double> predicted;         // the predictor's temperatures, degC (the finer levels' boundary line)
-  std::vector<double> enthalpy, temperature, conductivity, rate, heat_rate, inflow, chord, iterate_h;
-  std::vector<std::pair<int, double>> outside_inflow;  // inflow_j of present cells outside the level's region, J
-  EnergyBalance energy;
-};
-
-CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level) {
-  CouplingSnapshot snap;
-  snap.cells = L.cells;
-  snap.predicted = L.t_new;
-  for (auto* v : {&snap.enthalpy, &snap.temperature, &snap.conductivity, &snap.rate, &snap.heat_rate, &snap.inflow,
-                  &snap.chord, &snap.iterate_h}) {
-    v->reserve(L.cells.size());
-  }
-  for (int c : L.cells) {
-    snap.enthalpy.push_back(s.enthalpy[c]);
-    snap.temperature.push_back(s.temperature[c]);
-    snap.conductivity.push_back(s.conductivity[c]);
-    snap.rate.push_back(s.rate[c]);
-    snap.heat_rate.push_back(s.heat_rate[c]);
-    snap.inflow.push_back(s.inflow_j[c]);
-    snap.chord.push_back(s.chord[c]);
-    snap.iterate_h.push_back(s.iterate_h[c]);
-    for (int f = 0; f < 6; ++f) {
-      const int j = s.neighbour[c][f];
-      if (j != kNoCell && s.born[j] < L.m1 && s.depth[j] < level) snap.outside_inflow.emplace_back(j, s.inflow_j[j]);
-    }
-  }
-  snap.energy = s.energy;
-  return snap;
-}
-
-void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {
-  for (std::size_t i = 0; i < snap.cells.size(); ++i) {
-    const int c = snap.cells[i];
-    s.enthalpy[c] = snap.enthalpy[i];
-    s.temperature[c] = snap.temperature[i];
-    s.conductivity[c] = snap.conductivity[i];
-    s.rate[c] = snap.rate[i];
-    s.heat_rate[c] = snap.heat_rate[i];
-    s.inflow_j[c] = snap.inflow[i];
-    s.chord[c] = snap.chord[i];
-    s.iterate_h[c] = snap.iterate_h[i];
-  }
-  for (const auto& [j, joules] : snap.outside_inflow) s.inflow_j[j] = joules;
-  s.energy = snap.energy;
-}
-
-// The discrete maximum principle on the cells the level's corrector updated (L.cells): backward Euler with
-// conductances and losses makes the new temperatures weighted means of the old ones, the boundary lines' ends of the
-// cells outside the level, the finer neighbours' over the step (taken between their old and new values), and the
-// ambient and table temperatures: none may lie below the least of those values, nor above the greatest unless a
-// cell has a source. The finer levels' energy, taken at a fixed boundary line, breaks it where that line runs away
-// from what the coarse cell did (docs/THERMAL.md, "Why the coupling between levels is monotone"). Returns the cells
-// outside those bounds by more than the slack (one solver tolerance and, with latent heat, the enthalpy
-// iteration's own mismatch |T(H) - T_solved|). `local_of` is scratch (all kNoCell), returned so.
-std::vector<int> CouplingViolations(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, int level,
-                                    std::vector<int>& local_of) {
-  for (std::size_t i = 0; i < snap.cells.size(); ++i) local_of[snap.cells[i]] = static_cast<int>(i);
-  double low = std::numeric_limits<double>::infinity(), high = -low;
-  auto take = [&](double t) {
-    low = std::min(low, t);
-    high = std::max(high, t);
-  };
-  bool source = false;
-  for (std::size_t i = 0; i < L.cells.size(); ++i) {
-    const int c = L.cells[i];
-    take(snap.temperature[static_cast<std::size_t>(local_of[c])]);
-    source = source || L.source_w[i] > 0.0;
-    for (int f = 0; f < 6; ++f) {
-      const int j = s.neighbour[c][f];
-      if (j == kNoCell || s.born[j] >= L.m1) {
-        take(s.settings.ambient_c);
-        take(s.settings.table_c);
-      } else if (s.depth[j] > level) {
-        take(snap.temperature[static_cast<std::size_t>(local_of[j])]);
-        take(s.temperature[j]);
-      } else if (local_of[j] == kNoCell) {
-        take(Bound(s, j, L.end_time_s));
-      }
-    }
-  }
-  const double slack = s.settings.solver_tolerance_c;
-  std::vector<int> violations;
-  for (std::size_t i = 0; i < L.cells.size(); ++i) {
-    const int c = L.cells[i];
-    const double t = s.temperature[c];
-    const double margin = slack + std::abs(t - L.t_new[i]);
-    if (t < low - margin || (!source && t > high + margin)) violations.push_back(c);
-  }
-  for (int c : snap.cells) local_of[c] = kNoCell;
-  return violations;
-}
-
 void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
              std::vector<int>& local_of);
 
@@ -655,14 +402,22 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
     }
     SolveStep(s, level, rest, m0, m1, StepRole::kCorrector, s.bound_end, local_of);
     Update(s, level);
-    // Where the step broke the maximum principle, those cells join the finer region and the finer levels and the
-    // corrector run again from the predictor (docs/THERMAL.md, "Why the coupling between levels is monotone").
-    if (round + 1 >= kCouplingRounds) break;
-    const std::vector<int> violations = CouplingViolations(s, L, snap, level, local_of);
-    if (violations.empty()) break;
+    // Where the step broke the maximum principle by more than the step's accuracy, those cells join the finer
+    // region and the finer levels and the corrector run again from the predictor; what is left is repaired
+    // (docs/THERMAL.md, "Why the coupling between levels is monotone").
+    const CouplingCheck check = CouplingViolations(s, L, snap, level, local_of);
+    if (check.outside.empty()) break;
+    // An excursion within the accuracy the step choice asks (AddInaccurateCells: kStepErrorK, or kStepErrorShare of
+    // the bounds' range here) is repaired; a larger one moves its cells to the finer levels once, then is repaired.
+    if (round + 1 >= kCouplingRounds ||
+        check.worst <= std::max(kStepErrorK, kStepErrorShare * (check.high - check.low))) {
+      RepairBounds(s, L, snap, check, local_of);
+      s.stats.coupling_repairs += check.outside.size();
+      break;
+    }
     RestoreSnapshot(s, snap);
     const std::size_t from = near.size();
-    for (int c : violations) {
+    for (int c : check.violations) {
       near.push_back(c);
       s.depth[c] = level + 1;
     }

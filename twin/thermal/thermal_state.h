@@ -243,6 +243,49 @@ void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near);
 // present neighbours in the region. Cells that join are appended to `near`.
 void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from, int level, int m1);
 
+// Solves the level's assembled system (L's cells, stencil, diagonal and right-hand side) into L.t_new, from `guess`
+// (degC by active cell), by preconditioned conjugate gradients (thermal_cg.cc); with `same_faces` only the diagonal
+// and right-hand side changed since the last solve. Returns the iterations.
+int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces);
+
+// The coupling between multirate levels (thermal_coupling.cc; docs/THERMAL.md, "Why the coupling between levels is
+// monotone").
+
+// The Dirichlet value a finer level sees on a cell outside its region at time t: linear in time between the values
+// the coarser level that owns the cell had at its interval's ends.
+double Bound(const ThermalState& s, int cell, double t);
+
+// A level's state before its finer levels run: what they and the level's corrector change, so that the level's step
+// can run them again over a larger finer region.
+struct CouplingSnapshot {
+  std::vector<int> cells;                // the predictor's cells
+  std::vector<double> predicted;         // the predictor's temperatures, degC (the finer levels' boundary line)
+  std::vector<double> enthalpy, temperature, conductivity, rate, heat_rate, inflow, chord, iterate_h;
+  std::vector<std::pair<int, double>> outside_inflow;  // inflow_j of present cells outside the level's region, J
+  EnergyBalance energy;
+};
+CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level);
+void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap);
+
+// What CouplingViolations found: the cells outside the maximum principle's bounds and how far.
+struct CouplingCheck {
+  std::vector<int> outside;      // cells outside [low, high] by more than one solver tolerance, in L.cells' order
+  std::vector<int> violations;   // those of them outside by more than the slack too
+  double low = 0.0, high = 0.0;  // degC
+  bool source = false;           // a heat source in the step: no upper bound
+  double worst = 0.0;            // the largest excursion of the violations beyond the bounds, K
+};
+
+// The discrete maximum principle's check of the cells the level's corrector updated (L.cells), against the state
+// `snap` held before the finer levels ran. `local_of` is scratch (all kNoCell), returned so.
+CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, int level,
+                                 std::vector<int>& local_of);
+
+// Sets each cell of check.outside to the bound it crossed, conservatively: the energy comes from (or goes to) the
+// cells of the level's region around it. `local_of` is scratch (all kNoCell), returned so.
+void RepairBounds(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, const CouplingCheck& check,
+                  std::vector<int>& local_of);
+
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
 void SolveBatch(ThermalState& s);
 // Advances the whole state by one backward-Euler step of `seconds` with no heat input.

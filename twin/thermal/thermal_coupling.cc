@@ -1,0 +1,195 @@
+// The coupling between multirate levels: the state a level's step restores before it re-runs its finer levels, the
+// discrete maximum principle's check of its corrector and the repair of what the check finds (docs/THERMAL.md,
+// "Why the coupling between levels is monotone").
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "twin/thermal/thermal_state.h"
+
+namespace waam::twin::internal {
+namespace {
+
+// Sets cell c's enthalpy (J/m^3) at the end of the level's step and what follows from it: its temperature,
+// conductivity, the rates the next step's guess and error estimate read, and its probe records inside the step (the
+// change ramped in over the level's step).
+void SetEnthalpy(ThermalState& s, const LevelSystem& L, int c, double h) {
+  const ThermalPropertyTable& table = s.table[s.material[c]];
+  const double t = table.Temperature(h, s.temperature[c]);
+  if (s.sample_head[c] >= 0) {
+    const double start = s.batch_start_s[L.m0];
+    const double length = s.batch_start_s[L.m1] - start;
+    for (int r = s.sample_head[c]; r >= 0; r = s.requests[r].next) {
+      const SampleRequest& q = s.requests[r];
+      if (q.boundary <= L.m0 || q.boundary > L.m1) continue;
+      const double f = q.boundary == L.m1 ? 1.0 : (s.batch_start_s[q.boundary] - start) / length;
+      s.records[q.record][q.probe] += f * (t - s.temperature[c]);
+    }
+  }
+  s.heat_rate[c] += (h - s.enthalpy[c]) / s.rate_step_s[c];
+  s.rate[c] += (t - s.temperature[c]) / s.rate_step_s[c];
+  s.enthalpy[c] = h;
+  s.temperature[c] = t;
+  s.conductivity[c] = table.Conductivity(t);
+}
+
+}  // namespace
+
+// The Dirichlet value a finer level sees on a cell outside its region at time t: linear in time between the
+// values the coarser level that owns the cell had at its interval's ends.
+double Bound(const ThermalState& s, int cell, double t) {
+  const auto [t0, t1] = s.level_interval[s.bound_level[cell]];
+  const double f = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
+  return s.bound_start[cell] + f * (s.bound_end[cell] - s.bound_start[cell]);
+}
+
+
+CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level) {
+  CouplingSnapshot snap;
+  snap.cells = L.cells;
+  snap.predicted = L.t_new;
+  for (auto* v : {&snap.enthalpy, &snap.temperature, &snap.conductivity, &snap.rate, &snap.heat_rate, &snap.inflow,
+                  &snap.chord, &snap.iterate_h}) {
+    v->reserve(L.cells.size());
+  }
+  for (int c : L.cells) {
+    snap.enthalpy.push_back(s.enthalpy[c]);
+    snap.temperature.push_back(s.temperature[c]);
+    snap.conductivity.push_back(s.conductivity[c]);
+    snap.rate.push_back(s.rate[c]);
+    snap.heat_rate.push_back(s.heat_rate[c]);
+    snap.inflow.push_back(s.inflow_j[c]);
+    snap.chord.push_back(s.chord[c]);
+    snap.iterate_h.push_back(s.iterate_h[c]);
+    for (int f = 0; f < 6; ++f) {
+      const int j = s.neighbour[c][f];
+      if (j != kNoCell && s.born[j] < L.m1 && s.depth[j] < level) snap.outside_inflow.emplace_back(j, s.inflow_j[j]);
+    }
+  }
+  snap.energy = s.energy;
+  return snap;
+}
+
+void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {
+  for (std::size_t i = 0; i < snap.cells.size(); ++i) {
+    const int c = snap.cells[i];
+    s.enthalpy[c] = snap.enthalpy[i];
+    s.temperature[c] = snap.temperature[i];
+    s.conductivity[c] = snap.conductivity[i];
+    s.rate[c] = snap.rate[i];
+    s.heat_rate[c] = snap.heat_rate[i];
+    s.inflow_j[c] = snap.inflow[i];
+    s.chord[c] = snap.chord[i];
+    s.iterate_h[c] = snap.iterate_h[i];
+  }
+  for (const auto& [j, joules] : snap.outside_inflow) s.inflow_j[j] = joules;
+  s.energy = snap.energy;
+}
+
+
+// The discrete maximum principle on the cells the level's corrector updated (L.cells): backward Euler with
+// conductances and losses makes the new temperatures weighted means of the old ones, the boundary lines' ends of the
+// cells outside the level, the finer neighbours' over the step (taken between their old and new values), and the
+// ambient and table temperatures: none may lie below the least of those values, nor above the greatest unless a
+// cell has a source. The finer levels' energy, taken at a fixed boundary line, breaks it where that line runs away
+// from what the coarse cell did (docs/THERMAL.md, "Why the coupling between levels is monotone"). Finds the cells
+// outside those bounds by more than the slack (one solver tolerance and, with latent heat, the enthalpy
+// iteration's own mismatch |T(H) - T_solved|). `local_of` is scratch (all kNoCell), returned so.
+CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, int level,
+                                 std::vector<int>& local_of) {
+  for (std::size_t i = 0; i < snap.cells.size(); ++i) local_of[snap.cells[i]] = static_cast<int>(i);
+  CouplingCheck check;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  auto take = [&](double t) {
+    low = std::min(low, t);
+    high = std::max(high, t);
+  };
+  for (std::size_t i = 0; i < L.cells.size(); ++i) {
+    const int c = L.cells[i];
+    take(snap.temperature[static_cast<std::size_t>(local_of[c])]);
+    check.source = check.source || L.source_w[i] > 0.0;
+    for (int f = 0; f < 6; ++f) {
+      const int j = s.neighbour[c][f];
+      if (j == kNoCell || s.born[j] >= L.m1) {
+        take(s.settings.ambient_c);
+        take(s.settings.table_c);
+      } else if (s.depth[j] > level) {
+        take(snap.temperature[static_cast<std::size_t>(local_of[j])]);
+        take(s.temperature[j]);
+      } else if (local_of[j] == kNoCell) {
+        take(Bound(s, j, L.end_time_s));
+      }
+    }
+  }
+  check.low = low;
+  check.high = high;
+  const double slack = s.settings.solver_tolerance_c;
+  for (std::size_t i = 0; i < L.cells.size(); ++i) {
+    const int c = L.cells[i];
+    const double t = s.temperature[c];
+    const double margin = slack + std::abs(t - L.t_new[i]);
+    const double excursion = std::max(low - t, check.source ? 0.0 : t - high);
+    if (excursion > s.settings.solver_tolerance_c) check.outside.push_back(c);
+    if (excursion > margin) {
+      check.violations.push_back(c);
+      check.worst = std::max(check.worst, excursion);
+    }
+  }
+  for (int c : snap.cells) local_of[c] = kNoCell;
+  return check;
+}
+
+// The repair of Shashkov & Wendroff (2004, J. Comput. Phys. 198, 265, section 3): each cell the check found outside
+// [low, high] is set to the bound it crossed, and the energy that takes comes from (or goes to) the cells of the
+// level's region around it, ring of faces by ring, each giving in proportion to its room before it would cross the
+// same bound itself. Conservative and bounded; deterministic (the violations in order, serially).
+void RepairBounds(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, const CouplingCheck& check,
+                  std::vector<int>& local_of) {
+  constexpr int kRings = 4;
+  for (std::size_t i = 0; i < snap.cells.size(); ++i) local_of[snap.cells[i]] = static_cast<int>(i);
+  std::vector<int> seen, ring, next;
+  std::vector<double> room;
+  for (int c : check.outside) {
+    const bool below = s.temperature[c] < check.low;
+    const double bound = below ? check.low : check.high;
+    // The energy the cell lacks (> 0) or holds in excess (< 0), J/m^3 (every cell has the same volume).
+    double need = s.table[s.material[c]].Enthalpy(bound) - s.enthalpy[c];
+    seen.assign(1, c);
+    ring.assign(1, c);
+    for (int r = 0; r < kRings && std::abs(need) > 0.0; ++r) {
+      next.clear();
+      for (int q : ring) {
+        for (int f = 0; f < 6; ++f) {
+          const int j = s.neighbour[q][f];
+          if (j == kNoCell || s.born[j] >= L.m1 || local_of[j] == kNoCell) continue;
+          if (std::find(seen.begin(), seen.end(), j) != seen.end()) continue;
+          seen.push_back(j);
+          next.push_back(j);
+        }
+      }
+      room.assign(next.size(), 0.0);
+      double total = 0.0;
+      for (std::size_t k = 0; k < next.size(); ++k) {
+        const int j = next[k];
+        const double h_bound = s.table[s.material[j]].Enthalpy(bound);
+        room[k] = std::max(0.0, below ? s.enthalpy[j] - h_bound : h_bound - s.enthalpy[j]);
+        total += room[k];
+      }
+      if (total > 0.0) {
+        const double share = std::min(1.0, std::abs(need) / total);
+        double moved = 0.0;
+        for (std::size_t k = 0; k < next.size(); ++k) {
+          const double dh = share * room[k];
+          moved += dh;
+          SetEnthalpy(s, L, next[k], s.enthalpy[next[k]] + (below ? -dh : dh));
+        }
+        SetEnthalpy(s, L, c, s.enthalpy[c] + (below ? moved : -moved));
+        need = share >= 1.0 ? need - (below ? moved : -moved) : 0.0;
+      }
+      ring.swap(next);
+    }
+  }
+  for (int c : snap.cells) local_of[c] = kNoCell;
+}
+
+}  // namespace waam::twin::internal
