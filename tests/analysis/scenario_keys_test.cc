@@ -12,8 +12,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "analysis/bench_command.h"
 #include "analysis/place_command.h"
 #include "analysis/scenario.h"
+#include "analysis/sweep.h"
 #include "models/core/error.h"
 #include "twin/cell/cell_settings.h"
 
@@ -255,6 +257,23 @@ TEST(ScenarioKeys, OutOfRangeValuesOfTheMovedKeysAreRefusedFromSetAndFromCode) {
   s = LoadScenario(file);
   s.process.interpass.probe.clear();
   EXPECT_THAT(ValidationError(s), HasSubstr("process.interpass.at = probe: name the probe"));
+}
+
+// A sweep over a moved key: the run whose value is outside the key's range is refused before any run, on one line.
+TEST(ScenarioKeys, ASweepValueOutsideAMovedKeysRangeIsRefusedBeforeAnyRun) {
+  const std::filesystem::path file = WriteKeysScenario(ReplayScenarioText());
+  const Sweep sweep = ParseSweep("base: " + file.string() + "\ngrid:\n  thermal.probes.plate: [[0, 10, -2], [0, 2e4, 0]]\n",
+                                 file.parent_path() / "sweep.yaml");
+  ASSERT_EQ(sweep.runs.size(), 2u);
+  try {
+    CheckBenchOverrides(SweepBenchRuns(sweep), BenchOptions{});
+    FAIL() << "expected the second run's probe to be refused";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_THAT(what, HasSubstr("run " + sweep.runs[1].id + ": "));
+    EXPECT_THAT(what, HasSubstr("thermal.probes.plate[1] = 20000: must be in [-10000, 10000]"));
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+  }
 }
 
 // program.yaskawa's pulses have no default: absent is unknown; a zero given is refused where it is written.
