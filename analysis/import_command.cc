@@ -105,8 +105,9 @@ planner::PlanResult PlanFromProgram(const Scenario& scenario, const planner::Par
 planner::JbiReadOptions JbiOptionsOf(const Scenario& scenario, const std::vector<double>& robot,
                                      const std::vector<double>& station) {
   planner::JbiReadOptions jbi;
-  jbi.robot_pulses_per_deg = scenario.program.yaskawa_pulses_per_deg;
-  jbi.station_pulses_per_deg = scenario.program.yaskawa_station_pulses_per_deg;
+  // Absent from the scenario: zeros, which the reader and the JBI writer refuse naming the key and the option.
+  jbi.robot_pulses_per_deg = scenario.program.yaskawa_pulses_per_deg.value_or(std::array<double, 6>{});
+  jbi.station_pulses_per_deg = scenario.program.yaskawa_station_pulses_per_deg.value_or(std::array<double, 2>{});
   auto check = [](const std::vector<double>& v, std::size_t n, const char* flag) {
     WAAM_THROW_UNLESS(v.size() == n, flag << ": needs " << n << " values separated by commas, " << v.size()
                                           << " given");

@@ -4,6 +4,16 @@
 #include "models/core/error.h"
 #include "models/core/yaml_map.h"
 
+namespace waam::analysis {
+
+void FinishReplayProbe(YamlMap& element, ReplayProbe* probe) {
+  element.Require("column");
+  element.Require("at_mm");
+  probe->where = element.Where("at_mm");
+}
+
+}  // namespace waam::analysis
+
 namespace waam::analysis::internal {
 
 namespace {
@@ -22,25 +32,6 @@ void ParseColumns(YamlMap& replay, ReplaySection* out) {
                     where << ": time, x, y and z must name columns");
 }
 
-void ParseProbes(YamlMap& replay, ReplaySection* out) {
-  WAAM_THROW_UNLESS(replay.Has("probes"), replay.Where("") << ": replay.probes is missing: name at least one "
-                                                              "thermocouple as NAME: {column, at_mm: [x, y, z]}");
-  YamlMap probes = replay.Map("probes");
-  for (const std::string& name : probes.Names("probe")) {
-    ReplayProbe probe;
-    probe.name = name;
-    YamlMap one = probes.Map(probe.name);
-    probe.column = one.String("column");
-    const std::vector<double> at = one.Numbers("at_mm", 3, -1e5, 1e5);
-    probe.at_mm = {at[0], at[1], at[2]};
-    probe.where = one.Where("at_mm");
-    one.CheckNoUnknownKeys();
-    out->probes.push_back(std::move(probe));
-  }
-  probes.CheckNoUnknownKeys();
-  WAAM_THROW_UNLESS(!out->probes.empty(), probes.Where("") << ": name at least one thermocouple");
-}
-
 }  // namespace
 
 void ParseReplaySection(YamlMap& top, ReplaySection* out) {
@@ -54,9 +45,9 @@ void ParseReplaySection(YamlMap& top, ReplaySection* out) {
   ParseColumns(replay, out);
   ReadFieldMap<ReplaySection>(replay, "frame", kReplayFrameFields, out);
   ReadFieldMap<ReplaySection>(replay, "bead", kReplayBeadFields, out);
-  if (replay.Has("ambient_column")) out->columns.ambient = replay.String("ambient_column");
-  if (replay.Has("table_column")) out->columns.table = replay.String("table_column");
-  ParseProbes(replay, out);
+  WAAM_THROW_UNLESS(replay.Has("probes"), replay.Where("") << ": replay.probes is missing: name at least one "
+                                                              "thermocouple as NAME: {column, at_mm: [x, y, z]}");
+  WAAM_THROW_UNLESS(!out->probes.empty(), replay.Where("probes") << ": name at least one thermocouple");
   replay.CheckNoUnknownKeys();
 }
 

@@ -36,7 +36,7 @@ struct ReplayProbe {
   std::string name;
   std::string column;
   Eigen::Vector3d at_mm = Eigen::Vector3d::Zero();  // part frame, mm
-  std::string where;                                // "file:line: replay.probes.NAME"
+  std::string where;                                // "file:line: replay.probes.NAME.at_mm"
 };
 
 // The log's columns by name (replay.columns); an empty name = not in the log.
@@ -71,7 +71,22 @@ struct ReplaySection {
   std::vector<ReplayProbe> probes;     // replay.probes, in file order
 };
 
-// The keys of `replay:` (models/core/field_table.h); the nested maps are read by analysis/replay_section.cc.
+// A thermocouple read from replay.probes.NAME: column and at_mm are required, and its `where` names at_mm. Throws
+// InputError "file:line: replay.probes.NAME: missing required key 'column'".
+void FinishReplayProbe(YamlMap& element, ReplayProbe* probe);
+
+// The keys of one thermocouple, replay.probes.NAME (NamesField).
+inline constexpr std::array kReplayProbeFields = {
+    OptField<&ReplayProbe::column>("column", "the log's column of this thermocouple, degC (required)"),
+    NumField<&ReplayProbe::at_mm>("at_mm", "mm", -1e5, 1e5, "[x, y, z] in the part frame (required)"),
+};
+// The log's optional temperature columns, named at replay's own level (replay.ambient_column, replay.table_column).
+inline constexpr std::array kReplayExtraColumnFields = {
+    OptField<&ReplayColumns::ambient>("ambient_column", "measured air temperature, degC (optional)"),
+    OptField<&ReplayColumns::table>("table_column", "measured table temperature, degC (optional)"),
+};
+
+// The keys of `replay:` (models/core/field_table.h); columns, frame and bead are read by analysis/replay_section.cc.
 inline constexpr std::array kReplayFields = {
     FileField<&ReplaySection::log>("log", "process log", "the process log, a CSV file (relative to the scenario)"),
     NumField<&ReplaySection::header_rows>("header_rows", "", 0, 1000, "metadata lines before the column names"),
@@ -83,9 +98,10 @@ inline constexpr std::array kReplayFields = {
     CustomField<ReplaySection>("columns", FieldType::kMap, "column names of the log (replay.columns)"),
     CustomField<ReplaySection>("frame", FieldType::kMap, "the log's frame in the part frame (replay.frame)"),
     CustomField<ReplaySection>("bead", FieldType::kMap, "the bead laid while the arc is on (replay.bead)"),
-    CustomField<ReplaySection>("probes", FieldType::kMap, "NAME: {column, at_mm: [x, y, z] part frame}"),
-    CustomField<ReplaySection>("ambient_column", FieldType::kString, "measured air temperature, degC (optional)"),
-    CustomField<ReplaySection>("table_column", FieldType::kString, "measured table temperature, degC (optional)"),
+    NamesField<&ReplaySection::probes, kReplayProbeFields, -1, &FinishReplayProbe>(
+        "probes", "probe", "NAME: {column, at_mm: [x, y, z] part frame} (replay.probes.<NAME>; required)"),
+    MemberField<&ReplaySection::columns, kReplayExtraColumnFields>("ambient_column"),
+    MemberField<&ReplaySection::columns, kReplayExtraColumnFields>("table_column"),
 };
 inline constexpr std::array kReplayColumnFields = {
     OptField<&ReplayColumns::time>("time", "time of each row (replay.time_unit)"),

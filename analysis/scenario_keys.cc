@@ -24,9 +24,7 @@ SectionKeys Section(std::string path, const std::array<Field<S>, N>& fields) {
 
 // part.generator: its type, then one section per type of that type's parameters (planner/mesh/generators.h).
 void AddGeneratorSections(std::vector<SectionKeys>* sections) {
-  sections->push_back({"part.generator",
-                       {{"type", FieldType::kName, "", "", EnumNameList<planner::PartGenerator>(),
-                         "the generator (required); its parameters below"}}});
+  sections->push_back({"part.generator", Describe<planner::PartSpec>(planner::kPartGeneratorFields)});
   for (const EnumName<planner::PartGenerator>& entry : EnumNames(planner::PartGenerator{})) {
     sections->push_back({"part.generator",
                          Describe<planner::GeneratorParams>(planner::GeneratorFields(entry.value),
@@ -67,6 +65,7 @@ std::vector<SectionKeys> MakeSections() {
       Section("thermal.pool", kThermalPoolFields),
       Section("thermal.shape", kThermalShapeFields),
       Section("replay", kReplayFields),
+      Section("replay.probes.<NAME>", kReplayProbeFields),
       Section("replay.columns", kReplayColumnFields),
       Section("replay.frame", kReplayFrameFields),
       Section("replay.bead", kReplayBeadFields),
@@ -188,9 +187,15 @@ void ValidateScenario(const Scenario& s) {
   CheckFields<planner::ProgramSettings>(planner::kProgramFields, s.program, "program");
   CheckFields<planner::ProgramSettings>(planner::kProgramFrameFields, s.program, "program.frame");
   CheckFields<planner::ProgramSettings>(planner::kProgramGcodeFields, s.program, "program.gcode");
+  CheckFields<planner::ProgramSettings>(planner::kProgramYaskawaFields, s.program, "program.yaskawa");
+  WAAM_THROW_UNLESS(s.program.gcode_arc_on_m != s.program.gcode_arc_off_m,
+                    "program.gcode.arc_off_m = " << s.program.gcode_arc_off_m << ": must differ from arc_on_m");
   CheckFields<planner::ProgramFrames>(planner::kProgramFramesFields, s.program.frames, "program.frames");
   twin::ValidateSimulationSettings(s.simulation);
   CheckFields<RunSettings>(kRunFields, s.run, "run");
+  WAAM_THROW_UNLESS(s.run.expected_exit_code == 0 || s.run.expected_exit_code == 3,
+                    "run.expected_exit_code = " << s.run.expected_exit_code
+                                                << ": must be 0 (success) or 3 (check violations)");
   CheckFields<PlaceSettings>(kPlaceFields, s.place, "place");
   CheckPlaceLayouts(s.place, "place");
   ValidateThermalSection(s.thermal);

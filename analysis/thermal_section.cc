@@ -45,6 +45,10 @@ void ValidateThermalSection(const ThermalSection& thermal) {
   CheckFields<ThermalSection>(kThermalFields, thermal, "thermal");
   CheckFields<ThermalSection>(kThermalSubstrateFields, thermal, "thermal.substrate");
   CheckFields<ThermalSection>(kThermalTableFields, thermal, "thermal.table");
+  WAAM_THROW_UNLESS(thermal.table_thickness_mm == 0.0 || thermal.table_conductance_w_m2k > 0.0,
+                    "thermal.table.conductance_w_m2k = " << thermal.table_conductance_w_m2k << " with thickness_mm = "
+                                                         << thermal.table_thickness_mm
+                                                         << ": a table body needs a contact conductance > 0");
   CheckFields<ThermalSection>(kThermalPoolFields, thermal, "thermal.pool");
   for (std::size_t n = 0; n < thermal.clamps.size(); ++n) {
     CheckFields<ThermalClamp>(kThermalClampFields, thermal.clamps[n], "thermal.clamps[" + std::to_string(n) + "]");
@@ -66,22 +70,11 @@ void ParseSubstrate(YamlMap& thermal, ThermalSection* out) {
   ReadFields<ThermalSection>(plate, kThermalSubstrateFields, out);
   if (plate.Has("material")) {
     out->substrate.where = plate.Where("material");
-    out->substrate.name_or_path = plate.String("material");
   } else {
     out->substrate.where = out->deposit.where;
     out->substrate.name_or_path = out->deposit.name_or_path;
   }
   plate.CheckNoUnknownKeys();
-}
-
-void ParseProbes(YamlMap& thermal, ThermalSection* out) {
-  if (!thermal.Has("probes")) return;
-  YamlMap probes = thermal.Map("probes");
-  for (const std::string& name : probes.Names("probe")) {
-    const std::vector<double> p = probes.Numbers(name, 3, -10000.0, 10000.0);
-    out->probes.push_back({name, Eigen::Vector3d(p[0], p[1], p[2]), probes.Where(name)});
-  }
-  probes.CheckNoUnknownKeys();
 }
 
 void ParseClamps(YamlMap& thermal, ThermalSection* out) {
@@ -101,10 +94,7 @@ void ParseClamps(YamlMap& thermal, ThermalSection* out) {
 void ParseShape(YamlMap& thermal, ThermalSection* out) {
   if (!thermal.Has("shape")) return;
   YamlMap shape = thermal.Map("shape");
-  if (shape.Has("bead_model")) {
-    out->shape.bead_model_where = shape.Where("bead_model");
-    out->shape.bead_model_path = shape.String("bead_model");
-  }
+  if (shape.Has("bead_model")) out->shape.bead_model_where = shape.Where("bead_model");
   ReadFields<ThermalShape>(shape, kThermalShapeFields, &out->shape);
   shape.CheckNoUnknownKeys();
 }
@@ -119,7 +109,7 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
   WAAM_THROW_UNLESS(thermal.Has("material"), out->where << ": thermal.material is missing: name the deposit's metal "
                                                            "(e.g. mild_steel, ti6al4v, ss316l) or a material file");
   out->deposit.where = thermal.Where("material");
-  out->deposit.name_or_path = thermal.String("material");
+  ReadField<ThermalSection>(thermal, kThermalFields, "material", out);
   ParseSubstrate(thermal, out);
   ReadFields<ThermalSection>(thermal, kThermalFields, out);
   if (thermal.Has("table")) {
@@ -132,7 +122,6 @@ void ParseThermalSection(YamlMap& top, ThermalSection* out) {
     table.CheckNoUnknownKeys();
   }
   ReadFieldMap<ThermalSection>(thermal, "pool", kThermalPoolFields, out);
-  ParseProbes(thermal, out);
   ParseClamps(thermal, out);
   ParseShape(thermal, out);
   thermal.CheckNoUnknownKeys();

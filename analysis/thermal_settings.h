@@ -101,10 +101,20 @@ struct ThermalSection {
 // a centre, centred under `beads_mm` (the planned or logged beads) with its top at z = 0.
 Eigen::AlignedBox3d SubstrateBoxMm(const ThermalSection& thermal, const Eigen::AlignedBox3d& beads_mm);
 
+// A metal as thermal.material and thermal.substrate.material name it (MemberField of each).
+inline constexpr std::array kThermalMaterialFields = {
+    OptField<&ThermalMaterialChoice::name_or_path>("material", "a shipped material's name or a material file"),
+};
+// One probe, thermal.probes.NAME: [x, y, z] (the value of NamesField's row).
+inline constexpr std::array kThermalProbeFields = {
+    NumField<&ThermalProbe::p_mm>("p_mm", "mm", -10000.0, 10000.0, "[x, y, z] in the part frame"),
+};
+
 // The keys of `thermal:` and its nested maps (models/core/field_table.h); analysis/thermal_section.cc reads the
-// Custom rows (materials, probes, the bead model's file) itself.
+// nested maps and the rules across keys (required keys, the substrate's material by default the deposit's).
 inline constexpr std::array kThermalFields = {
-    CustomField<ThermalSection>("material", FieldType::kName, "the deposit's material: a shipped name or a file"),
+    MemberField<&ThermalSection::deposit, kThermalMaterialFields>(
+        "material", "the deposit's material: a shipped name or a file (required)"),
     CustomField<ThermalSection>("substrate", FieldType::kMap, "the plate (thermal.substrate)"),
     NumField<&ThermalSection::cell_mm>("cell_mm", "mm", 0.1, 50.0, "grid spacing near the deposit"),
     NumField<&ThermalSection::ambient_c>("ambient_c", "degC", -50.0, 200.0, "air temperature"),
@@ -116,7 +126,8 @@ inline constexpr std::array kThermalFields = {
                                           "of every exposed face; absent = each material's"),
     CustomField<ThermalSection>("table", FieldType::kMap, "contact with the table (thermal.table)"),
     NumField<&ThermalSection::sample_s>("sample_s", "s", 0.01, 600.0, "interval of the probe histories"),
-    CustomField<ThermalSection>("probes", FieldType::kMap, "NAME: [x, y, z] in the part frame, mm"),
+    NamesField<&ThermalSection::probes, kThermalProbeFields, 0>("probes", "probe",
+                                                                "NAME: [x, y, z] in the part frame"),
     CustomField<ThermalSection>("clamps", FieldType::kList, "contact patches on the plate's top (thermal.clamps[])"),
     NumField<&ThermalSection::clamp_conductance_factor>("clamp_conductance_factor", "", 0.0, 1000.0,
                                                         "every clamp's conductance_w_m2k times this (the factor "
@@ -131,7 +142,8 @@ inline constexpr std::array kThermalSubstrateFields = {
     NumField<&ThermalSection::substrate_size_mm>("size_mm", "mm", 1.0, 10000.0, "[x, y, z] of the plate (required)"),
     NumField<&ThermalSection::substrate_centre_mm>("centre_mm", "mm", -10000.0, 10000.0,
                                                    "its centre; absent = under the part, top at z = 0"),
-    CustomField<ThermalSection>("material", FieldType::kName, "the plate's material (default: the deposit's)"),
+    MemberField<&ThermalSection::substrate, kThermalMaterialFields>("material",
+                                                                    "the plate's material (default: the deposit's)"),
 };
 inline constexpr std::array kThermalTableFields = {
     NumField<&ThermalSection::table_conductance_w_m2k>("conductance_w_m2k", "W/(m^2 K)", 0.0, 1.0e6,
@@ -161,8 +173,13 @@ inline constexpr std::array kThermalPoolFields = {
     NumField<&ThermalSection::pool_rear_widths>("rear_widths", "", 0.05, 20.0, "c_r behind the arc over the bead width"),
 };
 inline constexpr std::array kThermalShapeFields = {
-    CustomField<ThermalShape>("bead_model", FieldType::kFile,
-                              "bead-temperature model file (waam fit bead-temperature); absent = planned beads"),
+    // A path kept as written (LoadThermalShape takes it from the scenario's folder), shown as a file in the docs.
+    [] {
+      Field<ThermalShape> f = OptField<&ThermalShape::bead_model_path>(
+          "bead_model", "bead-temperature model file (waam fit bead-temperature); absent = planned beads");
+      f.type = FieldType::kFile;
+      return f;
+    }(),
     OptField<&ThermalShape::distortion>("distortion",
                                         "inherent strains follow the layers' interpass and peak temperatures"),
 };

@@ -1,6 +1,8 @@
 // The field kinds of models/core/field_table.h beyond numbers, names and words: a list of maps (ListField), a map keyed
-// by numbers (NumberMapField), numbers kept under their key (EntryField), a list of words (WordsField), a file or a
-// list of folders relative to the scenario (FileField, FoldersField), a searched [min, max, step] range (RangeField).
+// by numbers (NumberMapField), a map keyed by the user's names (NamesField), numbers kept under their key
+// (EntryField), a list of words (WordsField), a file or a list of folders relative to the scenario (FileField,
+// FoldersField), a searched [min, max, step] range (RangeField), a name or a tagged word (TaggedField), and a key whose
+// value lives in a member struct (MemberField).
 // Included by field_table.h; include that.
 #pragma once
 
@@ -301,6 +303,137 @@ constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> Ran
     if (r.step == 0.0 && r.min == r.max) return field_internal::ShowNumber(r.min);
     return "[" + field_internal::ShowNumber(r.min) + ", " + field_internal::ShowNumber(r.max) + ", " +
            field_internal::ShowNumber(r.step) + "]";
+  };
+  return f;
+}
+
+// A map keyed by the user's names (`key: {NAME: value, ...}`, YamlMap::Names(noun)), a std::vector<E> member in file
+// order whose E has the members `name` (NAME) and `where` ("file:line: key.NAME"). kValueRow < 0: each value is a map
+// read by the element's table kElementFields (replay.probes.NAME: {column, at_mm}), then `kFinish(element_map, &e)`
+// when given (required keys, a `where` of its own), then its unknown keys refused. kValueRow = N: each value is row
+// N's value itself (thermal.probes.NAME: [x, y, z]), and the docs give that row's unit and range. Given, the map
+// replaces the member's; settings built in code are checked by the same rows, named `key.NAME`.
+template <auto kMember, const auto& kElementFields, int kValueRow = -1, auto kFinish = nullptr>
+constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> NamesField(std::string_view key,
+                                                                                   std::string_view noun,
+                                                                                   std::string_view doc) {
+  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
+  using E = typename field_internal::MemberOf<decltype(kMember)>::Value::value_type;
+  Field<S> f{key, FieldType::kMap, "", 0.0, 0.0, doc};
+  f.key_noun = noun;
+  if constexpr (kValueRow >= 0) {
+    const Field<E>& row = kElementFields[kValueRow];
+    f.unit = row.unit, f.min = row.min, f.max = row.max, f.ranged = row.ranged;
+  }
+  f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+    const std::string k(field.key);
+    if (!map.Has(k)) return;
+    YamlMap names = map.Map(k);
+    std::vector<E> list;
+    for (const std::string& name : names.Names(std::string(field.key_noun))) {
+      E e{};
+      e.name = name;
+      e.where = names.Where(name);
+      if constexpr (kValueRow >= 0) {
+        Field<E> row = kElementFields[kValueRow];
+        row.key = name;  // the value under NAME read as the row's
+        row.read(names, row, &e);
+      } else {
+        YamlMap element = names.Map(name);
+        ReadFields<E>(element, kElementFields, &e);
+        if constexpr (!std::is_null_pointer_v<decltype(kFinish)>) kFinish(element, &e);
+        element.CheckNoUnknownKeys();
+      }
+      list.push_back(std::move(e));
+    }
+    names.CheckNoUnknownKeys();
+    s->*kMember = std::move(list);
+  };
+  f.check = [](const Field<S>& field, const S& s, std::string_view section) {
+    const std::string path = std::string(section) + "." + std::string(field.key);
+    for (const E& e : s.*kMember) {
+      if constexpr (kValueRow >= 0) {
+        Field<E> row = kElementFields[kValueRow];
+        row.key = e.name;
+        CheckFields<E>(std::span<const Field<E>>(&row, 1), e, path);
+      } else {
+        CheckFields<E>(kElementFields, e, path + "." + e.name);
+      }
+    }
+  };
+  f.show = [](const Field<S>&, const S&) { return std::string(); };
+  return f;
+}
+
+// A name of the enum member kMember, where the one value kTagged takes a word, written as a one-key map
+// `{<kTagged's name>: WORD}` into the std::string member kWord (process.interpass.at: top_max, or {probe: NAME});
+// `noun` says what the word names ("thermal.probes"). Refused: kTagged's name as a plain word ("<where> = probe: name
+// the probe, as at: {probe: NAME}"), an empty word, and in settings built in code kTagged without a word.
+template <auto kMember, auto kWord, auto kTagged>
+constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> TaggedField(std::string_view key,
+                                                                                    std::string_view noun,
+                                                                                    std::string_view doc) {
+  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
+  using E = typename field_internal::MemberOf<decltype(kMember)>::Value;
+  static_assert(std::is_enum_v<E> && std::is_same_v<decltype(kTagged), E> &&
+                    std::is_same_v<typename field_internal::MemberOf<decltype(kWord)>::Value, std::string>,
+                "TaggedField<> takes an enum member, a std::string member and the enum's tagged value");
+  Field<S> f{key, FieldType::kName, "", 0.0, 0.0, doc};
+  f.key_noun = noun;
+  f.names = [] { return EnumNameList<E>(); };
+  f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+    const std::string k(field.key);
+    if (!map.Has(k)) return;
+    const std::string tag(NameOf(kTagged));
+    if (map.IsMapping(k)) {
+      YamlMap tagged = map.Map(k);
+      s->*kMember = kTagged;
+      s->*kWord = tagged.String(tag);
+      WAAM_THROW_UNLESS(!(s->*kWord).empty(), tagged.Where(tag) << ": name one of " << field.key_noun);
+      tagged.CheckNoUnknownKeys();
+      return;
+    }
+    s->*kMember = map.Enum<E>(k);
+    WAAM_THROW_UNLESS(s->*kMember != kTagged,
+                      map.Where(k) << " = " << tag << ": name the " << tag << ", as " << field.key << ": {" << tag
+                                   << ": NAME}");
+  };
+  f.check = [](const Field<S>& field, const S& s, std::string_view section) {
+    const std::string tag(NameOf(kTagged));
+    WAAM_THROW_UNLESS(s.*kMember != kTagged || !(s.*kWord).empty(),
+                      section << "." << field.key << " = " << tag << ": name the " << tag << ", as " << field.key
+                              << ": {" << tag << ": NAME}");
+  };
+  f.show = [](const Field<S>&, const S& s) { return std::string(NameOf(s.*kMember)); };
+  return f;
+}
+
+// A key of S's section whose value lives in a member struct of S (replay.ambient_column in ReplayColumns,
+// thermal.material in ThermalMaterialChoice): read, shown and checked as the row of the same key in kFields, the
+// member struct's table, reads, shows and checks it on `s.*kMember`. `doc` replaces the row's when given (one row
+// serving two sections: thermal.material, thermal.substrate.material).
+template <auto kMember, const auto& kFields>
+constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> MemberField(std::string_view key,
+                                                                                    std::string_view doc = {}) {
+  using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
+  using M = typename field_internal::MemberOf<decltype(kMember)>::Value;
+  Field<S> f{};
+  const Field<M>& row = RowOf(kFields, key);
+  f.key = key, f.type = row.type, f.unit = row.unit, f.min = row.min, f.max = row.max;
+  f.doc = doc.empty() ? row.doc : doc;
+  f.names = row.names, f.ranged = row.ranged, f.count = row.count, f.integer = row.integer;
+  f.key_noun = row.key_noun, f.key_min = row.key_min, f.key_max = row.key_max, f.word = row.word;
+  f.read = [](YamlMap& map, const Field<S>& field, S* s) {
+    const Field<M>& r = RowOf(kFields, field.key);
+    if (r.read) r.read(map, r, &(s->*kMember));
+  };
+  f.show = [](const Field<S>& field, const S& s) {
+    const Field<M>& r = RowOf(kFields, field.key);
+    return r.show ? r.show(r, s.*kMember) : std::string();
+  };
+  f.check = [](const Field<S>& field, const S& s, std::string_view section) {
+    const Field<M>& r = RowOf(kFields, field.key);
+    CheckFields<M>(std::span<const Field<M>>(&r, 1), s.*kMember, section);
   };
   return f;
 }

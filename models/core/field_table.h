@@ -17,14 +17,19 @@
 //   FileField<&CellSettings::mjcf>("mjcf", "MJCF file", "..."),     // std::filesystem::path, relative to the scenario
 //   FoldersField<&CellSettings::robot_package_paths>("package_paths", "..."),   // std::vector<std::filesystem::path>
 //   RangeField<&PlaceSettings::part_x_mm>("part_x_mm", RowOf(kCellPartFields, "offset_mm"), "..."),  // [min, max, step]
+//   NamesField<&ReplaySection::probes, kReplayProbeFields>("probes", "probe", "..."),   // {NAME: {...}}, std::vector<E>
+//   TaggedField<&InterpassSettings::at, &InterpassSettings::probe, InterpassAt::kProbe>("at", "thermal.probes", "..."),
+//                                                            // a name, or {probe: WORD} for the one value that takes one
+//   MemberField<&ThermalSection::deposit, kThermalMaterialFields>("material"),  // a row of a member struct's table
 // An enum member must have its EnumNames table (models/core/enum_names.h); its names are listed in the docs and in
 // the parser's error. A list of maps has its element's own table (ListField: each element read, checked and named
 // `key[i]`); a map keyed by numbers (NumberMapField: program.frames.uframe.6) holds numbers per key; an EntryField
 // stores its value under its key in a std::map (tables built at run time, as the generators' parameters are, whose
 // defaults come with the table: Describe(fields, defaults)). A file is taken relative to YamlMap::base_dir() (the
 // scenario's folder) and checked where the document is loaded. A range's limits are another row's (RowOf), written
-// once. A Custom row reads nothing itself: the section's parser reads it (a nested section with its own table, a value
-// with two forms) and the row documents it and makes it a known key. The kinds past OptField live in field_kinds.h.
+// once. A map keyed by the user's names (NamesField) holds a list of elements in file order, each a map with its own
+// table or one row's value. A Custom row reads nothing itself: the section's parser reads it (a nested section with
+// its own table) and the row documents it and makes it a known key. The kinds past OptField live in field_kinds.h.
 // Then run `waam scenario-keys > docs/SCENARIO_KEYS.md` (a test fails while the committed file differs).
 // To add a section: a table `inline constexpr std::array kXFields = {...}` next to its struct, a parser that calls
 // ReadFields (or ReadField per key where a key exists only for some types), a line in the section list of
@@ -45,6 +50,8 @@
 #include <string_view>
 #include <type_traits>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "models/core/enum_names.h"
 #include "models/core/error.h"
@@ -101,6 +108,9 @@ template <typename V>
 struct IsArray : std::false_type {};
 template <std::size_t N>
 struct IsArray<std::array<double, N>> : std::true_type {};
+// A fixed-size Eigen column vector (a point in the part frame) reads and shows as a std::array does.
+template <int N>
+struct IsArray<Eigen::Matrix<double, N, 1>> : std::true_type {};
 // std::vector<std::array<double, N>>: a flat list of groups of N numbers (half-spaces of 4, ...).
 template <typename V>
 struct IsGroups : std::false_type {};
@@ -127,7 +137,7 @@ template <typename T, typename F>
 void ReadNumbers(YamlMap& map, const F& field, T* out) {
   const std::string key(field.key);
   if constexpr (IsArray<T>::value) {
-    const std::vector<double> v = map.Numbers(key, static_cast<int>(T().size()), field.min, field.max);
+    const std::vector<double> v = map.Numbers(key, static_cast<int>(T{}.size()), field.min, field.max);
     std::copy(v.begin(), v.end(), out->begin());
   } else if constexpr (IsGroups<T>::value) {
     constexpr std::size_t kN = IsGroups<T>::kSize;
@@ -236,15 +246,18 @@ constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> Nan
 }
 
 // A field without a range: bool, an enum with an EnumNames table, std::string, or a std::optional of an enum (absent:
-// std::nullopt; with `word`, that word stands for std::nullopt too: program.format: auto).
+// std::nullopt; with `word`, that word stands for std::nullopt too: program.format: auto; with `noun`, an unknown
+// name is "<map>: unknown <noun> '<name>' (known: ...)", part.generator.type).
 template <auto kMember>
 constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> OptField(std::string_view key,
                                                                                  std::string_view doc,
-                                                                                 std::string_view word = {}) {
+                                                                                 std::string_view word = {},
+                                                                                 std::string_view noun = {}) {
   using S = typename field_internal::MemberOf<decltype(kMember)>::Class;
   using V = typename field_internal::MemberOf<decltype(kMember)>::Value;
   Field<S> f{key, FieldType::kBool, "", 0.0, 0.0, doc};
   f.word = word;
+  f.key_noun = noun;
   if constexpr (std::is_same_v<V, bool>) {
     f.read = [](YamlMap& map, const Field<S>& field, S* s) {
       s->*kMember = map.Bool(std::string(field.key), s->*kMember);
@@ -264,12 +277,15 @@ constexpr Field<typename field_internal::MemberOf<decltype(kMember)>::Class> Opt
     f.read = [](YamlMap& map, const Field<S>& field, S* s) {
       const std::string k(field.key);
       if (!map.Has(k)) return;
-      if (field.word.empty()) {
+      if (field.word.empty() && field.key_noun.empty()) {
         s->*kMember = map.Enum<E>(k);
         return;
       }
       const std::string name = map.String(k);
       const std::optional<E> value = ParseEnum<E>(name);
+      WAAM_THROW_UNLESS(value || field.key_noun.empty() || !field.word.empty(),
+                        map.Where("") << ": unknown " << field.key_noun << " '" << name << "' (known: "
+                                      << EnumNameList<E>() << ")");
       WAAM_THROW_UNLESS(value || name == field.word, map.Where(k) << " = '" << name << "': must be " << field.word
                                                                   << " or one of " << EnumNameList<E>());
       s->*kMember = value;

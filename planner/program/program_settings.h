@@ -36,10 +36,12 @@ struct ProgramSettings {
   // frames.uframe.<n> / frames.utool.<n>: frames and tools the program names by number without defining them
   // (FANUC UFRAME / UTOOL, KUKA BASE_DATA / TOOL_DATA), [x, y, z mm, three angles deg]; a tool may be `torch`.
   ProgramFrames frames;
-  // yaskawa.pulses_per_deg: the arm's encoder pulses per degree (S, L, U, R, B, T), for pulse positions; 0 = unknown
-  std::array<double, 6> yaskawa_pulses_per_deg = {};
-  // yaskawa.station_pulses_per_deg: the station's (positioner tilt, rotation), for EC positions; 0 = unknown
-  std::array<double, 2> yaskawa_station_pulses_per_deg = {};
+  // yaskawa.pulses_per_deg: the arm's encoder pulses per degree (S, L, U, R, B, T), for pulse positions; absent =
+  // unknown (the cell does not carry them): a pulse position is refused unless `waam import --pulses-per-deg` gives them
+  std::optional<std::array<double, 6>> yaskawa_pulses_per_deg;
+  // yaskawa.station_pulses_per_deg: the station's (positioner tilt, rotation), for EC positions; absent = unknown:
+  // an EC position is refused, and so is a JBI export, unless --station-pulses-per-deg gives them
+  std::optional<std::array<double, 2>> yaskawa_station_pulses_per_deg;
   // The scenario's top-level `target:` (absolute): the intended part as STL in the part frame P (plate top z = 0),
   // for the viewer's ghost and simulate's deviation measures; empty = none.
   std::filesystem::path target;

@@ -45,18 +45,7 @@ void ParseInterpass(YamlMap& process, InterpassSettings* interpass) {
   }
   if (map.Has("at")) {
     interpass->at_where = map.Where("at");
-    if (map.IsMapping("at")) {
-      // at: {probe: NAME}
-      YamlMap at = map.Map("at");
-      interpass->at = InterpassAt::kProbe;
-      interpass->probe = at.String("probe");
-      WAAM_THROW_UNLESS(!interpass->probe.empty(), at.Where("probe") << ": name one of thermal.probes");
-      at.CheckNoUnknownKeys();
-    } else {
-      interpass->at = map.Enum<InterpassAt>("at");
-      WAAM_THROW_UNLESS(interpass->at != InterpassAt::kProbe,
-                        interpass->at_where << " = probe: name the probe, as at: {probe: NAME}");
-    }
+    ReadField<InterpassSettings>(map, kInterpassFields, "at", interpass);
     WAAM_THROW_UNLESS(interpass->HasMax(), interpass->at_where << ": says where max_c is measured, but "
                                                                   "process.interpass has no max_c");
   }
@@ -76,8 +65,6 @@ void ValidateArcAndInterpass(const ArcSettings& arc, const InterpassSettings& in
   WAAM_THROW_UNLESS(!arc.given || !std::isnan(arc.power_w),
                     arc.where << ": the arc has no power: give power_w (W), or voltage_v (V) and current_a (A)");
   CheckFields<InterpassSettings>(kInterpassFields, interpass, "process.interpass");
-  WAAM_THROW_UNLESS(interpass.at != InterpassAt::kProbe || !interpass.probe.empty(),
-                    interpass.at_where << " = probe: name the probe, as at: {probe: NAME}");
 }
 
 }  // namespace waam::planner

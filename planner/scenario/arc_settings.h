@@ -59,10 +59,11 @@ inline constexpr std::array kArcFields = {
     NumField<&ArcSettings::efficiency>("efficiency", "", 0.05, 1.0, "share of the arc power the metal takes"),
 };
 
-// The keys of process.interpass; `at` has two forms (a name, or {probe: NAME}) and is read by ParseArcAndInterpass.
+// The keys of process.interpass; `at` has two forms: a name, or {probe: NAME} (TaggedField).
 inline constexpr std::array kInterpassFields = {
     NanField<&InterpassSettings::max_c>("max_c", "degC", -273.15, 3000.0, "the interpass temperature limit; absent: none"),
-    CustomField<InterpassSettings>("at", FieldType::kName, "next_start (default), top_max or {probe: NAME}"),
+    TaggedField<&InterpassSettings::at, &InterpassSettings::probe, InterpassAt::kProbe>(
+        "at", "thermal.probes", "where max_c is measured; {probe: NAME}: one of thermal.probes"),
     NumField<&InterpassSettings::min_layer_time_s>("min_layer_time_s", "s", 0.0, 86400.0, "each layer lasts at least"),
 };
 

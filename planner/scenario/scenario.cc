@@ -26,7 +26,7 @@ PartSpec ParsePart(YamlMap part) {
   } else {
     YamlMap generator = part.Map("generator");
     spec.where = generator.Where("");
-    spec.generator = ParsePartGenerator(generator.String("type"), spec.where);
+    ReadField<PartSpec>(generator, kPartGeneratorFields, "type", &spec, true);
     // Every other key is a parameter of the type, from its field table (planner/mesh/generators.h).
     ReadFields<GeneratorParams>(generator, GeneratorFields(*spec.generator), &spec.params);
     generator.CheckNoUnknownKeys();

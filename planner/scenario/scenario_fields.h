@@ -20,6 +20,10 @@ inline constexpr std::array kPartFields = {
     FileField<&PartSpec::mesh_path>("mesh", "mesh file", "an STL file"),
     CustomField<PartSpec>("generator", FieldType::kMap, "type: a generator (waam generate --help), then its parameters"),
 };
+// part.generator's own key; each type's parameters are its table (planner/mesh/generators.h: GeneratorFields).
+inline constexpr std::array kPartGeneratorFields = {
+    OptField<&PartSpec::generator>("type", "the generator (required); its parameters below", "", "generator type"),
+};
 
 // Finishes a sub-volume read from `element` (slicing.sub_volumes[i]): name and direction are required, the direction
 // must not be zero and is made unit. Throws InputError naming the element's key.
@@ -133,9 +137,14 @@ inline constexpr std::array kProgramGcodeFields = {
     OptField<&ProgramSettings::gcode_dwell_p_unit>("dwell_p_unit", "unit of G4 P"),
 };
 inline constexpr std::array kProgramYaskawaFields = {
-    NumField<&ProgramSettings::yaskawa_pulses_per_deg>("pulses_per_deg", "", 1e-3, 1e7, "encoder pulses per degree"),
-    NumField<&ProgramSettings::yaskawa_station_pulses_per_deg>("station_pulses_per_deg", "", 1e-3, 1e7,
-                                                          "positioner pulses per degree"),
+    NumField<&ProgramSettings::yaskawa_pulses_per_deg>(
+        "pulses_per_deg", "", 1e-3, 1e7,
+        "the arm's encoder pulses per degree, S L U R B T; absent: unknown (not the cell's), a pulse position is "
+        "refused unless waam import --pulses-per-deg gives them"),
+    NumField<&ProgramSettings::yaskawa_station_pulses_per_deg>(
+        "station_pulses_per_deg", "", 1e-3, 1e7,
+        "the station's pulses per degree, tilt and rotation; absent: unknown, an EC position or a JBI export is "
+        "refused unless --station-pulses-per-deg gives them"),
 };
 
 }  // namespace waam::planner

@@ -5,11 +5,17 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "analysis/bench_command.h"
 #include "analysis/place_command.h"
+#include "analysis/scenario.h"
+#include "analysis/sweep.h"
 #include "models/core/error.h"
 #include "twin/cell/cell_settings.h"
 
@@ -151,6 +157,143 @@ TEST(ScenarioKeys, GeneratorParametersFramesAndSubVolumesHaveKeyPaths) {
   EXPECT_THAT(md, HasSubstr("## `part.generator` (type: box)"));
   EXPECT_THAT(md, HasSubstr("| `size_mm` | list of numbers | mm | [100, 60, 40] | [0.1, 5000] |"));
   EXPECT_THAT(md, HasSubstr("| `utool` | mapping | mm, deg |  | tool 1-999: [-1000000, 1000000] or torch |"));
+}
+
+// Writes `text` as s.yaml (with an empty log.csv beside it for a replay: section) in a per-process folder.
+std::filesystem::path WriteKeysScenario(const std::string& text) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("waam_scenario_keys_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "s.yaml") << text;
+  std::ofstream(dir / "log.csv") << "";
+  return dir / "s.yaml";
+}
+
+// The message LoadScenario refuses `file` with (and `overrides`), which must be one line.
+std::string LoadError(const std::filesystem::path& file, const std::vector<std::string>& overrides = {}) {
+  try {
+    (void)LoadScenario(file, overrides);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+    return what;
+  }
+  return "(no error)";
+}
+
+// A thermal scenario with a replay: section; lines 11-15 thermal, 16-21 replay.
+std::string ReplayScenarioText() {
+  return "name: r\n"
+         "part:\n  generator: {type: box, size_mm: [40, 6, 4]}\n"
+         "slicing: {layer_height_mm: 2}\npath: {pattern: zigzag, bead_width_mm: 6}\n"
+         "process:\n  travel_speed_mm_min: 480\n  wire_feed_mm_min: 3200\n  arc: {power_w: 2000}\n"
+         "  interpass: {max_c: 200, at: {probe: plate}}\n"
+         "thermal:\n  material: mild_steel\n  substrate: {size_mm: [70, 30, 6], material: ss316l}\n"
+         "  probes: {plate: [0, 10, -2]}\n  table: {conductance_w_m2k: 500, thickness_mm: 20}\n"
+         "replay:\n  log: log.csv\n  columns: {power_w: P}\n  ambient_column: Tair\n"
+         "  probes:\n    near: {column: T1, at_mm: [0, 7, -1]}\n";
+}
+
+// The keys once read by hand (replay's extra columns and thermocouples, thermal's probes and materials, interpass.at,
+// part.generator.type) are rows of their tables: read, documented, reached by --set and checked in code.
+TEST(ScenarioKeys, ProbesMaterialsColumnsAndInterpassAtAreRowsOfTheirTables) {
+  const std::filesystem::path file = WriteKeysScenario(ReplayScenarioText());
+  const Scenario s = LoadScenario(file, {"replay.table_column=Ttable", "thermal.probes.plate=[0, 12, -2]"});
+  EXPECT_EQ(s.replay.columns.ambient, "Tair");
+  EXPECT_EQ(s.replay.columns.table, "Ttable") << "--set reaches replay.table_column";
+  ASSERT_EQ(s.replay.probes.size(), 1u);
+  EXPECT_EQ(s.replay.probes[0].column, "T1");
+  EXPECT_EQ(s.replay.probes[0].at_mm, Eigen::Vector3d(0, 7, -1));
+  EXPECT_THAT(s.replay.probes[0].where, HasSubstr("s.yaml:21: replay.probes.near.at_mm"));
+  ASSERT_EQ(s.thermal.probes.size(), 1u);
+  EXPECT_EQ(s.thermal.probes[0].p_mm, Eigen::Vector3d(0, 12, -2)) << "--set reaches thermal.probes.NAME";
+  EXPECT_EQ(s.thermal.substrate.name_or_path, "ss316l");
+  EXPECT_EQ(s.process.interpass.at, planner::InterpassAt::kProbe);
+  EXPECT_EQ(s.process.interpass.probe, "plate");
+  EXPECT_EQ(s.part.generator, planner::PartGenerator::kBox);
+  for (const char* key : {"replay.ambient_column", "replay.table_column", "replay.probes.near.at_mm",
+                          "thermal.probes.plate", "thermal.material", "thermal.substrate.material",
+                          "thermal.shape.bead_model", "process.interpass.at", "part.generator.type"}) {
+    EXPECT_TRUE(IsScenarioKeyPath(key)) << key;
+  }
+  const std::string md = ScenarioKeysMarkdown();
+  EXPECT_THAT(md, HasSubstr("## `replay.probes.<NAME>`"));
+  EXPECT_THAT(md, HasSubstr("| `at_mm` | list of numbers | mm | [0, 0, 0] | [-100000, 100000] |"));
+  EXPECT_THAT(md, HasSubstr("| `probes` | mapping | mm |  | [-10000, 10000] | NAME: [x, y, z] in the part frame |"));
+  EXPECT_THAT(md, HasSubstr("| `at` | name |  | next_start | next_start, top_max, probe |"));
+  EXPECT_THAT(md, HasSubstr("| `type` | name |  |  | bent_tube, box,"));
+  EXPECT_THAT(md, HasSubstr("| `ambient_column` | string |"));
+}
+
+// A --set value or a value set in code outside a moved key's range is refused on one line naming the key.
+TEST(ScenarioKeys, OutOfRangeValuesOfTheMovedKeysAreRefusedFromSetAndFromCode) {
+  const std::filesystem::path file = WriteKeysScenario(ReplayScenarioText());
+  EXPECT_THAT(LoadError(file, {"replay.probes.near.at_mm=[0, 7, 2e5]"}),
+              HasSubstr("replay.probes.near.at_mm[2] = 200000: must be in [-100000, 100000]"));
+  EXPECT_THAT(LoadError(file, {"thermal.probes.plate=[0, 2e4, 0]"}),
+              HasSubstr("thermal.probes.plate[1] = 20000: must be in [-10000, 10000]"));
+  EXPECT_THAT(LoadError(file, {"process.interpass.at=probe"}),
+              HasSubstr("process.interpass.at = probe: name the probe, as at: {probe: NAME}"));
+  EXPECT_THAT(LoadError(file, {"part.generator.type=blob"}),
+              HasSubstr("part.generator: unknown generator type 'blob' (known: bent_tube, box"));
+  EXPECT_THAT(LoadError(file, {"replay.probes.near.colum=T1"}), HasSubstr("replay.probes.near.colum: unknown key"));
+  Scenario s = LoadScenario(file);
+  EXPECT_EQ(ValidationError(s), "(no error)");
+  s.replay.probes[0].at_mm.z() = 2e5;
+  EXPECT_THAT(ValidationError(s), HasSubstr("replay.probes.near.at_mm = 200000: must be in [-100000, 100000]"));
+  s = LoadScenario(file);
+  s.thermal.probes[0].p_mm.y() = 2e4;
+  EXPECT_THAT(ValidationError(s), HasSubstr("thermal.probes.plate = 20000: must be in [-10000, 10000]"));
+  s = LoadScenario(file);
+  s.thermal.table_conductance_w_m2k = 0.0;
+  EXPECT_THAT(ValidationError(s), HasSubstr("thermal.table.conductance_w_m2k = 0 with thickness_mm = 20: a table "
+                                            "body needs a contact conductance > 0"));
+  s = LoadScenario(file);
+  s.run.expected_exit_code = 2;
+  EXPECT_THAT(ValidationError(s), HasSubstr("run.expected_exit_code = 2: must be 0 (success) or 3"));
+  s = LoadScenario(file);
+  s.program.gcode_arc_off_m = s.program.gcode_arc_on_m;
+  EXPECT_THAT(ValidationError(s), HasSubstr("program.gcode.arc_off_m = 3: must differ from arc_on_m"));
+  s = LoadScenario(file);
+  s.process.interpass.probe.clear();
+  EXPECT_THAT(ValidationError(s), HasSubstr("process.interpass.at = probe: name the probe"));
+}
+
+// A sweep over a moved key: the run whose value is outside the key's range is refused before any run, on one line.
+TEST(ScenarioKeys, ASweepValueOutsideAMovedKeysRangeIsRefusedBeforeAnyRun) {
+  const std::filesystem::path file = WriteKeysScenario(ReplayScenarioText());
+  const Sweep sweep = ParseSweep("base: " + file.string() + "\ngrid:\n  thermal.probes.plate: [[0, 10, -2], [0, 2e4, 0]]\n",
+                                 file.parent_path() / "sweep.yaml");
+  ASSERT_EQ(sweep.runs.size(), 2u);
+  try {
+    CheckBenchOverrides(SweepBenchRuns(sweep), BenchOptions{});
+    FAIL() << "expected the second run's probe to be refused";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_THAT(what, HasSubstr("run " + sweep.runs[1].id + ": "));
+    EXPECT_THAT(what, HasSubstr("thermal.probes.plate[1] = 20000: must be in [-10000, 10000]"));
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+  }
+}
+
+// program.yaskawa's pulses have no default: absent is unknown; a zero given is refused where it is written.
+TEST(ScenarioKeys, PulsesPerDegreeAbsentAreUnknownAndAZeroGivenIsRefused) {
+  const std::string text =
+      "name: j\nprogram:\n  file: j.JBI\n  yaskawa:\n    pulses_per_deg: [1000, 1400, 1000, 800, 1200, 500]\n"
+      "process: {travel_speed_mm_min: 400, wire_feed_mm_min: 3200}\n";
+  const std::filesystem::path file = WriteKeysScenario(text);
+  EXPECT_THAT(LoadError(file, {"program.yaskawa.station_pulses_per_deg=[0, 1000]"}),
+              HasSubstr("program.yaskawa.station_pulses_per_deg[0] = 0: must be in [0.001, 1e+07]"));
+  std::string zero = text;
+  zero.replace(zero.find("[1000, 1400"), 5, "[0");
+  EXPECT_THAT(LoadError(WriteKeysScenario(zero)),
+              HasSubstr("s.yaml:5: program.yaskawa.pulses_per_deg[0] = 0: must be in [0.001, 1e+07]"));
+  Scenario s;
+  EXPECT_FALSE(s.program.yaskawa_pulses_per_deg.has_value()) << "absent: unknown, not zeros";
+  s.program.yaskawa_station_pulses_per_deg = std::array<double, 2>{0.0, 1000.0};
+  EXPECT_THAT(ValidationError(s), HasSubstr("program.yaskawa.station_pulses_per_deg = 0: must be in [0.001, 1e+07]"));
+  const std::string md = ScenarioKeysMarkdown();
+  EXPECT_THAT(md, HasSubstr("| `pulses_per_deg` | list of numbers |  |  | [0.001, 10000000] | the arm's encoder"));
 }
 
 TEST(ScenarioKeys, APlacedLayoutOutOfTheCellsLimitsIsRefusedNamingTheKey) {
