@@ -3,13 +3,15 @@
 #include <cstdint>
 #include <string_view>
 
+#include "fuzz/fuzz_input.h"
 #include "fuzz/program_fuzz.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     waam::fuzz::ReadAndPlanProgram(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.mod",
                                    waam::planner::ProgramFormat::kAbbRapid);
-  } catch (const waam::InputError&) {
+  } catch (const waam::InputError& e) {
+    waam::fuzz::CheckOneLine(e);
   }
   return 0;
 }

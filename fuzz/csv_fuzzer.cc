@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "fuzz/fuzz_input.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
 
@@ -17,16 +18,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       (void)table.Strings(column);
       try {
         (void)table.Numbers(column);
-      } catch (const waam::InputError&) {
+      } catch (const waam::InputError& e) {
+        waam::fuzz::CheckOneLine(e);
       }
       try {
         (void)table.Numbers(column, /*allow_infinity=*/true);
-      } catch (const waam::InputError&) {
+      } catch (const waam::InputError& e) {
+        waam::fuzz::CheckOneLine(e);
       }
     }
     for (std::size_t row = 0; row < table.rows(); ++row) (void)table.line(row);
     (void)table.ColumnIndex("no such column");
-  } catch (const waam::InputError&) {
+  } catch (const waam::InputError& e) {
+    waam::fuzz::CheckOneLine(e);
   }
   return 0;
 }

@@ -1,4 +1,4 @@
-// Scratch files for the fuzz targets (the STL reader and the scenario loader read from a path).
+// Scratch files for the fuzz targets (the STL reader and the scenario loader read from a path) and the one-line check.
 #include "fuzz/fuzz_input.h"
 
 #include <cstdio>
@@ -42,6 +42,16 @@ fs::path WriteScratchFile(const char* name, const std::uint8_t* data, std::size_
     std::abort();
   }
   return path;
+}
+
+void CheckOneLine(const waam::InputError& error) {
+  for (const char* c = error.what(); *c != '\0'; ++c) {
+    const auto byte = static_cast<unsigned char>(*c);
+    if (byte < 0x20 || byte == 0x7f) {
+      std::fprintf(stderr, "fuzz: the InputError message holds the control byte 0x%02x: %s\n", byte, error.what());
+      std::abort();
+    }
+  }
 }
 
 }  // namespace waam::fuzz

@@ -11,7 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     (void)waam::analysis::ReadMjcf(waam::fuzz::WriteScratchFile("cell.xml", data, size));
-  } catch (const waam::InputError&) {
+  } catch (const waam::InputError& e) {
+    waam::fuzz::CheckOneLine(e);
   }
   return 0;
 }

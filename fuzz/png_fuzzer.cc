@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "analysis/png_file.h"
+#include "fuzz/fuzz_input.h"
 #include "models/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -18,7 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           static_cast<long long>(image.rows) * image.cols > waam::analysis::internal::kMaxPngPixels) {
         std::abort();
       }
-    } catch (const waam::InputError&) {
+    } catch (const waam::InputError& e) {
+      waam::fuzz::CheckOneLine(e);
     }
   }
   return 0;

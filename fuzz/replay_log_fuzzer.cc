@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdlib>
 
+#include "fuzz/fuzz_input.h"
 #include "fuzz/replay_log_fuzz.h"
 #include "models/core/error.h"
 
@@ -12,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   try {
     if (!waam::fuzz::ReplayLogFuzzOne(data, size)) std::abort();
-  } catch (const waam::InputError&) {
+  } catch (const waam::InputError& e) {
+    waam::fuzz::CheckOneLine(e);
   }
   return 0;
 }

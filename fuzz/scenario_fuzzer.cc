@@ -12,7 +12,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto path = waam::fuzz::WriteScratchFile("scenario.yaml", data, size);
   try {
     (void)waam::analysis::LoadScenario(path);
-  } catch (const waam::InputError&) {
+  } catch (const waam::InputError& e) {
+    waam::fuzz::CheckOneLine(e);
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "fuzz/fuzz_input.h"
 #include "models/core/error.h"
 #include "planner/mesh/stl_io.h"
 
@@ -17,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     waam::planner::ParseStl(bytes, "input.stl", weld_tolerance_mm, &report);
     (void)waam::planner::MeshReportJson(report);
     waam::planner::CheckSliceable(report);
-  } catch (const waam::InputError&) {
+  } catch (const waam::InputError& e) {
+    waam::fuzz::CheckOneLine(e);
   }
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "analysis/sweep.h"
+#include "fuzz/fuzz_input.h"
 #include "models/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -14,7 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const waam::analysis::Sweep sweep = waam::analysis::ParseSweep(text, "fuzz/sweep.yaml");
     (void)waam::analysis::SweepBenchRuns(sweep);
     (void)waam::analysis::SweepJson(sweep).dump();
-  } catch (const waam::InputError&) {
+  } catch (const waam::InputError& e) {
+    waam::fuzz::CheckOneLine(e);
   }
   return 0;
 }

@@ -8,12 +8,40 @@
 
 namespace waam {
 
+namespace internal {
+// `message` with every control character (a byte below 0x20, or 0x7f) written as \n, \r, \t or \xNN, so the user's
+// bytes a message quotes (a token, a cell, a key) cannot break it over lines or rewrite the terminal.
+inline std::string OneLine(const std::string& message) {
+  static const char kHex[] = "0123456789abcdef";
+  std::string line;
+  line.reserve(message.size());
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      line.push_back(c);
+    } else if (c == '\n') {
+      line += "\\n";
+    } else if (c == '\r') {
+      line += "\\r";
+    } else if (c == '\t') {
+      line += "\\t";
+    } else {
+      line += "\\x";
+      line.push_back(kHex[byte >> 4]);
+      line.push_back(kHex[byte & 0xf]);
+    }
+  }
+  return line;
+}
+}  // namespace internal
+
 // Thrown for bad input a user can fix: a broken mesh, a malformed scenario, a CSV with text in a number.
-// The message is one line that names the file (or key) and the place, and says what rule was broken.
-// The CLI prints it and exits with code 2.
+// The message is one line that names the file (or key) and the place, and says what rule was broken; control
+// characters in it (a newline, carriage return or NUL in a quoted token of the user's file) are escaped as \n, \r,
+// \t, \xNN (internal::OneLine). The CLI prints it and exits with code 2.
 class InputError : public std::runtime_error {
  public:
-  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  explicit InputError(const std::string& message) : std::runtime_error(internal::OneLine(message)) {}
 };
 
 // Thrown when an output cannot be written (disk full, no permission, a path that is a file): the message is one line

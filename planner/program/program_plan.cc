@@ -3,12 +3,14 @@
 #include "planner/program/program_plan.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "models/core/error.h"
 #include "planner/kinematics/positioner.h"
+#include "planner/plan_limits.h"
 #include "planner/program/robot_program.h"
 
 namespace waam::planner {
@@ -18,32 +20,49 @@ Eigen::Isometry3d PartInWorld(const CellKinematics& cell, double tilt, double ro
   return cell.X_WB * PartPose(cell.positioner, tilt, rotation);
 }
 
+// The circle through a, via, b, cut into chords at most `step` apart (at most kMaxArcChords of them).
+struct Arc {
+  bool circle = false;  // false: the three points are (nearly) on one line, or the circle is too large for doubles
+  Eigen::Vector3d c, e1, e2;  // centre, and unit vectors from it to a and a quarter turn on
+  double r = 0.0, end = 0.0;  // radius (mm) and the angle from a to b (rad, counter-clockwise about (via-a)x(b-a))
+  int chords = 1;
+};
+
+// Most chords one circular move is cut into; a longer arc gets longer chords.
+constexpr int kMaxArcChords = 100000;
+
+Arc ArcThrough(const Eigen::Vector3d& a, const Eigen::Vector3d& via, const Eigen::Vector3d& b, double step) {
+  Arc arc;
+  const Eigen::Vector3d u = via - a, v = b - a;
+  const Eigen::Vector3d w = u.cross(v);
+  const double w2 = w.squaredNorm();
+  if (w2 < 1e-12 * std::max(1.0, u.squaredNorm() * v.squaredNorm())) return arc;
+  // Circumcentre of the triangle a, via, b.
+  arc.c = a + (u.squaredNorm() * v - v.squaredNorm() * u).cross(w) / (2.0 * w2);
+  arc.r = (a - arc.c).norm();
+  arc.e1 = (a - arc.c) / arc.r;
+  arc.e2 = w.normalized().cross(arc.e1);
+  double t = std::atan2((b - arc.c).dot(arc.e2), (b - arc.c).dot(arc.e1));
+  arc.end = t < 0.0 ? t + 2.0 * kPi : t;  // a -> via -> b runs counter-clockwise about w
+  // A circle too large for doubles (a centre offset of 1e61 mm) is no circle a controller runs: a straight move.
+  arc.circle = arc.c.allFinite() && std::isfinite(arc.r) && std::isfinite(arc.end) && arc.e1.allFinite() &&
+               arc.e2.allFinite();
+  if (arc.circle) {
+    arc.chords = static_cast<int>(std::clamp(std::ceil(arc.end * arc.r / step), 1.0, double(kMaxArcChords)));
+  }
+  return arc;
+}
+
 // Points along the circle through a, via, b (excluding a, including b), at most `step` apart; empty when the three
 // points are (nearly) on one line.
 std::vector<Eigen::Vector3d> ArcPoints(const Eigen::Vector3d& a, const Eigen::Vector3d& via, const Eigen::Vector3d& b,
                                        double step) {
-  const Eigen::Vector3d u = via - a, v = b - a;
-  const Eigen::Vector3d w = u.cross(v);
-  const double w2 = w.squaredNorm();
-  if (w2 < 1e-12 * std::max(1.0, u.squaredNorm() * v.squaredNorm())) return {};
-  // Circumcentre of the triangle a, via, b.
-  const Eigen::Vector3d c = a + (u.squaredNorm() * v - v.squaredNorm() * u).cross(w) / (2.0 * w2);
-  const double r = (a - c).norm();
-  const Eigen::Vector3d e1 = (a - c) / r;
-  const Eigen::Vector3d n = w.normalized();
-  const Eigen::Vector3d e2 = n.cross(e1);
-  auto angle = [&](const Eigen::Vector3d& x) {
-    double t = std::atan2((x - c).dot(e2), (x - c).dot(e1));
-    return t < 0.0 ? t + 2.0 * kPi : t;
-  };
-  const double end = angle(b);  // a -> via -> b runs counter-clockwise about n
-  // A circle too large for doubles (a centre offset of 1e61 mm) is no circle a controller runs: a straight move.
-  if (!c.allFinite() || !std::isfinite(r) || !std::isfinite(end) || !e1.allFinite() || !e2.allFinite()) return {};
-  const int n_steps = static_cast<int>(std::clamp(std::ceil(end * r / step), 1.0, 100000.0));
+  const Arc arc = ArcThrough(a, via, b, step);
+  if (!arc.circle) return {};
   std::vector<Eigen::Vector3d> out;
-  for (int k = 1; k < n_steps; ++k) {
-    const double t = end * k / n_steps;
-    out.push_back(c + r * (std::cos(t) * e1 + std::sin(t) * e2));
+  for (int k = 1; k < arc.chords; ++k) {
+    const double t = arc.end * k / arc.chords;
+    out.push_back(arc.c + arc.r * (std::cos(t) * arc.e1 + std::sin(t) * arc.e2));
   }
   out.push_back(b);
   return out;
@@ -102,18 +121,19 @@ class PointList {
 
 // The chords of the circular move `m` from `prev` to `t` (without its end point), or a note when the move is
 // followed as a linear one.
+// The start, intermediate and end point of the circular move `m` from `prev` to `t`, in the frame its points are
+// given in: P for part-frame targets, else W (the positioner's angles run linearly from the previous target's to
+// this one's along it).
+std::array<Eigen::Vector3d, 3> ArcCorners(const ProgramMotion& m, const ResolvedTarget& prev, const ResolvedTarget& t,
+                                          const CellKinematics& cell, const Eigen::Isometry3d& X_WU) {
+  if (m.frame == TargetFrame::kPart) return {prev.p_P, m.via, t.p_P};
+  return {prev.X_WT.translation(), FrameInWorld(cell, X_WU, m.frame) * m.via, t.X_WT.translation()};
+}
+
 void AddArc(const ProgramMotion& m, const ResolvedTarget& prev, const ResolvedTarget& t, const CellKinematics& cell,
             const Eigen::Isometry3d& X_WU, double arc_step_mm, PointList* points, internal::WarningList* notes) {
-  // The arc lies in the frame its points are given in: P for part-frame targets, else W (the positioner's
-  // angles run linearly from the previous target's to this one's along it).
   const bool in_part = m.frame == TargetFrame::kPart;
-  Eigen::Vector3d a, via, b;
-  if (in_part) {
-    a = prev.p_P, via = m.via, b = t.p_P;
-  } else {
-    const Eigen::Isometry3d X_WF = FrameInWorld(cell, X_WU, m.frame);
-    a = prev.X_WT.translation(), via = X_WF * m.via, b = t.X_WT.translation();
-  }
+  const auto [a, via, b] = ArcCorners(m, prev, t, cell, X_WU);
   const std::vector<Eigen::Vector3d> arc = ArcPoints(a, via, b, arc_step_mm);
   if (arc.empty()) {
     notes->Add("circular move through three points on one line (or too large a circle): followed as a linear move", t.line);
@@ -198,6 +218,25 @@ void GroupLayers(const std::vector<PassSpan>& passes, const std::vector<PathPoin
   }
 }
 
+// Throws InputError before any arc is cut when the targets and the chords of the circular moves would make more than
+// kMaxPathPoints path points: a few kilobytes of G2 moves of radius 1e6 mm ask for 10^8 points (gigabytes, hours).
+void CheckArcPointCount(const ParsedProgram& program, const std::vector<ResolvedTarget>& targets,
+                        const CellKinematics& cell, const Eigen::Isometry3d& X_WU, double arc_step_mm) {
+  std::size_t points = targets.size();
+  for (std::size_t i = 1; i < targets.size(); ++i) {
+    const ProgramMotion& m = program.motions[i];
+    if (targets[i].kind != MotionKind::kCircular || !m.has_via) continue;
+    const auto [a, via, b] = ArcCorners(m, targets[i - 1], targets[i], cell, X_WU);
+    const Arc arc = ArcThrough(a, via, b, arc_step_mm);
+    if (arc.circle) points += static_cast<std::size_t>(arc.chords) - 1;
+    WAAM_THROW_UNLESS(points <= kMaxPathPoints,
+                      program.name << ": line " << targets[i].line << ": the circular moves up to here are cut into "
+                                   << points << " points at " << arc_step_mm << " mm, more than the limit of "
+                                   << kMaxPathPoints << " per plan (this arc: radius " << arc.r << " mm, "
+                                   << arc.end * arc.r / 1000.0 << " m long)");
+  }
+}
+
 }  // namespace
 
 const ProgramMotion* ProgramTool(const ParsedProgram& program) {
@@ -262,6 +301,7 @@ ImportedPlan ProgramToPlan(const ParsedProgram& program, const CellKinematics& c
   const std::vector<ResolvedTarget> targets = ResolveTargets(program, cell, settings);
   const Eigen::Isometry3d X_WU = settings.X_WU ? *settings.X_WU : ProgramUserFrame(cell);
 
+  CheckArcPointCount(program, targets, cell, X_WU, settings.arc_step_mm);
   PointList points(settings, &notes);
   points.points().reserve(targets.size());
   for (std::size_t i = 0; i < targets.size(); ++i) {

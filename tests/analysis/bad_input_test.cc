@@ -371,6 +371,11 @@ std::vector<BadInput> Catalogue() {
       {"generator-unknown-parameter", "plan", "s.yaml",
        {{"s.yaml", ScenarioText("part.stl", "  mesh: part.stl\n", "  generator: {type: box, radius_mm: 5}\n")}},
        {"s.yaml:3: part.generator.radius_mm: unknown key (known here: size_mm type)"}},
+      // A key holding a newline (a YAML "\n" escape) is quoted back escaped, so the message stays one line.
+      {"key-with-newline", "plan", "s.yaml",
+       {{"s.yaml", ScenarioText("part.stl", "  mesh: part.stl\n", "  mesh: part.stl\n  \"bad\\nkey\\r\": 1\n")},
+        {"part.stl", full}},
+       {"s.yaml:4: part.bad\\nkey\\r: unknown key (known here: generator mesh)"}},
       {"sub-volume-keep-not-fours", "plan", "s.yaml",
        {{"s.yaml", ScenarioText("part.stl", "  layer_height_mm: 1.5\n",
                                 "  type: multi_directional\n  layer_height_mm: 1.5\n"

@@ -81,6 +81,7 @@ TEST(FuzzRegressions, SweepInputsGiveASweepOrAnInputError) {
   Replay("sweep", [](const fs::path& input) {
     const analysis::Sweep sweep = analysis::ParseSweep(ReadFile(input), input);
     (void)analysis::SweepBenchRuns(sweep);
+    (void)analysis::SweepJson(sweep).dump();
   });
 }
 

@@ -43,6 +43,13 @@ TEST(CsvTableTest, TextInANumberNamesFileLineAndColumn) {
   EXPECT_EQ(ErrorOf([&] { t.Numbers("b"); }), "data.csv:3: column 'b': 'abc' is not a number");
 }
 
+// A cell holding a carriage return, a NUL and a tab is quoted back with them escaped (waam::InputError), so the
+// message stays one line and cannot rewrite the terminal.
+TEST(CsvTableTest, ControlCharactersInAQuotedCellAreEscaped) {
+  const CsvTable t = CsvTable::Parse(std::string("a,b\n1,2\r3\0\t4\x7f\n", 14), "data.csv");
+  EXPECT_EQ(ErrorOf([&] { t.Numbers("b"); }), "data.csv:2: column 'b': '2\\r3\\x00\\t4\\x7f' is not a number");
+}
+
 TEST(CsvTableTest, NanEmptyAndInfinityAreRejected) {
   const CsvTable t = CsvTable::Parse("a,b,c\nnan,,inf\n", "x.csv");
   EXPECT_THAT(ErrorOf([&] { t.Numbers("a"); }), HasSubstr("x.csv:2: column 'a': 'nan' is not a number"));
