@@ -21,6 +21,7 @@
 #include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
@@ -154,7 +155,7 @@ Job PrepareJob(const BenchRun& run, const BenchOptions& options, int child_threa
     job.entry["error"] = e.what();
     job.entry["steps"] = nlohmann::json::array();
     job.entry["timing"] = nlohmann::json::object();
-    WriteFileAtomic(entry_path, job.entry.dump(2) + "\n");
+    WriteFileAtomic(entry_path, JsonText(job.entry) + "\n");
     job.done = true;
     return job;
   }
@@ -184,7 +185,7 @@ void FinishJob(Job* job, const ChildResult& child) {
                      {"user_s", child.user_s},
                      {"sys_s", child.sys_s},
                      {"steps", summary.contains("timing") ? summary["timing"]["steps"] : nlohmann::json::object()}};
-  WriteFileAtomic(job->dir / "bench_entry.json", entry.dump(2) + "\n");
+  WriteFileAtomic(job->dir / "bench_entry.json", JsonText(entry) + "\n");
   job->done = true;
 }
 
@@ -486,7 +487,7 @@ nlohmann::json RunBench(const BenchOptions& options) {
     bench["shard"] = {{"index", options.shard_index}, {"count", options.shard_count}, {"runs_total", all.size()}};
   }
   if (!options.sweep.is_null()) bench["sweep"] = options.sweep;
-  WriteFileAtomic(options.out_dir / "bench.json", bench.dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "bench.json", JsonText(bench) + "\n");
   WriteBenchReport(bench, options.out_dir);
   return bench;
 }

@@ -6,6 +6,7 @@
 #include "analysis/bench_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 
 namespace waam::analysis {
@@ -167,7 +168,7 @@ nlohmann::json MergeBench(const std::vector<fs::path>& dirs, const fs::path& out
   };
   const nlohmann::json sweep = parts.front().bench.value("sweep", nlohmann::json());
   if (!sweep.is_null()) bench["sweep"] = sweep;
-  WriteFileAtomic(out_dir / "bench.json", bench.dump(2) + "\n");
+  WriteFileAtomic(out_dir / "bench.json", JsonText(bench) + "\n");
   WriteBenchReport(bench, out_dir);
   return bench;
 }

@@ -19,6 +19,7 @@
 #include "models/core/csv.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/fit/model_file.h"
 #include "models/voids/void_length_model.h"
 
@@ -56,7 +57,7 @@ std::string Cell(const nlohmann::json& v) {
     return text;
   }
   if (v.is_string()) return HtmlEscape(v.get<std::string>());
-  return HtmlEscape(v.dump());
+  return HtmlEscape(JsonText(v, -1));
 }
 
 const nlohmann::json* Step(const nlohmann::json& entry, const std::string& name) {

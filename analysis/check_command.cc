@@ -8,6 +8,7 @@
 #include "analysis/viewer.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/numbers.h"
 #include "models/core/progress.h"
@@ -227,7 +228,7 @@ nlohmann::json WriteCheckOutputs(const Scenario& scenario, const planner::Plan& 
                           {"bytes", viewer.bytes}};
   }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(options.out_dir / "check.json", document.dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "check.json", JsonText(document) + "\n");
   outputs.Complete();
   return document;
 }

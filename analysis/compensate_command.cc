@@ -8,6 +8,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/fit/model_file.h"
@@ -153,7 +154,7 @@ twin::CompensationResult RunCompensate(const CompensateOptions& options) {
   WriteScans(result, options);
   const nlohmann::json program = WriteProgram(scenario, result, options);
   const nlohmann::json json = CompensateJson(scenario, model_path, loop, result, options, heat, program);
-  WriteFileAtomic(options.out_dir / "compensate.json", json.dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "compensate.json", JsonText(json) + "\n");
   if (!options.quiet) std::cerr << "compensate: " << result.message << "\n";
   return result;
 }

@@ -11,6 +11,7 @@
 #include "analysis/distortion_command.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
@@ -118,7 +119,7 @@ nlohmann::json RunDeviation(const DeviationOptions& options) {
   json["target_watertight"] = report.watertight;
   json["weighting"] = cloud.area_weighted ? "area" : "point";
   json["bottom_excluded"] = {{"facets", cloud.bottom_facets_skipped}, {"area_mm2", cloud.bottom_area_skipped_mm2}};
-  WriteFileAtomic(options.out_dir / "deviation.json", json.dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "deviation.json", JsonText(json) + "\n");
   return json;
 }
 

@@ -7,6 +7,7 @@
 
 #include "analysis/thermal_material_io.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 
 namespace waam::analysis {
 
@@ -22,7 +23,7 @@ std::string ThermalMaterialJson(const models::ThermalMaterial& material) {
   j["conductivity_w_mk"] = material.conductivity_w_mk;
   j["density_kg_m3"] = material.density_kg_m3;
   j["specific_heat_j_kgk"] = material.specific_heat_j_kgk;
-  return j.dump(2) + "\n";
+  return JsonText(j) + "\n";
 }
 
 void RunMaterialCommand(const MaterialOptions& options) {

@@ -19,6 +19,7 @@
 #include "analysis/scenario_plan.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
@@ -395,7 +396,7 @@ PlaceResult RunPlace(const PlaceOptions& options) {
   const nlohmann::json document_json = PlaceJson(result, scenario.name, best_json, coarse_plan.layers.size(),
                                                  std::max(cell.step_mm, place.coarse_step_mm), options.exhaustive);
   CheckInterrupt();
-  WriteFileAtomic(options.out_dir / "place.json", document_json.dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "place.json", JsonText(document_json) + "\n");
   outputs.Complete();
   return result;
 }

@@ -15,6 +15,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
@@ -211,7 +212,7 @@ void WritePlanOutputs(const planner::Plan& plan, const nlohmann::json& document,
   RunOutputs outputs(out_dir / "plan.json");
   WritePlanFiles(plan, out_dir, layer_images, quiet, &outputs);
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(out_dir / "plan.json", document.dump(2) + "\n");
+  WriteFileAtomic(out_dir / "plan.json", JsonText(document) + "\n");
   outputs.Complete();
 }
 

@@ -6,6 +6,7 @@
 
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -123,7 +124,7 @@ ReplayRunResult RunThermalReplay(const ReplayOptions& options, std::ostream& err
   doc["solver"] = {{"cells", sim.stats.cells}, {"active_cells", sim.stats.active_cells}, {"steps", sim.stats.steps},
                    {"iterations", sim.stats.iterations}, {"wall_s", sim.wall_s}};
   CheckInterrupt();
-  WriteFileAtomic(options.out_dir / "replay.json", doc.dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "replay.json", JsonText(doc) + "\n");
   outputs.Complete();
   return result;
 }

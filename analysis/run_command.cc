@@ -12,6 +12,7 @@
 #include "analysis/scenario.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "planner/scenario/scenario.h"
 
@@ -112,7 +113,7 @@ RunSummary RunScenario(const RunOptions& options) {
     summary.steps.push_back(std::move(s));
   }
   summary.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
-  WriteFileAtomic(options.out_dir / "summary.json", RunSummaryToJson(summary).dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "summary.json", JsonText(RunSummaryToJson(summary)) + "\n");
   return summary;
 }
 

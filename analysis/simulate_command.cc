@@ -15,6 +15,7 @@
 
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -210,7 +211,7 @@ nlohmann::json WriteSimulateOutputs(const Scenario& scenario, const planner::Pla
   json["stl_facets"] = surface.facets.size();
   json["performance"]["surface_s"] = surface_s;
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
-  WriteFileAtomic(out_dir / "simulate.json", json.dump(2) + "\n");
+  WriteFileAtomic(out_dir / "simulate.json", JsonText(json) + "\n");
   outputs.Complete();
   return json;
 }

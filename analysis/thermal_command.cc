@@ -14,6 +14,7 @@
 #include "analysis/plan_timeline.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/progress.h"
 #include "models/core/run_outputs.h"
@@ -151,7 +152,7 @@ nlohmann::json WriteThermalOutputs(const Scenario& scenario, const ThermalRunRes
   }
   CheckInterrupt();  // a Ctrl-C while the outputs were written still ends the run as interrupted (exit 130)
   nlohmann::json document = ThermalToJson(scenario, result);
-  WriteFileAtomic(options.out_dir / "thermal.json", document.dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "thermal.json", JsonText(document) + "\n");
   outputs.Complete();
   return document;
 }

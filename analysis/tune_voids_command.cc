@@ -15,6 +15,7 @@
 #include "analysis/tune_voids_internal.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "models/core/output_lock.h"
 #include "models/core/numbers.h"
 #include "models/core/parallel.h"
@@ -270,7 +271,7 @@ TuneVoidsResult RunTuneVoids(const TuneVoidsOptions& options) {
   tuner.Finish();
 
   if (!options.training_csv.empty()) WriteFileAtomic(options.training_csv, TrainingCsv(result, options));
-  WriteFileAtomic(options.out_dir / "tune.json", TuneToJson(options, result).dump(2) + "\n");
+  WriteFileAtomic(options.out_dir / "tune.json", JsonText(TuneToJson(options, result)) + "\n");
   return result;
 }
 

@@ -10,6 +10,7 @@
 #include "analysis/viewer.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
@@ -106,7 +107,7 @@ std::size_t AddDepositToViewer(const fs::path& page_path, const twin::Depositor&
   }
   // (Numbers, base64 and the note: no "</" that could end the script early.)
   page.replace(at, marker.size(),
-               "<script type=\"application/json\" id=\"waam-deposit\">" + document.dump() + "</script>");
+               "<script type=\"application/json\" id=\"waam-deposit\">" + JsonText(document, -1) + "</script>");
   WriteFileAtomic(page_path, page);
   return sorted.size();
 }

@@ -6,6 +6,7 @@
 #include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
@@ -61,7 +62,7 @@ std::string ViewerPage(const nlohmann::json& data) {
   Fill(&page, "/*WAAM_VIEWER_SHAPES_JS*/", ScriptSafe(ReadFile(dir / "viewer_shapes.js")));
   Fill(&page, "/*WAAM_VIEWER_JS*/", ScriptSafe(script));
   // JSON inside <script type="application/json">: "<\/" is the same JSON string, and no element ends early.
-  Fill(&page, "/*WAAM_DATA*/", ScriptSafe(data.dump()));
+  Fill(&page, "/*WAAM_DATA*/", ScriptSafe(JsonText(data, -1)));
   return page;
 }
 

@@ -9,6 +9,7 @@
 #include "analysis/viewer.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 
 namespace waam::analysis {
 namespace fs = std::filesystem;
@@ -111,7 +112,7 @@ std::size_t AddThermalToViewer(const fs::path& page_path, const ThermalRunResult
                                    {"time_s", PackArray(times)},    {"layer_start_s", PackArray(layer_start)},
                                    {"layer_end_s", PackArray(layer_end)}, {"note", note.str()}};
   page.replace(at, marker.size(),
-               "<script type=\"application/json\" id=\"waam-thermal\">" + document.dump() + "</script>");
+               "<script type=\"application/json\" id=\"waam-thermal\">" + JsonText(document, -1) + "</script>");
   WriteFileAtomic(page_path, page);
   return cells.size();
 }

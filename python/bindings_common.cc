@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 #include "python/bindings.h"
 
 namespace waam::python {
@@ -14,7 +15,7 @@ constexpr int kMaxDepth = 64;
 }  // namespace
 
 py::object ToPython(const nlohmann::json& document) {
-  return py::module_::import("json").attr("loads")(document.dump());
+  return py::module_::import("json").attr("loads")(JsonText(document, -1));
 }
 
 nlohmann::json ToJson(py::handle value, const std::string& where, int depth) {
@@ -66,7 +67,7 @@ std::vector<std::string> OverridesOf(const py::object& overrides) {
     // A string stays as written (YAML reads `hybrid`); other values go as JSON, which YAML reads as flow values.
     const std::string value = py::isinstance<py::str>(item.second)
                                   ? item.second.cast<std::string>()
-                                  : ToJson(item.second, "overrides." + key).dump();
+                                  : JsonText(ToJson(item.second, "overrides." + key), -1);
     out.push_back(key + "=" + value);
   }
   return out;
@@ -104,7 +105,7 @@ fs::path ScenarioFileFor(const ScenarioHolder& scenario, const fs::path& tmp_dir
   std::error_code ec;
   fs::create_directories(tmp_dir, ec);
   const fs::path file = tmp_dir / "scenario.yaml";
-  WriteFileAtomic(file, document.dump(2) + "\n");  // JSON is YAML
+  WriteFileAtomic(file, JsonText(document) + "\n");  // JSON is YAML
   return file;
 }
 

@@ -3,6 +3,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "analysis/scenario_keys.h"
+#include "models/core/json_text.h"
 #include "python/bindings.h"
 
 namespace waam::python {
@@ -57,7 +58,7 @@ void BindScenario(py::module_& m) {
       .def("__repr__", [](const ScenarioHolder& s) { return "<waam_twin.Scenario '" + s.scenario.name + "'>"; })
       .def(py::pickle(
           [](const ScenarioHolder& s) {
-            return py::make_tuple(s.file.string(), s.document.is_null() ? std::string() : s.document.dump(),
+            return py::make_tuple(s.file.string(), s.document.is_null() ? std::string() : JsonText(s.document, -1),
                                   s.base_dir.string(), s.overrides);
           },
           [](const py::tuple& t) {

@@ -4,6 +4,7 @@
 #include "models/core/data_dir.h"
 #include "models/core/error.h"
 #include "models/core/files.h"
+#include "models/core/json_text.h"
 
 
 namespace waam::models {
@@ -33,7 +34,7 @@ nlohmann::json ReadModelJson(const std::filesystem::path& path, std::string_view
 }
 
 void WriteModelJson(const std::filesystem::path& path, const nlohmann::json& model) {
-  WriteFileAtomic(path, model.dump(2) + "\n");
+  WriteFileAtomic(path, JsonText(model) + "\n");
 }
 
 double JsonNumber(const nlohmann::json& j, const std::string& key, const std::string& where) {

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/core/error.h"
+#include "models/core/json_text.h"
 
 namespace waam::planner {
 namespace {
@@ -279,7 +280,7 @@ std::string MeshReportJson(const MeshReport& report) {
       {"sliceable", reason.empty()},
       {"not_sliceable_reason", reason},
   };
-  return json.dump(2);
+  return JsonText(json);
 }
 
 }  // namespace waam::planner

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "models/core/error.h"
+#include "models/core/json_text.h"
 
 namespace waam {
 namespace {
@@ -53,6 +54,17 @@ TEST(ReadFileTest, MissingFileAndDirectoryAreNamed) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("is a directory"));
   }
+}
+
+// A user's Latin-1 text (a KRL comment, a controller's program name) reaches JSON outputs: JsonText writes U+FFFD for
+// each byte sequence that is not UTF-8 instead of throwing, and leaves UTF-8 as it is.
+TEST(JsonTextTest, TextThatIsNotUtf8IsReplacedNotRefused) {
+  const nlohmann::json latin1 = {{"name", std::string("Schwei\xdf" "naht")}};
+  EXPECT_THROW((void)latin1.dump(), nlohmann::json::type_error);
+  EXPECT_EQ(JsonText(latin1, -1), "{\"name\":\"Schwei\xef\xbf\xbdnaht\"}");
+  const nlohmann::json utf8 = {{"name", "Schwei\xc3\x9fnaht"}};
+  EXPECT_EQ(JsonText(utf8, -1), "{\"name\":\"Schwei\xc3\x9fnaht\"}");
+  EXPECT_EQ(JsonText(utf8), "{\n  \"name\": \"Schwei\xc3\x9fnaht\"\n}");
 }
 
 }  // namespace
