@@ -12,7 +12,12 @@
 namespace waam {
 namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void OnSignal(int) { g_interrupted = 1; }
+// The first SIGINT/SIGTERM sets the flag that long loops check; it also puts the default action back, so a second
+// one ends the process at once, even inside a loop that does not check (signal() is async-signal-safe).
+extern "C" void OnSignal(int sig) {
+  g_interrupted = 1;
+  std::signal(sig, SIG_DFL);
+}
 thread_local const ProgressObserver* t_observer = nullptr;
 }  // namespace
 

@@ -8,7 +8,8 @@
 
 namespace waam {
 
-// Installs a SIGINT/SIGTERM handler that only sets a flag; long loops call CheckInterrupt().
+// Installs a SIGINT/SIGTERM handler that only sets a flag; long loops call CheckInterrupt(). A second signal of
+// the same kind ends the process at once (the default action).
 void InstallInterruptHandler();
 // True once SIGINT/SIGTERM was received.
 bool InterruptRequested();
