@@ -2,6 +2,7 @@
 #include "analysis/scenario_keys.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "analysis/place_settings.h"
@@ -179,6 +180,17 @@ std::string ScenarioKeysMarkdown() {
 void ValidateScenario(const Scenario& s) {
   if (s.part.generator) planner::ResolveGeneratorParams(*s.part.generator, s.part.params, "part.generator");
   CheckFields<planner::SlicingSettings>(planner::kSlicingFields, s.slicing, "slicing");
+  // The rules across slicing keys, as the file's reader checks them (planner/scenario/scenario.cc, ParseSlicing).
+  if (s.slicing.type == planner::SlicingType::kSkeleton) {
+    WAAM_THROW_UNLESS(s.slicing.h_max_mm >= s.slicing.h_min_mm, "slicing.h_max_mm = " << s.slicing.h_max_mm
+                                                                 << ": must be >= slicing.h_min_mm = "
+                                                                 << s.slicing.h_min_mm);
+  }
+  if (s.slicing.type == planner::SlicingType::kCone) {
+    WAAM_THROW_UNLESS(std::abs(s.slicing.cone_H_mm) >= 1.0,
+                      "slicing.H_mm = " << s.slicing.cone_H_mm
+                                        << ": |H| must be >= 1 mm (a cylinder is slicing.type: cylinder)");
+  }
   CheckFields<planner::PathSettings>(planner::kPathFields, s.path, "path");
   CheckFields<planner::VoidFillingSettings>(planner::kVoidFillingFields, s.path.void_filling, "path.void_filling");
   CheckFields<planner::ProcessSettings>(planner::kProcessFields, s.process, "process");

@@ -257,6 +257,16 @@ TEST(ScenarioKeys, OutOfRangeValuesOfTheMovedKeysAreRefusedFromSetAndFromCode) {
   s = LoadScenario(file);
   s.process.interpass.probe.clear();
   EXPECT_THAT(ValidationError(s), HasSubstr("process.interpass.at = probe: name the probe"));
+  // The rules across slicing keys hold for settings built in code too.
+  s = LoadScenario(file);
+  s.slicing.type = planner::SlicingType::kSkeleton;
+  s.slicing.h_min_mm = 3.0;
+  s.slicing.h_max_mm = 2.0;
+  EXPECT_THAT(ValidationError(s), HasSubstr("slicing.h_max_mm = 2: must be >= slicing.h_min_mm = 3"));
+  s = LoadScenario(file);
+  s.slicing.type = planner::SlicingType::kCone;
+  s.slicing.cone_H_mm = 0.5;
+  EXPECT_THAT(ValidationError(s), HasSubstr("slicing.H_mm = 0.5: |H| must be >= 1 mm"));
 }
 
 // A sweep over a moved key: the run whose value is outside the key's range is refused before any run, on one line.
