@@ -28,7 +28,7 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # faults are sanitized by PlantedFaultTest.*.
 # Tests that rerun a whole command on 1 and 4 threads to compare the outputs (24-32 s apiece here) check determinism,
 # which the Release build checks as well; the code they run is sanitized by the single-run tests of the same
-# commands. So does ThermalMultirate.ResultsDoNotDependOnTheThreadCount (1.3 s in Release; a plate at 1 mm), whose solver the other
+# commands. So does ThermalMultirate.ResultsDoNotDependOnTheThreadCount (1.3 s in Release), whose solver the other
 # ThermalMultirate tests sanitize. The planted-clamp placement search (75 s here) has a smaller sanitized sibling
 # (PlaceCliTest.APartOutOfReachEverywhere...), and the viewer's headless-Chromium page tests (5-17 s) time the
 # browser; the viewer's data is sanitized by ViewerTest.*.
