@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <string_view>
 
 #include "models/core/error.h"
 #include "models/core/files.h"
@@ -18,42 +17,6 @@ namespace {
 // "file:line" of a node.
 std::string SweepWhere(const fs::path& file, const YAML::Node& node) {
   return file.string() + ":" + std::to_string(node.Mark().line + 1);
-}
-
-// The length of the UTF-8 sequence starting at text[i] (1 to 4 bytes), or 0 when the bytes there are not UTF-8
-// (a stray continuation byte, a truncated sequence, an overlong form, a surrogate, past U+10FFFF).
-std::size_t Utf8Length(std::string_view text, std::size_t i) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-  const unsigned char b = byte(i);
-  if (b < 0x80) return 1;
-  const std::size_t n = b >= 0xc2 && b <= 0xdf ? 2 : (b & 0xf0) == 0xe0 ? 3 : b >= 0xf0 && b <= 0xf4 ? 4 : 0;
-  if (n == 0 || i + n > text.size()) return 0;
-  for (std::size_t k = 1; k < n; ++k) {
-    if ((byte(i + k) & 0xc0) != 0x80) return 0;
-  }
-  const unsigned char b1 = byte(i + 1);
-  if ((b == 0xe0 && b1 < 0xa0) || (b == 0xed && b1 > 0x9f) || (b == 0xf0 && b1 < 0x90) || (b == 0xf4 && b1 > 0x8f)) {
-    return 0;
-  }
-  return n;
-}
-
-// Throws InputError naming the line and column of the first byte of `text` that is not UTF-8: the sweep's keys and
-// values go into bench.json, and YAML is UTF-8 text.
-void CheckUtf8(std::string_view text, const fs::path& file) {
-  int line = 1;
-  std::size_t line_start = 0;
-  for (std::size_t i = 0; i < text.size();) {
-    const std::size_t n = Utf8Length(text, i);
-    if (n == 0) {
-      static const char kHex[] = "0123456789abcdef";
-      const auto b = static_cast<unsigned char>(text[i]);
-      WAAM_THROW(file.string() << ":" << line << ": byte 0x" << kHex[b >> 4] << kHex[b & 0xf] << " at column "
-                               << i - line_start + 1 << " is not UTF-8 text (save the sweep file as UTF-8)");
-    }
-    if (text[i] == '\n') ++line, line_start = i + 1;
-    i += n;
-  }
 }
 
 // A value as the YAML text a --set override takes: a scalar as written, a list in flow style.
@@ -189,7 +152,6 @@ void ParseSweepMetrics(const fs::path& file, const YAML::Node& key_node, const Y
 }  // namespace
 
 Sweep ParseSweep(const std::string& text, const fs::path& file) {
-  CheckUtf8(text, file);
   YAML::Node root;
   try {
     root = YAML::Load(text);

@@ -33,7 +33,7 @@ struct Sweep {
 inline constexpr std::size_t kMaxSweepRuns = 100000;
 
 // Parses the text of sweep file `file` (named in messages; `base` is resolved against its folder but not opened).
-// Throws InputError "file:line: what is wrong" for text that is not UTF-8, YAML that does not parse, a top level that is not a mapping, an
+// Throws InputError "file:line: what is wrong" for YAML that does not parse, a top level that is not a mapping, an
 // unknown or missing key, a key path that is not dotted names, a swept key without values, a list run that is not a
 // mapping, both or neither of grid and list, more than kMaxSweepRuns runs, or a metric that is not step.metric.
 Sweep ParseSweep(const std::string& text, const std::filesystem::path& file);

@@ -8,13 +8,14 @@
 #include "analysis/sweep.h"
 #include "fuzz/fuzz_input.h"
 #include "models/core/error.h"
+#include "models/core/json_text.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const waam::analysis::Sweep sweep = waam::analysis::ParseSweep(text, "fuzz/sweep.yaml");
     (void)waam::analysis::SweepBenchRuns(sweep);
-    (void)waam::analysis::SweepJson(sweep).dump();
+    (void)waam::JsonText(waam::analysis::SweepJson(sweep));
   } catch (const waam::InputError& e) {
     waam::fuzz::CheckOneLine(e);
   }

@@ -16,6 +16,7 @@
 #include "fuzz/replay_log_fuzz.h"
 #include "models/core/csv.h"
 #include "models/core/error.h"
+#include "models/core/json_text.h"
 #include "models/core/files.h"
 #include "analysis/stl_file.h"
 #include "planner/mesh/stl_io.h"
@@ -81,7 +82,7 @@ TEST(FuzzRegressions, SweepInputsGiveASweepOrAnInputError) {
   Replay("sweep", [](const fs::path& input) {
     const analysis::Sweep sweep = analysis::ParseSweep(ReadFile(input), input);
     (void)analysis::SweepBenchRuns(sweep);
-    (void)analysis::SweepJson(sweep).dump();
+    (void)JsonText(analysis::SweepJson(sweep));
   });
 }
 

@@ -16,16 +16,8 @@ namespace {
 void SetEnthalpy(ThermalState& s, const LevelSystem& L, int c, double h) {
   const ThermalPropertyTable& table = s.table[s.material[c]];
   const double t = table.Temperature(h, s.temperature[c]);
-  if (s.sample_head[c] >= 0) {
-    const double start = s.batch_start_s[L.m0];
-    const double length = s.batch_start_s[L.m1] - start;
-    for (int r = s.sample_head[c]; r >= 0; r = s.requests[r].next) {
-      const SampleRequest& q = s.requests[r];
-      if (q.boundary <= L.m0 || q.boundary > L.m1) continue;
-      const double f = q.boundary == L.m1 ? 1.0 : (s.batch_start_s[q.boundary] - start) / length;
-      s.records[q.record][q.probe] += f * (t - s.temperature[c]);
-    }
-  }
+  const double change = t - s.temperature[c];
+  ForStepRecords(s, L, c, [&](double& record, double f) { record += f * change; });
   s.heat_rate[c] += (h - s.enthalpy[c]) / s.rate_step_s[c];
   s.rate[c] += (t - s.temperature[c]) / s.rate_step_s[c];
   s.enthalpy[c] = h;
@@ -184,7 +176,8 @@ void RepairBounds(ThermalState& s, const LevelSystem& L, const CouplingSnapshot&
           SetEnthalpy(s, L, next[k], s.enthalpy[next[k]] + (below ? -dh : dh));
         }
         SetEnthalpy(s, L, c, s.enthalpy[c] + (below ? moved : -moved));
-        need = share >= 1.0 ? need - (below ? moved : -moved) : 0.0;
+        if (share < 1.0) break;  // this ring held all the cell needed
+        need -= below ? moved : -moved;
       }
       ring.swap(next);
     }

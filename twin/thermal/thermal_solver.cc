@@ -250,14 +250,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
 // cell from t_start to t_end (degC): linear in time in between, as the finer levels see the coarser ones' cells.
 // Each request has its own slot, so chunks running in parallel write different values.
 void RecordSamples(ThermalState& s, const LevelSystem& L, int cell, double t_start, double t_end) {
-  const double start = s.batch_start_s[L.m0];
-  const double length = s.batch_start_s[L.m1] - start;
-  for (int r = s.sample_head[cell]; r >= 0; r = s.requests[r].next) {
-    const SampleRequest& q = s.requests[r];
-    if (q.boundary <= L.m0 || q.boundary > L.m1) continue;
-    const double f = q.boundary == L.m1 ? 1.0 : (s.batch_start_s[q.boundary] - start) / length;
-    s.records[q.record][q.probe] = t_start + f * (t_end - t_start);
-  }
+  ForStepRecords(s, L, cell, [&](double& record, double f) { record = t_start + f * (t_end - t_start); });
 }
 
 // Per-chunk energy accounts of an update, J.

@@ -248,6 +248,19 @@ void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from,
 // and right-hand side changed since the last solve. Returns the iterations.
 int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces);
 
+// Calls visit(record, f) for each probe record wanted of `cell` at a batch boundary inside the level's step
+// (L.m0, L.m1]: `record` the value (degC), f the boundary's fraction of the step (1 at its end).
+template <class Visit>
+void ForStepRecords(ThermalState& s, const LevelSystem& L, int cell, const Visit& visit) {
+  const double start = s.batch_start_s[L.m0];
+  const double length = s.batch_start_s[L.m1] - start;
+  for (int r = s.sample_head[cell]; r >= 0; r = s.requests[r].next) {
+    const SampleRequest& q = s.requests[r];
+    if (q.boundary <= L.m0 || q.boundary > L.m1) continue;
+    visit(s.records[q.record][q.probe], q.boundary == L.m1 ? 1.0 : (s.batch_start_s[q.boundary] - start) / length);
+  }
+}
+
 // The coupling between multirate levels (thermal_coupling.cc; docs/THERMAL.md, "Why the coupling between levels is
 // monotone").
 
