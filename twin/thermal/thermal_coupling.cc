@@ -82,7 +82,8 @@ void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {
 // The discrete maximum principle on the cells the level's corrector updated (L.cells): backward Euler with
 // conductances and losses makes the new temperatures weighted means of the old ones, the boundary lines' ends of the
 // cells outside the level, the finer neighbours' over the step (taken between their old and new values), and the
-// ambient and table temperatures: none may lie below the least of those values, nor above the greatest unless a
+// ambient and table temperatures (the least and greatest over the step's micro steps, of which the step and its
+// finer levels use time means): none may lie below the least of those values, nor above the greatest unless a
 // cell has a source. The finer levels' energy, taken at a fixed boundary line, breaks it where that line runs away
 // from what the coarse cell did (docs/THERMAL.md, "Why the coupling between levels is monotone"). Finds the cells
 // outside those bounds by more than the slack (one solver tolerance and, with latent heat, the enthalpy
@@ -103,8 +104,8 @@ CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const Co
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[c][f];
       if (j == kNoCell || s.born[j] >= L.m1) {
-        take(s.settings.ambient_c);
-        take(s.settings.table_c);
+        take(L.boundary_low_c);
+        take(L.boundary_high_c);
       } else if (s.depth[j] > level) {
         take(snap.temperature[static_cast<std::size_t>(local_of[j])]);
         take(s.temperature[j]);

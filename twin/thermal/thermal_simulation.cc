@@ -75,7 +75,13 @@ std::vector<internal::ArcPiece> CutIntoPieces(const ThermalState& s, const inter
 // Lays the pieces [first, last) as micro step `step` of the batch.
 internal::ArcStep LayStep(ThermalState& s, std::size_t first, std::size_t last, int step) {
   internal::ArcStep arc;
-  for (std::size_t p = first; p < last; ++p) arc.seconds += s.pieces[p].seconds;
+  internal::BoundaryMean boundary;
+  for (std::size_t p = first; p < last; ++p) {
+    arc.seconds += s.pieces[p].seconds;
+    boundary.Add(s.pieces[p].seconds, s.pieces[p].ambient_c, s.pieces[p].table_c);
+  }
+  arc.ambient_c = boundary.ambient_c();
+  arc.table_c = boundary.table_c();
   for (std::size_t p = first; p < last; ++p) {
     const internal::ArcPiece& piece = s.pieces[p];
     if (piece.pause) continue;
@@ -272,7 +278,9 @@ void ThermalSimulation::Weld(const Eigen::Vector3d& p0_mm, const Eigen::Vector3d
                                                                                        << ": must be >= 0");
   if (seconds == 0.0) return;
   ThermalState& s = impl_->s;
-  const internal::ArcPiece weld{p0_mm, p1_mm, width_mm, height_mm, heat_w, seconds, false, travel.head<2>(), {}};
+  internal::ArcPiece weld{p0_mm, p1_mm, width_mm, height_mm, heat_w, seconds, false, travel.head<2>(), {}};
+  weld.ambient_c = s.settings.ambient_c;
+  weld.table_c = s.settings.table_c;
   for (const internal::ArcPiece& piece : CutIntoPieces(s, weld)) {
     s.pieces.push_back(piece);
     s.pieces_seconds += piece.seconds;
@@ -297,6 +305,8 @@ void ThermalSimulation::Cool(double seconds) {
       pause.p0_mm = pause.p1_mm = s.pieces.empty() ? Eigen::Vector3d::Zero() : s.pieces.back().p1_mm;
       pause.seconds = step;
       pause.pause = true;
+      pause.ambient_c = s.settings.ambient_c;
+      pause.table_c = s.settings.table_c;
       s.pieces.push_back(pause);
       s.pieces_seconds += step;
       queued += step;
@@ -349,8 +359,9 @@ void ThermalSimulation::SetBoundaryTemperatures(double ambient_c, double table_c
                     "thermal ambient_c = " << ambient_c << ": must be above absolute zero");
   WAAM_THROW_UNLESS(std::isfinite(table_c) && table_c > -273.15,
                     "thermal table_c = " << table_c << ": must be above absolute zero");
+  // The motion held back keeps the temperatures it was queued under; what follows takes these (each piece carries
+  // its own, so the batch goes on: docs/THERMAL.md, "Boundary temperatures that change").
   ThermalState& s = impl_->s;
-  Pump(s, true);  // the arc motion held back is solved with the temperatures it burnt under
   s.settings.ambient_c = ambient_c;
   s.settings.table_c = table_c;
 }

@@ -151,8 +151,10 @@ class ThermalSimulation {
   // without solving the micro steps a zero-heat Weld along it would take. Solves the arc motion held back first;
   // returns the number of cells switched on. Throws InputError for a box that is not finite.
   std::size_t LayAtAmbient(const Eigen::AlignedBox3d& box_mm);
-  // Sets the air temperature (convection, radiation) and the table's temperature from now on, degC (a measured
-  // ambient drives the losses). Throws InputError unless both are finite and above absolute zero.
+  // Sets the air temperature (convection, radiation) and the table's (and clamps') temperature from time_s() on, degC
+  // (a measured ambient drives the losses), without ending the solver's batch: the motion held back keeps the values
+  // it was queued under, and a step spanning several values uses their time means. Deposit cells still switch on at
+  // the ambient temperature the simulation was built with. Throws InputError unless both are finite and above absolute zero.
   void SetBoundaryTemperatures(double ambient_c, double table_c);
 
   double time_s() const;

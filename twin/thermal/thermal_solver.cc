@@ -27,31 +27,33 @@ constexpr int kCouplingRounds = 2;
 
 
 // Convection, radiation (linearised about the state's temperature t_old) and table (and clamp) losses of one face
-// at t, W.
+// at t, W, to the ambient and table temperatures of the level's step (L.ambient_c, L.table_c: the same values in the
+// system and in the energy accounts).
 struct FaceLoss {
   double convection = 0.0, radiation = 0.0, table = 0.0;
 };
-FaceLoss LossOfFace(const ThermalState& s, int cell, int face, double t_old, double t) {
+FaceLoss LossOfFace(const ThermalState& s, const LevelSystem& L, int cell, int face, double t_old, double t) {
   const ThermalSettings& st = s.settings;
   const double area = s.dx_m * s.dx_m;
   FaceLoss loss;
   double contact = 0.0, air = 1.0;
   s.FaceContact(cell, face, &contact, &air);
-  loss.table = contact * area * (t - st.table_c);
+  loss.table = contact * area * (t - L.table_c);
   if (air <= 0.0) return loss;
-  loss.convection = air * st.convection_w_m2k * area * (t - st.ambient_c);
+  loss.convection = air * st.convection_w_m2k * area * (t - L.ambient_c);
   const double eps = s.emissivity[s.material[cell]];
   const double tk = t_old + kKelvin;
-  const double ta = st.ambient_c + kKelvin;
+  const double ta = L.ambient_c + kKelvin;
   loss.radiation =
       air * eps * kStefanBoltzmann * area * (tk * tk * tk * tk - ta * ta * ta * ta + 4.0 * tk * tk * tk * (t - t_old));
   return loss;
 }
 
 // d(loss)/dT of a boundary face and the loss at T = 0 degC of its linearisation, so loss(T) = slope T + offset.
-void LinearLoss(const ThermalState& s, int cell, int face, double t_old, double* slope, double* offset) {
-  const FaceLoss at0 = LossOfFace(s, cell, face, t_old, 0.0);
-  const FaceLoss at1 = LossOfFace(s, cell, face, t_old, 1.0);
+void LinearLoss(const ThermalState& s, const LevelSystem& L, int cell, int face, double t_old, double* slope,
+                double* offset) {
+  const FaceLoss at0 = LossOfFace(s, L, cell, face, t_old, 0.0);
+  const FaceLoss at1 = LossOfFace(s, L, cell, face, t_old, 1.0);
   *offset = at0.convection + at0.radiation + at0.table;
   *slope = at1.convection + at1.radiation + at1.table - *offset;
 }
@@ -143,7 +145,7 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
           }
         } else {
           double slope = 0.0, offset = 0.0;
-          LinearLoss(s, c, f, t, &slope, &offset);
+          LinearLoss(s, L, c, f, t, &slope, &offset);
           diagonal += slope;
           rhs -= offset;
         }
@@ -288,7 +290,7 @@ void Update(ThermalState& s, int level) {
           power += flux;
           s.inflow_j[other] -= flux * dt;
         } else {
-          const FaceLoss loss = LossOfFace(s, c, f, s.temperature[c], t);
+          const FaceLoss loss = LossOfFace(s, L, c, f, s.temperature[c], t);
           power -= loss.convection + loss.radiation + loss.table;
           acc.convection += loss.convection * dt;
           acc.radiation += loss.radiation * dt;
@@ -355,6 +357,14 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   LevelSystem& L = s.levels[level];
   L.seconds = 0.0;
   for (int m = m0; m < m1; ++m) L.seconds += s.batch[m].seconds;
+  // The ambient and table temperatures over the step: backward Euler with their time means over it
+  // (docs/THERMAL.md, "Boundary temperatures that change").
+  BoundaryMean boundary;
+  for (int m = m0; m < m1; ++m) boundary.Add(s.batch[m].seconds, s.batch[m].ambient_c, s.batch[m].table_c);
+  L.ambient_c = boundary.ambient_c();
+  L.table_c = boundary.table_c();
+  L.boundary_low_c = boundary.low_c();
+  L.boundary_high_c = boundary.high_c();
   const double start = s.time_s + s.batch_start_s[m0];
   L.end_time_s = start + L.seconds;
   L.m0 = m0;
@@ -423,6 +433,21 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
 
 }  // namespace
 
+void BoundaryMean::Add(double seconds, double ambient_c, double table_c) {
+  for (auto [sum, value] : {std::pair<Sum*, double>{&ambient_, ambient_c}, {&table_, table_c}}) {
+    sum->weighted += seconds * value;
+    sum->seconds += seconds;
+    sum->low = std::min(sum->low, value);
+    sum->high = std::max(sum->high, value);
+  }
+}
+
+double BoundaryMean::Mean(const Sum& sum) {
+  WAAM_DEMAND(sum.seconds > 0.0);
+  if (sum.low == sum.high) return sum.low;  // one value over the interval: exactly it
+  return std::clamp(sum.weighted / sum.seconds, sum.low, sum.high);
+}
+
 void SolveBatch(ThermalState& s) {
   const int steps = static_cast<int>(s.batch.size());
   if (steps == 0) return;
@@ -462,6 +487,8 @@ void CoolStep(ThermalState& s, double seconds) {
   WAAM_DEMAND(s.batch.empty() && seconds > 0.0);
   ArcStep step;
   step.seconds = seconds;
+  step.ambient_c = s.settings.ambient_c;
+  step.table_c = s.settings.table_c;
   s.batch.push_back(step);
   SolveBatch(s);
 }

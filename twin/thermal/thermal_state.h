@@ -58,11 +58,34 @@ void ForChunks(std::size_t n, const Body& body) {
 // What a grid cell can hold.
 enum class CellKind : std::uint8_t { kEmpty, kPlate, kDeposit };
 
-// One micro step of the arc: its duration, the cells it switches on and the heat it puts into cells.
+// One micro step of the arc: its duration, the cells it switches on and the heat it puts into cells, and the
+// ambient and table temperatures over it (the time means of its pieces').
 struct ArcStep {
   double seconds = 0.0;
   std::vector<std::pair<int, double>> heat_w;  // (active cell, W) over the step
   Eigen::AlignedBox3d swept_mm;                // the bead laid in this step, mm (empty for no bead)
+  double ambient_c = 20.0, table_c = 20.0;     // degC
+};
+
+// The time mean of piecewise-constant ambient and table temperatures over an interval, and their least and greatest
+// values (docs/THERMAL.md, "Boundary temperatures that change"). Where a temperature is the same in every piece, the
+// mean is that value exactly (no rounding of the sum), so constant temperatures give the results they always did.
+class BoundaryMean {
+ public:
+  // Adds `seconds` (> 0) at ambient_c and table_c, degC.
+  void Add(double seconds, double ambient_c, double table_c);
+  double ambient_c() const { return Mean(ambient_); }
+  double table_c() const { return Mean(table_); }
+  double low_c() const { return std::min(ambient_.low, table_.low); }   // least of both, degC
+  double high_c() const { return std::max(ambient_.high, table_.high); }  // greatest of both, degC
+
+ private:
+  struct Sum {
+    double weighted = 0.0, seconds = 0.0;  // degC s, s
+    double low = 1e300, high = -1e300;     // degC
+  };
+  static double Mean(const Sum& sum);
+  Sum ambient_, table_;
 };
 
 // A piece of the arc's path no longer than one cell, waiting to be grouped into micro steps; or a pause (no arc, no
@@ -73,6 +96,7 @@ struct ArcPiece {
   bool pause = false;
   Eigen::Vector2d travel = Eigen::Vector2d::Zero();  // a standing arc's pool orientation (zero: round)
   std::vector<int> records;  // probe records taken at this piece's end (ThermalSimulation::RecordProbes)
+  double ambient_c = 20.0, table_c = 20.0;  // the ambient and table temperatures over the piece, degC
 };
 
 // One probe's temperature wanted at the end of micro step `boundary - 1` of the batch: written into
@@ -106,6 +130,10 @@ struct LevelSystem : StencilSystem {
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
   double seconds = 0.0;
   double end_time_s = 0.0;
+  // The ambient and table temperatures the step uses (time means over its micro steps) in its system and its losses,
+  // and the least and greatest of either over those micro steps (the coupling's bounds), degC.
+  double ambient_c = 20.0, table_c = 20.0;
+  double boundary_low_c = 20.0, boundary_high_c = 20.0;
   int m0 = 0, m1 = 0;                                  // the micro steps [m0, m1) of the batch the step spans
 };
 
@@ -120,6 +148,8 @@ struct ColumnContact {
 };
 
 struct ThermalState {
+  // As built, except ambient_c and table_c: the values SetBoundaryTemperatures last set, which the pieces queued from
+  // then on carry (the enthalpy tables' references and the table body's start used the values built with).
   ThermalSettings settings;
   Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();  // corner of the grid's first cell
   Eigen::Vector3i size = Eigen::Vector3i::Zero();       // cells along x, y, z
