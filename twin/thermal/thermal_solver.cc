@@ -62,6 +62,14 @@ constexpr std::array<double, 5> kEdgePowers = {1.0, kReentrantFaceFactor, kReent
                                                kReentrantFaceFactor * kReentrantFaceFactor * kReentrantFaceFactor *
                                                    kReentrantFaceFactor};
 
+// The number of set bits of each 6-bit mask (a table: std::popcount is a library call without the POPCNT
+// instruction, which the build does not assume).
+constexpr std::array<std::uint8_t, 64> kBitCounts = [] {
+  std::array<std::uint8_t, 64> counts{};
+  for (unsigned m = 0; m < 64; ++m) counts[m] = static_cast<std::uint8_t>(std::popcount(m));
+  return counts;
+}();
+
 // The factor on the conductance of the face f between cells c and j (both present before micro step m1):
 // kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
@@ -70,7 +78,7 @@ double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
   if (s.latest_born < m1 || ((s.pending[c] | s.pending[j]) & across) == 0) {
     // Every linked cell beyond the edges is present (none of them is laid later in the batch): the edges where the
     // two cells' links differ.
-    return kEdgePowers[static_cast<std::size_t>(std::popcount((s.linked[c] ^ s.linked[j]) & across))];
+    return kEdgePowers[kBitCounts[(s.linked[c] ^ s.linked[j]) & across]];
   }
   double factor = 1.0;
   for (int e = 0; e < 6; ++e) {
