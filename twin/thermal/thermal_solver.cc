@@ -18,6 +18,8 @@ namespace {
 // (hundreds of K of mismatch), not to polish micro steps.
 constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
+// LocalBalance's bisection stops within this, K.
+constexpr double kBalanceToleranceK = 1e-3;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
 // A level's step runs its finer levels and its corrector at most this many times: again when the corrector leaves
@@ -202,6 +204,34 @@ void Relinearise(ThermalState& s, LevelSystem& L) {
   });
 }
 
+// The temperature at which cell i of the level's system balances its step's nonlinear equation with its
+// neighbours in the system held at their solved temperatures:
+// V/dt (H(T) - H_old) + D_i T = R_i + sum_faces G T_nb (D_i, R_i: base_diagonal and base_rhs),
+// found by bisection (the left side increases with T). Where the linearisation crossed the latent heat's edge, this
+// lands on the right side of it, where the enthalpy update H_k + C_k (T - T_k) overshoots by up to the ratio of the
+// capacities on the two sides.
+double LocalBalance(const ThermalState& s, const LevelSystem& L, std::size_t i) {
+  const int c = L.cells[i];
+  const ThermalPropertyTable& table = s.table[s.material[c]];
+  const double storage = s.CellVolume() / L.seconds;
+  double load = L.base_rhs[i];
+  for (int f = 0; f < 6; ++f) {
+    const int j = L.neighbour[i][f];
+    if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
+  }
+  auto excess = [&](double t) {
+    return storage * (table.Enthalpy(t) - s.enthalpy[c]) + L.base_diagonal[i] * t - load;
+  };
+  double low = std::min(L.t_new[i], s.chord[c]), high = std::max(L.t_new[i], s.chord[c]);
+  for (double widen = 16.0; excess(low) > 0.0 && widen < 1e5; widen *= 2.0) low -= widen;
+  for (double widen = 16.0; excess(high) < 0.0 && widen < 1e5; widen *= 2.0) high += widen;
+  while (high - low > kBalanceToleranceK) {
+    const double mid = 0.5 * (low + high);
+    (excess(mid) > 0.0 ? high : low) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
 // What a level's solve of a step is: the predictor (all the level's cells; with a finer region, its temperatures are
 // the finer levels' boundary values and the corrector's first guess) or the corrector (the cells left to the level,
 // with the energy the finer levels passed).
@@ -228,7 +258,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   if (corrector) Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t> part_converged(Chunks(n));
+  std::vector<std::uint8_t> part_converged(Chunks(n)), off(n);
   for (int round = 0; round < kChordRounds; ++round) {
     // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t chunk) {
@@ -241,14 +271,25 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
         const double h = h_k + L.capacity[i] * (L.t_new[i] - t_k);
         const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
         const double change = L.t_new[i] - s.temperature[c];
-        converged = converged && (std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
-                                  !MustConverge(s, role, c, level));
+        const bool ok = std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
+                        !MustConverge(s, role, c, level);
+        converged = converged && ok;
+        off[i] = ok ? 0 : 1;
         s.iterate_h[c] = h;
         s.chord[c] = t;
       }
       part_converged[chunk] = converged ? 1 : 0;
     });
     if (std::all_of(part_converged.begin(), part_converged.end(), [](std::uint8_t v) { return v != 0; })) return;
+    // The cells off the curve are linearised next at their local balance instead (on the curve: H_k = H(T_k)).
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i) {
+        if (off[i] == 0) continue;
+        const int c = L.cells[i];
+        s.chord[c] = LocalBalance(s, L, i);
+        s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+      }
+    });
     Relinearise(s, L);
     Count(s, level, n, SolveLevel(s, L, s.chord, true));
   }
