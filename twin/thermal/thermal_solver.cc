@@ -243,8 +243,38 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
   return role != StepRole::kPredictor || s.depth[c] <= level;
 }
 
-// Solves the level's backward-Euler step over the candidates: the system linearised at T_old (a corrector: at the
-// predictor's last iterate, H_k and T_k = T(H_k), which the finer levels leave to the cells outside their region),
+// A predictor's first linearisation: the old state (H_old, T_old), except for the cells whose equation, linearised
+// there with their neighbours at the first guess, maps back further than the enthalpy iteration allows: those start
+// at their local balance with the neighbours at the first guess (cells about to melt or freeze, new metal under the
+// arc), so that the first solve already sees the latent heat on the side where they end.
+void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
+  ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) L.t_new[i] = guess[L.cells[i]];
+  });
+  ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const int c = L.cells[i];
+      s.chord[c] = s.temperature[c];
+      s.iterate_h[c] = s.enthalpy[c];
+      if (!MustConverge(s, role, c, level)) continue;
+      double load = L.rhs[i];
+      for (int f = 0; f < 6; ++f) {
+        const int j = L.neighbour[i][f];
+        if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
+      }
+      const double t = load / L.diagonal[i];
+      const double h = s.enthalpy[c] + L.capacity[i] * (t - s.temperature[c]);
+      const double back = s.table[s.material[c]].Temperature(h, t);
+      if (std::abs(back - t) <= kChordToleranceK + 0.1 * std::abs(t - s.temperature[c])) continue;
+      s.chord[c] = LocalBalance(s, L, i);
+      s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+    }
+  });
+}
+
+// Solves the level's backward-Euler step over the candidates: the system linearised at T_old or where
+// FirstLinearisation puts a cell (a corrector: at the predictor's last iterate, H_k and T_k = T(H_k), which the finer
+// levels leave to the cells outside their region),
 // then, while some cell's linearised enthalpy H_k + C_k (T - T_k) maps back to a temperature more than
 // kChordToleranceK + 10 % of its change over the step away from the solved T (a cell melting or freezing in the
 // step), again linearised at that enthalpy (Relinearise): the nonlinear step converged (on the cells MustConverge
@@ -255,7 +285,8 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   LevelSystem& L = s.levels[level];
   const bool corrector = role == StepRole::kCorrector;
   Assemble(s, level, candidates, m0, m1, corrector, local_of);
-  if (corrector) Relinearise(s, L);
+  if (!corrector) FirstLinearisation(s, L, role, level, guess);
+  Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
   std::vector<std::uint8_t> part_converged(Chunks(n)), off(n);
@@ -265,10 +296,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
       bool converged = true;
       for (std::size_t i = begin; i < end; ++i) {
         const int c = L.cells[i];
-        const bool at_old = round == 0 && !corrector;
-        const double t_k = at_old ? s.temperature[c] : s.chord[c];
-        const double h_k = at_old ? s.enthalpy[c] : s.iterate_h[c];
-        const double h = h_k + L.capacity[i] * (L.t_new[i] - t_k);
+        const double h = s.iterate_h[c] + L.capacity[i] * (L.t_new[i] - s.chord[c]);
         const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
         const double change = L.t_new[i] - s.temperature[c];
         const bool ok = std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
