@@ -45,7 +45,12 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
       L.ijk[i] = {g.x(), g.y(), g.z()};
     }
   }
-  if (multigrid) L.multigrid.Setup(a, L.ijk);
+  if (multigrid && same_faces && w.multigrid_faces) {
+    L.multigrid.SetDiagonal(a);  // a nonlinear round: only the capacity's terms of the diagonal changed
+  } else if (multigrid) {
+    L.multigrid.Setup(a, L.ijk);
+    w.multigrid_faces = true;
+  }
   // z = B r; returns r.z.
   auto precondition = [&]() {
     if (multigrid) L.multigrid.Apply(w.r, w.z);
@@ -117,6 +122,7 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
     std::copy(L.diagonal.begin(), L.diagonal.end(), w.stencil.diagonal.begin());
   } else {
     w.stencil.Assign(L);
+    w.multigrid_faces = false;
     L.ijk.clear();  // other cells: their grid coordinates are found again if the multigrid is taken
   }
   // x, z and p are multiplied by the matrix: n + 1 values, the last the zero slot.

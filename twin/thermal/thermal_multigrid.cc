@@ -93,7 +93,18 @@ void AdditiveCorrectionMultigrid::Setup(const PaddedStencil& fine, const std::ve
     }
   }
   if (!same) BuildStructure(ijk);
-  SumCoefficients();
+  SumCoefficients(true);
+  InvertDiagonals();
+}
+
+void AdditiveCorrectionMultigrid::SetDiagonal(const PaddedStencil& fine) {
+  PaddedStencil& a = levels_[0].system;
+  if (&a != &fine) std::copy(fine.diagonal.begin(), fine.diagonal.end(), a.diagonal.begin());
+  SumCoefficients(false);
+  InvertDiagonals();
+}
+
+void AdditiveCorrectionMultigrid::InvertDiagonals() {
   for (Level& level : levels_) {
     const std::vector<double>& d = level.system.diagonal;
     level.inverse.resize(d.size());
@@ -174,13 +185,16 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
 }
 
 // Hutchinson & Raithby eqs. 9-12: a block's equation is the sum of its cells' equations with one correction for
-// all of them; faces inside the block cancel from the diagonal, faces between blocks add up.
-void AdditiveCorrectionMultigrid::SumCoefficients() {
+// all of them; faces inside the block cancel from the diagonal, faces between blocks add up. Without `faces` the
+// coarse conductances are kept and only the diagonals are summed (in the same order, so to the same values).
+void AdditiveCorrectionMultigrid::SumCoefficients(bool faces) {
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
     const PaddedStencil& a = levels_[l].system;
     const std::vector<int>& parent = levels_[l].parent;
     PaddedStencil& c = levels_[l + 1].system;
-    std::fill(c.conductance.begin(), c.conductance.end(), std::array<double, 6>{0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+    if (faces) {
+      std::fill(c.conductance.begin(), c.conductance.end(), std::array<double, 6>{0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+    }
     std::fill(c.diagonal.begin(), c.diagonal.end(), 0.0);
     const std::size_t n = a.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -191,7 +205,7 @@ void AdditiveCorrectionMultigrid::SumCoefficients() {
         if (j >= n) continue;
         if (parent[j] == block) {
           c.diagonal[block] -= a.conductance[i][f];
-        } else {
+        } else if (faces) {
           c.conductance[block][f] += a.conductance[i][f];
         }
       }

@@ -56,6 +56,9 @@ class AdditiveCorrectionMultigrid {
   // Throws nothing.
   void Setup(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk);
   void Setup(const StencilSystem& fine, const std::vector<std::array<int, 3>>& ijk);
+  // The same after a change of the fine system's diagonal alone (its cells, faces and conductances those of the last
+  // Setup): only the diagonals are summed again, with the same results as a Setup.
+  void SetDiagonal(const PaddedStencil& fine);
   // z = B r (sizes: at least the fine system's size; only its first values are read and written).
   void Apply(const std::vector<double>& r, std::vector<double>& z);
   int levels() const { return static_cast<int>(levels_.size()); }
@@ -70,7 +73,8 @@ class AdditiveCorrectionMultigrid {
   };
   bool SameStructure(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk) const;
   void BuildStructure(const std::vector<std::array<int, 3>>& ijk);
-  void SumCoefficients();
+  void SumCoefficients(bool faces);
+  void InvertDiagonals();
   void Cycle(std::size_t level);
 
   std::vector<Level> levels_;  // levels_[0] is the fine system

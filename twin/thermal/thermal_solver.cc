@@ -18,6 +18,8 @@ namespace {
 // (hundreds of K of mismatch), not to polish micro steps.
 constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
+// LocalBalance's bisection stops within this, K.
+constexpr double kBalanceToleranceK = 1e-3;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
 constexpr int kFinerCell = -2;
 // A level's step runs its finer levels and its corrector at most this many times: again when the corrector leaves
@@ -64,6 +66,14 @@ constexpr std::array<double, 5> kEdgePowers = {1.0, kReentrantFaceFactor, kReent
                                                kReentrantFaceFactor * kReentrantFaceFactor * kReentrantFaceFactor *
                                                    kReentrantFaceFactor};
 
+// The number of set bits of each 6-bit mask (a table: std::popcount is a library call without the POPCNT
+// instruction, which the build does not assume).
+constexpr std::array<std::uint8_t, 64> kBitCounts = [] {
+  std::array<std::uint8_t, 64> counts{};
+  for (unsigned m = 0; m < 64; ++m) counts[m] = static_cast<std::uint8_t>(std::popcount(m));
+  return counts;
+}();
+
 // The factor on the conductance of the face f between cells c and j (both present before micro step m1):
 // kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
@@ -72,7 +82,7 @@ double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
   if (s.latest_born < m1 || ((s.pending[c] | s.pending[j]) & across) == 0) {
     // Every linked cell beyond the edges is present (none of them is laid later in the batch): the edges where the
     // two cells' links differ.
-    return kEdgePowers[static_cast<std::size_t>(std::popcount((s.linked[c] ^ s.linked[j]) & across))];
+    return kEdgePowers[kBitCounts[(s.linked[c] ^ s.linked[j]) & across]];
   }
   double factor = 1.0;
   for (int e = 0; e < 6; ++e) {
@@ -196,6 +206,34 @@ void Relinearise(ThermalState& s, LevelSystem& L) {
   });
 }
 
+// The temperature at which cell i of the level's system balances its step's nonlinear equation with its
+// neighbours in the system held at their solved temperatures:
+// V/dt (H(T) - H_old) + D_i T = R_i + sum_faces G T_nb (D_i, R_i: base_diagonal and base_rhs),
+// found by bisection (the left side increases with T). Where the linearisation crossed the latent heat's edge, this
+// lands on the right side of it, where the enthalpy update H_k + C_k (T - T_k) overshoots by up to the ratio of the
+// capacities on the two sides.
+double LocalBalance(const ThermalState& s, const LevelSystem& L, std::size_t i) {
+  const int c = L.cells[i];
+  const ThermalPropertyTable& table = s.table[s.material[c]];
+  const double storage = s.CellVolume() / L.seconds;
+  double load = L.base_rhs[i];
+  for (int f = 0; f < 6; ++f) {
+    const int j = L.neighbour[i][f];
+    if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
+  }
+  auto excess = [&](double t) {
+    return storage * (table.Enthalpy(t) - s.enthalpy[c]) + L.base_diagonal[i] * t - load;
+  };
+  double low = std::min(L.t_new[i], s.chord[c]), high = std::max(L.t_new[i], s.chord[c]);
+  for (double widen = 16.0; excess(low) > 0.0 && widen < 1e5; widen *= 2.0) low -= widen;
+  for (double widen = 16.0; excess(high) < 0.0 && widen < 1e5; widen *= 2.0) high += widen;
+  while (high - low > kBalanceToleranceK) {
+    const double mid = 0.5 * (low + high);
+    (excess(mid) > 0.0 ? high : low) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
 // What a level's solve of a step is: the predictor (all the level's cells; with a finer region, its temperatures are
 // the finer levels' boundary values and the corrector's first guess) or the corrector (the cells left to the level,
 // with the energy the finer levels passed).
@@ -207,8 +245,38 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
   return role != StepRole::kPredictor || s.depth[c] <= level;
 }
 
-// Solves the level's backward-Euler step over the candidates: the system linearised at T_old (a corrector: at the
-// predictor's last iterate, H_k and T_k = T(H_k), which the finer levels leave to the cells outside their region),
+// A predictor's first linearisation: the old state (H_old, T_old), except for the cells whose equation, linearised
+// there with their neighbours at the first guess, maps back further than the enthalpy iteration allows: those start
+// at their local balance with the neighbours at the first guess (cells about to melt or freeze, new metal under the
+// arc), so that the first solve already sees the latent heat on the side where they end.
+void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
+  ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) L.t_new[i] = guess[L.cells[i]];
+  });
+  ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const int c = L.cells[i];
+      s.chord[c] = s.temperature[c];
+      s.iterate_h[c] = s.enthalpy[c];
+      if (!MustConverge(s, role, c, level)) continue;
+      double load = L.rhs[i];
+      for (int f = 0; f < 6; ++f) {
+        const int j = L.neighbour[i][f];
+        if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
+      }
+      const double t = load / L.diagonal[i];
+      const double h = s.enthalpy[c] + L.capacity[i] * (t - s.temperature[c]);
+      const double back = s.table[s.material[c]].Temperature(h, t);
+      if (std::abs(back - t) <= kChordToleranceK + 0.1 * std::abs(t - s.temperature[c])) continue;
+      s.chord[c] = LocalBalance(s, L, i);
+      s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+    }
+  });
+}
+
+// Solves the level's backward-Euler step over the candidates: the system linearised at T_old or where
+// FirstLinearisation puts a cell (a corrector: at the predictor's last iterate, H_k and T_k = T(H_k), which the finer
+// levels leave to the cells outside their region),
 // then, while some cell's linearised enthalpy H_k + C_k (T - T_k) maps back to a temperature more than
 // kChordToleranceK + 10 % of its change over the step away from the solved T (a cell melting or freezing in the
 // step), again linearised at that enthalpy (Relinearise): the nonlinear step converged (on the cells MustConverge
@@ -219,30 +287,39 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   LevelSystem& L = s.levels[level];
   const bool corrector = role == StepRole::kCorrector;
   Assemble(s, level, candidates, m0, m1, corrector, local_of);
-  if (corrector) Relinearise(s, L);
+  if (!corrector) FirstLinearisation(s, L, role, level, guess);
+  Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t> part_converged(Chunks(n));
+  std::vector<std::uint8_t> part_converged(Chunks(n)), off(n);
   for (int round = 0; round < kChordRounds; ++round) {
     // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t chunk) {
       bool converged = true;
       for (std::size_t i = begin; i < end; ++i) {
         const int c = L.cells[i];
-        const bool at_old = round == 0 && !corrector;
-        const double t_k = at_old ? s.temperature[c] : s.chord[c];
-        const double h_k = at_old ? s.enthalpy[c] : s.iterate_h[c];
-        const double h = h_k + L.capacity[i] * (L.t_new[i] - t_k);
+        const double h = s.iterate_h[c] + L.capacity[i] * (L.t_new[i] - s.chord[c]);
         const double t = s.table[s.material[c]].Temperature(h, L.t_new[i]);
         const double change = L.t_new[i] - s.temperature[c];
-        converged = converged && (std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
-                                  !MustConverge(s, role, c, level));
+        const bool ok = std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
+                        !MustConverge(s, role, c, level);
+        converged = converged && ok;
+        off[i] = ok ? 0 : 1;
         s.iterate_h[c] = h;
         s.chord[c] = t;
       }
       part_converged[chunk] = converged ? 1 : 0;
     });
     if (std::all_of(part_converged.begin(), part_converged.end(), [](std::uint8_t v) { return v != 0; })) return;
+    // The cells off the curve are linearised next at their local balance instead (on the curve: H_k = H(T_k)).
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i) {
+        if (off[i] == 0) continue;
+        const int c = L.cells[i];
+        s.chord[c] = LocalBalance(s, L, i);
+        s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+      }
+    });
     Relinearise(s, L);
     Count(s, level, n, SolveLevel(s, L, s.chord, true));
   }

@@ -115,6 +115,7 @@ struct LevelScratch {
   std::vector<double> x, r, ap;              // degC, W, W
   std::vector<double> inverse_diagonal;      // K/W
   std::vector<double> part_a, part_b, part_max;  // per-chunk partial sums and maxima
+  bool multigrid_faces = false;  // the level's multigrid was set up on this stencil's cells, faces and conductances
 };
 
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
