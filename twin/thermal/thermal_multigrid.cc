@@ -82,53 +82,45 @@ void AdditiveCorrectionMultigrid::Setup(const StencilSystem& fine, const std::ve
 
 void AdditiveCorrectionMultigrid::Setup(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk) {
   const bool same = SameStructure(fine, ijk);
+  fine_ = &fine;
   if (levels_.empty()) levels_.resize(1);
-  PaddedStencil& a = levels_[0].system;
-  if (&a != &fine) {
-    if (same) {
-      std::copy(fine.conductance.begin(), fine.conductance.end(), a.conductance.begin());
-      std::copy(fine.diagonal.begin(), fine.diagonal.end(), a.diagonal.begin());
-    } else {
-      a = fine;
-    }
-  }
   if (!same) BuildStructure(ijk);
   SumCoefficients(true);
   InvertDiagonals();
 }
 
 void AdditiveCorrectionMultigrid::SetDiagonal(const PaddedStencil& fine) {
-  PaddedStencil& a = levels_[0].system;
-  if (&a != &fine) std::copy(fine.diagonal.begin(), fine.diagonal.end(), a.diagonal.begin());
+  fine_ = &fine;
   SumCoefficients(false);
   InvertDiagonals();
 }
 
 void AdditiveCorrectionMultigrid::InvertDiagonals() {
-  for (Level& level : levels_) {
-    const std::vector<double>& d = level.system.diagonal;
-    level.inverse.resize(d.size());
-    for (std::size_t i = 0; i < d.size(); ++i) level.inverse[i] = 1.0 / d[i];
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const std::vector<double>& d = System(l).diagonal;
+    std::vector<double>& inverse = levels_[l].inverse;
+    inverse.resize(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) inverse[i] = 1.0 / d[i];
   }
 }
 
 bool AdditiveCorrectionMultigrid::SameStructure(const PaddedStencil& fine,
                                                 const std::vector<std::array<int, 3>>& ijk) const {
-  if (levels_.empty() || ijk_.size() != ijk.size() || levels_[0].system.size() != fine.size()) return false;
-  return ijk_ == ijk && levels_[0].system.neighbour == fine.neighbour;
+  return !levels_.empty() && ijk_ == ijk && neighbour_ == fine.neighbour;
 }
 
 // The blocks of every level (Hutchinson & Raithby's coarse cells) and the coarse levels' faces; the coefficients
 // are left to SumCoefficients.
 void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<int, 3>>& ijk) {
   ijk_ = ijk;
+  neighbour_ = fine_->neighbour;
   levels_.resize(1);
   levels_.reserve(32);
   std::vector<std::array<int, 3>> coords = ijk;
   std::vector<std::array<int, 3>> next;
   std::vector<int> map;
   while (true) {
-    const std::size_t n = levels_.back().system.size();
+    const std::size_t n = System(levels_.size() - 1).size();
     if (n <= kCoarsestCells || levels_.size() > 30) break;
     std::array<int, 3> lo = {coords[0][0] >> 1, coords[0][1] >> 1, coords[0][2] >> 1};
     std::array<int, 3> hi = lo;
@@ -155,7 +147,7 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
     if (static_cast<double>(m) > kPoorCoarsening * static_cast<double>(n)) break;
     // A block's face f leads to the block holding the neighbour across face f of any of its cells (on the
     // structured grid that is one block).
-    const PaddedStencil& a = levels_.back().system;
+    const PaddedStencil& a = System(levels_.size() - 1);
     Level coarse;
     PaddedStencil& c = coarse.system;
     const int pad = static_cast<int>(m);
@@ -178,10 +170,10 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
   }
   levels_.back().parent.clear();
   Level& fine = levels_[0];
-  fine.b.resize(fine.system.size());
-  fine.residual.resize(fine.system.size());
-  fine.x.assign(fine.system.size() + 1, 0.0);
-  fine.before.assign(fine.system.size() + 1, 0.0);
+  fine.b.resize(fine_->size());
+  fine.residual.resize(fine_->size());
+  fine.x.assign(fine_->size() + 1, 0.0);
+  fine.before.assign(fine_->size() + 1, 0.0);
 }
 
 // Hutchinson & Raithby eqs. 9-12: a block's equation is the sum of its cells' equations with one correction for
@@ -189,7 +181,7 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
 // coarse conductances are kept and only the diagonals are summed (in the same order, so to the same values).
 void AdditiveCorrectionMultigrid::SumCoefficients(bool faces) {
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
-    const PaddedStencil& a = levels_[l].system;
+    const PaddedStencil& a = System(l);
     const std::vector<int>& parent = levels_[l].parent;
     PaddedStencil& c = levels_[l + 1].system;
     if (faces) {
@@ -215,7 +207,7 @@ void AdditiveCorrectionMultigrid::SumCoefficients(bool faces) {
 
 void AdditiveCorrectionMultigrid::Apply(const std::vector<double>& r, std::vector<double>& z) {
   Level& fine = levels_[0];
-  const std::size_t n = fine.system.size();
+  const std::size_t n = fine_->size();
   std::copy(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(n), fine.b.begin());
   Cycle(0);
   std::copy(fine.x.begin(), fine.x.begin() + static_cast<std::ptrdiff_t>(n), z.begin());
@@ -223,7 +215,7 @@ void AdditiveCorrectionMultigrid::Apply(const std::vector<double>& r, std::vecto
 
 void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
   Level& L = levels_[level];
-  const PaddedStencil& a = L.system;
+  const PaddedStencil& a = System(level);
   const std::size_t n = a.size();
   std::fill(L.x.begin(), L.x.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
   if (level + 1 == levels_.size()) {

@@ -49,15 +49,18 @@ struct PaddedStencil {
 // symmetric positive definite and the conjugate gradients stay valid. Gauss-Seidel runs in the fixed chunks of
 // ForChunks and reads other chunks' values from before the sweep (block Gauss-Seidel): the result does not depend
 // on the thread count. The blocks are kept between Setups while the system's cells and faces stay the same (the
-// usual case from one time step to the next): only the coefficients are summed again.
+// usual case from one time step to the next): only the coefficients are summed again. The fine system is not copied:
+// the multigrid reads the caller's PaddedStencil given to the last Setup or SetDiagonal, which must stay alive and
+// unchanged until the Applies that follow are done.
 class AdditiveCorrectionMultigrid {
  public:
-  // Builds the coarse levels of `fine` (copied), whose cell i lies at grid coordinates ijk[i] (non-negative).
-  // Throws nothing.
+  // Builds the coarse levels of `fine` (referenced, not copied), whose cell i lies at grid coordinates ijk[i]
+  // (non-negative). Throws nothing.
   void Setup(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk);
+  // The same on a copy of `fine` that the multigrid keeps.
   void Setup(const StencilSystem& fine, const std::vector<std::array<int, 3>>& ijk);
   // The same after a change of the fine system's diagonal alone (its cells, faces and conductances those of the last
-  // Setup): only the diagonals are summed again, with the same results as a Setup.
+  // Setup): only the diagonals are summed again, with the same results as a Setup. `fine` is referenced from then on.
   void SetDiagonal(const PaddedStencil& fine);
   // z = B r (sizes: at least the fine system's size; only its first values are read and written).
   void Apply(const std::vector<double>& r, std::vector<double>& z);
@@ -65,7 +68,7 @@ class AdditiveCorrectionMultigrid {
 
  private:
   struct Level {
-    PaddedStencil system;
+    PaddedStencil system;  // empty on the fine level (its system is *fine_)
     std::vector<int> parent;  // per cell: its block's index in the next coarser level (empty on the coarsest)
     std::vector<double> inverse;  // 1 / the diagonal
     std::vector<double> b, residual;
@@ -76,9 +79,12 @@ class AdditiveCorrectionMultigrid {
   void SumCoefficients(bool faces);
   void InvertDiagonals();
   void Cycle(std::size_t level);
+  const PaddedStencil& System(std::size_t level) const { return level == 0 ? *fine_ : levels_[level].system; }
 
   std::vector<Level> levels_;  // levels_[0] is the fine system
   std::vector<std::array<int, 3>> ijk_;  // the fine cells' grid coordinates of the last structure built
+  std::vector<std::array<int, 6>> neighbour_;  // ... and the fine system's faces
+  const PaddedStencil* fine_ = nullptr;  // the fine system of the last Setup or SetDiagonal (read until the next)
   PaddedStencil scratch_;
 };
 
