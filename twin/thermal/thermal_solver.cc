@@ -97,8 +97,8 @@ double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
 // Assembles the backward-Euler system of `level` over the candidates present in micro steps [m0, m1):
 // (C V / dt) (T - T_old) = Q + E / dt + sum_faces G (T_nb - T) - losses(T), C = dH/dT at T_old (eq. 3 of
 // docs/THERMAL.md), E the energy already passed in by finer levels. With `finer_apart`, faces towards cells of a
-// finer level (depth > level) carry no flux. The terms without the capacity are kept in base_diagonal and base_rhs,
-// so that the nonlinear iteration changes only the capacity (Relinearise).
+// finer level (depth > level) carry no flux. Only the terms without the capacity are assembled, into base_diagonal
+// and base_rhs: the capacity's terms are added where the step is linearised (FirstLinearisation, Relinearise).
 void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, bool finer_apart,
               std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
@@ -122,7 +122,6 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
       if (local_of[cell] != kNoCell) L.source_w[local_of[cell]] += watts * s.batch[m].seconds / L.seconds;
     }
   }
-  const double volume = s.CellVolume();
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       const int c = L.cells[i];
@@ -162,11 +161,6 @@ void Assemble(ThermalState& s, int level, const std::vector<int>& candidates, in
       }
       L.base_diagonal[i] = diagonal;
       L.base_rhs[i] = rhs;
-      const double capacity = s.table[s.material[c]].Capacity(t);
-      L.capacity[i] = capacity;
-      const double storage = capacity * volume / L.seconds;
-      L.diagonal[i] = diagonal + storage;
-      L.rhs[i] = rhs + storage * t;
     }
   });
   for (int c : L.cells) local_of[c] = kNoCell;
@@ -250,6 +244,7 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
 // at their local balance with the neighbours at the first guess (cells about to melt or freeze, new metal under the
 // arc), so that the first solve already sees the latent heat on the side where they end.
 void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
+  const double volume = s.CellVolume();
   ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) L.t_new[i] = guess[L.cells[i]];
   });
@@ -259,13 +254,16 @@ void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int leve
       s.chord[c] = s.temperature[c];
       s.iterate_h[c] = s.enthalpy[c];
       if (!MustConverge(s, role, c, level)) continue;
-      double load = L.rhs[i];
+      // The system linearised at the old state: capacity C at T_old (eq. 3).
+      const double capacity = s.table[s.material[c]].Capacity(s.temperature[c]);
+      const double storage = capacity * volume / L.seconds;
+      double load = L.base_rhs[i] + storage * s.temperature[c];
       for (int f = 0; f < 6; ++f) {
         const int j = L.neighbour[i][f];
         if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
       }
-      const double t = load / L.diagonal[i];
-      const double h = s.enthalpy[c] + L.capacity[i] * (t - s.temperature[c]);
+      const double t = load / (L.base_diagonal[i] + storage);
+      const double h = s.enthalpy[c] + capacity * (t - s.temperature[c]);
       const double back = s.table[s.material[c]].Temperature(h, t);
       if (std::abs(back - t) <= kChordToleranceK + 0.1 * std::abs(t - s.temperature[c])) continue;
       s.chord[c] = LocalBalance(s, L, i);
