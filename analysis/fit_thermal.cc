@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ctime>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <ostream>
@@ -20,6 +21,9 @@
 namespace waam::analysis {
 
 namespace {
+
+// Where a stage writes its line per Ceres iteration: stderr, with the progress bars (none with --quiet).
+std::ostream* IterationLog(const FitOptions& options) { return options.quiet ? nullptr : &std::cerr; }
 
 using internal::FreeParameter;
 using internal::ReplayResiduals;
@@ -75,7 +79,7 @@ nlohmann::json RunCoarseStage(const FitOptions& options, const ReplayModel& mode
   const ReplayResiduals coarse = residuals.OnModel(coarse_model);
   std::vector<double> x0 = x;
   const StageOutcome stage =
-      internal::SolveStage(coarse, x, options.max_iterations, {}, {options.prior_weight, x0});
+      internal::SolveStage(coarse, x, options.max_iterations, {}, {options.prior_weight, x0}, IterationLog(options));
   const bool usable = stage.usable && stage.error.empty();
   if (usable) x = stage.x, seed = stage.jacobian;
   const ThermalParameters reached = coarse.Parameters(stage.x.data());
@@ -194,7 +198,8 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   const std::vector<double> x0 = x;  // before the coarse stage moves x
   const nlohmann::json coarse_doc = RunCoarseStage(options, model, residuals, free, x, seed, out);
   const StageOutcome fine =
-      internal::SolveStage(residuals, x, options.max_iterations, std::move(seed), {options.prior_weight, x0});
+      internal::SolveStage(residuals, x, options.max_iterations, std::move(seed), {options.prior_weight, x0},
+                           IterationLog(options));
   const nlohmann::json solver = internal::StageSolverJson(fine);
   const int iterations = solver["iterations"].get<int>();
 

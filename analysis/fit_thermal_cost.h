@@ -84,9 +84,11 @@ struct StageOutcome {
 };
 
 // Runs a stage with at most `max_iterations` Ceres iterations over all its runs; `seed`: a Jacobian in x (m x n) for the first point instead of differences; `prior`: the
-// weak prior's weight W (0: none) and x0, the start's scaled values it pulls toward. Throws Interrupted on Ctrl-C.
+// weak prior's weight W (0: none) and x0, the start's scaled values it pulls toward; `progress`: where to write one
+// line per Ceres iteration (null: nowhere). Throws Interrupted on Ctrl-C.
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
-                        std::vector<double> seed, std::pair<double, std::vector<double>> prior);
+                        std::vector<double> seed, std::pair<double, std::vector<double>> prior,
+                        std::ostream* progress);
 
 // The stage's solver record for fitted.json (docs/REPLAY.md, `solver`).
 nlohmann::json StageSolverJson(const StageOutcome& stage);

@@ -171,7 +171,7 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
                 "bead-temperature: the width follows the height so that w h stays (k_w not fitted)");
   AddVoidLengthOptions(fit, options.get(), names.get());
   CLI::Option* free = AddScanOptions(fit, options.get());
-  fit->add_flag("-q,--quiet", options->quiet, "no progress bar");
+  fit->add_flag("-q,--quiet", options->quiet, "no progress bar and no line per iteration (fit thermal) on stderr");
   fit->callback([runner, options, names, free] {
     options->model = analysis::ParseFitModel(names->model);  // a name IsMember let through
     if (options->model == analysis::FitModel::kThermal && free->count() == 0) {
