@@ -273,44 +273,54 @@ class PriorCost : public ceres::CostFunction {
   double weight_;
 };
 
+// Where and since when a stage writes its line per iteration, and the iterations its earlier Ceres runs took (the
+// numbers go on across runs).
+struct StageLog {
+  std::ostream* out = nullptr;  // null: no lines
+  std::chrono::steady_clock::time_point start;
+  int done = 0;
+};
+
 // Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
 // from the same point with a differenced one rather than shrinking the trust region around a model that may be
-// wrong. With `progress`, writes one line per iteration there: the window's rmse at the current point (from the cost,
-// the weak prior included), the values, the replays so far and the time.
+// wrong. With `log.out`, writes one line per iteration there: the window's rmse at the current point (from the cost,
+// the weak prior included), the values, the replays so far and the time since the stage began.
 class StageCallback : public ceres::IterationCallback {
  public:
-  StageCallback(const ReplayCost& cost, const ReplayResiduals& residuals, const double* u, std::ostream* progress)
-      : cost_(cost), residuals_(residuals), u_(u), progress_(progress) {}
+  StageCallback(const ReplayCost& cost, const ReplayResiduals& residuals, const double* u, const StageLog& log)
+      : cost_(cost), residuals_(residuals), u_(u), log_(log) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (InterruptRequested()) return ceres::SOLVER_ABORT;
-    if (progress_ != nullptr) Report(s);
+    if (log_.out != nullptr) Report(s);
     if (s.iteration > 0 && !s.step_is_successful && cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     return ceres::SOLVER_CONTINUE;
   }
 
  private:
   void Report(const ceres::IterationSummary& s) const {
-    std::ostream& o = *progress_;
-    const double rmse = std::sqrt(2.0 * s.cost / static_cast<double>(std::max<std::size_t>(residuals_.size(), 1)));
-    o << "  iteration " << s.iteration << ": ";
-    if (s.iteration > 0 && !s.step_is_successful) o << "step rejected, ";
-    o << "window rmse " << std::setprecision(4) << rmse << " degC;";
+    std::ostream& o = *log_.out;
+    o << "  iteration " << log_.done + s.iteration << ": ";
+    if (s.iteration > 0 && !s.step_is_successful) {
+      o << "step rejected, staying at" << std::setprecision(4);  // (the summary's cost may be the rejected trial's)
+    } else {
+      const double readings = static_cast<double>(std::max<std::size_t>(residuals_.size(), 1));
+      o << "window rmse " << std::setprecision(4) << std::sqrt(2.0 * s.cost / readings) << " degC;";
+    }
     const ThermalParameters values = residuals_.Parameters(ToScaled(residuals_.free(), u_).data());
     for (const FreeParameter& f : residuals_.free()) o << " " << f.name << " " << values.*(f.member);
     o << "; " << residuals_.replays() << " replays, " << std::setprecision(3)
-      << std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() << " s" << std::endl;
+      << std::chrono::duration<double>(std::chrono::steady_clock::now() - log_.start).count() << " s" << std::endl;
   }
   const ReplayCost& cost_;
   const ReplayResiduals& residuals_;
   const double* u_;  // Ceres' current point (update_state_every_iteration)
-  std::ostream* progress_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  const StageLog& log_;
 };
 
 // One Ceres run from `u` (changed in place) with at most `iterations` iterations.
 ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& cost, PriorCost* prior,
                                 std::vector<double>& u, int iterations, double function_tolerance,
-                                std::ostream* progress) {
+                                const StageLog& log) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
   ceres::Problem problem(problem_options);
@@ -326,7 +336,7 @@ ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& co
   solver.logging_type = ceres::SILENT;
   solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
   solver.update_state_every_iteration = true;  // the progress line reads u
-  StageCallback callback(cost, residuals, u.data(), progress);
+  StageCallback callback(cost, residuals, u.data(), log);
   solver.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
@@ -353,7 +363,9 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
   // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
   while (true) {
-    ceres::Solver::Summary summary = RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, progress);
+    const StageLog log{progress, clock_start, max_iterations - left};
+    ceres::Solver::Summary summary =
+        RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, log);
     CheckInterrupt();
     left -= static_cast<int>(summary.iterations.size()) - 1;
     const bool again = summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() && left > 0 &&

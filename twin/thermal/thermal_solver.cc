@@ -200,6 +200,16 @@ void Relinearise(ThermalState& s, LevelSystem& L) {
   });
 }
 
+// `load` plus the neighbours' part of cell i's equation in the level's system at their temperatures L.t_new: the sum
+// over its faces of G T_nb, W (added face by face in face order).
+double AddNeighbourFlow(const LevelSystem& L, std::size_t i, double load) {
+  for (int f = 0; f < 6; ++f) {
+    const int j = L.neighbour[i][f];
+    if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
+  }
+  return load;
+}
+
 // The temperature at which cell i of the level's system balances its step's nonlinear equation with its
 // neighbours in the system held at their solved temperatures:
 // V/dt (H(T) - H_old) + D_i T = R_i + sum_faces G T_nb (D_i, R_i: base_diagonal and base_rhs),
@@ -210,11 +220,7 @@ double LocalBalance(const ThermalState& s, const LevelSystem& L, std::size_t i) 
   const int c = L.cells[i];
   const ThermalPropertyTable& table = s.table[s.material[c]];
   const double storage = s.CellVolume() / L.seconds;
-  double load = L.base_rhs[i];
-  for (int f = 0; f < 6; ++f) {
-    const int j = L.neighbour[i][f];
-    if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
-  }
+  const double load = AddNeighbourFlow(L, i, L.base_rhs[i]);
   auto excess = [&](double t) {
     return storage * (table.Enthalpy(t) - s.enthalpy[c]) + L.base_diagonal[i] * t - load;
   };
@@ -257,11 +263,7 @@ void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int leve
       // The system linearised at the old state: capacity C at T_old (eq. 3).
       const double capacity = s.table[s.material[c]].Capacity(s.temperature[c]);
       const double storage = capacity * volume / L.seconds;
-      double load = L.base_rhs[i] + storage * s.temperature[c];
-      for (int f = 0; f < 6; ++f) {
-        const int j = L.neighbour[i][f];
-        if (j >= 0) load += L.conductance[i][f] * L.t_new[static_cast<std::size_t>(j)];
-      }
+      const double load = AddNeighbourFlow(L, i, L.base_rhs[i] + storage * s.temperature[c]);
       const double t = load / (L.base_diagonal[i] + storage);
       const double h = s.enthalpy[c] + capacity * (t - s.temperature[c]);
       const double back = s.table[s.material[c]].Temperature(h, t);
