@@ -80,10 +80,14 @@ ThermalParameters ReplayResiduals::Parameters(const double* x) const {
   return p;
 }
 
-std::size_t ReplayResiduals::Run(const double* x, double* residuals) const {
+std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::SolverChoices* record,
+                                 std::shared_ptr<const twin::SolverChoices> follow) const {
   ReplayRun run(*model_, Parameters(x));
+  if (record != nullptr) run.RecordChoices();
+  if (follow != nullptr) run.FollowChoices(std::move(follow));
   run.AdvanceTo(window_.second);
   const ReplaySimulation sim = run.Result();
+  if (record != nullptr) *record = run.TakeChoices();
   ++replays_;
   std::size_t missing = 0;
   for (std::size_t r = 0; r < used_.size(); ++r) {
@@ -164,16 +168,25 @@ class ReplayCost : public ceres::CostFunction {
     JacobianKind kind;
   };
 
-  // The residuals at `x`: the last point tried or accepted, else one replay. Null when the replay blew up.
-  const std::vector<double>* ResidualsAt(const std::vector<double>& x) const {
-    if (have_point_ && x == point_x_) return &point_r_;
-    if (!tried_x_.empty() && x == tried_x_) return &tried_r_;
-    std::vector<double> r(residuals_.size());
-    const std::size_t missing = residuals_.Run(x.data(), r.data());
-    if (first_missing_ < 0) first_missing_ = static_cast<long>(missing);
-    if (static_cast<long>(missing) > first_missing_) return nullptr;
-    tried_x_ = x;
-    tried_r_ = std::move(r);
+  // The residuals at `x`: the last point tried or accepted, else one replay (its solver choices recorded). Null
+  // when the replay blew up. `choices`, when given, gets the choices of the replay the residuals come from.
+  const std::vector<double>* ResidualsAt(const std::vector<double>& x,
+                                         std::shared_ptr<const twin::SolverChoices>* choices = nullptr) const {
+    if (have_point_ && x == point_x_) {
+      if (choices != nullptr) *choices = point_choices_;
+      return &point_r_;
+    }
+    if (tried_x_.empty() || x != tried_x_) {
+      std::vector<double> r(residuals_.size());
+      twin::SolverChoices made;
+      const std::size_t missing = residuals_.Run(x.data(), r.data(), &made);
+      if (first_missing_ < 0) first_missing_ = static_cast<long>(missing);
+      if (static_cast<long>(missing) > first_missing_) return nullptr;
+      tried_x_ = x;
+      tried_r_ = std::move(r);
+      tried_choices_ = std::make_shared<const twin::SolverChoices>(std::move(made));
+    }
+    if (choices != nullptr) *choices = tried_choices_;
     return &tried_r_;
   }
 
@@ -181,18 +194,20 @@ class ReplayCost : public ceres::CostFunction {
   bool JacobianAt(const std::vector<double>& x) const {
     const bool same = have_point_ && x == point_x_;
     if (same && !(refresh_ && point_kind_ != JacobianKind::kDifferenced)) return true;
-    const std::vector<double>* r = ResidualsAt(x);
+    std::shared_ptr<const twin::SolverChoices> choices;
+    const std::vector<double>* r = ResidualsAt(x, &choices);
     if (r == nullptr) return false;
     std::vector<double> r_new = *r;
     JacobianKind kind = JacobianKind::kDifferenced;
     std::vector<double> j;
     if (!seed_.empty() && !have_point_) {
       kind = JacobianKind::kSeed, j = seed_;
-    } else if (!Difference(x, r_new, &j)) {
+    } else if (!Difference(x, r_new, choices, &j)) {
       return false;
     }
     point_x_ = x;
     point_r_ = std::move(r_new);
+    point_choices_ = std::move(choices);
     point_j_ = j;
     point_kind_ = kind;
     have_point_ = true;
@@ -201,8 +216,11 @@ class ReplayCost : public ceres::CostFunction {
     return true;
   }
 
-  // Forward differences at `x` (residuals r there): the n perturbed replays in parallel.
-  bool Difference(const std::vector<double>& x, const std::vector<double>& r, std::vector<double>* j) const {
+  // Forward differences at `x` (residuals r there, from a replay that made `choices`): the n perturbed replays in
+  // parallel, each following those choices (internal numerical differentiation: docs/THERMAL.md, "Differencing a
+  // run"), so that the difference sees the parameter's effect and none of the solver's switches.
+  bool Difference(const std::vector<double>& x, const std::vector<double>& r,
+                  const std::shared_ptr<const twin::SolverChoices>& choices, std::vector<double>* j) const {
     const std::size_t m = residuals_.size();
     std::vector<std::vector<double>> out(n_, std::vector<double>(m));
     std::vector<double> step(n_);
@@ -214,7 +232,7 @@ class ReplayCost : public ceres::CostFunction {
     ParallelFor(static_cast<std::size_t>(n_), [&](std::size_t k) {
       std::vector<double> xs = x;
       xs[k] += step[k];
-      missing[k] = residuals_.Run(xs.data(), out[k].data());
+      missing[k] = residuals_.Run(xs.data(), out[k].data(), nullptr, choices);
     });
     for (int k = 0; k < n_; ++k) {
       if (static_cast<long>(missing[k]) > first_missing_) return false;
@@ -232,6 +250,7 @@ class ReplayCost : public ceres::CostFunction {
   mutable bool refresh_ = false;  // difference the next Jacobian
   mutable long first_missing_ = -1;         // rows without a temperature in the first replay
   mutable std::vector<double> tried_x_, tried_r_;  // the last point tried (a candidate) and its residuals
+  mutable std::shared_ptr<const twin::SolverChoices> tried_choices_, point_choices_;  // their replays' choices
   mutable bool have_point_ = false;           // the point Ceres stands on (the start or the last accepted)
   mutable std::vector<double> point_x_, point_r_, point_j_;
   mutable JacobianKind point_kind_ = JacobianKind::kDifferenced;

@@ -51,8 +51,10 @@ class ReplayResiduals {
   // The parameters at scaled values `x` (within the bounds).
   ThermalParameters Parameters(const double* x) const;
   // One replay to the window's end at scaled values `x` into `residuals` (size()). Returns how many compared rows the replay has no temperature at (NaN: no metal at the
-  // probe yet, which the log alone decides; a replay that blows up has more). Throws as ReplayRun.
-  std::size_t Run(const double* x, double* residuals) const;
+  // probe yet, which the log alone decides; a replay that blows up has more). Throws as ReplayRun. With `record`,
+  // the solver's choices are recorded there; with `follow`, the replay makes those instead of its own.
+  std::size_t Run(const double* x, double* residuals, twin::SolverChoices* record = nullptr,
+                  std::shared_ptr<const twin::SolverChoices> follow = nullptr) const;
   int replays() const { return replays_.load(); }
 
  private:

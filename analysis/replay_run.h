@@ -3,6 +3,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,11 @@ class ReplayRun {
   // The probes at every row driven so far (NaN at the rows after them), the energy, stats and wall time.
   ReplaySimulation Result() const;
   const ThermalParameters& parameters() const { return parameters_; }
+  // The solver's choices (twin::ThermalSimulation::RecordChoices and FollowChoices; docs/THERMAL.md, "Differencing
+  // a run"): record or follow them from the first AdvanceTo on; TakeChoices after Result.
+  void RecordChoices() { sim_.RecordChoices(); }
+  twin::SolverChoices TakeChoices() { return sim_.TakeChoices(); }
+  void FollowChoices(std::shared_ptr<const twin::SolverChoices> choices) { sim_.FollowChoices(std::move(choices)); }
 
  private:
   const ReplayModel* model_;

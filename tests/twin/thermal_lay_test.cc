@@ -14,14 +14,14 @@ namespace {
 
 // A 40 x 4 x 4 mm wall (two layers of 2 mm cells) in SmallBuildSettings' deposit box.
 const Eigen::AlignedBox3d kWall(Eigen::Vector3d(-20, -2, 0), Eigen::Vector3d(20, 2, 4));
-const std::vector<Eigen::Vector3d> kProbes = {{0, 0, 1}, {10, 0, 3}, {0, 10, -1}, {-10, 0, -3}, {0, 0, 5}};
+const std::vector<Eigen::Vector3d> kLayProbes = {{0, 0, 1}, {10, 0, 3}, {0, 10, -1}, {-10, 0, -3}, {0, 0, 5}};
 
 // A heated pass along the wall's top and some cooling; the probes' temperatures after it.
 std::vector<double> HeatAndCool(ThermalSimulation& sim) {
   sim.Weld(Eigen::Vector3d(-20, 0, 6), Eigen::Vector3d(20, 0, 6), 4.0, 2.0, 2000.0, 5.0);
   sim.Cool(10.0);
   std::vector<double> t;
-  for (const Eigen::Vector3d& p : kProbes) t.push_back(sim.TemperatureAt(p));
+  for (const Eigen::Vector3d& p : kLayProbes) t.push_back(sim.TemperatureAt(p));
   return t;
 }
 
@@ -43,7 +43,7 @@ TEST(ThermalLay, LayingAtOnceMatchesZeroHeatWelds) {
     EXPECT_EQ(welded.Stats().active_cells, laid.Stats().active_cells);
     EXPECT_DOUBLE_EQ(laid.TemperatureAt(Eigen::Vector3d(0, 0, 3)), settings.ambient_c);
     const std::vector<double> a = HeatAndCool(laid), b = HeatAndCool(welded);
-    for (std::size_t p = 0; p < kProbes.size(); ++p) {
+    for (std::size_t p = 0; p < kLayProbes.size(); ++p) {
       EXPECT_GT(a[p], settings.ambient_c + 1.0) << "probe " << p << " is heated (far_step_s " << far_step_s << ")";
       // Within the CG's tolerance (0.01 K): the cells are the same, only their order in the solver differs.
       EXPECT_NEAR(a[p], b[p], 0.02) << "probe " << p << " (far_step_s " << far_step_s << ")";

@@ -28,7 +28,8 @@ double Sum(const std::vector<double>& partial) {
 // V-cycle (`multigrid`) or the diagonal, until every Jacobi correction |r_i / A_ii| is below the tolerance. Each
 // iteration takes one stencil product: p = z + beta p and A p = A z + beta (A p)_old in one pass. Returns the
 // iterations. With `same_faces` the cells are those of the last solve, whose grid coordinates L.ijk still holds.
-int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
+// With `fixed` > 0, exactly that many iterations (a run following choices), unless the search direction vanishes.
+int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces, int fixed) {
   LevelScratch& w = L.scratch;
   const PaddedStencil& a = w.stencil;
   const std::size_t n = L.cells.size();
@@ -68,7 +69,8 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
   double rz = precondition();
   double beta = 0.0;
   int iterations = 0;
-  while (iterations < kMaxIterations) {
+  const int most_iterations = fixed > 0 ? fixed : kMaxIterations;
+  while (iterations < most_iterations) {
     const bool first = iterations == 0;
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
       double pap = 0.0;
@@ -80,7 +82,9 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
       }
       w.part_a[c] = pap;
     });
-    const double alpha = rz / Sum(w.part_a);
+    const double pap = Sum(w.part_a);
+    if (!(pap > 0.0)) break;  // the residual is zero already (only a followed count can ask for more)
+    const double alpha = rz / pap;
     // x and r; with the diagonal preconditioner z = r / A_ii and r.z in the same pass.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t c) {
       double most = 0.0, rz_part = 0.0;
@@ -98,7 +102,7 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces) {
       w.part_a[c] = rz_part;
     });
     ++iterations;
-    if (*std::max_element(w.part_max.begin(), w.part_max.end()) <= tolerance) break;
+    if (fixed <= 0 && *std::max_element(w.part_max.begin(), w.part_max.end()) <= tolerance) break;
     const double rz_new = multigrid ? precondition() : Sum(w.part_a);
     beta = rz_new / rz;
     rz = rz_new;
@@ -157,11 +161,18 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
     w.part_a[c] = conduction;
     w.part_b[c] = rest;
   });
+  // The preconditioner and the iteration count are choices (SolverChoices): a run following them takes the
+  // recorded ones, so that its result is a continuous function of the system.
   int iterations = 0;
-  if (*std::max_element(w.part_max.begin(), w.part_max.end()) > s.settings.solver_tolerance_c) {
-    const bool multigrid = n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness * Sum(w.part_b);
-    iterations = Iterate(s, L, multigrid, same_faces);
+  const bool following = FollowingChoices(s);
+  const bool multigrid = ChooseCount(s, n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness *
+                                                                                    Sum(w.part_b)) != 0;
+  const int fixed = following ? ChooseCount(s, 0) : 0;
+  if (fixed > 0 || (!following && *std::max_element(w.part_max.begin(), w.part_max.end()) >
+                                       s.settings.solver_tolerance_c)) {
+    iterations = Iterate(s, L, multigrid, same_faces, fixed);
   }
+  if (!following) ChooseCount(s, iterations);
   std::copy(x, x + n, L.t_new.begin());
   return iterations;
 }

@@ -68,17 +68,22 @@ void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near) {
   const LevelSystem& L = s.levels[level];
   const double dt = L.seconds;
   const std::size_t first = near.size();
+  std::vector<int> inaccurate;
   for (int c : L.cells) {
-    if (s.depth[c] != level) continue;
+    if (s.depth[c] != level || FollowingChoices(s)) continue;
     const double change = s.iterate_h[c] - s.enthalpy[c];
     const double error = std::abs(change - dt * s.heat_rate[c]) * dt / (dt + s.rate_step_s[c]);
     if (error > std::max(s.step_error_h[s.material[c]], kStepErrorShare * std::abs(s.enthalpy[c]))) {
-      Join(s, c, level, near);
+      inaccurate.push_back(c);
     }
   }
+  ChooseList(s, inaccurate, s.grid_of.size());  // which cells are inaccurate is a choice (SolverChoices)
+  for (int c : inaccurate) {
+    if (s.depth[c] == level) Join(s, c, level, near);
+  }
   // One cell of margin around the inaccurate cells, then the closing.
-  const std::size_t inaccurate = near.size();
-  for (std::size_t q = first; q < inaccurate; ++q) {
+  const std::size_t joined = near.size();
+  for (std::size_t q = first; q < joined; ++q) {
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[near[q]][f];
       if (Outside(s, j, level, L.m1)) Join(s, j, level, near);

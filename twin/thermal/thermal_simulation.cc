@@ -444,6 +444,28 @@ EnergyBalance ThermalSimulation::Energy() const {
   return e;
 }
 
+void ThermalSimulation::RecordChoices() {
+  ThermalState& s = impl_->s;
+  s.choice_mode = ThermalState::ChoiceMode::kRecord;
+  s.recorded.values.clear();
+}
+
+SolverChoices ThermalSimulation::TakeChoices() {
+  ThermalState& s = impl_->s;
+  SolverChoices choices = std::move(s.recorded);
+  s.recorded.values.clear();
+  s.choice_mode = ThermalState::ChoiceMode::kFree;
+  return choices;
+}
+
+void ThermalSimulation::FollowChoices(std::shared_ptr<const SolverChoices> choices) {
+  WAAM_DEMAND(choices != nullptr);
+  ThermalState& s = impl_->s;
+  s.choice_mode = ThermalState::ChoiceMode::kFollow;
+  s.followed = std::move(choices);
+  s.followed_at = 0;
+}
+
 ThermalStats ThermalSimulation::Stats() const {
   ThermalState& s = impl_->s;
   Pump(s, true);

@@ -120,6 +120,16 @@ struct ThermalStats {
   std::size_t coupling_repairs = 0;
 };
 
+// The solver's discrete choices over a run, in the order it made them (docs/THERMAL.md, "Differencing a run"):
+// which cells take a coarser level's finer steps, which level steps re-run their finer levels, which cells the
+// enthalpy iteration restarts at their local balance and in which round it stops, and each linear solve's
+// preconditioner and iteration count. These switch on thresholds, so a run's temperatures jump where a parameter
+// moves a value across one; a run that follows another's choices makes none of its own and its temperatures are a
+// continuous function of the heat input and the boundary coefficients (what a fit's differences need).
+struct SolverChoices {
+  std::vector<int> values;  // counts and cell lists, in the order the solver made them
+};
+
 // The temperature field on the solver's grid (for thermal.h5 and the pictures): cell (i, j, k) is centred at
 // origin_mm + (i + 1/2, j + 1/2, k + 1/2) cell_mm; NaN where no metal is.
 struct TemperatureField {
@@ -174,6 +184,15 @@ class ThermalSimulation {
   // The probes' temperatures of record `index` (degC by probe, NaN where no metal was), solving the arc motion held
   // back first if the record is not filled yet. Throws InputError for an index RecordProbes did not return.
   std::vector<double> ProbeRecord(std::size_t index) const;
+  // From now on the solver appends every choice it makes to a record (call before the first Weld or Cool);
+  // TakeChoices returns the choices of the steps solved so far (the motion held back is not: a query such as
+  // ProbeRecord solves it) and ends the recording.
+  void RecordChoices();
+  SolverChoices TakeChoices();
+  // From now on the solver makes the choices of `choices` instead of its own, in order: the run must be driven as the
+  // recorded one was (the same settings but for the heat input and the boundary coefficients, and the same calls with
+  // the same arguments but for the heat). Throws InputError when the record runs out or does not fit the cells.
+  void FollowChoices(std::shared_ptr<const SolverChoices> choices);
   EnergyBalance Energy() const;
   ThermalStats Stats() const;
   TemperatureField Field() const;

@@ -227,11 +227,32 @@ double LocalBalance(const ThermalState& s, const LevelSystem& L, std::size_t i) 
   double low = std::min(L.t_new[i], s.chord[c]), high = std::max(L.t_new[i], s.chord[c]);
   for (double widen = 16.0; excess(low) > 0.0 && widen < 1e5; widen *= 2.0) low -= widen;
   for (double widen = 16.0; excess(high) < 0.0 && widen < 1e5; widen *= 2.0) high += widen;
+  double excess_low = excess(low), excess_high = excess(high);
   while (high - low > kBalanceToleranceK) {
     const double mid = 0.5 * (low + high);
-    (excess(mid) > 0.0 ? high : low) = mid;
+    const double e = excess(mid);
+    if (e > 0.0) {
+      high = mid, excess_high = e;
+    } else {
+      low = mid, excess_low = e;
+    }
   }
-  return 0.5 * (low + high);
+  // The root of the excess's chord over the last bracket: exact where no table node lies inside it (H is linear
+  // between nodes), and continuous in the cell's inputs, which the bracket's midpoint is not.
+  const double span = excess_high - excess_low;
+  return span > 0.0 ? low - excess_low * (high - low) / span : 0.5 * (low + high);
+}
+
+// The choice of which cells of a level's system take a flag (1): recorded, or replaced by the followed one.
+void ChooseFlags(ThermalState& s, std::vector<std::uint8_t>& flags) {
+  if (s.choice_mode == ThermalState::ChoiceMode::kFree) return;
+  std::vector<int> set;
+  for (std::size_t i = 0; i < flags.size(); ++i) {
+    if (flags[i] != 0) set.push_back(static_cast<int>(i));
+  }
+  ChooseList(s, set, flags.size());
+  std::fill(flags.begin(), flags.end(), std::uint8_t{0});
+  for (int i : set) flags[static_cast<std::size_t>(i)] = 1;
 }
 
 // What a level's solve of a step is: the predictor (all the level's cells; with a finer region, its temperatures are
@@ -251,15 +272,17 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
 // arc), so that the first solve already sees the latent heat on the side where they end.
 void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
   const double volume = s.CellVolume();
-  ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+  const std::size_t n = L.cells.size();
+  std::vector<std::uint8_t> balance(n, 0);
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) L.t_new[i] = guess[L.cells[i]];
   });
-  ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       const int c = L.cells[i];
       s.chord[c] = s.temperature[c];
       s.iterate_h[c] = s.enthalpy[c];
-      if (!MustConverge(s, role, c, level)) continue;
+      if (!MustConverge(s, role, c, level) || FollowingChoices(s)) continue;
       // The system linearised at the old state: capacity C at T_old (eq. 3).
       const double capacity = s.table[s.material[c]].Capacity(s.temperature[c]);
       const double storage = capacity * volume / L.seconds;
@@ -267,7 +290,14 @@ void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int leve
       const double t = load / (L.base_diagonal[i] + storage);
       const double h = s.enthalpy[c] + capacity * (t - s.temperature[c]);
       const double back = s.table[s.material[c]].Temperature(h, t);
-      if (std::abs(back - t) <= kChordToleranceK + 0.1 * std::abs(t - s.temperature[c])) continue;
+      balance[i] = std::abs(back - t) > kChordToleranceK + 0.1 * std::abs(t - s.temperature[c]) ? 1 : 0;
+    }
+  });
+  ChooseFlags(s, balance);
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (balance[i] == 0) continue;
+      const int c = L.cells[i];
       s.chord[c] = LocalBalance(s, L, i);
       s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
     }
@@ -291,11 +321,10 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t> part_converged(Chunks(n)), off(n);
+  std::vector<std::uint8_t> off(n);
   for (int round = 0; round < kChordRounds; ++round) {
     // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t chunk) {
-      bool converged = true;
+    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) {
         const int c = L.cells[i];
         const double h = s.iterate_h[c] + L.capacity[i] * (L.t_new[i] - s.chord[c]);
@@ -303,14 +332,14 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
         const double change = L.t_new[i] - s.temperature[c];
         const bool ok = std::abs(t - L.t_new[i]) <= kChordToleranceK + 0.1 * std::abs(change) ||
                         !MustConverge(s, role, c, level);
-        converged = converged && ok;
         off[i] = ok ? 0 : 1;
         s.iterate_h[c] = h;
         s.chord[c] = t;
       }
-      part_converged[chunk] = converged ? 1 : 0;
     });
-    if (std::all_of(part_converged.begin(), part_converged.end(), [](std::uint8_t v) { return v != 0; })) return;
+    // Converged when no cell is off the curve (a run following choices: when the recorded run's round had none).
+    ChooseFlags(s, off);
+    if (std::none_of(off.begin(), off.end(), [](std::uint8_t v) { return v != 0; })) return;
     // The cells off the curve are linearised next at their local balance instead (on the curve: H_k = H(T_k)).
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) {
@@ -485,16 +514,21 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
     // Where the step broke the maximum principle by more than the step's accuracy, those cells join the finer
     // region and the finer levels and the corrector run again from the predictor; what is left is repaired
     // (docs/THERMAL.md, "Why the coupling between levels is monotone").
-    const CouplingCheck check = CouplingViolations(s, L, snap, level, local_of);
-    if (check.outside.empty()) break;
+    CouplingCheck check = CouplingViolations(s, L, snap, level, local_of);
     // An excursion within the accuracy the step choice asks (AddInaccurateCells: kStepErrorK, or kStepErrorShare of
     // the bounds' range here) is repaired; a larger one moves its cells to the finer levels once, then is repaired.
-    if (round + 1 >= kCouplingRounds ||
-        check.worst <= std::max(kStepErrorK, kStepErrorShare * (check.high - check.low))) {
-      RepairBounds(s, L, snap, check, local_of);
+    // Whether to re-run and the cells that join are choices (a run following them repairs what it finds outside).
+    const bool rerun = ChooseCount(s, !check.outside.empty() && round + 1 < kCouplingRounds &&
+                                          check.worst > std::max(kStepErrorK,
+                                                                 kStepErrorShare * (check.high - check.low))) != 0;
+    if (!rerun) {
+      if (!check.outside.empty()) RepairBounds(s, L, snap, check, local_of);
       s.stats.coupling_repairs += check.outside.size();
       break;
     }
+    WAAM_THROW_UNLESS(round + 1 < kCouplingRounds, "solver choices: a re-run past the last coupling round (the "
+                                                   "record does not fit this run)");
+    ChooseList(s, check.violations, s.grid_of.size());
     RestoreSnapshot(s, snap);
     const std::size_t from = near.size();
     for (int c : check.violations) {

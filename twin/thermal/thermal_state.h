@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -222,6 +223,13 @@ struct ThermalState {
   EnergyBalance energy;
   ThermalStats stats;
 
+  // The solver's choices (SolverChoices): made freely, made and recorded, or followed from a record.
+  enum class ChoiceMode { kFree, kRecord, kFollow };
+  ChoiceMode choice_mode = ChoiceMode::kFree;
+  SolverChoices recorded;
+  std::shared_ptr<const SolverChoices> followed;
+  std::size_t followed_at = 0;  // the next value of `followed`
+
   double CellVolume() const { return dx_m * dx_m * dx_m; }
   int GridIndex(int i, int j, int k) const { return i + size.x() * (j + size.y() * k); }
   Eigen::Vector3i CellIndex(int grid) const;
@@ -329,6 +337,13 @@ CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const Co
 // cells of the level's region around it. `local_of` is scratch (all kNoCell), returned so.
 void RepairBounds(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, const CouplingCheck& check,
                   std::vector<int>& local_of);
+
+// The solver's choices (thermal_choices.cc). A count: records `value` and returns it, returns the followed one, or
+// returns `value` when choices are free.
+int ChooseCount(ThermalState& s, int value);
+// A list of indices below `limit`: records `list`, or replaces it with the followed one; free: leaves it.
+void ChooseList(ThermalState& s, std::vector<int>& list, std::size_t limit);
+inline bool FollowingChoices(const ThermalState& s) { return s.choice_mode == ThermalState::ChoiceMode::kFollow; }
 
 // Solves the pending batch of micro steps (multirate backward Euler) and clears it.
 void SolveBatch(ThermalState& s);

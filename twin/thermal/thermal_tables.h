@@ -31,10 +31,16 @@ class ThermalPropertyTable {
     const double s = Position(t_c, &i);
     return enthalpy_[i] + s * (enthalpy_[i + 1] - enthalpy_[i]);
   }
-  double Capacity(double t_c) const {  // dH/dT of the table's segment holding t_c, J/(m^3 K)
-    int i = 0;
-    Position(t_c, &i);
-    return (enthalpy_[i + 1] - enthalpy_[i]) * inverse_step_;
+  // dH/dT, J/(m^3 K): the slopes of the table's segments, taken at their midpoints and linear in between, so that
+  // the capacity is continuous in t_c (a step's solution then moves continuously with its inputs: docs/THERMAL.md,
+  // "Differencing a run"); constant beyond the first and last midpoints.
+  double Capacity(double t_c) const {
+    const double x = (t_c - low_c_) * inverse_step_ - 0.5;
+    const int last = static_cast<int>(enthalpy_.size()) - 3;
+    const int i = std::clamp(static_cast<int>(std::floor(x)), 0, last);
+    const double s = std::clamp(x - i, 0.0, 1.0);
+    const double a = enthalpy_[i + 1] - enthalpy_[i], b = enthalpy_[i + 2] - enthalpy_[i + 1];
+    return (a + s * (b - a)) * inverse_step_;
   }
   double Temperature(double h_j_m3) const;  // inverse of Enthalpy, degC
   // The same, searching the table from the segment of `hint_c` (a temperature near the answer, degC): the result is
