@@ -53,6 +53,7 @@ ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log) {
   s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
   s.table_thickness_mm = thermal.table_thickness_mm;
   s.table_margin_mm = thermal.table_margin_mm;
+  SetHeatSource(thermal, &s);
   s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
   s.clamps = ClampPatches(thermal, s.substrate_box_mm);
   for (const ThermalClamp& clamp : thermal.clamps) model.clamp_w_m2k.push_back(clamp.conductance_w_m2k);

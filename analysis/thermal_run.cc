@@ -66,11 +66,7 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   s.table_thickness_mm = thermal.table_thickness_mm;
   s.table_margin_mm = thermal.table_margin_mm;
   s.table_c = thermal.TableC();
-  s.heat_source = thermal.heat_source;
-  s.pool_depth_beads = thermal.pool_depth_beads;
-  s.pool_front_widths = thermal.pool_front_widths;
-  s.pool_rear_widths = thermal.pool_rear_widths;
-  s.liquid_conductivity_factor = thermal.liquid_conductivity_factor;
+  SetHeatSource(thermal, &s);
   s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
   s.clamps = ClampPatches(thermal, s.substrate_box_mm);
   // The deposit may grow one cell beyond its planned beads (the solver snaps beads to its cells).
@@ -78,6 +74,14 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
                                          beads.max() + Eigen::Vector3d::Constant(thermal.cell_mm));
   for (const ThermalProbe& probe : thermal.probes) CheckProbeInMetal(s, probe.p_mm, probe.where);
   return s;
+}
+
+void SetHeatSource(const ThermalSection& thermal, twin::ThermalSettings* settings) {
+  settings->heat_source = thermal.heat_source;
+  settings->pool_depth_beads = thermal.pool_depth_beads;
+  settings->pool_front_widths = thermal.pool_front_widths;
+  settings->pool_rear_widths = thermal.pool_rear_widths;
+  settings->liquid_conductivity_factor = thermal.liquid_conductivity_factor;
 }
 
 void CheckProbeInMetal(const twin::ThermalSettings& settings, const Eigen::Vector3d& p_mm, const std::string& where) {

@@ -77,6 +77,10 @@ using TimelineBuilder = std::function<planner::Timeline(const std::vector<double
 // plan's beads. Throws InputError for a probe outside both the plate and the part.
 twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner::Plan& plan);
 
+// The heat source's inputs of the thermal section (thermal.heat_source, thermal.pool.*,
+// thermal.liquid_conductivity_factor) into `settings`: ThermalSettingsFor and the replay's model both take them here.
+void SetHeatSource(const ThermalSection& thermal, twin::ThermalSettings* settings);
+
 // Throws InputError naming `where` (a scenario key) when the probe at `p_mm` lies in neither the plate nor the deposit
 // box of `settings`: "KEY = [x, y, z]: outside the plate [...] and the part [...]; a probe must lie in the metal".
 void CheckProbeInMetal(const twin::ThermalSettings& settings, const Eigen::Vector3d& p_mm, const std::string& where);

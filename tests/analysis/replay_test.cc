@@ -156,6 +156,27 @@ fs::path WriteRoundTrip(const fs::path& dir, const ThermalParameters& truth,
   return scenario;
 }
 
+// The replay's model takes the scenario's heat source as `waam thermal` does (it once kept the defaults: a replay
+// with thermal.heat_source: uniform_bead ran the double ellipsoid).
+TEST(ReplayModel, TakesTheScenariosHeatSourcePoolAndLiquidFactor) {
+  const fs::path dir = cli_test::TempDir("replay_heat_source");
+  const fs::path scenario = dir / "scenario.yaml";
+  std::ofstream(scenario) << RoundTripScenario(
+      "  heat_source: uniform_bead\n  pool: {depth_beads: 1.5, front_widths: 0.7, rear_widths: 3}\n"
+      "  liquid_conductivity_factor: 2\n");
+  std::ofstream(dir / "wall.csv") << "";  // the scenario's log must exist; the model is made from `rows` below
+  WallBuildSpec spec;
+  spec.layers = 1;
+  spec.length_mm = 40.0;
+  const ReplayLog rows = WallBuildLog(spec);
+  const ReplayModel model = MakeReplayModel(LoadScenario(scenario), rows);
+  EXPECT_EQ(model.settings.heat_source, twin::HeatSourceShape::kUniformBead);
+  EXPECT_DOUBLE_EQ(model.settings.pool_depth_beads, 1.5);
+  EXPECT_DOUBLE_EQ(model.settings.pool_front_widths, 0.7);
+  EXPECT_DOUBLE_EQ(model.settings.pool_rear_widths, 3.0);
+  EXPECT_DOUBLE_EQ(model.settings.liquid_conductivity_factor, 2.0);
+}
+
 TEST(ReplayRoundTrip, AReplayAtTheTrueParametersMatchesTheLogToItsNoise) {
   const fs::path dir = cli_test::TempDir("replay_truth");
   ThermalParameters truth;
