@@ -105,10 +105,11 @@ enum class JacobianKind { kDifferenced, kSeed };
 
 // The residuals at Ceres' variables u (x = map(u)), and their Jacobian, asked by Ceres (2.1, unbounded) at the
 // start and at each point it accepts. The Jacobian is differenced in the scaled values x: forward differences over
-// whole replays, the n perturbed ones in parallel (each its own ThermalSimulation), n replays (the point's residuals
-// are those of the candidate Ceres tried); the step is 1 % of each parameter's scale (not a step in u, which would
-// shrink with x - lo toward the solver's noise near a lower bound): the solver's CG tolerance (0.01 K) makes the
-// temperatures noisy at the 1e-3 K level, so Ceres' default relative step (1e-6) would difference noise. It is
+// whole replays, the n perturbed ones in parallel (each its own ThermalSimulation), n replays that follow the solver
+// choices of the point's replay (the candidate's Ceres accepted: docs/THERMAL.md, "Differencing a run"), so that
+// the differences see the parameters' effect and none of the solver's switches; the step is 1 % of each
+// parameter's scale (not a step in u, which would shrink with x - lo toward a lower bound, where the followed
+// replays' round-off and the melt pool's steep response would dominate). It is
 // handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A `seed` Jacobian in x (the coarse stage's,
 // m x n row-major) stands in at the first point until RequestDifference(). A replay with more rows without a
 // temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
@@ -168,8 +169,11 @@ class ReplayCost : public ceres::CostFunction {
     JacobianKind kind;
   };
 
-  // The residuals at `x`: the last point tried or accepted, else one replay (its solver choices recorded). Null
-  // when the replay blew up. `choices`, when given, gets the choices of the replay the residuals come from.
+  // The residuals at `x`: the last point tried or accepted, else one replay making its own solver choices, recorded
+  // (Ceres' step test compares a candidate's cost with the accepted point's, which must be the same replay's; a
+  // candidate following the point's choices and replayed afresh once accepted set them apart by the switches' jumps,
+  // and every later step failed). Null when the replay blew up. `choices`, when given, gets the choices of the
+  // replay the residuals come from.
   const std::vector<double>* ResidualsAt(const std::vector<double>& x,
                                          std::shared_ptr<const twin::SolverChoices>* choices = nullptr) const {
     if (have_point_ && x == point_x_) {
@@ -320,7 +324,11 @@ class StageCallback : public ceres::IterationCallback {
     std::ostream& o = *log_.out;
     o << "  iteration " << log_.done + s.iteration << ": ";
     if (s.iteration > 0 && !s.step_is_successful) {
-      o << "step rejected, staying at" << std::setprecision(4);  // (the summary's cost may be the rejected trial's)
+      // The cost's change to the candidate and the change the linear model predicted (Ceres' relative decrease is
+      // their ratio: the point's cost is the candidate's that Ceres accepted), degC^2 (half the squared residuals).
+      o << "step rejected (cost " << std::showpos << std::setprecision(3) << -s.cost_change;
+      if (s.step_is_valid && s.relative_decrease != 0.0) o << ", predicted " << -s.cost_change / s.relative_decrease;
+      o << std::noshowpos << "), staying at" << std::setprecision(4);  // (the summary's cost may be the trial's)
     } else {
       const double readings = static_cast<double>(std::max<std::size_t>(residuals_.size(), 1));
       o << "window rmse " << std::setprecision(4) << std::sqrt(2.0 * s.cost / readings) << " degC;";
