@@ -308,6 +308,12 @@ struct StageLog {
 // from the same point with a differenced one rather than shrinking the trust region around a model that may be
 // wrong. With `log.out`, writes one line per iteration there: the window's rmse at the current point (from the cost,
 // the weak prior included), the values, the replays so far and the time since the stage began.
+// A rejected step from a differenced Jacobian that promised less than this share of the point's cost ends the fit
+// as converged: the candidates' costs jump by more between two replays' solver choices (on the round trip of
+// docs/REPLAY.md, a step promising 0.7 % of the cost met +2.9 % to +5.2 % in three candidates), so no trust
+// region can confirm such a step, and the parameters it would move lie within their standard deviations.
+constexpr double kUnresolvedShare = 0.01;
+
 class StageCallback : public ceres::IterationCallback {
  public:
   StageCallback(const ReplayCost& cost, const ReplayResiduals& residuals, const double* u, const StageLog& log)
@@ -315,9 +321,18 @@ class StageCallback : public ceres::IterationCallback {
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (InterruptRequested()) return ceres::SOLVER_ABORT;
     if (log_.out != nullptr) Report(s);
-    if (s.iteration > 0 && !s.step_is_successful && cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    const bool rejected = s.iteration > 0 && !s.step_is_successful;
+    if (!rejected) point_cost_ = s.cost;
+    if (rejected && cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    if (rejected && s.step_is_valid && s.relative_decrease != 0.0 &&
+        s.cost_change / s.relative_decrease < kUnresolvedShare * point_cost_) {
+      unresolved_ = true;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
     return ceres::SOLVER_CONTINUE;
   }
+  // Whether the run ended on a rejected step that promised less than kUnresolvedShare of the cost.
+  bool unresolved() const { return unresolved_; }
 
  private:
   void Report(const ceres::IterationSummary& s) const {
@@ -342,12 +357,15 @@ class StageCallback : public ceres::IterationCallback {
   const ReplayResiduals& residuals_;
   const double* u_;  // Ceres' current point (update_state_every_iteration)
   const StageLog& log_;
+  double point_cost_ = 0.0;  // the cost at the point Ceres stands on
+  bool unresolved_ = false;
 };
 
 // One Ceres run from `u` (changed in place) with at most `iterations` iterations.
+// `unresolved` tells whether it ended on a step the replays could not resolve (StageCallback).
 ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& cost, PriorCost* prior,
                                 std::vector<double>& u, int iterations, double function_tolerance,
-                                const StageLog& log) {
+                                const StageLog& log, bool* unresolved) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
   ceres::Problem problem(problem_options);
@@ -367,6 +385,7 @@ ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& co
   solver.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
+  *unresolved = callback.unresolved();
   return summary;
 }
 
@@ -387,15 +406,17 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
       prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
   outcome.function_tolerance = 1e-3;
   int left = max_iterations;
+  bool unresolved = false;
   // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
   // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
   while (true) {
     const StageLog log{progress, clock_start, max_iterations - left};
     ceres::Solver::Summary summary =
-        RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, log);
+        RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, log, &unresolved);
     CheckInterrupt();
     left -= static_cast<int>(summary.iterations.size()) - 1;
-    const bool again = summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() && left > 0 &&
+    const bool again = !unresolved && summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() &&
+                       left > 0 &&
                        (summary.termination_type == ceres::USER_SUCCESS ||
                         summary.termination_type == ceres::CONVERGENCE);
     outcome.runs.push_back(std::move(summary));
@@ -406,7 +427,11 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   outcome.usable = last.IsSolutionUsable();
   outcome.termination = ceres::TerminationTypeToString(last.termination_type);
   outcome.message = last.message;
-  if (last.termination_type == ceres::USER_SUCCESS) {
+  if (unresolved) {
+    outcome.termination = "CONVERGENCE";
+    outcome.message = "a step the linear model promised to lower the cost by under 1 % failed: the replays' own "
+                      "jumps between the solver's choices are larger (docs/REPLAY.md, \"The round trip's fit\")";
+  } else if (last.termination_type == ceres::USER_SUCCESS) {
     outcome.termination = "NO_CONVERGENCE";
     outcome.message = "the iterations ran out before a differenced Jacobian confirmed the answer";
   }
