@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <ostream>
 
 #include "models/core/error.h"
@@ -304,16 +305,25 @@ struct StageLog {
   int done = 0;
 };
 
-// Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
-// from the same point with a differenced one rather than shrinking the trust region around a model that may be
-// wrong. With `log.out`, writes one line per iteration there: the window's rmse at the current point (from the cost,
-// the weak prior included), the values, the replays so far and the time since the stage began.
 // A rejected step from a differenced Jacobian that promised less than this share of the point's cost ends the fit
 // as converged: the candidates' costs jump by more between two replays' solver choices (on the round trip of
 // docs/REPLAY.md, a step promising 0.7 % of the cost met +2.9 % to +5.2 % in three candidates), so no trust
 // region can confirm such a step, and the parameters it would move lie within their standard deviations.
 constexpr double kUnresolvedShare = 0.01;
 
+// Whether the iteration's step was rejected, and the decrease of the cost its linear model predicted (Ceres'
+// relative decrease is the actual decrease over it); NaN when the step was not valid.
+bool Rejected(const ceres::IterationSummary& s) { return s.iteration > 0 && !s.step_is_successful; }
+double PredictedDecrease(const ceres::IterationSummary& s) {
+  return s.step_is_valid && s.relative_decrease != 0.0 ? s.cost_change / s.relative_decrease
+                                                       : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
+// from the same point with a differenced one rather than shrinking the trust region around a model that may be
+// wrong; and on a rejected step that promised under kUnresolvedShare of the cost. With `log.out`, writes one line
+// per iteration there: the window's rmse at the current point (from the cost, the weak prior included), the values,
+// the replays so far and the time since the stage began.
 class StageCallback : public ceres::IterationCallback {
  public:
   StageCallback(const ReplayCost& cost, const ReplayResiduals& residuals, const double* u, const StageLog& log)
@@ -321,11 +331,12 @@ class StageCallback : public ceres::IterationCallback {
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (InterruptRequested()) return ceres::SOLVER_ABORT;
     if (log_.out != nullptr) Report(s);
-    const bool rejected = s.iteration > 0 && !s.step_is_successful;
-    if (!rejected) point_cost_ = s.cost;
-    if (rejected && cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    if (rejected && s.step_is_valid && s.relative_decrease != 0.0 &&
-        s.cost_change / s.relative_decrease < kUnresolvedShare * point_cost_) {
+    if (!Rejected(s)) {
+      point_cost_ = s.cost;
+      return ceres::SOLVER_CONTINUE;
+    }
+    if (cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    if (PredictedDecrease(s) < kUnresolvedShare * point_cost_) {  // false for NaN
       unresolved_ = true;
       return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     }
@@ -338,11 +349,11 @@ class StageCallback : public ceres::IterationCallback {
   void Report(const ceres::IterationSummary& s) const {
     std::ostream& o = *log_.out;
     o << "  iteration " << log_.done + s.iteration << ": ";
-    if (s.iteration > 0 && !s.step_is_successful) {
-      // The cost's change to the candidate and the change the linear model predicted (Ceres' relative decrease is
-      // their ratio: the point's cost is the candidate's that Ceres accepted), degC^2 (half the squared residuals).
+    if (Rejected(s)) {
+      // The cost's change to the candidate and the change the linear model predicted, degC^2 (half the squared
+      // residuals).
       o << "step rejected (cost " << std::showpos << std::setprecision(3) << -s.cost_change;
-      if (s.step_is_valid && s.relative_decrease != 0.0) o << ", predicted " << -s.cost_change / s.relative_decrease;
+      if (std::isfinite(PredictedDecrease(s))) o << ", predicted " << -PredictedDecrease(s);
       o << std::noshowpos << "), staying at" << std::setprecision(4);  // (the summary's cost may be the trial's)
     } else {
       const double readings = static_cast<double>(std::max<std::size_t>(residuals_.size(), 1));

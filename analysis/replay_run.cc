@@ -41,24 +41,11 @@ ReplayModel MakeReplayModel(const Scenario& scenario, ReplayLog log) {
     }
   }
   WAAM_THROW_UNLESS(!beads.isEmpty(), log.file << ": the arc never burns between two rows: nothing to replay");
+  model.settings = SectionSettings(thermal, beads);
   twin::ThermalSettings& s = model.settings;
-  s.deposit = thermal.deposit.material;
-  s.substrate = thermal.substrate.material;
-  s.cell_mm = thermal.cell_mm;
-  s.initial_c = thermal.InitialC();
-  s.ambient_c = log.ambient_c.empty() ? thermal.ambient_c : log.ambient_c.front();
-  s.table_c = log.table_c.empty() ? thermal.TableC() : log.table_c.front();
-  s.convection_w_m2k = thermal.convection_w_m2k;
-  s.emissivity = thermal.Emissivity();
-  s.table_conductance_w_m2k = thermal.table_conductance_w_m2k;
-  s.table_thickness_mm = thermal.table_thickness_mm;
-  s.table_margin_mm = thermal.table_margin_mm;
-  SetHeatSource(thermal, &s);
-  s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
-  s.clamps = ClampPatches(thermal, s.substrate_box_mm);
+  if (!log.ambient_c.empty()) s.ambient_c = log.ambient_c.front();
+  if (!log.table_c.empty()) s.table_c = log.table_c.front();
   for (const ThermalClamp& clamp : thermal.clamps) model.clamp_w_m2k.push_back(clamp.conductance_w_m2k);
-  const Eigen::Vector3d cell = Eigen::Vector3d::Constant(thermal.cell_mm);
-  s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - cell, beads.max() + cell);
   for (const ReplayProbe& probe : model.probes) CheckProbeInMetal(s, probe.at_mm, probe.where);
   model.parameters = {scenario.process.arc.efficiency, s.convection_w_m2k, s.table_conductance_w_m2k, s.emissivity,
                       thermal.clamp_conductance_factor};

@@ -54,6 +54,12 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
                                                              "(docs/THERMAL.md)");
   const Eigen::AlignedBox3d beads = BeadBounds(plan);
   WAAM_THROW_UNLESS(!beads.isEmpty(), scenario.file.string() << ": the plan has no weld move: nothing to heat");
+  twin::ThermalSettings s = SectionSettings(thermal, beads);
+  for (const ThermalProbe& probe : thermal.probes) CheckProbeInMetal(s, probe.p_mm, probe.where);
+  return s;
+}
+
+twin::ThermalSettings SectionSettings(const ThermalSection& thermal, const Eigen::AlignedBox3d& beads) {
   twin::ThermalSettings s;
   s.deposit = thermal.deposit.material;
   s.substrate = thermal.substrate.material;
@@ -66,22 +72,17 @@ twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner
   s.table_thickness_mm = thermal.table_thickness_mm;
   s.table_margin_mm = thermal.table_margin_mm;
   s.table_c = thermal.TableC();
-  SetHeatSource(thermal, &s);
+  s.heat_source = thermal.heat_source;
+  s.pool_depth_beads = thermal.pool_depth_beads;
+  s.pool_front_widths = thermal.pool_front_widths;
+  s.pool_rear_widths = thermal.pool_rear_widths;
+  s.liquid_conductivity_factor = thermal.liquid_conductivity_factor;
   s.substrate_box_mm = SubstrateBoxMm(thermal, beads);
   s.clamps = ClampPatches(thermal, s.substrate_box_mm);
-  // The deposit may grow one cell beyond its planned beads (the solver snaps beads to its cells).
-  s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - Eigen::Vector3d::Constant(thermal.cell_mm),
-                                         beads.max() + Eigen::Vector3d::Constant(thermal.cell_mm));
-  for (const ThermalProbe& probe : thermal.probes) CheckProbeInMetal(s, probe.p_mm, probe.where);
+  // The deposit may grow one cell beyond its beads (the solver snaps beads to its cells).
+  const Eigen::Vector3d cell = Eigen::Vector3d::Constant(thermal.cell_mm);
+  s.deposit_box_mm = Eigen::AlignedBox3d(beads.min() - cell, beads.max() + cell);
   return s;
-}
-
-void SetHeatSource(const ThermalSection& thermal, twin::ThermalSettings* settings) {
-  settings->heat_source = thermal.heat_source;
-  settings->pool_depth_beads = thermal.pool_depth_beads;
-  settings->pool_front_widths = thermal.pool_front_widths;
-  settings->pool_rear_widths = thermal.pool_rear_widths;
-  settings->liquid_conductivity_factor = thermal.liquid_conductivity_factor;
 }
 
 void CheckProbeInMetal(const twin::ThermalSettings& settings, const Eigen::Vector3d& p_mm, const std::string& where) {

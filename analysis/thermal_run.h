@@ -77,9 +77,11 @@ using TimelineBuilder = std::function<planner::Timeline(const std::vector<double
 // plan's beads. Throws InputError for a probe outside both the plate and the part.
 twin::ThermalSettings ThermalSettingsFor(const Scenario& scenario, const planner::Plan& plan);
 
-// The heat source's inputs of the thermal section (thermal.heat_source, thermal.pool.*,
-// thermal.liquid_conductivity_factor) into `settings`: ThermalSettingsFor and the replay's model both take them here.
-void SetHeatSource(const ThermalSection& thermal, twin::ThermalSettings* settings);
+// The thermal section's settings for a deposit whose beads lie in `beads` (part frame, mm): materials, grid, start
+// and boundary temperatures, losses, table, clamps, heat source, the plate's box and the deposit's (one cell beyond
+// the beads). ThermalSettingsFor and the replay's model (which then takes the log's ambient and table) both start
+// here, so that a key the section resolves reaches both.
+twin::ThermalSettings SectionSettings(const ThermalSection& thermal, const Eigen::AlignedBox3d& beads);
 
 // Throws InputError naming `where` (a scenario key) when the probe at `p_mm` lies in neither the plate nor the deposit
 // box of `settings`: "KEY = [x, y, z]: outside the plate [...] and the part [...]; a probe must lie in the metal".

@@ -103,19 +103,17 @@ TEST(ThermalChoices, FollowedRunsRespondContinuously) {
     sim.FollowChoices(choices);
     return ChoiceBuild(sim, heat_w);
   };
+  // The runs with one setting scaled by 1 + d.
+  auto scaled = [&](double ThermalSettings::*member) {
+    return [&, member](double d) {
+      ThermalSettings changed = settings;
+      changed.*member *= 1.0 + d;
+      return follow(changed, 2000.0);
+    };
+  };
   EXPECT_LT(NonLinearity(base, [&](double d) { return follow(settings, 2000.0 * (1.0 + d)); }, 1e-4), 0.1);
-  EXPECT_LT(NonLinearity(base, [&](double d) {
-              ThermalSettings changed = settings;
-              changed.convection_w_m2k *= 1.0 + d;
-              return follow(changed, 2000.0);
-            }, 1e-3),
-            0.01);
-  EXPECT_LT(NonLinearity(base, [&](double d) {
-              ThermalSettings changed = settings;
-              changed.table_conductance_w_m2k *= 1.0 + d;
-              return follow(changed, 2000.0);
-            }, 1e-3),
-            0.1);
+  EXPECT_LT(NonLinearity(base, scaled(&ThermalSettings::convection_w_m2k), 1e-3), 0.01);
+  EXPECT_LT(NonLinearity(base, scaled(&ThermalSettings::table_conductance_w_m2k), 1e-3), 0.1);
 }
 
 }  // namespace

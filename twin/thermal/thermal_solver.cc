@@ -454,19 +454,16 @@ void RunFinerLevels(ThermalState& s, int level, const std::vector<int>& near, in
   for (int c : near) s.depth[c] = level + 1;
 }
 
-// One level of the multirate scheme over micro steps [m0, m1) (docs/THERMAL.md, "Multirate"): a backward-Euler
-// step of the whole region; near the arc, finer steps with this step's temperatures as their boundary moving
-// linearly in time; then the cells left to this level solved again, implicitly, with the energy the finer steps
-// passed through their faces as a source, and updated.
-void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
-             std::vector<int>& local_of) {
+// Starts the level's step over micro steps [m0, m1): its length, interval, and the ambient and table temperatures
+// over it (backward Euler with their time means: docs/THERMAL.md, "Boundary temperatures that change").
+void BeginLevelStep(ThermalState& s, int level, int m0, int m1) {
   LevelSystem& L = s.levels[level];
   L.seconds = 0.0;
-  for (int m = m0; m < m1; ++m) L.seconds += s.batch[m].seconds;
-  // The ambient and table temperatures over the step: backward Euler with their time means over it
-  // (docs/THERMAL.md, "Boundary temperatures that change").
   BoundaryMean boundary;
-  for (int m = m0; m < m1; ++m) boundary.Add(s.batch[m].seconds, s.batch[m].ambient_c, s.batch[m].table_c);
+  for (int m = m0; m < m1; ++m) {
+    L.seconds += s.batch[m].seconds;
+    boundary.Add(s.batch[m].seconds, s.batch[m].ambient_c, s.batch[m].table_c);
+  }
   L.ambient_c = boundary.ambient_c();
   L.table_c = boundary.table_c();
   L.boundary_low_c = boundary.low_c();
@@ -476,6 +473,65 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   L.m0 = m0;
   L.m1 = m1;
   s.level_interval[level] = {start, L.end_time_s};
+}
+
+// After the level's predictor: the finer levels over the region `near`, the corrector of the cells left to the
+// level (returned) and its update, checked against the maximum principle. Where the step broke it by more than the
+// step's accuracy, those cells join the finer region and the finer levels and the corrector run again from the
+// predictor; what is left is repaired (docs/THERMAL.md, "Why the coupling between levels is monotone").
+std::vector<int> CoupleFinerLevels(ThermalState& s, int level, std::vector<int>& near, std::vector<int>& local_of) {
+  LevelSystem& L = s.levels[level];
+  const int m0 = L.m0, m1 = L.m1;
+  const CouplingSnapshot snap = TakeSnapshot(s, L, level);
+  std::vector<int> rest;
+  for (int round = 0;; ++round) {
+    for (std::size_t i = 0; i < snap.cells.size(); ++i) {
+      const int c = snap.cells[i];
+      s.bound_start[c] = s.temperature[c];
+      s.bound_end[c] = snap.predicted[i];
+      s.bound_level[c] = level;
+    }
+    RunFinerLevels(s, level, near, m0, m1, local_of);
+    rest.clear();
+    for (int c : snap.cells) {
+      if (s.depth[c] == level) rest.push_back(c);
+    }
+    SolveStep(s, level, rest, m0, m1, StepRole::kCorrector, s.bound_end, local_of);
+    Update(s, level);
+    CouplingCheck check = CouplingViolations(s, L, snap, level, local_of);
+    // An excursion within the accuracy the step choice asks (AddInaccurateCells: kStepErrorK, or kStepErrorShare of
+    // the bounds' range here) is repaired; a larger one moves its cells to the finer levels once, then is repaired.
+    // Whether to re-run and the cells that join are choices (a run following them repairs what it finds outside).
+    const bool rerun = ChooseCount(s, !check.outside.empty() && round + 1 < kCouplingRounds &&
+                                          check.worst > std::max(kStepErrorK,
+                                                                 kStepErrorShare * (check.high - check.low))) != 0;
+    if (!rerun) {
+      if (!check.outside.empty()) RepairBounds(s, L, snap, check, local_of);
+      s.stats.coupling_repairs += check.outside.size();
+      return rest;
+    }
+    WAAM_THROW_UNLESS(round + 1 < kCouplingRounds, "solver choices: a re-run past the last coupling round (the "
+                                                   "record does not fit this run)");
+    ChooseList(s, check.violations, s.grid_of.size());
+    RestoreSnapshot(s, snap);
+    const std::size_t from = near.size();
+    for (int c : check.violations) {
+      near.push_back(c);
+      s.depth[c] = level + 1;
+    }
+    CloseFinerRegion(s, near, from, level, m1);
+    s.stats.coupling_retries += 1;
+  }
+}
+
+// One level of the multirate scheme over micro steps [m0, m1) (docs/THERMAL.md, "Multirate"): a backward-Euler
+// step of the whole region; near the arc, finer steps with this step's temperatures as their boundary moving
+// linearly in time; then the cells left to this level solved again, implicitly, with the energy the finer steps
+// passed through their faces as a source, and updated.
+void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,
+             std::vector<int>& local_of) {
+  BeginLevelStep(s, level, m0, m1);
+  LevelSystem& L = s.levels[level];
   // First guess: each cell's last rate of change carried over the step (the far field changes smoothly).
   for (int c : candidates) s.guess[c] = s.temperature[c] + s.rate[c] * L.seconds;
   std::vector<int> present;
@@ -495,49 +551,7 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
     for (int c : L.cells) s.depth[c] = level - 1;
     return;
   }
-  const CouplingSnapshot snap = TakeSnapshot(s, L, level);
-  std::vector<int> rest;
-  for (int round = 0;; ++round) {
-    for (std::size_t i = 0; i < snap.cells.size(); ++i) {
-      const int c = snap.cells[i];
-      s.bound_start[c] = s.temperature[c];
-      s.bound_end[c] = snap.predicted[i];
-      s.bound_level[c] = level;
-    }
-    RunFinerLevels(s, level, near, m0, m1, local_of);
-    rest.clear();
-    for (int c : snap.cells) {
-      if (s.depth[c] == level) rest.push_back(c);
-    }
-    SolveStep(s, level, rest, m0, m1, StepRole::kCorrector, s.bound_end, local_of);
-    Update(s, level);
-    // Where the step broke the maximum principle by more than the step's accuracy, those cells join the finer
-    // region and the finer levels and the corrector run again from the predictor; what is left is repaired
-    // (docs/THERMAL.md, "Why the coupling between levels is monotone").
-    CouplingCheck check = CouplingViolations(s, L, snap, level, local_of);
-    // An excursion within the accuracy the step choice asks (AddInaccurateCells: kStepErrorK, or kStepErrorShare of
-    // the bounds' range here) is repaired; a larger one moves its cells to the finer levels once, then is repaired.
-    // Whether to re-run and the cells that join are choices (a run following them repairs what it finds outside).
-    const bool rerun = ChooseCount(s, !check.outside.empty() && round + 1 < kCouplingRounds &&
-                                          check.worst > std::max(kStepErrorK,
-                                                                 kStepErrorShare * (check.high - check.low))) != 0;
-    if (!rerun) {
-      if (!check.outside.empty()) RepairBounds(s, L, snap, check, local_of);
-      s.stats.coupling_repairs += check.outside.size();
-      break;
-    }
-    WAAM_THROW_UNLESS(round + 1 < kCouplingRounds, "solver choices: a re-run past the last coupling round (the "
-                                                   "record does not fit this run)");
-    ChooseList(s, check.violations, s.grid_of.size());
-    RestoreSnapshot(s, snap);
-    const std::size_t from = near.size();
-    for (int c : check.violations) {
-      near.push_back(c);
-      s.depth[c] = level + 1;
-    }
-    CloseFinerRegion(s, near, from, level, m1);
-    s.stats.coupling_retries += 1;
-  }
+  const std::vector<int> rest = CoupleFinerLevels(s, level, near, local_of);
   for (int c : near) s.depth[c] = level - 1;
   for (int c : rest) s.depth[c] = level - 1;
 }
