@@ -40,19 +40,12 @@ CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int l
   CouplingSnapshot snap;
   snap.cells = L.cells;
   snap.predicted = L.t_new;
-  for (auto* v : {&snap.enthalpy, &snap.temperature, &snap.conductivity, &snap.rate, &snap.heat_rate, &snap.inflow,
-                  &snap.chord, &snap.iterate_h}) {
-    v->reserve(L.cells.size());
+  for (auto field : kSnapshotFields) {
+    std::vector<double>& values = snap.values.emplace_back();
+    values.reserve(L.cells.size());
+    for (int c : L.cells) values.push_back((s.*field)[c]);
   }
   for (int c : L.cells) {
-    snap.enthalpy.push_back(s.enthalpy[c]);
-    snap.temperature.push_back(s.temperature[c]);
-    snap.conductivity.push_back(s.conductivity[c]);
-    snap.rate.push_back(s.rate[c]);
-    snap.heat_rate.push_back(s.heat_rate[c]);
-    snap.inflow.push_back(s.inflow_j[c]);
-    snap.chord.push_back(s.chord[c]);
-    snap.iterate_h.push_back(s.iterate_h[c]);
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[c][f];
       if (j != kNoCell && s.born[j] < L.m1 && s.depth[j] < level) snap.outside_inflow.emplace_back(j, s.inflow_j[j]);
@@ -63,16 +56,9 @@ CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int l
 }
 
 void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {
-  for (std::size_t i = 0; i < snap.cells.size(); ++i) {
-    const int c = snap.cells[i];
-    s.enthalpy[c] = snap.enthalpy[i];
-    s.temperature[c] = snap.temperature[i];
-    s.conductivity[c] = snap.conductivity[i];
-    s.rate[c] = snap.rate[i];
-    s.heat_rate[c] = snap.heat_rate[i];
-    s.inflow_j[c] = snap.inflow[i];
-    s.chord[c] = snap.chord[i];
-    s.iterate_h[c] = snap.iterate_h[i];
+  for (std::size_t k = 0; k < kSnapshotFields.size(); ++k) {
+    std::vector<double>& field = s.*kSnapshotFields[k];
+    for (std::size_t i = 0; i < snap.cells.size(); ++i) field[snap.cells[i]] = snap.values[k][i];
   }
   for (const auto& [j, joules] : snap.outside_inflow) s.inflow_j[j] = joules;
   s.energy = snap.energy;
@@ -92,6 +78,7 @@ CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const Co
                                  std::vector<int>& local_of) {
   for (std::size_t i = 0; i < snap.cells.size(); ++i) local_of[snap.cells[i]] = static_cast<int>(i);
   CouplingCheck check;
+  const std::vector<double>& old_t = snap.Values(&ThermalState::temperature);
   double low = std::numeric_limits<double>::infinity(), high = -low;
   auto take = [&](double t) {
     low = std::min(low, t);
@@ -99,7 +86,7 @@ CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const Co
   };
   for (std::size_t i = 0; i < L.cells.size(); ++i) {
     const int c = L.cells[i];
-    take(snap.temperature[static_cast<std::size_t>(local_of[c])]);
+    take(old_t[static_cast<std::size_t>(local_of[c])]);
     check.source = check.source || L.source_w[i] > 0.0;
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[c][f];
@@ -107,7 +94,7 @@ CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const Co
         take(L.boundary_low_c);
         take(L.boundary_high_c);
       } else if (s.depth[j] > level) {
-        take(snap.temperature[static_cast<std::size_t>(local_of[j])]);
+        take(old_t[static_cast<std::size_t>(local_of[j])]);
         take(s.temperature[j]);
       } else if (local_of[j] == kNoCell) {
         take(Bound(s, j, L.end_time_s));

@@ -307,12 +307,27 @@ void ForStepRecords(ThermalState& s, const LevelSystem& L, int cell, const Visit
 // the coarser level that owns the cell had at its interval's ends.
 double Bound(const ThermalState& s, int cell, double t);
 
+// The per-cell values a level's finer levels and corrector change and a re-run of them reads: all of them go back,
+// or the re-run starts from a mix of two runs (a stale rate_step_s halved the step-error estimate of cells the
+// first run had stepped finely, left them to an 8 s step, and put a plate probe 6 K off).
+inline constexpr std::array kSnapshotFields = {
+    &ThermalState::enthalpy, &ThermalState::temperature, &ThermalState::conductivity, &ThermalState::rate,
+    &ThermalState::heat_rate, &ThermalState::rate_step_s, &ThermalState::inflow_j, &ThermalState::chord,
+    &ThermalState::iterate_h};
+
 // A level's state before its finer levels run: what they and the level's corrector change, so that the level's step
 // can run them again over a larger finer region.
 struct CouplingSnapshot {
   std::vector<int> cells;                // the predictor's cells
   std::vector<double> predicted;         // the predictor's temperatures, degC (the finer levels' boundary line)
-  std::vector<double> enthalpy, temperature, conductivity, rate, heat_rate, inflow, chord, iterate_h;
+  // Per cell of `cells`, the values of each of kSnapshotFields: everything of a cell that the finer levels and the
+  // corrector change and a re-run reads.
+  std::vector<std::vector<double>> values;
+  // The snapshot's values of one of kSnapshotFields.
+  const std::vector<double>& Values(std::vector<double> ThermalState::*field) const {
+    const auto* it = std::find(kSnapshotFields.begin(), kSnapshotFields.end(), field);
+    return values[static_cast<std::size_t>(it - kSnapshotFields.begin())];
+  }
   std::vector<std::pair<int, double>> outside_inflow;  // inflow_j of present cells outside the level's region, J
   EnergyBalance energy;
 };
