@@ -75,6 +75,7 @@ struct FitOptions {
   // an optional fitted file to start from, `window` the part of the log fitted
   std::string window;                     // "START:END", s from the log's first row
   double coarse_cell_mm = 0.0;            // grid of a coarse first stage, mm; 0 (or <= thermal.cell_mm): none
+  double jacobian_cell_mm = 0.0;          // grid the Jacobians are differenced on, mm; 0: thermal.cell_mm's
   double prior_weight = 0.0;              // --prior W: pull toward the start values, degC per scaled unit; 0: none
   bool quiet = false;                     // no progress bar
 };

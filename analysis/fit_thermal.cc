@@ -7,6 +7,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -60,6 +61,15 @@ ThermalParameters FitStart(const ReplayModel& model, const std::vector<FreeParam
   return start;
 }
 
+// The scenario's replay model on a grid of `cell_mm` (the options' other --set lines kept).
+ReplayModel ModelOnGrid(const FitOptions& options, double cell_mm) {
+  std::vector<std::string> overrides = options.overrides;
+  std::ostringstream cell;
+  cell << "thermal.cell_mm=" << std::setprecision(17) << cell_mm;
+  overrides.push_back(cell.str());
+  return LoadReplayModel(options.data, overrides, options.start);
+}
+
 // Coarse to fine: the same fit on a grid of --coarse-cell mm first (about 8 times fewer cells at twice the spacing);
 // when usable, its answer replaces x and its Jacobian becomes seed, to start the fit on the scenario's grid, which
 // alone decides the fitted values. Returns the stage's record for fit.json (null without a coarse stage).
@@ -71,11 +81,7 @@ nlohmann::json RunCoarseStage(const FitOptions& options, const ReplayModel& mode
                     "--coarse-cell " << coarse_mm << " mm: must be 0 (no coarse stage) or larger than thermal.cell_mm ("
                                      << model.settings.cell_mm << " mm)");
   if (coarse_mm <= model.settings.cell_mm) return nullptr;
-  std::vector<std::string> overrides = options.overrides;
-  std::ostringstream cell;
-  cell << "thermal.cell_mm=" << std::setprecision(17) << coarse_mm;
-  overrides.push_back(cell.str());
-  const ReplayModel coarse_model = LoadReplayModel(options.data, overrides, options.start);
+  const ReplayModel coarse_model = ModelOnGrid(options, coarse_mm);
   const ReplayResiduals coarse = residuals.OnModel(coarse_model);
   std::vector<double> x0 = x;
   const StageOutcome stage =
@@ -142,7 +148,12 @@ void PrintThermalFit(const std::vector<FreeParameter>& free, const ThermalParame
   out << "  window   rmse " << rmse(doc["window"]) << " degC (start " << doc["start_window"]["rmse_c"].dump()
       << ")\n  held out rmse " << rmse(doc["held_out"]) << " degC (start " << doc["start_held_out"]["rmse_c"].dump()
       << ")\n  solver   Ceres " << doc["solver"]["termination"].get<std::string>() << ", " << iterations
-      << " iterations, " << replays << " replays, " << seconds << " s\n";
+      << " iterations, " << replays << " replays";
+  if (doc["jacobian_cell_mm"].is_number()) {
+    out << " (Jacobians: " << doc["solver"]["coarse_replays"].get<int>() << " more on the "
+        << doc["jacobian_cell_mm"].get<double>() << " mm grid)";
+  }
+  out << ", " << seconds << " s\n";
 }
 
 // The identifiability report of the fine stage's answer (null when Ceres made no Jacobian there).
@@ -197,9 +208,20 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   std::vector<double> seed;
   const std::vector<double> x0 = x;  // before the coarse stage moves x
   const nlohmann::json coarse_doc = RunCoarseStage(options, model, residuals, free, x, seed, out);
+  // Jacobians on a coarser grid (--jacobian-cell): the residuals stay on the scenario's grid.
+  const double jacobian_mm = options.jacobian_cell_mm;
+  WAAM_THROW_UNLESS(jacobian_mm == 0.0 || jacobian_mm > model.settings.cell_mm,
+                    "--jacobian-cell " << jacobian_mm << " mm: must be 0 (the scenario's grid) or larger than "
+                                       "thermal.cell_mm (" << model.settings.cell_mm << " mm)");
+  std::optional<ReplayModel> jacobian_model;
+  std::unique_ptr<const ReplayResiduals> jacobian_grid;
+  if (jacobian_mm > 0.0) {
+    jacobian_model.emplace(ModelOnGrid(options, jacobian_mm));
+    jacobian_grid = std::make_unique<const ReplayResiduals>(*jacobian_model, free, start, window);
+  }
   const StageOutcome fine =
       internal::SolveStage(residuals, x, options.max_iterations, std::move(seed), {options.prior_weight, x0},
-                           IterationLog(options));
+                           IterationLog(options), jacobian_grid.get());
   const nlohmann::json solver = internal::StageSolverJson(fine);
   const int iterations = solver["iterations"].get<int>();
 
@@ -217,6 +239,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, solver);
   doc["coarse"] = coarse_doc;
+  doc["jacobian_cell_mm"] = jacobian_mm > 0.0 ? nlohmann::json(jacobian_mm) : nlohmann::json(nullptr);
   doc["identifiability"] = IdentifiabilityJson(residuals, fitted, fine, options.prior_weight);
   doc["prior"] = options.prior_weight > 0.0
                      ? nlohmann::json{{"weight_c", options.prior_weight}, {"toward", ThermalValuesJson(free, start)}}

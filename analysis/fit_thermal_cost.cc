@@ -102,7 +102,9 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
 
 namespace {
 
-enum class JacobianKind { kDifferenced, kSeed };
+// How a Jacobian was made: differenced on the stage's grid, the coarse stage's seed, or differenced on the coarser
+// Jacobian grid.
+enum class JacobianKind { kDifferenced, kSeed, kCoarse };
 
 // The residuals at Ceres' variables u (x = map(u)), and their Jacobian, asked by Ceres (2.1, unbounded) at the
 // start and at each point it accepts. The Jacobian is differenced in the scaled values x: forward differences over
@@ -112,13 +114,16 @@ enum class JacobianKind { kDifferenced, kSeed };
 // parameter's scale (not a step in u, which would shrink with x - lo toward a lower bound, where the followed
 // replays' round-off and the melt pool's steep response would dominate). It is
 // handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A `seed` Jacobian in x (the coarse stage's,
-// m x n row-major) stands in at the first point until RequestDifference(). A replay with more rows without a
+// m x n row-major) stands in at the first point until RequestDifference(); with a `coarse` grid, the Jacobians are
+// differenced there (1 + n replays there, the perturbed ones following the choices of the one at x) until
+// RequestDifference() (the residuals stay on the stage's grid: an inexact Gauss-Newton, whose fixed point the
+// stage's grid confirms; docs/REPLAY.md, "Jacobians on a coarser grid"). A replay with more rows without a
 // temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
 // its trust region.
 class ReplayCost : public ceres::CostFunction {
  public:
-  ReplayCost(const ReplayResiduals& residuals, std::vector<double> seed)
-      : residuals_(residuals), n_(static_cast<int>(residuals.free_count())), seed_(std::move(seed)) {
+  ReplayCost(const ReplayResiduals& residuals, std::vector<double> seed, const ReplayResiduals* coarse)
+      : residuals_(residuals), coarse_(coarse), n_(static_cast<int>(residuals.free_count())), seed_(std::move(seed)) {
     mutable_parameter_block_sizes()->push_back(n_);
     set_num_residuals(static_cast<int>(residuals.size()));
   }
@@ -148,9 +153,11 @@ class ReplayCost : public ceres::CostFunction {
   }
 
   // The next Jacobian (at the accepted point, or at the last one when Ceres starts there again) is differenced.
-  void RequestDifference() { refresh_ = true; }
-  // The Jacobian at the last accepted point is the seed (not differenced on this grid).
+  void RequestDifference() { refresh_ = true, fine_ = true; }
+  // The Jacobian at the last accepted point is the seed or the coarse grid's (not differenced on this grid).
   bool Undifferenced() const { return have_point_ && point_kind_ != JacobianKind::kDifferenced; }
+  // The Jacobian at the last accepted point is the seed.
+  bool Seeded() const { return have_point_ && point_kind_ == JacobianKind::kSeed; }
   const std::string& error() const { return error_; }
   // The Jacobian in x at `x` and whether it was differenced (the last one when none was made there).
   std::pair<const std::vector<double>*, bool> JacobianOf(const std::vector<double>& x) const {
@@ -207,7 +214,15 @@ class ReplayCost : public ceres::CostFunction {
     std::vector<double> j;
     if (!seed_.empty() && !have_point_) {
       kind = JacobianKind::kSeed, j = seed_;
-    } else if (!Difference(x, r_new, choices, &j)) {
+    } else if (coarse_ != nullptr && !fine_) {
+      kind = JacobianKind::kCoarse;
+      std::vector<double> r_coarse(coarse_->size());
+      twin::SolverChoices made;
+      coarse_->Run(x.data(), r_coarse.data(), &made);
+      if (!Difference(*coarse_, x, r_coarse, std::make_shared<const twin::SolverChoices>(std::move(made)), &j)) {
+        return false;
+      }
+    } else if (!Difference(residuals_, x, r_new, choices, &j)) {
       return false;
     }
     point_x_ = x;
@@ -224,9 +239,9 @@ class ReplayCost : public ceres::CostFunction {
   // Forward differences at `x` (residuals r there, from a replay that made `choices`): the n perturbed replays in
   // parallel, each following those choices (internal numerical differentiation: docs/THERMAL.md, "Differencing a
   // run"), so that the difference sees the parameter's effect and none of the solver's switches.
-  bool Difference(const std::vector<double>& x, const std::vector<double>& r,
+  bool Difference(const ReplayResiduals& grid, const std::vector<double>& x, const std::vector<double>& r,
                   const std::shared_ptr<const twin::SolverChoices>& choices, std::vector<double>* j) const {
-    const std::size_t m = residuals_.size();
+    const std::size_t m = grid.size();
     std::vector<std::vector<double>> out(n_, std::vector<double>(m));
     std::vector<double> step(n_);
     for (int k = 0; k < n_; ++k) {
@@ -237,10 +252,10 @@ class ReplayCost : public ceres::CostFunction {
     ParallelFor(static_cast<std::size_t>(n_), [&](std::size_t k) {
       std::vector<double> xs = x;
       xs[k] += step[k];
-      missing[k] = residuals_.Run(xs.data(), out[k].data(), nullptr, choices);
+      missing[k] = grid.Run(xs.data(), out[k].data(), nullptr, choices);
     });
     for (int k = 0; k < n_; ++k) {
-      if (static_cast<long>(missing[k]) > first_missing_) return false;
+      if (&grid == &residuals_ && static_cast<long>(missing[k]) > first_missing_) return false;
     }
     j->assign(m * n_, 0.0);
     for (std::size_t row = 0; row < m; ++row) {
@@ -250,9 +265,11 @@ class ReplayCost : public ceres::CostFunction {
   }
 
   const ReplayResiduals& residuals_;
+  const ReplayResiduals* coarse_;  // the Jacobian grid (null: none)
   int n_;
   std::vector<double> seed_;
   mutable bool refresh_ = false;  // difference the next Jacobian
+  mutable bool fine_ = false;     // every later Jacobian differenced on the stage's grid
   mutable long first_missing_ = -1;         // rows without a temperature in the first replay
   mutable std::vector<double> tried_x_, tried_r_;  // the last point tried (a candidate) and its residuals
   mutable std::shared_ptr<const twin::SolverChoices> tried_choices_, point_choices_;  // their replays' choices
@@ -321,7 +338,8 @@ double PredictedDecrease(const ceres::IterationSummary& s) {
 
 // Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
 // from the same point with a differenced one rather than shrinking the trust region around a model that may be
-// wrong; and on a rejected step that promised under kUnresolvedShare of the cost. With `log.out`, writes one line
+// wrong; and on a rejected step that promised under kUnresolvedShare of the cost (from the coarse grid's Jacobian,
+// the stage then confirms on its own grid). With `log.out`, writes one line
 // per iteration there: the window's rmse at the current point (from the cost, the weak prior included), the values,
 // the replays so far and the time since the stage began.
 class StageCallback : public ceres::IterationCallback {
@@ -335,9 +353,10 @@ class StageCallback : public ceres::IterationCallback {
       point_cost_ = s.cost;
       return ceres::SOLVER_CONTINUE;
     }
-    if (cost_.Undifferenced()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    if (cost_.Seeded()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     if (PredictedDecrease(s) < kUnresolvedShare * point_cost_) {  // false for NaN
-      unresolved_ = true;
+      // From the coarse grid's Jacobian the stage's grid has the last word (SolveStage runs Ceres again).
+      unresolved_ = !cost_.Undifferenced();
       return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     }
     return ceres::SOLVER_CONTINUE;
@@ -404,15 +423,16 @@ ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& co
 
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
                         std::vector<double> seed, std::pair<double, std::vector<double>> prior,
-                        std::ostream* progress) {
+                        std::ostream* progress, const ReplayResiduals* jacobian_grid) {
   const auto clock_start = std::chrono::steady_clock::now();
   const int replays_before = residuals.replays();
+  const int coarse_before = jacobian_grid != nullptr ? jacobian_grid->replays() : 0;
   StageOutcome outcome;
   // Ceres runs unbounded on u; the bounds are kept by the maps x(u) (ParameterMap): on a bounded problem Ceres 2.1
   // evaluates every trust-region candidate through a projected line search that asks the gradient, i.e. a
   // differenced Jacobian (n + 1 replays) at each point it tries instead of one replay.
   std::vector<double> u = ToFree(residuals.free(), x_start);
-  ReplayCost cost(residuals, std::move(seed));
+  ReplayCost cost(residuals, std::move(seed), jacobian_grid);
   std::unique_ptr<PriorCost> prior_cost =
       prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
   outcome.function_tolerance = 1e-3;
@@ -456,7 +476,9 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   outcome.x = x;
   outcome.differenced = cost.Count(JacobianKind::kDifferenced);
   outcome.seeded = cost.Count(JacobianKind::kSeed);
+  outcome.coarse = cost.Count(JacobianKind::kCoarse);
   outcome.replays = residuals.replays() - replays_before;
+  outcome.coarse_replays = jacobian_grid != nullptr ? jacobian_grid->replays() - coarse_before : 0;
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return outcome;
 }
@@ -478,7 +500,8 @@ nlohmann::json StageSolverJson(const StageOutcome& stage) {
           {"final_cost", stage.runs.back().final_cost},
           {"function_tolerance", stage.function_tolerance},
           {"replays", stage.replays},
-          {"jacobians", {{"differenced", stage.differenced}, {"seeded", stage.seeded}}},
+          {"jacobians", {{"differenced", stage.differenced}, {"seeded", stage.seeded}, {"coarse", stage.coarse}}},
+          {"coarse_replays", stage.coarse_replays},
           {"successful_steps", successful},
           {"unsuccessful_steps", unsuccessful},
           {"residual_evaluations", residual_evaluations},

@@ -80,17 +80,21 @@ struct StageOutcome {
   bool differenced_at_x = false;                // jacobian_at_x was differenced (not the seed)
   double data_cost = 0.0;                       // the final cost without the prior's part
   double function_tolerance = 0.0;              // Ceres' relative tolerance on a change of cost (from the noise)
-  int differenced = 0, seeded = 0;              // the Jacobians Ceres was given, by kind
+  int differenced = 0, seeded = 0, coarse = 0;  // the Jacobians Ceres was given, by kind (coarse: on `jacobian_grid`)
   int replays = 0;
+  int coarse_replays = 0;                       // replays on `jacobian_grid`
   double seconds = 0.0;                         // wall
 };
 
-// Runs a stage with at most `max_iterations` Ceres iterations over all its runs; `seed`: a Jacobian in x (m x n) for the first point instead of differences; `prior`: the
-// weak prior's weight W (0: none) and x0, the start's scaled values it pulls toward; `progress`: where to write one
-// line per Ceres iteration (null: nowhere). Throws Interrupted on Ctrl-C.
+// Runs a stage with at most `max_iterations` Ceres iterations over all its runs; `seed`: a Jacobian in x (m x n) for
+// the first point instead of differences; `prior`: the weak prior's weight W (0: none) and x0, the start's scaled
+// values it pulls toward; `progress`: where to write one line per Ceres iteration (null: nowhere);
+// `jacobian_grid`: the same rows on a coarser grid, on which the Jacobians are differenced until a run of Ceres
+// ends, and then on the stage's own grid to confirm the answer (null: always on the stage's grid). Throws
+// Interrupted on Ctrl-C.
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
                         std::vector<double> seed, std::pair<double, std::vector<double>> prior,
-                        std::ostream* progress);
+                        std::ostream* progress, const ReplayResiduals* jacobian_grid = nullptr);
 
 // The stage's solver record for fitted.json (docs/REPLAY.md, `solver`).
 nlohmann::json StageSolverJson(const StageOutcome& stage);

@@ -99,6 +99,10 @@ CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options) {
   fit->add_option("--coarse-cell", options->coarse_cell_mm,
                   "thermal: grid spacing of a first fit whose answer starts the fit on the scenario's grid, mm, "
                   "e.g. twice thermal.cell_mm (default 0: one fit on the scenario's grid)");
+  fit->add_option("--jacobian-cell", options->jacobian_cell_mm,
+                  "thermal: grid spacing the Jacobians are differenced on, mm, e.g. 1.5 times thermal.cell_mm: the\n"
+                  "residuals stay on the scenario's grid, whose own Jacobian confirms the answer at the end\n"
+                  "(default 0: every Jacobian on the scenario's grid)");
   fit->add_option("--prior", options->prior_weight,
                   "thermal: weak prior toward the start values, degC: one residual W (value - start) / scale per free\n"
                   "parameter (scales: efficiency 1, convection 10, contact 100, emissivity 1; default 0: none)");

@@ -443,5 +443,29 @@ TEST(ReplayRoundTrip, CoarseToFineFitEndsAtTheOneStageFitsValues) {
   std::cout << out.str();
 }
 
+// Jacobians differenced on a coarser grid (--jacobian-cell 3 on the 2 mm grid) with the residuals on the scenario's:
+// the fit ends at the one-stage fit's values with fewer replays on the scenario's grid, and a Jacobian differenced
+// there confirmed them.
+TEST(ReplayRoundTrip, JacobiansOnACoarserGridEndAtTheOneStageFitsValues) {
+  const fs::path dir = cli_test::TempDir("replay_fit_jacobian_grid");
+  FitOptions options = RoundTripFit(dir, "one_stage.json");
+  std::ostringstream out;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  options.output = dir / "coarse_jacobians.json";
+  options.jacobian_cell_mm = 3.0;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  const nlohmann::json one = cli_test::ReadJson(dir / "one_stage.json");
+  const nlohmann::json two = cli_test::ReadJson(options.output);
+  EXPECT_GE(two["solver"]["jacobians"]["coarse"].get<int>(), 3) << out.str();
+  EXPECT_LT(two["solver"]["replays"].get<int>(), one["solver"]["replays"].get<int>()) << out.str();
+  EXPECT_GT(two["solver"]["coarse_replays"].get<int>(), 0) << out.str();
+  EXPECT_GE(two["solver"]["jacobians"]["differenced"].get<int>(), 1) << out.str();
+  EXPECT_EQ(one["solver"]["jacobians"]["coarse"].get<int>(), 0) << out.str();
+  EXPECT_NEAR(two["fitted"]["efficiency"].get<double>(), one["fitted"]["efficiency"].get<double>(), 2e-3) << out.str();
+  EXPECT_NEAR(two["fitted"]["convection"].get<double>(), one["fitted"]["convection"].get<double>(), 1.0) << out.str();
+  EXPECT_LT(two["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
+  std::cout << out.str();
+}
+
 }  // namespace
 }  // namespace waam::analysis
