@@ -61,13 +61,21 @@ ThermalParameters FitStart(const ReplayModel& model, const std::vector<FreeParam
   return start;
 }
 
-// The scenario's replay model on a grid of `cell_mm` (the options' other --set lines kept).
-ReplayModel ModelOnGrid(const FitOptions& options, double cell_mm) {
+// The scenario's replay model on a grid of `cell_mm` (the options' other --set lines kept), its solver settings
+// checked there (the grid must hold the solver's reaches) before any replay, and named by `option`.
+ReplayModel ModelOnGrid(const FitOptions& options, double cell_mm, const char* option) {
   std::vector<std::string> overrides = options.overrides;
   std::ostringstream cell;
   cell << "thermal.cell_mm=" << std::setprecision(17) << cell_mm;
   overrides.push_back(cell.str());
-  return LoadReplayModel(options.data, overrides, options.start);
+  ReplayModel model = LoadReplayModel(options.data, overrides, options.start);
+  try {
+    twin::CheckThermalSettings(model.settings);
+  } catch (const InputError& e) {
+    throw InputError(std::string(option) + " " + cell.str().substr(std::string("thermal.cell_mm=").size()) +
+                     " mm: " + e.what());
+  }
+  return model;
 }
 
 // Coarse to fine: the same fit on a grid of --coarse-cell mm first (about 8 times fewer cells at twice the spacing);
@@ -81,7 +89,7 @@ nlohmann::json RunCoarseStage(const FitOptions& options, const ReplayModel& mode
                     "--coarse-cell " << coarse_mm << " mm: must be 0 (no coarse stage) or larger than thermal.cell_mm ("
                                      << model.settings.cell_mm << " mm)");
   if (coarse_mm <= model.settings.cell_mm) return nullptr;
-  const ReplayModel coarse_model = ModelOnGrid(options, coarse_mm);
+  const ReplayModel coarse_model = ModelOnGrid(options, coarse_mm, "--coarse-cell");
   const ReplayResiduals coarse = residuals.OnModel(coarse_model);
   std::vector<double> x0 = x;
   const StageOutcome stage =
@@ -216,7 +224,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   std::optional<ReplayModel> jacobian_model;
   std::unique_ptr<const ReplayResiduals> jacobian_grid;
   if (jacobian_mm > 0.0) {
-    jacobian_model.emplace(ModelOnGrid(options, jacobian_mm));
+    jacobian_model.emplace(ModelOnGrid(options, jacobian_mm, "--jacobian-cell"));
     jacobian_grid = std::make_unique<const ReplayResiduals>(*jacobian_model, free, start, window);
   }
   const StageOutcome fine =

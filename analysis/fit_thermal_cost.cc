@@ -9,6 +9,8 @@
 #include <limits>
 #include <ostream>
 
+#include <Eigen/Dense>
+
 #include "models/core/error.h"
 #include "models/core/parallel.h"
 #include "models/core/progress.h"
@@ -419,6 +421,35 @@ ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& co
   return summary;
 }
 
+// The decrease of the cost (data and prior) that the Gauss-Newton step at Ceres' point u promises, with the
+// Jacobian the cost makes there (on the scenario's grid once RequestDifference() was called): an upper bound of the
+// decrease any of Ceres' damped steps from there promises. Also returns the cost there. False when a replay failed.
+bool GaussNewtonPromise(const ReplayCost& cost, const PriorCost* prior, const std::vector<double>& u,
+                        double* promise, double* at) {
+  const int n = static_cast<int>(u.size());
+  const int m = cost.num_residuals();
+  const int p = prior != nullptr ? n : 0;
+  Eigen::VectorXd r(m + p);
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(m + p, n);
+  std::vector<double> block(static_cast<std::size_t>(std::max(m, p)) * n);
+  const double* parameters[] = {u.data()};
+  double* jacobians[] = {block.data()};
+  if (!cost.Evaluate(parameters, r.data(), jacobians)) return false;
+  for (int row = 0; row < m; ++row) {
+    for (int k = 0; k < n; ++k) j(row, k) = block[static_cast<std::size_t>(row) * n + k];
+  }
+  if (prior != nullptr) {
+    prior->Evaluate(parameters, r.data() + m, jacobians);
+    for (int row = 0; row < p; ++row) {
+      for (int k = 0; k < n; ++k) j(m + row, k) = block[static_cast<std::size_t>(row) * n + k];
+    }
+  }
+  const Eigen::VectorXd step = j.colPivHouseholderQr().solve(-r);
+  *at = 0.5 * r.squaredNorm();
+  *promise = *at - 0.5 * (r + j * step).squaredNorm();
+  return std::isfinite(*promise);
+}
+
 }  // namespace
 
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
@@ -440,6 +471,10 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   bool unresolved = false;
   // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
   // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
+  // After the run on the coarse grid's Jacobians, the scenario's grid judges the point: when its Gauss-Newton step
+  // promises less than Ceres' function tolerance of the cost (a step Ceres would end on), the stage ends there
+  // without trying it (a candidate costs a replay on the scenario's grid).
+  bool confirmed = false;
   while (true) {
     const StageLog log{progress, clock_start, max_iterations - left};
     ceres::Solver::Summary summary =
@@ -453,12 +488,27 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
     outcome.runs.push_back(std::move(summary));
     if (!again) break;
     cost.RequestDifference();
+    if (jacobian_grid != nullptr) {
+      double promise = 0.0, at = 0.0;
+      if (GaussNewtonPromise(cost, prior_cost.get(), u, &promise, &at) && promise < outcome.function_tolerance * at) {
+        confirmed = true;
+        if (progress != nullptr) {
+          *progress << "  confirmed on the scenario's grid: its Gauss-Newton step promises " << std::setprecision(3)
+                    << promise << " of a cost of " << at << "; " << residuals.replays() << " replays" << std::endl;
+        }
+        break;
+      }
+    }
   }
   const ceres::Solver::Summary& last = outcome.runs.back();
   outcome.usable = last.IsSolutionUsable();
   outcome.termination = ceres::TerminationTypeToString(last.termination_type);
   outcome.message = last.message;
-  if (unresolved) {
+  if (confirmed) {
+    outcome.termination = "CONVERGENCE";
+    outcome.message = "the Jacobian differenced on the scenario's grid confirmed the answer: its Gauss-Newton step "
+                      "promised to lower the cost by less than the function tolerance";
+  } else if (unresolved) {
     outcome.termination = "CONVERGENCE";
     outcome.message = "a step the linear model promised to lower the cost by under 1 % failed: the replays' own "
                       "jumps between the solver's choices are larger (docs/REPLAY.md, \"The round trip's fit\")";
@@ -486,7 +536,7 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
 nlohmann::json StageSolverJson(const StageOutcome& stage) {
   int iterations = 0, successful = 0, unsuccessful = 0, residual_evaluations = 0, jacobian_evaluations = 0;
   for (const ceres::Solver::Summary& s : stage.runs) {
-    iterations += static_cast<int>(s.iterations.size()) - 1;
+    iterations += std::max(static_cast<int>(s.iterations.size()) - 1, 0);  // none when the start's replay failed
     successful += s.num_successful_steps;
     unsuccessful += s.num_unsuccessful_steps;
     residual_evaluations += s.num_residual_evaluations;

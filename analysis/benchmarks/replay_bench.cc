@@ -71,8 +71,10 @@ void BM_ReplayHour(benchmark::State& state) {
 }
 BENCHMARK(BM_ReplayHour)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
-void BM_FitHalfHour(benchmark::State& state) {
-  waam::SetThreadCount(static_cast<int>(state.range(0)));
+// The three-parameter fit of the hour's first half, on `threads` threads, with a coarse stage on a grid of
+// `coarse_mm` (0: none) and the Jacobians on a grid of `jacobian_mm` (0: the scenario's 2 mm grid).
+void FitHalfHour(benchmark::State& state, int threads, double coarse_mm, double jacobian_mm) {
+  waam::SetThreadCount(threads);
   const fs::path scenario = HourLog();
   FitOptions options;
   options.model = waam::analysis::FitModel::kThermal;
@@ -80,7 +82,8 @@ void BM_FitHalfHour(benchmark::State& state) {
   options.output = scenario.parent_path() / "fitted.json";
   options.free = {"efficiency", "convection", "contact"};
   options.window = "0:1800";
-  options.coarse_cell_mm = static_cast<double>(state.range(1));  // 0: one stage on the 2 mm grid
+  options.coarse_cell_mm = coarse_mm;
+  options.jacobian_cell_mm = jacobian_mm;
   FitOutcome outcome;
   std::ostringstream out;
   for (auto _ : state) outcome = RunFit(options, out);
@@ -91,6 +94,7 @@ void BM_FitHalfHour(benchmark::State& state) {
   state.counters["convection"] = m["fitted"]["convection"].get<double>();
   state.counters["contact"] = m["fitted"]["contact"].get<double>();
   state.counters["replays"] = m["solver"]["replays"].get<double>();
+  state.counters["jacobian_grid_replays"] = m["solver"]["coarse_replays"].get<double>();
   state.counters["iterations"] = m["solver"]["iterations"].get<double>();
   state.counters["held_out_rmse_c"] = m["held_out"]["overall"]["rmse_c"].get<double>();
   if (m["coarse"].is_object()) {
@@ -98,7 +102,16 @@ void BM_FitHalfHour(benchmark::State& state) {
     state.counters["coarse_iterations"] = m["coarse"]["iterations"].get<double>();
   }
 }
-// Args: threads, coarse stage's grid in mm (0 = none: the fit on the scenario's 2 mm grid alone).
+
+void BM_FitHalfHour(benchmark::State& state) {
+  FitHalfHour(state, static_cast<int>(state.range(0)), static_cast<double>(state.range(1)), 0.0);
+}
 BENCHMARK(BM_FitHalfHour)->Args({1, 4})->Args({1, 0})->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+void BM_FitHalfHourJacobianGrid(benchmark::State& state) {
+  FitHalfHour(state, static_cast<int>(state.range(0)), 0.0, static_cast<double>(state.range(1)));
+}
+// Args: threads, the Jacobians' grid in mm (--jacobian-cell; the residuals on the scenario's 2 mm grid).
+BENCHMARK(BM_FitHalfHourJacobianGrid)->Args({1, 3})->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
