@@ -238,11 +238,12 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   std::string message = fine.message;
   if (!fine.error.empty()) message = fine.error;
   if (!converged) message = fine.termination + " after " + std::to_string(iterations) + " iterations: " + message;
-  // The whole log with the fitted values and with the start values, each a fresh replay of the log (as `waam thermal
-  // replay --parameters fitted.json` gives): the window's fit and the held-out prediction. Not the fit's own replay
-  // continued from the window's end: that one stopped there, which ends a multirate batch, and differs by more than
-  // the solver's tolerance.
-  const ReplaySimulation start_run = SimulateReplay(model, start);
+  // The whole log with the fitted values, a fresh replay of the log (as `waam thermal replay --parameters
+  // fitted.json` gives): the window's fit and the held-out prediction. Not the fit's own replay continued from the
+  // window's end: that one stopped there, which ends a multirate batch, and differs by more than the solver's
+  // tolerance. The start values' figures, a comparison only, continue the fit's first replay when it was made at
+  // the start values (a replay of the window saved).
+  const ReplaySimulation start_run = residuals.WholeLogAt(start);
   const ReplaySimulation fitted_run = converged ? SimulateReplay(model, fitted) : start_run;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, solver);

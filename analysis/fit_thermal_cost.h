@@ -56,6 +56,10 @@ class ReplayResiduals {
   std::size_t Run(const double* x, double* residuals, twin::SolverChoices* record = nullptr,
                   std::shared_ptr<const twin::SolverChoices> follow = nullptr) const;
   int replays() const { return replays_.load(); }
+  // The whole log replayed at `p`: the first replay Run made recording its choices, continued from the window's end,
+  // when it was made at `p` (within 1e-9 of each value), else a fresh replay. The continued one stopped at the
+  // window's end, which ends a multirate batch there (docs/REPLAY.md, "The window and held-out rows").
+  ReplaySimulation WholeLogAt(const ThermalParameters& p) const;
 
  private:
   const ReplayModel* model_;
@@ -64,6 +68,7 @@ class ReplayResiduals {
   std::pair<double, double> window_;
   std::vector<std::pair<std::size_t, std::size_t>> used_;  // (probe, row)
   mutable std::atomic<int> replays_{0};
+  mutable std::unique_ptr<ReplayRun> first_run_;  // the first recording replay, kept to continue (WholeLogAt)
 };
 
 // One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on the coarse
