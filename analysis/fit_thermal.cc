@@ -7,7 +7,6 @@
 #include <iostream>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -72,10 +71,32 @@ ReplayModel ModelOnGrid(const FitOptions& options, double cell_mm, const char* o
   try {
     twin::CheckThermalSettings(model.settings);
   } catch (const InputError& e) {
-    throw InputError(std::string(option) + " " + cell.str().substr(std::string("thermal.cell_mm=").size()) +
-                     " mm: " + e.what());
+    WAAM_THROW_UNLESS(false, option << " " << cell_mm << " mm: " << e.what());
   }
   return model;
+}
+
+// The rows of the fit on the --jacobian-cell grid, with the model they replay.
+struct JacobianGrid {
+  JacobianGrid(ReplayModel m, const std::vector<FreeParameter>& free, const ThermalParameters& start,
+               std::pair<double, double> window)
+      : model(std::move(m)), residuals(model, free, start, window) {}
+  ReplayModel model;
+  ReplayResiduals residuals;
+};
+
+// The --jacobian-cell grid (null without it), checked before any replay: coarser than the scenario's grid and able to
+// hold the solver's reaches.
+std::unique_ptr<const JacobianGrid> MakeJacobianGrid(const FitOptions& options, const ReplayModel& model,
+                                                     const std::vector<FreeParameter>& free,
+                                                     const ThermalParameters& start,
+                                                     std::pair<double, double> window) {
+  const double mm = options.jacobian_cell_mm;
+  WAAM_THROW_UNLESS(mm == 0.0 || mm > model.settings.cell_mm,
+                    "--jacobian-cell " << mm << " mm: must be 0 (the scenario's grid) or larger than thermal.cell_mm ("
+                                       << model.settings.cell_mm << " mm)");
+  if (mm == 0.0) return nullptr;
+  return std::make_unique<const JacobianGrid>(ModelOnGrid(options, mm, "--jacobian-cell"), free, start, window);
 }
 
 // Coarse to fine: the same fit on a grid of --coarse-cell mm first (about 8 times fewer cells at twice the spacing);
@@ -205,6 +226,8 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   WAAM_THROW_UNLESS(residuals.size() > free.size(),
                     "--window '" << options.window << "': " << residuals.size() << " measured temperatures in it; "
                                  "the fit needs more than the " << free.size() << " free parameters");
+  const std::unique_ptr<const JacobianGrid> jacobian_grid = MakeJacobianGrid(options, model, free, start, window);
+  residuals.KeepFirstRun();  // the start values' figures continue it (WholeLogAt)
   PrintLogIssues(model.log, false, out);
   out << "fit thermal: " << options.data.string() << ", window " << window.first << ".." << window.second << " s ("
       << residuals.size() << " thermocouple readings), free";
@@ -216,20 +239,9 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   std::vector<double> seed;
   const std::vector<double> x0 = x;  // before the coarse stage moves x
   const nlohmann::json coarse_doc = RunCoarseStage(options, model, residuals, free, x, seed, out);
-  // Jacobians on a coarser grid (--jacobian-cell): the residuals stay on the scenario's grid.
-  const double jacobian_mm = options.jacobian_cell_mm;
-  WAAM_THROW_UNLESS(jacobian_mm == 0.0 || jacobian_mm > model.settings.cell_mm,
-                    "--jacobian-cell " << jacobian_mm << " mm: must be 0 (the scenario's grid) or larger than "
-                                       "thermal.cell_mm (" << model.settings.cell_mm << " mm)");
-  std::optional<ReplayModel> jacobian_model;
-  std::unique_ptr<const ReplayResiduals> jacobian_grid;
-  if (jacobian_mm > 0.0) {
-    jacobian_model.emplace(ModelOnGrid(options, jacobian_mm, "--jacobian-cell"));
-    jacobian_grid = std::make_unique<const ReplayResiduals>(*jacobian_model, free, start, window);
-  }
   const StageOutcome fine =
       internal::SolveStage(residuals, x, options.max_iterations, std::move(seed), {options.prior_weight, x0},
-                           IterationLog(options), jacobian_grid.get());
+                           IterationLog(options), jacobian_grid ? &jacobian_grid->residuals : nullptr);
   const nlohmann::json solver = internal::StageSolverJson(fine);
   const int iterations = solver["iterations"].get<int>();
 
@@ -248,7 +260,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, solver);
   doc["coarse"] = coarse_doc;
-  doc["jacobian_cell_mm"] = jacobian_mm > 0.0 ? nlohmann::json(jacobian_mm) : nlohmann::json(nullptr);
+  doc["jacobian_cell_mm"] = jacobian_grid ? nlohmann::json(options.jacobian_cell_mm) : nlohmann::json(nullptr);
   doc["identifiability"] = IdentifiabilityJson(residuals, fitted, fine, options.prior_weight);
   doc["prior"] = options.prior_weight > 0.0
                      ? nlohmann::json{{"weight_c", options.prior_weight}, {"toward", ThermalValuesJson(free, start)}}

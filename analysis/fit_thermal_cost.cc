@@ -92,7 +92,7 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
   const ReplaySimulation sim = run->Result();
   if (record != nullptr) *record = run->TakeChoices();
   // Recording replays run one at a time (the parallel ones follow), so the first is kept without a race.
-  if (record != nullptr && first_run_ == nullptr) first_run_ = std::move(run);
+  if (keep_first_ && record != nullptr && first_run_ == nullptr) first_run_ = std::move(run);
   ++replays_;
   std::size_t missing = 0;
   for (std::size_t r = 0; r < used_.size(); ++r) {

@@ -56,8 +56,10 @@ class ReplayResiduals {
   std::size_t Run(const double* x, double* residuals, twin::SolverChoices* record = nullptr,
                   std::shared_ptr<const twin::SolverChoices> follow = nullptr) const;
   int replays() const { return replays_.load(); }
-  // The whole log replayed at `p`: the first replay Run made recording its choices, continued from the window's end,
-  // when it was made at `p` (within 1e-9 of each value), else a fresh replay. The continued one stopped at the
+  // Keep the first replay Run makes recording its choices, for WholeLogAt (off by default: it holds a simulation).
+  void KeepFirstRun() const { keep_first_ = true; }
+  // The whole log replayed at `p`: the kept first replay, continued from the window's end, when it was made at `p`
+  // (within 1e-9 of each value), else a fresh replay. The continued one stopped at the
   // window's end, which ends a multirate batch there (docs/REPLAY.md, "The window and held-out rows").
   ReplaySimulation WholeLogAt(const ThermalParameters& p) const;
 
@@ -68,6 +70,7 @@ class ReplayResiduals {
   std::pair<double, double> window_;
   std::vector<std::pair<std::size_t, std::size_t>> used_;  // (probe, row)
   mutable std::atomic<int> replays_{0};
+  mutable bool keep_first_ = false;
   mutable std::unique_ptr<ReplayRun> first_run_;  // the first recording replay, kept to continue (WholeLogAt)
 };
 

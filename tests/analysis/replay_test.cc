@@ -1,5 +1,6 @@
 // The process-log reader (dialects, reported rows, refused rows), the replay's metrics, and the round trip: a log
 // made by the thermal model with seeded noise and known parameters, replayed and fitted back.
+#include <functional>
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -422,40 +423,42 @@ TEST(ReplayRoundTrip, FitRecoversTheClampsConductanceFactor) {
   EXPECT_NEAR(errors["overall"]["rmse_c"].get<double>(), 1.0, 0.1);
 }
 
+// The round trip's one-stage fit and the same fit changed by `change`: their fitted.json documents (one, two), the
+// output of both in `out`.
+std::pair<nlohmann::json, nlohmann::json> OneStageAndChanged(const std::string& name,
+                                                             const std::function<void(FitOptions&)>& change,
+                                                             std::ostringstream& out) {
+  const fs::path dir = cli_test::TempDir(name);
+  FitOptions options = RoundTripFit(dir, "one_stage.json");
+  EXPECT_TRUE(RunFit(options, out).ok) << out.str();
+  options.output = dir / "changed.json";
+  change(options);
+  EXPECT_TRUE(RunFit(options, out).ok) << out.str();
+  std::cout << out.str();
+  return {cli_test::ReadJson(dir / "one_stage.json"), cli_test::ReadJson(options.output)};
+}
+
 // Coarse to fine (--coarse-cell 4 on the 2 mm grid): the coarse stage only chooses the start of the fit on the
 // scenario's grid, so it ends at that grid's own answer: the one-stage fit's values within the tolerances' reach.
 TEST(ReplayRoundTrip, CoarseToFineFitEndsAtTheOneStageFitsValues) {
-  const fs::path dir = cli_test::TempDir("replay_fit_coarse");
-  FitOptions options = RoundTripFit(dir, "one_stage.json");
   std::ostringstream out;
-  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
-  options.output = dir / "coarse_to_fine.json";
-  options.coarse_cell_mm = 4.0;
-  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
-  const nlohmann::json one = cli_test::ReadJson(dir / "one_stage.json");
-  const nlohmann::json two = cli_test::ReadJson(options.output);
+  const auto [one, two] =
+      OneStageAndChanged("replay_fit_coarse", [](FitOptions& o) { o.coarse_cell_mm = 4.0; }, out);
   ASSERT_TRUE(two["coarse"].is_object()) << out.str();
   EXPECT_TRUE(two["coarse"]["used"].get<bool>()) << out.str();
   EXPECT_NEAR(two["fitted"]["efficiency"].get<double>(), one["fitted"]["efficiency"].get<double>(), 2e-3) << out.str();
   EXPECT_NEAR(two["fitted"]["convection"].get<double>(), one["fitted"]["convection"].get<double>(), 1.0) << out.str();
   EXPECT_NEAR(two["fitted"]["efficiency"].get<double>(), 0.7, 0.01) << out.str();
   EXPECT_LT(two["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
-  std::cout << out.str();
 }
 
 // Jacobians differenced on a coarser grid (--jacobian-cell 3 on the 2 mm grid) with the residuals on the scenario's:
 // the fit ends at the one-stage fit's values with fewer replays on the scenario's grid, and a Jacobian differenced
 // there confirmed them.
 TEST(ReplayRoundTrip, JacobiansOnACoarserGridEndAtTheOneStageFitsValues) {
-  const fs::path dir = cli_test::TempDir("replay_fit_jacobian_grid");
-  FitOptions options = RoundTripFit(dir, "one_stage.json");
   std::ostringstream out;
-  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
-  options.output = dir / "coarse_jacobians.json";
-  options.jacobian_cell_mm = 3.0;
-  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
-  const nlohmann::json one = cli_test::ReadJson(dir / "one_stage.json");
-  const nlohmann::json two = cli_test::ReadJson(options.output);
+  const auto [one, two] =
+      OneStageAndChanged("replay_fit_jacobian_grid", [](FitOptions& o) { o.jacobian_cell_mm = 3.0; }, out);
   EXPECT_GE(two["solver"]["jacobians"]["coarse"].get<int>(), 3) << out.str();
   EXPECT_LT(two["solver"]["replays"].get<int>(), one["solver"]["replays"].get<int>()) << out.str();
   EXPECT_GT(two["solver"]["coarse_replays"].get<int>(), 0) << out.str();
@@ -464,7 +467,6 @@ TEST(ReplayRoundTrip, JacobiansOnACoarserGridEndAtTheOneStageFitsValues) {
   EXPECT_NEAR(two["fitted"]["efficiency"].get<double>(), one["fitted"]["efficiency"].get<double>(), 2e-3) << out.str();
   EXPECT_NEAR(two["fitted"]["convection"].get<double>(), one["fitted"]["convection"].get<double>(), 1.0) << out.str();
   EXPECT_LT(two["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
-  std::cout << out.str();
 }
 
 }  // namespace
