@@ -15,40 +15,25 @@ constexpr std::size_t kCoarsestCells = 96;
 constexpr double kPoorCoarsening = 0.75;
 
 // One Gauss-Seidel sweep of A x = b over the chunks of ForChunks, forward or backward; inside a chunk the new values
-// are used at once, values of other chunks are those from before the sweep. x and before hold n + 1 values;
-// `inverse` holds 1 / A_ii. The y and z faces are summed first and the x faces (the neighbours next in the
-// sweep's order, just updated) last, and the diagonal's inverse multiplies: the chain from one cell's new value
-// to the next is a few operations long instead of seven additions and a division.
-void Sweep(const PaddedStencil& a, const std::vector<double>& inverse, const std::vector<double>& b,
-           std::vector<double>& x, std::vector<double>& before, bool forward) {
+// are used at once, values of other chunks are those from before the sweep. x holds 2 (n + 1) values: the iterate
+// (n values and the zero slot) and, behind it, the copy from before the sweep, which `sweep` (SweepNeighbours) points
+// a face at when its neighbour lies in another chunk; the loop reads without a branch. `inverse` holds 1 / A_ii.
+// The y and z faces are summed first and the x faces (the neighbours next in the sweep's order, just updated) last,
+// and the diagonal's inverse multiplies: the chain from one cell's new value to the next is a few operations long
+// instead of seven additions and a division.
+void Sweep(const PaddedStencil& a, const std::vector<std::array<int, 6>>& sweep, const std::vector<double>& inverse,
+           const std::vector<double>& b, std::vector<double>& x, bool forward) {
   const std::size_t n = a.size();
-  if (n <= kChunk) {
-    // One chunk: plain Gauss-Seidel (the zero slot reads 0).
-    double* v = x.data();
+  const bool one_chunk = n <= kChunk;  // plain Gauss-Seidel: every face reads the iterate (the zero slot reads 0)
+  if (!one_chunk) std::copy(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n), x.begin() + static_cast<std::ptrdiff_t>(n + 1));
+  const std::vector<std::array<int, 6>>& faces = one_chunk ? a.neighbour : sweep;
+  double* v = x.data();
+  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     auto relax = [&](std::size_t i) {
-      const std::array<int, 6>& nb = a.neighbour[i];
+      const std::array<int, 6>& nb = faces[i];
       const std::array<double, 6>& g = a.conductance[i];
       const double far = (b[i] + g[2] * v[nb[2]] + g[3] * v[nb[3]]) + (g[4] * v[nb[4]] + g[5] * v[nb[5]]);
       v[i] = (far + (g[0] * v[nb[0]] + g[1] * v[nb[1]])) * inverse[i];
-    };
-    if (forward) {
-      for (std::size_t i = 0; i < n; ++i) relax(i);
-    } else {
-      for (std::size_t i = n; i-- > 0;) relax(i);
-    }
-    return;
-  }
-  std::copy(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n), before.begin());
-  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-    auto relax = [&](std::size_t i) {
-      const std::array<int, 6>& nb = a.neighbour[i];
-      const std::array<double, 6>& g = a.conductance[i];
-      auto value = [&](int f) {
-        const std::size_t u = static_cast<std::size_t>(nb[f]);
-        return u >= begin && u < end ? x[u] : before[u];
-      };
-      const double far = (b[i] + g[2] * value(2) + g[3] * value(3)) + (g[4] * value(4) + g[5] * value(5));
-      x[i] = (far + (g[0] * value(0) + g[1] * value(1))) * inverse[i];
     };
     if (forward) {
       for (std::size_t i = begin; i < end; ++i) relax(i);
@@ -56,6 +41,23 @@ void Sweep(const PaddedStencil& a, const std::vector<double>& inverse, const std
       for (std::size_t i = end; i-- > begin;) relax(i);
     }
   });
+}
+
+// The faces Sweep reads over more than one chunk: a neighbour in the cell's own chunk (or the zero slot n) as it is,
+// one in another chunk moved by n + 1 to its value from before the sweep. Empty for a system of one chunk.
+std::vector<std::array<int, 6>> SweepNeighbours(const PaddedStencil& a) {
+  const std::size_t n = a.size();
+  std::vector<std::array<int, 6>> sweep;
+  if (n <= kChunk) return sweep;
+  sweep.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int f = 0; f < 6; ++f) {
+      const std::size_t u = static_cast<std::size_t>(a.neighbour[i][f]);
+      const bool here = u == n || u / kChunk == i / kChunk;
+      sweep[i][f] = here ? static_cast<int>(u) : static_cast<int>(u + n + 1);
+    }
+  }
+  return sweep;
 }
 
 }  // namespace
@@ -163,8 +165,7 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
     levels_.back().parent = std::move(parent);
     coarse.b.resize(m);
     coarse.residual.resize(m);
-    coarse.x.assign(m + 1, 0.0);
-    coarse.before.assign(m + 1, 0.0);
+    coarse.x.assign(2 * (m + 1), 0.0);
     levels_.push_back(std::move(coarse));
     coords.swap(next);
   }
@@ -172,8 +173,8 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
   Level& fine = levels_[0];
   fine.b.resize(fine_->size());
   fine.residual.resize(fine_->size());
-  fine.x.assign(fine_->size() + 1, 0.0);
-  fine.before.assign(fine_->size() + 1, 0.0);
+  fine.x.assign(2 * (fine_->size() + 1), 0.0);
+  for (std::size_t l = 0; l < levels_.size(); ++l) levels_[l].sweep = SweepNeighbours(System(l));
 }
 
 // Hutchinson & Raithby eqs. 9-12: a block's equation is the sum of its cells' equations with one correction for
@@ -221,12 +222,12 @@ void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
   if (level + 1 == levels_.size()) {
     // The coarsest level: symmetric Gauss-Seidel pairs from zero (a symmetric operator).
     for (int pass = 0; pass < 8; ++pass) {
-      Sweep(a, L.inverse, L.b, L.x, L.before, true);
-      Sweep(a, L.inverse, L.b, L.x, L.before, false);
+      Sweep(a, L.sweep, L.inverse, L.b, L.x, true);
+      Sweep(a, L.sweep, L.inverse, L.b, L.x, false);
     }
     return;
   }
-  Sweep(a, L.inverse, L.b, L.x, L.before, true);
+  Sweep(a, L.sweep, L.inverse, L.b, L.x, true);
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) L.residual[i] = L.b[i] - a.Row(L.x.data(), i);
   });
@@ -235,7 +236,7 @@ void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
   for (std::size_t i = 0; i < n; ++i) coarse.b[L.parent[i]] += L.residual[i];
   Cycle(level + 1);
   for (std::size_t i = 0; i < n; ++i) L.x[i] += coarse.x[L.parent[i]];
-  Sweep(a, L.inverse, L.b, L.x, L.before, false);
+  Sweep(a, L.sweep, L.inverse, L.b, L.x, false);
 }
 
 }  // namespace waam::twin::internal

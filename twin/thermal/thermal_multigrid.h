@@ -72,7 +72,9 @@ class AdditiveCorrectionMultigrid {
     std::vector<int> parent;  // per cell: its block's index in the next coarser level (empty on the coarsest)
     std::vector<double> inverse;  // 1 / the diagonal
     std::vector<double> b, residual;
-    std::vector<double> x, before;  // n + 1 values, the last 0 (the zero slot)
+    // 2 (n + 1) values: the iterate, its zero slot (0), and the iterate from before a sweep (Sweep).
+    std::vector<double> x;
+    std::vector<std::array<int, 6>> sweep;  // the faces a sweep over several chunks reads (SweepNeighbours)
   };
   bool SameStructure(const PaddedStencil& fine, const std::vector<std::array<int, 3>>& ijk) const;
   void BuildStructure(const std::vector<std::array<int, 3>>& ijk);
