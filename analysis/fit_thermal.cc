@@ -227,7 +227,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
                     "--window '" << options.window << "': " << residuals.size() << " measured temperatures in it; "
                                  "the fit needs more than the " << free.size() << " free parameters");
   const std::unique_ptr<const JacobianGrid> jacobian_grid = MakeJacobianGrid(options, model, free, start, window);
-  residuals.KeepFirstRun();  // the start values' figures continue it (WholeLogAt)
+  residuals.KeepRuns();  // the start values' and the fitted values' figures continue them (WholeLogAt)
   PrintLogIssues(model.log, false, out);
   out << "fit thermal: " << options.data.string() << ", window " << window.first << ".." << window.second << " s ("
       << residuals.size() << " thermocouple readings), free";
@@ -250,13 +250,11 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   std::string message = fine.message;
   if (!fine.error.empty()) message = fine.error;
   if (!converged) message = fine.termination + " after " + std::to_string(iterations) + " iterations: " + message;
-  // The whole log with the fitted values, a fresh replay of the log (as `waam thermal replay --parameters
-  // fitted.json` gives): the window's fit and the held-out prediction. Not the fit's own replay continued from the
-  // window's end: that one stopped there, which ends a multirate batch, and differs by more than the solver's
-  // tolerance. The start values' figures, a comparison only, continue the fit's first replay when it was made at
-  // the start values (a replay of the window saved).
+  // The whole log with the start and the fitted values (the window's fit and the held-out prediction): the fit's own
+  // replays at those values continued where they were kept, else fresh ones; either is what `waam thermal replay
+  // --parameters fitted.json` gives (a replay of the window runs on until the solver's batches hold its end).
   const ReplaySimulation start_run = residuals.WholeLogAt(start);
-  const ReplaySimulation fitted_run = converged ? SimulateReplay(model, fitted) : start_run;
+  const ReplaySimulation fitted_run = converged ? residuals.WholeLogAt(fitted) : start_run;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   nlohmann::json doc = ThermalFitDoc(model, free, start, fitted, start_run, fitted_run, window, solver);
   doc["coarse"] = coarse_doc;

@@ -88,16 +88,23 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
   auto run = std::make_unique<ReplayRun>(*model_, Parameters(x));
   if (record != nullptr) run->RecordChoices();
   if (follow != nullptr) run->FollowChoices(std::move(follow));
-  run->AdvanceTo(window_.second);
-  const ReplaySimulation sim = run->Result();
+  run->AdvanceThrough(window_.second);
+  const std::vector<std::vector<double>> probe_c = run->ProbesTo(window_.second);
   if (record != nullptr) *record = run->TakeChoices();
-  // Recording replays run one at a time (the parallel ones follow), so the first is kept without a race.
-  if (keep_first_ && record != nullptr && first_run_ == nullptr) first_run_ = std::move(run);
+  // Recording replays run one at a time (the parallel ones follow), so they are kept without a race.
+  if (keep_runs_ && record != nullptr) {
+    if (first_run_ == nullptr) {
+      first_run_ = std::move(run);
+    } else {
+      if (recent_runs_.size() == kRecentRuns) recent_runs_.erase(recent_runs_.begin());
+      recent_runs_.push_back(std::move(run));
+    }
+  }
   ++replays_;
   std::size_t missing = 0;
   for (std::size_t r = 0; r < used_.size(); ++r) {
     const auto [p, i] = used_[r];
-    const double s = sim.probe_c[p][i];
+    const double s = probe_c[p][i];
     residuals[r] = std::isfinite(s) ? s - model_->log.probe_c[p][i] : 0.0;
     missing += std::isfinite(s) ? 0 : 1;
   }
@@ -105,15 +112,19 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
 }
 
 ReplaySimulation ReplayResiduals::WholeLogAt(const ThermalParameters& p) const {
-  auto near = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); };
-  if (first_run_ != nullptr) {
-    const ThermalParameters& q = first_run_->parameters();
-    if (near(p.efficiency, q.efficiency) && near(p.convection_w_m2k, q.convection_w_m2k) &&
-        near(p.table_conductance_w_m2k, q.table_conductance_w_m2k) && near(p.emissivity, q.emissivity) &&
-        near(p.clamp_factor, q.clamp_factor)) {
-      first_run_->AdvanceTo(std::numeric_limits<double>::infinity());
-      return first_run_->Result();
-    }
+  auto near = [](double a, double b) { return a == b || std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); };
+  auto same = [&](const ThermalParameters& q) {
+    return near(p.efficiency, q.efficiency) && near(p.convection_w_m2k, q.convection_w_m2k) &&
+           near(p.table_conductance_w_m2k, q.table_conductance_w_m2k) && near(p.emissivity, q.emissivity) &&
+           near(p.clamp_factor, q.clamp_factor);
+  };
+  std::vector<ReplayRun*> kept;
+  for (auto it = recent_runs_.rbegin(); it != recent_runs_.rend(); ++it) kept.push_back(it->get());
+  if (first_run_ != nullptr) kept.push_back(first_run_.get());
+  for (ReplayRun* run : kept) {
+    if (!same(run->parameters())) continue;
+    run->AdvanceTo(std::numeric_limits<double>::infinity());
+    return run->Result();
   }
   return SimulateReplay(*model_, p);
 }

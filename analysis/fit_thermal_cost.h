@@ -56,11 +56,12 @@ class ReplayResiduals {
   std::size_t Run(const double* x, double* residuals, twin::SolverChoices* record = nullptr,
                   std::shared_ptr<const twin::SolverChoices> follow = nullptr) const;
   int replays() const { return replays_.load(); }
-  // Keep the first replay Run makes recording its choices, for WholeLogAt (off by default: it holds a simulation).
-  void KeepFirstRun() const { keep_first_ = true; }
-  // The whole log replayed at `p`: the kept first replay, continued from the window's end, when it was made at `p`
-  // (within 1e-9 of each value), else a fresh replay. The continued one stopped at the
-  // window's end, which ends a multirate batch there (docs/REPLAY.md, "The window and held-out rows").
+  // Keep the first replay Run makes recording its choices and the last kRecentRuns after it, for WholeLogAt (off by
+  // default: each holds a simulation).
+  void KeepRuns() const { keep_runs_ = true; }
+  // The whole log replayed at `p`: a kept replay made at `p` (within 1e-12 of each value), continued from where the
+  // window's replay stopped, else a fresh replay. Either is the replay `waam thermal replay` makes: a replay of the
+  // window drives the log until the solver's own batches hold the window's end (ReplayRun::AdvanceThrough).
   ReplaySimulation WholeLogAt(const ThermalParameters& p) const;
 
  private:
@@ -70,8 +71,10 @@ class ReplayResiduals {
   std::pair<double, double> window_;
   std::vector<std::pair<std::size_t, std::size_t>> used_;  // (probe, row)
   mutable std::atomic<int> replays_{0};
-  mutable bool keep_first_ = false;
+  static constexpr std::size_t kRecentRuns = 2;  // the point Ceres ends at, and its last trial when that failed
+  mutable bool keep_runs_ = false;
   mutable std::unique_ptr<ReplayRun> first_run_;  // the first recording replay, kept to continue (WholeLogAt)
+  mutable std::vector<std::unique_ptr<ReplayRun>> recent_runs_;  // the last recording replays after it, oldest first
 };
 
 // One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on the coarse

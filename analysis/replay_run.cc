@@ -106,6 +106,24 @@ void ReplayRun::AdvanceTo(double end_s) {
   wall_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void ReplayRun::AdvanceThrough(double end_s) {
+  AdvanceTo(end_s);
+  const std::vector<double>& time_s = model_->log.time_s;
+  if (records_.empty()) return;
+  const std::size_t last = records_.back();  // the record of the last row up to end_s
+  while (!sim_.ProbeRecordSolved(last) && next_row_ < time_s.size()) AdvanceTo(time_s[next_row_]);
+}
+
+std::vector<std::vector<double>> ReplayRun::ProbesTo(double end_s) const {
+  const std::vector<double>& time_s = model_->log.time_s;
+  std::vector<std::vector<double>> probe_c(model_->probes.size(), std::vector<double>(time_s.size(), kReplayNaN));
+  for (std::size_t i = 0; i < records_.size() && time_s[i] <= end_s; ++i) {
+    const std::vector<double> values = sim_.ProbeRecord(records_[i]);
+    for (std::size_t p = 0; p < probe_c.size(); ++p) probe_c[p][i] = values[p];
+  }
+  return probe_c;
+}
+
 ReplaySimulation ReplayRun::Result() const {
   const auto start = std::chrono::steady_clock::now();
   ReplaySimulation out;

@@ -60,6 +60,14 @@ class ReplayRun {
   ReplayRun(const ReplayModel& model, const ThermalParameters& parameters);
   // Drives the rows with time_s <= end_s (see SimulateReplay). Throws Interrupted on Ctrl-C.
   void AdvanceTo(double end_s);
+  // Drives the rows with time_s <= end_s, and after them as many rows as the solver needs to solve the batch holding
+  // the last of them by itself (at most its top level's step, ThermalSettings::whole_step_s, further), instead of
+  // ending that batch at end_s: the probes up to end_s are then those of the whole log's replay, and the run goes
+  // on as that one does (docs/REPLAY.md, "The window and held-out rows"). Throws Interrupted on Ctrl-C.
+  void AdvanceThrough(double end_s);
+  // The probes (degC, by probe and row) at the rows with time_s <= end_s, NaN at the others, solving nothing held
+  // back when AdvanceThrough(end_s) drove them (else the held-back motion first, as Result).
+  std::vector<std::vector<double>> ProbesTo(double end_s) const;
   // The probes at every row driven so far (NaN at the rows after them), the energy, stats and wall time.
   ReplaySimulation Result() const;
   const ThermalParameters& parameters() const { return parameters_; }

@@ -192,6 +192,50 @@ TEST(ReplayRoundTrip, AReplayAtTheTrueParametersMatchesTheLogToItsNoise) {
   EXPECT_GT(errors["probes"]["near"]["peak_measured_c"].get<double>(), 100.0) << "the probe must see the welds";
 }
 
+// A replay of a window drives the log on until the solver's own batches hold the window's end: its probes up to
+// there are the whole log's, bit for bit, and continued it is the whole log's replay (the fit's reported figures
+// continue its replays). Stopping at the window's end instead ends a batch there and moves later readings.
+TEST(ReplayRun, AWindowsReplayIsTheWholeLogsUpToItsEndAndContinuesAsIt) {
+  const fs::path dir = cli_test::TempDir("replay_window_prefix");
+  ThermalParameters truth;
+  truth.efficiency = 0.7;
+  const ReplayModel model = LoadReplayModel(WriteRoundTrip(dir, truth), {});
+  const ReplaySimulation whole = SimulateReplay(model, model.parameters);
+  const double end_s = 28.0;  // during the second layer (welded from 25 to 30 s)
+  ReplayRun run(model, model.parameters);
+  run.AdvanceThrough(end_s);
+  const std::vector<std::vector<double>> window = run.ProbesTo(end_s);
+  const std::vector<double>& time_s = model.log.time_s;
+  std::size_t compared = 0, moved = 0;
+  const ReplaySimulation stopped = SimulateReplay(model, model.parameters, end_s);
+  for (std::size_t p = 0; p < model.probes.size(); ++p) {
+    for (std::size_t i = 0; i < time_s.size(); ++i) {
+      if (time_s[i] > end_s) {
+        EXPECT_TRUE(std::isnan(window[p][i])) << "row " << i;
+        continue;
+      }
+      if (std::isnan(whole.probe_c[p][i])) continue;
+      EXPECT_EQ(window[p][i], whole.probe_c[p][i]) << "probe " << p << " row " << i;
+      ++compared;
+      moved += stopped.probe_c[p][i] != whole.probe_c[p][i] ? 1 : 0;
+    }
+  }
+  EXPECT_GT(compared, 40u);
+  EXPECT_GT(moved, 0u) << "stopping at the window's end ends a batch there: the test must tell the two apart";
+  run.AdvanceTo(std::numeric_limits<double>::infinity());
+  const ReplaySimulation continued = run.Result();
+  for (std::size_t p = 0; p < model.probes.size(); ++p) {
+    for (std::size_t i = 0; i < time_s.size(); ++i) {
+      if (std::isnan(whole.probe_c[p][i])) {
+        EXPECT_TRUE(std::isnan(continued.probe_c[p][i]));
+      } else {
+        EXPECT_EQ(continued.probe_c[p][i], whole.probe_c[p][i]) << "probe " << p << " row " << i;
+      }
+    }
+  }
+  EXPECT_EQ(continued.energy.stored_j, whole.energy.stored_j);
+}
+
 // The round trip's two-parameter fit options: efficiency and convection on the first 60 s of a log made in `dir` at
 // efficiency 0.7 and convection 25 W/(m^2 K), written to `dir`/`output`.
 FitOptions RoundTripFit(const fs::path& dir, const std::string& output) {

@@ -410,6 +410,13 @@ std::vector<double> ThermalSimulation::ProbeRecord(std::size_t index) const {
   return s.records[index];
 }
 
+bool ThermalSimulation::ProbeRecordSolved(std::size_t index) const {
+  const ThermalState& s = impl_->s;
+  WAAM_THROW_UNLESS(index < s.records.size(), "thermal probe record " << index << ": only " << s.records.size()
+                                                                      << " were recorded");
+  return s.record_done[index] != 0;
+}
+
 double ThermalSimulation::MaxTemperatureIn(const Eigen::AlignedBox3d& box_mm) const {
   ThermalState& s = impl_->s;
   Pump(s, true);

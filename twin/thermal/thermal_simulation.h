@@ -184,6 +184,9 @@ class ThermalSimulation {
   // The probes' temperatures of record `index` (degC by probe, NaN where no metal was), solving the arc motion held
   // back first if the record is not filled yet. Throws InputError for an index RecordProbes did not return.
   std::vector<double> ProbeRecord(std::size_t index) const;
+  // Whether record `index` is filled already (its batch solved), without solving anything. Throws InputError for an
+  // index RecordProbes did not return.
+  bool ProbeRecordSolved(std::size_t index) const;
   // From now on the solver appends every choice it makes to a record (call before the first Weld or Cool);
   // TakeChoices returns the choices of the steps solved so far (the motion held back is not: a query such as
   // ProbeRecord solves it) and ends the recording.
