@@ -112,7 +112,9 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
 }
 
 ReplaySimulation ReplayResiduals::WholeLogAt(const ThermalParameters& p) const {
-  auto near = [](double a, double b) { return a == b || std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); };
+  auto near = [](double a, double b) {
+    return a == b || std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
+  };
   auto same = [&](const ThermalParameters& q) {
     return near(p.efficiency, q.efficiency) && near(p.convection_w_m2k, q.convection_w_m2k) &&
            near(p.table_conductance_w_m2k, q.table_conductance_w_m2k) && near(p.emissivity, q.emissivity) &&

@@ -25,7 +25,8 @@ void Sweep(const PaddedStencil& a, const std::vector<std::array<int, 6>>& sweep,
            const std::vector<double>& b, std::vector<double>& x, bool forward) {
   const std::size_t n = a.size();
   const bool one_chunk = n <= kChunk;  // plain Gauss-Seidel: every face reads the iterate (the zero slot reads 0)
-  if (!one_chunk) std::copy(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n), x.begin() + static_cast<std::ptrdiff_t>(n + 1));
+  const auto from = x.begin();
+  if (!one_chunk) std::copy(from, from + static_cast<std::ptrdiff_t>(n), from + static_cast<std::ptrdiff_t>(n + 1));
   const std::vector<std::array<int, 6>>& faces = one_chunk ? a.neighbour : sweep;
   double* v = x.data();
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
