@@ -62,6 +62,15 @@ std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::ve
   return u;
 }
 
+bool SameParameters(const ThermalParameters& a, const ThermalParameters& b) {
+  auto near = [](double u, double v) {
+    return u == v || std::abs(u - v) <= 1e-12 * std::max(std::abs(u), std::abs(v));
+  };
+  return near(a.efficiency, b.efficiency) && near(a.convection_w_m2k, b.convection_w_m2k) &&
+         near(a.table_conductance_w_m2k, b.table_conductance_w_m2k) && near(a.emissivity, b.emissivity) &&
+         near(a.clamp_factor, b.clamp_factor);
+}
+
 ReplayResiduals::ReplayResiduals(const ReplayModel& model, const std::vector<FreeParameter>& free,
                                  const ThermalParameters& start, std::pair<double, double> window)
     : model_(&model), free_(free), start_(start), window_(window) {
@@ -91,14 +100,18 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
   run->AdvanceThrough(window_.second);
   const std::vector<std::vector<double>> probe_c = run->ProbesTo(window_.second);
   if (record != nullptr) *record = run->TakeChoices();
-  // Recording replays run one at a time (the parallel ones follow), so they are kept without a race.
+  // Recording replays run one at a time (the parallel ones follow), so they are kept without a race. The first, when
+  // made at the start values, is continued to the log's end at once and only its result kept (one simulation less
+  // held through the fit).
   if (keep_runs_ && record != nullptr) {
-    if (first_run_ == nullptr) {
-      first_run_ = std::move(run);
+    if (!first_recorded_ && SameParameters(run->parameters(), start_)) {
+      run->AdvanceTo(std::numeric_limits<double>::infinity());
+      start_whole_ = std::make_unique<ReplaySimulation>(run->Result());
     } else {
       if (recent_runs_.size() == kRecentRuns) recent_runs_.erase(recent_runs_.begin());
       recent_runs_.push_back(std::move(run));
     }
+    first_recorded_ = true;
   }
   ++replays_;
   std::size_t missing = 0;
@@ -112,21 +125,12 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
 }
 
 ReplaySimulation ReplayResiduals::WholeLogAt(const ThermalParameters& p) const {
-  auto near = [](double a, double b) {
-    return a == b || std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b));
-  };
-  auto same = [&](const ThermalParameters& q) {
-    return near(p.efficiency, q.efficiency) && near(p.convection_w_m2k, q.convection_w_m2k) &&
-           near(p.table_conductance_w_m2k, q.table_conductance_w_m2k) && near(p.emissivity, q.emissivity) &&
-           near(p.clamp_factor, q.clamp_factor);
-  };
-  std::vector<ReplayRun*> kept;
-  for (auto it = recent_runs_.rbegin(); it != recent_runs_.rend(); ++it) kept.push_back(it->get());
-  if (first_run_ != nullptr) kept.push_back(first_run_.get());
-  for (ReplayRun* run : kept) {
-    if (!same(run->parameters())) continue;
-    run->AdvanceTo(std::numeric_limits<double>::infinity());
-    return run->Result();
+  if (start_whole_ != nullptr && SameParameters(p, start_)) return *start_whole_;
+  for (auto it = recent_runs_.rbegin(); it != recent_runs_.rend(); ++it) {
+    ReplayRun& run = **it;
+    if (!SameParameters(p, run.parameters())) continue;
+    run.AdvanceTo(std::numeric_limits<double>::infinity());
+    return run.Result();
   }
   return SimulateReplay(*model_, p);
 }

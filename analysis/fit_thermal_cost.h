@@ -35,6 +35,9 @@ std::vector<FreeParameter> ResolveThermalFree(const std::vector<std::string>& na
 std::vector<double> ToScaled(const std::vector<FreeParameter>& free, const double* u);
 std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::vector<double>& x);
 
+// Whether two parameter sets are the same (each value within 1e-12 of the other's).
+bool SameParameters(const ThermalParameters& a, const ThermalParameters& b);
+
 // The residuals of one replay to the window's end: simulated - measured at every compared row, degC.
 class ReplayResiduals {
  public:
@@ -56,12 +59,13 @@ class ReplayResiduals {
   std::size_t Run(const double* x, double* residuals, twin::SolverChoices* record = nullptr,
                   std::shared_ptr<const twin::SolverChoices> follow = nullptr) const;
   int replays() const { return replays_.load(); }
-  // Keep the first replay Run makes recording its choices and the last kRecentRuns after it, for WholeLogAt (off by
-  // default: each holds a simulation).
+  // Keep the replays Run makes recording its choices, for WholeLogAt (off by default: each holds a simulation): the
+  // first, when made at the start values, continued to the log's end at once (its result kept), and the last
+  // kRecentRuns others.
   void KeepRuns() const { keep_runs_ = true; }
-  // The whole log replayed at `p`: a kept replay made at `p` (within 1e-12 of each value), continued from where the
-  // window's replay stopped, else a fresh replay. Either is the replay `waam thermal replay` makes: a replay of the
-  // window drives the log until the solver's own batches hold the window's end (ReplayRun::AdvanceThrough).
+  // The whole log replayed at `p`: a kept replay made at `p` (SameParameters), continued from where the window's
+  // replay stopped, else a fresh replay. Either is the replay `waam thermal replay` makes: a replay of the window
+  // drives the log until the solver's own batches hold the window's end (ReplayRun::AdvanceThrough).
   ReplaySimulation WholeLogAt(const ThermalParameters& p) const;
 
  private:
@@ -73,8 +77,9 @@ class ReplayResiduals {
   mutable std::atomic<int> replays_{0};
   static constexpr std::size_t kRecentRuns = 2;  // the point Ceres ends at, and its last trial when that failed
   mutable bool keep_runs_ = false;
-  mutable std::unique_ptr<ReplayRun> first_run_;  // the first recording replay, kept to continue (WholeLogAt)
-  mutable std::vector<std::unique_ptr<ReplayRun>> recent_runs_;  // the last recording replays after it, oldest first
+  mutable bool first_recorded_ = false;
+  mutable std::unique_ptr<ReplaySimulation> start_whole_;  // the whole log at the start values (KeepRuns)
+  mutable std::vector<std::unique_ptr<ReplayRun>> recent_runs_;  // the last recording replays, oldest first
 };
 
 // One stage of the fit: Ceres on one grid, from `x` (scaled values), run once or more (a run that ends on the coarse
