@@ -63,12 +63,10 @@ std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::ve
 }
 
 bool SameParameters(const ThermalParameters& a, const ThermalParameters& b) {
-  auto near = [](double u, double v) {
+  return std::all_of(AllThermalFree().begin(), AllThermalFree().end(), [&](const FreeParameter& f) {
+    const double u = a.*f.member, v = b.*f.member;
     return u == v || std::abs(u - v) <= 1e-12 * std::max(std::abs(u), std::abs(v));
-  };
-  return near(a.efficiency, b.efficiency) && near(a.convection_w_m2k, b.convection_w_m2k) &&
-         near(a.table_conductance_w_m2k, b.table_conductance_w_m2k) && near(a.emissivity, b.emissivity) &&
-         near(a.clamp_factor, b.clamp_factor);
+  });
 }
 
 ReplayResiduals::ReplayResiduals(const ReplayModel& model, const std::vector<FreeParameter>& free,
@@ -104,14 +102,14 @@ std::size_t ReplayResiduals::Run(const double* x, double* residuals, twin::Solve
   // made at the start values, is continued to the log's end at once and only its result kept (one simulation less
   // held through the fit).
   if (keep_runs_ && record != nullptr) {
-    if (!first_recorded_ && SameParameters(run->parameters(), start_)) {
+    const bool first = start_whole_ == nullptr && recent_runs_.empty();
+    if (first && SameParameters(run->parameters(), start_)) {
       run->AdvanceTo(std::numeric_limits<double>::infinity());
       start_whole_ = std::make_unique<ReplaySimulation>(run->Result());
     } else {
       if (recent_runs_.size() == kRecentRuns) recent_runs_.erase(recent_runs_.begin());
       recent_runs_.push_back(std::move(run));
     }
-    first_recorded_ = true;
   }
   ++replays_;
   std::size_t missing = 0;

@@ -35,7 +35,8 @@ std::vector<FreeParameter> ResolveThermalFree(const std::vector<std::string>& na
 std::vector<double> ToScaled(const std::vector<FreeParameter>& free, const double* u);
 std::vector<double> ToFree(const std::vector<FreeParameter>& free, const std::vector<double>& x);
 
-// Whether two parameter sets are the same (each value within 1e-12 of the other's).
+// Whether two parameter sets are the same (each of AllThermalFree's values within 1e-12 of the other's: a value
+// mapped to Ceres' scaled variable and back may differ in its last bits).
 bool SameParameters(const ThermalParameters& a, const ThermalParameters& b);
 
 // The residuals of one replay to the window's end: simulated - measured at every compared row, degC.
@@ -77,7 +78,6 @@ class ReplayResiduals {
   mutable std::atomic<int> replays_{0};
   static constexpr std::size_t kRecentRuns = 2;  // the point Ceres ends at, and its last trial when that failed
   mutable bool keep_runs_ = false;
-  mutable bool first_recorded_ = false;
   mutable std::unique_ptr<ReplaySimulation> start_whole_;  // the whole log at the start values (KeepRuns)
   mutable std::vector<std::unique_ptr<ReplayRun>> recent_runs_;  // the last recording replays, oldest first
 };

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "analysis/thermal_run.h"
@@ -127,11 +128,7 @@ std::vector<std::vector<double>> ReplayRun::ProbesTo(double end_s) const {
 ReplaySimulation ReplayRun::Result() const {
   const auto start = std::chrono::steady_clock::now();
   ReplaySimulation out;
-  out.probe_c.assign(model_->probes.size(), std::vector<double>(model_->log.time_s.size(), kReplayNaN));
-  for (std::size_t i = 0; i < records_.size(); ++i) {
-    const std::vector<double> values = sim_.ProbeRecord(records_[i]);
-    for (std::size_t p = 0; p < model_->probes.size(); ++p) out.probe_c[p][i] = values[p];
-  }
+  out.probe_c = ProbesTo(std::numeric_limits<double>::infinity());
   out.energy = sim_.Energy();
   out.stats = sim_.Stats();
   out.heat_input_j = heat_input_j_;

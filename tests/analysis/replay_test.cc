@@ -1,8 +1,8 @@
 // The process-log reader (dialects, reported rows, refused rows), the replay's metrics, and the round trip: a log
 // made by the thermal model with seeded noise and known parameters, replayed and fitted back.
-#include <functional>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <fstream>
