@@ -369,89 +369,6 @@ double PredictedDecrease(const ceres::IterationSummary& s) {
                                                        : std::numeric_limits<double>::quiet_NaN();
 }
 
-// Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
-// from the same point with a differenced one rather than shrinking the trust region around a model that may be
-// wrong; and on a rejected step that promised under kUnresolvedShare of the cost (from the coarse grid's Jacobian,
-// the stage then confirms on its own grid). With `log.out`, writes one line
-// per iteration there: the window's rmse at the current point (from the cost, the weak prior included), the values,
-// the replays so far and the time since the stage began.
-class StageCallback : public ceres::IterationCallback {
- public:
-  StageCallback(const ReplayCost& cost, const ReplayResiduals& residuals, const double* u, const StageLog& log)
-      : cost_(cost), residuals_(residuals), u_(u), log_(log) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    if (InterruptRequested()) return ceres::SOLVER_ABORT;
-    if (log_.out != nullptr) Report(s);
-    if (!Rejected(s)) {
-      point_cost_ = s.cost;
-      return ceres::SOLVER_CONTINUE;
-    }
-    if (cost_.Seeded()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    if (PredictedDecrease(s) < kUnresolvedShare * point_cost_) {  // false for NaN
-      // From the coarse grid's Jacobian the stage's grid has the last word (SolveStage runs Ceres again).
-      unresolved_ = !cost_.Undifferenced();
-      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    }
-    return ceres::SOLVER_CONTINUE;
-  }
-  // Whether the run ended on a rejected step that promised less than kUnresolvedShare of the cost.
-  bool unresolved() const { return unresolved_; }
-
- private:
-  void Report(const ceres::IterationSummary& s) const {
-    std::ostream& o = *log_.out;
-    o << "  iteration " << log_.done + s.iteration << ": ";
-    if (Rejected(s)) {
-      // The cost's change to the candidate and the change the linear model predicted, degC^2 (half the squared
-      // residuals).
-      o << "step rejected (cost " << std::showpos << std::setprecision(3) << -s.cost_change;
-      if (std::isfinite(PredictedDecrease(s))) o << ", predicted " << -PredictedDecrease(s);
-      o << std::noshowpos << "), staying at" << std::setprecision(4);  // (the summary's cost may be the trial's)
-    } else {
-      const double readings = static_cast<double>(std::max<std::size_t>(residuals_.size(), 1));
-      o << "window rmse " << std::setprecision(4) << std::sqrt(2.0 * s.cost / readings) << " degC;";
-    }
-    const ThermalParameters values = residuals_.Parameters(ToScaled(residuals_.free(), u_).data());
-    for (const FreeParameter& f : residuals_.free()) o << " " << f.name << " " << values.*(f.member);
-    o << "; " << residuals_.replays() << " replays, " << std::setprecision(3)
-      << std::chrono::duration<double>(std::chrono::steady_clock::now() - log_.start).count() << " s" << std::endl;
-  }
-  const ReplayCost& cost_;
-  const ReplayResiduals& residuals_;
-  const double* u_;  // Ceres' current point (update_state_every_iteration)
-  const StageLog& log_;
-  double point_cost_ = 0.0;  // the cost at the point Ceres stands on
-  bool unresolved_ = false;
-};
-
-// One Ceres run from `u` (changed in place) with at most `iterations` iterations.
-// `unresolved` tells whether it ended on a step the replays could not resolve (StageCallback).
-ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& cost, PriorCost* prior,
-                                std::vector<double>& u, int iterations, double function_tolerance,
-                                const StageLog& log, bool* unresolved) {
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
-  ceres::Problem problem(problem_options);
-  problem.AddResidualBlock(&cost, nullptr, u.data());
-  if (prior != nullptr) problem.AddResidualBlock(prior, nullptr, u.data());
-  problem.SetManifold(u.data(), NewCappedStep(static_cast<int>(u.size())));  // owned by `problem`
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = iterations;
-  solver.function_tolerance = function_tolerance;
-  solver.parameter_tolerance = 1e-3;
-  solver.gradient_tolerance = 1e-8;
-  solver.logging_type = ceres::SILENT;
-  solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
-  solver.update_state_every_iteration = true;  // the progress line reads u
-  StageCallback callback(cost, residuals, u.data(), log);
-  solver.callbacks.push_back(&callback);
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  *unresolved = callback.unresolved();
-  return summary;
-}
-
 // The decrease of the cost (data and prior) that the Gauss-Newton step at Ceres' point u promises, with the
 // Jacobian the cost makes there (on the scenario's grid once RequestDifference() was called): an upper bound of the
 // decrease any of Ceres' damped steps from there promises. Also returns the cost there. False when a replay failed.
@@ -481,6 +398,119 @@ bool GaussNewtonPromise(const ReplayCost& cost, const PriorCost* prior, const st
   return std::isfinite(*promise);
 }
 
+// Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
+// from the same point with a differenced one rather than shrinking the trust region around a model that may be
+// wrong; on a rejected step that promised under kUnresolvedShare of the cost (from the coarse grid's Jacobian,
+// the stage then confirms on its own grid); and at an accepted point whose Gauss-Newton step promises less than the
+// function tolerance of the cost (a step Ceres would end on, one candidate's replay later; from the coarse grid's
+// Jacobian the stage's grid then judges the point as well). With `log.out`, writes one line
+// per iteration there: the window's rmse at the current point (from the cost, the weak prior included), the values,
+// the replays so far and the time since the stage began.
+class StageCallback : public ceres::IterationCallback {
+ public:
+  StageCallback(const ReplayCost& cost, const PriorCost* prior, double function_tolerance,
+                const ReplayResiduals& residuals, const double* u, const StageLog& log)
+      : cost_(cost),
+        prior_(prior),
+        function_tolerance_(function_tolerance),
+        residuals_(residuals),
+        u_(u),
+        log_(log) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    if (InterruptRequested()) return ceres::SOLVER_ABORT;
+    if (log_.out != nullptr) Report(s);
+    if (!Rejected(s)) {
+      point_cost_ = s.cost;
+      // The Jacobian at an accepted point is made before this call (no replay here), except from a seed.
+      double promise = 0.0, at = 0.0;
+      const std::vector<double> u(u_, u_ + residuals_.free_count());
+      if (s.iteration > 0 && !cost_.Seeded() && GaussNewtonPromise(cost_, prior_, u, &promise, &at) &&
+          promise < function_tolerance_ * at) {
+        predicted_ = true;
+        if (log_.out != nullptr) {
+          *log_.out << "  its Gauss-Newton step promises " << std::setprecision(3) << promise << " of a cost of " << at
+                    << (cost_.Undifferenced() ? " (Jacobian on the coarser grid)" : "") << std::endl;
+        }
+        return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+      }
+      return ceres::SOLVER_CONTINUE;
+    }
+    if (cost_.Seeded()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    if (PredictedDecrease(s) < kUnresolvedShare * point_cost_) {  // false for NaN
+      // From the coarse grid's Jacobian the stage's grid has the last word (SolveStage runs Ceres again).
+      unresolved_ = !cost_.Undifferenced();
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+  // Whether the run ended on a rejected step that promised less than kUnresolvedShare of the cost.
+  bool unresolved() const { return unresolved_; }
+  // Whether the run ended at an accepted point whose Gauss-Newton step promised less than the function tolerance.
+  bool predicted() const { return predicted_; }
+
+ private:
+  void Report(const ceres::IterationSummary& s) const {
+    std::ostream& o = *log_.out;
+    o << "  iteration " << log_.done + s.iteration << ": ";
+    if (Rejected(s)) {
+      // The cost's change to the candidate and the change the linear model predicted, degC^2 (half the squared
+      // residuals).
+      o << "step rejected (cost " << std::showpos << std::setprecision(3) << -s.cost_change;
+      if (std::isfinite(PredictedDecrease(s))) o << ", predicted " << -PredictedDecrease(s);
+      o << std::noshowpos << "), staying at" << std::setprecision(4);  // (the summary's cost may be the trial's)
+    } else {
+      const double readings = static_cast<double>(std::max<std::size_t>(residuals_.size(), 1));
+      o << "window rmse " << std::setprecision(4) << std::sqrt(2.0 * s.cost / readings) << " degC;";
+    }
+    const ThermalParameters values = residuals_.Parameters(ToScaled(residuals_.free(), u_).data());
+    for (const FreeParameter& f : residuals_.free()) o << " " << f.name << " " << values.*(f.member);
+    o << "; " << residuals_.replays() << " replays, " << std::setprecision(3)
+      << std::chrono::duration<double>(std::chrono::steady_clock::now() - log_.start).count() << " s" << std::endl;
+  }
+  const ReplayCost& cost_;
+  const PriorCost* prior_;
+  double function_tolerance_;
+  const ReplayResiduals& residuals_;
+  const double* u_;  // Ceres' current point (update_state_every_iteration)
+  const StageLog& log_;
+  double point_cost_ = 0.0;  // the cost at the point Ceres stands on
+  bool unresolved_ = false;
+  bool predicted_ = false;
+};
+
+// How a Ceres run ended, besides its summary (StageCallback).
+struct RunEnd {
+  bool unresolved = false;  // on a step the replays could not resolve
+  bool predicted = false;   // at a point whose Gauss-Newton step promised less than the function tolerance
+};
+
+// One Ceres run from `u` (changed in place) with at most `iterations` iterations; `end` tells how it ended.
+ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& cost, PriorCost* prior,
+                                std::vector<double>& u, int iterations, double function_tolerance,
+                                const StageLog& log, RunEnd* end) {
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
+  ceres::Problem problem(problem_options);
+  problem.AddResidualBlock(&cost, nullptr, u.data());
+  if (prior != nullptr) problem.AddResidualBlock(prior, nullptr, u.data());
+  problem.SetManifold(u.data(), NewCappedStep(static_cast<int>(u.size())));  // owned by `problem`
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = iterations;
+  solver.function_tolerance = function_tolerance;
+  solver.parameter_tolerance = 1e-3;
+  solver.gradient_tolerance = 1e-8;
+  solver.logging_type = ceres::SILENT;
+  solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
+  solver.update_state_every_iteration = true;  // the progress line reads u
+  StageCallback callback(cost, prior, function_tolerance, residuals, u.data(), log);
+  solver.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  *end = {callback.unresolved(), callback.predicted()};
+  return summary;
+}
+
 }  // namespace
 
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
@@ -499,7 +529,7 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
       prior.first > 0.0 ? std::make_unique<PriorCost>(residuals.free(), prior.second, prior.first) : nullptr;
   outcome.function_tolerance = 1e-3;
   int left = max_iterations;
-  bool unresolved = false;
+  RunEnd end;
   // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
   // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
   // After the run on the coarse grid's Jacobians, the scenario's grid judges the point: when its Gauss-Newton step
@@ -509,10 +539,10 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   while (true) {
     const StageLog log{progress, clock_start, max_iterations - left};
     ceres::Solver::Summary summary =
-        RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, log, &unresolved);
+        RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, log, &end);
     CheckInterrupt();
     left -= static_cast<int>(summary.iterations.size()) - 1;
-    const bool again = !unresolved && summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() &&
+    const bool again = !end.unresolved && summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() &&
                        left > 0 &&
                        (summary.termination_type == ceres::USER_SUCCESS ||
                         summary.termination_type == ceres::CONVERGENCE);
@@ -539,10 +569,14 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
     outcome.termination = "CONVERGENCE";
     outcome.message = "the Jacobian differenced on the scenario's grid confirmed the answer: its Gauss-Newton step "
                       "promised to lower the cost by less than the function tolerance";
-  } else if (unresolved) {
+  } else if (end.unresolved) {
     outcome.termination = "CONVERGENCE";
     outcome.message = "a step the linear model promised to lower the cost by under 1 % failed: the replays' own "
                       "jumps between the solver's choices are larger (docs/REPLAY.md, \"The round trip's fit\")";
+  } else if (end.predicted) {
+    outcome.termination = "CONVERGENCE";
+    outcome.message = "the Gauss-Newton step from the last accepted point promised to lower the cost by less than the "
+                      "function tolerance";
   } else if (last.termination_type == ceres::USER_SUCCESS) {
     outcome.termination = "NO_CONVERGENCE";
     outcome.message = "the iterations ran out before a differenced Jacobian confirmed the answer";
