@@ -38,6 +38,9 @@ constexpr std::array<EnumName<VoidModelKind>, 2> EnumNames(VoidModelKind) {
 }
 
 // Everything `waam fit` accepts; the CLI fills it, tests build it directly.
+// FitOptions::jacobian_cell_mm for `--jacobian-cell auto`.
+inline constexpr double kAutoJacobianCell = -1.0;
+
 struct FitOptions {
   FitModel model = FitModel::kCsw;
   std::filesystem::path data;             // CSV input (distortion: the scan, .ply, .xyz or .stl, part frame, mm)
@@ -75,7 +78,9 @@ struct FitOptions {
   // an optional fitted file to start from, `window` the part of the log fitted
   std::string window;                     // "START:END", s from the log's first row
   double coarse_cell_mm = 0.0;            // grid of a coarse first stage, mm; 0 (or <= thermal.cell_mm): none
-  double jacobian_cell_mm = 0.0;          // grid the Jacobians are differenced on, mm; 0: thermal.cell_mm's
+  // grid the Jacobians are differenced on, mm; 0: thermal.cell_mm's; kAutoJacobianCell (the default): 1.5 times
+  // thermal.cell_mm where that grid holds the bead's width and the plate's thickness in two cells, else 0
+  double jacobian_cell_mm = kAutoJacobianCell;
   double prior_weight = 0.0;              // --prior W: pull toward the start values, degC per scaled unit; 0: none
   bool quiet = false;                     // no progress bar
 };

@@ -1,4 +1,5 @@
 // `waam fit`: command-line options for fitting a process model to a CSV table (or the distortion model to a scan).
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -65,6 +66,7 @@ struct FitNames {
   std::string kind;
   std::string angle_order;
   std::vector<double> speed_range;
+  std::string jacobian_cell = "auto";
 };
 
 // The options of `waam fit void-length`.
@@ -89,7 +91,7 @@ void AddVoidLengthOptions(CLI::App* fit, analysis::FitOptions* options, FitNames
 }
 
 // The options of `waam fit distortion` and `waam fit thermal` (a scan or a replay, not a CSV); returns --free.
-CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options) {
+CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options, FitNames* names) {
   fit->add_option("--scenario", options->scenario, "distortion: scenario YAML the scanned part was built from");
   fit->add_option("--set", options->overrides, "distortion: override a scenario setting, key.path=value (repeatable)");
   fit->add_option("--start", options->start,
@@ -99,10 +101,12 @@ CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options) {
   fit->add_option("--coarse-cell", options->coarse_cell_mm,
                   "thermal: grid spacing of a first fit whose answer starts the fit on the scenario's grid, mm, "
                   "e.g. twice thermal.cell_mm (default 0: one fit on the scenario's grid)");
-  fit->add_option("--jacobian-cell", options->jacobian_cell_mm,
-                  "thermal: grid spacing the Jacobians are differenced on, mm, e.g. 1.5 times thermal.cell_mm: the\n"
-                  "residuals stay on the scenario's grid, whose own Jacobian confirms the answer at the end\n"
-                  "(default 0: every Jacobian on the scenario's grid)");
+  fit->add_option("--jacobian-cell", names->jacobian_cell,
+                  "thermal: grid spacing the Jacobians are differenced on, mm: the residuals stay on the scenario's\n"
+                  "grid, whose own Jacobian confirms the answer at the end; 0: every Jacobian on the scenario's grid;\n"
+                  "auto: 1.5 times thermal.cell_mm where that grid holds the bead's width and the plate's thickness\n"
+                  "in two cells or more, else 0")
+      ->capture_default_str();
   fit->add_option("--prior", options->prior_weight,
                   "thermal: weak prior toward the start values, degC: one residual W (value - start) / scale per free\n"
                   "parameter (scales: efficiency 1, convection 10, contact 100, emissivity 1; default 0: none)");
@@ -138,6 +142,21 @@ void ParseFitNames(const FitNames& names, analysis::FitOptions* options) {
   WAAM_THROW_UNLESS(order, "--angle-order '" << names.angle_order << "': must be "
                                              << EnumNameList<models::AngleOrder>(" or ") << " (or sorted)");
   options->angle_order = *order;
+  if (names.jacobian_cell == "auto") {
+    options->jacobian_cell_mm = analysis::kAutoJacobianCell;
+  } else {
+    std::size_t used = 0;
+    double mm = -1.0;
+    try {
+      mm = std::stod(names.jacobian_cell, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    WAAM_THROW_UNLESS(used > 0 && used == names.jacobian_cell.size() && std::isfinite(mm) && mm >= 0.0,
+                      "--jacobian-cell '" << names.jacobian_cell << "': must be auto, 0 (the scenario's grid) or a "
+                                             "grid spacing in mm");
+    options->jacobian_cell_mm = mm;
+  }
 }
 
 }  // namespace
@@ -174,7 +193,7 @@ void AddFitCommand(CLI::App& app, CommandRunner* runner) {
   fit->add_flag("--volume-conserving", options->volume_conserving,
                 "bead-temperature: the width follows the height so that w h stays (k_w not fitted)");
   AddVoidLengthOptions(fit, options.get(), names.get());
-  CLI::Option* free = AddScanOptions(fit, options.get());
+  CLI::Option* free = AddScanOptions(fit, options.get(), names.get());
   fit->add_flag("-q,--quiet", options->quiet, "no progress bar and no line per iteration (fit thermal) on stderr");
   fit->callback([runner, options, names, free] {
     options->model = analysis::ParseFitModel(names->model);  // a name IsMember let through

@@ -248,6 +248,7 @@ FitOptions RoundTripFit(const fs::path& dir, const std::string& output) {
   options.output = dir / output;
   options.free = {"efficiency", "convection"};
   options.window = "0:60";
+  options.jacobian_cell_mm = 0.0;  // every Jacobian on the scenario's grid (auto takes 3 mm here: below)
   return options;
 }
 
@@ -504,13 +505,19 @@ TEST(ReplayRoundTrip, CoarseToFineFitEndsAtTheOneStageFitsValues) {
   EXPECT_LT(two["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
 }
 
-// Jacobians differenced on a coarser grid (--jacobian-cell 3 on the 2 mm grid) with the residuals on the scenario's:
-// the fit ends at the one-stage fit's values with fewer replays on the scenario's grid, and a Jacobian differenced
-// there confirmed them.
+// Jacobians differenced on a coarser grid (--jacobian-cell auto, the default: 3 mm on the 2 mm grid, which holds the
+// 6 mm bead and the 6 mm plate in two cells) with the residuals on the scenario's: the fit ends at the one-stage
+// fit's values with fewer replays on the scenario's grid, and a Jacobian differenced there confirmed them.
 TEST(ReplayRoundTrip, JacobiansOnACoarserGridEndAtTheOneStageFitsValues) {
   std::ostringstream out;
-  const auto [one, two] =
-      OneStageAndChanged("replay_fit_jacobian_grid", [](FitOptions& o) { o.jacobian_cell_mm = 3.0; }, out);
+  const auto [one, two] = OneStageAndChanged(
+      "replay_fit_jacobian_grid", [](FitOptions& o) { o.jacobian_cell_mm = kAutoJacobianCell; }, out);
+  EXPECT_EQ(FitOptions{}.jacobian_cell_mm, kAutoJacobianCell) << "auto is the default";
+  EXPECT_EQ(two["jacobian_cell_mm"], 3.0) << out.str();
+  EXPECT_TRUE(one["jacobian_cell_mm"].is_null()) << out.str();
+  EXPECT_NE(out.str().find("Jacobians on a 3 mm grid, the residuals on the scenario's 2 mm (--jacobian-cell auto"),
+            std::string::npos)
+      << out.str();
   EXPECT_GE(two["solver"]["jacobians"]["coarse"].get<int>(), 3) << out.str();
   EXPECT_LT(two["solver"]["replays"].get<int>(), one["solver"]["replays"].get<int>()) << out.str();
   EXPECT_GT(two["solver"]["coarse_replays"].get<int>(), 0) << out.str();
@@ -519,6 +526,26 @@ TEST(ReplayRoundTrip, JacobiansOnACoarserGridEndAtTheOneStageFitsValues) {
   EXPECT_NEAR(two["fitted"]["efficiency"].get<double>(), one["fitted"]["efficiency"].get<double>(), 2e-3) << out.str();
   EXPECT_NEAR(two["fitted"]["convection"].get<double>(), one["fitted"]["convection"].get<double>(), 1.0) << out.str();
   EXPECT_LT(two["held_out"]["overall"]["rmse_c"].get<double>(), 1.5) << out.str();
+}
+
+// --jacobian-cell auto keeps every Jacobian on the scenario's grid where 1.5 times its spacing would hold the bead's
+// width or the plate's thickness in under two cells, and says which.
+TEST(ReplayRoundTrip, AutoJacobianGridStaysOnTheScenariosGridWhereTheCoarseOneCannotHoldThePart) {
+  FitOptions options = RoundTripFit(cli_test::TempDir("replay_fit_auto_grid"), "fitted.json");
+  options.jacobian_cell_mm = kAutoJacobianCell;
+  options.max_iterations = 1;  // the grid is chosen before the fit; one iteration shows it
+  options.overrides = {"thermal.cell_mm=2.5"};  // 3.75 mm: the 6 mm bead in 1.6 cells
+  std::ostringstream out;
+  RunFit(options, out);
+  EXPECT_NE(out.str().find("Jacobians on the scenario's grid (--jacobian-cell auto: the bead's 6 mm width is under 2 "
+                           "cells of 3.75 mm)"),
+            std::string::npos)
+      << out.str();
+  options.overrides = {"thermal.substrate.size_mm=[70, 30, 5]"};  // 3 mm: the plate in 1.7 cells
+  RunFit(options, out);
+  EXPECT_NE(out.str().find("(--jacobian-cell auto: the plate's 5 mm thickness is under 2 cells of 3 mm)"),
+            std::string::npos)
+      << out.str();
 }
 
 }  // namespace
