@@ -106,6 +106,7 @@ CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options, FitNam
                   "grid, whose own Jacobian confirms the answer at the end; 0: every Jacobian on the scenario's grid;\n"
                   "auto: 1.5 times thermal.cell_mm where that grid holds the bead's width and the plate's thickness\n"
                   "in two cells or more, else 0")
+      ->type_name("auto|MM")
       ->capture_default_str();
   fit->add_option("--prior", options->prior_weight,
                   "thermal: weak prior toward the start values, degC: one residual W (value - start) / scale per free\n"
