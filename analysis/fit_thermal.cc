@@ -123,7 +123,7 @@ std::unique_ptr<const JacobianGrid> MakeJacobianGrid(const FitOptions& options, 
     std::unique_ptr<const JacobianGrid> grid;
     if (shortfall.empty()) {
       try {
-        grid = std::make_unique<const JacobianGrid>(ModelOnGrid(options, mm, "--jacobian-cell"), free, start,
+        grid = std::make_unique<const JacobianGrid>(ModelOnGrid(options, mm, "a grid of"), free, start,
                                                     window);
       } catch (const InputError& e) {
         shortfall = e.what();
