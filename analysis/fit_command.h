@@ -37,10 +37,10 @@ constexpr std::array<EnumName<VoidModelKind>, 2> EnumNames(VoidModelKind) {
   return {{{VoidModelKind::kNetwork, "network"}, {VoidModelKind::kBaseline, "baseline"}}};
 }
 
-// Everything `waam fit` accepts; the CLI fills it, tests build it directly.
 // FitOptions::jacobian_cell_mm for `--jacobian-cell auto`.
 inline constexpr double kAutoJacobianCell = -1.0;
 
+// Everything `waam fit` accepts; the CLI fills it, tests build it directly.
 struct FitOptions {
   FitModel model = FitModel::kCsw;
   std::filesystem::path data;             // CSV input (distortion: the scan, .ply, .xyz or .stl, part frame, mm)
