@@ -23,7 +23,12 @@ generator=(-G Ninja)
 [ -f build/CMakeCache.txt ] && generator=()  # an existing build keeps the generator it was made with
 cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$jobs"
-ctest --test-dir build --output-on-failure -j"$jobs"
+ctest --test-dir build --output-on-failure -j"$jobs" -LE cluster
+# The scheduler tests (label cluster) drive real Slurm and Dask daemons, one with a task cancelled mid-run and
+# requeued; they run once more if they fail (Cluster.slurm_array failed once in four fresh-clone runs on 2026-11-28:
+# the requeued task ended FAILED, exit 1, before printing anything; not reproduced in five runs since, two of them
+# under load). A second failure fails the suite; the first one's output stays in the log.
+ctest --test-dir build --output-on-failure -j"$jobs" -L cluster --repeat until-pass:2
 echo "test.sh: Release build and tests took $(( $(date +%s) - start )) s"
 if [ "$quick" = 0 ] && [ "${WAAM_SKIP_SANITIZE:-0}" != 1 ]; then
   bash tools/sanitize.sh

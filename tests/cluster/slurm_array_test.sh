@@ -14,7 +14,14 @@ src=$(cd "$(dirname "$0")/../.." && pwd)
 python=/usr/bin/python3
 work=$(mktemp -d)
 cluster="$work/cluster"
-fail() { echo "FAIL: $*"; for f in "$work"/logs/*; do [ -f "$f" ] && { echo "--- $f"; tail -n 20 "$f"; }; done; exit 1; }
+# On failure: the tasks' logs and the daemons' last lines (why a task failed before it printed anything).
+fail() {
+  echo "FAIL: $*"
+  for f in "$work"/logs/* "$cluster"/log/slurmctld.log "$cluster"/log/slurmd.log; do
+    [ -f "$f" ] && { echo "--- $f"; tail -n 20 "$f"; }
+  done
+  exit 1
+}
 cleanup() { bash "$src/tools/slurm_local.sh" down "$cluster" || true; rm -rf "$work"; }
 trap cleanup EXIT
 # Different ports from a developer's own test cluster; the Release and sanitizer suites run one after the other.
