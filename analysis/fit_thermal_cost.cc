@@ -421,11 +421,11 @@ class StageCallback : public ceres::IterationCallback {
     if (log_.out != nullptr) Report(s);
     if (!Rejected(s)) {
       point_cost_ = s.cost;
-      // The Jacobian at an accepted point is made before this call (no replay here), except from a seed.
+      // Ceres makes the Jacobian at an accepted point before it calls this (no replay here).
+      if (s.iteration == 0 || cost_.Seeded()) return ceres::SOLVER_CONTINUE;
       double promise = 0.0, at = 0.0;
       const std::vector<double> u(u_, u_ + residuals_.free_count());
-      if (s.iteration > 0 && !cost_.Seeded() && GaussNewtonPromise(cost_, prior_, u, &promise, &at) &&
-          promise < function_tolerance_ * at) {
+      if (GaussNewtonPromise(cost_, prior_, u, &promise, &at) && promise < function_tolerance_ * at) {
         predicted_ = true;
         if (log_.out != nullptr) {
           *log_.out << "  its Gauss-Newton step promises " << std::setprecision(3) << promise << " of a cost of " << at
@@ -511,6 +511,30 @@ ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& co
   return summary;
 }
 
+// The stage's termination and message from its last Ceres run and how the stage ended: `confirmed` by the scenario
+// grid's Gauss-Newton step, or as the last run ended (`end`).
+void SetTermination(const ceres::Solver::Summary& last, bool confirmed, const RunEnd& end, StageOutcome* outcome) {
+  outcome->usable = last.IsSolutionUsable();
+  outcome->termination = ceres::TerminationTypeToString(last.termination_type);
+  outcome->message = last.message;
+  if (confirmed) {
+    outcome->termination = "CONVERGENCE";
+    outcome->message = "the Jacobian differenced on the scenario's grid confirmed the answer: its Gauss-Newton step "
+                       "promised to lower the cost by less than the function tolerance";
+  } else if (end.unresolved) {
+    outcome->termination = "CONVERGENCE";
+    outcome->message = "a step the linear model promised to lower the cost by under 1 % failed: the replays' own "
+                       "jumps between the solver's choices are larger (docs/REPLAY.md, \"The round trip's fit\")";
+  } else if (end.predicted) {
+    outcome->termination = "CONVERGENCE";
+    outcome->message = "the Gauss-Newton step from the last accepted point promised to lower the cost by less than "
+                       "the function tolerance";
+  } else if (last.termination_type == ceres::USER_SUCCESS) {
+    outcome->termination = "NO_CONVERGENCE";
+    outcome->message = "the iterations ran out before a differenced Jacobian confirmed the answer";
+  }
+}
+
 }  // namespace
 
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
@@ -562,25 +586,7 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
     }
   }
   const ceres::Solver::Summary& last = outcome.runs.back();
-  outcome.usable = last.IsSolutionUsable();
-  outcome.termination = ceres::TerminationTypeToString(last.termination_type);
-  outcome.message = last.message;
-  if (confirmed) {
-    outcome.termination = "CONVERGENCE";
-    outcome.message = "the Jacobian differenced on the scenario's grid confirmed the answer: its Gauss-Newton step "
-                      "promised to lower the cost by less than the function tolerance";
-  } else if (end.unresolved) {
-    outcome.termination = "CONVERGENCE";
-    outcome.message = "a step the linear model promised to lower the cost by under 1 % failed: the replays' own "
-                      "jumps between the solver's choices are larger (docs/REPLAY.md, \"The round trip's fit\")";
-  } else if (end.predicted) {
-    outcome.termination = "CONVERGENCE";
-    outcome.message = "the Gauss-Newton step from the last accepted point promised to lower the cost by less than the "
-                      "function tolerance";
-  } else if (last.termination_type == ceres::USER_SUCCESS) {
-    outcome.termination = "NO_CONVERGENCE";
-    outcome.message = "the iterations ran out before a differenced Jacobian confirmed the answer";
-  }
+  SetTermination(last, confirmed, end, &outcome);
   const std::vector<double> x = ToScaled(residuals.free(), u.data());
   outcome.error = cost.error();
   outcome.jacobian = cost.last_jacobian();

@@ -1,5 +1,4 @@
 // `waam fit`: command-line options for fitting a process model to a CSV table (or the distortion model to a scan).
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -8,6 +7,7 @@
 
 #include "analysis/fit_command.h"
 #include "app/commands.h"
+#include "models/core/csv.h"
 #include "models/core/enum_names.h"
 #include "models/core/error.h"
 
@@ -146,14 +146,8 @@ void ParseFitNames(const FitNames& names, analysis::FitOptions* options) {
   if (names.jacobian_cell == "auto") {
     options->jacobian_cell_mm = analysis::kAutoJacobianCell;
   } else {
-    std::size_t used = 0;
     double mm = -1.0;
-    try {
-      mm = std::stod(names.jacobian_cell, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    WAAM_THROW_UNLESS(used > 0 && used == names.jacobian_cell.size() && std::isfinite(mm) && mm >= 0.0,
+    WAAM_THROW_UNLESS(ParseCsvNumber(names.jacobian_cell, false, &mm) && mm >= 0.0,
                       "--jacobian-cell '" << names.jacobian_cell << "': must be auto, 0 (the scenario's grid) or a "
                                              "grid spacing in mm");
     options->jacobian_cell_mm = mm;
