@@ -89,8 +89,8 @@ struct IdentifiabilityInput {
 // window) is left out of every figure and listed in `blind` and `undetermined`.
 // WAAM_DEMAND on inconsistent sizes.
 nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in);
-// Prints the report `id` (null: nothing): standard deviations, strong correlations (|r| > 0.9), the weakest
-// combination and what is undetermined.
-void PrintIdentifiability(const nlohmann::json& id, std::ostream& out);
+// Prints the report `id` (null: nothing): standard deviations (with the grid of their Jacobian, `jacobian_cell_mm`,
+// where it is not `cell_mm`), strong correlations (|r| > 0.9), the weakest combination and what is undetermined.
+void PrintIdentifiability(const nlohmann::json& id, double cell_mm, std::ostream& out);
 
 }  // namespace waam::analysis::internal

@@ -310,6 +310,13 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   doc["jacobian_cell_mm"] =
       jacobian_grid ? nlohmann::json(jacobian_grid->model.settings.cell_mm) : nlohmann::json(nullptr);
   doc["identifiability"] = IdentifiabilityJson(residuals, fitted, fine, options.prior_weight);
+  if (!doc["identifiability"].is_null()) {
+    // The grid its Jacobian was differenced on at the answer (null: none was made there).
+    doc["identifiability"]["jacobian_cell_mm"] =
+        fine.differenced_at_x ? nlohmann::json(model.settings.cell_mm)
+        : fine.coarse_at_x    ? nlohmann::json(jacobian_grid->model.settings.cell_mm)
+                              : nlohmann::json(nullptr);
+  }
   doc["prior"] = options.prior_weight > 0.0
                      ? nlohmann::json{{"weight_c", options.prior_weight}, {"toward", ThermalValuesJson(free, start)}}
                      : nlohmann::json(nullptr);
@@ -319,7 +326,7 @@ FitOutcome internal::RunFitThermal(const FitOptions& options, std::ostream& out)
   doc["log"] = {{"file", model.log.file}, {"rows", model.log.time_s.size()}, {"duration_s", model.log.time_s.back()}};
   doc["log_issues"] = LogIssuesJson(model.log);
   PrintThermalFit(free, start, fitted, doc, iterations, fine.replays, seconds, out);
-  internal::PrintIdentifiability(doc["identifiability"], out);
+  internal::PrintIdentifiability(doc["identifiability"], model.settings.cell_mm, out);
   return internal::Finish(converged, message, doc, options, out);
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <ostream>
 
 #include <Eigen/Dense>
@@ -149,8 +150,8 @@ enum class JacobianKind { kDifferenced, kSeed, kCoarse };
 // handed to Ceres by the chain rule, d r/d u_k = d r/d x_k dx_k/du_k. A `seed` Jacobian in x (the coarse stage's,
 // m x n row-major) stands in at the first point until RequestDifference(); with a `coarse` grid, the Jacobians are
 // differenced there (1 + n replays there, the perturbed ones following the choices of the one at x) until
-// RequestDifference() (the residuals stay on the stage's grid: an inexact Gauss-Newton, whose fixed point the
-// stage's grid confirms; docs/REPLAY.md, "Jacobians on a coarser grid"). A replay with more rows without a
+// RequestDifference() (the residuals stay on the stage's grid: an inexact Gauss-Newton, whose fixed point lies within
+// the function tolerance of the stage's grid's; docs/REPLAY.md, "Jacobians on a coarser grid"). A replay with more rows without a
 // temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
 // its trust region.
 class ReplayCost : public ceres::CostFunction {
@@ -192,12 +193,12 @@ class ReplayCost : public ceres::CostFunction {
   // The Jacobian at the last accepted point is the seed.
   bool Seeded() const { return have_point_ && point_kind_ == JacobianKind::kSeed; }
   const std::string& error() const { return error_; }
-  // The Jacobian in x at `x` and whether it was differenced (the last one when none was made there).
-  std::pair<const std::vector<double>*, bool> JacobianOf(const std::vector<double>& x) const {
+  // The Jacobian in x at `x` and how it was made (the last one and no kind when none was made there).
+  std::pair<const std::vector<double>*, std::optional<JacobianKind>> JacobianOf(const std::vector<double>& x) const {
     for (auto it = made_.rbegin(); it != made_.rend(); ++it) {
-      if (it->x == x) return {&it->j, it->kind == JacobianKind::kDifferenced};
+      if (it->x == x) return {&it->j, it->kind};
     }
-    return {&point_j_, false};
+    return {&point_j_, std::nullopt};
   }
   const std::vector<double>& last_jacobian() const { return point_j_; }
   int Count(JacobianKind kind) const {
@@ -402,10 +403,9 @@ bool GaussNewtonPromise(const ReplayCost& cost, const PriorCost* prior, const st
 // from the same point with a differenced one rather than shrinking the trust region around a model that may be
 // wrong; on a rejected step that promised under kUnresolvedShare of the cost (from the coarse grid's Jacobian,
 // the stage then confirms on its own grid); and at an accepted point whose Gauss-Newton step promises less than the
-// function tolerance of the cost (a step Ceres would end on, one candidate's replay later; from the coarse grid's
-// Jacobian the stage's grid then judges the point as well). With `log.out`, writes one line
-// per iteration there: the window's rmse at the current point (from the cost, the weak prior included), the values,
-// the replays so far and the time since the stage began.
+// function tolerance of the cost (a step Ceres would end on, one candidate's replay later). With `log.out`, writes
+// one line per iteration there: the window's rmse at the current point (from the cost, the weak prior included), the
+// values, the replays so far and the time since the stage began.
 class StageCallback : public ceres::IterationCallback {
  public:
   StageCallback(const ReplayCost& cost, const PriorCost* prior, double function_tolerance,
@@ -512,8 +512,9 @@ ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& co
 }
 
 // The stage's termination and message from its last Ceres run and how the stage ended: `confirmed` by the scenario
-// grid's Gauss-Newton step, or as the last run ended (`end`).
-void SetTermination(const ceres::Solver::Summary& last, bool confirmed, const RunEnd& end, StageOutcome* outcome) {
+// grid's Gauss-Newton step, or as the last run ended (`end`; `coarse`: judged with the coarser grid's Jacobian).
+void SetTermination(const ceres::Solver::Summary& last, bool confirmed, bool coarse, const RunEnd& end,
+                    StageOutcome* outcome) {
   outcome->usable = last.IsSolutionUsable();
   outcome->termination = ceres::TerminationTypeToString(last.termination_type);
   outcome->message = last.message;
@@ -527,8 +528,9 @@ void SetTermination(const ceres::Solver::Summary& last, bool confirmed, const Ru
                        "jumps between the solver's choices are larger (docs/REPLAY.md, \"The round trip's fit\")";
   } else if (end.predicted) {
     outcome->termination = "CONVERGENCE";
-    outcome->message = "the Gauss-Newton step from the last accepted point promised to lower the cost by less than "
-                       "the function tolerance";
+    outcome->message = std::string("the Gauss-Newton step from the last accepted point") +
+                       (coarse ? " (its Jacobian on the coarser grid)" : "") +
+                       " promised to lower the cost by less than the function tolerance";
   } else if (last.termination_type == ceres::USER_SUCCESS) {
     outcome->termination = "NO_CONVERGENCE";
     outcome->message = "the iterations ran out before a differenced Jacobian confirmed the answer";
@@ -556,18 +558,23 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   RunEnd end;
   // A run that ends on the seed's Jacobian (a failed step from it, or convergence judged on it) is run again from its
   // answer with a differenced Jacobian; the stage ends when a differenced one confirms the answer.
-  // After the run on the coarse grid's Jacobians, the scenario's grid judges the point: when its Gauss-Newton step
-  // promises less than Ceres' function tolerance of the cost (a step Ceres would end on), the stage ends there
-  // without trying it (a candidate costs a replay on the scenario's grid).
-  bool confirmed = false;
+  // A run on the coarse grid's Jacobians that converged (Ceres' tolerances, or the Gauss-Newton step's promise) ends
+  // the stage. One that ended otherwise (a failed step it could not resolve) is judged on the scenario's grid: when
+  // that grid's Gauss-Newton step promises less than Ceres' function tolerance of the cost (a step Ceres would end
+  // on), the stage ends there without trying it (a candidate costs a replay on the scenario's grid).
+  bool confirmed = false, coarse_judged = false;
   while (true) {
     const StageLog log{progress, clock_start, max_iterations - left};
     ceres::Solver::Summary summary =
         RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, log, &end);
     CheckInterrupt();
     left -= static_cast<int>(summary.iterations.size()) - 1;
-    const bool again = !end.unresolved && summary.IsSolutionUsable() && cost.error().empty() && cost.Undifferenced() &&
-                       left > 0 &&
+    // A point judged converged on the coarser grid's Jacobian is the answer: the scenario's grid judged the same
+    // points with 3 more replays there and moved none of them (docs/REPLAY.md, "Jacobians on a coarser grid").
+    coarse_judged = cost.Undifferenced() && !cost.Seeded() && summary.IsSolutionUsable() && cost.error().empty() &&
+                    (end.predicted || summary.termination_type == ceres::CONVERGENCE);
+    const bool again = !coarse_judged && !end.unresolved && summary.IsSolutionUsable() && cost.error().empty() &&
+                       cost.Undifferenced() && left > 0 &&
                        (summary.termination_type == ceres::USER_SUCCESS ||
                         summary.termination_type == ceres::CONVERGENCE);
     outcome.runs.push_back(std::move(summary));
@@ -586,13 +593,14 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
     }
   }
   const ceres::Solver::Summary& last = outcome.runs.back();
-  SetTermination(last, confirmed, end, &outcome);
+  SetTermination(last, confirmed, coarse_judged, end, &outcome);
   const std::vector<double> x = ToScaled(residuals.free(), u.data());
   outcome.error = cost.error();
   outcome.jacobian = cost.last_jacobian();
-  const auto [jacobian, differenced] = cost.JacobianOf(x);
+  const auto [jacobian, kind] = cost.JacobianOf(x);
   outcome.jacobian_at_x = *jacobian;
-  outcome.differenced_at_x = differenced;
+  outcome.differenced_at_x = kind == JacobianKind::kDifferenced;
+  outcome.coarse_at_x = kind == JacobianKind::kCoarse;
   outcome.data_cost = last.final_cost - (prior_cost != nullptr ? prior_cost->Cost(x) : 0.0);
   outcome.x = x;
   outcome.differenced = cost.Count(JacobianKind::kDifferenced);

@@ -93,7 +93,8 @@ struct StageOutcome {
   std::string error;                            // why a replay failed (empty: none did)
   std::vector<double> jacobian;                 // the last one Ceres used, in x, m x n row-major
   std::vector<double> jacobian_at_x;            // the one at the stage's answer x, in x
-  bool differenced_at_x = false;                // jacobian_at_x was differenced (not the seed)
+  bool differenced_at_x = false;                // jacobian_at_x was differenced on this grid at x
+  bool coarse_at_x = false;                     // jacobian_at_x was differenced on `jacobian_grid` at x
   double data_cost = 0.0;                       // the final cost without the prior's part
   double function_tolerance = 0.0;              // Ceres' relative tolerance on a change of cost (from the noise)
   int differenced = 0, seeded = 0, coarse = 0;  // the Jacobians Ceres was given, by kind (coarse: on `jacobian_grid`)
@@ -105,9 +106,9 @@ struct StageOutcome {
 // Runs a stage with at most `max_iterations` Ceres iterations over all its runs; `seed`: a Jacobian in x (m x n) for
 // the first point instead of differences; `prior`: the weak prior's weight W (0: none) and x0, the start's scaled
 // values it pulls toward; `progress`: where to write one line per Ceres iteration (null: nowhere);
-// `jacobian_grid`: the same rows on a coarser grid, on which the Jacobians are differenced until a run of Ceres
-// ends, and then on the stage's own grid to confirm the answer (null: always on the stage's grid). Throws
-// Interrupted on Ctrl-C.
+// `jacobian_grid`: the same rows on a coarser grid, on which the Jacobians are differenced; a run of Ceres that
+// converges on them ends the stage, one that ends on a step it could not resolve goes on with Jacobians on the
+// stage's own grid (null: always on the stage's grid). Throws Interrupted on Ctrl-C.
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
                         std::vector<double> seed, std::pair<double, std::vector<double>> prior,
                         std::ostream* progress, const ReplayResiduals* jacobian_grid = nullptr);

@@ -124,11 +124,18 @@ nlohmann::json ThermalIdentifiability(const IdentifiabilityInput& in) {
 }
 
 // The standard deviations, the strong correlations (|r| > 0.9), the weakest combination and what is undetermined.
-void PrintIdentifiability(const nlohmann::json& id, std::ostream& out) {
+void PrintIdentifiability(const nlohmann::json& id, double cell_mm, std::ostream& out) {
   if (id.is_null()) return;
   out << std::setprecision(3) << "  1 sd      ";
   for (const auto& [name, sd] : id["standard_deviation"].items()) out << " " << name << " " << sd.get<double>();
-  if (id["noise_c"].is_number()) out << " (noise " << id["noise_c"].get<double>() << " degC)";
+  if (id["noise_c"].is_number()) out << " (noise " << id["noise_c"].get<double>() << " degC";
+  if (id.contains("jacobian_cell_mm") && id["jacobian_cell_mm"].is_number() &&
+      id["jacobian_cell_mm"].get<double>() != cell_mm) {
+    out << (id["noise_c"].is_number() ? "; " : " (") << "Jacobian on the " << id["jacobian_cell_mm"].get<double>()
+        << " mm grid)";
+  } else if (id["noise_c"].is_number()) {
+    out << ")";
+  }
   out << "\n";
   for (const auto& [a, row] : id["correlation"].items()) {
     for (const auto& [b, r] : row.items()) {

@@ -102,8 +102,8 @@ CLI::Option* AddScanOptions(CLI::App* fit, analysis::FitOptions* options, FitNam
                   "thermal: grid spacing of a first fit whose answer starts the fit on the scenario's grid, mm, "
                   "e.g. twice thermal.cell_mm (default 0: one fit on the scenario's grid)");
   fit->add_option("--jacobian-cell", names->jacobian_cell,
-                  "thermal: grid spacing the Jacobians are differenced on, mm: the residuals stay on the scenario's\n"
-                  "grid, whose own Jacobian confirms the answer at the end; 0: every Jacobian on the scenario's grid;\n"
+                  "thermal: grid spacing the Jacobians (and the 1 sd) are differenced on, mm: the residuals, the cost\n"
+                  "and every step's test stay on the scenario's grid; 0: every Jacobian on the scenario's grid;\n"
                   "auto: 1.5 times thermal.cell_mm where that grid holds the bead's width and the plate's thickness\n"
                   "in two cells or more, else 0")
       ->type_name("auto|MM")
