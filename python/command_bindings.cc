@@ -1,8 +1,9 @@
-// waam_twin's file-based commands (place, compensate, run, fit: each writes its outputs into a folder the package
-// reads back) and the programs (import_program, export_program: in memory).
+// waam_twin's file-based commands (place, compensate, run, fit, the thermal replay: each writes its outputs into a
+// folder the package reads back) and the programs (import_program, export_program: in memory).
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "analysis/distortion_command.h"
@@ -11,6 +12,7 @@
 #include "analysis/import_command.h"
 #include "analysis/place_command.h"
 #include "analysis/plan_command.h"
+#include "analysis/replay_command.h"
 #include "analysis/run_command.h"
 #include "models/core/enum_names.h"
 #include "python/bindings.h"
@@ -92,12 +94,49 @@ py::tuple Fit(const std::string& model, const fs::path& data, const fs::path& ou
     else if (key == "mode") options.mode = item.second.cast<std::string>();
     else if (key == "start") options.start = item.second.cast<fs::path>();
     else if (key == "free") options.free = item.second.cast<std::vector<std::string>>();
+    else if (key == "window") options.window = item.second.cast<std::string>();
+    else if (key == "coarse_cell") options.coarse_cell_mm = item.second.cast<double>();
+    else if (key == "jacobian_cell") {
+      const bool is_auto = py::isinstance<py::str>(item.second) && item.second.cast<std::string>() == "auto";
+      WAAM_THROW_UNLESS(is_auto || !py::isinstance<py::str>(item.second),
+                        "fit: jacobian_cell '" << item.second.cast<std::string>() << "': must be \"auto\", 0 or mm");
+      options.jacobian_cell_mm = is_auto ? analysis::kAutoJacobianCell : item.second.cast<double>();
+      WAAM_THROW_UNLESS(is_auto || (std::isfinite(options.jacobian_cell_mm) && options.jacobian_cell_mm >= 0.0),
+                        "fit: jacobian_cell " << options.jacobian_cell_mm << ": must be \"auto\", 0 or mm");
+    }
+    else if (key == "prior") options.prior_weight = item.second.cast<double>();
     else WAAM_THROW("fit: unknown option '" << key << "' (degree, space, speed_range, seed, max_points, "
-                                               "max_iterations, mode, start, free)");
+                                               "max_iterations, mode, start, free, window, coarse_cell, "
+                                               "jacobian_cell, prior)");
   }
   std::ostringstream printed;
   const analysis::FitOutcome outcome = RunLong(progress, [&] { return analysis::RunFit(options, printed); });
   return py::make_tuple(outcome.ok, outcome.message, ToPython(outcome.model), printed.str());
+}
+
+// Runs `waam thermal replay` on the scenario into out_dir (replay.json, replay.h5, probes_replay.png with images);
+// returns {time_s, measured {NAME: degC}, simulated {NAME: degC}} (NaN where there is no reading or no metal).
+py::dict ReplayThermal(const ScenarioHolder& scn, const fs::path& out_dir, const std::string& windows,
+                       const fs::path& parameters, bool images, const py::object& progress) {
+  analysis::ReplayOptions options;
+  options.scenario = ScenarioFileFor(scn, out_dir / ".input", &options.overrides);
+  options.out_dir = out_dir;
+  options.windows = windows;
+  options.parameters = parameters;
+  options.quiet = true;
+  options.images = images;
+  std::ostringstream issues;  // listed in replay.json's log_issues
+  const analysis::ReplayRunResult r = RunLong(progress, [&] { return analysis::RunThermalReplay(options, issues); });
+  py::dict measured, simulated;
+  for (std::size_t p = 0; p < r.model.probes.size(); ++p) {
+    measured[py::str(r.model.probes[p].name)] = r.model.log.probe_c[p];
+    simulated[py::str(r.model.probes[p].name)] = r.simulation.probe_c[p];
+  }
+  py::dict out;
+  out["time_s"] = r.model.log.time_s;
+  out["measured"] = measured;
+  out["simulated"] = simulated;
+  return out;
 }
 
 std::optional<planner::ProgramFormat> FormatOf(const std::string& name) {
@@ -154,6 +193,8 @@ void BindCommands(py::module_& m) {
         py::arg("progress"));
   m.def("_fit", &Fit, py::arg("model"), py::arg("data"), py::arg("output"), py::arg("columns"), py::arg("options"),
         py::arg("progress"));
+  m.def("_replay_thermal", &ReplayThermal, py::arg("scenario"), py::arg("out_dir"), py::arg("windows"),
+        py::arg("parameters"), py::arg("images"), py::arg("progress"));
   m.def(
       "_fit_columns", [](const std::string& model) { return analysis::DefaultFitColumns(analysis::ParseFitModel(model)); },
       py::arg("model"));

@@ -16,7 +16,8 @@ from ._core import (CheckResult, InputError, InternalError, OutputError, PlanRes
                     ThermalResult, export_program, import_program, load_scenario, plan, scenario_from_dict,
                     set_threads, threads, data_dir, version)
 from . import _core
-from ._commands import CommandResult, FitResult, compensate, fit, fit_columns, fit_distortion, place, run
+from ._commands import (CommandResult, FitResult, ReplayResult, compensate, fit, fit_columns, fit_distortion,
+                        fit_thermal, place, replay_thermal, run)
 from ._sweep import sweep
 
 
@@ -48,6 +49,7 @@ def _violations(self):
 CheckResult.violations = property(_violations)
 
 __all__ = ["InputError", "OutputError", "InternalError", "Scenario", "PlanResult", "CheckResult", "SimulateResult",
-           "ThermalResult", "CommandResult", "FitResult", "load_scenario", "scenario_from_dict", "plan", "check",
-           "simulate", "thermal", "place", "compensate", "run", "fit", "fit_columns", "fit_distortion",
-           "import_program", "export_program", "sweep", "set_threads", "threads", "data_dir", "version"]
+           "ThermalResult", "CommandResult", "FitResult", "ReplayResult", "load_scenario", "scenario_from_dict",
+           "plan", "check", "simulate", "thermal", "place", "compensate", "run", "fit", "fit_columns",
+           "fit_distortion", "fit_thermal", "replay_thermal", "import_program", "export_program", "sweep",
+           "set_threads", "threads", "data_dir", "version"]

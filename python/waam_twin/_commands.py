@@ -1,4 +1,4 @@
-"""The commands that write files (place, compensate, run, the fits): each runs in a temporary folder, and its outputs
+"""The commands that write files (place, compensate, run, the fits, the thermal replay): each runs in a temporary folder, and its outputs
 come back in memory as a CommandResult (to_dict(): the command's JSON; save(dir): the files it wrote)."""
 import copy
 import json
@@ -174,6 +174,84 @@ def fit_distortion(scan_points, scenario, progress=None, **options):
         options = dict(options, scenario=file, overrides=overrides)
         ok, message, result, printed = _core._fit("distortion", scan, pathlib.Path(tmp) / "model.json", [],
                                                   options, progress)
+    return FitResult(ok, message, result, printed)
+
+
+def _window_text(window, name):
+    """A window as "A:B" (s from the log's first row) from a string or an (A, B) pair."""
+    if isinstance(window, str):
+        return window
+    try:
+        start, end = window
+        return f"{float(start)!r}:{float(end)!r}"
+    except (TypeError, ValueError):
+        raise _core.InputError(f"{name}: {window!r}: expected (start_s, end_s) or 'A:B'") from None
+
+
+def _fitted_file(fitted, tmp, name):
+    """A fitted file's path: `fitted` itself (a path), or a FitResult or dict written into tmp."""
+    if fitted is None:
+        return ""
+    if isinstance(fitted, FitResult):
+        fitted = fitted.model
+    if isinstance(fitted, dict):
+        path = pathlib.Path(tmp) / f"{name}.json"
+        path.write_text(json.dumps(fitted))
+        return path
+    return pathlib.Path(fitted)
+
+
+class ReplayResult(CommandResult):
+    """A replayed process log: a CommandResult (to_dict() is replay.json; files replay.h5 and, with images,
+    probes_replay.png) with the histories as numpy arrays: `time_s` (s from the log's first row), `measured` and
+    `simulated` ({probe: degC per row}, NaN where the log has no reading or no metal is yet)."""
+
+    def __init__(self, folder, histories):
+        super().__init__("thermal replay", "replay.json", folder)
+        self.time_s = np.asarray(histories["time_s"], dtype=float)
+        self.measured = {k: np.asarray(v, dtype=float) for k, v in histories["measured"].items()}
+        self.simulated = {k: np.asarray(v, dtype=float) for k, v in histories["simulated"].items()}
+
+    def __repr__(self):
+        return f"<waam_twin.ReplayResult {len(self.time_s)} rows, {len(self.measured)} probes>"
+
+
+def replay_thermal(scenario, windows=None, parameters=None, images=False, progress=None):
+    """Replays the scenario's process log (its replay: section) through the thermal model and compares every
+    thermocouple, as `waam thermal replay` does. windows: (start_s, end_s) pairs (or "A:B,C:D") reported under
+    replay.json's windows[]; parameters: a fitted file (path), or a FitResult or dict from fit_thermal, whose
+    parameters replace the scenario's. Returns a ReplayResult. Raises InputError for a bad scenario or log (naming
+    the file and the row or key)."""
+    if windows is None:
+        text = ""
+    elif isinstance(windows, str):
+        text = windows
+    else:
+        text = ",".join(_window_text(w, "windows") for w in windows)
+    with tempfile.TemporaryDirectory(prefix="waam_replay_") as tmp:
+        out = pathlib.Path(tmp) / "out"
+        fitted = _fitted_file(parameters, tmp, "parameters")
+        histories = _core._replay_thermal(scenario, out, text, fitted, images, progress)
+        return ReplayResult(out, histories)
+
+
+def fit_thermal(scenario, window, free=("efficiency", "convection", "contact"), start=None, progress=None,
+                **options):
+    """Fits the thermal model to the scenario's process log inside `window` ((start_s, end_s) or "A:B", s from the
+    log's first row) and predicts the rest, as `waam fit thermal` does. free: any of efficiency, convection,
+    contact, emissivity, clamps; start: a fitted file (path, FitResult or dict) to start from; options:
+    max_iterations, coarse_cell (mm), jacobian_cell ("auto", the default, 0 or mm), prior (degC). Returns a
+    FitResult whose model is fitted.json (parameters, fitted, window, held_out, solver, identifiability) and whose
+    summary is what the command prints; a fit that did not converge has ok False and its reason in message. Pass
+    the result to replay_thermal(parameters=...) to replay with it."""
+    with tempfile.TemporaryDirectory(prefix="waam_fit_") as tmp:
+        file, overrides = _core._scenario_file(scenario, pathlib.Path(tmp) / ".input")
+        options = dict(options, overrides=overrides, free=list(free), window=_window_text(window, "window"))
+        fitted = _fitted_file(start, tmp, "start")
+        if fitted:
+            options["start"] = fitted
+        ok, message, result, printed = _core._fit("thermal", file, pathlib.Path(tmp) / "fitted.json", [], options,
+                                                  progress)
     return FitResult(ok, message, result, printed)
 
 
