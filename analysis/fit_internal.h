@@ -62,8 +62,9 @@ struct ParameterMap {
 };
 // The largest change of Ceres' variable u per step (a factor e^2 = 7.4 in x - lo above a lower bound).
 inline constexpr double kMaxFreeStep = 2.0;
-// A new manifold (Ceres owns it once set) that caps each coordinate of Ceres' steps in u at +-kMaxFreeStep.
-ceres::Manifold* NewCappedStep(int n);
+// A new manifold (Ceres owns it once set) that caps each coordinate of Ceres' steps in u at +-kMaxFreeStep and keeps
+// the `held` ones (true; fewer than n) where they are.
+ceres::Manifold* NewCappedStep(int n, const std::vector<bool>& held = {});
 // How far inside a bound a start value on it is moved (scaled units: 1 % of the parameter's scale).
 inline constexpr double kStartInside = 0.01;
 

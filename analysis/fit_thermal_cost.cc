@@ -371,10 +371,12 @@ double PredictedDecrease(const ceres::IterationSummary& s) {
 }
 
 // The decrease of the cost (data and prior) that the Gauss-Newton step at Ceres' point u promises, with the
-// Jacobian the cost makes there (on the scenario's grid once RequestDifference() was called): an upper bound of the
-// decrease any of Ceres' damped steps from there promises. Also returns the cost there. False when a replay failed.
+// Jacobian the cost makes there (on the scenario's grid once RequestDifference() was called), the `held` coordinates
+// kept: an upper bound of the decrease any of Ceres' damped steps from there promises. Also returns the cost there
+// and, with `step`, the step in u (0 in the held coordinates). False when a replay failed.
 bool GaussNewtonPromise(const ReplayCost& cost, const PriorCost* prior, const std::vector<double>& u,
-                        double* promise, double* at) {
+                        const std::vector<bool>& held, double* promise, double* at,
+                        std::vector<double>* step_u = nullptr) {
   const int n = static_cast<int>(u.size());
   const int m = cost.num_residuals();
   const int p = prior != nullptr ? n : 0;
@@ -393,10 +395,36 @@ bool GaussNewtonPromise(const ReplayCost& cost, const PriorCost* prior, const st
       for (int k = 0; k < n; ++k) j(m + row, k) = block[static_cast<std::size_t>(row) * n + k];
     }
   }
-  const Eigen::VectorXd step = j.colPivHouseholderQr().solve(-r);
+  for (int k = 0; k < n; ++k) {
+    if (k < static_cast<int>(held.size()) && held[k]) j.col(k).setZero();
+  }
+  const Eigen::VectorXd step = j.colPivHouseholderQr().solve(-r);  // 0 in a zero column (the minimum-norm part)
   *at = 0.5 * r.squaredNorm();
   *promise = *at - 0.5 * (r + j * step).squaredNorm();
+  if (step_u != nullptr) {
+    step_u->assign(step.data(), step.data() + n);
+    for (int k = 0; k < n; ++k) {
+      if (k < static_cast<int>(held.size()) && held[k]) (*step_u)[k] = 0.0;
+    }
+  }
   return std::isfinite(*promise);
+}
+
+// The coordinates the Gauss-Newton step `step_u` at u pushes across a bound they lie within kStartInside of (in
+// scaled units): where the linear model's minimum lies beyond the bound, Ceres on the smooth map only creeps toward
+// it (a factor e^2 per step at most); the stage holds them there instead (docs/REPLAY.md, "Bounds by
+// reparametrisation"). With `inward`, those it moves away from such a bound instead.
+std::vector<bool> AcrossBounds(const std::vector<FreeParameter>& free, const std::vector<double>& u,
+                               const std::vector<double>& step_u, bool inward) {
+  std::vector<bool> across(free.size(), false);
+  for (std::size_t k = 0; k < free.size(); ++k) {
+    const ParameterMap map = free[k].map();
+    const double x = map.ToScaled(u[k]), dx = map.Slope(u[k]) * step_u[k];
+    const bool near_lo = x - map.lo <= kStartInside, near_hi = map.hi - x <= kStartInside;
+    across[k] = inward ? (near_lo && dx > 0.0) || (near_hi && dx < 0.0)
+                       : (near_lo && x + dx < map.lo) || (near_hi && x + dx > map.hi);
+  }
+  return across;
 }
 
 // Ends a Ceres run on Ctrl-C (abort), and when a step from the seed's Jacobian failed: the stage runs Ceres again
@@ -409,12 +437,13 @@ bool GaussNewtonPromise(const ReplayCost& cost, const PriorCost* prior, const st
 class StageCallback : public ceres::IterationCallback {
  public:
   StageCallback(const ReplayCost& cost, const PriorCost* prior, double function_tolerance,
-                const ReplayResiduals& residuals, const double* u, const StageLog& log)
+                const ReplayResiduals& residuals, const double* u, const std::vector<bool>& held, const StageLog& log)
       : cost_(cost),
         prior_(prior),
         function_tolerance_(function_tolerance),
         residuals_(residuals),
         u_(u),
+        held_(held),
         log_(log) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (InterruptRequested()) return ceres::SOLVER_ABORT;
@@ -422,10 +451,14 @@ class StageCallback : public ceres::IterationCallback {
     if (!Rejected(s)) {
       point_cost_ = s.cost;
       // Ceres makes the Jacobian at an accepted point before it calls this (no replay here).
-      if (s.iteration == 0 || cost_.Seeded()) return ceres::SOLVER_CONTINUE;
+      if (cost_.Seeded()) return ceres::SOLVER_CONTINUE;
       double promise = 0.0, at = 0.0;
+      std::vector<double> step;
       const std::vector<double> u(u_, u_ + residuals_.free_count());
-      if (GaussNewtonPromise(cost_, prior_, u, &promise, &at) && promise < function_tolerance_ * at) {
+      if (!GaussNewtonPromise(cost_, prior_, u, held_, &promise, &at, &step)) return ceres::SOLVER_CONTINUE;
+      if (HoldAcrossBounds(u, step)) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+      if (s.iteration == 0) return ceres::SOLVER_CONTINUE;
+      if (promise < function_tolerance_ * at) {
         predicted_ = true;
         if (log_.out != nullptr) {
           *log_.out << "  its Gauss-Newton step promises " << std::setprecision(3) << promise << " of a cost of " << at
@@ -447,8 +480,38 @@ class StageCallback : public ceres::IterationCallback {
   bool unresolved() const { return unresolved_; }
   // Whether the run ended at an accepted point whose Gauss-Newton step promised less than the function tolerance.
   bool predicted() const { return predicted_; }
+  // The coordinates to hold at their bounds from the point the run ended at (none: empty).
+  const std::vector<bool>& hold() const { return hold_; }
 
  private:
+  // Whether the Gauss-Newton step `step` at u pushes coordinates not yet held across a bound they lie at (kept in
+  // hold_, written to the log): then the run ends, and the stage runs Ceres again with them held. At least one
+  // coordinate stays free.
+  bool HoldAcrossBounds(const std::vector<double>& u, const std::vector<double>& step) {
+    std::vector<bool> across = AcrossBounds(residuals_.free(), u, step, false);
+    std::size_t held = 0, more = 0;
+    for (std::size_t k = 0; k < across.size(); ++k) {
+      const bool already = k < held_.size() && held_[k];
+      held += already ? 1 : 0;
+      across[k] = across[k] && !already;
+      more += across[k] ? 1 : 0;
+    }
+    if (more == 0 || held + more >= across.size()) return false;
+    hold_ = std::move(across);
+    if (log_.out != nullptr) {
+      const ThermalParameters values = residuals_.Parameters(ToScaled(residuals_.free(), u.data()).data());
+      for (std::size_t k = 0; k < hold_.size(); ++k) {
+        if (!hold_[k]) continue;
+        const FreeParameter& f = residuals_.free(k);
+        const ParameterMap map = f.map();
+        const bool low = map.ToScaled(u[k]) - map.lo <= kStartInside;
+        *log_.out << "  " << f.name << " held at " << std::setprecision(4) << values.*(f.member)
+                  << ": the Gauss-Newton step would take it across its bound " << (low ? f.lo : f.hi) << std::endl;
+      }
+    }
+    return true;
+  }
+
   void Report(const ceres::IterationSummary& s) const {
     std::ostream& o = *log_.out;
     o << "  iteration " << log_.done + s.iteration << ": ";
@@ -472,7 +535,9 @@ class StageCallback : public ceres::IterationCallback {
   double function_tolerance_;
   const ReplayResiduals& residuals_;
   const double* u_;  // Ceres' current point (update_state_every_iteration)
+  const std::vector<bool>& held_;  // the coordinates the run holds
   const StageLog& log_;
+  std::vector<bool> hold_;
   double point_cost_ = 0.0;  // the cost at the point Ceres stands on
   bool unresolved_ = false;
   bool predicted_ = false;
@@ -482,18 +547,20 @@ class StageCallback : public ceres::IterationCallback {
 struct RunEnd {
   bool unresolved = false;  // on a step the replays could not resolve
   bool predicted = false;   // at a point whose Gauss-Newton step promised less than the function tolerance
+  std::vector<bool> hold;   // at a point whose Gauss-Newton step crosses these coordinates' bounds (none: empty)
 };
 
-// One Ceres run from `u` (changed in place) with at most `iterations` iterations; `end` tells how it ended.
+// One Ceres run from `u` (changed in place) with at most `iterations` iterations, the `held` coordinates kept; `end`
+// tells how it ended.
 ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& cost, PriorCost* prior,
-                                std::vector<double>& u, int iterations, double function_tolerance,
-                                const StageLog& log, RunEnd* end) {
+                                std::vector<double>& u, const std::vector<bool>& held, int iterations,
+                                double function_tolerance, const StageLog& log, RunEnd* end) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // the stage's, over every run
   ceres::Problem problem(problem_options);
   problem.AddResidualBlock(&cost, nullptr, u.data());
   if (prior != nullptr) problem.AddResidualBlock(prior, nullptr, u.data());
-  problem.SetManifold(u.data(), NewCappedStep(static_cast<int>(u.size())));  // owned by `problem`
+  problem.SetManifold(u.data(), NewCappedStep(static_cast<int>(u.size()), held));  // owned by `problem`
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = iterations;
@@ -503,11 +570,11 @@ ceres::Solver::Summary RunCeres(const ReplayResiduals& residuals, ReplayCost& co
   solver.logging_type = ceres::SILENT;
   solver.num_threads = 1;  // the parallelism is inside the cost (replays side by side)
   solver.update_state_every_iteration = true;  // the progress line reads u
-  StageCallback callback(cost, prior, function_tolerance, residuals, u.data(), log);
+  StageCallback callback(cost, prior, function_tolerance, residuals, u.data(), held, log);
   solver.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
-  *end = {callback.unresolved(), callback.predicted()};
+  *end = {callback.unresolved(), callback.predicted(), callback.hold()};
   return summary;
 }
 
@@ -537,6 +604,27 @@ void SetTermination(const ceres::Solver::Summary& last, bool confirmed, bool coa
   }
 }
 
+// Releases every held coordinate (returns true) when the Gauss-Newton step at u with all of them free moves one of
+// the held ones away from its bound: the data then wants it inside, where Ceres can take it.
+bool ReleaseHeld(const ReplayCost& cost, const PriorCost* prior, const std::vector<double>& u,
+                 const std::vector<FreeParameter>& free, std::vector<bool>& held, std::ostream* progress) {
+  if (std::none_of(held.begin(), held.end(), [](bool h) { return h; })) return false;
+  double promise = 0.0, at = 0.0;
+  std::vector<double> step;
+  if (!GaussNewtonPromise(cost, prior, u, {}, &promise, &at, &step)) return false;
+  const std::vector<bool> inward = AcrossBounds(free, u, step, true);
+  bool release = false;
+  for (std::size_t k = 0; k < held.size(); ++k) release = release || (held[k] && inward[k]);
+  if (!release) return false;
+  if (progress != nullptr) {
+    *progress << "  released";
+    for (std::size_t k = 0; k < held.size(); ++k) *progress << (held[k] ? " " + free[k].name : "");
+    *progress << ": the Gauss-Newton step with every parameter free moves one away from its bound" << std::endl;
+  }
+  held.assign(held.size(), false);
+  return true;
+}
+
 }  // namespace
 
 StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<double>& x_start, int max_iterations,
@@ -562,27 +650,43 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
   // the stage. One that ended otherwise (a failed step it could not resolve) is judged on the scenario's grid: when
   // that grid's Gauss-Newton step promises less than Ceres' function tolerance of the cost (a step Ceres would end
   // on), the stage ends there without trying it (a candidate costs a replay on the scenario's grid).
-  bool confirmed = false, coarse_judged = false;
+  // A coordinate the Gauss-Newton step pushes across a bound it lies at is held there: Ceres runs again from the same
+  // point without it (its Jacobian kept: no replay). Once the stage would end, the held ones are released, once, when
+  // the Gauss-Newton step with every coordinate free moves one of them away from its bound.
+  bool confirmed = false, coarse_judged = false, released = false;
+  std::vector<bool> held(residuals.free_count(), false);
   while (true) {
     const StageLog log{progress, clock_start, max_iterations - left};
     ceres::Solver::Summary summary =
-        RunCeres(residuals, cost, prior_cost.get(), u, left, outcome.function_tolerance, log, &end);
+        RunCeres(residuals, cost, prior_cost.get(), u, held, left, outcome.function_tolerance, log, &end);
     CheckInterrupt();
     left -= static_cast<int>(summary.iterations.size()) - 1;
+    const bool usable = summary.IsSolutionUsable() && cost.error().empty();
+    if (!end.hold.empty() && usable && left > 0) {
+      for (std::size_t k = 0; k < held.size(); ++k) held[k] = held[k] || end.hold[k];
+      outcome.runs.push_back(std::move(summary));
+      continue;
+    }
     // A point judged converged on the coarser grid's Jacobian is the answer: the scenario's grid judged the same
     // points with 3 more replays there and moved none of them (docs/REPLAY.md, "Jacobians on a coarser grid").
-    coarse_judged = cost.Undifferenced() && !cost.Seeded() && summary.IsSolutionUsable() && cost.error().empty() &&
+    coarse_judged = cost.Undifferenced() && !cost.Seeded() && usable &&
                     (end.predicted || summary.termination_type == ceres::CONVERGENCE);
-    const bool again = !coarse_judged && !end.unresolved && summary.IsSolutionUsable() && cost.error().empty() &&
-                       cost.Undifferenced() && left > 0 &&
+    const bool again = !coarse_judged && !end.unresolved && usable && cost.Undifferenced() && left > 0 &&
                        (summary.termination_type == ceres::USER_SUCCESS ||
                         summary.termination_type == ceres::CONVERGENCE);
     outcome.runs.push_back(std::move(summary));
-    if (!again) break;
+    if (!again) {
+      if (!released && usable && left > 0 && ReleaseHeld(cost, prior_cost.get(), u, residuals.free(), held, progress)) {
+        released = true;
+        continue;
+      }
+      break;
+    }
     cost.RequestDifference();
     if (jacobian_grid != nullptr) {
       double promise = 0.0, at = 0.0;
-      if (GaussNewtonPromise(cost, prior_cost.get(), u, &promise, &at) && promise < outcome.function_tolerance * at) {
+      if (GaussNewtonPromise(cost, prior_cost.get(), u, held, &promise, &at) &&
+          promise < outcome.function_tolerance * at) {
         confirmed = true;
         if (progress != nullptr) {
           *progress << "  confirmed on the scenario's grid: its Gauss-Newton step promises " << std::setprecision(3)
@@ -591,6 +695,9 @@ StageOutcome SolveStage(const ReplayResiduals& residuals, const std::vector<doub
         break;
       }
     }
+  }
+  for (std::size_t k = 0; k < held.size(); ++k) {
+    if (held[k]) outcome.held.push_back(residuals.free(k).name);
   }
   const ceres::Solver::Summary& last = outcome.runs.back();
   SetTermination(last, confirmed, coarse_judged, end, &outcome);
@@ -631,6 +738,7 @@ nlohmann::json StageSolverJson(const StageOutcome& stage) {
           {"replays", stage.replays},
           {"jacobians", {{"differenced", stage.differenced}, {"seeded", stage.seeded}, {"coarse", stage.coarse}}},
           {"coarse_replays", stage.coarse_replays},
+          {"held_at_bound", stage.held},
           {"successful_steps", successful},
           {"unsuccessful_steps", unsuccessful},
           {"residual_evaluations", residual_evaluations},

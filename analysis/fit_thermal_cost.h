@@ -98,6 +98,7 @@ struct StageOutcome {
   double data_cost = 0.0;                       // the final cost without the prior's part
   double function_tolerance = 0.0;              // Ceres' relative tolerance on a change of cost (from the noise)
   int differenced = 0, seeded = 0, coarse = 0;  // the Jacobians Ceres was given, by kind (coarse: on `jacobian_grid`)
+  std::vector<std::string> held;                // free parameters held at a bound when the stage ended
   int replays = 0;
   int coarse_replays = 0;                       // replays on `jacobian_grid`
   double seconds = 0.0;                         // wall

@@ -2,6 +2,7 @@
 // on Ceres' steps in those variables.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <ceres/manifold.h>
 
@@ -19,38 +20,54 @@ double Logistic(double u) {
   return e / (1.0 + e);
 }
 
-// Ceres' steps in u, each coordinate capped at +-kMaxFreeStep (Plus; its Jacobian at delta = 0 is the identity). Near
-// a lower bound dx/du is small, so the linearisation in u asks steps of hundreds of units (a factor e^100 in x) that
-// the trust region, scaled by the Jacobian's columns, does not hold back: the cap takes the step part of the way, and
-// the next Jacobian, from a point where dx/du is larger, goes on. The values themselves are never clamped.
+// Ceres' steps in u, each coordinate capped at +-kMaxFreeStep (Plus; its Jacobian at delta = 0 is the identity on the
+// free coordinates). Near a lower bound dx/du is small, so the linearisation in u asks steps of hundreds of units (a
+// factor e^100 in x) that the trust region, scaled by the Jacobian's columns, does not hold back: the cap takes the
+// step part of the way, and the next Jacobian, from a point where dx/du is larger, goes on. The values themselves
+// are never clamped. Held coordinates (a parameter held at a bound) are not in the tangent space: they stay as they
+// are.
 class CappedStep final : public ceres::Manifold {
  public:
-  explicit CappedStep(int n) : n_(n) {}
+  CappedStep(int n, const std::vector<bool>& held) : n_(n) {
+    for (int k = 0; k < n; ++k) {
+      if (k >= static_cast<int>(held.size()) || !held[k]) free_.push_back(k);
+    }
+  }
   int AmbientSize() const override { return n_; }
-  int TangentSize() const override { return n_; }
+  int TangentSize() const override { return static_cast<int>(free_.size()); }
   bool Plus(const double* u, const double* delta, double* out) const override {
-    for (int k = 0; k < n_; ++k) out[k] = u[k] + std::clamp(delta[k], -kMaxFreeStep, kMaxFreeStep);
+    std::copy(u, u + n_, out);
+    for (std::size_t j = 0; j < free_.size(); ++j) {
+      out[free_[j]] = u[free_[j]] + std::clamp(delta[j], -kMaxFreeStep, kMaxFreeStep);
+    }
     return true;
   }
-  bool PlusJacobian(const double*, double* jacobian) const override { return Identity(jacobian); }
+  bool PlusJacobian(const double*, double* jacobian) const override {  // n x free, row-major
+    std::fill(jacobian, jacobian + n_ * free_.size(), 0.0);
+    for (std::size_t j = 0; j < free_.size(); ++j) jacobian[free_[j] * free_.size() + j] = 1.0;
+    return true;
+  }
   bool Minus(const double* y, const double* u, double* delta) const override {
-    for (int k = 0; k < n_; ++k) delta[k] = y[k] - u[k];
+    for (std::size_t j = 0; j < free_.size(); ++j) delta[j] = y[free_[j]] - u[free_[j]];
     return true;
   }
-  bool MinusJacobian(const double*, double* jacobian) const override { return Identity(jacobian); }
+  bool MinusJacobian(const double*, double* jacobian) const override {  // free x n, row-major
+    std::fill(jacobian, jacobian + free_.size() * n_, 0.0);
+    for (std::size_t j = 0; j < free_.size(); ++j) jacobian[j * n_ + free_[j]] = 1.0;
+    return true;
+  }
 
  private:
-  bool Identity(double* jacobian) const {
-    std::fill(jacobian, jacobian + n_ * n_, 0.0);
-    for (int k = 0; k < n_; ++k) jacobian[k * n_ + k] = 1.0;
-    return true;
-  }
   int n_;
+  std::vector<int> free_;  // the coordinates in the tangent space
 };
 
 }  // namespace
 
-ceres::Manifold* NewCappedStep(int n) { return new CappedStep(n); }
+ceres::Manifold* NewCappedStep(int n, const std::vector<bool>& held) {
+  WAAM_DEMAND(std::count(held.begin(), held.end(), true) < n);
+  return new CappedStep(n, held);
+}
 
 double ParameterMap::ToScaled(double u) const {
   if (std::isinf(hi)) return lo + std::exp(u);

@@ -5,12 +5,14 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <ceres/manifold.h>
 
 #include "analysis/fit_command.h"
 #include "analysis/fit_internal.h"
@@ -287,6 +289,32 @@ TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
   EXPECT_EQ(solver["unsuccessful_steps"].get<int>(), 0) << solver.dump();
 }
 
+// A log whose air takes less heat than the scenario's radiation alone (made with emissivity 0.2 and no convection;
+// the fit keeps the scenario's emissivity) drives convection below its bound 0: the fit holds it within 1 % of its
+// scale of the bound once the Gauss-Newton step would cross it, fits the efficiency with it held, and reports both.
+TEST(ReplayRoundTrip, AParameterTheDataPushesAcrossItsBoundIsHeldThere) {
+  const fs::path dir = cli_test::TempDir("replay_fit_hold");
+  ThermalParameters truth;
+  truth.efficiency = 0.7;
+  truth.convection_w_m2k = 0.0;
+  truth.emissivity = 0.2;
+  FitOptions options;
+  options.model = waam::analysis::FitModel::kThermal;
+  options.data = WriteRoundTrip(dir, truth);
+  options.output = dir / "fitted.json";
+  options.free = {"efficiency", "convection"};
+  options.window = "0:60";
+  options.jacobian_cell_mm = 0.0;
+  std::ostringstream out;
+  ASSERT_TRUE(RunFit(options, out).ok) << out.str();
+  std::cout << out.str();
+  const nlohmann::json fitted = cli_test::ReadJson(options.output);
+  EXPECT_EQ(fitted["solver"]["held_at_bound"], nlohmann::json::array({"convection"})) << out.str();
+  EXPECT_EQ(fitted["at_bound"], nlohmann::json::array({"convection"})) << out.str();
+  EXPECT_LE(fitted["fitted"]["convection"].get<double>(), 0.1) << out.str();
+  EXPECT_NEAR(fitted["fitted"]["efficiency"].get<double>(), 0.7, 0.03) << out.str();
+}
+
 // A strong prior holds the free parameters at the start values (efficiency 0.84, h = 10) against the log's 0.7 and
 // 25; a weak one leaves the fit to the data. The prior's part of the cost is not counted as noise.
 TEST(ReplayRoundTrip, APriorPullsTowardTheStartValuesWithItsStatedWeight) {
@@ -374,6 +402,29 @@ TEST(ThermalFitMap, RoundTripsAndItsSlopeMatchesAFiniteDifference) {
   EXPECT_NEAR(lower.ToScaled(lower.ToFree(0.0)), internal::kStartInside, 1e-15) << "a start on the bound";
   EXPECT_NEAR(two.ToScaled(two.ToFree(1.0)), 1.0 - internal::kStartInside, 1e-12);
   EXPECT_NEAR(two.ToScaled(two.ToFree(0.1)), 0.2 + internal::kStartInside, 1e-12) << "beyond the bound";
+}
+
+// Ceres' steps in u: each coordinate capped at kMaxFreeStep; a held coordinate is out of the tangent space and stays.
+TEST(ThermalFitMap, TheStepIsCappedAndAHeldCoordinateStays) {
+  std::unique_ptr<ceres::Manifold> step(internal::NewCappedStep(3, {false, true, false}));
+  ASSERT_EQ(step->AmbientSize(), 3);
+  ASSERT_EQ(step->TangentSize(), 2);
+  const double u[3] = {1.0, -5.0, 0.5};
+  const double delta[2] = {10.0, -0.25};
+  double out[3];
+  ASSERT_TRUE(step->Plus(u, delta, out));
+  EXPECT_EQ(out[0], 1.0 + internal::kMaxFreeStep);
+  EXPECT_EQ(out[1], -5.0) << "held";
+  EXPECT_EQ(out[2], 0.25);
+  double back[2];
+  ASSERT_TRUE(step->Minus(out, u, back));
+  EXPECT_EQ(back[0], internal::kMaxFreeStep);
+  EXPECT_EQ(back[1], -0.25);
+  double plus[6], minus[6];
+  ASSERT_TRUE(step->PlusJacobian(u, plus));
+  ASSERT_TRUE(step->MinusJacobian(u, minus));
+  EXPECT_EQ(std::vector<double>(plus, plus + 6), (std::vector<double>{1, 0, 0, 0, 0, 1}));  // 3 x 2
+  EXPECT_EQ(std::vector<double>(minus, minus + 6), (std::vector<double>{1, 0, 0, 0, 0, 1}));  // 2 x 3
 }
 
 // The identifiability report is in physical (scaled) units whatever variable Ceres moves: the report of J_x equals
