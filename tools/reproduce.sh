@@ -659,9 +659,11 @@ for path in sorted(pathlib.Path("python/examples/notebooks").glob("*.ipynb")):
 PY
   cp "$d/pattern_sweep/sweep_deviation.png" docs/images/notebook_sweep_deviation.png
   cp "$d/csw_fit/csw_fit.png" docs/images/notebook_csw_fit.png
+  cp "$d/replay_fit/replay_fit.png" docs/images/notebook_replay_fit.png
   cat <<'MD' | put notebooks
 ![python/examples/notebooks/pattern_sweep.ipynb: a sweep of the path pattern and bead width, plotted with matplotlib](docs/images/notebook_sweep_deviation.png)
 ![python/examples/notebooks/csw_fit.ipynb: the CSW model fitted from a DataFrame](docs/images/notebook_csw_fit.png)
+![python/examples/notebooks/replay_fit.ipynb: a thermocouple log replayed, fitted on its first minute and predicted after it](docs/images/notebook_replay_fit.png)
 MD
 }
 

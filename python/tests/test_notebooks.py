@@ -25,5 +25,5 @@ def test_notebook_runs(path, tmp_path, monkeypatch):
     assert list(tmp_path.glob("*.png")), "the notebook saved its plot"
 
 
-def test_there_are_two_notebooks():
-    assert {p.stem for p in NOTEBOOKS} >= {"pattern_sweep", "csw_fit"}
+def test_the_example_notebooks_are_there():
+    assert {p.stem for p in NOTEBOOKS} >= {"pattern_sweep", "csw_fit", "replay_fit"}
