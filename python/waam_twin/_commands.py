@@ -83,6 +83,8 @@ class FitResult:
     `waam fit` writes it), `summary` (what `waam fit` prints). to_dict() is the model; save(path) writes it."""
 
     def __init__(self, ok, message, model, summary):
+        # The command's last line names the temporary file it wrote: save(path) writes the model where asked.
+        summary = "".join(line for line in summary.splitlines(keepends=True) if not line.startswith("wrote "))
         self.ok, self.message, self.model, self.summary = ok, message, model, summary
 
     def to_dict(self):
