@@ -35,9 +35,9 @@ enum class JacobianKind { kDifferenced, kSeed, kCoarse };
 // m x n row-major) stands in at the first point until RequestDifference(); with a `coarse` grid, the Jacobians are
 // differenced there (1 + n replays there, the perturbed ones following the choices of the one at x) until
 // RequestDifference() (the residuals stay on the stage's grid: an inexact Gauss-Newton, whose fixed point lies within
-// the function tolerance of the stage's grid's; docs/REPLAY.md, "Jacobians on a coarser grid"). A replay with more rows without a
-// temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step and shrinks
-// its trust region.
+// the function tolerance of the stage's grid's; docs/REPLAY.md, "Jacobians on a coarser grid"). A replay with more
+// rows without a temperature than the first one (blown up) is refused: Ceres counts the point as an unsuccessful step
+// and shrinks its trust region.
 class ReplayCost : public ceres::CostFunction {
  public:
   ReplayCost(const ReplayResiduals& residuals, std::vector<double> seed, const ReplayResiduals* coarse)

@@ -1,5 +1,6 @@
-"""The commands that write files (place, compensate, run, the fits, the thermal replay): each runs in a temporary folder, and its outputs
-come back in memory as a CommandResult (to_dict(): the command's JSON; save(dir): the files it wrote)."""
+"""The commands that write files (place, compensate, run, the fits, the thermal replay): each runs in a temporary
+folder, and its outputs come back in memory as a CommandResult (to_dict(): the command's JSON; save(dir): the files
+it wrote)."""
 import copy
 import json
 import os
