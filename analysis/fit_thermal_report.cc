@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -128,14 +129,14 @@ void PrintIdentifiability(const nlohmann::json& id, double cell_mm, std::ostream
   if (id.is_null()) return;
   out << std::setprecision(3) << "  1 sd      ";
   for (const auto& [name, sd] : id["standard_deviation"].items()) out << " " << name << " " << sd.get<double>();
-  if (id["noise_c"].is_number()) out << " (noise " << id["noise_c"].get<double>() << " degC";
-  if (id.contains("jacobian_cell_mm") && id["jacobian_cell_mm"].is_number() &&
-      id["jacobian_cell_mm"].get<double>() != cell_mm) {
-    out << (id["noise_c"].is_number() ? "; " : " (") << "Jacobian on the " << id["jacobian_cell_mm"].get<double>()
-        << " mm grid)";
-  } else if (id["noise_c"].is_number()) {
-    out << ")";
+  std::ostringstream notes;
+  notes << std::setprecision(3);
+  if (id["noise_c"].is_number()) notes << "noise " << id["noise_c"].get<double>() << " degC";
+  const nlohmann::json grid = id.value("jacobian_cell_mm", nlohmann::json());
+  if (grid.is_number() && grid.get<double>() != cell_mm) {
+    notes << (notes.tellp() > 0 ? "; " : "") << "Jacobian on the " << grid.get<double>() << " mm grid";
   }
+  if (notes.tellp() > 0) out << " (" << notes.str() << ")";
   out << "\n";
   for (const auto& [a, row] : id["correlation"].items()) {
     for (const auto& [b, r] : row.items()) {

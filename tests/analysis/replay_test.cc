@@ -238,12 +238,18 @@ TEST(ReplayRun, AWindowsReplayIsTheWholeLogsUpToItsEndAndContinuesAsIt) {
   EXPECT_EQ(continued.energy.stored_j, whole.energy.stored_j);
 }
 
-// The round trip's two-parameter fit options: efficiency and convection on the first 60 s of a log made in `dir` at
-// efficiency 0.7 and convection 25 W/(m^2 K), written to `dir`/`output`.
-FitOptions RoundTripFit(const fs::path& dir, const std::string& output) {
+// The log's values for the round trip: efficiency 0.7 and convection 25 W/(m^2 K).
+ThermalParameters RoundTripTruth() {
   ThermalParameters truth;
   truth.efficiency = 0.7;
   truth.convection_w_m2k = 25.0;
+  return truth;
+}
+
+// The round trip's two-parameter fit options: efficiency and convection on the first 60 s of a log made in `dir` at
+// `truth`, written to `dir`/`output`.
+FitOptions RoundTripFit(const fs::path& dir, const std::string& output,
+                        const ThermalParameters& truth = RoundTripTruth()) {
   FitOptions options;
   options.model = waam::analysis::FitModel::kThermal;
   options.data = WriteRoundTrip(dir, truth);
@@ -293,18 +299,10 @@ TEST(ReplayRoundTrip, FitRecoversEfficiencyAndConvectionFromTheFirstHalf) {
 // the fit keeps the scenario's emissivity) drives convection below its bound 0: the fit holds it within 1 % of its
 // scale of the bound once the Gauss-Newton step would cross it, fits the efficiency with it held, and reports both.
 TEST(ReplayRoundTrip, AParameterTheDataPushesAcrossItsBoundIsHeldThere) {
-  const fs::path dir = cli_test::TempDir("replay_fit_hold");
-  ThermalParameters truth;
-  truth.efficiency = 0.7;
+  ThermalParameters truth = RoundTripTruth();
   truth.convection_w_m2k = 0.0;
   truth.emissivity = 0.2;
-  FitOptions options;
-  options.model = waam::analysis::FitModel::kThermal;
-  options.data = WriteRoundTrip(dir, truth);
-  options.output = dir / "fitted.json";
-  options.free = {"efficiency", "convection"};
-  options.window = "0:60";
-  options.jacobian_cell_mm = 0.0;
+  const FitOptions options = RoundTripFit(cli_test::TempDir("replay_fit_hold"), "fitted.json", truth);
   std::ostringstream out;
   ASSERT_TRUE(RunFit(options, out).ok) << out.str();
   std::cout << out.str();
