@@ -311,15 +311,16 @@ void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int leve
 
 // A step of a run that follows choices, after the enthalpy iteration's rounds: more rounds H_k+1 = H_k +
 // C_k (T - T_k) until every cell that must converge maps back to within kConvergedK of its solved temperature, each
-// linear solve to kConvergedSolveK (thermal_state.h). The rounds the iteration stops after are a choice that follows a threshold of
-// 10 K; a fixed number of unconverged rounds is a continuous but, in the melt pool, extremely sensitive function of
-// the inputs (the term C_k' (T - T_k), where the capacity changes tenfold within a kelvin at the latent heat's edges,
-// multiplies a difference at each round), while the converged step is the root of the step's equations, whose
-// sensitivity is that of the equations (docs/THERMAL.md, "Differencing a run"). So these rounds and their solves are
-// no choices: any path to the root gives it. A cell whose mismatch T(H_k+1) - T changed sign since the last round
-// (oscillating across a latent heat's edge) is linearised with the secant capacity (H(T) - H_k) / (T - T_k) over its
-// last round instead of the tangent one, exact at the temperature it last solved for. `on_curve`: the iterate holds
-// the last solve's update already. Counts the rounds and the steps left unconverged after kConvergedRounds.
+// linear solve to kConvergedSolveK (thermal_state.h). The round the iteration stops after is a choice made on a
+// threshold of 10 K; a fixed number of unconverged rounds is a continuous but, in the melt pool, extremely sensitive
+// function of the inputs (the term C_k' (T - T_k), where the capacity changes tenfold within a kelvin at the latent
+// heat's edges, multiplies a difference at each round), while the converged step is the root of the step's
+// equations, whose sensitivity is that of the equations (docs/THERMAL.md, "Differencing a run"). So these rounds and
+// their solves are no choices: any path to the root gives it. A cell whose mismatch T(H_k+1) - T changed sign since
+// the last round (oscillating across a latent heat's edge) is linearised with the secant capacity (H(T) - H_k) /
+// (T - T_k) over its last round instead of the tangent one, exact at the temperature it last solved for.
+// `on_curve`: the iterate holds the last solve's update already. Counts the rounds, and the steps left unconverged
+// after kConvergedRounds.
 void ConvergeStep(ThermalState& s, LevelSystem& L, StepRole role, int level, bool on_curve) {
   const std::size_t n = L.cells.size();
   if (n == 0) return;
