@@ -137,10 +137,10 @@ class ReplayCost : public ceres::CostFunction {
       std::vector<double> r_coarse(coarse_->size());
       twin::SolverChoices made;
       coarse_->Run(x.data(), r_coarse.data(), &made);
-      if (!Difference(*coarse_, x, std::make_shared<const twin::SolverChoices>(std::move(made)), &j)) {
+      if (!Difference(*coarse_, x, r_coarse, std::make_shared<const twin::SolverChoices>(std::move(made)), &j)) {
         return false;
       }
-    } else if (!Difference(residuals_, x, choices, &j)) {
+    } else if (!Difference(residuals_, x, r_new, choices, &j)) {
       return false;
     }
     point_x_ = x;
@@ -154,33 +154,30 @@ class ReplayCost : public ceres::CostFunction {
     return true;
   }
 
-  // Forward differences at `x` (from a replay there that made `choices`): the n perturbed replays and one at `x`, in
+  // Forward differences at `x` (residuals r there, from a replay that made `choices`): the n perturbed replays in
   // parallel, each following those choices (internal numerical differentiation: docs/THERMAL.md, "Differencing a
-  // run"), so that the difference sees the parameter's effect and none of the solver's switches. The replay at `x`
-  // is the base: a followed replay solves each step further than the recorded one did, so the differences are taken
-  // between followed replays only.
-  bool Difference(const ReplayResiduals& grid, const std::vector<double>& x,
+  // run"), so that the difference sees the parameter's effect and none of the solver's switches.
+  bool Difference(const ReplayResiduals& grid, const std::vector<double>& x, const std::vector<double>& r,
                   const std::shared_ptr<const twin::SolverChoices>& choices, std::vector<double>* j) const {
     const std::size_t m = grid.size();
-    std::vector<std::vector<double>> out(n_ + 1, std::vector<double>(m));
-    std::vector<double> step(n_ + 1, 0.0);
+    std::vector<std::vector<double>> out(n_, std::vector<double>(m));
+    std::vector<double> step(n_);
     for (int k = 0; k < n_; ++k) {
       const FreeParameter& f = residuals_.free(k);
       step[k] = (x[k] + 0.01) * f.scale > f.hi ? -0.01 : 0.01;  // backward at the upper bound
     }
-    std::vector<std::size_t> missing(n_ + 1, 0);
-    ParallelFor(static_cast<std::size_t>(n_ + 1), [&](std::size_t k) {
+    std::vector<std::size_t> missing(n_, 0);
+    ParallelFor(static_cast<std::size_t>(n_), [&](std::size_t k) {
       std::vector<double> xs = x;
-      if (k < static_cast<std::size_t>(n_)) xs[k] += step[k];
+      xs[k] += step[k];
       missing[k] = grid.Run(xs.data(), out[k].data(), nullptr, choices);
     });
-    for (int k = 0; k <= n_; ++k) {
+    for (int k = 0; k < n_; ++k) {
       if (&grid == &residuals_ && static_cast<long>(missing[k]) > first_missing_) return false;
     }
-    const std::vector<double>& base = out[static_cast<std::size_t>(n_)];
     j->assign(m * n_, 0.0);
     for (std::size_t row = 0; row < m; ++row) {
-      for (int k = 0; k < n_; ++k) (*j)[row * n_ + k] = (out[k][row] - base[row]) / step[k];
+      for (int k = 0; k < n_; ++k) (*j)[row * n_ + k] = (out[k][row] - r[row]) / step[k];
     }
     return true;
   }

@@ -1,7 +1,6 @@
 // A run that follows another's solver choices (ThermalSimulation::RecordChoices / FollowChoices): the same run
 // again bit for bit, and a continuous response to the heat and the losses, which a fit differences.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -54,37 +53,18 @@ void ExpectSameRecords(const std::vector<double>& a, const std::vector<double>& 
   }
 }
 
-// Recording changes nothing; following the record at the same values converges each step further, which moves the
-// readings by a fraction of a kelvin, and is the same run again bit for bit when repeated.
-TEST(ThermalChoices, FollowingItsOwnRecordConvergesTheSameRun) {
+// Recording changes nothing, and following the record at the same values gives the same run bit for bit.
+TEST(ThermalChoices, FollowingItsOwnRecordIsTheSameRun) {
   const ThermalSettings settings = testing::SmallBuildSettings();
-  ThermalSimulation free(settings), recording(settings), following(settings), again(settings);
+  ThermalSimulation free(settings), recording(settings), following(settings);
   const std::vector<double> plain = ChoiceBuild(free, 2000.0);
   recording.RecordChoices();
   const std::vector<double> recorded = ChoiceBuild(recording, 2000.0);
   auto choices = std::make_shared<const SolverChoices>(recording.TakeChoices());
   EXPECT_GT(choices->values.size(), 100u);
-  ExpectSameRecords(plain, recorded);
-  EXPECT_EQ(free.Stats().converging_rounds, 0u);
   following.FollowChoices(choices);
-  again.FollowChoices(choices);
-  const std::vector<double> followed = ChoiceBuild(following, 2000.0);
-  ExpectSameRecords(followed, ChoiceBuild(again, 2000.0));
-  EXPECT_GT(following.Stats().converging_rounds, 0u);
-  EXPECT_EQ(following.Stats().unconverged_steps, 0u);
-  // The largest differences in the plate (the first two probes) and in the deposit.
-  double plate = 0.0, deposit = 0.0;
-  for (std::size_t i = 0; i < followed.size(); ++i) {
-    ASSERT_EQ(std::isnan(followed[i]), std::isnan(recorded[i])) << i;
-    if (std::isnan(followed[i])) continue;
-    double& most = i % kChoiceProbes.size() < 2 ? plate : deposit;
-    most = std::max(most, std::abs(followed[i] - recorded[i]));
-  }
-  // Measured: 2.06 K in the plate (the probe 1 mm under the top, 10 mm beside the beads), 9.80 K in the deposit: the
-  // free run's enthalpy iteration stops within 10 K + 10 % of a step's change.
-  EXPECT_GT(plate, 0.0);
-  EXPECT_LT(plate, 5.0);
-  EXPECT_LT(deposit, 20.0);
+  ExpectSameRecords(plain, recorded);
+  ExpectSameRecords(recorded, ChoiceBuild(following, 2000.0));
   // A run longer than the recorded one runs out of choices.
   ThermalSimulation longer(settings);
   longer.FollowChoices(choices);
@@ -108,20 +88,21 @@ double NonLinearity(const std::vector<double>& base, const Run& run, double delt
   return worst / largest;
 }
 
-// How far the readings of followed runs of the small build over `layers` layers are from responding linearly to the
-// heat input (moved by 1e-4 and 1e-3), the convection and the table contact (1e-3 and 1e-2), the steps times
-// `scale`: NonLinearity of each, against a followed run at the recorded values.
-std::array<double, 3> FollowedNonLinearity(const ThermalSettings& settings, int layers, double scale = 1.0) {
+// Following the record, the readings respond to the heat input, the convection and the table contact nearly linearly
+// over changes of 0.1 % (heat) and 1 % (the losses): no switch of the solver moves them. Measured: 0.043, 0.0013 and
+// 0.034 (free runs of this build, making their own choices: 0.21, 0.15 and 0.41). The heat's residue is the melt
+// pool's: its readings at 1200-1740 degC, where the liquid's conductivity ramps fivefold across the mushy zone.
+TEST(ThermalChoices, FollowedRunsRespondContinuously) {
+  const ThermalSettings settings = testing::SmallBuildSettings();
   ThermalSimulation recording(settings);
   recording.RecordChoices();
-  ChoiceBuild(recording, 2000.0, layers);
+  const std::vector<double> base = ChoiceBuild(recording, 2000.0);
   auto choices = std::make_shared<const SolverChoices>(recording.TakeChoices());
   auto follow = [&](const ThermalSettings& changed, double heat_w) {
     ThermalSimulation sim(changed);
     sim.FollowChoices(choices);
-    return ChoiceBuild(sim, heat_w, layers);
+    return ChoiceBuild(sim, heat_w);
   };
-  const std::vector<double> base = follow(settings, 2000.0);
   // The runs with one setting scaled by 1 + d.
   auto scaled = [&](double ThermalSettings::*member) {
     return [&, member](double d) {
@@ -130,33 +111,9 @@ std::array<double, 3> FollowedNonLinearity(const ThermalSettings& settings, int 
       return follow(changed, 2000.0);
     };
   };
-  return {NonLinearity(base, [&](double d) { return follow(settings, 2000.0 * (1.0 + d)); }, 1e-4 * scale),
-          NonLinearity(base, scaled(&ThermalSettings::convection_w_m2k), 1e-3 * scale),
-          NonLinearity(base, scaled(&ThermalSettings::table_conductance_w_m2k), 1e-3 * scale)};
-}
-
-// Following the record, the readings respond to the heat input, the convection and the table contact nearly
-// linearly over changes of 0.1 % (heat) and 1 % (the losses): no switch of the solver moves them, and each step is
-// converged, so no round's linearisation multiplies a difference (docs/THERMAL.md, "Differencing a run"). Measured:
-// 0.033, 0.0003 and 0.0053 (free runs of this build, making their own choices: 0.21, 0.15 and 0.41; followed runs
-// that repeated the recorded rounds without converging: 0.043, 0.0013 and 0.034). The heat's residue is the melt
-// pool's readings, where the liquid's conductivity ramps fivefold across the mushy zone.
-TEST(ThermalChoices, FollowedRunsRespondContinuously) {
-  const std::array<double, 3> f = FollowedNonLinearity(testing::SmallBuildSettings(), 3);
-  EXPECT_LT(f[0], 0.1);
-  EXPECT_LT(f[1], 0.01);
-  EXPECT_LT(f[2], 0.02);
-}
-
-// The same over eight layers. Measured: 0.015, 0.0014 and 0.0048; with steps 10 and 100 times smaller 0.0016 /
-// 0.0009 / 0.0022 and 0.0002 / 0.0021 / 0.0023 (the converged steps' tolerances). Followed runs that repeated the
-// recorded rounds without converging: 0.027, 0.159 and 0.053, and with smaller steps no better (a response
-// continuous but, in the pool, too steep to difference).
-TEST(ThermalChoices, FollowedRunsRespondContinuouslyOverEightLayers) {
-  const std::array<double, 3> f = FollowedNonLinearity(testing::SmallBuildSettings(), 8);
-  EXPECT_LT(f[0], 0.05);
-  EXPECT_LT(f[1], 0.01);
-  EXPECT_LT(f[2], 0.02);
+  EXPECT_LT(NonLinearity(base, [&](double d) { return follow(settings, 2000.0 * (1.0 + d)); }, 1e-4), 0.1);
+  EXPECT_LT(NonLinearity(base, scaled(&ThermalSettings::convection_w_m2k), 1e-3), 0.01);
+  EXPECT_LT(NonLinearity(base, scaled(&ThermalSettings::table_conductance_w_m2k), 1e-3), 0.1);
 }
 
 }  // namespace

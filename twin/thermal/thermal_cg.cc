@@ -25,8 +25,7 @@ double Sum(const std::vector<double>& partial) {
 }
 
 // Conjugate gradients on the level's system from the scratch's x and r = b - A x, preconditioned by one multigrid
-// V-cycle (`multigrid`) or the diagonal, until every Jacobi correction |r_i / A_ii| is below the tolerance (the
-// settings' solver_tolerance_c, or kConvergedSolveK while a step converges further). Each
+// V-cycle (`multigrid`) or the diagonal, until every Jacobi correction |r_i / A_ii| is below the tolerance. Each
 // iteration takes one stencil product: p = z + beta p and A p = A z + beta (A p)_old in one pass. Returns the
 // iterations. With `same_faces` the cells are those of the last solve, whose grid coordinates L.ijk still holds.
 // With `fixed` > 0, exactly that many iterations (a run following choices), unless the search direction vanishes.
@@ -66,7 +65,7 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces, in
     });
     return Sum(w.part_a);
   };
-  const double tolerance = s.converging ? kConvergedSolveK : s.settings.solver_tolerance_c;
+  const double tolerance = s.settings.solver_tolerance_c;
   double rz = precondition();
   double beta = 0.0;
   int iterations = 0;
@@ -163,19 +162,17 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
     w.part_b[c] = rest;
   });
   // The preconditioner and the iteration count are choices (SolverChoices): a run following them takes the
-  // recorded ones, so that its result is a continuous function of the system. A step converging further
-  // (s.converging, ConvergeStep) makes neither choice: its solves go to kConvergedSolveK.
+  // recorded ones, so that its result is a continuous function of the system.
   int iterations = 0;
-  const bool chosen = !s.converging;
-  const bool following = chosen && FollowingChoices(s);
-  const bool stiff = n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness * Sum(w.part_b);
-  const bool multigrid = chosen ? ChooseCount(s, stiff) != 0 : stiff;
+  const bool following = FollowingChoices(s);
+  const bool multigrid = ChooseCount(s, n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness *
+                                                                                    Sum(w.part_b)) != 0;
   const int fixed = following ? ChooseCount(s, 0) : 0;
-  const double tolerance = s.converging ? kConvergedSolveK : s.settings.solver_tolerance_c;
-  if (fixed > 0 || (!following && *std::max_element(w.part_max.begin(), w.part_max.end()) > tolerance)) {
+  if (fixed > 0 || (!following && *std::max_element(w.part_max.begin(), w.part_max.end()) >
+                                       s.settings.solver_tolerance_c)) {
     iterations = Iterate(s, L, multigrid, same_faces, fixed);
   }
-  if (chosen && !following) ChooseCount(s, iterations);
+  if (!following) ChooseCount(s, iterations);
   std::copy(x, x + n, L.t_new.begin());
   return iterations;
 }

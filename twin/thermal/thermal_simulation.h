@@ -115,10 +115,6 @@ struct ThermalStats {
   // Level steps whose finer levels and corrector ran again over a larger finer region, the corrector having left
   // cells outside the maximum principle's bounds (docs/THERMAL.md, "Why the coupling between levels is monotone").
   std::size_t coupling_retries = 0;
-  // A run that follows choices: the enthalpy iteration's further rounds (each a linear solve) and the steps those
-  // rounds left unconverged (docs/THERMAL.md, "Differencing a run"); 0 in other runs.
-  std::size_t converging_rounds = 0;
-  std::size_t unconverged_steps = 0;
   // Cells a level's step left outside those bounds (within the step's accuracy, or after its retry) and repaired:
   // set to the bound, the energy from the cells around them (Shashkov & Wendroff 2004; docs/THERMAL.md).
   std::size_t coupling_repairs = 0;
@@ -198,11 +194,7 @@ class ThermalSimulation {
   SolverChoices TakeChoices();
   // From now on the solver makes the choices of `choices` instead of its own, in order: the run must be driven as the
   // recorded one was (the same settings but for the heat input and the boundary coefficients, and the same calls with
-  // the same arguments but for the heat). Each step's enthalpy iteration then goes on, past the recorded rounds,
-  // until the step's equations are solved to 1e-5 K, so that the temperatures are a smooth function of the heat and
-  // the coefficients: a followed run differs from the recorded one at the same values by up to the enthalpy
-  // iteration's tolerance (docs/THERMAL.md, "Differencing a run"). Throws InputError when the record runs out or
-  // does not fit the cells.
+  // the same arguments but for the heat). Throws InputError when the record runs out or does not fit the cells.
   void FollowChoices(std::shared_ptr<const SolverChoices> choices);
   EnergyBalance Energy() const;
   ThermalStats Stats() const;

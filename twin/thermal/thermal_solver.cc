@@ -18,11 +18,6 @@ namespace {
 // (hundreds of K of mismatch), not to polish micro steps.
 constexpr double kChordToleranceK = 10.0;
 constexpr int kChordRounds = 6;
-// A run that follows choices goes on after the enthalpy iteration's last round until every cell that must
-// converge maps back to within kConvergedK of its solved temperature (its linear solves to kConvergedSolveK), in at
-// most kConvergedRounds more rounds (ConvergeStep; docs/THERMAL.md, "Differencing a run").
-constexpr double kConvergedK = 1e-5;
-constexpr int kConvergedRounds = 40;
 // LocalBalance's bisection stops within this, K.
 constexpr double kBalanceToleranceK = 1e-3;
 // A face towards a cell that a finer level solves: no flux in this level's system (its energy arrives in inflow_j).
@@ -309,63 +304,6 @@ void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int leve
   });
 }
 
-// A step of a run that follows choices, after the enthalpy iteration's rounds: more rounds H_k+1 = H_k +
-// C_k (T - T_k) until every cell that must converge maps back to within kConvergedK of its solved temperature, each
-// linear solve to kConvergedSolveK (thermal_state.h). The round the iteration stops after is a choice made on a
-// threshold of 10 K; a fixed number of unconverged rounds is a continuous but, in the melt pool, extremely sensitive
-// function of the inputs (the term C_k' (T - T_k), where the capacity changes tenfold within a kelvin at the latent
-// heat's edges, multiplies a difference at each round), while the converged step is the root of the step's
-// equations, whose sensitivity is that of the equations (docs/THERMAL.md, "Differencing a run"). So these rounds and
-// their solves are no choices: any path to the root gives it. A cell whose mismatch T(H_k+1) - T changed sign since
-// the last round (oscillating across a latent heat's edge) is linearised with the secant capacity (H(T) - H_k) /
-// (T - T_k) over its last round instead of the tangent one, exact at the temperature it last solved for.
-// `on_curve`: the iterate holds the last solve's update already. Counts the rounds, and the steps left unconverged
-// after kConvergedRounds.
-void ConvergeStep(ThermalState& s, LevelSystem& L, StepRole role, int level, bool on_curve) {
-  const std::size_t n = L.cells.size();
-  if (n == 0) return;
-  const double storage_per_capacity = s.CellVolume() / L.seconds;
-  std::vector<double> last_mismatch(n, 0.0);
-  s.converging = true;
-  for (int round = 0;; ++round) {
-    std::vector<double> worst(Chunks(n), 0.0);
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t chunk) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const int c = L.cells[i];
-        if (!on_curve) {
-          s.iterate_h[c] += L.capacity[i] * (L.t_new[i] - s.chord[c]);
-          s.chord[c] = s.table[s.material[c]].Temperature(s.iterate_h[c], L.t_new[i]);
-        }
-        if (MustConverge(s, role, c, level)) worst[chunk] = std::max(worst[chunk], std::abs(s.chord[c] - L.t_new[i]));
-      }
-    });
-    on_curve = false;
-    if (*std::max_element(worst.begin(), worst.end()) <= kConvergedK) break;
-    if (round == kConvergedRounds) {
-      s.stats.unconverged_steps += 1;
-      break;
-    }
-    Relinearise(s, L);
-    ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const int c = L.cells[i];
-        const double mismatch = s.chord[c] - L.t_new[i];
-        const bool flipped = mismatch * last_mismatch[i] < 0.0;
-        last_mismatch[i] = mismatch;
-        if (!flipped || std::abs(mismatch) < 1e-9) continue;
-        const double capacity = (s.table[s.material[c]].Enthalpy(L.t_new[i]) - s.iterate_h[c]) / -mismatch;
-        const double storage = capacity * storage_per_capacity;
-        L.capacity[i] = capacity;
-        L.diagonal[i] = L.base_diagonal[i] + storage;
-        L.rhs[i] = L.base_rhs[i] + storage * s.chord[c] - storage_per_capacity * (s.iterate_h[c] - s.enthalpy[c]);
-      }
-    });
-    Count(s, level, n, SolveLevel(s, L, s.chord, true));
-    s.stats.converging_rounds += 1;
-  }
-  s.converging = false;
-}
-
 // Solves the level's backward-Euler step over the candidates: the system linearised at T_old or where
 // FirstLinearisation puts a cell (a corrector: at the predictor's last iterate, H_k and T_k = T(H_k), which the finer
 // levels leave to the cells outside their region),
@@ -384,8 +322,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
   std::vector<std::uint8_t> off(n);
-  bool on_curve = false;  // the iterate H_k, T_k holds the last solve's tangent update
-  for (int round = 0; round < kChordRounds && !on_curve; ++round) {
+  for (int round = 0; round < kChordRounds; ++round) {
     // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) {
@@ -402,8 +339,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
     });
     // Converged when no cell is off the curve (a run following choices: when the recorded run's round had none).
     ChooseFlags(s, off);
-    on_curve = std::none_of(off.begin(), off.end(), [](std::uint8_t v) { return v != 0; });
-    if (on_curve) break;
+    if (std::none_of(off.begin(), off.end(), [](std::uint8_t v) { return v != 0; })) return;
     // The cells off the curve are linearised next at their local balance instead (on the curve: H_k = H(T_k)).
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) {
@@ -416,7 +352,6 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
     Relinearise(s, L);
     Count(s, level, n, SolveLevel(s, L, s.chord, true));
   }
-  if (FollowingChoices(s)) ConvergeStep(s, L, role, level, on_curve);
 }
 
 // Fills the probe records wanted of `cell` at the batch boundaries in (m0, m1] of the level's step, which takes the

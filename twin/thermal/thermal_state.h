@@ -149,9 +149,6 @@ struct ColumnContact {
   double bottom_air = 1.0;    // share of the bottom face open to the air
 };
 
-// The linear solves' tolerance while a step converges further (ConvergeStep in thermal_solver.cc), K.
-constexpr double kConvergedSolveK = 1e-6;
-
 struct ThermalState {
   // As built, except ambient_c and table_c: the values SetBoundaryTemperatures last set, which the pieces queued from
   // then on carry (the enthalpy tables' references and the table body's start used the values built with).
@@ -229,9 +226,6 @@ struct ThermalState {
   // The solver's choices (SolverChoices): made freely, made and recorded, or followed from a record.
   enum class ChoiceMode { kFree, kRecord, kFollow };
   ChoiceMode choice_mode = ChoiceMode::kFree;
-  // A run following choices is converging a step further (ConvergeStep): its linear solves go to
-  // kConvergedSolveK and are not choices.
-  bool converging = false;
   SolverChoices recorded;
   std::shared_ptr<const SolverChoices> followed;
   std::size_t followed_at = 0;  // the next value of `followed`
