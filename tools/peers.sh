@@ -140,14 +140,15 @@ fi
 # FEniCSx setup includes its form compile on the first run (cached in ~/.cache/fenics afterwards; printed apart).
 # waam steps single-rate (the whole model every 0.4 s step, as FEniCSx); then, against the same FEniCSx run, with
 # each multirate stepping of WAAM_PEERS_THERMAL_MULTIRATE (waam_thermal_peer's stepping argument; "-" is the solver's
-# default), the probes recorded inside the batches as `waam replay` records them.
+# default), the probes recorded inside the batches as `waam replay` records them. Both sides run on one thread
+# (waam_thermal_peer's last argument; FEniCSx with OMP_NUM_THREADS=1), so their CPU times are one core's.
 thermal="$repo/tools/peers/thermal_wall.json"
 multirate=(${WAAM_PEERS_THERMAL_MULTIRATE:-- whole_step_s=0,far_step_s=1.2,near_step_s=0.4})
 [ -x build/analysis/benchmarks/waam_thermal_peer ] || cmake --build build --target waam_thermal_peer > /dev/null
 # thermal_pair <refine> <suffix>: waam single-rate, FEniCSx, the comparison, then waam's multirate steppings.
 thermal_pair() {
   local refine="$1" suffix="$2" n=0
-  build/analysis/benchmarks/waam_thermal_peer "$thermal" 0 "$refine" > "$out/thermal_waam$suffix.json" ||
+  build/analysis/benchmarks/waam_thermal_peer "$thermal" 0 "$refine" 1 > "$out/thermal_waam$suffix.json" ||
     { echo "peers: waam_thermal_peer failed (refine $refine)" >&2; exit 1; }
   OMP_NUM_THREADS=1 /usr/bin/python3 tools/peers/thermal_fenicsx.py "$thermal" --refine "$refine" \
     > "$out/thermal_fenicsx$suffix.json" 2> "$out/thermal_fenicsx$suffix.log" ||
@@ -157,7 +158,7 @@ thermal_pair() {
   echo "waam's multirate stepping against the same FEniCSx run:"
   for stepping in "${multirate[@]}"; do
     n=$((n + 1))
-    build/analysis/benchmarks/waam_thermal_peer "$thermal" "$stepping" "$refine" \
+    build/analysis/benchmarks/waam_thermal_peer "$thermal" "$stepping" "$refine" 1 \
       > "$out/thermal_waam${suffix}_multirate$n.json" ||
       { echo "peers: waam_thermal_peer $stepping failed (refine $refine)" >&2; exit 1; }
     /usr/bin/python3 tools/peers/thermal_compare.py "$out/thermal_waam${suffix}_multirate$n.json" \

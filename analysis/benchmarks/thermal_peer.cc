@@ -1,11 +1,13 @@
 // Peer driver: solves the conduction problem of tools/peers/thermal_wall.json on waam's thermal model
 // (twin::ThermalSimulation) and prints the probe histories as JSON, as tools/peers/thermal_fenicsx.py does for FEniCSx.
-// Usage: waam_thermal_peer <problem.json> [stepping [refine]]  (tools/peers.sh runs both and compares them).
+// Usage: waam_thermal_peer <problem.json> [stepping [refine [threads]]]  (tools/peers.sh runs both and compares them).
 // stepping: "-" (or none) for the solver's default multirate stepping (ThermalSettings), 0 to solve the whole model
 // every micro step (single-rate), a number for far_step_s, or key=value pairs (ApplyStepping). The probes are
 // recorded inside the solver's batches, so the multirate levels keep their steps. refine (default 1) splits each
 // problem cell into refine^3 cells with the same source: the heat of a step goes into the same 2 x 2 x 2 problem
-// cells, so the refined runs converge to the problem's answer.
+// cells, so the refined runs converge to the problem's answer. threads (default 0: all hardware threads) caps the
+// thread pool; tools/peers.sh passes 1, so that both sides' CPU times are one core's (FEniCSx runs one process with
+// OMP_NUM_THREADS=1, and a second thread's waits would count as CPU time too).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/core/files.h"
+#include "models/core/parallel.h"
 #include "models/thermal/material.h"
 #include "twin/thermal/thermal_simulation.h"
 
@@ -218,18 +221,38 @@ json Run(const json& spec, const std::string& stepping, int refine) {
           {"energy_relative_error", energy.RelativeError()}, {"time_s", times}, {"probes_c", history}};
 }
 
+// A whole-number argument, or an error naming it.
+int IntegerArgument(const char* text, const char* what) {
+  std::size_t used = 0;
+  int value = 0;
+  try {
+    value = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || text[used] != '\0') {
+    throw std::invalid_argument(std::string(what) + " '" + text + "': not a whole number");
+  }
+  return value;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 4) {
-    std::fprintf(stderr, "usage: waam_thermal_peer <problem.json> [stepping|- [refine]]\n");
+  if (argc < 2 || argc > 5) {
+    std::fprintf(stderr, "usage: waam_thermal_peer <problem.json> [stepping|- [refine [threads]]]\n");
     return 2;
   }
   try {
     const json spec = json::parse(waam::ReadFile(argv[1]));
-    const int refine = argc == 4 ? std::stoi(argv[3]) : 1;
+    const int refine = argc >= 4 ? IntegerArgument(argv[3], "refine") : 1;
     if (refine < 1) throw std::invalid_argument("refine must be >= 1");
-    std::cout << Run(spec, argc >= 3 ? std::string(argv[2]) : std::string(), refine).dump() << std::endl;
+    const int threads = argc == 5 ? IntegerArgument(argv[4], "threads") : 0;
+    if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all hardware threads)");
+    waam::SetThreadCount(threads);
+    json result = Run(spec, argc >= 3 ? std::string(argv[2]) : std::string(), refine);
+    result["threads"] = waam::ThreadCount();
+    std::cout << result.dump() << std::endl;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "waam_thermal_peer: %s\n", e.what());
     return 2;
