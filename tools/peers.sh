@@ -15,7 +15,7 @@
 #    and the 2 mm runs measured against those finer ones (which side the 2 mm difference comes from); with
 #    WAAM_PEERS_THERMAL_Q2=1 as well FEniCSx's Q2 elements on the 2 mm mesh as one more finer run (~80 s CPU).
 #    waam runs single-rate there, then with its multirate steppings (WAAM_PEERS_THERMAL_MULTIRATE, a list of
-#    waam_thermal_peer stepping arguments; default: the solver's default and one with 1.2 s far steps).
+#    waam_thermal_peer stepping arguments; default: the solver's default and two with 1.2 s and 1.6 s far steps).
 # Installs the peers it needs (apt-get, as root or through sudo); not part of tools/install_deps.sh.
 # Usage: tools/peers.sh [out_dir] (default out/peers; needs a built build/waam); WAAM_PEERS_ONLY=thermal runs the
 # FEniCSx comparison alone. Times are wall clock (the thermal comparison also prints CPU time), one run each; a ratio
@@ -143,7 +143,7 @@ fi
 # default), the probes recorded inside the batches as `waam replay` records them. Both sides run on one thread
 # (waam_thermal_peer's last argument; FEniCSx with OMP_NUM_THREADS=1), so their CPU times are one core's.
 thermal="$repo/tools/peers/thermal_wall.json"
-multirate=(${WAAM_PEERS_THERMAL_MULTIRATE:-- whole_step_s=0,far_step_s=1.2,near_step_s=0.4})
+multirate=(${WAAM_PEERS_THERMAL_MULTIRATE:-- whole_step_s=0,far_step_s=1.2,near_step_s=0.4 whole_step_s=0,far_step_s=1.6,near_step_s=0.4})
 [ -x build/analysis/benchmarks/waam_thermal_peer ] || cmake --build build --target waam_thermal_peer > /dev/null
 # thermal_pair <refine> <suffix>: waam single-rate, FEniCSx, the comparison, then waam's multirate steppings.
 thermal_pair() {
