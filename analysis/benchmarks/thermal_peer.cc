@@ -8,6 +8,7 @@
 // cells, so the refined runs converge to the problem's answer. threads (default 0: all hardware threads) caps the
 // thread pool; tools/peers.sh passes 1, so that both sides' CPU times are one core's (FEniCSx runs one process with
 // OMP_NUM_THREADS=1, and a second thread's waits would count as CPU time too).
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -222,16 +224,11 @@ json Run(const json& spec, const std::string& stepping, int refine) {
 }
 
 // A whole-number argument, or an error naming it.
-int IntegerArgument(const char* text, const char* what) {
-  std::size_t used = 0;
+int IntegerArgument(std::string_view text, const char* what) {
   int value = 0;
-  try {
-    value = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || text[used] != '\0') {
-    throw std::invalid_argument(std::string(what) + " '" + text + "': not a whole number");
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size()) {
+    throw std::invalid_argument(std::string(what) + " '" + std::string(text) + "': not a whole number (or too large)");
   }
   return value;
 }
@@ -248,7 +245,6 @@ int main(int argc, char** argv) {
     const int refine = argc >= 4 ? IntegerArgument(argv[3], "refine") : 1;
     if (refine < 1) throw std::invalid_argument("refine must be >= 1");
     const int threads = argc == 5 ? IntegerArgument(argv[4], "threads") : 0;
-    if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all hardware threads)");
     waam::SetThreadCount(threads);
     json result = Run(spec, argc >= 3 ? std::string(argv[2]) : std::string(), refine);
     result["threads"] = waam::ThreadCount();
