@@ -20,13 +20,16 @@ constexpr double kPoorCoarsening = 0.75;
 // a face at when its neighbour lies in another chunk; the loop reads without a branch. `inverse` holds 1 / A_ii.
 // The y and z faces are summed first and the x faces (the neighbours next in the sweep's order, just updated) last,
 // and the diagonal's inverse multiplies: the chain from one cell's new value to the next is a few operations long
-// instead of seven additions and a division.
+// instead of seven additions and a division. With `copied`, the copy behind the iterate already holds it (both zero
+// at the start of a cycle).
 void Sweep(const PaddedStencil& a, const std::vector<std::array<int, 6>>& sweep, const std::vector<double>& inverse,
-           const std::vector<double>& b, std::vector<double>& x, bool forward) {
+           const double* b, std::vector<double>& x, bool forward, bool copied = false) {
   const std::size_t n = a.size();
   const bool one_chunk = n <= kChunk;  // plain Gauss-Seidel: every face reads the iterate (the zero slot reads 0)
   const auto from = x.begin();
-  if (!one_chunk) std::copy(from, from + static_cast<std::ptrdiff_t>(n), from + static_cast<std::ptrdiff_t>(n + 1));
+  if (!one_chunk && !copied) {
+    std::copy(from, from + static_cast<std::ptrdiff_t>(n), from + static_cast<std::ptrdiff_t>(n + 1));
+  }
   const std::vector<std::array<int, 6>>& faces = one_chunk ? a.neighbour : sweep;
   double* v = x.data();
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -172,7 +175,6 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
   }
   levels_.back().parent.clear();
   Level& fine = levels_[0];
-  fine.b.resize(fine_->size());
   fine.residual.resize(fine_->size());
   fine.x.assign(2 * (fine_->size() + 1), 0.0);
   for (std::size_t l = 0; l < levels_.size(); ++l) levels_[l].sweep = SweepNeighbours(System(l));
@@ -210,7 +212,7 @@ void AdditiveCorrectionMultigrid::SumCoefficients(bool faces) {
 void AdditiveCorrectionMultigrid::Apply(const std::vector<double>& r, std::vector<double>& z) {
   Level& fine = levels_[0];
   const std::size_t n = fine_->size();
-  std::copy(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(n), fine.b.begin());
+  fine_b_ = r.data();  // the fine level's right-hand side, read in place
   Cycle(0);
   std::copy(fine.x.begin(), fine.x.begin() + static_cast<std::ptrdiff_t>(n), z.begin());
 }
@@ -219,25 +221,27 @@ void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
   Level& L = levels_[level];
   const PaddedStencil& a = System(level);
   const std::size_t n = a.size();
-  std::fill(L.x.begin(), L.x.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
+  const double* b = level == 0 ? fine_b_ : L.b.data();
+  // The iterate and the copy behind it (2 (n + 1) values) start at zero.
+  std::fill(L.x.begin(), L.x.end(), 0.0);
   if (level + 1 == levels_.size()) {
     // The coarsest level: symmetric Gauss-Seidel pairs from zero (a symmetric operator).
     for (int pass = 0; pass < 8; ++pass) {
-      Sweep(a, L.sweep, L.inverse, L.b, L.x, true);
-      Sweep(a, L.sweep, L.inverse, L.b, L.x, false);
+      Sweep(a, L.sweep, L.inverse, b, L.x, true, pass == 0);
+      Sweep(a, L.sweep, L.inverse, b, L.x, false);
     }
     return;
   }
-  Sweep(a, L.sweep, L.inverse, L.b, L.x, true);
+  Sweep(a, L.sweep, L.inverse, b, L.x, true, true);
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i) L.residual[i] = L.b[i] - a.Row(L.x.data(), i);
+    for (std::size_t i = begin; i < end; ++i) L.residual[i] = b[i] - a.Row(L.x.data(), i);
   });
   Level& coarse = levels_[level + 1];
   std::fill(coarse.b.begin(), coarse.b.end(), 0.0);
   for (std::size_t i = 0; i < n; ++i) coarse.b[L.parent[i]] += L.residual[i];
   Cycle(level + 1);
   for (std::size_t i = 0; i < n; ++i) L.x[i] += coarse.x[L.parent[i]];
-  Sweep(a, L.sweep, L.inverse, L.b, L.x, false);
+  Sweep(a, L.sweep, L.inverse, b, L.x, false);
 }
 
 }  // namespace waam::twin::internal

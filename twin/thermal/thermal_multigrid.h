@@ -71,7 +71,7 @@ class AdditiveCorrectionMultigrid {
     PaddedStencil system;  // empty on the fine level (its system is *fine_)
     std::vector<int> parent;  // per cell: its block's index in the next coarser level (empty on the coarsest)
     std::vector<double> inverse;  // 1 / the diagonal
-    std::vector<double> b, residual;
+    std::vector<double> b, residual;  // b: empty on the fine level (Apply's r is read in place)
     // 2 (n + 1) values: the iterate, its zero slot (0), and the iterate from before a sweep (Sweep).
     std::vector<double> x;
     std::vector<std::array<int, 6>> sweep;  // the faces a sweep over several chunks reads (SweepNeighbours)
@@ -87,6 +87,7 @@ class AdditiveCorrectionMultigrid {
   std::vector<std::array<int, 3>> ijk_;  // the fine cells' grid coordinates of the last structure built
   std::vector<std::array<int, 6>> neighbour_;  // ... and the fine system's faces
   const PaddedStencil* fine_ = nullptr;  // the fine system of the last Setup or SetDiagonal (read until the next)
+  const double* fine_b_ = nullptr;       // the right-hand side of the Apply running (its r)
   PaddedStencil scratch_;
 };
 

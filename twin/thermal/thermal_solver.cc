@@ -28,18 +28,19 @@ constexpr int kFinerCell = -2;
 constexpr int kCouplingRounds = 2;
 
 
-// Convection, radiation (linearised about the state's temperature t_old) and table (and clamp) losses of one face
-// at t, W, to the ambient and table temperatures of the level's step (L.ambient_c, L.table_c: the same values in the
-// system and in the energy accounts).
+// The losses of one boundary face, W.
 struct FaceLoss {
   double convection = 0.0, radiation = 0.0, table = 0.0;
 };
-FaceLoss LossOfFace(const ThermalState& s, const LevelSystem& L, int cell, int face, double t_old, double t) {
+
+// Convection, radiation (linearised about the state's temperature t_old) and table (and clamp) losses of one face
+// at t, W, to the ambient and table temperatures of the level's step (L.ambient_c, L.table_c: the same values in the
+// system and in the energy accounts), given the face's contact conductance and open share (FaceContact).
+FaceLoss LossAt(const ThermalState& s, const LevelSystem& L, int cell, double contact, double air, double t_old,
+                double t) {
   const ThermalSettings& st = s.settings;
   const double area = s.dx_m * s.dx_m;
   FaceLoss loss;
-  double contact = 0.0, air = 1.0;
-  s.FaceContact(cell, face, &contact, &air);
   loss.table = contact * area * (t - L.table_c);
   if (air <= 0.0) return loss;
   loss.convection = air * st.convection_w_m2k * area * (t - L.ambient_c);
@@ -51,11 +52,21 @@ FaceLoss LossOfFace(const ThermalState& s, const LevelSystem& L, int cell, int f
   return loss;
 }
 
-// d(loss)/dT of a boundary face and the loss at T = 0 degC of its linearisation, so loss(T) = slope T + offset.
+// The same with the face's contact looked up.
+FaceLoss LossOfFace(const ThermalState& s, const LevelSystem& L, int cell, int face, double t_old, double t) {
+  double contact = 0.0, air = 1.0;
+  s.FaceContact(cell, face, &contact, &air);
+  return LossAt(s, L, cell, contact, air, t_old, t);
+}
+
+// d(loss)/dT of a boundary face and the loss at T = 0 degC of its linearisation, so loss(T) = slope T + offset (the
+// contact looked up once for both).
 void LinearLoss(const ThermalState& s, const LevelSystem& L, int cell, int face, double t_old, double* slope,
                 double* offset) {
-  const FaceLoss at0 = LossOfFace(s, L, cell, face, t_old, 0.0);
-  const FaceLoss at1 = LossOfFace(s, L, cell, face, t_old, 1.0);
+  double contact = 0.0, air = 1.0;
+  s.FaceContact(cell, face, &contact, &air);
+  const FaceLoss at0 = LossAt(s, L, cell, contact, air, t_old, 0.0);
+  const FaceLoss at1 = LossAt(s, L, cell, contact, air, t_old, 1.0);
   *offset = at0.convection + at0.radiation + at0.table;
   *slope = at1.convection + at1.radiation + at1.table - *offset;
 }
@@ -77,8 +88,12 @@ constexpr std::array<std::uint8_t, 64> kBitCounts = [] {
 // The factor on the conductance of the face f between cells c and j (both present before micro step m1):
 // kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
+// The link bits of the faces across the edges of face f (all but f's own axis).
+constexpr std::array<std::uint8_t, 6> kAcross = {60, 60, 51, 51, 15, 15};
+static_assert(kAcross[0] == (63u & ~3u) && kAcross[2] == (63u & ~12u) && kAcross[4] == (63u & ~48u));
+
 double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
-  const unsigned across = 63u & ~(3u << (2 * (f / 2)));
+  const unsigned across = kAcross[static_cast<std::size_t>(f)];
   if (s.latest_born < m1 || ((s.pending[c] | s.pending[j]) & across) == 0) {
     // Every linked cell beyond the edges is present (none of them is laid later in the batch): the edges where the
     // two cells' links differ.
@@ -273,7 +288,8 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
 void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
   const double volume = s.CellVolume();
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t> balance(n, 0);
+  std::vector<std::uint8_t>& balance = L.flags;
+  balance.assign(n, 0);
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) L.t_new[i] = guess[L.cells[i]];
   });
@@ -321,7 +337,8 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t> off(n);
+  std::vector<std::uint8_t>& off = L.flags;  // FirstLinearisation is done with them
+  off.resize(n);
   for (int round = 0; round < kChordRounds; ++round) {
     // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -375,7 +392,8 @@ void Update(ThermalState& s, int level) {
   const std::size_t n = L.cells.size();
   const double dt = L.seconds;
   const double volume = s.CellVolume();
-  std::vector<double> dh(n, 0.0);
+  std::vector<double>& dh = L.dh;
+  dh.resize(n);  // every cell's is set below
   std::vector<UpdateAccount> part(Chunks(n));
   auto body = [&](std::size_t begin, std::size_t end, std::size_t chunk) {
     UpdateAccount acc;
