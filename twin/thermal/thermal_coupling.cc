@@ -40,13 +40,10 @@ CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int l
   CouplingSnapshot snap;
   snap.cells = L.cells;
   snap.predicted = L.t_new;
-  const std::size_t n = L.cells.size();
-  snap.values.resize(kSnapshotFields.size());
-  for (std::size_t k = 0; k < kSnapshotFields.size(); ++k) {
-    const std::vector<double>& field = s.*kSnapshotFields[k];
-    std::vector<double>& values = snap.values[k];
-    values.resize(n);
-    for (std::size_t i = 0; i < n; ++i) values[i] = field[static_cast<std::size_t>(L.cells[i])];
+  for (auto field : kSnapshotFields) {
+    std::vector<double>& values = snap.values.emplace_back();
+    values.reserve(L.cells.size());
+    for (int c : L.cells) values.push_back((s.*field)[c]);
   }
   for (int c : L.cells) {
     for (int f = 0; f < 6; ++f) {

@@ -212,16 +212,14 @@ void AdditiveCorrectionMultigrid::SumCoefficients(bool faces) {
 void AdditiveCorrectionMultigrid::Apply(const std::vector<double>& r, std::vector<double>& z) {
   Level& fine = levels_[0];
   const std::size_t n = fine_->size();
-  fine_b_ = r.data();  // the fine level's right-hand side, read in place
-  Cycle(0);
+  Cycle(0, r.data());  // the fine level's right-hand side, read in place
   std::copy(fine.x.begin(), fine.x.begin() + static_cast<std::ptrdiff_t>(n), z.begin());
 }
 
-void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
+void AdditiveCorrectionMultigrid::Cycle(std::size_t level, const double* b) {
   Level& L = levels_[level];
   const PaddedStencil& a = System(level);
   const std::size_t n = a.size();
-  const double* b = level == 0 ? fine_b_ : L.b.data();
   // The iterate and the copy behind it (2 (n + 1) values) start at zero.
   std::fill(L.x.begin(), L.x.end(), 0.0);
   if (level + 1 == levels_.size()) {
@@ -239,7 +237,7 @@ void AdditiveCorrectionMultigrid::Cycle(std::size_t level) {
   Level& coarse = levels_[level + 1];
   std::fill(coarse.b.begin(), coarse.b.end(), 0.0);
   for (std::size_t i = 0; i < n; ++i) coarse.b[L.parent[i]] += L.residual[i];
-  Cycle(level + 1);
+  Cycle(level + 1, coarse.b.data());
   for (std::size_t i = 0; i < n; ++i) L.x[i] += coarse.x[L.parent[i]];
   Sweep(a, L.sweep, L.inverse, b, L.x, false);
 }

@@ -80,14 +80,13 @@ class AdditiveCorrectionMultigrid {
   void BuildStructure(const std::vector<std::array<int, 3>>& ijk);
   void SumCoefficients(bool faces);
   void InvertDiagonals();
-  void Cycle(std::size_t level);
+  void Cycle(std::size_t level, const double* b);  // b: the level's right-hand side
   const PaddedStencil& System(std::size_t level) const { return level == 0 ? *fine_ : levels_[level].system; }
 
   std::vector<Level> levels_;  // levels_[0] is the fine system
   std::vector<std::array<int, 3>> ijk_;  // the fine cells' grid coordinates of the last structure built
   std::vector<std::array<int, 6>> neighbour_;  // ... and the fine system's faces
   const PaddedStencil* fine_ = nullptr;  // the fine system of the last Setup or SetDiagonal (read until the next)
-  const double* fine_b_ = nullptr;       // the right-hand side of the Apply running (its r)
   PaddedStencil scratch_;
 };
 

@@ -85,13 +85,16 @@ constexpr std::array<std::uint8_t, 64> kBitCounts = [] {
   return counts;
 }();
 
+// The link bits of the faces across the edges of face f (the faces off f's own axis).
+constexpr std::array<std::uint8_t, 6> kAcross = [] {
+  std::array<std::uint8_t, 6> across{};
+  for (unsigned f = 0; f < 6; ++f) across[f] = static_cast<std::uint8_t>(63u & ~(3u << (2 * (f / 2))));
+  return across;
+}();
+
 // The factor on the conductance of the face f between cells c and j (both present before micro step m1):
 // kReentrantFaceFactor for each of the face's four edges where exactly one of the two cells beyond it (c's and j's
 // neighbours across the edge) is present, i.e. three of the four cells around the edge are metal.
-// The link bits of the faces across the edges of face f (all but f's own axis).
-constexpr std::array<std::uint8_t, 6> kAcross = {60, 60, 51, 51, 15, 15};
-static_assert(kAcross[0] == (63u & ~3u) && kAcross[2] == (63u & ~12u) && kAcross[4] == (63u & ~48u));
-
 double EdgeFactor(const ThermalState& s, int c, int j, int f, int m1) {
   const unsigned across = kAcross[static_cast<std::size_t>(f)];
   if (s.latest_born < m1 || ((s.pending[c] | s.pending[j]) & across) == 0) {
@@ -288,8 +291,7 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
 void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
   const double volume = s.CellVolume();
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t>& balance = L.flags;
-  balance.assign(n, 0);
+  std::vector<std::uint8_t> balance(n, 0);
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) L.t_new[i] = guess[L.cells[i]];
   });
@@ -337,8 +339,7 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t>& off = L.flags;  // FirstLinearisation is done with them
-  off.resize(n);
+  std::vector<std::uint8_t> off(n);
   for (int round = 0; round < kChordRounds; ++round) {
     // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -392,8 +393,7 @@ void Update(ThermalState& s, int level) {
   const std::size_t n = L.cells.size();
   const double dt = L.seconds;
   const double volume = s.CellVolume();
-  std::vector<double>& dh = L.dh;
-  dh.resize(n);  // every cell's is set below
+  std::vector<double> dh(n, 0.0);
   std::vector<UpdateAccount> part(Chunks(n));
   auto body = [&](std::size_t begin, std::size_t end, std::size_t chunk) {
     UpdateAccount acc;

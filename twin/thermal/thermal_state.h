@@ -130,8 +130,6 @@ struct LevelSystem : StencilSystem {
   AdditiveCorrectionMultigrid multigrid;
   LevelScratch scratch;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
-  std::vector<double> dh;                              // J/m^3: the update's enthalpy change of each cell (Update)
-  std::vector<std::uint8_t> flags;                     // per cell: the enthalpy iteration's flags of the step's rounds
   double seconds = 0.0;
   double end_time_s = 0.0;
   // The ambient and table temperatures the step uses (time means over its micro steps) in its system and its losses,
