@@ -72,7 +72,7 @@ void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {
 // finer levels use time means): none may lie below the least of those values, nor above the greatest unless a
 // cell has a source. The finer levels' energy, taken at a fixed boundary line, breaks it where that line runs away
 // from what the coarse cell did (docs/THERMAL.md, "Why the coupling between levels is monotone"). Finds the cells
-// outside those bounds by more than the slack (one solver tolerance and, with latent heat, the enthalpy
+// outside those bounds by more than the slack (kCouplingSlackK and, with latent heat, the enthalpy
 // iteration's own mismatch |T(H) - T_solved|). `local_of` is scratch (all kNoCell), returned so.
 CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const CouplingSnapshot& snap, int level,
                                  std::vector<int>& local_of) {
@@ -103,13 +103,13 @@ CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const Co
   }
   check.low = low;
   check.high = high;
-  const double slack = s.settings.solver_tolerance_c;
+  const double slack = kCouplingSlackK;
   for (std::size_t i = 0; i < L.cells.size(); ++i) {
     const int c = L.cells[i];
     const double t = s.temperature[c];
     const double margin = slack + std::abs(t - L.t_new[i]);
     const double excursion = std::max(low - t, check.source ? 0.0 : t - high);
-    if (excursion > s.settings.solver_tolerance_c) check.outside.push_back(c);
+    if (excursion > kCouplingSlackK) check.outside.push_back(c);
     if (excursion > margin) {
       check.violations.push_back(c);
       check.worst = std::max(check.worst, excursion);

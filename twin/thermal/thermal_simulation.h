@@ -80,7 +80,10 @@ struct ThermalSettings {
   double arc_radius_mm = 12.0;              // reach of the micro steps' region from the bead laid in a near step, mm
   double max_step_s = 10.0;                 // longest step while no arc burns, s
   double step_growth = 1.5;                 // each step with no arc at most this times the previous one
-  double solver_tolerance_c = 0.01;         // CG stops when every Jacobi correction is below this, K
+  // CG stops when every Jacobi correction is below this, K. Tighter than the accuracy a step needs: a run that follows
+  // another's solver choices repeats its iteration counts, and the residual left at 0.01 K grew from step to step in
+  // the melt pool of such runs (docs/THERMAL.md, "Differencing a run").
+  double solver_tolerance_c = 0.001;
 };
 
 // The table body's box in the part frame, mm: under the plate, table_margin_mm wider on every side, table_thickness_mm

@@ -35,6 +35,10 @@ constexpr int kSubstrate = 1;  // material index of the plate
 constexpr double kStepErrorK = 1.0;
 // ... or this share of the cell's enthalpy above its start (its rise, at the reference capacity), whichever is larger.
 constexpr double kStepErrorShare = 0.02;
+// How far, K, a corrected temperature may lie outside the maximum principle's bounds before the coupling's check
+// counts it (CouplingViolations): ten of the linear solver's default tolerance, so that no solve's own residual is
+// repaired.
+constexpr double kCouplingSlackK = 0.01;
 
 // Cells per chunk of the deterministic parallel loops: every reduction sums per-chunk partials in chunk order, and
 // the chunks do not depend on the thread count, so the results are bit-identical on any number of threads.
