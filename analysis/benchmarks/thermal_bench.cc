@@ -92,6 +92,7 @@ void BM_ThermalBuildHour(benchmark::State& state) {
     state.counters["steps"] = static_cast<double>(stats.steps);
     state.counters["iterations"] = static_cast<double>(stats.iterations);
     state.counters["coupling_retries"] = static_cast<double>(stats.coupling_retries);
+    state.counters["unconverged_cells"] = static_cast<double>(stats.unconverged_cells);
     state.counters["coupling_repairs"] = static_cast<double>(stats.coupling_repairs);
     // Per multirate level: cells x solves (millions), solves, and CG iterations per solve.
     for (std::size_t l = 0; l < stats.level_solves.size(); ++l) {

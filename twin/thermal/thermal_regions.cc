@@ -19,6 +19,22 @@ void Join(ThermalState& s, int c, int level, std::vector<int>& near) {
   s.depth[c] = level + 1;
 }
 
+// Joins the `cells` still left to the level, then one cell of margin around them, then closes the region.
+void JoinWithMargin(ThermalState& s, int level, int m1, const std::vector<int>& cells, std::vector<int>& near) {
+  const std::size_t first = near.size();
+  for (int c : cells) {
+    if (s.depth[c] == level) Join(s, c, level, near);
+  }
+  const std::size_t joined = near.size();
+  for (std::size_t q = first; q < joined; ++q) {
+    for (int f = 0; f < 6; ++f) {
+      const int j = s.neighbour[near[q]][f];
+      if (Outside(s, j, level, m1)) Join(s, j, level, near);
+    }
+  }
+  CloseFinerRegion(s, near, first, level, m1);
+}
+
 }  // namespace
 
 // The closing (declared in thermal_state.h). Why: a coarse cell wrapped in finer ones is a Dirichlet value to them
@@ -67,7 +83,6 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
 void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near) {
   const LevelSystem& L = s.levels[level];
   const double dt = L.seconds;
-  const std::size_t first = near.size();
   std::vector<int> inaccurate;
   for (int c : L.cells) {
     if (s.depth[c] != level || FollowingChoices(s)) continue;
@@ -78,18 +93,12 @@ void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near) {
     }
   }
   ChooseList(s, inaccurate, s.grid_of.size());  // which cells are inaccurate is a choice (SolverChoices)
-  for (int c : inaccurate) {
-    if (s.depth[c] == level) Join(s, c, level, near);
-  }
-  // One cell of margin around the inaccurate cells, then the closing.
-  const std::size_t joined = near.size();
-  for (std::size_t q = first; q < joined; ++q) {
-    for (int f = 0; f < 6; ++f) {
-      const int j = s.neighbour[near[q]][f];
-      if (Outside(s, j, level, L.m1)) Join(s, j, level, near);
-    }
-  }
-  CloseFinerRegion(s, near, first, level, L.m1);
+  JoinWithMargin(s, level, L.m1, inaccurate, near);
+}
+
+void AddUnconvergedCells(ThermalState& s, int level, const std::vector<int>& cells, std::vector<int>& near) {
+  s.stats.unconverged_cells += cells.size();
+  JoinWithMargin(s, level, s.levels[level].m1, cells, near);
 }
 
 }  // namespace waam::twin::internal

@@ -121,6 +121,9 @@ struct ThermalStats {
   // Cells a level's step left outside those bounds (within the step's accuracy, or after its retry) and repaired:
   // set to the bound, the energy from the cells around them (Shashkov & Wendroff 2004; docs/THERMAL.md).
   std::size_t coupling_repairs = 0;
+  // Cells a level's predictor left off the enthalpy curve after its first solve and moved to its finer levels
+  // instead of solving the level's region again (docs/THERMAL.md, "Discretisation").
+  std::size_t unconverged_cells = 0;
 };
 
 // The solver's discrete choices over a run, in the order it made them (docs/THERMAL.md, "Differencing a run"):

@@ -329,9 +329,12 @@ void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int leve
 // kChordToleranceK + 10 % of its change over the step away from the solved T (a cell melting or freezing in the
 // step), again linearised at that enthalpy (Relinearise): the nonlinear step converged (on the cells MustConverge
 // names), so that the latent heat cannot be jumped over. `guess` is the first guess by active cell. Only the
-// capacity changes between the rounds, so the conductances and losses are assembled once.
+// capacity changes between the rounds, so the conductances and losses are assembled once. With `unconverged` (a
+// predictor whose level has finer levels in this step) there is no second round: the cells off the curve after the
+// first solve are appended to it, for the finer levels to take through the latent heat in their shorter steps
+// (AddUnconvergedCells), and the step stands for the others.
 void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1, StepRole role,
-               const std::vector<double>& guess, std::vector<int>& local_of) {
+               const std::vector<double>& guess, std::vector<int>& local_of, std::vector<int>* unconverged = nullptr) {
   LevelSystem& L = s.levels[level];
   const bool corrector = role == StepRole::kCorrector;
   Assemble(s, level, candidates, m0, m1, corrector, local_of);
@@ -358,6 +361,13 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
     // Converged when no cell is off the curve (a run following choices: when the recorded run's round had none).
     ChooseFlags(s, off);
     if (std::none_of(off.begin(), off.end(), [](std::uint8_t v) { return v != 0; })) return;
+    if (unconverged != nullptr) {
+      // A predictor with finer levels: the cells off the curve go to them (AddUnconvergedCells), the rest stand.
+      for (std::size_t i = 0; i < n; ++i) {
+        if (off[i] != 0) unconverged->push_back(L.cells[i]);
+      }
+      return;
+    }
     // The cells off the curve are linearised next at their local balance instead (on the curve: H_k = H(T_k)).
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) {
@@ -561,8 +571,12 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
   for (int c : present) s.depth[c] = level;
   std::vector<int> near;
   if (!finest) near = FinerRegion(s, present, level, m0, m1, s.level_radius_mm[level + 1]);
-  SolveStep(s, level, candidates, m0, m1, StepRole::kPredictor, s.guess, local_of);
-  if (!finest) AddInaccurateCells(s, level, near);
+  std::vector<int> unconverged;
+  SolveStep(s, level, candidates, m0, m1, StepRole::kPredictor, s.guess, local_of, finest ? nullptr : &unconverged);
+  if (!finest) {
+    AddUnconvergedCells(s, level, unconverged, near);
+    AddInaccurateCells(s, level, near);
+  }
   for (int c : L.cells) s.depth[c] = level;
   if (near.empty()) {
     Update(s, level);

@@ -281,6 +281,12 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
 // predicted one), with their face neighbours, then closes the region as FinerRegion does; marks them depth = level + 1.
 void AddInaccurateCells(ThermalState& s, int level, std::vector<int>& near);
 
+// After the predictor of level `level`: adds to `near` the `cells` still left to the level (depth == level) whose
+// enthalpy iteration the predictor did not converge (SolveStep), with their face neighbours, and closes the region
+// as FinerRegion does; marks them depth = level + 1. The finer levels' shorter steps take them through the latent
+// heat instead of the level's re-solves of its whole region (docs/THERMAL.md, "Discretisation").
+void AddUnconvergedCells(ThermalState& s, int level, const std::vector<int>& cells, std::vector<int>& near);
+
 // Closes the finer region `near` of level `level + 1` (cells marked depth = level + 1) from its entry `from` on:
 // repeatedly joins every cell of `level` (depth == level, present before micro step m1) with at least half of its
 // present neighbours in the region. Cells that join are appended to `near`.
