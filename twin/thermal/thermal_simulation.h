@@ -76,7 +76,7 @@ struct ThermalSettings {
   double whole_step_s = 32.0;               // s; 0 (or <= far_step_s): no such level
   double whole_radius_mm = 48.0;            // mm, >= near_radius_mm
   double near_step_s = 1.0;                 // step of the region near the arc, s
-  double near_radius_mm = 24.0;             // that region's reach from the bead laid in a far step, mm
+  double near_radius_mm = 16.0;             // that region's reach from the bead laid in a far step, mm
   double arc_radius_mm = 12.0;              // reach of the micro steps' region from the bead laid in a near step, mm
   double max_step_s = 10.0;                 // longest step while no arc burns, s
   double step_growth = 1.5;                 // each step with no arc at most this times the previous one
