@@ -144,7 +144,7 @@ fi
 # (waam_thermal_peer's last argument; FEniCSx with OMP_NUM_THREADS=1), so their CPU times are one core's.
 thermal="$repo/tools/peers/thermal_wall.json"
 multirate=(${WAAM_PEERS_THERMAL_MULTIRATE:--
-  whole_step_s=0,far_step_s=1.2,near_step_s=0.4 whole_step_s=0,far_step_s=1.6,near_step_s=0.4})
+  whole_step_s=0,far_step_s=1.2,near_step_s=0.4,near_radius_mm=24 whole_step_s=0,far_step_s=1.6,near_step_s=0.4,near_radius_mm=24})
 [ -x build/analysis/benchmarks/waam_thermal_peer ] || cmake --build build --target waam_thermal_peer > /dev/null
 # thermal_pair <refine> <suffix>: waam single-rate, FEniCSx, the comparison, then waam's multirate steppings.
 thermal_pair() {
