@@ -103,11 +103,10 @@ CouplingCheck CouplingViolations(ThermalState& s, const LevelSystem& L, const Co
   }
   check.low = low;
   check.high = high;
-  const double slack = kCouplingSlackK;
   for (std::size_t i = 0; i < L.cells.size(); ++i) {
     const int c = L.cells[i];
     const double t = s.temperature[c];
-    const double margin = slack + std::abs(t - L.t_new[i]);
+    const double margin = kCouplingSlackK + std::abs(t - L.t_new[i]);
     const double excursion = std::max(low - t, check.source ? 0.0 : t - high);
     if (excursion > kCouplingSlackK) check.outside.push_back(c);
     if (excursion > margin) {
