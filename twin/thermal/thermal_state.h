@@ -120,7 +120,19 @@ struct LevelScratch {
   std::vector<double> x, r, ap;              // degC, W, W
   std::vector<double> inverse_diagonal;      // K/W
   std::vector<double> part_a, part_b, part_max;  // per-chunk partial sums and maxima
-  bool multigrid_faces = false;  // the level's multigrid was set up on this stencil's cells, faces and conductances
+  // Whether the stencil, the level's multigrid and the symmetric Gauss-Seidel system below were built on the cells,
+  // faces and conductances of the level's last system (a nonlinear round changes only the diagonal).
+  bool stencil_faces = false, multigrid_faces = false, sgs_faces = false;
+  // The symmetric Gauss-Seidel preconditioner's system (thermal_cg.cc): the cells in wavefront order (order[k] is the
+  // local index of the k-th), and per position k the lower faces (-x, -y, -z: earlier positions) and the upper ones
+  // (+x, +y, +z: later positions), each a position or the zero slot n with conductance 0.
+  std::vector<int> order;
+  std::vector<int> sgs_start, sgs_at;  // scratch of the sort
+  std::vector<std::array<int, 3>> lower, upper;
+  std::vector<std::array<double, 3>> lower_g, upper_g;
+  std::vector<double> sgs_diagonal, sgs_inverse;     // W/K, K/W in grid order
+  std::vector<double> sgs_x, sgs_t, sgs_s, sgs_r;    // degC, degC, degC, W: the iterate, the solves' vectors, r
+  std::vector<double> sgs_rh, sgs_z, sgs_p, sgs_q, sgs_et;  // the transformed system's vectors
 };
 
 // One level of the multirate scheme: its region (active cells, in solve order) and its backward-Euler system.
@@ -182,6 +194,7 @@ struct ThermalState {
 
   // Active cells (ids in the order they switched on).
   std::vector<int> grid_of;
+  std::vector<int> plane;           // i + j + k of the cell's grid coordinates (thermal_cg.cc's wavefront order)
   std::vector<std::uint8_t> material;
   std::vector<std::array<int, 6>> neighbour;  // active-cell id across -x, +x, -y, +y, -z, +z, or kNoCell
   std::vector<int> born;            // index of the micro step of the pending batch that lays it; -1 = present
