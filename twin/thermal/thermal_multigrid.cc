@@ -220,8 +220,8 @@ void AdditiveCorrectionMultigrid::Cycle(std::size_t level, const double* b) {
   Level& L = levels_[level];
   const PaddedStencil& a = System(level);
   const std::size_t n = a.size();
-  // The iterate and the copy behind it (2 (n + 1) values) start at zero.
-  std::fill(L.x.begin(), L.x.end(), 0.0);
+  // The iterate and the copy behind it (2 (n + 1) values) start at zero; a level of one chunk never reads the copy.
+  std::fill(L.x.begin(), L.x.begin() + static_cast<std::ptrdiff_t>(n <= kChunk ? n + 1 : L.x.size()), 0.0);
   if (level + 1 == levels_.size()) {
     // The coarsest level: symmetric Gauss-Seidel pairs from zero (a symmetric operator).
     for (int pass = 0; pass < 8; ++pass) {

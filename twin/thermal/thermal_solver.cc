@@ -65,10 +65,18 @@ void LinearLoss(const ThermalState& s, const LevelSystem& L, int cell, int face,
                 double* offset) {
   double contact = 0.0, air = 1.0;
   s.FaceContact(cell, face, &contact, &air);
-  const FaceLoss at0 = LossAt(s, L, cell, contact, air, t_old, 0.0);
-  const FaceLoss at1 = LossAt(s, L, cell, contact, air, t_old, 1.0);
-  *offset = at0.convection + at0.radiation + at0.table;
-  *slope = at1.convection + at1.radiation + at1.table - *offset;
+  // LossAt's three terms, each linear in t, at their slope and their value at t = 0.
+  const double area = s.dx_m * s.dx_m;
+  *slope = contact * area;
+  *offset = -contact * area * L.table_c;
+  if (air <= 0.0) return;
+  const double h = air * s.settings.convection_w_m2k * area;
+  const double radiation = air * s.emissivity[s.material[cell]] * kStefanBoltzmann * area;
+  const double tk = t_old + kKelvin;
+  const double ta = L.ambient_c + kKelvin;
+  const double tk3 = tk * tk * tk;
+  *slope += h + radiation * 4.0 * tk3;
+  *offset += -h * L.ambient_c + radiation * (tk3 * tk - ta * ta * ta * ta - 4.0 * tk3 * t_old);
 }
 
 // kReentrantFaceFactor to the power 0..4.
