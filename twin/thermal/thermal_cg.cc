@@ -167,8 +167,8 @@ void OrderSymmetricGaussSeidel(const ThermalState& s, LevelSystem& L, bool same_
 // Runs `iterate(fixed)` unless the first guess already meets the tolerance (`worst`: its largest Jacobi correction),
 // with the iteration count a choice (SolverChoices): a run following choices takes the recorded count, so that its
 // result is a continuous function of the system. Returns the iterations.
-template <typename Iterate>
-int ChooseIterations(ThermalState& s, double worst, const Iterate& iterate) {
+template <typename Run>
+int ChooseIterations(ThermalState& s, double worst, const Run& iterate) {
   const bool following = FollowingChoices(s);
   const int fixed = following ? ChooseCount(s, 0) : 0;
   int iterations = 0;
@@ -177,33 +177,36 @@ int ChooseIterations(ThermalState& s, double worst, const Iterate& iterate) {
   return iterations;
 }
 
-// Solves the level's system into L.t_new from `guess` by conjugate gradients preconditioned by symmetric
-// Gauss-Seidel, M = (D - E) D^-1 (D - E^T) with A = D - E - E^T (E: the faces to lower cells, OrderSymmetricGaussSeidel),
-// by Eisenstat's trick (Eisenstat 1981, SIAM J. Sci. Stat. Comput. 2, 1-4; Saad 2003, "Iterative Methods for Sparse
-// Linear Systems", sec. 9.2.2): with K = D - E, CG preconditioned by D^-1 on B = K^-1 A K^-T, whose product
-// B p = t + K^-1 (p - D t), t = K^-T p, takes one backward and one forward triangular solve, together one stencil
-// product. The iterate x = K^-T y moves by alpha t; the true residual r = K r^ by -alpha (p - E t), E t summed in the
-// forward solve. Stops as Iterate does, when every Jacobi correction |r_i / A_ii| is below the tolerance (or after
-// the followed count). Serial: for systems under kParallelCells, which ForChunks runs on the calling thread anyway.
-// Returns the iterations.
-int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces) {
-  LevelScratch& w = L.scratch;
-  const std::size_t n = L.cells.size();
-  OrderSymmetricGaussSeidel(s, L, same_faces);
-  const int* order = w.order.data();
+// The transformed system's first residual r^ = K^-1 r (a forward solve) and z = D r^ (the Jacobi preconditioner of
+// B is D^-1), in the scratch's vectors of `n` cells; returns r^.z.
+double TransformResidual(LevelScratch& w, std::size_t n) {
+  double* rh = w.sgs_rh.data();
+  double rz = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::array<int, 3>& lo = w.lower[k];
+    const std::array<double, 3>& g = w.lower_g[k];
+    rh[k] = (w.sgs_r[k] + g[0] * rh[lo[0]] + g[1] * rh[lo[1]] + g[2] * rh[lo[2]]) * w.sgs_inverse[k];
+    w.sgs_z[k] = w.sgs_diagonal[k] * rh[k];
+    rz += rh[k] * w.sgs_z[k];
+  }
+  return rz;
+}
+
+// Conjugate gradients preconditioned by symmetric Gauss-Seidel, M = (D - E) D^-1 (D - E^T) with A = D - E - E^T (E:
+// the faces to lower cells, OrderSymmetricGaussSeidel), by Eisenstat's trick (Eisenstat 1981, SIAM J. Sci. Stat.
+// Comput. 2, 1-4; Saad 2003, "Iterative Methods for Sparse Linear Systems", sec. 9.2.2): with K = D - E, CG
+// preconditioned by D^-1 on B = K^-1 A K^-T, whose product B p = t + K^-1 (p - D t), t = K^-T p, takes one backward
+// and one forward triangular solve, together one stencil product. The iterate x = K^-T y moves by alpha t; the true
+// residual r = K r^ by -alpha (p - E t), E t summed in the forward solve. Works on the scratch's wavefront-ordered
+// vectors (w.sgs_x the iterate, w.sgs_r its residual) of `n` cells; stops as Iterate does, when every Jacobi
+// correction |r_i / A_ii| is below `tolerance`, or after `fixed` iterations (> 0). Returns the iterations.
+int IterateSymmetricGaussSeidel(LevelScratch& w, std::size_t n, double tolerance, int fixed) {
   const std::array<int, 3>* lower = w.lower.data();
   const std::array<int, 3>* upper = w.upper.data();
   const std::array<double, 3>* lower_g = w.lower_g.data();
   const std::array<double, 3>* upper_g = w.upper_g.data();
   const double* d = w.sgs_diagonal.data();
   const double* inv = w.sgs_inverse.data();
-  // Vectors read through a face hold n + 1 values, the last the zero slot; every other value is written before it
-  // is read.
-  for (std::vector<double>* v : {&w.sgs_x, &w.sgs_t, &w.sgs_s, &w.sgs_rh}) {
-    v->resize(n + 1);
-    (*v)[n] = 0.0;
-  }
-  for (std::vector<double>* v : {&w.sgs_r, &w.sgs_z, &w.sgs_p, &w.sgs_q, &w.sgs_et}) v->resize(n);
   double* x = w.sgs_x.data();
   double* r = w.sgs_r.data();
   double* t = w.sgs_t.data();
@@ -213,85 +216,96 @@ int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector
   double* p = w.sgs_p.data();
   double* q = w.sgs_q.data();
   double* et = w.sgs_et.data();
+  double rz = TransformResidual(w, n);
+  double beta = 0.0;
+  int done = 0;
+  const int most = fixed > 0 ? fixed : kMaxIterations;
+  while (done < most) {
+    // p = z + beta p and t = K^-T p (backward).
+    const bool first = done == 0;
+    for (std::size_t k = n; k-- > 0;) {
+      p[k] = first ? z[k] : z[k] + beta * p[k];
+      const std::array<int, 3>& up = upper[k];
+      const std::array<double, 3>& g = upper_g[k];
+      t[k] = (p[k] + g[0] * t[up[0]] + g[1] * t[up[1]] + g[2] * t[up[2]]) * inv[k];
+    }
+    // s = K^-1 (p - D t) (forward), q = B p = t + s, and E t. The sums run in two accumulators (even and odd
+    // positions): one chain of additions would make each cell wait for the last.
+    auto forward = [&](std::size_t k) {
+      const std::array<int, 3>& lo = lower[k];
+      const std::array<double, 3>& g = lower_g[k];
+      et[k] = g[0] * t[lo[0]] + g[1] * t[lo[1]] + g[2] * t[lo[2]];
+      sv[k] = (p[k] - d[k] * t[k] + g[0] * sv[lo[0]] + g[1] * sv[lo[1]] + g[2] * sv[lo[2]]) * inv[k];
+      q[k] = t[k] + sv[k];
+      return p[k] * q[k];
+    };
+    double pq_even = 0.0, pq_odd = 0.0;
+    std::size_t k = 0;
+    for (; k + 1 < n; k += 2) {
+      pq_even += forward(k);
+      pq_odd += forward(k + 1);
+    }
+    if (k < n) pq_even += forward(k);
+    const double pq = pq_even + pq_odd;
+    if (!(pq > 0.0)) break;  // the residual is zero already (only a followed count can ask for more)
+    const double alpha = rz / pq;
+    // x, r^ and r; z = D r^ and r^.z.
+    auto update = [&](std::size_t k, double* largest, double* rz_sum) {
+      x[k] += alpha * t[k];
+      rh[k] -= alpha * q[k];
+      r[k] -= alpha * (p[k] - et[k]);
+      *largest = std::max(*largest, std::abs(r[k] * inv[k]));
+      z[k] = d[k] * rh[k];
+      *rz_sum += rh[k] * z[k];
+    };
+    double largest_even = 0.0, largest_odd = 0.0, rz_even = 0.0, rz_odd = 0.0;
+    for (k = 0; k + 1 < n; k += 2) {
+      update(k, &largest_even, &rz_even);
+      update(k + 1, &largest_odd, &rz_odd);
+    }
+    if (k < n) update(k, &largest_even, &rz_even);
+    ++done;
+    if (fixed <= 0 && std::max(largest_even, largest_odd) <= tolerance) break;
+    const double rz_new = rz_even + rz_odd;
+    beta = rz_new / rz;
+    rz = rz_new;
+  }
+  return done;
+}
+
+// Solves the level's system into L.t_new from `guess` by IterateSymmetricGaussSeidel: the wavefront order and its
+// faces (OrderSymmetricGaussSeidel), the first guess and its residual in that order, the iterations (a choice,
+// ChooseIterations), the solution back in the level's order. Serial: for systems under kParallelCells, which
+// ForChunks runs on the calling thread anyway. Returns the iterations.
+int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces) {
+  LevelScratch& w = L.scratch;
+  const std::size_t n = L.cells.size();
+  OrderSymmetricGaussSeidel(s, L, same_faces);
+  // Vectors read through a face hold n + 1 values, the last the zero slot; every other value is written before it
+  // is read.
+  for (std::vector<double>* v : {&w.sgs_x, &w.sgs_t, &w.sgs_s, &w.sgs_rh}) {
+    v->resize(n + 1);
+    (*v)[n] = 0.0;
+  }
+  for (std::vector<double>* v : {&w.sgs_r, &w.sgs_z, &w.sgs_p, &w.sgs_q, &w.sgs_et}) v->resize(n);
+  const int* order = w.order.data();
+  double* x = w.sgs_x.data();
   for (std::size_t k = 0; k < n; ++k) x[k] = guess[L.cells[static_cast<std::size_t>(order[k])]];
   // The first residual and its largest Jacobi correction.
   double worst = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
-    const std::array<int, 3>& lo = lower[k];
-    const std::array<int, 3>& up = upper[k];
-    const std::array<double, 3>& gl = lower_g[k];
-    const std::array<double, 3>& gu = upper_g[k];
-    r[k] = L.rhs[static_cast<std::size_t>(order[k])] - d[k] * x[k] + (gl[0] * x[lo[0]] + gl[1] * x[lo[1]] +
-                                                                       gl[2] * x[lo[2]]) +
-           (gu[0] * x[up[0]] + gu[1] * x[up[1]] + gu[2] * x[up[2]]);
-    worst = std::max(worst, std::abs(r[k] * inv[k]));
+    const std::array<int, 3>& lo = w.lower[k];
+    const std::array<int, 3>& up = w.upper[k];
+    const std::array<double, 3>& gl = w.lower_g[k];
+    const std::array<double, 3>& gu = w.upper_g[k];
+    double& r = w.sgs_r[k];
+    r = L.rhs[static_cast<std::size_t>(order[k])] - w.sgs_diagonal[k] * x[k] +
+        (gl[0] * x[lo[0]] + gl[1] * x[lo[1]] + gl[2] * x[lo[2]]) +
+        (gu[0] * x[up[0]] + gu[1] * x[up[1]] + gu[2] * x[up[2]]);
+    worst = std::max(worst, std::abs(r * w.sgs_inverse[k]));
   }
   const int iterations = ChooseIterations(s, worst, [&](int fixed) {
-    // r^ = K^-1 r (forward), z = D r^ (the Jacobi preconditioner of B is D^-1).
-    double rz = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::array<int, 3>& lo = lower[k];
-      const std::array<double, 3>& g = lower_g[k];
-      rh[k] = (r[k] + g[0] * rh[lo[0]] + g[1] * rh[lo[1]] + g[2] * rh[lo[2]]) * inv[k];
-      z[k] = d[k] * rh[k];
-      rz += rh[k] * z[k];
-    }
-    const double tolerance = s.settings.solver_tolerance_c;
-    double beta = 0.0;
-    int done = 0;
-    const int most = fixed > 0 ? fixed : kMaxIterations;
-    while (done < most) {
-      // p = z + beta p and t = K^-T p (backward).
-      const bool first = done == 0;
-      for (std::size_t k = n; k-- > 0;) {
-        p[k] = first ? z[k] : z[k] + beta * p[k];
-        const std::array<int, 3>& up = upper[k];
-        const std::array<double, 3>& g = upper_g[k];
-        t[k] = (p[k] + g[0] * t[up[0]] + g[1] * t[up[1]] + g[2] * t[up[2]]) * inv[k];
-      }
-      // s = K^-1 (p - D t) (forward), q = B p = t + s, and E t. The sums run in two accumulators (even and odd
-      // positions): one chain of additions would make each cell wait for the last.
-      auto forward = [&](std::size_t k) {
-        const std::array<int, 3>& lo = lower[k];
-        const std::array<double, 3>& g = lower_g[k];
-        et[k] = g[0] * t[lo[0]] + g[1] * t[lo[1]] + g[2] * t[lo[2]];
-        sv[k] = (p[k] - d[k] * t[k] + g[0] * sv[lo[0]] + g[1] * sv[lo[1]] + g[2] * sv[lo[2]]) * inv[k];
-        q[k] = t[k] + sv[k];
-        return p[k] * q[k];
-      };
-      double pq_even = 0.0, pq_odd = 0.0;
-      std::size_t k = 0;
-      for (; k + 1 < n; k += 2) {
-        pq_even += forward(k);
-        pq_odd += forward(k + 1);
-      }
-      if (k < n) pq_even += forward(k);
-      const double pq = pq_even + pq_odd;
-      if (!(pq > 0.0)) break;  // the residual is zero already (only a followed count can ask for more)
-      const double alpha = rz / pq;
-      // x, r^ and r; z = D r^ and r^.z.
-      auto update = [&](std::size_t k, double* largest, double* rz_sum) {
-        x[k] += alpha * t[k];
-        rh[k] -= alpha * q[k];
-        r[k] -= alpha * (p[k] - et[k]);
-        *largest = std::max(*largest, std::abs(r[k] * inv[k]));
-        z[k] = d[k] * rh[k];
-        *rz_sum += rh[k] * z[k];
-      };
-      double largest_even = 0.0, largest_odd = 0.0, rz_even = 0.0, rz_odd = 0.0;
-      for (k = 0; k + 1 < n; k += 2) {
-        update(k, &largest_even, &rz_even);
-        update(k + 1, &largest_odd, &rz_odd);
-      }
-      if (k < n) update(k, &largest_even, &rz_even);
-      const double largest = std::max(largest_even, largest_odd);
-      const double rz_new = rz_even + rz_odd;
-      ++done;
-      if (fixed <= 0 && largest <= tolerance) break;
-      beta = rz_new / rz;
-      rz = rz_new;
-    }
-    return done;
+    return IterateSymmetricGaussSeidel(w, n, s.settings.solver_tolerance_c, fixed);
   });
   for (std::size_t k = 0; k < n; ++k) L.t_new[static_cast<std::size_t>(order[k])] = x[k];
   return iterations;

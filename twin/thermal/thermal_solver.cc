@@ -33,30 +33,40 @@ struct FaceLoss {
   double convection = 0.0, radiation = 0.0, table = 0.0;
 };
 
-// Convection, radiation (linearised about the state's temperature t_old) and table (and clamp) losses of one face
-// at t, W, to the ambient and table temperatures of the level's step (L.ambient_c, L.table_c: the same values in the
-// system and in the energy accounts), given the face's contact conductance and open share (FaceContact).
-FaceLoss LossAt(const ThermalState& s, const LevelSystem& L, int cell, double contact, double air, double t_old,
-                double t) {
-  const ThermalSettings& st = s.settings;
+// Convection, radiation (linearised about the state's temperature t_old) and table (and clamp) losses of one face,
+// each linear in the face's temperature t: loss = slope t + offset (W/K and W), to the ambient and table temperatures
+// of the level's step (L.ambient_c, L.table_c), given the face's contact conductance and open share (FaceContact).
+// The system's linearised loss (LinearLoss) and the energy accounts' (LossOfFace) both come from here, so they are
+// the same function of t.
+struct FaceLossLine {
+  FaceLoss slope, offset;
+};
+FaceLossLine LossLine(const ThermalState& s, const LevelSystem& L, int cell, double contact, double air,
+                      double t_old) {
   const double area = s.dx_m * s.dx_m;
-  FaceLoss loss;
-  loss.table = contact * area * (t - L.table_c);
-  if (air <= 0.0) return loss;
-  loss.convection = air * st.convection_w_m2k * area * (t - L.ambient_c);
-  const double eps = s.emissivity[s.material[cell]];
+  FaceLossLine line;
+  line.slope.table = contact * area;
+  line.offset.table = -contact * area * L.table_c;
+  if (air <= 0.0) return line;
+  const double h = air * s.settings.convection_w_m2k * area;
+  line.slope.convection = h;
+  line.offset.convection = -h * L.ambient_c;
+  const double radiation = air * s.emissivity[s.material[cell]] * kStefanBoltzmann * area;
   const double tk = t_old + kKelvin;
   const double ta = L.ambient_c + kKelvin;
-  loss.radiation =
-      air * eps * kStefanBoltzmann * area * (tk * tk * tk * tk - ta * ta * ta * ta + 4.0 * tk * tk * tk * (t - t_old));
-  return loss;
+  const double tk3 = tk * tk * tk;
+  line.slope.radiation = radiation * 4.0 * tk3;
+  line.offset.radiation = radiation * (tk3 * tk - ta * ta * ta * ta - 4.0 * tk3 * t_old);
+  return line;
 }
 
-// The same with the face's contact looked up.
+// The losses of face `face` of `cell` at t, W, its contact looked up.
 FaceLoss LossOfFace(const ThermalState& s, const LevelSystem& L, int cell, int face, double t_old, double t) {
   double contact = 0.0, air = 1.0;
   s.FaceContact(cell, face, &contact, &air);
-  return LossAt(s, L, cell, contact, air, t_old, t);
+  const FaceLossLine line = LossLine(s, L, cell, contact, air, t_old);
+  return {line.slope.convection * t + line.offset.convection, line.slope.radiation * t + line.offset.radiation,
+          line.slope.table * t + line.offset.table};
 }
 
 // d(loss)/dT of a boundary face and the loss at T = 0 degC of its linearisation, so loss(T) = slope T + offset (the
@@ -65,18 +75,9 @@ void LinearLoss(const ThermalState& s, const LevelSystem& L, int cell, int face,
                 double* offset) {
   double contact = 0.0, air = 1.0;
   s.FaceContact(cell, face, &contact, &air);
-  // LossAt's three terms, each linear in t, at their slope and their value at t = 0.
-  const double area = s.dx_m * s.dx_m;
-  *slope = contact * area;
-  *offset = -contact * area * L.table_c;
-  if (air <= 0.0) return;
-  const double h = air * s.settings.convection_w_m2k * area;
-  const double radiation = air * s.emissivity[s.material[cell]] * kStefanBoltzmann * area;
-  const double tk = t_old + kKelvin;
-  const double ta = L.ambient_c + kKelvin;
-  const double tk3 = tk * tk * tk;
-  *slope += h + radiation * 4.0 * tk3;
-  *offset += -h * L.ambient_c + radiation * (tk3 * tk - ta * ta * ta * ta - 4.0 * tk3 * t_old);
+  const FaceLossLine line = LossLine(s, L, cell, contact, air, t_old);
+  *slope = line.slope.convection + line.slope.radiation + line.slope.table;
+  *offset = line.offset.convection + line.offset.radiation + line.offset.table;
 }
 
 // kReentrantFaceFactor to the power 0..4.

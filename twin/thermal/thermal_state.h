@@ -130,7 +130,7 @@ struct LevelScratch {
   std::vector<int> sgs_start, sgs_at;  // scratch of the sort
   std::vector<std::array<int, 3>> lower, upper;
   std::vector<std::array<double, 3>> lower_g, upper_g;
-  std::vector<double> sgs_diagonal, sgs_inverse;     // W/K, K/W in grid order
+  std::vector<double> sgs_diagonal, sgs_inverse;     // W/K, K/W in that order
   std::vector<double> sgs_x, sgs_t, sgs_s, sgs_r;    // degC, degC, degC, W: the iterate, the solves' vectors, r
   std::vector<double> sgs_rh, sgs_z, sgs_p, sgs_q, sgs_et;  // the transformed system's vectors
 };
