@@ -36,15 +36,17 @@ double Bound(const ThermalState& s, int cell, double t) {
 }
 
 
-CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level) {
-  CouplingSnapshot snap;
+void TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level, CouplingSnapshot& snap) {
   snap.cells = L.cells;
   snap.predicted = L.t_new;
-  for (auto field : kSnapshotFields) {
-    std::vector<double>& values = snap.values.emplace_back();
-    values.reserve(L.cells.size());
-    for (int c : L.cells) values.push_back((s.*field)[c]);
+  snap.values.resize(kSnapshotFields.size());
+  for (std::size_t k = 0; k < kSnapshotFields.size(); ++k) {
+    const std::vector<double>& field = s.*kSnapshotFields[k];
+    std::vector<double>& values = snap.values[k];
+    values.resize(L.cells.size());
+    for (std::size_t i = 0; i < L.cells.size(); ++i) values[i] = field[L.cells[i]];
   }
+  snap.outside_inflow.clear();
   for (int c : L.cells) {
     for (int f = 0; f < 6; ++f) {
       const int j = s.neighbour[c][f];
@@ -52,7 +54,6 @@ CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int l
     }
   }
   snap.energy = s.energy;
-  return snap;
 }
 
 void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap) {

@@ -47,12 +47,12 @@ void Sweep(const PaddedStencil& a, const std::vector<std::array<int, 6>>& sweep,
   });
 }
 
-// The faces Sweep reads over more than one chunk: a neighbour in the cell's own chunk (or the zero slot n) as it is,
-// one in another chunk moved by n + 1 to its value from before the sweep. Empty for a system of one chunk.
-std::vector<std::array<int, 6>> SweepNeighbours(const PaddedStencil& a) {
+// The faces Sweep reads over more than one chunk, into `sweep`: a neighbour in the cell's own chunk (or the zero slot
+// n) as it is, one in another chunk moved by n + 1 to its value from before the sweep. Empty for a system of one chunk.
+void SweepNeighbours(const PaddedStencil& a, std::vector<std::array<int, 6>>& sweep) {
   const std::size_t n = a.size();
-  std::vector<std::array<int, 6>> sweep;
-  if (n <= kChunk) return sweep;
+  sweep.clear();
+  if (n <= kChunk) return;
   sweep.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     for (int f = 0; f < 6; ++f) {
@@ -61,7 +61,6 @@ std::vector<std::array<int, 6>> SweepNeighbours(const PaddedStencil& a) {
       sweep[i][f] = here ? static_cast<int>(u) : static_cast<int>(u + n + 1);
     }
   }
-  return sweep;
 }
 
 }  // namespace
@@ -116,18 +115,20 @@ bool AdditiveCorrectionMultigrid::SameStructure(const PaddedStencil& fine,
 }
 
 // The blocks of every level (Hutchinson & Raithby's coarse cells) and the coarse levels' faces; the coefficients
-// are left to SumCoefficients.
+// are left to SumCoefficients. The levels' vectors of the last structure are filled again (the structure changes
+// with nearly every step while metal is laid, and fresh vectors of that size cost a page fault per 4 kB).
 void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<int, 3>>& ijk) {
   ijk_ = ijk;
   neighbour_ = fine_->neighbour;
-  levels_.resize(1);
   levels_.reserve(32);
-  std::vector<std::array<int, 3>> coords = ijk;
-  std::vector<std::array<int, 3>> next;
-  std::vector<int> map;
+  std::vector<std::array<int, 3>>& coords = coords_;
+  std::vector<std::array<int, 3>>& next = next_coords_;
+  std::vector<int>& map = block_of_;
+  coords = ijk;
+  std::size_t used = 1;  // levels built
   while (true) {
-    const std::size_t n = System(levels_.size() - 1).size();
-    if (n <= kCoarsestCells || levels_.size() > 30) break;
+    const std::size_t n = System(used - 1).size();
+    if (n <= kCoarsestCells || used > 30) break;
     std::array<int, 3> lo = {coords[0][0] >> 1, coords[0][1] >> 1, coords[0][2] >> 1};
     std::array<int, 3> hi = lo;
     for (const auto& c : coords) {
@@ -138,7 +139,8 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
     }
     const std::size_t nx = hi[0] - lo[0] + 1, ny = hi[1] - lo[1] + 1, nz = hi[2] - lo[2] + 1;
     map.assign(nx * ny * nz, -1);
-    std::vector<int> parent(n);
+    std::vector<int>& parent = levels_[used - 1].parent;
+    parent.resize(n);
     next.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const std::array<int, 3> c = {coords[i][0] >> 1, coords[i][1] >> 1, coords[i][2] >> 1};
@@ -153,8 +155,9 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
     if (static_cast<double>(m) > kPoorCoarsening * static_cast<double>(n)) break;
     // A block's face f leads to the block holding the neighbour across face f of any of its cells (on the
     // structured grid that is one block).
-    const PaddedStencil& a = System(levels_.size() - 1);
-    Level coarse;
+    if (levels_.size() == used) levels_.emplace_back();  // reserved: references to the levels stay valid
+    const PaddedStencil& a = System(used - 1);
+    Level& coarse = levels_[used];
     PaddedStencil& c = coarse.system;
     const int pad = static_cast<int>(m);
     c.neighbour.assign(m, {pad, pad, pad, pad, pad, pad});
@@ -166,18 +169,18 @@ void AdditiveCorrectionMultigrid::BuildStructure(const std::vector<std::array<in
         if (j < n && parent[j] != parent[i]) c.neighbour[parent[i]][f] = parent[j];
       }
     }
-    levels_.back().parent = std::move(parent);
     coarse.b.resize(m);
     coarse.residual.resize(m);
     coarse.x.assign(2 * (m + 1), 0.0);
-    levels_.push_back(std::move(coarse));
     coords.swap(next);
+    ++used;
   }
+  levels_.resize(used);
   levels_.back().parent.clear();
   Level& fine = levels_[0];
   fine.residual.resize(fine_->size());
   fine.x.assign(2 * (fine_->size() + 1), 0.0);
-  for (std::size_t l = 0; l < levels_.size(); ++l) levels_[l].sweep = SweepNeighbours(System(l));
+  for (std::size_t l = 0; l < levels_.size(); ++l) SweepNeighbours(System(l), levels_[l].sweep);
 }
 
 // Hutchinson & Raithby eqs. 9-12: a block's equation is the sum of its cells' equations with one correction for

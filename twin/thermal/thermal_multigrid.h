@@ -88,6 +88,9 @@ class AdditiveCorrectionMultigrid {
   std::vector<std::array<int, 6>> neighbour_;  // ... and the fine system's faces
   const PaddedStencil* fine_ = nullptr;  // the fine system of the last Setup or SetDiagonal (read until the next)
   PaddedStencil scratch_;
+  // BuildStructure's scratch: a level's cells' and its blocks' grid coordinates, and the block at each coordinate.
+  std::vector<std::array<int, 3>> coords_, next_coords_;
+  std::vector<int> block_of_;
 };
 
 }  // namespace waam::twin::internal

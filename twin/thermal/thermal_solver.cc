@@ -300,7 +300,8 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
 void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
   const double volume = s.CellVolume();
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t> balance(n, 0);
+  std::vector<std::uint8_t>& balance = L.flags;
+  balance.assign(n, 0);
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) L.t_new[i] = guess[L.cells[i]];
   });
@@ -351,7 +352,8 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   Relinearise(s, L);
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
-  std::vector<std::uint8_t> off(n);
+  std::vector<std::uint8_t>& off = L.flags;
+  off.resize(n);
   for (int round = 0; round < kChordRounds; ++round) {
     // The next iterate H_k+1 = H_k + C_k (T - T_k), T_k+1 = T(H_k+1), and whether it maps back close enough.
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -412,7 +414,8 @@ void Update(ThermalState& s, int level) {
   const std::size_t n = L.cells.size();
   const double dt = L.seconds;
   const double volume = s.CellVolume();
-  std::vector<double> dh(n, 0.0);
+  std::vector<double>& dh = L.update_dh;  // every cell's value is written below
+  dh.resize(n);
   std::vector<UpdateAccount> part(Chunks(n));
   auto body = [&](std::size_t begin, std::size_t end, std::size_t chunk) {
     UpdateAccount acc;
@@ -519,7 +522,8 @@ void BeginLevelStep(ThermalState& s, int level, int m0, int m1) {
 std::vector<int> CoupleFinerLevels(ThermalState& s, int level, std::vector<int>& near, std::vector<int>& local_of) {
   LevelSystem& L = s.levels[level];
   const int m0 = L.m0, m1 = L.m1;
-  const CouplingSnapshot snap = TakeSnapshot(s, L, level);
+  TakeSnapshot(s, L, level, L.snapshot);
+  const CouplingSnapshot& snap = L.snapshot;
   std::vector<int> rest;
   for (int round = 0;; ++round) {
     for (std::size_t i = 0; i < snap.cells.size(); ++i) {

@@ -113,6 +113,22 @@ struct SampleRequest {
   int next = -1;     // the next request of the same cell, or -1
 };
 
+struct ThermalState;
+
+// A level's state before its finer levels run: what they and the level's corrector change, so that the level's step
+// can run them again over a larger finer region. Kept in the level's LevelSystem and filled again at each step.
+struct CouplingSnapshot {
+  std::vector<int> cells;                // the predictor's cells
+  std::vector<double> predicted;         // the predictor's temperatures, degC (the finer levels' boundary line)
+  // Per cell of `cells`, the values of each of kSnapshotFields: everything of a cell that the finer levels and the
+  // corrector change and a re-run reads.
+  std::vector<std::vector<double>> values;
+  // The snapshot's values of one of kSnapshotFields.
+  const std::vector<double>& Values(std::vector<double> ThermalState::*field) const;
+  std::vector<std::pair<int, double>> outside_inflow;  // inflow_j of present cells outside the level's region, J
+  EnergyBalance energy;
+};
+
 // The conjugate gradients' work arrays of one level, kept from solve to solve (no allocation per step once sized).
 struct LevelScratch {
   PaddedStencil stencil;                     // the level's system without branches
@@ -146,6 +162,9 @@ struct LevelSystem : StencilSystem {
   AdditiveCorrectionMultigrid multigrid;
   LevelScratch scratch;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
+  CouplingSnapshot snapshot;                           // the state before the finer levels of the level's step
+  std::vector<double> update_dh;                       // Update's scratch: each cell's enthalpy change, J/m^3
+  std::vector<std::uint8_t> flags;                     // SolveStep's scratch: a flag per cell
   double seconds = 0.0;
   double end_time_s = 0.0;
   // The ambient and table temperatures the step uses (time means over its micro steps) in its system and its losses,
@@ -338,23 +357,12 @@ inline constexpr std::array kSnapshotFields = {
     &ThermalState::heat_rate, &ThermalState::rate_step_s, &ThermalState::inflow_j, &ThermalState::chord,
     &ThermalState::iterate_h};
 
-// A level's state before its finer levels run: what they and the level's corrector change, so that the level's step
-// can run them again over a larger finer region.
-struct CouplingSnapshot {
-  std::vector<int> cells;                // the predictor's cells
-  std::vector<double> predicted;         // the predictor's temperatures, degC (the finer levels' boundary line)
-  // Per cell of `cells`, the values of each of kSnapshotFields: everything of a cell that the finer levels and the
-  // corrector change and a re-run reads.
-  std::vector<std::vector<double>> values;
-  // The snapshot's values of one of kSnapshotFields.
-  const std::vector<double>& Values(std::vector<double> ThermalState::*field) const {
-    const auto* it = std::find(kSnapshotFields.begin(), kSnapshotFields.end(), field);
-    return values[static_cast<std::size_t>(it - kSnapshotFields.begin())];
-  }
-  std::vector<std::pair<int, double>> outside_inflow;  // inflow_j of present cells outside the level's region, J
-  EnergyBalance energy;
-};
-CouplingSnapshot TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level);
+inline const std::vector<double>& CouplingSnapshot::Values(std::vector<double> ThermalState::*field) const {
+  const auto* it = std::find(kSnapshotFields.begin(), kSnapshotFields.end(), field);
+  return values[static_cast<std::size_t>(it - kSnapshotFields.begin())];
+}
+// Fills `snap` with the level's state (its vectors reused).
+void TakeSnapshot(const ThermalState& s, const LevelSystem& L, int level, CouplingSnapshot& snap);
 void RestoreSnapshot(ThermalState& s, const CouplingSnapshot& snap);
 
 // What CouplingViolations found: the cells outside the maximum principle's bounds and how far.
