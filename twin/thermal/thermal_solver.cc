@@ -573,8 +573,10 @@ void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int
              std::vector<int>& local_of) {
   BeginLevelStep(s, level, m0, m1);
   LevelSystem& L = s.levels[level];
-  // First guess: each cell's last rate of change carried over the step (the far field changes smoothly).
-  for (int c : candidates) s.guess[c] = s.temperature[c] + s.rate[c] * L.seconds;
+  // First guess: each cell's last rate of change carried over the step (the far field changes smoothly), but no
+  // further than the step it was taken over: a rate taken over a micro step under the arc says little of the next
+  // 32 s, and carried over them it put guesses thousands of K off (docs/THERMAL.md, "Where the CG iterations go").
+  for (int c : candidates) s.guess[c] = s.temperature[c] + s.rate[c] * std::min(L.seconds, s.rate_step_s[c]);
   std::vector<int> present;
   for (int c : candidates) {
     if (s.born[c] < m1) present.push_back(c);
