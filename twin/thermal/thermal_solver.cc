@@ -212,18 +212,22 @@ void Count(ThermalState& s, int level, std::size_t cells, int iterations) {
 // B 23B 651):
 // with the iterate H_k, T_k = T(H_k) and C_k = dH/dT at T_k, the step's equation
 // V/dt (H_k + C_k (T - T_k) - H_old) = Q + E/dt + sum_faces G (T_nb - T) - losses(T)
-// changes from the first linearisation only in the capacity's terms of the diagonal and the right-hand side.
+// changes from the first linearisation only in the capacity's terms of the diagonal and the right-hand side. For
+// cell i of the level's system; `storage_per_capacity` = V / dt.
+void RelineariseCell(ThermalState& s, LevelSystem& L, std::size_t i, double storage_per_capacity) {
+  const int c = L.cells[i];
+  const double capacity = s.table[s.material[c]].Capacity(s.chord[c]);
+  const double storage = capacity * storage_per_capacity;
+  L.capacity[i] = capacity;
+  L.diagonal[i] = L.base_diagonal[i] + storage;
+  L.rhs[i] = L.base_rhs[i] + storage * s.chord[c] - storage_per_capacity * (s.iterate_h[c] - s.enthalpy[c]);
+}
+
+// The same for every cell of the level's system.
 void Relinearise(ThermalState& s, LevelSystem& L) {
   const double storage_per_capacity = s.CellVolume() / L.seconds;
   ForChunks(L.cells.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const int c = L.cells[i];
-      const double capacity = s.table[s.material[c]].Capacity(s.chord[c]);
-      const double storage = capacity * storage_per_capacity;
-      L.capacity[i] = capacity;
-      L.diagonal[i] = L.base_diagonal[i] + storage;
-      L.rhs[i] = L.base_rhs[i] + storage * s.chord[c] - storage_per_capacity * (s.iterate_h[c] - s.enthalpy[c]);
-    }
+    for (std::size_t i = begin; i < end; ++i) RelineariseCell(s, L, i, storage_per_capacity);
   });
 }
 
@@ -296,7 +300,8 @@ bool MustConverge(const ThermalState& s, StepRole role, int c, int level) {
 // A predictor's first linearisation: the old state (H_old, T_old), except for the cells whose equation, linearised
 // there with their neighbours at the first guess, maps back further than the enthalpy iteration allows: those start
 // at their local balance with the neighbours at the first guess (cells about to melt or freeze, new metal under the
-// arc), so that the first solve already sees the latent heat on the side where they end.
+// arc), so that the first solve already sees the latent heat on the side where they end. Leaves the system
+// linearised there (the capacity's terms, as Relinearise).
 void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int level, const std::vector<double>& guess) {
   const double volume = s.CellVolume();
   const std::size_t n = L.cells.size();
@@ -322,12 +327,16 @@ void FirstLinearisation(ThermalState& s, LevelSystem& L, StepRole role, int leve
     }
   });
   ChooseFlags(s, balance);
+  // The flagged cells' local balance, and every cell's linearisation (Relinearise: LocalBalance reads none of it).
+  const double storage_per_capacity = volume / L.seconds;
   ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
-      if (balance[i] == 0) continue;
-      const int c = L.cells[i];
-      s.chord[c] = LocalBalance(s, L, i);
-      s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+      if (balance[i] != 0) {
+        const int c = L.cells[i];
+        s.chord[c] = LocalBalance(s, L, i);
+        s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+      }
+      RelineariseCell(s, L, i, storage_per_capacity);
     }
   });
 }
@@ -348,10 +357,14 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   LevelSystem& L = s.levels[level];
   const bool corrector = role == StepRole::kCorrector;
   Assemble(s, level, candidates, m0, m1, corrector, local_of);
-  if (!corrector) FirstLinearisation(s, L, role, level, guess);
-  Relinearise(s, L);
+  if (corrector) {
+    Relinearise(s, L);
+  } else {
+    FirstLinearisation(s, L, role, level, guess);
+  }
   Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
   const std::size_t n = L.cells.size();
+  const double storage_per_capacity = s.CellVolume() / L.seconds;
   std::vector<std::uint8_t>& off = L.flags;
   off.resize(n);
   for (int round = 0; round < kChordRounds; ++round) {
@@ -379,16 +392,18 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
       }
       return;
     }
-    // The cells off the curve are linearised next at their local balance instead (on the curve: H_k = H(T_k)).
+    // The cells off the curve are linearised next at their local balance instead (on the curve: H_k = H(T_k)), and
+    // every cell at its new iterate (Relinearise).
     ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t i = begin; i < end; ++i) {
-        if (off[i] == 0) continue;
-        const int c = L.cells[i];
-        s.chord[c] = LocalBalance(s, L, i);
-        s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+        if (off[i] != 0) {
+          const int c = L.cells[i];
+          s.chord[c] = LocalBalance(s, L, i);
+          s.iterate_h[c] = s.table[s.material[c]].Enthalpy(s.chord[c]);
+        }
+        RelineariseCell(s, L, i, storage_per_capacity);
       }
     });
-    Relinearise(s, L);
     Count(s, level, n, SolveLevel(s, L, s.chord, true));
   }
 }
@@ -414,14 +429,14 @@ void Update(ThermalState& s, int level) {
   const std::size_t n = L.cells.size();
   const double dt = L.seconds;
   const double volume = s.CellVolume();
-  std::vector<double>& dh = L.update_dh;  // every cell's value is written below
-  dh.resize(n);
   std::vector<UpdateAccount> part(Chunks(n));
+  // A cell's update reads its own old state and its neighbours' solved temperatures (L.t_new), never another
+  // region cell's state, so each cell is updated as soon as its energy is summed.
   auto body = [&](std::size_t begin, std::size_t end, std::size_t chunk) {
     UpdateAccount acc;
     for (std::size_t i = begin; i < end; ++i) {
       const int c = L.cells[i];
-      const double t = L.t_new[i];
+      const double t_solved = L.t_new[i];
       double power = L.source_w[i];
       acc.input += L.source_w[i] * dt;
       for (int f = 0; f < 6; ++f) {
@@ -429,21 +444,30 @@ void Update(ThermalState& s, int level) {
         const int j = L.neighbour[i][f];
         if (j == kFinerCell) continue;
         if (j != kNoCell) {
-          power += g * (L.t_new[j] - t);
+          power += g * (L.t_new[j] - t_solved);
         } else if (g > 0.0) {
           const int other = s.neighbour[c][f];
-          const double flux = g * (Bound(s, other, L.end_time_s) - t);
+          const double flux = g * (Bound(s, other, L.end_time_s) - t_solved);
           power += flux;
           s.inflow_j[other] -= flux * dt;
         } else {
-          const FaceLoss loss = LossOfFace(s, L, c, f, s.temperature[c], t);
+          const FaceLoss loss = LossOfFace(s, L, c, f, s.temperature[c], t_solved);
           power -= loss.convection + loss.radiation + loss.table;
           acc.convection += loss.convection * dt;
           acc.radiation += loss.radiation * dt;
           acc.table += loss.table * dt;
         }
       }
-      dh[i] = (power * dt + s.inflow_j[c]) / volume;
+      const double dh = (power * dt + s.inflow_j[c]) / volume;
+      s.enthalpy[c] += dh;
+      s.inflow_j[c] = 0.0;
+      const double t = s.table[s.material[c]].Temperature(s.enthalpy[c], t_solved);
+      if (s.sample_head[c] >= 0) RecordSamples(s, L, c, s.temperature[c], t);
+      s.rate[c] = (t - s.temperature[c]) / dt;
+      s.heat_rate[c] = dh / dt;
+      s.rate_step_s[c] = dt;
+      s.temperature[c] = t;
+      s.conductivity[c] = s.table[s.material[c]].Conductivity(t);
     }
     part[chunk] = acc;
   };
@@ -458,20 +482,6 @@ void Update(ThermalState& s, int level) {
     s.energy.radiation_j += acc.radiation;
     s.energy.table_j += acc.table;
   }
-  ForChunks(n, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const int c = L.cells[i];
-      s.enthalpy[c] += dh[i];
-      s.inflow_j[c] = 0.0;
-      const double t = s.table[s.material[c]].Temperature(s.enthalpy[c], L.t_new[i]);
-      if (s.sample_head[c] >= 0) RecordSamples(s, L, c, s.temperature[c], t);
-      s.rate[c] = (t - s.temperature[c]) / dt;
-      s.heat_rate[c] = dh[i] / dt;
-      s.rate_step_s[c] = dt;
-      s.temperature[c] = t;
-      s.conductivity[c] = s.table[s.material[c]].Conductivity(t);
-    }
-  });
 }
 
 void Advance(ThermalState& s, int level, const std::vector<int>& candidates, int m0, int m1,

@@ -163,7 +163,6 @@ struct LevelSystem : StencilSystem {
   LevelScratch scratch;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
   CouplingSnapshot snapshot;                           // the state before the finer levels of the level's step
-  std::vector<double> update_dh;                       // Update's scratch: each cell's enthalpy change, J/m^3
   std::vector<std::uint8_t> flags;                     // SolveStep's scratch: a flag per cell
   double seconds = 0.0;
   double end_time_s = 0.0;
