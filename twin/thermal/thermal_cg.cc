@@ -43,8 +43,7 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces, in
   if (multigrid && !(same_faces && L.ijk.size() == n)) {
     L.ijk.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const Eigen::Vector3i g = s.CellIndex(s.grid_of[L.cells[i]]);
-      L.ijk[i] = {g.x(), g.y(), g.z()};
+      L.ijk[i] = s.cell_ijk[static_cast<std::size_t>(L.cells[i])];
     }
   }
   if (multigrid && same_faces && w.multigrid_faces) {

@@ -62,18 +62,18 @@ void ThermalState::FaceContact(int cell, int face, double* conductance_w_m2k, do
   *conductance_w_m2k = 0.0;
   *air = 1.0;
   if ((face != 4 && face != 5) || material[cell] != kSubstrate) return;
-  const Eigen::Vector3i ijk = CellIndex(grid_of[cell]);
-  if (face == 4 && ijk.z() == plate_bottom_k) {
+  const std::array<int, 3>& ijk = cell_ijk[static_cast<std::size_t>(cell)];
+  if (face == 4 && ijk[2] == plate_bottom_k) {
     if (contact.empty()) {
       *conductance_w_m2k = settings.table_conductance_w_m2k;
       *air = settings.table_conductance_w_m2k > 0.0 ? 0.0 : 1.0;
       return;
     }
-    const ColumnContact& c = contact[static_cast<std::size_t>(ijk.x() + size.x() * ijk.y())];
+    const ColumnContact& c = contact[static_cast<std::size_t>(ijk[0] + size.x() * ijk[1])];
     *conductance_w_m2k = c.bottom_w_m2k;
     *air = c.bottom_air;
-  } else if (face == 5 && ijk.z() == plate_top_k && !contact.empty()) {
-    const ColumnContact& c = contact[static_cast<std::size_t>(ijk.x() + size.x() * ijk.y())];
+  } else if (face == 5 && ijk[2] == plate_top_k && !contact.empty()) {
+    const ColumnContact& c = contact[static_cast<std::size_t>(ijk[0] + size.x() * ijk[1])];
     *conductance_w_m2k = c.top_w_m2k;
     *air = c.top_air;
   }
@@ -81,11 +81,11 @@ void ThermalState::FaceContact(int cell, int face, double* conductance_w_m2k, do
 
 double ThermalState::InterfaceContact(int cell, int face) const {
   if (!table_body || (face != 4 && face != 5) || material[cell] != kSubstrate) return 0.0;
-  const Eigen::Vector3i ijk = CellIndex(grid_of[cell]);
-  if (ijk.z() != (face == 4 ? plate_bottom_k : plate_bottom_k - 1)) return 0.0;
+  const std::array<int, 3>& ijk = cell_ijk[static_cast<std::size_t>(cell)];
+  if (ijk[2] != (face == 4 ? plate_bottom_k : plate_bottom_k - 1)) return 0.0;
   // The clamps' columns carry the contact under each patch (BuildColumnContacts); elsewhere it is the table's.
   if (contact.empty()) return settings.table_conductance_w_m2k;
-  return contact[static_cast<std::size_t>(ijk.x() + size.x() * ijk.y())].bottom_w_m2k;
+  return contact[static_cast<std::size_t>(ijk[0] + size.x() * ijk[1])].bottom_w_m2k;
 }
 
 void BuildColumnContacts(ThermalState& s) {
@@ -145,6 +145,7 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   std::array<int, 6> links;
   std::uint8_t bits = 0, laid = 0;
   const Eigen::Vector3i c = CellIndex(grid);
+  cell_ijk.push_back({c.x(), c.y(), c.z()});
   plane.push_back(c.sum());
   for (int f = 0; f < 6; ++f) {
     const Eigen::Vector3i n = c + Eigen::Vector3i(kFaceStep[f][0], kFaceStep[f][1], kFaceStep[f][2]);

@@ -68,8 +68,8 @@ std::vector<int> FinerRegion(ThermalState& s, const std::vector<int>& region, in
   box.min().array() -= radius_mm;
   box.max().array() += radius_mm;
   for (int c : region) {
-    const Eigen::Vector3i g = s.CellIndex(s.grid_of[c]);
-    if (box.contains(s.Centre(g.x(), g.y(), g.z()))) Join(s, c, level, near);
+    const std::array<int, 3>& g = s.cell_ijk[static_cast<std::size_t>(c)];
+    if (box.contains(s.Centre(g[0], g[1], g[2]))) Join(s, c, level, near);
   }
   CloseFinerRegion(s, near, 0, level, m1);
   return near;

@@ -212,6 +212,7 @@ struct ThermalState {
 
   // Active cells (ids in the order they switched on).
   std::vector<int> grid_of;
+  std::vector<std::array<int, 3>> cell_ijk;  // the cell's grid coordinates (i, j, k)
   std::vector<int> plane;           // i + j + k of the cell's grid coordinates (thermal_cg.cc's wavefront order)
   std::vector<std::uint8_t> material;
   std::vector<std::array<int, 6>> neighbour;  // active-cell id across -x, +x, -y, +y, -z, +z, or kNoCell
