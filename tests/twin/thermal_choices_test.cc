@@ -89,8 +89,8 @@ double NonLinearity(const std::vector<double>& base, const Run& run, double delt
 }
 
 // Following the record, the readings respond to the heat input, the convection and the table contact nearly linearly
-// over changes of 0.1 % (heat) and 1 % (the losses): no switch of the solver moves them. Measured: 0.042, 0.00053 and
-// 0.0091 (with the diagonal preconditioner instead of symmetric Gauss-Seidel: 0.042, 0.0026 and 0.0087; with the
+// over changes of 0.1 % (heat) and 1 % (the losses): no switch of the solver moves them. Measured: 0.041, 0.00056 and
+// 0.0093 (with the diagonal preconditioner instead of symmetric Gauss-Seidel: 0.042, 0.0026 and 0.0087; with the
 // linear solves at 0.01 K instead of 0.001 K: 0.043, 0.045 and 0.051; free runs of this build,
 // making their own choices, at 0.01 K: 0.21, 0.15 and 0.41). The heat's residue is the melt
 // pool's: its readings at 1200-1740 degC, where the liquid's conductivity ramps fivefold across the mushy zone.
