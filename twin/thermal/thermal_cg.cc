@@ -40,6 +40,7 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces, in
   double* z = w.z.data();
   double* ap = w.ap.data();
   const double* inv = w.inverse_diagonal.data();
+  const double* stop = w.stop.data();
   if (multigrid && !(same_faces && L.ijk.size() == n)) {
     L.ijk.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -92,7 +93,7 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces, in
         x[i] += alpha * p[i];
         r[i] -= alpha * ap[i];
         const double correction = r[i] * inv[i];
-        most = std::max(most, std::abs(correction));
+        most = std::max(most, std::abs(r[i] * stop[i]));
         if (!multigrid) {
           z[i] = correction;
           rz_part += r[i] * correction;
@@ -215,6 +216,7 @@ int IterateSymmetricGaussSeidel(LevelScratch& w, std::size_t n, double tolerance
   double* p = w.sgs_p.data();
   double* q = w.sgs_q.data();
   double* et = w.sgs_et.data();
+  const double* stop = w.sgs_stop.data();
   double rz = TransformResidual(w, n);
   double beta = 0.0;
   int done = 0;
@@ -253,7 +255,7 @@ int IterateSymmetricGaussSeidel(LevelScratch& w, std::size_t n, double tolerance
       x[k] += alpha * t[k];
       rh[k] -= alpha * q[k];
       r[k] -= alpha * (p[k] - et[k]);
-      *largest = std::max(*largest, std::abs(r[k] * inv[k]));
+      *largest = std::max(*largest, std::abs(r[k] * stop[k]));
       z[k] = d[k] * rh[k];
       *rz_sum += rh[k] * z[k];
     };
@@ -276,7 +278,8 @@ int IterateSymmetricGaussSeidel(LevelScratch& w, std::size_t n, double tolerance
 // faces (OrderSymmetricGaussSeidel), the first guess and its residual in that order, the iterations (a choice,
 // ChooseIterations), the solution back in the level's order. Serial: for systems under kParallelCells, which
 // ForChunks runs on the calling thread anyway. Returns the iterations.
-int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces) {
+int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces,
+                              int deepest_tested) {
   LevelScratch& w = L.scratch;
   const std::size_t n = L.cells.size();
   OrderSymmetricGaussSeidel(s, L, same_faces);
@@ -289,7 +292,12 @@ int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector
   for (std::vector<double>* v : {&w.sgs_r, &w.sgs_z, &w.sgs_p, &w.sgs_q, &w.sgs_et}) v->resize(n);
   const int* order = w.order.data();
   double* x = w.sgs_x.data();
-  for (std::size_t k = 0; k < n; ++k) x[k] = guess[L.cells[static_cast<std::size_t>(order[k])]];
+  w.sgs_stop.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int c = L.cells[static_cast<std::size_t>(order[k])];
+    x[k] = guess[c];
+    w.sgs_stop[k] = s.depth[c] <= deepest_tested ? w.sgs_inverse[k] : 0.0;
+  }
   // The first residual and its largest Jacobi correction.
   double worst = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -301,7 +309,7 @@ int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector
     r = L.rhs[static_cast<std::size_t>(order[k])] - w.sgs_diagonal[k] * x[k] +
         (gl[0] * x[lo[0]] + gl[1] * x[lo[1]] + gl[2] * x[lo[2]]) +
         (gu[0] * x[up[0]] + gu[1] * x[up[1]] + gu[2] * x[up[2]]);
-    worst = std::max(worst, std::abs(r * w.sgs_inverse[k]));
+    worst = std::max(worst, std::abs(r * w.sgs_stop[k]));
   }
   const int iterations = ChooseIterations(s, worst, [&](int fixed) {
     return IterateSymmetricGaussSeidel(w, n, s.settings.solver_tolerance_c, fixed);
@@ -318,7 +326,8 @@ int SolveSymmetricGaussSeidel(ThermalState& s, LevelSystem& L, const std::vector
 // (thermal_multigrid.h), the others by symmetric Gauss-Seidel (under kParallelCells cells) or the diagonal. With
 // `same_faces` the system differs from the one last solved only in its diagonal and right-hand side (a nonlinear
 // round), so only the diagonal is copied. Returns the iterations.
-int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces) {
+int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces,
+               int deepest_tested) {
   const std::size_t n = L.cells.size();
   if (n == 0) return 0;
   LevelScratch& w = L.scratch;
@@ -345,7 +354,7 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
   // The preconditioner is a choice (SolverChoices), as is the iteration count (ChooseIterations).
   const bool multigrid = ChooseCount(s, n >= kMultigridCells && Sum(w.part_a) >= kMultigridStiffness *
                                                                                     Sum(w.part_b)) != 0;
-  if (!multigrid && n < kParallelCells) return SolveSymmetricGaussSeidel(s, L, guess, same_faces);
+  if (!multigrid && n < kParallelCells) return SolveSymmetricGaussSeidel(s, L, guess, same_faces, deepest_tested);
   const PaddedStencil& a = w.stencil;
   if (!w.stencil_faces) {
     w.stencil.Assign(L);
@@ -361,6 +370,7 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
   w.r.resize(n);
   w.ap.resize(n);
   w.inverse_diagonal.resize(n);
+  w.stop.resize(n);
   double* x = w.x.data();
   double* r = w.r.data();
   double* inv = w.inverse_diagonal.data();
@@ -370,8 +380,9 @@ int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess
     double worst = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
       inv[i] = 1.0 / a.diagonal[i];
+      w.stop[i] = s.depth[L.cells[i]] <= deepest_tested ? inv[i] : 0.0;
       r[i] = L.rhs[i] - a.Row(x, i);
-      worst = std::max(worst, std::abs(r[i] * inv[i]));
+      worst = std::max(worst, std::abs(r[i] * w.stop[i]));
     }
     w.part_max[c] = worst;
   });

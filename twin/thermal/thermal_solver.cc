@@ -5,6 +5,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 #include "models/core/error.h"
 #include "models/core/parallel.h"
@@ -362,7 +363,10 @@ void SolveStep(ThermalState& s, int level, const std::vector<int>& candidates, i
   } else {
     FirstLinearisation(s, L, role, level, guess);
   }
-  Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false));
+  // A predictor with finer levels need not converge in their region (MustConverge), neither its enthalpy iteration
+  // nor its linear solve: the finer levels solve the region again from the predicted values around it.
+  const int deepest_tested = unconverged != nullptr ? level : std::numeric_limits<int>::max();
+  Count(s, level, L.cells.size(), SolveLevel(s, L, guess, false, deepest_tested));
   const std::size_t n = L.cells.size();
   const double storage_per_capacity = s.CellVolume() / L.seconds;
   std::vector<std::uint8_t>& off = L.flags;

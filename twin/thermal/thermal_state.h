@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -135,6 +136,9 @@ struct LevelScratch {
   std::vector<double> z, p;                  // degC, n + 1 values (the last the zero slot)
   std::vector<double> x, r, ap;              // degC, W, W
   std::vector<double> inverse_diagonal;      // K/W
+  // The stopping test's weight of each cell's residual: 1 / A_ii, or 0 for a cell left out of the test (SolveLevel's
+  // `deepest_tested`); sgs_stop the same in the symmetric Gauss-Seidel's order.
+  std::vector<double> stop, sgs_stop;
   std::vector<double> part_a, part_b, part_max;  // per-chunk partial sums and maxima
   // Whether the stencil, the level's multigrid and the symmetric Gauss-Seidel system below were built on the cells,
   // faces and conductances of the level's last system (a nonlinear round changes only the diagonal).
@@ -326,8 +330,11 @@ void CloseFinerRegion(ThermalState& s, std::vector<int>& near, std::size_t from,
 
 // Solves the level's assembled system (L's cells, stencil, diagonal and right-hand side) into L.t_new, from `guess`
 // (degC by active cell), by preconditioned conjugate gradients (thermal_cg.cc); with `same_faces` only the diagonal
-// and right-hand side changed since the last solve. Returns the iterations.
-int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces);
+// and right-hand side changed since the last solve. The solve stops when every cell of depth <= `deepest_tested` meets
+// the tolerance (a predictor leaves its finer region, which the finer levels solve again, out of the test). Returns
+// the iterations.
+int SolveLevel(ThermalState& s, LevelSystem& L, const std::vector<double>& guess, bool same_faces,
+               int deepest_tested = std::numeric_limits<int>::max());
 
 // Calls visit(record, f) for each probe record wanted of `cell` at a batch boundary inside the level's step
 // (L.m0, L.m1]: `record` the value (degC), f the boundary's fraction of the step (1 at its end).
