@@ -28,13 +28,12 @@ void Build(Problem& p, int nx, int ny, int nz, const std::vector<int>& cells, do
   s.settings.solver_tolerance_c = 1e-9;
   const int n = nx * ny * nz;
   s.grid_of.resize(n);
-  s.plane.resize(n);
   s.cell_ijk.resize(n);
   s.depth.assign(n, 0);  // every cell the level's own (none in a finer region)
   for (int c = 0; c < n; ++c) {
     s.grid_of[c] = c;  // active id c is grid cell c
-    s.plane[c] = s.CellIndex(c).sum();
-    s.cell_ijk[c] = {s.CellIndex(c).x(), s.CellIndex(c).y(), s.CellIndex(c).z()};
+    const Eigen::Vector3i g = s.CellIndex(c);
+    s.cell_ijk[c] = {g.x(), g.y(), g.z()};
   }
   // Per active cell: conductances to +x, +y, +z, and the right-hand side (the same for any order).
   std::mt19937 random(seed);

@@ -111,6 +111,12 @@ int Iterate(ThermalState& s, LevelSystem& L, bool multigrid, bool same_faces, in
   return iterations;
 }
 
+// The plane i + j + k of active cell c's grid coordinates.
+int Plane(const ThermalState& s, int c) {
+  const std::array<int, 3>& g = s.cell_ijk[static_cast<std::size_t>(c)];
+  return g[0] + g[1] + g[2];
+}
+
 // The symmetric Gauss-Seidel preconditioner's system from the level's (StencilSystem L): the cells sorted by their
 // plane i + j + k, and per position the lower faces (-x, -y, -z) and the upper ones (+x, +y, +z). A cell's lower
 // neighbours lie in the plane before its own and its upper ones in the plane after it, so every lower neighbour comes
@@ -122,20 +128,20 @@ void OrderSymmetricGaussSeidel(const ThermalState& s, LevelSystem& L, bool same_
   const std::size_t n = L.cells.size();
   if (!same_faces || !w.sgs_faces) {
     // Counting sort by plane.
-    int low = s.plane[static_cast<std::size_t>(L.cells[0])], high = low;
+    int low = Plane(s, L.cells[0]), high = low;
     for (int c : L.cells) {
-      low = std::min(low, s.plane[static_cast<std::size_t>(c)]);
-      high = std::max(high, s.plane[static_cast<std::size_t>(c)]);
+      low = std::min(low, Plane(s, c));
+      high = std::max(high, Plane(s, c));
     }
     std::vector<int>& start = w.sgs_start;
     start.assign(static_cast<std::size_t>(high - low) + 2, 0);
-    for (int c : L.cells) ++start[static_cast<std::size_t>(s.plane[static_cast<std::size_t>(c)] - low) + 1];
+    for (int c : L.cells) ++start[static_cast<std::size_t>(Plane(s, c) - low) + 1];
     for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
     w.order.resize(n);
     std::vector<int>& at = w.sgs_at;  // the position of each local index
     at.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const int k = start[static_cast<std::size_t>(s.plane[static_cast<std::size_t>(L.cells[i])] - low)]++;
+      const int k = start[static_cast<std::size_t>(Plane(s, L.cells[i]) - low)]++;
       w.order[static_cast<std::size_t>(k)] = static_cast<int>(i);
       at[i] = k;
     }

@@ -146,7 +146,6 @@ int ThermalState::Activate(int grid, int material_index, double h, int born_step
   std::uint8_t bits = 0, laid = 0;
   const Eigen::Vector3i c = CellIndex(grid);
   cell_ijk.push_back({c.x(), c.y(), c.z()});
-  plane.push_back(c.sum());
   for (int f = 0; f < 6; ++f) {
     const Eigen::Vector3i n = c + Eigen::Vector3i(kFaceStep[f][0], kFaceStep[f][1], kFaceStep[f][2]);
     links[f] = kNoCell;

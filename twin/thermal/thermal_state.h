@@ -167,7 +167,7 @@ struct LevelSystem : StencilSystem {
   LevelScratch scratch;
   std::vector<double> capacity;                        // J/(m^3 K) the step used for each cell
   CouplingSnapshot snapshot;                           // the state before the finer levels of the level's step
-  std::vector<std::uint8_t> flags;                     // SolveStep's scratch: a flag per cell
+  std::vector<std::uint8_t> flags;                     // a flag per cell (FirstLinearisation's, SolveStep's scratch)
   double seconds = 0.0;
   double end_time_s = 0.0;
   // The ambient and table temperatures the step uses (time means over its micro steps) in its system and its losses,
@@ -217,7 +217,6 @@ struct ThermalState {
   // Active cells (ids in the order they switched on).
   std::vector<int> grid_of;
   std::vector<std::array<int, 3>> cell_ijk;  // the cell's grid coordinates (i, j, k)
-  std::vector<int> plane;           // i + j + k of the cell's grid coordinates (thermal_cg.cc's wavefront order)
   std::vector<std::uint8_t> material;
   std::vector<std::array<int, 6>> neighbour;  // active-cell id across -x, +x, -y, +y, -z, +z, or kNoCell
   std::vector<int> born;            // index of the micro step of the pending batch that lays it; -1 = present
